@@ -1,0 +1,256 @@
+/* rad — hemi-cube radiosity in fixed point, with progressive refinement.
+ *
+ * Cohen & Greenberg, "The Hemi-Cube", SIGGRAPH 1985; Cohen, Chen, Wallace & Greenberg,
+ * "A Progressive Refinement Approach to Fast Radiosity Image Generation", SIGGRAPH 1988.
+ *
+ * The core allocates nothing: the caller hands rad_init() pools of surfaces, patches,
+ * elements and vertices and one work buffer (sizes: RAD_WORK_BYTES below). It calls no
+ * libc, no libm and no stdio, and in its fixed build (the default) uses no floating
+ * point, giving the same bits on every CPU.
+ *
+ * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
+ *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
+ *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
+ *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits. Precision is
+ *                 2^-16 units, so keep scenes between about 4 and 64 units across
+ *                 (rad_cli scales every scene to 64 units; radiosity is scale-free).
+ *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
+ *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
+ *                 every clamp is counted in rad_scene_t.stats.saturations.
+ *   rad_energy_t  Q16.16 in uint64: radiosity times area (power), up to 2^46 units.
+ *   form factors  Q2.30 in uint32 (internal): the delta form factor table of a
+ *                 hemi-cube sums to exactly 2^30.
+ * Rounding is to nearest everywhere; no operation relies on signed overflow or on
+ * right shifts of negative numbers.
+ *
+ * Every function returns int: 0 or a non-negative count on success, a negative
+ * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
+ */
+#ifndef RAD_H
+#define RAD_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "rad_config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The float twin links beside the fixed library, so its symbols carry another prefix. */
+#if RAD_FLOAT
+#define rad_init radf_init
+#define rad_add_polygon radf_add_polygon
+#define rad_shoot radf_shoot
+#define rad_unshot_fraction radf_unshot_fraction
+#define rad_ambient radf_ambient
+#define rad_element_radiosity radf_element_radiosity
+#define rad_shade_vertices radf_shade_vertices
+#define rad_render radf_render
+#define rad_restart radf_restart
+#define rad_set_surface radf_set_surface
+#define rad_form_factors radf_form_factors
+#define rad_strerror radf_strerror
+#define rad_real_from_q16 radf_real_from_q16
+#endif
+
+/* ---- scalar types -------------------------------------------------------------- */
+#if RAD_FLOAT
+typedef float rad_real_t;
+typedef float rad_energy_t;
+typedef float rad_ff_t;
+#define RAD_REAL(x) ((rad_real_t)(x))
+#define RAD_TO_DOUBLE(r) ((double)(r))
+#define RAD_FF_TO_DOUBLE(f) ((double)(f))
+#else
+typedef int32_t rad_real_t;
+typedef uint64_t rad_energy_t;
+typedef uint32_t rad_ff_t;
+/* For host code only: converts a double constant or variable, rounding to nearest. */
+#define RAD_REAL(x) ((rad_real_t)((x) * 65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+#define RAD_TO_DOUBLE(r) ((double)(r) / 65536.0)
+#define RAD_FF_TO_DOUBLE(f) ((double)(f) / 1073741824.0)
+#endif
+
+#if RAD_INDEX_BITS == 16
+typedef uint16_t rad_index_t;
+#define RAD_INDEX_NONE 0xFFFFu
+#else
+typedef uint32_t rad_index_t;
+#define RAD_INDEX_NONE 0xFFFFFFFFu
+#endif
+
+#define RAD_COORD_LIMIT 64     /* |coordinate| <= 64.0 units */
+#define RAD_EMISSION_LIMIT 4096 /* emission <= 4096.0 per channel */
+
+typedef struct { rad_real_t x, y, z; } rad_vec3_t;
+typedef struct { rad_real_t r, g, b; } rad_rgb_t;
+
+/* ---- errors -------------------------------------------------------------------- */
+#define RAD_OK 0
+#define RAD_ERR_ARG (-1)        /* NULL pointer or an argument outside its domain */
+#define RAD_ERR_FULL (-2)       /* a pool is full: nothing was added */
+#define RAD_ERR_RANGE (-3)      /* coordinate, reflectance or emission out of range */
+#define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
+#define RAD_ERR_NONPLANAR (-5)  /* a quad that is not planar or not convex */
+#define RAD_ERR_STATE (-6)      /* call out of order (e.g. adding after shooting) */
+#define RAD_ERR_WORK (-7)       /* work buffer too small for this configuration */
+
+/* ---- pools --------------------------------------------------------------------- */
+/* A polygon as given (3 or 4 vertices), meshed into a grid of patches and elements. */
+typedef struct {
+    rad_vec3_t normal;        /* unit normal, right-handed from the vertex order */
+    rad_rgb_t reflectance;
+    rad_rgb_t emission;
+    rad_index_t first_patch, n_patches;
+    rad_index_t first_element, n_elements;
+    rad_index_t first_vertex, n_vertices;
+} rad_surface_t;
+
+/* A shooter: a block of elements whose hemi-cube sits at its centre. */
+typedef struct {
+    rad_vec3_t center;
+    rad_real_t area;
+    rad_energy_t unshot[3];   /* unshot power (radiosity times area) per channel */
+    rad_index_t surface;
+    rad_index_t first_element, n_elements;
+} rad_patch_t;
+
+/* A receiver: a triangle or planar quad of shared surface vertices. */
+typedef struct {
+    rad_index_t v[4];         /* v[3] == RAD_INDEX_NONE for a triangle */
+    rad_index_t surface, patch;
+    rad_real_t area;
+    rad_rgb_t radiosity;      /* the solution so far (without the ambient term) */
+} rad_element_t;
+
+typedef struct {
+    rad_surface_t *surfaces; uint32_t max_surfaces;
+    rad_patch_t *patches;    uint32_t max_patches;
+    rad_element_t *elements; uint32_t max_elements;
+    rad_vec3_t *vertices;    uint32_t max_vertices;
+    void *work;              size_t work_bytes;
+} rad_pools_t;
+
+/* Work buffer bytes for hemi-cube resolution RES rendering PIXELS pixels per pass, with
+ * room for N per-element (or per-vertex) accumulators, N = max(elements, vertices).
+ * All five faces at once:  PIXELS = RAD_PIXELS_ALL(RES) = 3 RES^2 (top + 4 half sides).
+ * One band of ROWS rows:   PIXELS = RES * ROWS (RAM for time: each band re-renders).   */
+#define RAD_PIXELS_ALL(res) (3u * (uint32_t)(res) * (uint32_t)(res))
+#define RAD_WORK_BYTES(res, pixels, n)                                          \
+    (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) +     \
+     (size_t)(n) * sizeof(rad_ff_t) +                                          \
+     (size_t)(pixels) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
+
+/* ---- configuration (zero means default) ---------------------------------------- */
+typedef struct {
+    rad_real_t max_patch;   /* longest patch edge; default 16.0 units */
+    rad_real_t max_element; /* longest element edge; default 4.0 units */
+    uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
+    uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
+} rad_config_t;
+
+typedef struct {
+    uint32_t shots;            /* patches shot */
+    uint32_t saturations;      /* values clamped to their format's range */
+    uint32_t raster_calls;     /* triangles handed to the rasterizer */
+    uint64_t raster_pixels;    /* pixels covered (before the depth test) */
+} rad_stats_t;
+
+/* The solver. Fields are read-only for the caller; set them only through the API. */
+typedef struct {
+    rad_config_t cfg;
+    rad_pools_t pools;
+    uint32_t n_surfaces, n_patches, n_elements, n_vertices;
+    int solving;                 /* set by the first shot: geometry is frozen */
+    rad_energy_t emitted;        /* total emitted power, all channels */
+    rad_stats_t stats;
+    /* work buffer layout */
+    rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
+    rad_ff_t *acc;                /* per-element form factor sums */
+    uint32_t *zbuf;
+    rad_index_t *ibuf;
+    uint32_t pass_pixels;         /* pixels the face buffers hold */
+    uint16_t band_rows;           /* rows per band, or 0: all faces in one pass */
+} rad_scene_t;
+
+/* ---- building a scene ---------------------------------------------------------- */
+
+/* Prepares S over the caller's pools with configuration CFG (NULL: defaults), and builds
+ * the delta form factor table in the work buffer. Returns RAD_OK, RAD_ERR_ARG for NULL
+ * or invalid settings, RAD_ERR_WORK when the work buffer cannot hold the table, the
+ * accumulators and at least one row of a face. */
+int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg);
+
+/* Adds a convex planar polygon of N = 3 or 4 vertices V (counter-clockwise seen from
+ * the lit side) with REFLECTANCE and EMISSION (NULL: black), meshed at once into
+ * patches and elements. Returns the new surface's index, or RAD_ERR_ARG, RAD_ERR_RANGE,
+ * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR (split such a quad into triangles),
+ * RAD_ERR_FULL (no pool changed) or RAD_ERR_STATE after shooting started. */
+int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
+                    const rad_rgb_t *reflectance, const rad_rgb_t *emission);
+
+/* Changes the reflectance and emission of surface SURF (either may be NULL to keep it).
+ * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE. */
+int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
+                    const rad_rgb_t *emission);
+
+/* Resets the solution to the emission alone (the geometry stays), so the scene can be
+ * solved again after rad_set_surface(). Returns RAD_OK or RAD_ERR_ARG. */
+int rad_restart(rad_scene_t *s);
+
+/* ---- solving ------------------------------------------------------------------- */
+
+/* Shoots up to MAX_SHOTS patches, each time the one with the most unshot power, and
+ * stops early once the unshot fraction is at most TOL. Returns the number of patches
+ * shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
+int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
+
+/* Unshot power as a fraction of the emitted power (0 when nothing emits). */
+rad_real_t rad_unshot_fraction(const rad_scene_t *s);
+
+/* The ambient term of Cohen et al. 1988: unshot power spread over the scene, times the
+ * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT; returns
+ * RAD_OK or RAD_ERR_ARG. */
+int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
+
+#define RAD_SHADE_AMBIENT 1   /* add reflectance times the ambient term */
+
+/* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
+int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
+
+/* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
+ * elements of its surface that share it. OUT holds N >= n_vertices entries. Uses the
+ * work buffer's accumulators as scratch. Returns the number of vertices written, or
+ * RAD_ERR_ARG. */
+int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
+
+/* ---- viewing ------------------------------------------------------------------- */
+typedef struct {
+    rad_vec3_t eye, target, up;
+    rad_real_t tan_half_fov;  /* tangent of half the vertical field of view */
+} rad_camera_t;
+
+/* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
+ * FB (W*H linear radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer,
+ * through the same rasterizer as the hemi-cube. Pixels no surface covers are black.
+ * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
+ * a degenerate camera). */
+int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
+               rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h);
+
+/* Form factors from the centre of patch P to every element, written to OUT (one per
+ * element, summing to about 1 in a closed scene): the hemi-cube row the solver uses.
+ * Returns the number of elements, or RAD_ERR_ARG. */
+int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
+
+/* Converts a Q16.16 value (as int32) to rad_real_t: identity in the fixed build. */
+rad_real_t rad_real_from_q16(int32_t q);
+
+/* A short English description of an RAD_ERR_* code. */
+const char *rad_strerror(int err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

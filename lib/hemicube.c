@@ -1,0 +1,230 @@
+/* rad — the hemi-cube: delta form factors, face passes, item-buffer accumulation.
+ *
+ * The hemi-cube has a top face of res x res pixels and four half side faces of
+ * res x res/2. The delta form factor of a top pixel at (x, y) (face spanning -1..1) is
+ * dA / (pi (x^2 + y^2 + 1)^2), of a side pixel at (x, z) z dA / (pi (x^2 + z^2 + 1)^2)
+ * (Cohen & Greenberg 1985). Both are symmetric in x (and the top in y), so one quadrant
+ * of each is stored. The table is built in integers in both builds and normalised so
+ * that the whole hemi-cube sums to exactly 2^30 (1.0 in Q2.30).
+ */
+#include "internal.h"
+
+typedef struct {
+    unsigned face;       /* 0 top, 1..4 sides */
+    int row0, row1;      /* rows of the face this region holds */
+    uint32_t offset;     /* first pixel in the work buffer's face buffers */
+} region_t;
+
+static uint32_t face_rows(const rad_scene_t *s, unsigned f) { return f ? s->cfg.res / 2u : s->cfg.res; }
+
+/* ---- the delta form factor table ----------------------------------------------- */
+
+/* Unnormalised delta form factor of quadrant entry (i, j) of FACE, shifted right by SH:
+ * with odd lattice numbers (2i+1)/res the formulas above become 2^62 / N^2 (top) and
+ * 2^62 / N^2 * h / res (side), N = (2i+1)^2 + (2j+1 or h)^2 + res^2 < 3 * 2^22. */
+static uint64_t raw_dff(uint32_t res, unsigned side, uint32_t i, uint32_t j, unsigned sh)
+{
+    uint64_t a = 2u * i + 1u, h = side ? res - 2u * j - 1u : 2u * j + 1u;
+    uint64_t n = a * a + h * h + (uint64_t)res * res;
+    uint64_t v = ((uint64_t)1 << 62) / (n * n);
+    if (side) v = v * h / res;
+    return v >> sh;
+}
+
+static unsigned bitlen64(uint64_t v)
+{
+    unsigned b = 0;
+    while (v) { b++; v >>= 1; }
+    return b;
+}
+
+static void build_table(rad_scene_t *s)
+{
+    uint32_t res = s->cfg.res, q = res / 2u, n = q * q, k, extra_side, extra_top;
+    unsigned sh, b = bitlen64(raw_dff(res, 0, 0, 0, 0));
+    uint64_t sum = 0, fsum = 0, deficit;
+
+    /* Keep raw values below 2^32 so raw * 2^28 fits in 64 bits. */
+    sh = b > 32 ? b - 32 : 0;
+    for (k = 0; k < n; k++)
+        sum += raw_dff(res, 0, k % q, k / q, sh) + 2u * raw_dff(res, 1, k % q, k / q, sh);
+    /* The four top quadrants plus eight side quadrants sum to 2^30: one top quadrant
+     * plus two side quadrants to 2^28. Floors lose less than one per entry; give the
+     * deficit back one unit at a time (two per side entry), so the sum is exact. */
+    for (k = 0; k < n; k++)
+        fsum += (raw_dff(res, 0, k % q, k / q, sh) << 28) / sum +
+                2u * ((raw_dff(res, 1, k % q, k / q, sh) << 28) / sum);
+    deficit = ((uint64_t)1 << 28) - fsum;
+    extra_side = (uint32_t)(deficit / 2u < n ? deficit / 2u : n);
+    extra_top = (uint32_t)(deficit - 2u * (uint64_t)extra_side);
+    for (k = 0; k < n; k++) {
+        uint64_t t = (raw_dff(res, 0, k % q, k / q, sh) << 28) / sum + (k < extra_top);
+        uint64_t d = (raw_dff(res, 1, k % q, k / q, sh) << 28) / sum + (k < extra_side);
+        s->dff_top[k] = rad__ff_from_q30((uint32_t)t);
+        s->dff_side[k] = rad__ff_from_q30((uint32_t)d);
+    }
+}
+
+int rad__hemicube_init(rad_scene_t *s)
+{
+    uint32_t res = s->cfg.res, q = res / 2u;
+    uint32_t nacc = s->pools.max_elements > s->pools.max_vertices ? s->pools.max_elements
+                                                                  : s->pools.max_vertices;
+    uintptr_t base = (uintptr_t)s->pools.work, start = (base + 7u) & ~(uintptr_t)7u;
+    size_t fixed = (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
+
+    if (s->pools.work_bytes < (size_t)(start - base) + fixed) return RAD_ERR_WORK;
+    avail = s->pools.work_bytes - (size_t)(start - base) - fixed;
+    pixels = avail / (sizeof(uint32_t) + sizeof(rad_index_t));
+    if (s->cfg.band_rows == 0 && pixels >= RAD_PIXELS_ALL(res)) {
+        s->band_rows = 0;
+        s->pass_pixels = RAD_PIXELS_ALL(res);
+    } else {
+        band = pixels / res;
+        if (band > res) band = res;
+        if (s->cfg.band_rows && band > s->cfg.band_rows) band = s->cfg.band_rows;
+        if (band == 0) return RAD_ERR_WORK;
+        s->band_rows = (uint16_t)band;
+        s->pass_pixels = (uint32_t)(band * res);
+    }
+    s->dff_top = (rad_ff_t *)start;
+    s->dff_side = s->dff_top + (size_t)q * q;
+    s->acc = s->dff_side + (size_t)q * q;
+    s->zbuf = (uint32_t *)(s->acc + nacc);
+    s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
+    build_table(s);
+    return RAD_OK;
+}
+
+/* ---- passes -------------------------------------------------------------------- */
+
+/* The regions rendered in pass K (all five faces at once, or one band of one face);
+ * returns how many, 0 past the last pass. */
+static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
+{
+    uint32_t res = s->cfg.res, band = s->band_rows;
+    unsigned f;
+    if (band == 0) {
+        if (k) return 0;
+        for (f = 0; f < 5; f++) {
+            r[f].face = f;
+            r[f].row0 = 0;
+            r[f].row1 = (int)face_rows(s, f);
+            r[f].offset = f ? res * res + (f - 1u) * res * (res / 2u) : 0u;
+        }
+        return 5;
+    }
+    for (f = 0; f < 5; f++) {
+        uint32_t rows = face_rows(s, f), nb = (rows + band - 1u) / band;
+        if (k < nb) {
+            r->face = f;
+            r->row0 = (int)(k * band);
+            r->row1 = (int)((k + 1u) * band < rows ? (k + 1u) * band : rows);
+            r->offset = 0;
+            return 1;
+        }
+        k -= nb;
+    }
+    return 0;
+}
+
+/* Element vertex in the face's view space: the faces look along +z, +x, -x, +y, -y. */
+static void face_vertex(unsigned face, rad_vec3_t l, rad__cvert_t *c)
+{
+    switch (face) {
+    case 0: c->a = l.x; c->b = l.y; c->d = l.z; break;
+    case 1: c->a = l.y; c->b = l.z; c->d = l.x; break;
+    case 2: c->a = l.y; c->b = l.z; c->d = -l.x; break;
+    case 3: c->a = l.x; c->b = l.z; c->d = l.y; break;
+    default: c->a = l.x; c->b = l.z; c->d = -l.y; break;
+    }
+    c->c[0] = c->c[1] = c->c[2] = 0;
+}
+
+static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, uint32_t e,
+                           rad_vec3_t c, const rad_vec3_t *frame)
+{
+    const rad_element_t *el = &s->pools.elements[e];
+    const rad_surface_t *sf = &s->pools.surfaces[el->surface];
+    rad_vec3_t loc[4];
+    rad__cvert_t cv[4];
+    unsigned i, r, nv = rad__nverts(el), behind = 0;
+
+    /* Facing away (or coplanar with the shooter, as its own surface is): invisible. */
+    if (rad__dot(sf->normal, rad__sub(c, s->pools.vertices[el->v[0]])) <= 0) return;
+    for (i = 0; i < nv; i++) {
+        rad_vec3_t d = rad__sub(s->pools.vertices[el->v[i]], c);
+        loc[i].x = rad__dot(d, frame[0]);
+        loc[i].y = rad__dot(d, frame[1]);
+        loc[i].z = rad__dot(d, frame[2]);
+        behind += loc[i].z <= 0;
+    }
+    if (behind == nv) return;
+    for (r = 0; r < nreg; r++) {
+        rad__frustum_t f;
+        rad__target_t t;
+        f.sx = f.sy = RAD__ONE;
+        f.half = reg[r].face != 0;
+        f.width = (int)s->cfg.res;
+        f.height = (int)face_rows(s, reg[r].face);
+        t.z = s->zbuf + reg[r].offset;
+        t.ids = s->ibuf + reg[r].offset;
+        t.rgb = 0;
+        t.width = (int)s->cfg.res;
+        t.row0 = reg[r].row0;
+        t.row1 = reg[r].row1;
+        for (i = 0; i < nv; i++) face_vertex(reg[r].face, loc[i], &cv[i]);
+        rad__draw(&s->stats, &t, &f, cv, nv, (rad_index_t)e);
+    }
+}
+
+/* Adds each covered pixel's delta form factor to its element's sum. */
+static void accumulate(rad_scene_t *s, const region_t *reg)
+{
+    uint32_t res = s->cfg.res, q = res / 2u, i;
+    const uint32_t n = s->n_elements;
+    int r;
+    for (r = reg->row0; r < reg->row1; r++) {
+        const rad_index_t *ids = s->ibuf + reg->offset + (size_t)(r - reg->row0) * res;
+        const rad_ff_t *row;
+        if (reg->face == 0)
+            row = s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
+        else
+            row = s->dff_side + (size_t)r * q;
+        for (i = 0; i < q; i++)
+            if (ids[i] < n) s->acc[ids[i]] += row[q - 1u - i];
+        for (i = q; i < res; i++)
+            if (ids[i] < n) s->acc[ids[i]] += row[i - q];
+    }
+}
+
+static void clear_region(rad_scene_t *s, const region_t *reg)
+{
+    uint32_t i, n = (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    for (i = 0; i < n; i++) {
+        s->zbuf[reg->offset + i] = 0;
+        s->ibuf[reg->offset + i] = RAD_INDEX_NONE;
+    }
+}
+
+void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n)
+{
+    region_t reg[5];
+    rad_vec3_t frame[3], helper = {0, 0, 0};
+    unsigned k, nreg, r;
+    uint32_t e;
+
+    /* Any tangent frame will do; take the axis least aligned with the normal. */
+    if ((n.x < 0 ? -n.x : n.x) < RAD__Q(0.57)) helper.x = RAD__ONE;
+    else helper.y = RAD__ONE;
+    rad__normalize(rad__cross(n, helper), &frame[0]);
+    frame[1] = rad__cross(n, frame[0]);
+    frame[2] = n;
+
+    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
+        for (r = 0; r < nreg; r++) clear_region(s, &reg[r]);
+        for (e = 0; e < s->n_elements; e++) render_element(s, reg, nreg, e, c, frame);
+        for (r = 0; r < nreg; r++) accumulate(s, &reg[r]);
+    }
+}

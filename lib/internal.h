@@ -1,0 +1,46 @@
+/* rad — declarations shared by lib/ files (the rad__ names), never installed. */
+#ifndef RAD_INTERNAL_H
+#define RAD_INTERNAL_H
+
+#include "scalar.h"
+
+/* A vertex in view space before projection: a across, b up, d depth; c a colour. */
+typedef struct {
+    rad_real_t a, b, d;
+    rad_real_t c[3];
+} rad__cvert_t;
+
+/* A view frustum: |a| <= sx d, and sy d >= b >= -sy d (or >= 0 when half is set:
+ * the hemi-cube's side faces), d >= RAD__NEAR; mapped onto a WIDTH x HEIGHT raster. */
+typedef struct {
+    rad_real_t sx, sy;
+    int half;
+    int width, height;
+} rad__frustum_t;
+
+/* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
+ * just those rows. ids or rgb may be NULL; with rgb, colours are interpolated. */
+typedef struct {
+    uint32_t *z;
+    rad_index_t *ids;
+    rad_rgb_t *rgb;
+    int width, row0, row1;
+} rad__target_t;
+
+/* Clips the convex polygon IN (N <= 4 vertices) to frustum F, projects it and
+ * rasterizes it into T with item id ID. */
+void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
+               const rad__cvert_t *in, unsigned n, rad_index_t id);
+
+/* Work buffer layout and delta form factor table (hemicube.c). */
+int rad__hemicube_init(rad_scene_t *s);
+/* Form factors from point C with normal N to every element, into s->acc. */
+void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n);
+
+/* Number of vertices of element E (3 or 4). */
+static inline unsigned rad__nverts(const rad_element_t *e)
+{
+    return e->v[3] == RAD_INDEX_NONE ? 3u : 4u;
+}
+
+#endif

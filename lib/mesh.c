@@ -1,0 +1,346 @@
+/* rad — scene set-up: pools, validation, and meshing polygons into patches (shooters)
+ * and elements (receivers) on a shared per-surface vertex grid (Cohen, Greenberg,
+ * Immel & Brock 1986's patch/element substructuring).
+ *
+ * A quad becomes a bilinear grid of nu x nv elements grouped into pu x pv patches of
+ * ku x kv elements; a triangle becomes n^2 similar triangles on a barycentric lattice,
+ * grouped into np^2 patches of k^2 elements. Counts are checked against the pools
+ * before anything is written, so a full pool changes nothing.
+ */
+#include "internal.h"
+
+#define MIN_AREA RAD__Q(1.0 / 4096.0)   /* smallest surface accepted, in units^2 */
+#define MIN_ELEMENT RAD__Q(1.0 / 16.0)   /* smallest max_element setting */
+
+static int in_range(rad_real_t v, rad_real_t lo, rad_real_t hi) { return v >= lo && v <= hi; }
+
+static int rgb_ok(const rad_rgb_t *c, rad_real_t hi, int open_top)
+{
+    if (!c) return 1;
+    if (open_top)
+        return c->r >= 0 && c->r < hi && c->g >= 0 && c->g < hi && c->b >= 0 && c->b < hi;
+    return in_range(c->r, 0, hi) && in_range(c->g, 0, hi) && in_range(c->b, 0, hi);
+}
+
+int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
+{
+    const uint32_t lim = RAD_INDEX_NONE - 1u;
+    rad_scene_t z = {0};
+    if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
+        !pools->vertices || !pools->work)
+        return RAD_ERR_ARG;
+    if (pools->max_surfaces > lim || pools->max_patches > lim || pools->max_elements > lim ||
+        pools->max_vertices > lim)
+        return RAD_ERR_ARG;
+    z.pools = *pools;
+    if (cfg) z.cfg = *cfg;
+    if (z.cfg.res == 0) z.cfg.res = 64;
+    if (z.cfg.max_element == 0) z.cfg.max_element = RAD__Q(4.0);
+    if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
+    if (z.cfg.res < 8 || z.cfg.res > RAD_MAX_RES || (z.cfg.res & 1u)) return RAD_ERR_ARG;
+    if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT)) ||
+        !in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT)))
+        return RAD_ERR_ARG;
+    {
+        int rc = rad__hemicube_init(&z);
+        if (rc < 0) return rc;
+    }
+    *s = z;
+    return RAD_OK;
+}
+
+/* ---- validation ---------------------------------------------------------------- */
+
+static int vec_eq(rad_vec3_t a, rad_vec3_t b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_*. */
+static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area)
+{
+    const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
+    unsigned i;
+    for (i = 0; i < n; i++) {
+        if (!in_range(v[i].x, -lim, lim) || !in_range(v[i].y, -lim, lim) ||
+            !in_range(v[i].z, -lim, lim))
+            return RAD_ERR_RANGE;
+        if (vec_eq(v[i], v[(i + 1) % n])) return RAD_ERR_DEGENERATE;
+    }
+    if (n == 3) *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
+    else *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
+    if (!(*area >= MIN_AREA)) return RAD_ERR_DEGENERATE;
+    if (n == 4) {
+        uint32_t sat = 0;
+        for (i = 0; i < 4; i++) {
+            rad_vec3_t nk;
+            /* Planar: every corner within sqrt(area) / 64 of the plane through v0. */
+            rad_real_t h = rad__dot(rad__sub(v[i], v[0]), *normal);
+            if (rad__mul(rad__mul(h, h, &sat), RAD__Q(4096.0), &sat) > *area)
+                return RAD_ERR_NONPLANAR;
+            /* Convex: every corner turns the same way as the whole. */
+            if (rad__area_normal(rad__sub(v[(i + 1) % 4], v[i]),
+                                 rad__sub(v[(i + 2) % 4], v[(i + 1) % 4]), &nk) <= 0)
+                return RAD_ERR_DEGENERATE;
+            if (rad__dot(nk, *normal) <= 0) return RAD_ERR_NONPLANAR;
+        }
+    }
+    return RAD_OK;
+}
+
+/* ---- meshing ------------------------------------------------------------------- */
+
+typedef struct {
+    uint32_t pu, pv, ku, kv;  /* quad: patches and elements per patch along u and v */
+    uint32_t np, k;           /* triangle: patch and element subdivision levels */
+    uint32_t patches, elements, vertices;
+} plan_t;
+
+static rad_real_t max2(rad_real_t a, rad_real_t b) { return a > b ? a : b; }
+
+static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, plan_t *p)
+{
+    plan_t z = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    *p = z;
+    rad_real_t mp = s->cfg.max_patch, me = s->cfg.max_element;
+    if (n == 4) {
+        rad_real_t lu = max2(rad__length(rad__sub(v[1], v[0])), rad__length(rad__sub(v[2], v[3])));
+        rad_real_t lv = max2(rad__length(rad__sub(v[3], v[0])), rad__length(rad__sub(v[2], v[1])));
+        p->pu = rad__ceil_div(lu, mp, 1);
+        p->pv = rad__ceil_div(lv, mp, 1);
+        p->ku = rad__ceil_div(lu, me, p->pu);
+        p->kv = rad__ceil_div(lv, me, p->pv);
+        p->patches = p->pu * p->pv;
+        p->elements = p->patches * p->ku * p->kv;
+        p->vertices = (p->pu * p->ku + 1u) * (p->pv * p->kv + 1u);
+    } else {
+        rad_real_t l = max2(rad__length(rad__sub(v[1], v[0])),
+                            max2(rad__length(rad__sub(v[2], v[1])), rad__length(rad__sub(v[0], v[2]))));
+        uint32_t m;
+        p->np = rad__ceil_div(l, mp, 1);
+        p->k = rad__ceil_div(l, me, p->np);
+        m = p->np * p->k;
+        p->patches = p->np * p->np;
+        p->elements = m * m;
+        p->vertices = (m + 1u) * (m + 2u) / 2u;
+    }
+}
+
+static int fits(uint32_t used, uint32_t want, uint32_t max) { return want <= max - used; }
+
+static void set_area(rad_element_t *el, const rad_vec3_t *vt)
+{
+    rad_vec3_t nrm;
+    if (el->v[3] == RAD_INDEX_NONE)
+        el->area = rad__area_normal(rad__sub(vt[el->v[1]], vt[el->v[0]]),
+                                    rad__sub(vt[el->v[2]], vt[el->v[0]]), &nrm);
+    else
+        el->area = rad__area_normal(rad__sub(vt[el->v[2]], vt[el->v[0]]),
+                                    rad__sub(vt[el->v[3]], vt[el->v[1]]), &nrm);
+    if (!(el->area > 0)) el->area = RAD__Q(1.0 / 65536.0); /* a sliver: never divide by 0 */
+}
+
+/* Appends an element on vertices A, B, C (, D) to patch P, returning its area. */
+static rad_real_t add_element(rad_scene_t *s, uint32_t surf, uint32_t p, uint32_t a, uint32_t b,
+                              uint32_t c, uint32_t d)
+{
+    rad_element_t *el = &s->pools.elements[s->n_elements++];
+    el->v[0] = (rad_index_t)a; el->v[1] = (rad_index_t)b;
+    el->v[2] = (rad_index_t)c; el->v[3] = (rad_index_t)d;
+    el->surface = (rad_index_t)surf;
+    el->patch = (rad_index_t)p;
+    set_area(el, s->pools.vertices);
+    return el->area;
+}
+
+static rad_patch_t *new_patch(rad_scene_t *s, uint32_t surf, rad_vec3_t center)
+{
+    rad_patch_t *pt = &s->pools.patches[s->n_patches];
+    pt->center = center;
+    pt->surface = (rad_index_t)surf;
+    pt->first_element = (rad_index_t)s->n_elements;
+    pt->area = 0;
+    return pt;
+}
+
+static void close_patch(rad_scene_t *s, rad_patch_t *pt)
+{
+    pt->n_elements = (rad_index_t)(s->n_elements - pt->first_element);
+    s->n_patches++;
+}
+
+static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const plan_t *p)
+{
+    uint32_t nu = p->pu * p->ku, nv = p->pv * p->kv, v0 = s->n_vertices, i, j, pi, pj, a, b;
+    for (j = 0; j <= nv; j++)
+        for (i = 0; i <= nu; i++) {
+            uint32_t w[4];
+            w[0] = (nu - i) * (nv - j); w[1] = i * (nv - j); w[2] = i * j; w[3] = (nu - i) * j;
+            s->pools.vertices[s->n_vertices++] = rad__wavg(c, w, 4, nu * nv);
+        }
+#define G(ii, jj) (v0 + (jj) * (nu + 1u) + (ii))
+    for (pj = 0; pj < p->pv; pj++)
+        for (pi = 0; pi < p->pu; pi++) {
+            /* The centre on the doubled lattice: (2 pi ku + ku, 2 pj kv + kv). */
+            uint32_t ci = (2u * pi + 1u) * p->ku, cj = (2u * pj + 1u) * p->kv, w[4];
+            rad_patch_t *pt;
+            w[0] = (2u * nu - ci) * (2u * nv - cj); w[1] = ci * (2u * nv - cj);
+            w[2] = ci * cj; w[3] = (2u * nu - ci) * cj;
+            pt = new_patch(s, surf, rad__wavg(c, w, 4, 4u * nu * nv));
+            for (b = 0; b < p->kv; b++)
+                for (a = 0; a < p->ku; a++) {
+                    uint32_t ii = pi * p->ku + a, jj = pj * p->kv + b;
+                    pt->area += add_element(s, surf, s->n_patches, G(ii, jj), G(ii + 1u, jj),
+                                            G(ii + 1u, jj + 1u), G(ii, jj + 1u));
+                }
+            close_patch(s, pt);
+        }
+#undef G
+}
+
+/* Index of lattice point (i, j), i + j <= m, of a triangle's vertex block at V0. */
+static uint32_t tri_index(uint32_t v0, uint32_t m, uint32_t i, uint32_t j)
+{
+    return v0 + j * (m + 1u) - j * (j - 1u) / 2u + i; /* rows shrink by one point each */
+}
+
+static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const plan_t *p)
+{
+    uint32_t m = p->np * p->k, k = p->k, v0 = s->n_vertices, i, j, I, J, a, b, down;
+    for (j = 0; j <= m; j++)
+        for (i = 0; i + j <= m; i++) {
+            uint32_t w[3];
+            w[0] = m - i - j; w[1] = i; w[2] = j;
+            s->pools.vertices[s->n_vertices++] = rad__wavg(c, w, 3, m);
+        }
+#define T(ii, jj) tri_index(v0, m, (ii), (jj))
+    for (down = 0; down < 2; down++)
+        for (J = 0; J < p->np; J++)
+            for (I = 0; I + J + down < p->np; I++) {
+                /* Coarse triangle: up (I,J),(I+1,J),(I,J+1); down is its point reflection
+                 * about corner (I+1,J+1). Centroid weights on a 3np lattice. */
+                uint32_t ci = 3u * I + (down ? 2u : 1u), cj = 3u * J + (down ? 2u : 1u), w[3];
+                rad_patch_t *pt;
+                w[0] = 3u * p->np - ci - cj; w[1] = ci; w[2] = cj;
+                pt = new_patch(s, surf, rad__wavg(c, w, 3, 3u * p->np));
+                for (b = 0; b < k; b++)
+                    for (a = 0; a + b < k; a++) {
+                        uint32_t P = s->n_patches;
+                        if (!down) {
+                            uint32_t x = k * I + a, y = k * J + b;
+                            pt->area += add_element(s, surf, P, T(x, y), T(x + 1u, y), T(x, y + 1u), RAD_INDEX_NONE);
+                            if (a + b + 1u < k)
+                                pt->area += add_element(s, surf, P, T(x + 1u, y), T(x + 1u, y + 1u),
+                                                        T(x, y + 1u), RAD_INDEX_NONE);
+                        } else {
+                            /* Reflected: local up (a,b) is a fine down triangle and vice versa. */
+                            uint32_t cx = k * (I + 1u), cy = k * (J + 1u);
+                            pt->area += add_element(s, surf, P, T(cx - a, cy - b - 1u), T(cx - a, cy - b),
+                                                    T(cx - a - 1u, cy - b), RAD_INDEX_NONE);
+                            if (a + b + 1u < k)
+                                pt->area += add_element(s, surf, P, T(cx - a - 1u, cy - b - 1u),
+                                                        T(cx - a, cy - b - 1u), T(cx - a - 1u, cy - b),
+                                                        RAD_INDEX_NONE);
+                        }
+                    }
+                close_patch(s, pt);
+            }
+#undef T
+}
+
+/* Emission as the solution's starting point: radiosity E, unshot power E * area. */
+static void start_surface(rad_scene_t *s, uint32_t surf)
+{
+    const rad_surface_t *sf = &s->pools.surfaces[surf];
+    uint32_t i;
+    for (i = 0; i < sf->n_elements; i++) s->pools.elements[sf->first_element + i].radiosity = sf->emission;
+    for (i = 0; i < sf->n_patches; i++) {
+        rad_patch_t *pt = &s->pools.patches[sf->first_patch + i];
+        pt->unshot[0] = rad__energy(sf->emission.r, pt->area);
+        pt->unshot[1] = rad__energy(sf->emission.g, pt->area);
+        pt->unshot[2] = rad__energy(sf->emission.b, pt->area);
+        s->emitted += pt->unshot[0] + pt->unshot[1] + pt->unshot[2];
+    }
+}
+
+int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
+                    const rad_rgb_t *reflectance, const rad_rgb_t *emission)
+{
+    static const rad_rgb_t black = {0, 0, 0};
+    rad_surface_t *sf;
+    rad_vec3_t normal;
+    rad_real_t area;
+    plan_t plan;
+    int rc;
+
+    if (!s || !v || (n != 3 && n != 4)) return RAD_ERR_ARG;
+    if (s->solving) return RAD_ERR_STATE;
+    if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
+        return RAD_ERR_RANGE;
+    rc = check_polygon(v, n, &normal, &area);
+    if (rc < 0) return rc;
+    plan_mesh(s, v, n, &plan);
+    if (!fits(s->n_surfaces, 1, s->pools.max_surfaces) ||
+        !fits(s->n_patches, plan.patches, s->pools.max_patches) ||
+        !fits(s->n_elements, plan.elements, s->pools.max_elements) ||
+        !fits(s->n_vertices, plan.vertices, s->pools.max_vertices))
+        return RAD_ERR_FULL;
+
+    sf = &s->pools.surfaces[s->n_surfaces];
+    sf->normal = normal;
+    sf->reflectance = reflectance ? *reflectance : black;
+    sf->emission = emission ? *emission : black;
+    sf->first_patch = (rad_index_t)s->n_patches;
+    sf->first_element = (rad_index_t)s->n_elements;
+    sf->first_vertex = (rad_index_t)s->n_vertices;
+    if (n == 4) mesh_quad(s, s->n_surfaces, v, &plan);
+    else mesh_tri(s, s->n_surfaces, v, &plan);
+    sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
+    sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
+    sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
+    start_surface(s, s->n_surfaces);
+    return (int)s->n_surfaces++;
+}
+
+int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
+                    const rad_rgb_t *emission)
+{
+    if (!s || surf >= s->n_surfaces) return RAD_ERR_ARG;
+    if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
+        return RAD_ERR_RANGE;
+    if (reflectance) s->pools.surfaces[surf].reflectance = *reflectance;
+    if (emission) s->pools.surfaces[surf].emission = *emission;
+    return RAD_OK;
+}
+
+int rad_restart(rad_scene_t *s)
+{
+    uint32_t i;
+    if (!s) return RAD_ERR_ARG;
+    s->emitted = 0;
+    for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
+    s->solving = 0;
+    s->stats.shots = 0;
+    return RAD_OK;
+}
+
+rad_real_t rad_real_from_q16(int32_t q)
+{
+#if RAD_FLOAT
+    return (float)q * (1.0f / 65536.0f);
+#else
+    return q;
+#endif
+}
+
+const char *rad_strerror(int err)
+{
+    switch (err) {
+    case RAD_OK: return "success";
+    case RAD_ERR_ARG: return "invalid argument";
+    case RAD_ERR_FULL: return "pool full";
+    case RAD_ERR_RANGE: return "value out of range";
+    case RAD_ERR_DEGENERATE: return "degenerate polygon";
+    case RAD_ERR_NONPLANAR: return "quad not planar or not convex";
+    case RAD_ERR_STATE: return "call out of order";
+    case RAD_ERR_WORK: return "work buffer too small";
+    default: return err > 0 ? "success" : "unknown error";
+    }
+}

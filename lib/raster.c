@@ -1,0 +1,225 @@
+/* rad — the one rasterizer: clip, project, and fill triangles into an integer
+ * z-buffer with an item buffer (hemi-cube faces) or interpolated colours (the camera).
+ *
+ * Integer ranges: screen positions are in 1/16 pixel (4 subpixel bits) and lie within
+ * [0, 16 * 2048] = [0, 2^15] after clipping, so edge functions stay below 2^32 and are
+ * kept in int64. Attributes (depth w, colours) are <= 2^30; their plane gradients, in
+ * attribute units * 2^16 per subpixel, have numerators below 2 * 2^30 * 2^15 * 2^16 =
+ * 2^62. Values are stepped across the bounding box in uint64 (modular, so stepping
+ * over pixels outside the triangle cannot overflow) and read only inside it.
+ * A pixel is covered when its centre is inside; centres on an edge belong to exactly
+ * one of the two triangles sharing it, so shared edges neither leak nor double count.
+ */
+#include "internal.h"
+
+#define SUB 16 /* subpixels per pixel */
+
+typedef struct {
+    int32_t x, y;
+    uint32_t at[4]; /* at[0]: depth w; at[1..3]: colour */
+} rvert_t;
+
+/* ---- clipping ------------------------------------------------------------------ */
+
+/* Signed distance of V inside clip plane P (>= 0: inside). */
+static rad_real_t plane_dist(const rad__frustum_t *f, const rad__cvert_t *v, unsigned p)
+{
+    switch (p) {
+    case 0: return v->d - RAD__NEAR;
+    case 1: return rad__mul(f->sx, v->d, 0) - v->a;
+    case 2: return rad__mul(f->sx, v->d, 0) + v->a;
+    case 3: return rad__mul(f->sy, v->d, 0) - v->b;
+    default: return f->half ? v->b : rad__mul(f->sy, v->d, 0) + v->b;
+    }
+}
+
+static unsigned outcode(const rad__frustum_t *f, const rad__cvert_t *v)
+{
+    unsigned p, code = 0;
+    for (p = 0; p < 5; p++)
+        if (plane_dist(f, v, p) < 0) code |= 1u << p;
+    return code;
+}
+
+/* The point where edge IN-OUT crosses the plane, always interpolated from the inside
+ * end, so the two elements sharing an edge compute the same point. */
+static void crossing(const rad__cvert_t *in, const rad__cvert_t *out, rad_real_t din,
+                     rad_real_t dout, rad__cvert_t *r)
+{
+    unsigned k;
+    r->a = rad__clip_lerp(in->a, out->a, din, dout);
+    r->b = rad__clip_lerp(in->b, out->b, din, dout);
+    r->d = rad__clip_lerp(in->d, out->d, din, dout);
+    for (k = 0; k < 3; k++) r->c[k] = rad__clip_lerp(in->c[k], out->c[k], din, dout);
+}
+
+/* Sutherland-Hodgman against plane P: N vertices of SRC into DST; returns the count. */
+static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert_t *src,
+                           unsigned n, rad__cvert_t *dst)
+{
+    unsigned i, m = 0;
+    for (i = 0; i < n; i++) {
+        const rad__cvert_t *a = &src[i], *b = &src[(i + 1) % n];
+        rad_real_t da = plane_dist(f, a, p), db = plane_dist(f, b, p);
+        if (da >= 0) dst[m++] = *a;
+        if ((da >= 0) != (db >= 0)) {
+            if (da >= 0) crossing(a, b, da, db, &dst[m++]);
+            else crossing(b, a, db, da, &dst[m++]);
+        }
+    }
+    return m;
+}
+
+/* ---- triangles ----------------------------------------------------------------- */
+
+typedef struct {
+    int64_t e, dx, dy; /* value at the first pixel centre, steps per pixel in x and y */
+} edge_t;
+
+static void edge_setup(edge_t *ed, const rvert_t *a, const rvert_t *b, int32_t px, int32_t py)
+{
+    int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
+    /* Half-open ownership: of the two directions along a shared edge, exactly one
+     * (pointing down, or right when horizontal) includes centres lying on it. */
+    int owned = ey > 0 || (ey == 0 && ex > 0);
+    ed->e = ex * ((int64_t)py - a->y) - ey * ((int64_t)px - a->x) - (owned ? 0 : 1);
+    ed->dx = -ey * SUB;
+    ed->dy = ex * SUB;
+}
+
+/* Plane of attribute K: value at the first pixel centre and steps, all * 2^16, mod 2^64. */
+static void attr_setup(const rvert_t *v, unsigned k, int64_t area2, int32_t px, int32_t py,
+                       uint64_t *val, uint64_t *sx, uint64_t *sy)
+{
+    int64_t d1 = (int64_t)v[1].at[k] - v[0].at[k], d2 = (int64_t)v[2].at[k] - v[0].at[k];
+    int64_t x1 = (int64_t)v[1].x - v[0].x, y1 = (int64_t)v[1].y - v[0].y;
+    int64_t x2 = (int64_t)v[2].x - v[0].x, y2 = (int64_t)v[2].y - v[0].y;
+    int64_t gx = (d1 * y2 - d2 * y1) * 65536 / area2;
+    int64_t gy = (d2 * x1 - d1 * x2) * 65536 / area2;
+    *val = ((uint64_t)v[0].at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v[0].x) +
+           (uint64_t)gy * (uint64_t)((int64_t)py - v[0].y);
+    *sx = (uint64_t)gx * SUB;
+    *sy = (uint64_t)gy * SUB;
+}
+
+static uint32_t attr_value(uint64_t v)
+{
+    if (v >> 63) return 0; /* a rounding step below zero */
+    v = (v + 32768u) >> 16;
+    return v > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)v;
+}
+
+static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : v > hi ? hi : v; }
+
+static void raster_tri(rad_stats_t *st, const rad__target_t *t, const rvert_t *a,
+                       const rvert_t *b, const rvert_t *c, rad_index_t id)
+{
+    rvert_t v[3];
+    edge_t ed[3];
+    uint64_t val[4], sx[4], sy[4];
+    int64_t area2;
+    int32_t x0, x1, y0, y1, px, py, x, y;
+    unsigned k, nat = t->rgb ? 4u : 1u;
+
+    v[0] = *a; v[1] = *b; v[2] = *c;
+    area2 = ((int64_t)v[1].x - v[0].x) * ((int64_t)v[2].y - v[0].y) -
+            ((int64_t)v[2].x - v[0].x) * ((int64_t)v[1].y - v[0].y);
+    if (area2 == 0) return;
+    if (area2 < 0) { v[1] = *c; v[2] = *b; area2 = -area2; }
+    st->raster_calls++;
+
+    /* Pixels whose centres (16 p + 8) lie within the bounding box, inside the target. */
+    x0 = v[0].x; x1 = v[0].x; y0 = v[0].y; y1 = v[0].y;
+    for (k = 1; k < 3; k++) {
+        if (v[k].x < x0) x0 = v[k].x;
+        if (v[k].x > x1) x1 = v[k].x;
+        if (v[k].y < y0) y0 = v[k].y;
+        if (v[k].y > y1) y1 = v[k].y;
+    }
+    x0 = clampi((x0 + 7) / SUB, 0, t->width);
+    x1 = clampi((x1 + 8) / SUB - 1, -1, t->width - 1);
+    y0 = clampi((y0 + 7) / SUB, t->row0, t->row1);
+    y1 = clampi((y1 + 8) / SUB - 1, t->row0 - 1, t->row1 - 1);
+    if (x0 > x1 || y0 > y1) return;
+
+    px = x0 * SUB + SUB / 2;
+    py = y0 * SUB + SUB / 2;
+    edge_setup(&ed[0], &v[0], &v[1], px, py);
+    edge_setup(&ed[1], &v[1], &v[2], px, py);
+    edge_setup(&ed[2], &v[2], &v[0], px, py);
+    for (k = 0; k < nat; k++) attr_setup(v, k, area2, px, py, &val[k], &sx[k], &sy[k]);
+
+    for (y = y0; y <= y1; y++) {
+        int64_t e0 = ed[0].e, e1 = ed[1].e, e2 = ed[2].e;
+        uint64_t w = val[0];
+        size_t row = (size_t)(y - t->row0) * (size_t)t->width;
+        int seen = 0;
+        for (x = x0; x <= x1; x++) {
+            if ((e0 | e1 | e2) >= 0) {
+                uint32_t z = attr_value(w);
+                size_t i = row + (size_t)x;
+                seen = 1;
+                st->raster_pixels++;
+                if (z > t->z[i]) {
+                    t->z[i] = z;
+                    if (t->ids) t->ids[i] = id;
+                    if (t->rgb) {
+                        uint64_t dxn = (uint64_t)(x - x0);
+                        t->rgb[i].r = rad__from_attr(attr_value(val[1] + sx[1] * dxn));
+                        t->rgb[i].g = rad__from_attr(attr_value(val[2] + sx[2] * dxn));
+                        t->rgb[i].b = rad__from_attr(attr_value(val[3] + sx[3] * dxn));
+                    }
+                }
+            } else if (seen) {
+                break; /* convex: the span has ended */
+            }
+            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx;
+            w += sx[0];
+        }
+        for (k = 0; k < 3; k++) ed[k].e += ed[k].dy;
+        for (k = 0; k < nat; k++) val[k] += sy[k];
+    }
+}
+
+/* ---- polygons ------------------------------------------------------------------ */
+
+static void project(const rad__frustum_t *f, const rad__cvert_t *c, rvert_t *r)
+{
+    rad_real_t hx = rad__mul(f->sx, c->d, 0), hy = rad__mul(f->sy, c->d, 0);
+    int32_t w16 = f->width * SUB, h16 = f->height * SUB;
+    r->x = clampi(rad__proj(c->a + hx, hx, (uint32_t)(f->width * SUB / 2)), 0, w16);
+    if (f->half)
+        r->y = clampi(rad__proj(hy - c->b, hy, (uint32_t)h16), 0, h16);
+    else
+        r->y = clampi(rad__proj(hy - c->b, hy, (uint32_t)(h16 / 2)), 0, h16);
+    r->at[0] = rad__depth(c->d);
+    r->at[1] = rad__attr(c->c[0]);
+    r->at[2] = rad__attr(c->c[1]);
+    r->at[3] = rad__attr(c->c[2]);
+}
+
+void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
+               const rad__cvert_t *in, unsigned n, rad_index_t id)
+{
+    /* Each plane adds at most one vertex: 4 + 5 = 9. */
+    rad__cvert_t buf[2][9];
+    rvert_t pv[9];
+    const rad__cvert_t *cur = in;
+    unsigned i, p, all = 0x1F, any = 0, flip = 0;
+
+    for (i = 0; i < n; i++) {
+        unsigned oc = outcode(f, &in[i]);
+        all &= oc;
+        any |= oc;
+    }
+    if (all) return; /* wholly outside one plane */
+    for (p = 0; p < 5 && n >= 3; p++) {
+        if (!(any & (1u << p))) continue;
+        n = clip_plane(f, p, cur, n, buf[flip]);
+        cur = buf[flip];
+        flip ^= 1u;
+    }
+    if (n < 3) return;
+    for (i = 0; i < n; i++) project(f, &cur[i], &pv[i]);
+    for (i = 1; i + 1 < n; i++) raster_tri(st, t, &pv[0], &pv[i], &pv[i + 1], id);
+}

@@ -1,0 +1,84 @@
+/* rad — the arithmetic behind the scalar shim that is too long to inline. */
+#include "scalar.h"
+
+#if !RAD_FLOAT
+
+uint64_t rad__isqrt64(uint64_t v)
+{
+    /* Bit by bit, two result bits per step: 32 iterations, no division. */
+    uint64_t r = 0, bit = (uint64_t)1 << 62;
+    while (bit > v) bit >>= 2;
+    while (bit) {
+        if (v >= r + bit) { v -= r + bit; r = (r >> 1) + bit; }
+        else r >>= 1;
+        bit >>= 2;
+    }
+    return r;
+}
+
+int64_t rad__shr_round(int64_t v, unsigned n)
+{
+    /* Round half away from zero on the magnitude: never shifts a negative number. */
+    uint64_t half = (uint64_t)1 << (n - 1);
+    if (v >= 0) return (int64_t)(((uint64_t)v + half) >> n);
+    return -(int64_t)(((uint64_t)0 - (uint64_t)v + half) >> n);
+}
+
+int64_t rad__div_round(int64_t num, int64_t den)
+{
+    /* C99 division truncates toward zero; add half the divisor on the magnitude side. */
+    int neg = (num < 0) != (den < 0);
+    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
+    uint64_t q = (n + d / 2u) / d;
+    return neg ? -(int64_t)q : (int64_t)q;
+}
+
+static unsigned bitlen(uint64_t v)
+{
+    unsigned b = 0;
+    while (v) { b++; v >>= 1; }
+    return b;
+}
+
+static uint64_t mag(int64_t v) { return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v; }
+
+uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit)
+{
+    /* Scale the components to 30 significant bits so the sum of squares fits 64 bits
+     * and the square root keeps full precision, whatever the input's size. */
+    uint64_t ax = mag(x), ay = mag(y), az = mag(z), m = ax, len;
+    int64_t c[3];
+    unsigned b, i;
+    if (ay > m) m = ay;
+    if (az > m) m = az;
+    if (m == 0) { unit->x = unit->y = unit->z = 0; return 0; }
+    b = bitlen(m);
+    c[0] = x; c[1] = y; c[2] = z;
+    for (i = 0; i < 3; i++) {
+        if (b > 30) c[i] = rad__shr_round(c[i], b - 30);
+        else c[i] *= (int64_t)1 << (30 - b);
+    }
+    len = rad__isqrt64((uint64_t)(c[0] * c[0]) + (uint64_t)(c[1] * c[1]) + (uint64_t)(c[2] * c[2]));
+    unit->x = (rad_real_t)rad__div_round(c[0] * 65536, (int64_t)len);
+    unit->y = (rad_real_t)rad__div_round(c[1] * 65536, (int64_t)len);
+    unit->z = (rad_real_t)rad__div_round(c[2] * 65536, (int64_t)len);
+    if (b > 30) return len << (b - 30);
+    return (len + (((uint64_t)1 << (30 - b)) >> 1)) >> (30 - b);
+}
+
+#else
+
+float rad__fsqrt(float x)
+{
+    /* Newton's method from a power-of-two first guess: the float twin needs no libm. */
+    float g = 1.0f;
+    int i;
+    if (!(x > 0.0f)) return 0.0f;
+    while (g * g < x) g *= 2.0f;
+    while (g * g > 4.0f * x) g *= 0.5f;
+    for (i = 0; i < 8; i++) g = 0.5f * (g + x / g);
+    return g;
+}
+
+#endif

@@ -1,0 +1,276 @@
+/* rad — the scalar shim: every operation whose fixed-point and float forms differ.
+ *
+ * The algorithm in lib/ sources is written once against these functions; RAD_FLOAT selects
+ * the float twin. Formats and ranges (fixed build) are those of rad.h; each function
+ * states the input ranges it relies on, which the callers guarantee by the limits
+ * checked in rad_add_polygon() and rad_render(). Rounding is to nearest; signed values
+ * are never right-shifted (rad__shr_round works on magnitudes).
+ */
+#ifndef RAD_SCALAR_H
+#define RAD_SCALAR_H
+
+#include "rad/rad.h"
+
+/* The twin's private names differ too, so both libraries link into one program. */
+#if RAD_FLOAT
+#define rad__isqrt64 radf__isqrt64
+#define rad__shr_round radf__shr_round
+#define rad__div_round radf__div_round
+#define rad__unit64 radf__unit64
+#define rad__fsqrt radf__fsqrt
+#define rad__draw radf__draw
+#define rad__hemicube_init radf__hemicube_init
+#define rad__hemicube radf__hemicube
+#endif
+
+/* Near plane of every view, in scene units: 2^-8. The depth value stored in z-buffers
+ * is w = 2^30 * NEAR / d, so w <= 2^30 for every visible point. */
+#if RAD_FLOAT
+#define RAD__ONE 1.0f
+#define RAD__NEAR (1.0f / 256.0f)
+#define RAD__Q(x) ((float)(x))
+#else
+#define RAD__ONE 65536
+#define RAD__NEAR 256
+/* Compile-time constants only: folded by the compiler, no floating point at run time. */
+#define RAD__Q(x) ((rad_real_t)((x) * 65536.0 + 0.5))
+#endif
+#define RAD__DEPTH_ONE (1u << 30)
+#define RAD__FF_ONE_Q30 (1u << 30)
+
+/* Helpers shared by the shim (scalar.c): integer ones in the fixed build, fsqrt in the twin. */
+uint64_t rad__isqrt64(uint64_t v);
+int64_t rad__shr_round(int64_t v, unsigned n);
+int64_t rad__div_round(int64_t num, int64_t den);
+/* Unit vector (Q16.16) along the integer vector (x, y, z), |components| < 2^62;
+ * returns its length, rounded, in the same units as the components (0: zero vector). */
+uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit);
+float rad__fsqrt(float x);
+
+static inline rad_vec3_t rad__sub(rad_vec3_t a, rad_vec3_t b)
+{
+    rad_vec3_t r;
+    r.x = a.x - b.x; r.y = a.y - b.y; r.z = a.z - b.z;
+    return r;
+}
+
+#if RAD_FLOAT
+
+static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline rad_vec3_t rad__cross(rad_vec3_t a, rad_vec3_t b)
+{
+    rad_vec3_t r;
+    r.x = a.y * b.z - a.z * b.y; r.y = a.z * b.x - a.x * b.z; r.z = a.x * b.y - a.y * b.x;
+    return r;
+}
+static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a * b; }
+static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a / b; }
+static inline rad_real_t rad__length(rad_vec3_t v) { return rad__fsqrt(rad__dot(v, v)); }
+/* Unit vector of V; returns 0 for a zero vector. */
+static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
+{
+    float l = rad__length(v);
+    if (!(l > 0.0f)) { u->x = u->y = u->z = 0.0f; return 0; }
+    u->x = v.x / l; u->y = v.y / l; u->z = v.z / l;
+    return 1;
+}
+/* Half the length of D1 x D2 (the area of a triangle on D1, D2, or of a quad with
+ * diagonals D1, D2) and the unit normal along D1 x D2. */
+static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3_t *n)
+{
+    rad_vec3_t c = rad__cross(d1, d2);
+    float l = rad__length(c);
+    if (!(l > 0.0f)) { n->x = n->y = n->z = 0.0f; return 0.0f; }
+    n->x = c.x / l; n->y = c.y / l; n->z = c.z / l;
+    return 0.5f * l;
+}
+/* Weighted mean of K points with integer weights W summing to DEN. */
+static inline rad_vec3_t rad__wavg(const rad_vec3_t *c, const uint32_t *w, unsigned k, uint32_t den)
+{
+    rad_vec3_t r = {0.0f, 0.0f, 0.0f};
+    unsigned i;
+    for (i = 0; i < k; i++) {
+        float f = (float)w[i] / (float)den;
+        r.x += c[i].x * f; r.y += c[i].y * f; r.z += c[i].z * f;
+    }
+    return r;
+}
+/* ceil(a / (b * m)) for a > 0, b > 0, m >= 1. */
+static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
+{
+    float q = a / (b * (float)m);
+    uint32_t n = (uint32_t)q;
+    return (float)n < q ? n + 1u : n;
+}
+/* a + (b - a) * da / (da - db): the crossing of a clip plane, da and db of opposite sign. */
+static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
+{
+    return a + (b - a) * (da / (da - db));
+}
+/* round(num * scale / den), num in [0, 2 den]: a screen coordinate in subpixels. */
+static inline int32_t rad__proj(rad_real_t num, rad_real_t den, uint32_t scale)
+{
+    float v = num * (float)scale / den;
+    return v > 0.0f ? (int32_t)(v + 0.5f) : 0;
+}
+static inline uint32_t rad__depth(rad_real_t d) { return (uint32_t)(1073741824.0f * RAD__NEAR / d + 0.5f); }
+static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area) { return b * area; }
+static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f) { return u * f; }
+static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho) { return u * rho; }
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
+{
+    (void)sat;
+    return u / area;
+}
+static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
+{
+    return den > 0.0f ? num / den : 0.0f;
+}
+static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a + b; }
+static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return (float)q * (1.0f / 1073741824.0f); }
+/* Raster attribute (<= 2^30) of a radiosity, and back: Q16.15 in both builds. */
+static inline uint32_t rad__attr(rad_real_t b)
+{
+    float v = b * 32768.0f;
+    return v <= 0.0f ? 0u : v >= 1073741824.0f ? 1073741824u : (uint32_t)(v + 0.5f);
+}
+static inline rad_real_t rad__from_attr(uint32_t a) { return (float)a * (1.0f / 32768.0f); }
+static inline rad_ff_t rad__vweight(rad_real_t area) { return area; }
+static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum) { return b * (w / wsum); }
+static inline rad_real_t rad__from_int(int32_t i) { return (float)i; }
+
+#else /* fixed point */
+
+static inline rad_real_t rad__sat32(int64_t v, uint32_t *sat)
+{
+    if (v > INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
+    if (v < INT32_MIN) { if (sat) (*sat)++; return INT32_MIN; }
+    return (rad_real_t)v;
+}
+/* Inputs: |a|, |b| < 2^25 (differences of in-range coordinates, or unit vectors). */
+static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b)
+{
+    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    return (rad_real_t)rad__shr_round(s, 16);
+}
+/* Cross product of vectors of magnitude <= 2 (unit vectors), rounded to Q16.16. */
+static inline rad_vec3_t rad__cross(rad_vec3_t a, rad_vec3_t b)
+{
+    rad_vec3_t r;
+    r.x = (rad_real_t)rad__shr_round((int64_t)a.y * b.z - (int64_t)a.z * b.y, 16);
+    r.y = (rad_real_t)rad__shr_round((int64_t)a.z * b.x - (int64_t)a.x * b.z, 16);
+    r.z = (rad_real_t)rad__shr_round((int64_t)a.x * b.y - (int64_t)a.y * b.x, 16);
+    return r;
+}
+static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    return rad__sat32(rad__shr_round((int64_t)a * b, 16), sat);
+}
+static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    return rad__sat32(rad__div_round((int64_t)a * 65536, b), sat);
+}
+static inline rad_real_t rad__length(rad_vec3_t v)
+{
+    rad_vec3_t u;
+    return (rad_real_t)rad__unit64(v.x, v.y, v.z, &u);
+}
+static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
+{
+    return rad__unit64(v.x, v.y, v.z, u) != 0;
+}
+/* Inputs: components < 2^24 (in-range coordinate differences). The cross product is
+ * exact in Q32 (< 2^49); its length converts to an area in Q16.16 (< 2^31). */
+static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3_t *n)
+{
+    int64_t cx = (int64_t)d1.y * d2.z - (int64_t)d1.z * d2.y;
+    int64_t cy = (int64_t)d1.z * d2.x - (int64_t)d1.x * d2.z;
+    int64_t cz = (int64_t)d1.x * d2.y - (int64_t)d1.y * d2.x;
+    uint64_t len = rad__unit64(cx, cy, cz, n);  /* |c| in Q32 */
+    return (rad_real_t)((len + (1u << 16)) >> 17); /* |c| / 2 in Q16.16, rounded */
+}
+static inline rad_vec3_t rad__wavg(const rad_vec3_t *c, const uint32_t *w, unsigned k, uint32_t den)
+{
+    int64_t x = 0, y = 0, z = 0;
+    unsigned i;
+    for (i = 0; i < k; i++) {
+        x += (int64_t)c[i].x * w[i]; y += (int64_t)c[i].y * w[i]; z += (int64_t)c[i].z * w[i];
+    }
+    {
+        rad_vec3_t r;
+        r.x = (rad_real_t)rad__div_round(x, den);
+        r.y = (rad_real_t)rad__div_round(y, den);
+        r.z = (rad_real_t)rad__div_round(z, den);
+        return r;
+    }
+}
+static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
+{
+    int64_t d = (int64_t)b * m;
+    return (uint32_t)(((int64_t)a + d - 1) / d);
+}
+/* |a|, |b| < 2^26: the product fits int64 comfortably. */
+static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
+{
+    return a + (rad_real_t)rad__div_round(((int64_t)b - a) * da, (int64_t)da - db);
+}
+static inline int32_t rad__proj(rad_real_t num, rad_real_t den, uint32_t scale)
+{
+    return num > 0 ? (int32_t)rad__div_round((int64_t)num * scale, den) : 0;
+}
+static inline uint32_t rad__depth(rad_real_t d)
+{
+    return (uint32_t)(((((uint64_t)RAD__NEAR) << 30) + ((uint64_t)d >> 1)) / (uint64_t)d);
+}
+/* b, area >= 0 and < 2^31: the product < 2^62. */
+static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
+{
+    return ((uint64_t)b * (uint64_t)area + 32768u) >> 16;
+}
+/* u < 2^46, f <= 2^30: (u * f) >> 30 without a 128-bit product. */
+static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f)
+{
+    uint64_t hi = u >> 32, lo = u & 0xFFFFFFFFu;
+    return ((hi * f) << 2) + ((lo * f + (1u << 29)) >> 30);
+}
+static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
+{
+    return (u * (uint32_t)rho + 32768u) >> 16;
+}
+/* Radiosity of power U spread over AREA (> 0); U < 2^47. */
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
+{
+    uint64_t a = (uint64_t)(area > 0 ? area : 1);
+    uint64_t q = ((u << 16) + (a >> 1)) / a;
+    if (q > (uint64_t)INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
+    return (rad_real_t)q;
+}
+/* num / den in Q16.16 for any two energies (the larger is scaled down to fit). */
+static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
+{
+    uint64_t q;
+    while (num >> 46) { num >>= 1; den >>= 1; }
+    if (den == 0) return num ? INT32_MAX : 0;
+    q = ((num << 16) + (den >> 1)) / den;
+    return q > (uint64_t)INT32_MAX ? INT32_MAX : (rad_real_t)q;
+}
+static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    return rad__sat32((int64_t)a + b, sat);
+}
+static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return q; }
+static inline uint32_t rad__attr(rad_real_t b) { return b > 0 ? (uint32_t)b >> 1 : 0u; }
+static inline rad_real_t rad__from_attr(uint32_t a)
+{
+    return a >= 0x40000000u ? INT32_MAX : (rad_real_t)(a << 1);
+}
+/* Vertex weights: area / 4, so that six of them (the most around a vertex) fit 32 bits. */
+static inline rad_ff_t rad__vweight(rad_real_t area) { return area > 3 ? (uint32_t)area >> 2 : 1u; }
+static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
+{
+    return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
+}
+static inline rad_real_t rad__from_int(int32_t i) { return (rad_real_t)((uint32_t)i << 16); }
+
+#endif
+#endif

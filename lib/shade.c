@@ -1,0 +1,118 @@
+/* rad — shading output: element and vertex radiosity, and the viewer's camera, drawn
+ * by the same rasterizer as the hemi-cube (raster.c) with colours instead of ids. */
+#include "internal.h"
+
+/* Element radiosity, plus reflectance times AMB when AMB is given. */
+static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
+{
+    const rad_element_t *el = &s->pools.elements[e];
+    rad_rgb_t b = el->radiosity;
+    if (amb) {
+        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
+        uint32_t *sat = &s->stats.saturations;
+        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
+        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
+        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
+    }
+    return b;
+}
+
+int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
+{
+    rad_rgb_t amb;
+    if (!s || !out || e >= s->n_elements) return RAD_ERR_ARG;
+    if (flags & RAD_SHADE_AMBIENT) rad_ambient(s, &amb);
+    *out = display(s, e, (flags & RAD_SHADE_AMBIENT) ? &amb : 0);
+    return RAD_OK;
+}
+
+int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
+{
+    rad_rgb_t amb;
+    rad_ff_t *wsum;
+    uint32_t e, v, k;
+    if (!s || !out || n < s->n_vertices) return RAD_ERR_ARG;
+    if (flags & RAD_SHADE_AMBIENT) rad_ambient(s, &amb);
+    /* Two passes over the elements: the weight sums per vertex (in the accumulator
+     * scratch, sized for max(elements, vertices)), then each element's share. */
+    wsum = s->acc;
+    for (v = 0; v < s->n_vertices; v++) {
+        wsum[v] = 0;
+        out[v].r = out[v].g = out[v].b = 0;
+    }
+    for (e = 0; e < s->n_elements; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        for (k = 0; k < rad__nverts(el); k++) wsum[el->v[k]] += rad__vweight(el->area);
+    }
+    for (e = 0; e < s->n_elements; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        rad_rgb_t b = display(s, e, (flags & RAD_SHADE_AMBIENT) ? &amb : 0);
+        rad_ff_t w = rad__vweight(el->area);
+        for (k = 0; k < rad__nverts(el); k++) {
+            rad_rgb_t *o = &out[el->v[k]];
+            rad_ff_t ws = wsum[el->v[k]];
+            o->r = rad__add_sat(o->r, rad__wpart(b.r, w, ws), &s->stats.saturations);
+            o->g = rad__add_sat(o->g, rad__wpart(b.g, w, ws), &s->stats.saturations);
+            o->b = rad__add_sat(o->b, rad__wpart(b.b, w, ws), &s->stats.saturations);
+        }
+    }
+    return (int)s->n_vertices;
+}
+
+static int point_ok(rad_vec3_t p, rad_real_t lim)
+{
+    return p.x >= -lim && p.x <= lim && p.y >= -lim && p.y <= lim && p.z >= -lim && p.z <= lim;
+}
+
+int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
+               rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h)
+{
+    const rad_real_t lim = RAD__Q(4 * RAD_COORD_LIMIT);
+    rad_vec3_t ax[3]; /* right, up, forward */
+    rad__frustum_t f;
+    rad__target_t t;
+    rad_stats_t st = {0, 0, 0, 0};
+    uint32_t e, i, sat = 0;
+
+    if (!s || !vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
+        h > RAD_MAX_RASTER)
+        return RAD_ERR_ARG;
+    if (!point_ok(cam->eye, lim) || !point_ok(cam->target, lim) ||
+        !(cam->tan_half_fov >= RAD__Q(1.0 / 256.0) && cam->tan_half_fov <= RAD__Q(16.0)))
+        return RAD_ERR_ARG;
+    if (!rad__normalize(rad__sub(cam->target, cam->eye), &ax[2]) ||
+        !rad__normalize(rad__cross(ax[2], cam->up), &ax[0]))
+        return RAD_ERR_ARG;
+    ax[1] = rad__cross(ax[0], ax[2]);
+
+    f.sy = cam->tan_half_fov;
+    f.sx = rad__mul(cam->tan_half_fov, rad__div(rad__from_int((int32_t)w), rad__from_int((int32_t)h), &sat), &sat);
+    if (sat || !(f.sx <= RAD__Q(1024.0))) return RAD_ERR_ARG;
+    f.half = 0;
+    f.width = (int)w;
+    f.height = (int)h;
+    t.z = zbuf; t.ids = 0; t.rgb = fb;
+    t.width = (int)w; t.row0 = 0; t.row1 = (int)h;
+    for (i = 0; i < w * h; i++) {
+        zbuf[i] = 0;
+        fb[i].r = fb[i].g = fb[i].b = 0;
+    }
+    for (e = 0; e < s->n_elements; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        rad__cvert_t cv[4];
+        unsigned k, nv = rad__nverts(el);
+        if (rad__dot(s->pools.surfaces[el->surface].normal,
+                     rad__sub(cam->eye, s->pools.vertices[el->v[0]])) <= 0)
+            continue; /* seen from behind: radiosity is one-sided */
+        for (k = 0; k < nv; k++) {
+            rad_vec3_t d = rad__sub(s->pools.vertices[el->v[k]], cam->eye);
+            const rad_rgb_t *c = &vrgb[el->v[k]];
+            cv[k].a = rad__dot(d, ax[0]);
+            cv[k].b = rad__dot(d, ax[1]);
+            cv[k].d = rad__dot(d, ax[2]);
+            cv[k].c[0] = c->r; cv[k].c[1] = c->g; cv[k].c[2] = c->b;
+        }
+        rad__draw(&st, &t, &f, cv, nv, 0);
+    }
+    return (int)st.raster_calls;
+}

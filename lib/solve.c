@@ -1,0 +1,116 @@
+/* rad — progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
+ *
+ * Each step shoots the patch with the most unshot power U through a hemi-cube at its
+ * centre. With F the form factor from the patch to element j (the item buffer's sum),
+ * reciprocity gives element j the power rho_j F U, hence radiosity rho_j F U / A_j,
+ * and adds that power to the unshot power of j's patch. No element-to-patch division
+ * is needed, and unshot power never grows: the sum of F is at most 1 and rho < 1.
+ */
+#include "internal.h"
+
+static uint32_t select_shooter(const rad_scene_t *s, rad_energy_t *total)
+{
+    uint32_t p, best = RAD_INDEX_NONE;
+    rad_energy_t most = 0, sum = 0;
+    for (p = 0; p < s->n_patches; p++) {
+        const rad_patch_t *pt = &s->pools.patches[p];
+        rad_energy_t u = pt->unshot[0] + pt->unshot[1] + pt->unshot[2];
+        sum += u;
+        if (u > most) { most = u; best = p; }
+    }
+    *total = sum;
+    return best;
+}
+
+/* Power RECV = rho * F * U reaching an element, added to its radiosity and patch. */
+static rad_real_t receive(rad_scene_t *s, rad_energy_t u, rad_ff_t f, rad_real_t rho,
+                          rad_real_t area, rad_real_t b, rad_energy_t *patch_unshot)
+{
+    rad_energy_t recv = rad__energy_refl(rad__energy_ff(u, f), rho);
+    *patch_unshot += recv;
+    return rad__add_sat(b, rad__energy_to_rad(recv, area, &s->stats.saturations), &s->stats.saturations);
+}
+
+static void shoot_patch(rad_scene_t *s, uint32_t p)
+{
+    rad_patch_t *pt = &s->pools.patches[p];
+    rad_energy_t u[3];
+    uint32_t e;
+
+    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal);
+    u[0] = pt->unshot[0]; u[1] = pt->unshot[1]; u[2] = pt->unshot[2];
+    pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0;
+    for (e = 0; e < s->n_elements; e++) {
+        rad_element_t *el;
+        const rad_surface_t *sf;
+        rad_energy_t *pu;
+        rad_ff_t f = s->acc[e];
+        if (!(f > 0)) continue;
+        el = &s->pools.elements[e];
+        sf = &s->pools.surfaces[el->surface];
+        pu = s->pools.patches[el->patch].unshot;
+        el->radiosity.r = receive(s, u[0], f, sf->reflectance.r, el->area, el->radiosity.r, &pu[0]);
+        el->radiosity.g = receive(s, u[1], f, sf->reflectance.g, el->area, el->radiosity.g, &pu[1]);
+        el->radiosity.b = receive(s, u[2], f, sf->reflectance.b, el->area, el->radiosity.b, &pu[2]);
+    }
+    s->stats.shots++;
+}
+
+int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+{
+    uint32_t done = 0;
+    if (!s) return RAD_ERR_ARG;
+    s->solving = 1;
+    while (done < max_shots && done < (uint32_t)INT32_MAX) {
+        rad_energy_t total;
+        uint32_t p = select_shooter(s, &total);
+        if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
+        shoot_patch(s, p);
+        done++;
+    }
+    return (int)done;
+}
+
+rad_real_t rad_unshot_fraction(const rad_scene_t *s)
+{
+    rad_energy_t total;
+    if (!s) return 0;
+    select_shooter(s, &total);
+    return rad__energy_ratio(total, s->emitted);
+}
+
+int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
+{
+    rad_energy_t area = 0, unshot[3] = {0, 0, 0}, rho[3] = {0, 0, 0};
+    rad_real_t amb[3];
+    uint32_t p, c;
+    if (!s || !out) return RAD_ERR_ARG;
+    for (p = 0; p < s->n_patches; p++) {
+        const rad_patch_t *pt = &s->pools.patches[p];
+        const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
+        area += rad__energy(RAD__ONE, pt->area);
+        rho[0] += rad__energy(r->r, pt->area);
+        rho[1] += rad__energy(r->g, pt->area);
+        rho[2] += rad__energy(r->b, pt->area);
+        for (c = 0; c < 3; c++) unshot[c] += pt->unshot[c];
+    }
+    /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
+    for (c = 0; c < 3; c++) {
+        rad_real_t inter = rad__div(RAD__ONE, RAD__ONE - rad__energy_ratio(rho[c], area),
+                                    &s->stats.saturations);
+        amb[c] = rad__mul(rad__energy_ratio(unshot[c], area), inter, &s->stats.saturations);
+    }
+    out->r = amb[0]; out->g = amb[1]; out->b = amb[2];
+    return RAD_OK;
+}
+
+int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
+{
+    const rad_patch_t *pt;
+    uint32_t e;
+    if (!s || !out || p >= s->n_patches) return RAD_ERR_ARG;
+    pt = &s->pools.patches[p];
+    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal);
+    for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
+    return (int)s->n_elements;
+}

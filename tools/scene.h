@@ -1,0 +1,79 @@
+/* rad host glue: scenes of double-precision polygons solved through the core.
+ *
+ * tools/scene_twin.c is compiled twice, once against the fixed library (names sc_*)
+ * and once against the float twin (names scf_*), so a tool or test can run the same
+ * scene through both. It owns the pools (malloc'd, grown until the scene fits),
+ * scales the scene into the core's coordinate range (the radiosity solution does not
+ * depend on scale) and emissions to a fixed peak (it is linear in emission), and maps
+ * every result back to the caller's units.
+ */
+#ifndef RAD_TOOLS_SCENE_H
+#define RAD_TOOLS_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    double v[4][3];
+    int n;            /* 3 or 4 */
+    double rho[3];    /* reflectance, [0, 1) (values >= 1 are clamped and counted) */
+    double emit[3];   /* emission, >= 0 */
+    int tag;          /* caller's id (material, source line): passed back in warnings */
+} sc_poly;
+
+typedef struct {
+    double max_patch, max_element;  /* in the caller's units; 0: 1/8 and 1/32 of the extent */
+    int res;                        /* hemi-cube resolution; 0: 64 */
+    int band_rows;                  /* 0: all faces at once */
+    long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
+} sc_opts;
+
+typedef struct {
+    int surfaces, patches, elements, vertices, skipped, split, clamped;
+    int shots;
+    double unshot;                  /* unshot fraction */
+    unsigned long saturations;
+    unsigned long raster_calls;
+    unsigned long long raster_pixels;
+    size_t pool_bytes, work_bytes;  /* memory handed to the core */
+} sc_stats;
+
+typedef struct {
+    double eye[3], target[3], up[3];
+    double fov_deg;                 /* vertical field of view */
+} sc_camera;
+
+typedef void (*sc_warn_fn)(void *ctx, int tag, const char *msg);
+typedef int (*sc_progress_fn)(void *ctx, int shots, double unshot); /* nonzero: stop */
+
+#define SC_DECLARE(P)                                                                   \
+    typedef struct P##_solver P##_solver;                                               \
+    /* Builds the scene; NULL with a message in err on failure. */                      \
+    P##_solver *P##_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, \
+                           void *ctx, char *err, size_t errlen);                        \
+    void P##_destroy(P##_solver *s);                                                    \
+    /* Shoots until the unshot fraction <= tol or max_shots; returns shots done. */     \
+    int P##_solve(P##_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx); \
+    void P##_get_stats(P##_solver *s, sc_stats *st);                                    \
+    /* Element radiosity in caller units (with the ambient term if ambient != 0). */    \
+    void P##_element_rgb(P##_solver *s, int e, int ambient, double rgb[3]);             \
+    double P##_element_area(P##_solver *s, int e);                                      \
+    void P##_element_centroid(P##_solver *s, int e, double c[3]);                       \
+    int P##_element_tag(P##_solver *s, int e);                                          \
+    /* Vertex ids of element e (3 or 4, returned). */                                   \
+    int P##_element_vertices(P##_solver *s, int e, int v[4]);                           \
+    void P##_vertex_pos(P##_solver *s, int v, double p[3]);                             \
+    /* Gouraud vertex colours (caller units), n >= stats.vertices entries of 3. */      \
+    int P##_shade(P##_solver *s, int ambient, double *rgb);                             \
+    /* Renders w x h linear RGB (caller units, row 0 at top); 0 or -1 with err. */      \
+    int P##_render(P##_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb, \
+                   char *err, size_t errlen);                                           \
+    /* Form factors from patch p to every element (n >= stats.elements). */            \
+    int P##_form_factors(P##_solver *s, int p, double *ff);                             \
+    /* The raw bits of every element's radiosity, hashed (FNV-1a 64). */                \
+    uint64_t P##_checksum(P##_solver *s);
+
+SC_DECLARE(sc)
+SC_DECLARE(scf)
+
+#endif
