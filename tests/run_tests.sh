@@ -1,0 +1,23 @@
+#!/bin/sh
+# Runs every CMocka test program given (cwd: the repository root), then prints one
+# closing line for the whole suite: "tests: N passed, N failed, N skipped".
+# RAD_TEST_WRAP (e.g. "valgrind -q --error-exitcode=99") runs each program under a tool.
+set -u
+builddir=$1; shift
+passed=0; failed=0; skipped=0; bad=""
+for t in "$@"; do
+  log="$builddir/tests/$(basename "$t").log"
+  ${RAD_TEST_WRAP:-} "$t" >"$log" 2>&1
+  rc=$?
+  cat "$log"
+  p=$(grep -c '^\[       OK \]' "$log")
+  f=$(grep -c '^\[  FAILED  \] [a-z_]' "$log")
+  s=$(grep -c '^\[  SKIPPED \] [a-z_]' "$log")
+  passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + s))
+  if [ $rc -ne 0 ] && [ "$f" -eq 0 ]; then
+    failed=$((failed + 1)); bad="$bad $(basename "$t")(exit $rc)"
+  fi
+done
+[ -n "$bad" ] && echo "programs that failed outside a test:$bad"
+echo "tests: $passed passed, $failed failed, $skipped skipped"
+[ $failed -eq 0 ]

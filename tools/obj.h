@@ -1,0 +1,77 @@
+/* obj — Wavefront OBJ + MTL loader for the host tools (uses malloc and stdio).
+ *
+ * Only what a radiosity scene needs is kept: vertex positions, polygonal faces and,
+ * per material, the diffuse reflectance (Kd) and emission (Ke). Everything else that
+ * is valid OBJ/MTL is accepted and ignored; unknown statements are skipped and counted.
+ * Errors are one line, "FILE:LINE: what is wrong"; warnings have the same form and go
+ * to an optional callback.
+ */
+#ifndef RAD_TOOLS_OBJ_H
+#define RAD_TOOLS_OBJ_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct { double x, y, z; } obj_vec3;
+
+typedef struct {
+    char *name;
+    double kd[3];   /* diffuse reflectance (default 0.8 0.8 0.8 if the material has no Kd) */
+    double ke[3];   /* emission (default 0) */
+    double area;    /* total area of the faces using this material, filled by obj_load */
+    int nfaces;     /* number of faces using it */
+    int defined;    /* 1 if a newmtl defined it; 0 for "(default)" and undefined usemtl names */
+    int use_line;   /* OBJ line of the first usemtl naming it, 0 if none */
+} obj_material;
+
+typedef struct {
+    int material;   /* index into materials; every face has one (see default material) */
+    int first;      /* first entry in scene.indices */
+    int count;      /* number of vertices, >= 3 */
+    int line;       /* 1-based source line of the 'f' statement */
+} obj_face;
+
+typedef struct {
+    obj_vec3 *verts; int nverts;
+    int *indices; int nindices;      /* 0-based indices into verts, already resolved */
+    obj_face *faces; int nfaces;
+    obj_material *materials; int nmaterials;
+    long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
+    long nwarnings;
+} obj_scene;
+
+typedef void (*obj_warn_fn)(void *ctx, const char *msg); /* msg is "FILE:LINE: text" */
+
+/* Name of the material given to faces that come before any usemtl. */
+#define OBJ_DEFAULT_MATERIAL "(default)"
+
+/* Loads PATH; mtllib paths are relative to the OBJ's directory. Returns 0, or -1 with a
+   one-line message "FILE:LINE: what is wrong" (no trailing newline) in err. On error the
+   scene is left empty (nothing to free, but obj_free is safe). warn may be NULL. */
+int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
+             size_t errlen);
+/* Same from memory (for fuzzing and tests); name is used in messages; basedir for mtllib
+   (may be NULL: then mtllib is a warning). text may hold any bytes (NUL is an error). */
+int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
+              obj_warn_fn warn, void *ctx, char *err, size_t errlen);
+void obj_free(obj_scene *sc);
+/* Triangulates face f (convex or concave, planar-ish polygon, any vertex count >= 3) by ear
+   clipping in the polygon's best-fit plane (Newell normal). Writes 3*(count-2) vertex indices
+   (into verts) to out, each triangle wound like the polygon, and returns the number of
+   triangles (count-2), or -1 if the polygon is degenerate (zero Newell normal) or memory
+   runs out. */
+int obj_triangulate(const obj_scene *sc, const obj_face *f, int *out);
+int obj_find_material(const obj_scene *sc, const char *name); /* index or -1 */
+/* Polygon area (Newell) of face f. */
+double obj_face_area(const obj_scene *sc, const obj_face *f);
+/* Newell normal of face f: its length is twice the polygon's area. */
+obj_vec3 obj_face_normal(const obj_scene *sc, const obj_face *f);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
