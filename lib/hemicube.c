@@ -207,17 +207,27 @@ static void clear_region(rad_scene_t *s, const region_t *reg)
     }
 }
 
-void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n)
+/* Turns of the hemi-cube about its normal, as exact rational rotations (Pythagorean
+ * triples a^2 + b^2 = c^2). Polygon edges parallel to the pixel grid alias by up to
+ * half a pixel column along their whole length; turning the cube by an odd angle, and
+ * by a different one for successive shooters, spreads that error so it averages out. */
+static const uint8_t spins[8][3] = {
+    {3, 4, 5}, {12, 5, 13}, {8, 15, 17}, {24, 7, 25}, {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
+
+void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
 {
     region_t reg[5];
-    rad_vec3_t frame[3], helper = {0, 0, 0};
+    rad_vec3_t frame[3], helper = {0, 0, 0}, u0, v0;
+    const uint8_t *t = spins[spin % 8u];
     unsigned k, nreg, r;
     uint32_t e;
 
-    /* Any tangent frame will do; take the axis least aligned with the normal. */
+    /* A tangent frame from the axis least aligned with the normal, then turned. */
     if ((n.x < 0 ? -n.x : n.x) < RAD__Q(0.57)) helper.x = RAD__ONE;
     else helper.y = RAD__ONE;
-    rad__normalize(rad__cross(n, helper), &frame[0]);
+    rad__normalize(rad__cross(n, helper), &u0);
+    v0 = rad__cross(n, u0);
+    frame[0] = rad__turn(u0, v0, t[0], t[1], t[2]);
     frame[1] = rad__cross(n, frame[0]);
     frame[2] = n;
 

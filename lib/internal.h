@@ -34,8 +34,9 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
 
 /* Work buffer layout and delta form factor table (hemicube.c). */
 int rad__hemicube_init(rad_scene_t *s);
-/* Form factors from point C with normal N to every element, into s->acc. */
-void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n);
+/* Form factors from point C with normal N to every element, into s->acc; SPIN picks
+ * the cube's turn about N. */
+void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin);
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

@@ -138,6 +138,15 @@ static inline rad_real_t rad__from_attr(uint32_t a) { return (float)a * (1.0f / 
 static inline rad_ff_t rad__vweight(rad_real_t area) { return area; }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum) { return b * (w / wsum); }
 static inline rad_real_t rad__from_int(int32_t i) { return (float)i; }
+/* (a U + b V) / c: U turned toward V by the angle whose cosine is a / c. */
+static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
+{
+    rad_vec3_t r;
+    r.x = ((float)a * u.x + (float)b * v.x) / (float)c;
+    r.y = ((float)a * u.y + (float)b * v.y) / (float)c;
+    r.z = ((float)a * u.z + (float)b * v.z) / (float)c;
+    return r;
+}
 
 #else /* fixed point */
 
@@ -271,6 +280,14 @@ static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
     return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i) { return (rad_real_t)((uint32_t)i << 16); }
+static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
+{
+    rad_vec3_t r;
+    r.x = (rad_real_t)rad__div_round((int64_t)a * u.x + (int64_t)b * v.x, c);
+    r.y = (rad_real_t)rad__div_round((int64_t)a * u.y + (int64_t)b * v.y, c);
+    r.z = (rad_real_t)rad__div_round((int64_t)a * u.z + (int64_t)b * v.z, c);
+    return r;
+}
 
 #endif
 #endif
