@@ -11,7 +11,7 @@ for t in "$@"; do
   rc=$?
   cat "$log"
   p=$(grep -c '^\[       OK \]' "$log")
-  f=$(grep -c '^\[  FAILED  \] [a-z_]' "$log")
+  f=$(grep '^\[  FAILED  \] [a-z_]' "$log" | sort -u | wc -l)
   s=$(grep -c '^\[  SKIPPED \] [a-z_]' "$log")
   passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + s))
   if [ $rc -ne 0 ] && [ "$f" -eq 0 ]; then

@@ -1,0 +1,385 @@
+/* Every public function's error paths, the state after errors, guard bytes after every
+ * caller buffer, relighting by restart, and saturation counting (fixed build). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "rad/rad.h"
+
+#define GUARD 64
+#define NS 16
+#define NP 256
+#define NE 1024
+#define NV 2048
+#define WORK RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV)
+
+/* Pools with GUARD bytes of 0xA5 after each, checked after every call. */
+typedef struct {
+    unsigned char *surf, *patch, *elem, *vert, *work;
+    rad_pools_t p;
+} guarded_t;
+
+static unsigned char *galloc(size_t n)
+{
+    unsigned char *b = malloc(n + GUARD);
+    assert_non_null(b);
+    memset(b, 0, n);
+    memset(b + n, 0xA5, GUARD);
+    return b;
+}
+
+static void gcheck(const unsigned char *b, size_t n)
+{
+    size_t i;
+    for (i = 0; i < GUARD; i++) assert_int_equal(b[n + i], 0xA5);
+}
+
+static void pools_make(guarded_t *g, uint32_t ns, uint32_t np, uint32_t ne, uint32_t nv, size_t work)
+{
+    g->surf = galloc(ns * sizeof(rad_surface_t));
+    g->patch = galloc(np * sizeof(rad_patch_t));
+    g->elem = galloc(ne * sizeof(rad_element_t));
+    g->vert = galloc(nv * sizeof(rad_vec3_t));
+    g->work = galloc(work);
+    g->p.surfaces = (rad_surface_t *)g->surf; g->p.max_surfaces = ns;
+    g->p.patches = (rad_patch_t *)g->patch; g->p.max_patches = np;
+    g->p.elements = (rad_element_t *)g->elem; g->p.max_elements = ne;
+    g->p.vertices = (rad_vec3_t *)g->vert; g->p.max_vertices = nv;
+    g->p.work = g->work; g->p.work_bytes = work;
+}
+
+static void pools_check(const guarded_t *g)
+{
+    gcheck(g->surf, g->p.max_surfaces * sizeof(rad_surface_t));
+    gcheck(g->patch, g->p.max_patches * sizeof(rad_patch_t));
+    gcheck(g->elem, g->p.max_elements * sizeof(rad_element_t));
+    gcheck(g->vert, g->p.max_vertices * sizeof(rad_vec3_t));
+    gcheck(g->work, g->p.work_bytes);
+}
+
+static void pools_free(guarded_t *g)
+{
+    free(g->surf); free(g->patch); free(g->elem); free(g->vert); free(g->work);
+}
+
+#define Q(x) RAD_REAL(x)
+static rad_vec3_t V(double x, double y, double z)
+{
+    rad_vec3_t v;
+    v.x = Q(x); v.y = Q(y); v.z = Q(z);
+    return v;
+}
+
+static const rad_rgb_t grey = {Q(0.5), Q(0.5), Q(0.5)};
+static const rad_rgb_t light = {Q(10), Q(10), Q(10)};
+
+/* A closed cube of side 8 (inward faces) of reflectance RHO, the top emitting EM. */
+static void add_cube_with(rad_scene_t *s, const rad_rgb_t *rho, const rad_rgb_t *em)
+{
+    rad_vec3_t f[6][4] = {
+        {V(-4, -4, -4), V(-4, -4, 4), V(4, -4, 4), V(4, -4, -4)},
+        {V(-4, 4, -4), V(4, 4, -4), V(4, 4, 4), V(-4, 4, 4)},
+        {V(-4, -4, -4), V(-4, 4, -4), V(-4, 4, 4), V(-4, -4, 4)},
+        {V(4, -4, -4), V(4, -4, 4), V(4, 4, 4), V(4, 4, -4)},
+        {V(-4, -4, -4), V(4, -4, -4), V(4, 4, -4), V(-4, 4, -4)},
+        {V(-4, -4, 4), V(-4, 4, 4), V(4, 4, 4), V(4, -4, 4)},
+    };
+    int i;
+    for (i = 0; i < 6; i++) assert_int_equal(rad_add_polygon(s, f[i], 4, rho, i == 1 ? em : NULL), i);
+}
+
+static void add_cube(rad_scene_t *s) { add_cube_with(s, &grey, &light); }
+
+static const rad_config_t cfg = {RAD_REAL(4.0), RAD_REAL(2.0), 32, 0};
+
+static void test_init_errors(void **st)
+{
+    guarded_t g;
+    rad_scene_t s;
+    rad_pools_t p;
+    rad_config_t c;
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(NULL, &g.p, &cfg), RAD_ERR_ARG);
+    assert_int_equal(rad_init(&s, NULL, &cfg), RAD_ERR_ARG);
+    p = g.p; p.elements = NULL;
+    assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
+    p = g.p; p.work = NULL;
+    assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
+    p = g.p; p.max_elements = 0xFFFFFFFFu;       /* beyond the index type */
+    assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
+    c = cfg; c.res = 31;                          /* odd */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.res = 6;
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.res = RAD_MAX_RES + 2;
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_element = Q(1.0 / 32);         /* below 1/16 */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    /* Work: the table and accumulators fit, but not one row of a face. */
+    p = g.p; p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
+    assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_WORK);
+    /* One row fits: banded to a single row. */
+    p.work_bytes = RAD_WORK_BYTES(32, 32, NV);
+    assert_int_equal(rad_init(&s, &p, &cfg), RAD_OK);
+    assert_int_equal(s.band_rows, 1);
+    /* Defaults: zero config. */
+    assert_int_equal(rad_init(&s, &g.p, NULL), RAD_OK);
+    assert_int_equal(s.cfg.res, 64);
+    assert_int_equal(s.cfg.max_element, Q(4.0));
+    assert_int_equal(s.cfg.max_patch, Q(16.0));
+    assert_true(s.band_rows > 0); /* the work buffer was sized for 32: it bands */
+    pools_check(&g);
+    pools_free(&g);
+}
+
+static void test_add_errors(void **st)
+{
+    guarded_t g;
+    rad_scene_t s;
+    rad_rgb_t bad;
+    rad_vec3_t ok[4] = {V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}, v[4];
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    assert_int_equal(rad_add_polygon(NULL, ok, 4, NULL, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_add_polygon(&s, NULL, 4, NULL, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_add_polygon(&s, ok, 2, NULL, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_add_polygon(&s, ok, 5, NULL, NULL), RAD_ERR_ARG);
+    /* Coordinates: 64.0 is the limit, one LSB more is out. */
+    v[0] = V(63, 0, 0); v[1] = V(64, 0, 0); v[2] = V(63, 1, 0);
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), 0);
+    memcpy(v, ok, sizeof v); v[1].y = Q(64.0) + 1;
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
+    memcpy(v, ok, sizeof v); v[0].z = INT32_MIN;
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
+    /* Reflectance in [0, 1), emission in [0, 4096]. */
+    bad = grey; bad.g = Q(1.0);
+    assert_int_equal(rad_add_polygon(&s, ok, 4, &bad, NULL), RAD_ERR_RANGE);
+    bad = grey; bad.b = -1;
+    assert_int_equal(rad_add_polygon(&s, ok, 4, &bad, NULL), RAD_ERR_RANGE);
+    bad = light; bad.r = Q(4096.0) + 1;
+    assert_int_equal(rad_add_polygon(&s, ok, 4, NULL, &bad), RAD_ERR_RANGE);
+    bad = light; bad.g = -5;
+    assert_int_equal(rad_add_polygon(&s, ok, 4, NULL, &bad), RAD_ERR_RANGE);
+    /* Degenerate: a point, collinear, a repeated vertex, below the minimum area. */
+    v[0] = v[1] = v[2] = V(1, 1, 1);
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
+    v[0] = V(0, 0, 0); v[1] = V(1, 1, 1); v[2] = V(2, 2, 2);
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
+    memcpy(v, ok, sizeof v); v[2] = v[1];
+    assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_DEGENERATE);
+    v[0] = V(0, 0, 0); v[1] = V(0.01, 0, 0); v[2] = V(0, 0.01, 0); /* area 5e-5 < 1/4096 */
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
+    /* Non-planar (a corner lifted by a quarter of the side), non-convex, bow-tie. */
+    memcpy(v, ok, sizeof v); v[2].z = Q(0.25);
+    assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
+    memcpy(v, ok, sizeof v); v[2] = V(0.3, 0.3, 0);
+    assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
+    v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
+    assert_true(rad_add_polygon(&s, v, 4, NULL, NULL) < 0);
+    /* Nothing was added by any of these, except the in-range triangle above. */
+    assert_int_equal(s.n_surfaces, 1);
+    /* A slightly bent quad (1/200 of its side) is accepted as planar. */
+    memcpy(v, ok, sizeof v); v[2].z = Q(0.005);
+    assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), 1);
+    pools_check(&g);
+    pools_free(&g);
+}
+
+static void test_full_pools(void **st)
+{
+    /* Each pool in turn too small for the cube: RAD_ERR_FULL, counts untouched, and
+     * a smaller polygon still goes in afterwards. */
+    static const uint32_t sizes[4][4] = {{2, NP, NE, NV}, {NS, 22, NE, NV}, {NS, NP, 90, NV}, {NS, NP, NE, 140}};
+    int k;
+    (void)st;
+    for (k = 0; k < 4; k++) {
+        guarded_t g;
+        rad_scene_t s;
+        rad_vec3_t big[4] = {V(-4, -4, -4), V(-4, -4, 4), V(4, -4, 4), V(4, -4, -4)};
+        rad_vec3_t small[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
+        uint32_t ns, np, ne, nv;
+        int i, rc = 0;
+        pools_make(&g, sizes[k][0], sizes[k][1], sizes[k][2], sizes[k][3], RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV));
+        assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+        for (i = 0; i < 6 && rc >= 0; i++) {
+            ns = s.n_surfaces; np = s.n_patches; ne = s.n_elements; nv = s.n_vertices;
+            rc = rad_add_polygon(&s, big, 4, &grey, &light);
+        }
+        assert_int_equal(rc, RAD_ERR_FULL);
+        assert_int_equal(s.n_surfaces, ns); assert_int_equal(s.n_patches, np);
+        assert_int_equal(s.n_elements, ne); assert_int_equal(s.n_vertices, nv);
+        if (k != 0) assert_true(rad_add_polygon(&s, small, 3, &grey, NULL) >= 0);
+        /* The scene still solves. */
+        assert_true(rad_shoot(&s, 5, 0) >= 0);
+        pools_check(&g);
+        pools_free(&g);
+    }
+}
+
+static void test_calls_and_guards(void **st)
+{
+    guarded_t g;
+    rad_scene_t s;
+    rad_rgb_t amb, out, *vrgb, *fb;
+    rad_ff_t *ff;
+    uint32_t *zb, e;
+    rad_camera_t cam = {{0, 0, Q(3.9)}, {0, 0, 0}, {0, Q(1), 0}, Q(1.0)};
+    rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
+    unsigned char *vb, *fbb, *zbb, *ffb;
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    add_cube(&s);
+    assert_int_equal(rad_shoot(NULL, 1, 0), RAD_ERR_ARG);
+    assert_int_equal(rad_shoot(&s, 0, 0), 0);
+    assert_int_equal(rad_shoot(&s, 30, 0), 30);
+    assert_int_equal(rad_add_polygon(&s, tri, 3, NULL, NULL), RAD_ERR_STATE);
+    assert_true(rad_unshot_fraction(&s) > 0 && rad_unshot_fraction(&s) < Q(1.0));
+    assert_int_equal(rad_unshot_fraction(NULL), 0);
+    assert_int_equal(rad_ambient(NULL, &amb), RAD_ERR_ARG);
+    assert_int_equal(rad_ambient(&s, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_ambient(&s, &amb), RAD_OK);
+    assert_true(amb.r > 0);
+    assert_int_equal(rad_element_radiosity(&s, s.n_elements, 0, &out), RAD_ERR_ARG);
+    assert_int_equal(rad_element_radiosity(&s, 0, 0, NULL), RAD_ERR_ARG);
+    for (e = 0; e < s.n_elements; e++) {
+        rad_rgb_t a;
+        assert_int_equal(rad_element_radiosity(&s, e, 0, &out), RAD_OK);
+        assert_int_equal(rad_element_radiosity(&s, e, RAD_SHADE_AMBIENT, &a), RAD_OK);
+        assert_true(a.r >= out.r); /* the ambient term only adds */
+    }
+    vb = galloc(s.n_vertices * sizeof *vrgb);
+    vrgb = (rad_rgb_t *)vb;
+    assert_int_equal(rad_shade_vertices(&s, 0, vrgb, s.n_vertices - 1), RAD_ERR_ARG);
+    assert_int_equal(rad_shade_vertices(&s, RAD_SHADE_AMBIENT, vrgb, s.n_vertices), (int)s.n_vertices);
+    gcheck(vb, s.n_vertices * sizeof *vrgb);
+    fbb = galloc(40 * 30 * sizeof *fb); zbb = galloc(40 * 30 * sizeof *zb);
+    fb = (rad_rgb_t *)fbb; zb = (uint32_t *)zbb;
+    assert_int_equal(rad_render(&s, vrgb, &cam, fb, zb, 0, 30), RAD_ERR_ARG);
+    assert_int_equal(rad_render(&s, vrgb, &cam, fb, zb, RAD_MAX_RASTER + 1, 30), RAD_ERR_ARG);
+    assert_int_equal(rad_render(&s, NULL, &cam, fb, zb, 40, 30), RAD_ERR_ARG);
+    {
+        rad_camera_t c2 = cam;
+        c2.target = c2.eye; /* no direction */
+        assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
+        c2 = cam; c2.up = V(0, 0, 1); /* up along the view */
+        assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
+        c2 = cam; c2.eye.x = Q(300); /* beyond 4 * 64 */
+        assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
+        c2 = cam; c2.tan_half_fov = 0;
+        assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
+    }
+    assert_true(rad_render(&s, vrgb, &cam, fb, zb, 40, 30) > 0);
+    gcheck(fbb, 40 * 30 * sizeof *fb);
+    gcheck(zbb, 40 * 30 * sizeof *zb);
+    ffb = galloc(s.n_elements * sizeof *ff);
+    ff = (rad_ff_t *)ffb;
+    assert_int_equal(rad_form_factors(&s, s.n_patches, ff), RAD_ERR_ARG);
+    assert_int_equal(rad_form_factors(&s, 0, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_form_factors(&s, 3, ff), (int)s.n_elements);
+    gcheck(ffb, s.n_elements * sizeof *ff);
+    assert_int_equal(rad_set_surface(&s, 6, &grey, NULL), RAD_ERR_ARG);
+    assert_int_equal(rad_restart(NULL), RAD_ERR_ARG);
+    pools_check(&g);
+    free(vb); free(fbb); free(zbb); free(ffb);
+    pools_free(&g);
+}
+
+static uint64_t checksum(const rad_scene_t *s)
+{
+    uint64_t x = 1469598103934665603ull;
+    uint32_t e;
+    for (e = 0; e < s->n_elements; e++) {
+        const rad_rgb_t *c = &s->pools.elements[e].radiosity;
+        x = (x ^ (uint32_t)c->r) * 1099511628211ull;
+        x = (x ^ (uint32_t)c->g) * 1099511628211ull;
+        x = (x ^ (uint32_t)c->b) * 1099511628211ull;
+    }
+    return x;
+}
+
+static void test_restart_relight(void **st)
+{
+    guarded_t a, b;
+    rad_scene_t s, t;
+    const rad_rgb_t red = {Q(0.7), Q(0.1), Q(0.1)}, blue = {Q(0), Q(0), Q(8)};
+    (void)st;
+    pools_make(&a, NS, NP, NE, NV, WORK);
+    pools_make(&b, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &a.p, &cfg), RAD_OK);
+    assert_int_equal(rad_init(&t, &b.p, &cfg), RAD_OK);
+    add_cube(&s);
+    add_cube(&t);
+    rad_shoot(&s, 50, 0);
+    /* Change a wall's colour and the light's colour, then restart: the new solution is
+     * bit for bit a fresh solve of the changed scene. */
+    assert_int_equal(rad_set_surface(&s, 2, &red, NULL), RAD_OK);
+    assert_int_equal(rad_set_surface(&s, 1, NULL, &blue), RAD_OK);
+    assert_int_equal(rad_set_surface(&s, 1, &red, &(rad_rgb_t){0, 0, Q(5000)}), RAD_ERR_RANGE);
+    assert_int_equal(rad_restart(&s), RAD_OK);
+    assert_int_equal(s.stats.shots, 0);
+    rad_set_surface(&t, 2, &red, NULL);
+    rad_set_surface(&t, 1, NULL, &blue);
+    rad_restart(&t);
+    assert_int_equal(rad_shoot(&s, 60, 0), 60);
+    assert_int_equal(rad_shoot(&t, 60, 0), 60);
+    assert_true(checksum(&s) == checksum(&t));
+    /* Blue light only: no red or green anywhere. */
+    assert_int_equal(s.pools.elements[0].radiosity.r, 0);
+    assert_true(s.pools.elements[0].radiosity.b > 0);
+    pools_check(&a);
+    pools_free(&a);
+    pools_free(&b);
+}
+
+static void test_saturation_counted(void **st)
+{
+    guarded_t g;
+    rad_scene_t s;
+    const rad_rgb_t white = {65535, 65535, 65535}, hot = {Q(4096), Q(4096), Q(4096)};
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    /* A closed white cube with a face at the emission limit converges towards
+     * 4096 / (1 - 65535/65536), far past the Q16.16 limit of 32768: clamped, counted. */
+    add_cube_with(&s, &white, &hot);
+    rad_shoot(&s, 2000, 0);
+    assert_true(s.stats.saturations > 0);
+    assert_int_equal(s.pools.elements[0].radiosity.r, INT32_MAX);
+    pools_check(&g);
+    pools_free(&g);
+}
+
+static void test_strerror(void **st)
+{
+    int k;
+    (void)st;
+    for (k = 0; k >= -7; k--) {
+        int j;
+        assert_non_null(rad_strerror(k));
+        for (j = 0; j > k; j--) assert_string_not_equal(rad_strerror(k), rad_strerror(j));
+    }
+    assert_string_equal(rad_strerror(-99), "unknown error");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_init_errors),
+        cmocka_unit_test(test_add_errors),
+        cmocka_unit_test(test_full_pools),
+        cmocka_unit_test(test_calls_and_guards),
+        cmocka_unit_test(test_restart_relight),
+        cmocka_unit_test(test_saturation_counted),
+        cmocka_unit_test(test_strerror),
+    };
+    return cmocka_run_group_tests_name("api", tests, NULL, NULL);
+}
