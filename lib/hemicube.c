@@ -141,6 +141,14 @@ static void face_vertex(unsigned face, rad_vec3_t l, rad__cvert_t *c)
     c->c[0] = c->c[1] = c->c[2] = 0;
 }
 
+/* The frustum's outcode of a face-space vertex with slopes 1, as rad__outcodes
+ * computes it (rad__mul by one is exact), without a multiply. */
+static unsigned face_code(const rad__cvert_t *c, int half)
+{
+    return (unsigned)(c->d < RAD__NEAR) | (unsigned)(c->a > c->d) << 1 | (unsigned)(-c->a > c->d) << 2 |
+           (unsigned)(c->b > c->d) << 3 | (unsigned)(half ? c->b < 0 : -c->b > c->d) << 4;
+}
+
 static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, uint32_t e,
                            rad_vec3_t c, const rad_vec3_t *frame)
 {
@@ -163,8 +171,17 @@ static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, u
     for (r = 0; r < nreg; r++) {
         rad__frustum_t f;
         rad__target_t t;
+        unsigned all = 0x1F, any = 0, half = reg[r].face != 0;
+        for (i = 0; i < nv; i++) {
+            unsigned code;
+            face_vertex(reg[r].face, loc[i], &cv[i]);
+            code = face_code(&cv[i], (int)half);
+            all &= code;
+            any |= code;
+        }
+        if (all) continue; /* wholly outside this face */
         f.sx = f.sy = RAD__ONE;
-        f.half = reg[r].face != 0;
+        f.half = (int)half;
         f.width = (int)s->cfg.res;
         f.height = (int)face_rows(s, reg[r].face);
         t.z = s->zbuf + reg[r].offset;
@@ -173,8 +190,7 @@ static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, u
         t.width = (int)s->cfg.res;
         t.row0 = reg[r].row0;
         t.row1 = reg[r].row1;
-        for (i = 0; i < nv; i++) face_vertex(reg[r].face, loc[i], &cv[i]);
-        rad__draw(&s->stats, &t, &f, cv, nv, (rad_index_t)e);
+        rad__draw(&s->stats, &t, &f, cv, nv, any, (rad_index_t)e);
     }
 }
 

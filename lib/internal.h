@@ -4,6 +4,10 @@
 
 #include "scalar.h"
 
+#if RAD_FLOAT
+#define rad__outcodes radf__outcodes
+#endif
+
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
 typedef struct {
     rad_real_t a, b, d;
@@ -27,10 +31,16 @@ typedef struct {
     int width, row0, row1;
 } rad__target_t;
 
-/* Clips the convex polygon IN (N <= 4 vertices) to frustum F, projects it and
- * rasterizes it into T with item id ID. */
+/* Outcodes of polygon IN against frustum F: returns the OR of the vertices' outside
+ * bits (bit p: outside plane p), or RAD__CULLED when all are outside one plane. */
+#define RAD__CULLED 0x100u
+unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned n);
+
+/* Clips the convex polygon IN (N <= 4 vertices) against the planes in ANY (from
+ * rad__outcodes, or an equal test of the caller's), projects it and rasterizes it
+ * into T with item id ID. */
 void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
-               const rad__cvert_t *in, unsigned n, rad_index_t id);
+               const rad__cvert_t *in, unsigned n, unsigned any, rad_index_t id);
 
 /* Work buffer layout and delta form factor table (hemicube.c). */
 int rad__hemicube_init(rad_scene_t *s);

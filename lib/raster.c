@@ -33,12 +33,17 @@ static rad_real_t plane_dist(const rad__frustum_t *f, const rad__cvert_t *v, uns
     }
 }
 
-static unsigned outcode(const rad__frustum_t *f, const rad__cvert_t *v)
+unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned n)
 {
-    unsigned p, code = 0;
-    for (p = 0; p < 5; p++)
-        if (plane_dist(f, v, p) < 0) code |= 1u << p;
-    return code;
+    unsigned i, p, all = 0x1F, any = 0;
+    for (i = 0; i < n; i++) {
+        unsigned code = 0;
+        for (p = 0; p < 5; p++)
+            if (plane_dist(f, &in[i], p) < 0) code |= 1u << p;
+        all &= code;
+        any |= code;
+    }
+    return all ? RAD__CULLED : any;
 }
 
 /* The point where edge IN-OUT crosses the plane, always interpolated from the inside
@@ -70,38 +75,49 @@ static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert
     return m;
 }
 
-/* ---- triangles ----------------------------------------------------------------- */
+/* ---- convex polygons ------------------------------------------------------------- */
 
 typedef struct {
     int64_t e, dx, dy; /* value at the first pixel centre, steps per pixel in x and y */
 } edge_t;
 
-static void edge_setup(edge_t *ed, const rvert_t *a, const rvert_t *b, int32_t px, int32_t py)
+static void edge_setup(edge_t *ed, const rvert_t *a, const rvert_t *b, int32_t px, int32_t py, int flip)
 {
     int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
+    int owned;
+    if (flip) { ex = -ex; ey = -ey; a = b; }
     /* Half-open ownership: of the two directions along a shared edge, exactly one
      * (pointing down, or right when horizontal) includes centres lying on it. */
-    int owned = ey > 0 || (ey == 0 && ex > 0);
+    owned = ey > 0 || (ey == 0 && ex > 0);
     ed->e = ex * ((int64_t)py - a->y) - ey * ((int64_t)px - a->x) - (owned ? 0 : 1);
     ed->dx = -ey * SUB;
     ed->dy = ex * SUB;
 }
 
-/* Plane of attribute K: value at the first pixel centre and steps, all * 2^16, mod 2^64. */
-static void attr_setup(const rvert_t *v, unsigned k, int64_t area2, int32_t px, int32_t py,
-                       uint64_t *val, uint64_t *sx, uint64_t *sy)
+/* Twice the signed area of triangle A, B, C in subpixels^2. */
+static int64_t area2(const rvert_t *a, const rvert_t *b, const rvert_t *c)
 {
-    int64_t d1 = (int64_t)v[1].at[k] - v[0].at[k], d2 = (int64_t)v[2].at[k] - v[0].at[k];
-    int64_t x1 = (int64_t)v[1].x - v[0].x, y1 = (int64_t)v[1].y - v[0].y;
-    int64_t x2 = (int64_t)v[2].x - v[0].x, y2 = (int64_t)v[2].y - v[0].y;
-    int64_t gx = (d1 * y2 - d2 * y1) * 65536 / area2;
-    int64_t gy = (d2 * x1 - d1 * x2) * 65536 / area2;
-    *val = ((uint64_t)v[0].at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v[0].x) +
-           (uint64_t)gy * (uint64_t)((int64_t)py - v[0].y);
+    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
+}
+
+/* Plane of attribute K through triangle V0, V1, V2 (twice its area AR): the value at
+ * the first pixel centre and its steps, all * 2^16, modulo 2^64. */
+static void attr_setup(const rvert_t *v0, const rvert_t *v1, const rvert_t *v2, unsigned k, int64_t ar,
+                       int32_t px, int32_t py, uint64_t *val, uint64_t *sx, uint64_t *sy)
+{
+    int64_t d1 = (int64_t)v1->at[k] - v0->at[k], d2 = (int64_t)v2->at[k] - v0->at[k];
+    int64_t x1 = (int64_t)v1->x - v0->x, y1 = (int64_t)v1->y - v0->y;
+    int64_t x2 = (int64_t)v2->x - v0->x, y2 = (int64_t)v2->y - v0->y;
+    int64_t gx = (d1 * y2 - d2 * y1) * 65536 / ar;
+    int64_t gy = (d2 * x1 - d1 * x2) * 65536 / ar;
+    *val = ((uint64_t)v0->at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v0->x) +
+           (uint64_t)gy * (uint64_t)((int64_t)py - v0->y);
     *sx = (uint64_t)gx * SUB;
     *sy = (uint64_t)gy * SUB;
 }
 
+/* An attribute read inside the polygon: there its value is within rounding of the
+ * vertices' (>= 0), so the modular sum holds the true value. */
 static uint32_t attr_value(uint64_t v)
 {
     if (v >> 63) return 0; /* a rounding step below zero */
@@ -111,26 +127,35 @@ static uint32_t attr_value(uint64_t v)
 
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-static void raster_tri(rad_stats_t *st, const rad__target_t *t, const rvert_t *a,
-                       const rvert_t *b, const rvert_t *c, rad_index_t id)
+/* Fills the convex polygon V (N <= 9 vertices, either winding). Attributes are
+ * interpolated on the plane of the widest fan triangle from V[0]: exact for a planar
+ * polygon's depth; callers with colours pass triangles. */
+static void raster_poly(rad_stats_t *st, const rad__target_t *t, const rvert_t *in, unsigned nin, rad_index_t id)
 {
-    rvert_t v[3];
-    edge_t ed[3];
-    uint64_t val[4], sx[4], sy[4];
-    int64_t area2;
+    rvert_t v[9];
+    edge_t ed[9];
+    uint64_t val[4], sx[4], sy[4], pixels = 0;
+    int64_t total = 0, best = 0;
     int32_t x0, x1, y0, y1, px, py, x, y;
-    unsigned k, nat = t->rgb ? 4u : 1u;
+    unsigned k, n = 0, b = 1, nat = t->rgb ? 4u : 1u;
 
-    v[0] = *a; v[1] = *b; v[2] = *c;
-    area2 = ((int64_t)v[1].x - v[0].x) * ((int64_t)v[2].y - v[0].y) -
-            ((int64_t)v[2].x - v[0].x) * ((int64_t)v[1].y - v[0].y);
-    if (area2 == 0) return;
-    if (area2 < 0) { v[1] = *c; v[2] = *b; area2 = -area2; }
+    /* Vertices that projection or clipping made equal would leave an edge with no
+     * direction, which owns nothing and would reject every pixel. */
+    for (k = 0; k < nin; k++)
+        if (in[k].x != in[(k + 1) % nin].x || in[k].y != in[(k + 1) % nin].y) v[n++] = in[k];
+    if (n < 3) return;
+    for (k = 1; k + 1 < n; k++) {
+        int64_t a = area2(&v[0], &v[k], &v[k + 1]);
+        total += a;
+        if ((a < 0 ? -a : a) > (best < 0 ? -best : best)) { best = a; b = k; }
+    }
+    if (best == 0) return;
     st->raster_calls++;
 
     /* Pixels whose centres (16 p + 8) lie within the bounding box, inside the target. */
-    x0 = v[0].x; x1 = v[0].x; y0 = v[0].y; y1 = v[0].y;
-    for (k = 1; k < 3; k++) {
+    x0 = x1 = v[0].x;
+    y0 = y1 = v[0].y;
+    for (k = 1; k < n; k++) {
         if (v[k].x < x0) x0 = v[k].x;
         if (v[k].x > x1) x1 = v[k].x;
         if (v[k].y < y0) y0 = v[k].y;
@@ -144,22 +169,23 @@ static void raster_tri(rad_stats_t *st, const rad__target_t *t, const rvert_t *a
 
     px = x0 * SUB + SUB / 2;
     py = y0 * SUB + SUB / 2;
-    edge_setup(&ed[0], &v[0], &v[1], px, py);
-    edge_setup(&ed[1], &v[1], &v[2], px, py);
-    edge_setup(&ed[2], &v[2], &v[0], px, py);
-    for (k = 0; k < nat; k++) attr_setup(v, k, area2, px, py, &val[k], &sx[k], &sy[k]);
+    for (k = 0; k < n; k++) edge_setup(&ed[k], &v[k], &v[(k + 1) % n], px, py, total < 0);
+    for (k = 0; k < nat; k++) attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
 
     for (y = y0; y <= y1; y++) {
-        int64_t e0 = ed[0].e, e1 = ed[1].e, e2 = ed[2].e;
+        int64_t e[9];
         uint64_t w = val[0];
         size_t row = (size_t)(y - t->row0) * (size_t)t->width;
         int seen = 0;
+        for (k = 0; k < n; k++) e[k] = ed[k].e;
         for (x = x0; x <= x1; x++) {
-            if ((e0 | e1 | e2) >= 0) {
+            int64_t inside = e[0] | e[1] | e[2];
+            for (k = 3; k < n; k++) inside |= e[k];
+            if (inside >= 0) {
                 uint32_t z = attr_value(w);
                 size_t i = row + (size_t)x;
                 seen = 1;
-                st->raster_pixels++;
+                pixels++;
                 if (z > t->z[i]) {
                     t->z[i] = z;
                     if (t->ids) t->ids[i] = id;
@@ -173,12 +199,13 @@ static void raster_tri(rad_stats_t *st, const rad__target_t *t, const rvert_t *a
             } else if (seen) {
                 break; /* convex: the span has ended */
             }
-            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx;
+            for (k = 0; k < n; k++) e[k] += ed[k].dx;
             w += sx[0];
         }
-        for (k = 0; k < 3; k++) ed[k].e += ed[k].dy;
+        for (k = 0; k < n; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];
     }
+    st->raster_pixels += pixels;
 }
 
 /* ---- polygons ------------------------------------------------------------------ */
@@ -199,20 +226,15 @@ static void project(const rad__frustum_t *f, const rad__cvert_t *c, rvert_t *r)
 }
 
 void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
-               const rad__cvert_t *in, unsigned n, rad_index_t id)
+               const rad__cvert_t *in, unsigned n, unsigned any, rad_index_t id)
 {
     /* Each plane adds at most one vertex: 4 + 5 = 9. */
     rad__cvert_t buf[2][9];
     rvert_t pv[9];
     const rad__cvert_t *cur = in;
-    unsigned i, p, all = 0x1F, any = 0, flip = 0;
+    unsigned i, p, flip = 0;
 
-    for (i = 0; i < n; i++) {
-        unsigned oc = outcode(f, &in[i]);
-        all &= oc;
-        any |= oc;
-    }
-    if (all) return; /* wholly outside one plane */
+    if (any & RAD__CULLED) return;
     for (p = 0; p < 5 && n >= 3; p++) {
         if (!(any & (1u << p))) continue;
         n = clip_plane(f, p, cur, n, buf[flip]);
@@ -221,5 +243,14 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
     }
     if (n < 3) return;
     for (i = 0; i < n; i++) project(f, &cur[i], &pv[i]);
-    for (i = 1; i + 1 < n; i++) raster_tri(st, t, &pv[0], &pv[i], &pv[i + 1], id);
+    if (!t->rgb) {
+        raster_poly(st, t, pv, n, id);
+        return;
+    }
+    /* Colours vary over a quad bilinearly, not on one plane: fill a fan of triangles. */
+    for (i = 1; i + 1 < n; i++) {
+        rvert_t tri[3];
+        tri[0] = pv[0]; tri[1] = pv[i]; tri[2] = pv[i + 1];
+        raster_poly(st, t, tri, 3, id);
+    }
 }

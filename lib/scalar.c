@@ -16,24 +16,6 @@ uint64_t rad__isqrt64(uint64_t v)
     return r;
 }
 
-int64_t rad__shr_round(int64_t v, unsigned n)
-{
-    /* Round half away from zero on the magnitude: never shifts a negative number. */
-    uint64_t half = (uint64_t)1 << (n - 1);
-    if (v >= 0) return (int64_t)(((uint64_t)v + half) >> n);
-    return -(int64_t)(((uint64_t)0 - (uint64_t)v + half) >> n);
-}
-
-int64_t rad__div_round(int64_t num, int64_t den)
-{
-    /* C99 division truncates toward zero; add half the divisor on the magnitude side. */
-    int neg = (num < 0) != (den < 0);
-    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
-    uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
-    uint64_t q = (n + d / 2u) / d;
-    return neg ? -(int64_t)q : (int64_t)q;
-}
-
 static unsigned bitlen(uint64_t v)
 {
     unsigned b = 0;

@@ -14,8 +14,6 @@
 /* The twin's private names differ too, so both libraries link into one program. */
 #if RAD_FLOAT
 #define rad__isqrt64 radf__isqrt64
-#define rad__shr_round radf__shr_round
-#define rad__div_round radf__div_round
 #define rad__unit64 radf__unit64
 #define rad__fsqrt radf__fsqrt
 #define rad__draw radf__draw
@@ -40,12 +38,28 @@
 
 /* Helpers shared by the shim (scalar.c): integer ones in the fixed build, fsqrt in the twin. */
 uint64_t rad__isqrt64(uint64_t v);
-int64_t rad__shr_round(int64_t v, unsigned n);
-int64_t rad__div_round(int64_t num, int64_t den);
 /* Unit vector (Q16.16) along the integer vector (x, y, z), |components| < 2^62;
  * returns its length, rounded, in the same units as the components (0: zero vector). */
 uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit);
 float rad__fsqrt(float x);
+
+/* v / 2^n rounded half away from zero, n >= 1: never shifts a negative number. */
+static inline int64_t rad__shr_round(int64_t v, unsigned n)
+{
+    uint64_t half = (uint64_t)1 << (n - 1);
+    if (v >= 0) return (int64_t)(((uint64_t)v + half) >> n);
+    return -(int64_t)(((uint64_t)0 - (uint64_t)v + half) >> n);
+}
+
+/* num / den rounded half away from zero (C99 division truncates toward zero). */
+static inline int64_t rad__div_round(int64_t num, int64_t den)
+{
+    int neg = (num < 0) != (den < 0);
+    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
+    uint64_t q = (n + d / 2u) / d;
+    return neg ? -(int64_t)q : (int64_t)q;
+}
 
 static inline rad_vec3_t rad__sub(rad_vec3_t a, rad_vec3_t b)
 {

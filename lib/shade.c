@@ -112,7 +112,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
             cv[k].d = rad__dot(d, ax[2]);
             cv[k].c[0] = c->r; cv[k].c[1] = c->g; cv[k].c[2] = c->b;
         }
-        rad__draw(&st, &t, &f, cv, nv, 0);
+        rad__draw(&st, &t, &f, cv, nv, rad__outcodes(&f, cv, nv), 0);
     }
     return (int)st.raster_calls;
 }

@@ -1,0 +1,1374 @@
+/* Black-box tests of the command-line program: build/rad_cli (fixed-point core) and
+ * build/rad_cli_float (the float twin). Each test runs a binary with posix_spawn, with
+ * stdout and stderr captured in files of a mkdtemp() directory under /tmp, and checks
+ * the exit status, the messages and the decoded output images (img_read) or files.
+ *
+ * Run from the repository root (make test does). A missing binary skips the tests that
+ * need it (make all builds them).
+ *
+ * Speed: most runs use the coarse solver settings COARSE on the 0.55 m Cornell box
+ * (about 30 ms a solve); only the fixed/float comparison uses the default mesh.
+ *
+ * Tests named bug_* reproduce defects found while writing this file. They fail today,
+ * so they skip unless RAD_TEST_KNOWN_BUGS=1 is set in the environment.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "image.h"
+#include "obj.h"
+
+extern char **environ;
+
+#define FIXED "build/rad_cli"
+#define FLOAT "build/rad_cli_float"
+#define CORNELL "examples/cornell_box.obj"
+#define DATA "tests/data/cli/"
+
+/* Coarse solver settings for the Cornell box: elements of 0.1 m (patches 0.4 m, the
+ * default 4x) and a 32x32 hemi-cube. Coarse but every feature the tests look at (the
+ * coloured walls, the light, the darkened floor next to the blocks) is still there. */
+#define COARSE "--max-element", "0.1", "--res", "32"
+
+#define MAX_ARGS 64
+#define RUN_TIMEOUT_S 120.0 /* a run that takes longer is hung: it is killed and fails */
+
+/* ---- temporary directory ------------------------------------------------------ */
+
+static char tmpdir[64];
+
+/* A path in the temporary directory. Up to 32 results stay valid at once. */
+static const char *tmp_path(const char *name)
+{
+    static char ring[32][320];
+    static int next;
+    char *p = ring[next++ % 32];
+    assert_true(strlen(name) <= 200);
+    snprintf(p, sizeof ring[0], "%s/%.200s", tmpdir, name);
+    return p;
+}
+
+static int group_setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/rad_test_cli.XXXXXX");
+    if (!mkdtemp(tmpdir)) {
+        fprintf(stderr, "mkdtemp: %s\n", strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+/* The directory is flat: remove its files, then it. */
+static int group_teardown(void **state)
+{
+    DIR *d = opendir(tmpdir);
+    struct dirent *de;
+    (void)state;
+    if (d) {
+        while ((de = readdir(d)) != NULL)
+            if (strcmp(de->d_name, ".") != 0 && strcmp(de->d_name, "..") != 0)
+                unlink(tmp_path(de->d_name));
+        closedir(d);
+    }
+    rmdir(tmpdir);
+    return 0;
+}
+
+/* ---- files -------------------------------------------------------------------- */
+
+/* Whole file, NUL-terminated (NULL if it cannot be read); *len gets its size. */
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t n = 0, cap = 0, got;
+    if (!f)
+        return NULL;
+    do {
+        if (cap - n < 4096) {
+            char *nb = realloc(buf, cap + 65536);
+            if (!nb) {
+                free(buf);
+                fclose(f);
+                return NULL;
+            }
+            buf = nb;
+            cap += 65536;
+        }
+        got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+    } while (got > 0);
+    fclose(f);
+    buf[n] = '\0';
+    if (len)
+        *len = n;
+    return buf;
+}
+
+static void write_text(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    assert_int_equal(fputs(text, f) >= 0, 1);
+    assert_int_equal(fclose(f), 0);
+}
+
+static int file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* Number of files in the temporary directory whose name starts with PREFIX. */
+static int count_tmp_files(const char *prefix)
+{
+    DIR *d = opendir(tmpdir);
+    struct dirent *de;
+    int n = 0;
+    assert_non_null(d);
+    while ((de = readdir(d)) != NULL)
+        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0)
+            n++;
+    closedir(d);
+    return n;
+}
+
+/* ---- running the programs ----------------------------------------------------- */
+
+typedef struct {
+    pid_t pid;
+    int status;         /* exit status; 128 + signal if killed by one */
+    char *out, *err;    /* captured stdout and stderr */
+    char outpath[256], errpath[256];
+} run_t;
+
+static void need(const char *bin)
+{
+    if (access(bin, X_OK) != 0) {
+        print_message("%s is missing (run make all): skipped\n", bin);
+        skip();
+    }
+}
+
+/* Starts BIN with ARGS (NULL-terminated), stdin from /dev/null, stdout and stderr to
+ * files in the temporary directory. */
+static void run_start(run_t *r, const char *bin, const char *const *args)
+{
+    static int seq;
+    char *argv[MAX_ARGS + 2];
+    posix_spawn_file_actions_t fa;
+    int n = 0, rc;
+    memset(r, 0, sizeof *r);
+    snprintf(r->outpath, sizeof r->outpath, "%s/run%03d.out", tmpdir, seq);
+    snprintf(r->errpath, sizeof r->errpath, "%s/run%03d.err", tmpdir, seq);
+    seq++;
+    argv[n++] = (char *)bin;
+    while (args[n - 1]) {
+        assert_true(n <= MAX_ARGS);
+        argv[n] = (char *)args[n - 1];
+        n++;
+    }
+    argv[n] = NULL;
+    assert_int_equal(posix_spawn_file_actions_init(&fa), 0);
+    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0), 0);
+    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 1, r->outpath, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
+    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 2, r->errpath, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
+    rc = posix_spawn(&r->pid, bin, &fa, NULL, argv, environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0)
+        fail_msg("posix_spawn %s: %s", bin, strerror(rc));
+}
+
+/* Waits for the run (killing it after RUN_TIMEOUT_S) and reads what it printed. */
+static void run_finish(run_t *r)
+{
+    struct timespec t0, t, nap = {0, 5000000};
+    int st = 0;
+    pid_t w;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (;;) {
+        w = waitpid(r->pid, &st, WNOHANG);
+        if (w == r->pid)
+            break;
+        if (w < 0 && errno != EINTR)
+            fail_msg("waitpid: %s", strerror(errno));
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        if ((double)(t.tv_sec - t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - t0.tv_nsec) > RUN_TIMEOUT_S) {
+            kill(r->pid, SIGKILL);
+            waitpid(r->pid, &st, 0);
+            fail_msg("run timed out after %.0f s", RUN_TIMEOUT_S);
+        }
+        nanosleep(&nap, NULL);
+    }
+    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : WIFSIGNALED(st) ? 128 + WTERMSIG(st) : -1;
+    r->out = slurp(r->outpath, NULL);
+    r->err = slurp(r->errpath, NULL);
+    assert_non_null(r->out);
+    assert_non_null(r->err);
+}
+
+static void run_free(run_t *r)
+{
+    free(r->out);
+    free(r->err);
+    r->out = r->err = NULL;
+}
+
+static void run_args(run_t *r, const char *bin, const char *const *args)
+{
+    run_start(r, bin, args);
+    run_finish(r);
+}
+
+/* RUN(&r, BIN, "arg", ...): runs BIN with the arguments and waits for it. */
+#define RUN(r, bin, ...) run_args((r), (bin), (const char *const[]){__VA_ARGS__, NULL})
+#define START(r, bin, ...) run_start((r), (bin), (const char *const[]){__VA_ARGS__, NULL})
+
+/* The run must have exited with STATUS; on mismatch, show what it printed. */
+static void expect_status_at(const run_t *r, int status, const char *file, int line)
+{
+    if (r->status == status)
+        return;
+    print_error("exit status %d, expected %d\nstdout: %s\nstderr: %s\n", r->status, status, r->out, r->err);
+    _fail(file, line);
+}
+#define expect_status(r, s) expect_status_at((r), (s), __FILE__, __LINE__)
+
+static int count_lines(const char *s)
+{
+    int n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+static int starts_with(const char *s, const char *prefix)
+{
+    return strncmp(s, prefix, strlen(prefix)) == 0;
+}
+
+/* Some line of TEXT starts with PREFIX. */
+static int has_line(const char *text, const char *prefix)
+{
+    const char *p = text;
+    while (p && *p) {
+        if (starts_with(p, prefix))
+            return 1;
+        p = strchr(p, '\n');
+        if (p)
+            p++;
+    }
+    return 0;
+}
+
+static int known_bugs_enabled(void)
+{
+    const char *e = getenv("RAD_TEST_KNOWN_BUGS");
+    return e && strcmp(e, "1") == 0;
+}
+
+#define KNOWN_BUG(what)                                                                   \
+    do {                                                                                  \
+        if (!known_bugs_enabled()) {                                                      \
+            print_message("known bug, fails today (RAD_TEST_KNOWN_BUGS=1 runs it): %s\n", \
+                          what);                                                          \
+            skip();                                                                       \
+        }                                                                                 \
+    } while (0)
+
+/* ---- images ------------------------------------------------------------------- */
+
+static void load_img(const char *path, img_t *im)
+{
+    char e[512];
+    if (img_read(path, im, e, sizeof e) < 0)
+        fail_msg("img_read: %s", e);
+}
+
+static const unsigned char *px(const img_t *im, int x, int y)
+{
+    return im->rgb + ((size_t)y * (size_t)im->w + (size_t)x) * 3;
+}
+
+/* The inverse of the sRGB encoding of tonemap(): 8-bit value to linear. */
+static double srgb_decode(int v)
+{
+    double c = v / 255.0;
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+/* A rectangle in fractions of the image size: [x0, x1) x [y0, y1), y down. */
+typedef struct {
+    double x0, y0, x1, y1;
+} rect_t;
+
+/* Mean of each channel over R, as 8-bit values (LINEAR = 0) or decoded to linear
+ * light (LINEAR = 1). */
+static void region_mean(const img_t *im, rect_t r, int linear, double m[3])
+{
+    int x, y, c, x0 = (int)(r.x0 * im->w), x1 = (int)(r.x1 * im->w);
+    int y0 = (int)(r.y0 * im->h), y1 = (int)(r.y1 * im->h);
+    long n = 0;
+    assert_true(x1 > x0 && y1 > y0);
+    m[0] = m[1] = m[2] = 0;
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++, n++)
+            for (c = 0; c < 3; c++)
+                m[c] += linear ? srgb_decode(px(im, x, y)[c]) : px(im, x, y)[c];
+    for (c = 0; c < 3; c++)
+        m[c] /= (double)n;
+}
+
+static double luma(const double m[3])
+{
+    return 0.2126 * m[0] + 0.7152 * m[1] + 0.0722 * m[2];
+}
+
+/* Centroid (fractions of the size) of the pixels for which PRED holds; returns their
+ * count. */
+typedef int (*pix_pred)(const unsigned char *p);
+static long centroid(const img_t *im, pix_pred pred, double *cx, double *cy)
+{
+    int x, y;
+    long n = 0;
+    double sx = 0, sy = 0;
+    for (y = 0; y < im->h; y++)
+        for (x = 0; x < im->w; x++)
+            if (pred(px(im, x, y))) {
+                sx += x + 0.5;
+                sy += y + 0.5;
+                n++;
+            }
+    *cx = n ? sx / n / im->w : -1;
+    *cy = n ? sy / n / im->h : -1;
+    return n;
+}
+
+static int is_white(const unsigned char *p) { return p[0] >= 250 && p[1] >= 250 && p[2] >= 250; }
+static int is_red(const unsigned char *p) { return p[0] > 60 && p[0] > 2 * p[1] && p[0] > 2 * p[2]; }
+static int is_green(const unsigned char *p) { return p[1] > 60 && p[1] > p[0] + 20 && p[1] > 2 * p[2]; }
+static int is_blue(const unsigned char *p) { return p[2] > 40 && p[2] > 2 * p[0] && p[2] > 2 * p[1]; }
+/* Lit, unsaturated, not the lamp: the white floor of orient.obj. */
+static int is_grey(const unsigned char *p)
+{
+    int lo = p[0] < p[1] ? p[0] : p[1], hi = p[0] > p[1] ? p[0] : p[1];
+    lo = p[2] < lo ? p[2] : lo;
+    hi = p[2] > hi ? p[2] : hi;
+    return lo > 30 && hi < 250 && hi - lo < hi / 4 + 4;
+}
+
+static long count_black(const img_t *im)
+{
+    long n = 0;
+    size_t i;
+    for (i = 0; i < (size_t)im->w * (size_t)im->h; i++)
+        n += im->rgb[3 * i] == 0 && im->rgb[3 * i + 1] == 0 && im->rgb[3 * i + 2] == 0;
+    return n;
+}
+
+static void expect_same_pixels(const img_t *a, const img_t *b)
+{
+    assert_int_equal(a->w, b->w);
+    assert_int_equal(a->h, b->h);
+    assert_memory_equal(a->rgb, b->rgb, (size_t)a->w * (size_t)a->h * 3);
+}
+
+static int same_pixels(const img_t *a, const img_t *b)
+{
+    return a->w == b->w && a->h == b->h && memcmp(a->rgb, b->rgb, (size_t)a->w * (size_t)a->h * 3) == 0;
+}
+
+/* The file starts with the PNG signature / the P6 magic. */
+static void expect_magic(const char *path, const char *magic, size_t n)
+{
+    size_t len;
+    char *d = slurp(path, &len);
+    assert_non_null(d);
+    assert_true(len >= n);
+    assert_memory_equal(d, magic, n);
+    free(d);
+}
+#define PNG_SIG "\x89PNG\r\n\x1a\n"
+
+/* "patches P  elements E  vertices V" from --stats output. */
+static void parse_counts(const char *out, int *patches, int *elements, int *vertices)
+{
+    const char *p = strstr(out, "patches ");
+    assert_non_null(p);
+    assert_int_equal(sscanf(p, "patches %d elements %d vertices %d", patches, elements, vertices), 3);
+    assert_true(*patches > 0 && *elements >= *patches && *vertices > 0);
+}
+
+/* ---- 1. the Cornell box ------------------------------------------------------- */
+
+/* Sample regions of the default view, read off a 128x128 render of the coarse solve
+ * (the default camera looks down -z at the open side and frames the 0.556 x 0.549 m
+ * front opening with a 5% margin, so the box fills x, y ~ 2.5%..97%):
+ *  - red wall (x = -0.556, left): covers x ~ 3%..23% at mid height (the back wall
+ *    starts at x ~ 23%), so 8%..20% x 40%..60% is red wall only;
+ *  - green wall (right): its mirror image, 80%..92%;
+ *  - the light (0.13 x 0.105 m at the ceiling): x ~ 42%..58%, y ~ 15%..17.5% on screen,
+ *    so 45%..55% x 15.5%..17% lies inside it;
+ *  - the floor is visible below the blocks only in a strip y ~ 91%..97%. The floor just
+ *    in front of the short block (x 56%..70%: the block's front face ends at y ~ 93%)
+ *    lies in the block's shadow (the light is behind it, at z = -0.23..-0.33, the
+ *    block's front edge at z = -0.065..-0.11) and next to its base; the open floor on
+ *    the left (x 12%..35%, left of both blocks, in front of the tall block's shadow)
+ *    sees the light directly. Rows 94%..96.5% are floor in both. */
+static const rect_t RED_WALL = {0.08, 0.40, 0.20, 0.60};
+static const rect_t GREEN_WALL = {0.80, 0.40, 0.92, 0.60};
+static const rect_t LIGHT = {0.45, 0.155, 0.55, 0.17};
+static const rect_t LIGHT_WINDOW = {0.35, 0.10, 0.65, 0.25}; /* around the light, with room */
+static const rect_t FLOOR_SHADOW = {0.56, 0.94, 0.70, 0.965};
+static const rect_t FLOOR_OPEN = {0.12, 0.94, 0.35, 0.965};
+
+static void test_cornell_box(void **state)
+{
+    run_t r;
+    img_t im;
+    double red[3], green[3], redl[3], greenl[3], light[3], shadow[3], open[3];
+    int x, y, c, inside = 0, outside = 0;
+    const int corner = 2; /* px: the margin is ~2.4% = 3 px at 128, so 2x2 is outside */
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--quiet", "--width", "128", "--height", "128", COARSE, "-o", tmp_path("cornell.png"), CORNELL);
+    expect_status(&r, 0);
+    assert_string_equal(r.err, "");
+    run_free(&r);
+    expect_magic(tmp_path("cornell.png"), PNG_SIG, 8);
+    load_img(tmp_path("cornell.png"), &im);
+    assert_int_equal(im.w, 128);
+    assert_int_equal(im.h, 128);
+
+    /* Red wall: Kd 0.62 0.07 0.05 under a warm light: R/G is ~10 in linear light and
+     * ~3.4 in 8-bit sRGB (measured 220/66), so R > 1.5 G holds with a wide margin. */
+    region_mean(&im, RED_WALL, 0, red);
+    region_mean(&im, RED_WALL, 1, redl);
+    print_message("red wall   8-bit %.0f %.0f %.0f\n", red[0], red[1], red[2]);
+    assert_true(red[0] > 1.5 * red[1]);
+    assert_true(red[0] > 1.5 * red[2]);
+    assert_true(redl[0] > 3.0 * redl[1]);
+    /* Green wall: Kd 0.15 0.45 0.10, but the light is warm (Ke 18 12.8 4.4), so G/R is
+     * only ~2.1 in linear light (0.45 * 12.8 / (0.15 * 18)) and the sRGB encoding
+     * squeezes that to ~1.4 in 8-bit values (measured 167/122). So "G > 1.5 R" is
+     * asserted on linear light (decoded 8-bit values), plus a plain G > 1.2 R on the
+     * 8-bit values. */
+    region_mean(&im, GREEN_WALL, 0, green);
+    region_mean(&im, GREEN_WALL, 1, greenl);
+    print_message("green wall 8-bit %.0f %.0f %.0f, linear G/R %.2f\n", green[0], green[1], green[2],
+                  greenl[1] / greenl[0]);
+    assert_true(greenl[1] > 1.5 * greenl[0]);
+    assert_true(green[1] > 1.2 * green[0]);
+    assert_true(green[1] > 1.5 * green[2]);
+
+    /* The light clips to white (Ke 18 12.8 4.4 times the automatic exposure ~3 is > 1 in
+     * every channel), and nothing else does: the brightest lit surfaces (ceiling near
+     * the light, top of the short block) stay below 250 in blue, because reflected light
+     * is warm. */
+    region_mean(&im, LIGHT, 0, light);
+    assert_true(light[0] >= 250 && light[1] >= 250 && light[2] >= 250);
+    for (y = 0; y < im.h; y++)
+        for (x = 0; x < im.w; x++) {
+            double fx = (x + 0.5) / im.w, fy = (y + 0.5) / im.h;
+            int in = fx >= LIGHT_WINDOW.x0 && fx < LIGHT_WINDOW.x1 && fy >= LIGHT_WINDOW.y0 && fy < LIGHT_WINDOW.y1;
+            if (is_white(px(&im, x, y)))
+                *(in ? &inside : &outside) += 1;
+        }
+    print_message("near-white pixels: %d at the light, %d elsewhere\n", inside, outside);
+    assert_true(inside >= 20); /* the light is ~20 x 4 px at this size (82 measured) */
+    assert_int_equal(outside, 0);
+    assert_true(luma(light) > luma(red) && luma(light) > luma(green));
+
+    /* Soft shadow: measured 8-bit luma ~100 in front of the short block vs ~170 on the
+     * open floor (ratio 0.57); 0.8 leaves room for mesh changes but fails if the block
+     * casts no shadow (a ratio near or above 1). */
+    region_mean(&im, FLOOR_SHADOW, 0, shadow);
+    region_mean(&im, FLOOR_OPEN, 0, open);
+    print_message("floor luma: shadow %.0f, open %.0f\n", luma(shadow), luma(open));
+    assert_true(luma(open) > 100); /* the open floor is lit, so the comparison means something */
+    assert_true(luma(shadow) < 0.8 * luma(open));
+
+    /* Corners lie outside the box (nothing there): exactly black. */
+    for (y = 0; y < corner; y++)
+        for (x = 0; x < corner; x++)
+            for (c = 0; c < 3; c++) {
+                assert_int_equal(px(&im, x, y)[c], 0);
+                assert_int_equal(px(&im, im.w - 1 - x, y)[c], 0);
+                assert_int_equal(px(&im, x, im.h - 1 - y)[c], 0);
+                assert_int_equal(px(&im, im.w - 1 - x, im.h - 1 - y)[c], 0);
+            }
+    img_free(&im);
+}
+
+/* ---- 2. orientation ----------------------------------------------------------- */
+
+/* Mean 8-bit luma of the is_grey pixels in R (which must hold some). */
+static double grey_luma(const img_t *im, rect_t r)
+{
+    int x, y;
+    long n = 0;
+    double s = 0;
+    for (y = (int)(r.y0 * im->h); y < (int)(r.y1 * im->h); y++)
+        for (x = (int)(r.x0 * im->w); x < (int)(r.x1 * im->w); x++)
+            if (is_grey(px(im, x, y))) {
+                const unsigned char *p = px(im, x, y);
+                s += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+                n++;
+            }
+    assert_true(n >= 50);
+    return s / (double)n;
+}
+
+/* tests/data/cli/orient.obj: lamp at x = -0.9..-0.5, y = 1.2 (seen from below), blue
+ * wall at x = 0.9, white floor at y = 0. From the front (eye on +z looking -z, up +y)
+ * the lamp must appear top-left, the wall right, the floor at the bottom, and the floor
+ * under the lamp (left) brighter than on the right. From the back (eye on -z looking
+ * +z) left and right swap, top and bottom do not. */
+static void check_orientation(const char *path, int front)
+{
+    img_t im;
+    double lx, ly, bx, by, gx, gy, left, right;
+    long nl, nb, ng;
+    load_img(path, &im);
+    assert_int_equal(im.w, 96);
+    assert_int_equal(im.h, 96);
+    nl = centroid(&im, is_white, &lx, &ly);
+    nb = centroid(&im, is_blue, &bx, &by);
+    ng = centroid(&im, is_grey, &gx, &gy);
+    print_message("%s view: lamp %ld px at (%.2f, %.2f), wall %ld px at (%.2f, %.2f), floor %ld px at (%.2f, %.2f)\n",
+                  front ? "front" : "back", nl, lx, ly, nb, bx, by, ng, gx, gy);
+    /* Minimum sizes: measured lamp 47 px, wall 905, floor 1443 (at 96 x 96, both
+     * views); a fifth of each is plenty to locate them. */
+    assert_true(nl >= 10);
+    assert_true(nb >= 100);
+    assert_true(ng >= 300);
+    /* Vertical: lamp in the top third, floor in the bottom third, the image not flipped. */
+    assert_true(ly < 0.34);
+    assert_true(gy > 0.66);
+    /* Horizontal: the lamp is at x = -0.7, the wall at x = +0.9 in the scene. */
+    if (front) {
+        assert_true(lx < 0.40);
+        assert_true(bx > 0.70);
+    } else {
+        assert_true(lx > 0.60);
+        assert_true(bx < 0.30);
+    }
+    /* The floor (its grey pixels only: the blue wall reaches into the lower corner on
+     * its side) is brighter on the lamp's side: measured ~150 vs ~80. */
+    left = grey_luma(&im, (rect_t){0.0, 0.5, 0.4, 1.0});
+    right = grey_luma(&im, (rect_t){0.6, 0.5, 1.0, 1.0});
+    print_message("%s view: floor luma left %.0f right %.0f\n", front ? "front" : "back", left, right);
+    if (front)
+        assert_true(left > right + 20);
+    else
+        assert_true(right > left + 20);
+    img_free(&im);
+}
+
+static void test_orientation(void **state)
+{
+    run_t r;
+    (void)state;
+    need(FIXED);
+    /* Exposure 2: the lamp (Ke 10) clips to white, the brightest floor (radiosity
+     * ~0.26 a channel) stays near 190, so "white" finds the lamp only. */
+    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", "--exposure", "2", "--camera", "0,0.6,3,0,0.6,0", "-o",
+        tmp_path("front.png"), "--camera", "0,0.6,-3,0,0.6,0", "-o", tmp_path("back.png"), DATA "orient.obj");
+    expect_status(&r, 0);
+    run_free(&r);
+    check_orientation(tmp_path("front.png"), 1);
+    check_orientation(tmp_path("back.png"), 0);
+}
+
+/* ---- 3. PPM output ------------------------------------------------------------ */
+
+/* A non-square size catches swapped width and height. */
+static void test_ppm_matches_png(void **state)
+{
+    run_t r;
+    img_t png, ppm, ppm2;
+    size_t len;
+    char *d;
+    static const char hdr[] = "P6\n80 48\n255\n";
+    (void)state;
+    need(FIXED);
+    /* One run writing both formats of the same view, and a second run writing PPM only:
+     * the three must hold the same pixels (the solve is deterministic). */
+    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt.png"), "-o",
+        tmp_path("fmt.ppm"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt2.PPM"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+
+    expect_magic(tmp_path("fmt.png"), PNG_SIG, 8);
+    d = slurp(tmp_path("fmt.ppm"), &len);
+    assert_non_null(d);
+    assert_int_equal(len, sizeof hdr - 1 + 80 * 48 * 3); /* binary P6, nothing after the pixels */
+    assert_memory_equal(d, hdr, sizeof hdr - 1);
+    free(d);
+    expect_magic(tmp_path("fmt2.PPM"), "P6\n", 3); /* the extension is case-insensitive */
+
+    load_img(tmp_path("fmt.png"), &png);
+    load_img(tmp_path("fmt.ppm"), &ppm);
+    load_img(tmp_path("fmt2.PPM"), &ppm2);
+    assert_int_equal(png.w, 80);
+    assert_int_equal(png.h, 48);
+    assert_true(count_black(&png) < 80 * 48 / 2); /* a real picture, so equality means something */
+    expect_same_pixels(&png, &ppm);
+    expect_same_pixels(&png, &ppm2);
+    img_free(&png);
+    img_free(&ppm);
+    img_free(&ppm2);
+}
+
+/* ---- 4. several views --------------------------------------------------------- */
+
+/* The default eye is at (-0.278, 0.274, 0.696) looking down -z at the box's centre.
+ * CAM_L and CAM_R translate it 0.12 m left and right, looking straight ahead. */
+#define CAM_L "-0.40,0.274,0.70,-0.40,0.274,-0.28"
+#define CAM_R "-0.16,0.274,0.70,-0.16,0.274,-0.28"
+/* A fixed exposure: one run with several views uses the first view's automatic
+ * exposure for all, so views rendered alone only match with a fixed one. 3.0 is close
+ * to the automatic exposure of the default view (3.29, printed in the PLY header). */
+#define EXPOSURE "3.0"
+#define VIEW_ARGS "--quiet", "--width", "96", "--height", "96", COARSE, "--exposure", EXPOSURE
+
+static void test_multiple_cameras(void **state)
+{
+    run_t r;
+    img_t l, rt, l1, r1, vl, vr, vn;
+    double lrx, lry, rrx, rry, lgx, lgy, rgx, rgy;
+    char views[1024];
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, VIEW_ARGS, "--camera", CAM_L, "-o", tmp_path("cam_l.png"), "--camera", CAM_R, "-o",
+        tmp_path("cam_r.png"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    /* Each view alone. */
+    RUN(&r, FIXED, VIEW_ARGS, "--camera", CAM_L, "-o", tmp_path("cam_l1.png"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    RUN(&r, FIXED, VIEW_ARGS, "--camera", CAM_R, "-o", tmp_path("cam_r1.png"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    /* The same views from a --views file, with a comment, a blank line, spaces and tabs,
+     * and an explicit FOV of 45 (the default) on one line; plus a narrower view. */
+    snprintf(views, sizeof views,
+             "# eye            look-at          [fov] output\n"
+             "\n"
+             "-0.40 0.274 0.70 -0.40 0.274 -0.28 45 %s\n"
+             "  -0.16\t0.274 0.70 -0.16 0.274 -0.28 %s\n"
+             "-0.16 0.274 0.70 -0.16 0.274 -0.28 30 %s\n",
+             tmp_path("view_l.png"), tmp_path("view_r.png"), tmp_path("view_narrow.png"));
+    write_text(tmp_path("views.txt"), views);
+    RUN(&r, FIXED, VIEW_ARGS, "--views", tmp_path("views.txt"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+
+    load_img(tmp_path("cam_l.png"), &l);
+    load_img(tmp_path("cam_r.png"), &rt);
+    load_img(tmp_path("cam_l1.png"), &l1);
+    load_img(tmp_path("cam_r1.png"), &r1);
+    load_img(tmp_path("view_l.png"), &vl);
+    load_img(tmp_path("view_r.png"), &vr);
+    load_img(tmp_path("view_narrow.png"), &vn);
+    /* Each view of the multi-view run is the view alone, and the --views file renders
+     * the same pictures. */
+    expect_same_pixels(&l, &l1);
+    expect_same_pixels(&rt, &r1);
+    expect_same_pixels(&l, &vl);
+    expect_same_pixels(&rt, &vr);
+    assert_false(same_pixels(&l, &rt));
+    assert_false(same_pixels(&rt, &vn)); /* the FOV is used */
+
+    /* Moving the camera left moves the scene right in the picture: both walls'
+     * centroids must move right. 0.24 m of eye motion at 0.7..1.26 m depth moves a
+     * point by 0.23..0.41 of the image width; the walls also slide partly out of frame,
+     * so their visible centroids move less (measured: red 0.316 vs 0.064, green 0.949
+     * vs 0.708). Require 0.04: any real motion, but not the noise of a swapped view. */
+    assert_true(centroid(&l, is_red, &lrx, &lry) > 200);
+    assert_true(centroid(&rt, is_red, &rrx, &rry) > 200);
+    assert_true(centroid(&l, is_green, &lgx, &lgy) > 200);
+    assert_true(centroid(&rt, is_green, &rgx, &rgy) > 200);
+    print_message("red wall centroid x: left camera %.3f, right camera %.3f; green: %.3f, %.3f\n", lrx, rrx, lgx,
+                  rgx);
+    assert_true(lrx > rrx + 0.04);
+    assert_true(lgx > rgx + 0.04);
+    assert_true(lrx < 0.5 && rrx < 0.5); /* still the left wall */
+    assert_true(lgx > 0.5 && rgx > 0.5);
+    img_free(&l);
+    img_free(&rt);
+    img_free(&l1);
+    img_free(&r1);
+    img_free(&vl);
+    img_free(&vr);
+    img_free(&vn);
+}
+
+/* ---- 5. --dump-radiosity ------------------------------------------------------ */
+
+typedef struct {
+    int element, surface;
+    char material[64];
+    double area, c[3], rgb[3];
+} csv_row;
+
+static void test_dump_radiosity(void **state)
+{
+    run_t r;
+    obj_scene sc;
+    char e[512], *csv, *line, *next;
+    csv_row *rows;
+    int patches, elements, vertices, n = 0, i, f, m;
+    double obj_area = 0, csv_area = 0, light_min = HUGE_VAL, other_max = 0, *mat_area;
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--dump-radiosity",
+        tmp_path("rad.csv"), "-o", tmp_path("rad.png"), CORNELL);
+    expect_status(&r, 0);
+    parse_counts(r.out, &patches, &elements, &vertices);
+    run_free(&r);
+
+    assert_int_equal(obj_load(CORNELL, &sc, NULL, NULL, e, sizeof e), 0);
+    csv = slurp(tmp_path("rad.csv"), NULL);
+    assert_non_null(csv);
+    next = strchr(csv, '\n');
+    assert_non_null(next);
+    *next++ = '\0';
+    assert_string_equal(csv, "element,surface,material,area,cx,cy,cz,r,g,b");
+    rows = calloc((size_t)elements + 1, sizeof *rows);
+    mat_area = calloc((size_t)sc.nmaterials, sizeof *mat_area);
+    assert_non_null(rows);
+    assert_non_null(mat_area);
+    for (line = next; *line; line = next) {
+        csv_row *w = &rows[n];
+        int used = 0;
+        next = strchr(line, '\n');
+        assert_non_null(next); /* every row ends with a newline */
+        *next++ = '\0';
+        assert_true(n < elements);
+        if (sscanf(line, "%d,%d,\"%63[^\"]\",%lf,%lf,%lf,%lf,%lf,%lf,%lf%n", &w->element, &w->surface, w->material,
+                   &w->area, &w->c[0], &w->c[1], &w->c[2], &w->rgb[0], &w->rgb[1], &w->rgb[2], &used) != 10 ||
+            line[used] != '\0')
+            fail_msg("bad CSV row %d: %s", n + 1, line);
+        assert_int_equal(w->element, n); /* elements in order, numbered from 0 */
+        assert_true(w->surface >= 0 && w->surface < sc.nfaces);
+        /* The material is the one of the OBJ face the element came from. */
+        assert_string_equal(w->material, sc.materials[sc.faces[w->surface].material].name);
+        assert_true(w->area > 0);
+        /* Centroids inside the box (x -0.556..0, y 0..0.549, z -0.559..0) + rounding. */
+        assert_true(w->c[0] > -0.557 && w->c[0] < 1e-6);
+        assert_true(w->c[1] > -1e-6 && w->c[1] < 0.549);
+        assert_true(w->c[2] > -0.56 && w->c[2] < 1e-6);
+        for (i = 0; i < 3; i++)
+            assert_true(w->rgb[i] >= 0 && isfinite(w->rgb[i]));
+        csv_area += w->area;
+        mat_area[sc.faces[w->surface].material] += w->area;
+        if (strcmp(w->material, "light") == 0) {
+            double s = w->rgb[0] + w->rgb[1] + w->rgb[2];
+            light_min = s < light_min ? s : light_min;
+        } else {
+            double s = w->rgb[0] + w->rgb[1] + w->rgb[2];
+            other_max = s > other_max ? s : other_max;
+        }
+        if (strcmp(w->material, "red") == 0)
+            assert_true(w->rgb[0] > w->rgb[1]);
+        if (strcmp(w->material, "green") == 0)
+            assert_true(w->rgb[1] > w->rgb[0]);
+        n++;
+    }
+    assert_int_equal(n, elements); /* one row per element of --stats */
+    print_message("%d rows; light radiosity (r+g+b) >= %.3g, everything else <= %.3g\n", n, light_min, other_max);
+    assert_true(light_min < HUGE_VAL);
+    assert_true(light_min > other_max);
+
+    /* The elements tile the polygons: their areas add up to the OBJ's (1e-3 relative:
+     * the mesh is built in the core's fixed-point coordinates, ~1e-5 relative). */
+    for (f = 0; f < sc.nfaces; f++)
+        obj_area += obj_face_area(&sc, &sc.faces[f]);
+    print_message("total area: CSV %.6f, OBJ %.6f m^2\n", csv_area, obj_area);
+    assert_true(fabs(csv_area - obj_area) <= 1e-3 * obj_area);
+    for (m = 0; m < sc.nmaterials; m++)
+        assert_true(fabs(mat_area[m] - sc.materials[m].area) <= 1e-3 * obj_area);
+    free(mat_area);
+    free(rows);
+    free(csv);
+    obj_free(&sc);
+}
+
+/* ---- 6. --export-ply ---------------------------------------------------------- */
+
+/* Next line of *P (NUL-terminated in place), or NULL at the end. */
+static char *next_line(char **p)
+{
+    char *s = *p, *nl;
+    if (!*s)
+        return NULL;
+    nl = strchr(s, '\n');
+    if (nl) {
+        *nl = '\0';
+        *p = nl + 1;
+    } else {
+        *p = s + strlen(s);
+    }
+    return s;
+}
+
+static void test_export_ply(void **state)
+{
+    run_t r;
+    char *ply, *p, *l;
+    int patches, elements, vertices, nv = -1, nf = -1, i, k;
+    double exposure = 0;
+    static const char *const props[] = {
+        "property float x", "property float y", "property float z",
+        "property uchar red", "property uchar green", "property uchar blue",
+    };
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--export-ply",
+        tmp_path("mesh.ply"), "-o", tmp_path("mesh.png"), CORNELL);
+    expect_status(&r, 0);
+    parse_counts(r.out, &patches, &elements, &vertices);
+    run_free(&r);
+
+    ply = slurp(tmp_path("mesh.ply"), NULL);
+    assert_non_null(ply);
+    p = ply;
+    assert_string_equal(next_line(&p), "ply");
+    assert_string_equal(next_line(&p), "format ascii 1.0");
+    l = next_line(&p);
+    assert_non_null(l);
+    assert_int_equal(sscanf(l, "comment rad radiosity, sRGB vertex colours at exposure %lf", &exposure), 1);
+    assert_true(exposure > 0);
+    l = next_line(&p);
+    assert_int_equal(sscanf(l, "element vertex %d", &nv), 1);
+    for (i = 0; i < 6; i++)
+        assert_string_equal(next_line(&p), props[i]);
+    l = next_line(&p);
+    assert_int_equal(sscanf(l, "element face %d", &nf), 1);
+    assert_string_equal(next_line(&p), "property list uchar int vertex_indices");
+    assert_string_equal(next_line(&p), "end_header");
+    print_message("PLY: %d vertices, %d faces; --stats: %d vertices, %d elements\n", nv, nf, vertices, elements);
+    assert_int_equal(nv, vertices);
+    assert_int_equal(nf, elements);
+
+    for (i = 0; i < nv; i++) {
+        double x, y, z;
+        int c[3], used = 0;
+        l = next_line(&p);
+        assert_non_null(l);
+        if (sscanf(l, "%lf %lf %lf %d %d %d%n", &x, &y, &z, &c[0], &c[1], &c[2], &used) != 6 || l[used] != '\0')
+            fail_msg("bad PLY vertex line %d: %s", i, l);
+        for (k = 0; k < 3; k++)
+            assert_true(c[k] >= 0 && c[k] <= 255);
+        assert_true(x > -0.557 && x < 1e-6 && y > -1e-6 && y < 0.549 && z > -0.56 && z < 1e-6);
+    }
+    for (i = 0; i < nf; i++) {
+        int cnt, idx, used = 0, pos;
+        l = next_line(&p);
+        assert_non_null(l);
+        assert_int_equal(sscanf(l, "%d%n", &cnt, &used), 1);
+        assert_true(cnt == 3 || cnt == 4); /* elements are triangles or quads */
+        pos = used;
+        for (k = 0; k < cnt; k++) {
+            assert_int_equal(sscanf(l + pos, "%d%n", &idx, &used), 1);
+            assert_true(idx >= 0 && idx < nv);
+            pos += used;
+        }
+        assert_int_equal(l[pos], '\0');
+    }
+    assert_null(next_line(&p)); /* nothing after the faces */
+    free(ply);
+}
+
+/* ---- 7. materials and emission ------------------------------------------------ */
+
+static void expect_material(const char *out, const char *name, const double kd[3], const double ke[3])
+{
+    char want[64], got[64];
+    double v[6];
+    int i;
+    const char *l = out;
+    snprintf(want, sizeof want, "%s ", name);
+    while (l && !starts_with(l, want)) {
+        l = strchr(l, '\n');
+        if (l)
+            l++;
+    }
+    if (!l)
+        fail_msg("--list-materials does not list %s:\n%s", name, out);
+    assert_int_equal(sscanf(l, "%63s %lf %lf %lf %lf %lf %lf", got, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]), 7);
+    for (i = 0; i < 3; i++) {
+        /* Printed with %.4g: 4 significant digits. */
+        assert_true(fabs(v[i] - kd[i]) <= 1e-4 * (1 + kd[i]));
+        assert_true(fabs(v[3 + i] - ke[i]) <= 1e-4 * (1 + ke[i]));
+    }
+}
+
+static void test_list_materials(void **state)
+{
+    run_t r;
+    static const double white[3] = {0.74, 0.73, 0.70}, red[3] = {0.62, 0.07, 0.05}, green[3] = {0.15, 0.45, 0.10},
+                        lightkd[3] = {0.78, 0.78, 0.78}, zero[3] = {0, 0, 0}, lightke[3] = {18.0, 12.8, 4.4},
+                        set[3] = {1, 2.5, 3};
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--list-materials", CORNELL);
+    expect_status(&r, 0);
+    assert_true(has_line(r.out, "material "));
+    expect_material(r.out, "white", white, zero);
+    expect_material(r.out, "red", red, zero);
+    expect_material(r.out, "green", green, zero);
+    expect_material(r.out, "light", lightkd, lightke);
+    assert_int_equal(count_lines(r.out), 5); /* header + 4 materials */
+    run_free(&r);
+    /* --emit is applied before listing. */
+    RUN(&r, FIXED, "--emit", "light=1,2.5,3", "--list-materials", CORNELL);
+    expect_status(&r, 0);
+    expect_material(r.out, "light", lightkd, set);
+    run_free(&r);
+}
+
+static void test_emit_lights_dark_scene(void **state)
+{
+    run_t r;
+    img_t im, ref;
+    long black;
+    (void)state;
+    need(FIXED);
+    /* Without an emitter: a black image, exit 0, and a warning. */
+    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o", tmp_path("dark.png"),
+        DATA "dark.obj");
+    expect_status(&r, 0);
+    assert_non_null(strstr(r.err, "no material emits"));
+    run_free(&r);
+    load_img(tmp_path("dark.png"), &im);
+    assert_int_equal(count_black(&im), 48 * 48);
+    img_free(&im);
+
+    /* --emit makes the lamp a light: the floor and wall are lit, no warning. */
+    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "--emit", "lamp=10,10,10",
+        "-o", tmp_path("lit.png"), DATA "dark.obj");
+    expect_status(&r, 0);
+    assert_null(strstr(r.err, "no material emits"));
+    run_free(&r);
+    load_img(tmp_path("lit.png"), &im);
+    black = count_black(&im);
+    print_message("lit by --emit: %ld of %d pixels black\n", black, 48 * 48);
+    /* The lamp, floor and wall cover ~24% of this view (measured 556 of 2304 pixels
+     * lit); the rest is empty space. Require 10%. */
+    assert_true(black < 48 * 48 * 9 / 10);
+    /* orient.obj is dark.obj with Ke 10 10 10 on the lamp in its MTL: the same picture. */
+    RUN(&r, FIXED, "--quiet", "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o",
+        tmp_path("lit_mtl.png"), DATA "orient.obj");
+    expect_status(&r, 0);
+    run_free(&r);
+    load_img(tmp_path("lit_mtl.png"), &ref);
+    expect_same_pixels(&im, &ref);
+    img_free(&ref);
+    img_free(&im);
+
+    /* An unknown material name is an error. */
+    RUN(&r, FIXED, "--emit", "nosuch=1,1,1", "-o", tmp_path("nosuch.png"), DATA "dark.obj");
+    expect_status(&r, 1);
+    assert_non_null(strstr(r.err, "nosuch"));
+    assert_false(file_exists(tmp_path("nosuch.png")));
+    run_free(&r);
+}
+
+/* ---- 8. exit codes and messages ----------------------------------------------- */
+
+/* Usage error: exit 2, "PROG: reason" first, the usage text, nothing on stdout. */
+static void expect_usage_error_at(const char *bin, const char *prog, const char *const *args, const char *file,
+                                  int line)
+{
+    run_t r;
+    char prefix[64];
+    run_args(&r, bin, args);
+    snprintf(prefix, sizeof prefix, "%s: ", prog);
+    if (r.status != 2 || !strstr(r.err, "usage:") || !starts_with(r.err, prefix) || r.out[0] != '\0') {
+        print_error("%s %s ...: status %d (expected 2)\nstdout: %s\nstderr: %s\n", bin, args[0] ? args[0] : "",
+                    r.status, r.out, r.err);
+        run_free(&r);
+        _fail(file, line);
+    }
+    run_free(&r);
+}
+#define expect_usage_error(bin, prog, ...) \
+    expect_usage_error_at((bin), (prog), (const char *const[]){__VA_ARGS__, NULL}, __FILE__, __LINE__)
+
+static void test_usage_errors(void **state)
+{
+    static const char *const bins[2][2] = {{FIXED, "rad_cli"}, {FLOAT, "rad_cli_float"}};
+    int b;
+    run_t r;
+    (void)state;
+    need(FIXED);
+    need(FLOAT);
+    for (b = 0; b < 2; b++) {
+        const char *bin = bins[b][0], *prog = bins[b][1];
+        const char *out = tmp_path("usage.png");
+        expect_usage_error(bin, prog, "--quiet");                           /* no scene */
+        expect_usage_error(bin, prog, "--bogus", CORNELL);                  /* unknown option */
+        expect_usage_error(bin, prog, "--res", "7", CORNELL);               /* below 8 */
+        expect_usage_error(bin, prog, "--res", "10", "--res", "9", CORNELL); /* odd */
+        expect_usage_error(bin, prog, "--width", "0", CORNELL);
+        expect_usage_error(bin, prog, "--height", "-3", CORNELL);
+        expect_usage_error(bin, prog, "--width", "12x", CORNELL);
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5", "-o", out, CORNELL); /* 5 numbers */
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6", CORNELL);          /* no -o */
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6", "--camera", "1,2,3,4,5,7", "-o", out, CORNELL);
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6,200", "-o", out, CORNELL); /* FOV out of range */
+        expect_usage_error(bin, prog, "--exposure", "0", CORNELL);
+        expect_usage_error(bin, prog, "--emit", "light=1,2", CORNELL);
+        expect_usage_error(bin, prog, "--tol", "1", CORNELL);
+        expect_usage_error(bin, prog, CORNELL, CORNELL); /* two scenes */
+        expect_usage_error(bin, prog, CORNELL, "-o");    /* option without its value */
+        assert_false(file_exists(out));
+        /* --help: the usage on stdout, exit 0. */
+        RUN(&r, bin, "--help");
+        expect_status(&r, 0);
+        assert_true(starts_with(r.out, "usage: "));
+        assert_string_equal(r.err, "");
+        run_free(&r);
+    }
+}
+
+/* Runtime error: exit 1, exactly one line on stderr starting with PREFIX, no stdout. */
+static void expect_runtime_error_at(const run_t *r, const char *prefix, const char *file, int line)
+{
+    if (r->status == 1 && starts_with(r->err, prefix) && count_lines(r->err) == 1 &&
+        r->err[strlen(r->err) - 1] == '\n' && r->out[0] == '\0')
+        return;
+    print_error("status %d (expected 1), stderr (expected one line starting \"%s\"):\n%s\nstdout: %s\n", r->status,
+                prefix, r->err, r->out);
+    _fail(file, line);
+}
+#define expect_runtime_error(r, prefix) expect_runtime_error_at((r), (prefix), __FILE__, __LINE__)
+
+static void test_runtime_errors(void **state)
+{
+    static const char *const bins[2][2] = {{FIXED, "rad_cli"}, {FLOAT, "rad_cli_float"}};
+    int b;
+    run_t r;
+    char want[256];
+    (void)state;
+    need(FIXED);
+    need(FLOAT);
+    for (b = 0; b < 2; b++) {
+        const char *bin = bins[b][0], *prog = bins[b][1];
+        /* The vertex on line 3 of bad_vertex.obj is "v 1 x 0". */
+        RUN(&r, bin, "-o", tmp_path("err.png"), DATA "bad_vertex.obj");
+        snprintf(want, sizeof want, "%s: " DATA "bad_vertex.obj:3: ", prog);
+        expect_runtime_error(&r, want);
+        run_free(&r);
+        /* bad_index.obj line 5: "f 1 2 4" with 3 vertices. */
+        RUN(&r, bin, "-o", tmp_path("err.png"), DATA "bad_index.obj");
+        snprintf(want, sizeof want, "%s: " DATA "bad_index.obj:5: ", prog);
+        expect_runtime_error(&r, want);
+        assert_non_null(strstr(r.err, "out of range"));
+        run_free(&r);
+        /* A missing file has no line to name: "PROG: FILE: reason". */
+        RUN(&r, bin, "-o", tmp_path("err.png"), DATA "no_such_scene.obj");
+        snprintf(want, sizeof want, "%s: " DATA "no_such_scene.obj: ", prog);
+        expect_runtime_error(&r, want);
+        run_free(&r);
+        /* A views file line with 5 numbers: "PROG: FILE:LINE: ..." (line 2). */
+        write_text(tmp_path("bad_views.txt"), "# comment\n1 2 3 4 5 out.png\n");
+        RUN(&r, bin, "--views", tmp_path("bad_views.txt"), CORNELL);
+        snprintf(want, sizeof want, "%s: %s:2: ", prog, tmp_path("bad_views.txt"));
+        expect_runtime_error(&r, want);
+        run_free(&r);
+        assert_false(file_exists(tmp_path("err.png")));
+    }
+}
+
+static void test_unwritable_output(void **state)
+{
+    run_t r;
+    char *before, *after;
+    size_t n0, n1;
+    (void)state;
+    need(FIXED);
+    /* A directory that does not exist: exit 1, the path in a one-line message, no file. */
+    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", "/nonexistent_dir/x.png", CORNELL);
+    expect_runtime_error(&r, "rad_cli: ");
+    assert_non_null(strstr(r.err, "/nonexistent_dir/x.png"));
+    assert_false(file_exists("/nonexistent_dir/x.png"));
+    run_free(&r);
+
+    /* An unknown extension: exit 1, the path named, neither the file nor a temporary
+     * file left behind in the directory. */
+    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", tmp_path("x.bmp"), CORNELL);
+    expect_runtime_error(&r, "rad_cli: ");
+    assert_non_null(strstr(r.err, tmp_path("x.bmp")));
+    assert_int_equal(count_tmp_files("x.bmp"), 0);
+    run_free(&r);
+
+    /* A render that fails (eye == look-at passes the parser, the renderer refuses it)
+     * leaves an existing output file as it was. */
+    write_text(tmp_path("keep.png"), "not replaced\n");
+    before = slurp(tmp_path("keep.png"), &n0);
+    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "--camera", "0,0.2,0,0,0.2,0", "-o",
+        tmp_path("keep.png"), CORNELL);
+    expect_runtime_error(&r, "rad_cli: ");
+    assert_non_null(strstr(r.err, tmp_path("keep.png")));
+    run_free(&r);
+    after = slurp(tmp_path("keep.png"), &n1);
+    assert_non_null(after);
+    assert_int_equal(n0, n1);
+    assert_memory_equal(before, after, n0);
+    assert_int_equal(count_tmp_files("keep.png"), 1);
+    free(before);
+    free(after);
+}
+
+/* ---- 9. fixed point vs the float twin ----------------------------------------- */
+
+/* Default mesh and hemi-cube, 256x256, the same fixed exposure for both (3.0, near the
+ * automatic 3.29 of this view, so the image uses the whole 8-bit range).
+ *
+ * The brief's target is >= 99% of channels within 1 level. Measured: ~80.6% within 1,
+ * max 30. The differences are blotches the size of elements with both signs
+ * (hemi-cube aliasing: a patch's projection covering a pixel more or less), not a bias,
+ * and the float twin differs from itself as much when one light vertex moves by
+ * 0.1 mm (72% within 1). A tighter --tol does not change the figure; --res 128 raises
+ * it to 94%. So this test asserts what separates a real defect (a bias, a wrong
+ * channel, a broken region) from that noise, and reports the figures; the strict
+ * target is bug_twin_within_one_level (skipped unless RAD_TEST_KNOWN_BUGS=1).
+ * Thresholds, with the measured values:
+ *  - mean |difference| <= 2 levels (0.93);
+ *  - mean signed difference within +-0.5 level (no bias);
+ *  - >= 97% of channels within 5 levels (98.1%);
+ *  - 16x16 block means within 6 levels everywhere (max 3.75): noise averages out,
+ *    a wrong region does not. */
+typedef struct {
+    double within1, within5, mean_abs, mean_signed, block_max;
+    int max_diff;
+} twin_diff;
+
+static void twin_images(img_t *fx, img_t *fl)
+{
+    run_t a, b;
+    START(&a, FIXED, "--quiet", "--width", "256", "--height", "256", "--exposure", EXPOSURE, "-o",
+          tmp_path("twin_fixed.png"), CORNELL);
+    START(&b, FLOAT, "--quiet", "--width", "256", "--height", "256", "--exposure", EXPOSURE, "-o",
+          tmp_path("twin_float.png"), CORNELL);
+    run_finish(&a);
+    run_finish(&b);
+    expect_status(&a, 0);
+    expect_status(&b, 0);
+    run_free(&a);
+    run_free(&b);
+    load_img(tmp_path("twin_fixed.png"), fx);
+    load_img(tmp_path("twin_float.png"), fl);
+    assert_int_equal(fx->w, 256);
+    assert_int_equal(fl->w, 256);
+    assert_int_equal(fx->h, 256);
+    assert_int_equal(fl->h, 256);
+}
+
+static twin_diff compare(const img_t *a, const img_t *b)
+{
+    twin_diff d = {0, 0, 0, 0, 0, 0};
+    size_t i, n = (size_t)a->w * (size_t)a->h * 3;
+    long w1 = 0, w5 = 0;
+    int bx, by, x, y, c;
+    for (i = 0; i < n; i++) {
+        int s = (int)a->rgb[i] - (int)b->rgb[i], m = abs(s);
+        w1 += m <= 1;
+        w5 += m <= 5;
+        d.mean_abs += m;
+        d.mean_signed += s;
+        if (m > d.max_diff)
+            d.max_diff = m;
+    }
+    d.within1 = (double)w1 / (double)n;
+    d.within5 = (double)w5 / (double)n;
+    d.mean_abs /= (double)n;
+    d.mean_signed /= (double)n;
+    for (by = 0; by + 16 <= a->h; by += 16)
+        for (bx = 0; bx + 16 <= a->w; bx += 16)
+            for (c = 0; c < 3; c++) {
+                double s = 0;
+                for (y = by; y < by + 16; y++)
+                    for (x = bx; x < bx + 16; x++)
+                        s += (double)px(a, x, y)[c] - (double)px(b, x, y)[c];
+                s = fabs(s) / 256.0;
+                if (s > d.block_max)
+                    d.block_max = s;
+            }
+    return d;
+}
+
+static void test_twin_agreement(void **state)
+{
+    img_t fx, fl;
+    twin_diff d;
+    (void)state;
+    need(FIXED);
+    need(FLOAT);
+    twin_images(&fx, &fl);
+    d = compare(&fx, &fl);
+    print_message("fixed vs float, 256x256, default mesh, exposure " EXPOSURE ": %.2f%% of channels within 1 level "
+                  "(%.2f%% within 5), max difference %d, mean |diff| %.3f, mean diff %+.3f, worst 16x16 block %.2f\n",
+                  100 * d.within1, 100 * d.within5, d.max_diff, d.mean_abs, d.mean_signed, d.block_max);
+    assert_true(count_black(&fx) < 256 * 256 / 4); /* a real picture */
+    assert_true(d.mean_abs <= 2.0);
+    assert_true(fabs(d.mean_signed) <= 0.5);
+    assert_true(d.within5 >= 0.97);
+    assert_true(d.block_max <= 6.0);
+    img_free(&fx);
+    img_free(&fl);
+}
+
+/* ---- 10. --stats and --quiet -------------------------------------------------- */
+
+static void test_stats_and_quiet(void **state)
+{
+    run_t r;
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--stats", "--quiet", "--width", "16", "--height", "16", COARSE, "-o", tmp_path("stats.png"),
+        CORNELL);
+    expect_status(&r, 0);
+    assert_true(has_line(r.out, "patches "));
+    assert_true(has_line(r.out, "shots "));
+    assert_true(has_line(r.out, "time: "));
+    assert_true(has_line(r.out, "memory: "));
+    assert_string_equal(r.err, ""); /* --quiet: nothing on stderr */
+    run_free(&r);
+
+    /* --quiet also silences the "no material emits" warning. */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "-o", tmp_path("quiet_dark.png"), DATA "dark.obj");
+    expect_status(&r, 0);
+    assert_string_equal(r.err, "");
+    assert_string_equal(r.out, "");
+    run_free(&r);
+}
+
+/* ---- known bugs (skipped unless RAD_TEST_KNOWN_BUGS=1) ------------------------ */
+
+/* parse_list() in tools/rad_cli_main.c accepts one extra comma-separated item after the
+ * N values it wants, as long as that item holds no further comma: "--exposure 1.5,junk",
+ * "--camera" with 8 numbers and "--emit NAME=1,2,3,4" are all accepted and the extra
+ * item ignored. */
+static void bug_trailing_list_items(void **state)
+{
+    const char *out = tmp_path("trail.png");
+    (void)state;
+    need(FIXED);
+    KNOWN_BUG("parse_list accepts a trailing extra item (--exposure 1.5,junk)");
+    expect_usage_error(FIXED, "rad_cli", "--exposure", "1.5,junk", "-o", out, CORNELL);
+    expect_usage_error(FIXED, "rad_cli", "--exposure", "1.5,", "-o", out, CORNELL);
+    expect_usage_error(FIXED, "rad_cli", "--camera", "-0.27,0.27,1.2,-0.27,0.27,0,45,99", "-o", out, CORNELL);
+    expect_usage_error(FIXED, "rad_cli", "--emit", "light=1,2,3,4", "-o", out, CORNELL);
+}
+
+/* set_camera() always uses up = +y, so a camera looking straight down (or up) has no
+ * right vector and the render fails after the whole solve. */
+static void bug_camera_looking_down(void **state)
+{
+    run_t r;
+    (void)state;
+    need(FIXED);
+    KNOWN_BUG("a camera looking straight down fails to render (up vector fixed at +y)");
+    RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", COARSE, "--camera", "-0.278,1.5,-0.28,-0.278,0,-0.28",
+        "-o", tmp_path("down.png"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+}
+
+/* The fixed/float agreement target of the brief: >= 99% of channels within 1 level. */
+static void bug_twin_within_one_level(void **state)
+{
+    img_t fx, fl;
+    twin_diff d;
+    (void)state;
+    need(FIXED);
+    need(FLOAT);
+    KNOWN_BUG("fixed vs float: ~80.6% of channels within 1 level, target 99%");
+    twin_images(&fx, &fl);
+    d = compare(&fx, &fl);
+    print_message("within 1 level: %.2f%%, max %d\n", 100 * d.within1, d.max_diff);
+    assert_true(d.within1 >= 0.99);
+    img_free(&fx);
+    img_free(&fl);
+}
+
+/* Single-pixel cracks: in the default 256x256 view of the Cornell box, pixel (203, 202),
+ * where the green wall meets the floor, is black in both builds: the floor and the
+ * wall are meshed independently (the shared edge is cut in 24 and 28 pieces), and the
+ * T-junctions leave a pixel that no element covers. */
+static void bug_render_cracks(void **state)
+{
+    img_t fx, fl;
+    const img_t *ims[2];
+    int k, x, y;
+    (void)state;
+    need(FIXED);
+    need(FLOAT);
+    KNOWN_BUG("isolated black pixels (cracks at T-junctions) in the default view");
+    twin_images(&fx, &fl);
+    ims[0] = &fx;
+    ims[1] = &fl;
+    for (k = 0; k < 2; k++)
+        for (y = 1; y < 255; y++)
+            for (x = 1; x < 255; x++) {
+#define BLACK(i, xx, yy) (px((i), (xx), (yy))[0] == 0 && px((i), (xx), (yy))[1] == 0 && px((i), (xx), (yy))[2] == 0)
+                const img_t *im = ims[k];
+                if (BLACK(im, x, y) && !BLACK(im, x - 1, y) && !BLACK(im, x + 1, y) && !BLACK(im, x, y - 1) &&
+                    !BLACK(im, x, y + 1))
+                    fail_msg("%s: isolated black pixel at (%d, %d)", k ? "float" : "fixed", x, y);
+#undef BLACK
+            }
+    img_free(&fx);
+    img_free(&fl);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cornell_box),
+        cmocka_unit_test(test_orientation),
+        cmocka_unit_test(test_ppm_matches_png),
+        cmocka_unit_test(test_multiple_cameras),
+        cmocka_unit_test(test_dump_radiosity),
+        cmocka_unit_test(test_export_ply),
+        cmocka_unit_test(test_list_materials),
+        cmocka_unit_test(test_emit_lights_dark_scene),
+        cmocka_unit_test(test_usage_errors),
+        cmocka_unit_test(test_runtime_errors),
+        cmocka_unit_test(test_unwritable_output),
+        cmocka_unit_test(test_twin_agreement),
+        cmocka_unit_test(test_stats_and_quiet),
+        cmocka_unit_test(bug_trailing_list_items),
+        cmocka_unit_test(bug_camera_looking_down),
+        cmocka_unit_test(bug_twin_within_one_level),
+        cmocka_unit_test(bug_render_cracks),
+    };
+    return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);
+}
