@@ -226,7 +226,9 @@ static void clear_region(rad_scene_t *s, const region_t *reg)
 /* Turns of the hemi-cube about its normal, as exact rational rotations (Pythagorean
  * triples a^2 + b^2 = c^2). Polygon edges parallel to the pixel grid alias by up to
  * half a pixel column along their whole length; turning the cube by an odd angle, and
- * by a different one for successive shooters, spreads that error so it averages out. */
+ * by a different one for neighbouring shooters, spreads that error so it averages out.
+ * The turn depends on the patch alone, not on when it shoots, so the result does not
+ * depend on the order of shots among patches of equal power. */
 static const uint8_t spins[8][3] = {
     {3, 4, 5}, {12, 5, 13}, {8, 15, 17}, {24, 7, 25}, {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
 

@@ -95,11 +95,14 @@ typedef struct {
 
 static rad_real_t max2(rad_real_t a, rad_real_t b) { return a > b ? a : b; }
 
-static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, plan_t *p)
+/* Emitters shoot from every element: direct light is the largest and most visible
+ * term, and shooting it from many points (each hemi-cube turned differently) averages
+ * the aliasing of any one cube, which a single shot from a big light leaves as blotches. */
+static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int emits, plan_t *p)
 {
-    plan_t z = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    *p = z;
-    rad_real_t mp = s->cfg.max_patch, me = s->cfg.max_element;
+    static const plan_t zero = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    rad_real_t me = s->cfg.max_element, mp = emits ? me : s->cfg.max_patch;
+    *p = zero;
     if (n == 4) {
         rad_real_t lu = max2(rad__length(rad__sub(v[1], v[0])), rad__length(rad__sub(v[2], v[3])));
         rad_real_t lv = max2(rad__length(rad__sub(v[3], v[0])), rad__length(rad__sub(v[2], v[1])));
@@ -276,7 +279,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
         return RAD_ERR_RANGE;
     rc = check_polygon(v, n, &normal, &area);
     if (rc < 0) return rc;
-    plan_mesh(s, v, n, &plan);
+    plan_mesh(s, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), &plan);
     if (!fits(s->n_surfaces, 1, s->pools.max_surfaces) ||
         !fits(s->n_patches, plan.patches, s->pools.max_patches) ||
         !fits(s->n_elements, plan.elements, s->pools.max_elements) ||

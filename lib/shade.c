@@ -59,6 +59,28 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
     return (int)s->n_vertices;
 }
 
+/* Surfaces meshed independently meet at T-junctions whose vertices round to slightly
+ * different subpixels, which can leave a pixel between them uncovered. A pixel left
+ * empty between two covered neighbours (left and right, or above and below) takes
+ * their mean; it is marked with depth 1, which no surface has (depths are >= 2^22 /
+ * 554), so filled pixels never vouch for others. */
+static void fill_cracks(rad_rgb_t *fb, uint32_t *z, unsigned w, unsigned h)
+{
+    unsigned x, y;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            size_t i = (size_t)y * w + x, a = 0, b = 0;
+            if (z[i] != 0) continue;
+            if (x > 0 && x + 1 < w && z[i - 1] > 1 && z[i + 1] > 1) { a = i - 1; b = i + 1; }
+            else if (y > 0 && y + 1 < h && z[i - w] > 1 && z[i + w] > 1) { a = i - w; b = i + w; }
+            else continue;
+            fb[i].r = fb[a].r / 2 + fb[b].r / 2;
+            fb[i].g = fb[a].g / 2 + fb[b].g / 2;
+            fb[i].b = fb[a].b / 2 + fb[b].b / 2;
+            z[i] = 1;
+        }
+}
+
 static int point_ok(rad_vec3_t p, rad_real_t lim)
 {
     return p.x >= -lim && p.x <= lim && p.y >= -lim && p.y <= lim && p.z >= -lim && p.z <= lim;
@@ -114,5 +136,6 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
         }
         rad__draw(&st, &t, &f, cv, nv, rad__outcodes(&f, cv, nv), 0);
     }
+    fill_cracks(fb, zbuf, w, h);
     return (int)st.raster_calls;
 }

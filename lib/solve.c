@@ -37,7 +37,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p)
     rad_energy_t u[3];
     uint32_t e;
 
-    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, s->stats.shots);
+    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
     u[0] = pt->unshot[0]; u[1] = pt->unshot[1]; u[2] = pt->unshot[2];
     pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0;
     for (e = 0; e < s->n_elements; e++) {

@@ -12,7 +12,7 @@ for t in "$@"; do
   cat "$log"
   p=$(grep -c '^\[       OK \]' "$log")
   f=$(grep '^\[  FAILED  \] [a-z_]' "$log" | sort -u | wc -l)
-  s=$(grep -c '^\[  SKIPPED \] [a-z_]' "$log")
+  s=$(grep '^\[  SKIPPED \] [a-z_]' "$log" | sort -u | wc -l)
   passed=$((passed + p)); failed=$((failed + f)); skipped=$((skipped + s))
   if [ $rc -ne 0 ] && [ "$f" -eq 0 ]; then
     failed=$((failed + 1)); bad="$bad $(basename "$t")(exit $rc)"

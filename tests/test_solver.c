@@ -63,11 +63,11 @@ static void test_closed_box(void **st)
     /* Per element, the hemi-cube at a patch's centre stands for the whole patch: an
      * element at a corner next to the shooter receives by the centre's view, not by the
      * patch's. That error does not shrink with resolution, only with the patch size
-     * relative to the distance: measured 4.1% with one element per patch and 16% with
-     * 2x2 (the corner elements), at res 128. The bounds leave room for rounding. */
+     * relative to the distance: measured 4.1% at res 128 with one element per patch
+     * (emitters always shoot from every element; elsewhere 2x2 elements a patch err by
+     * up to 13% at corners). The bound leaves room for rounding. */
     check_closed_box(0, 0.25, 0.25, 0.05);
     check_closed_box(1, 0.25, 0.25, 0.05);
-    check_closed_box(0, 0.5, 0.25, 0.20);
 }
 
 static void test_ambient_partial(void **st)
@@ -112,7 +112,7 @@ static void test_unshot_decreases(void **st)
     double last = 1.0;
     (void)st;
     assert_non_null(s);
-    for (i = 0; i < 200; i++) {
+    for (i = 0; i < 600; i++) {
         sc_stats stt;
         assert_int_equal(sc_solve(s, 1, 0, NULL, NULL), 1);
         sc_get_stats(s, &stt);
@@ -143,11 +143,11 @@ static int cornell(sc_poly *p)
 static void test_twin_cornell(void **st)
 {
     sc_poly p[24];
-    /* At resolution 64 a floor element 2 units from the light covers one or two pixels
-     * of the light's hemi-cube, and a last-bit difference in a vertex can move a pixel
-     * centre across its edge: single elements then differ by up to 13% (measured; 1.4%
-     * at 128). At 256 they cover 16 times the pixels: measured max 0.71%, rms 0.07%. */
-    sc_opts o = {0, 0, 256, 0, 0};
+    /* At resolution 64 a floor element 2 units from the light covers a few pixels of a
+     * light patch's hemi-cube, and a last-bit difference in a vertex can move a pixel
+     * centre across its edge: measured max 1.8%, rms 0.17%. At 128 (rad_cli's default)
+     * each covers four times the pixels: measured max 0.30%, rms 0.04%. */
+    sc_opts o = {0, 0, 128, 0, 0};
     char err[256];
     int n = cornell(p), e, c, compared = 0;
     sc_solver *fx = sc_create(p, n, &o, NULL, NULL, err, sizeof err);

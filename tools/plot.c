@@ -304,7 +304,9 @@ static void draw_series(canvas *c, rect r, int s, const plot_series *sr, int ns,
 {
     int k, i, px = 0, py = 0, qx, qy, run;
     double x, y;
-    c->cx0 = r.x0, c->cy0 = r.y0, c->cx1 = r.x1, c->cy1 = r.y1;
+    /* Clip to the plot area, which on tiny canvases may stick out of the canvas. */
+    c->cx0 = r.x0 > 0 ? r.x0 : 0, c->cy0 = r.y0 > 0 ? r.y0 : 0;
+    c->cx1 = r.x1 < c->w - 1 ? r.x1 : c->w - 1, c->cy1 = r.y1 < c->h - 1 ? r.y1 : c->h - 1;
     for (k = 0; k < ns; k++)
         for (i = 0, run = 0; i < sr[k].n; i++) {
             if (!point(&sr[k], i, ay->log, &x, &y)) {

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -60,8 +61,8 @@ static void usage(FILE *f)
         "  --export-ply FILE       the meshed scene with vertex colours (PLY)\n"
         "  --dump-radiosity FILE   one CSV row per element: element,surface,material,area,cx,cy,cz,r,g,b\n"
         "solver:\n"
-        "  --res N                 hemi-cube resolution, even, 8..1024 (64)\n"
-        "  --max-patch L           longest patch edge (scene extent / 6)\n"
+        "  --res N                 hemi-cube resolution, even, 8..1024 (128)\n"
+        "  --max-patch L           longest patch edge (4 x the element edge)\n"
         "  --max-element L         longest element edge (scene extent / 24)\n"
         "  --tol F                 stop when the unshot fraction is below F (0.001)\n"
         "  --max-shots N           stop after N shots (1000000)\n"
@@ -87,12 +88,14 @@ static double now(void)
     return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
 }
 
-/* Parses exactly N comma-separated finite numbers (or N-1 when OPT_LAST is set). */
+/* Parses N comma-separated finite numbers, or N-1 when OPT_LAST is set; anything
+ * else (junk, a trailing comma, more values) fails. Returns the count or -1. */
 static int parse_list(const char *s, double *v, int n, int opt_last)
 {
     int k = 0;
-    while (k < n) {
+    for (;;) {
         char *end;
+        if (k == n) return -1; /* more values than wanted */
         errno = 0;
         v[k] = strtod(s, &end);
         if (end == s || errno || !isfinite(v[k])) return -1;
@@ -101,7 +104,6 @@ static int parse_list(const char *s, double *v, int n, int opt_last)
         if (*end != ',') return -1;
         s = end + 1;
     }
-    if (k == n && *s && strchr(s, ',')) return -1;
     return (k == n || (opt_last && k == n - 1)) ? k : -1;
 }
 
@@ -130,13 +132,24 @@ static double parse_pos(const char *opt, const char *s)
     return v;
 }
 
+/* A camera from EX,EY,EZ,LX,LY,LZ[,FOV]: up is +y, or -z when looking straight up or
+ * down. Fails for a zero view direction or a field of view outside (0.5, 170). */
 static int set_camera(sc_camera *c, const double *v, int k)
 {
+    double d[3], len2 = 0, side;
     int a;
-    for (a = 0; a < 3; a++) { c->eye[a] = v[a]; c->target[a] = v[3 + a]; }
-    c->up[0] = 0; c->up[1] = 1; c->up[2] = 0;
+    for (a = 0; a < 3; a++) {
+        c->eye[a] = v[a];
+        c->target[a] = v[3 + a];
+        d[a] = v[3 + a] - v[a];
+        len2 += d[a] * d[a];
+    }
     c->fov_deg = k == 7 ? v[6] : 45.0;
-    return c->fov_deg > 0.5 && c->fov_deg < 170.0;
+    side = d[0] * d[0] + d[2] * d[2]; /* |d x y|^2 */
+    c->up[0] = 0;
+    c->up[1] = side > 1e-6 * len2 ? 1 : 0;
+    c->up[2] = side > 1e-6 * len2 ? 0 : -1;
+    return len2 > 0 && c->fov_deg > 0.5 && c->fov_deg < 170.0;
 }
 
 static void add_view(opts_t *o, const sc_camera *cam, const char *out)
@@ -179,7 +192,8 @@ static void parse_args(int argc, char **argv, opts_t *o)
             double v[7];
             int k = parse_list(val, v, 7, 1);
             if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
-            if (k < 0 || !set_camera(&pending, v, k)) die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV] with 0.5 < FOV < 170", val);
+            if (k < 0 || !set_camera(&pending, v, k))
+                die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, 0.5 < FOV < 170", val);
             o->pending_cam = 1;
         } else if (strcmp(a, "--views") == 0) o->views_file = val;
         else if (strcmp(a, "--width") == 0) o->width = (int)parse_int(a, val, 1, 2048);
@@ -211,6 +225,35 @@ static void parse_args(int argc, char **argv, opts_t *o)
     }
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+}
+
+/* ---- output checks, before the solve ------------------------------------------ */
+
+static const char *ext_of(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) ? dot : "";
+}
+
+/* Fails early (exit 1) when PATH could not be written after a long solve: a folder
+ * that does not exist or is not writable, or (for images) an unknown extension. */
+static void check_output(const char *path, int image)
+{
+    char dir[4096];
+    const char *slash = strrchr(path, '/');
+    size_t len = slash ? (size_t)(slash - path) : 0;
+    if (image && strcasecmp(ext_of(path), ".png") != 0 && strcasecmp(ext_of(path), ".ppm") != 0) {
+        fprintf(stderr, PROG ": %s: unknown image extension (use .png or .ppm)\n", path);
+        exit(1);
+    }
+    if (len >= sizeof dir) len = sizeof dir - 1;
+    if (slash) memcpy(dir, path, len ? len : 1);
+    dir[slash ? (len ? len : 1) : 0] = '\0';
+    if (!slash) strcpy(dir, ".");
+    if (access(dir, W_OK) != 0) {
+        fprintf(stderr, PROG ": %s: cannot write into '%s': %s\n", path, dir, strerror(errno));
+        exit(1);
+    }
 }
 
 /* ---- loading ------------------------------------------------------------------- */
@@ -475,6 +518,11 @@ int main(int argc, char **argv)
     parse_args(argc, argv, &o);
     if (o.views_file) read_views(&o);
     if (o.nviews == 0) add_view(&o, NULL, default_output(o.scene));
+    if (!o.list) {
+        for (i = 0; i < o.nviews; i++) check_output(o.views[i].out, 1);
+        if (o.ply) check_output(o.ply, 0);
+        if (o.csv) check_output(o.csv, 0);
+    }
     ambient = !o.no_ambient;
 
     if (obj_load(o.scene, &sc, o.quiet ? NULL : obj_warning, &o, err, sizeof err) < 0) {
@@ -501,7 +549,7 @@ int main(int argc, char **argv)
     memset(&so, 0, sizeof so);
     so.max_patch = o.max_patch;
     so.max_element = o.max_element;
-    so.res = o.res;
+    so.res = o.res ? o.res : 128; /* 64 aliases visibly on elements a few pixels wide */
     s = SC(create)(polys, npolys, &so, NULL, NULL, err, sizeof err);
     free(polys);
     if (!s) {
@@ -551,7 +599,7 @@ int main(int argc, char **argv)
         printf("surfaces %d (split quads %d, skipped %d, reflectances clamped %d)\n", st.surfaces, st.split, st.skipped, st.clamped);
         printf("patches %d  elements %d  vertices %d\n", st.patches, st.elements, st.vertices);
         printf("shots %d  unshot fraction %.6f  saturations %lu\n", st.shots, st.unshot, st.saturations);
-        printf("hemi-cube: resolution %d, %lu triangles, %llu pixels\n", o.res ? o.res : 64, st.raster_calls, st.raster_pixels);
+        printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", so.res, st.raster_calls, st.raster_pixels);
         printf("unknown statements skipped %ld, warnings %ld\n", sc.unknown_statements, sc.nwarnings);
         printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", t_load - t0,
                t_mesh - t_load, t_solve - t_mesh, t_render, t_write);

@@ -240,7 +240,8 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
                rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h);
 
 /* Form factors from the centre of patch P to every element, written to OUT (one per
- * element, summing to about 1 in a closed scene): the hemi-cube row the solver uses.
+ * element, summing to 1 in a closed scene): the hemi-cube row the solver uses when P
+ * shoots (the cube's turn about the normal depends on P alone).
  * Returns the number of elements, or RAD_ERR_ARG. */
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
