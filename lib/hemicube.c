@@ -141,12 +141,25 @@ static void face_vertex(unsigned face, rad_vec3_t l, rad__cvert_t *c)
     c->c[0] = c->c[1] = c->c[2] = 0;
 }
 
-/* The frustum's outcode of a face-space vertex with slopes 1, as rad__outcodes
- * computes it (rad__mul by one is exact), without a multiply. */
-static unsigned face_code(const rad__cvert_t *c, int half)
+/* The outcodes of a vertex in the cube's frame for all five faces at once, bits
+ * 5 f + p: plane p of face f as rad__outcodes numbers them (d < near, a > d, -a > d,
+ * b > d, then -b > d on the top face or b < 0 on the sides), with slopes 1, so no
+ * multiply is needed. */
+static uint32_t cube_codes(rad_vec3_t l)
 {
-    return (unsigned)(c->d < RAD__NEAR) | (unsigned)(c->a > c->d) << 1 | (unsigned)(-c->a > c->d) << 2 |
-           (unsigned)(c->b > c->d) << 3 | (unsigned)(half ? c->b < 0 : -c->b > c->d) << 4;
+    const rad_real_t x = l.x, y = l.y, z = l.z;
+    uint32_t below = (uint32_t)(z < 0) << 4;
+    uint32_t top = (uint32_t)(z < RAD__NEAR) | (uint32_t)(x > z) << 1 | (uint32_t)(-x > z) << 2 |
+                   (uint32_t)(y > z) << 3 | (uint32_t)(-y > z) << 4;
+    uint32_t px = (uint32_t)(x < RAD__NEAR) | (uint32_t)(y > x) << 1 | (uint32_t)(-y > x) << 2 |
+                  (uint32_t)(z > x) << 3 | below;
+    uint32_t nx = (uint32_t)(-x < RAD__NEAR) | (uint32_t)(y > -x) << 1 | (uint32_t)(-y > -x) << 2 |
+                  (uint32_t)(z > -x) << 3 | below;
+    uint32_t py = (uint32_t)(y < RAD__NEAR) | (uint32_t)(x > y) << 1 | (uint32_t)(-x > y) << 2 |
+                  (uint32_t)(z > y) << 3 | below;
+    uint32_t ny = (uint32_t)(-y < RAD__NEAR) | (uint32_t)(x > -y) << 1 | (uint32_t)(-x > -y) << 2 |
+                  (uint32_t)(z > -y) << 3 | below;
+    return top | px << 5 | nx << 10 | py << 15 | ny << 20;
 }
 
 static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, uint32_t e,
@@ -156,41 +169,37 @@ static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, u
     const rad_surface_t *sf = &s->pools.surfaces[el->surface];
     rad_vec3_t loc[4];
     rad__cvert_t cv[4];
-    unsigned i, r, nv = rad__nverts(el), behind = 0;
+    uint32_t all = 0x1FFFFFF, any = 0;
+    unsigned i, r, nv = rad__nverts(el);
 
     /* Facing away (or coplanar with the shooter, as its own surface is): invisible. */
     if (rad__dot(sf->normal, rad__sub(c, s->pools.vertices[el->v[0]])) <= 0) return;
     for (i = 0; i < nv; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[el->v[i]], c);
+        uint32_t code;
         loc[i].x = rad__dot(d, frame[0]);
         loc[i].y = rad__dot(d, frame[1]);
         loc[i].z = rad__dot(d, frame[2]);
-        behind += loc[i].z <= 0;
+        code = cube_codes(loc[i]);
+        all &= code;
+        any |= code;
     }
-    if (behind == nv) return;
     for (r = 0; r < nreg; r++) {
         rad__frustum_t f;
         rad__target_t t;
-        unsigned all = 0x1F, any = 0, half = reg[r].face != 0;
-        for (i = 0; i < nv; i++) {
-            unsigned code;
-            face_vertex(reg[r].face, loc[i], &cv[i]);
-            code = face_code(&cv[i], (int)half);
-            all &= code;
-            any |= code;
-        }
-        if (all) continue; /* wholly outside this face */
-        f.sx = f.sy = RAD__ONE;
-        f.half = (int)half;
+        unsigned face = reg[r].face;
+        if ((all >> (5 * face)) & 0x1F) continue; /* wholly outside this face */
+        for (i = 0; i < nv; i++) face_vertex(face, loc[i], &cv[i]);
+        f.half = face != 0;
         f.width = (int)s->cfg.res;
-        f.height = (int)face_rows(s, reg[r].face);
+        f.height = (int)face_rows(s, face);
         t.z = s->zbuf + reg[r].offset;
         t.ids = s->ibuf + reg[r].offset;
         t.rgb = 0;
         t.width = (int)s->cfg.res;
         t.row0 = reg[r].row0;
         t.row1 = reg[r].row1;
-        rad__draw(&s->stats, &t, &f, cv, nv, any, (rad_index_t)e);
+        rad__draw(&s->stats, &t, &f, cv, nv, (any >> (5 * face)) & 0x1F, (rad_index_t)e);
     }
 }
 

@@ -14,10 +14,10 @@ typedef struct {
     rad_real_t c[3];
 } rad__cvert_t;
 
-/* A view frustum: |a| <= sx d, and sy d >= b >= -sy d (or >= 0 when half is set:
- * the hemi-cube's side faces), d >= RAD__NEAR; mapped onto a WIDTH x HEIGHT raster. */
+/* A view frustum of unit slopes: |a| <= d, and d >= b >= -d (or >= 0 when half is
+ * set: the hemi-cube's side faces), d >= RAD__NEAR; mapped onto a WIDTH x HEIGHT
+ * raster. (The camera scales its axes so that its field of view has unit slopes.) */
 typedef struct {
-    rad_real_t sx, sy;
     int half;
     int width, height;
 } rad__frustum_t;

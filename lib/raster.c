@@ -26,10 +26,10 @@ static rad_real_t plane_dist(const rad__frustum_t *f, const rad__cvert_t *v, uns
 {
     switch (p) {
     case 0: return v->d - RAD__NEAR;
-    case 1: return rad__mul(f->sx, v->d, 0) - v->a;
-    case 2: return rad__mul(f->sx, v->d, 0) + v->a;
-    case 3: return rad__mul(f->sy, v->d, 0) - v->b;
-    default: return f->half ? v->b : rad__mul(f->sy, v->d, 0) + v->b;
+    case 1: return v->d - v->a;
+    case 2: return v->d + v->a;
+    case 3: return v->d - v->b;
+    default: return f->half ? v->b : v->d + v->b;
     }
 }
 
@@ -127,28 +127,19 @@ static uint32_t attr_value(uint64_t v)
 
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-/* Fills the convex polygon V (N <= 9 vertices, either winding). Attributes are
- * interpolated on the plane of the widest fan triangle from V[0]: exact for a planar
- * polygon's depth; callers with colours pass triangles. */
-static void raster_poly(rad_stats_t *st, const rad__target_t *t, const rvert_t *in, unsigned nin, rad_index_t id)
+/* Fills the convex polygon V of N = 3 or 4 vertices (either winding). Attributes are
+ * interpolated on the plane of the wider of its two fan triangles: exact for a planar
+ * polygon's depth; callers with colours pass triangles. A triangle's fourth edge
+ * repeats its first, so one loop with four edges in registers serves both. */
+static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rvert_t *v, unsigned n, rad_index_t id)
 {
-    rvert_t v[9];
-    edge_t ed[9];
+    edge_t ed[4];
     uint64_t val[4], sx[4], sy[4], pixels = 0;
-    int64_t total = 0, best = 0;
-    int32_t x0, x1, y0, y1, px, py, x, y;
-    unsigned k, n = 0, b = 1, nat = t->rgb ? 4u : 1u;
+    int64_t a1 = area2(&v[0], &v[1], &v[2]), a2 = n == 4 ? area2(&v[0], &v[2], &v[3]) : 0;
+    int64_t best = (a2 < 0 ? -a2 : a2) > (a1 < 0 ? -a1 : a1) ? a2 : a1;
+    int32_t x0, x1, y0, y1, px, py, y;
+    unsigned k, b = best == a1 ? 1u : 2u, nat = t->rgb ? 4u : 1u;
 
-    /* Vertices that projection or clipping made equal would leave an edge with no
-     * direction, which owns nothing and would reject every pixel. */
-    for (k = 0; k < nin; k++)
-        if (in[k].x != in[(k + 1) % nin].x || in[k].y != in[(k + 1) % nin].y) v[n++] = in[k];
-    if (n < 3) return;
-    for (k = 1; k + 1 < n; k++) {
-        int64_t a = area2(&v[0], &v[k], &v[k + 1]);
-        total += a;
-        if ((a < 0 ? -a : a) > (best < 0 ? -best : best)) { best = a; b = k; }
-    }
     if (best == 0) return;
     st->raster_calls++;
 
@@ -169,40 +160,41 @@ static void raster_poly(rad_stats_t *st, const rad__target_t *t, const rvert_t *
 
     px = x0 * SUB + SUB / 2;
     py = y0 * SUB + SUB / 2;
-    for (k = 0; k < n; k++) edge_setup(&ed[k], &v[k], &v[(k + 1) % n], px, py, total < 0);
+    for (k = 0; k < n; k++) edge_setup(&ed[k], &v[k], &v[(k + 1) % n], px, py, a1 + a2 < 0);
+    if (n == 3) ed[3] = ed[0];
     for (k = 0; k < nat; k++) attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
 
     for (y = y0; y <= y1; y++) {
-        int64_t e[9];
+        int64_t e0 = ed[0].e, e1 = ed[1].e, e2 = ed[2].e, e3 = ed[3].e;
         uint64_t w = val[0];
         size_t row = (size_t)(y - t->row0) * (size_t)t->width;
-        int seen = 0;
-        for (k = 0; k < n; k++) e[k] = ed[k].e;
-        for (x = x0; x <= x1; x++) {
-            int64_t inside = e[0] | e[1] | e[2];
-            for (k = 3; k < n; k++) inside |= e[k];
-            if (inside >= 0) {
-                uint32_t z = attr_value(w);
-                size_t i = row + (size_t)x;
-                seen = 1;
-                pixels++;
-                if (z > t->z[i]) {
-                    t->z[i] = z;
-                    if (t->ids) t->ids[i] = id;
-                    if (t->rgb) {
-                        uint64_t dxn = (uint64_t)(x - x0);
-                        t->rgb[i].r = rad__from_attr(attr_value(val[1] + sx[1] * dxn));
-                        t->rgb[i].g = rad__from_attr(attr_value(val[2] + sx[2] * dxn));
-                        t->rgb[i].b = rad__from_attr(attr_value(val[3] + sx[3] * dxn));
-                    }
+        int32_t x = x0;
+        /* Convex: step to the span, then fill it to its end. */
+        while (x <= x1 && (e0 | e1 | e2 | e3) < 0) {
+            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx; e3 += ed[3].dx;
+            w += sx[0];
+            x++;
+        }
+        for (; x <= x1 && (e0 | e1 | e2 | e3) >= 0; x++) {
+            /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
+            uint32_t z = (uint32_t)(w >> 16);
+            size_t i = row + (size_t)x;
+            pixels++;
+            if (z > t->z[i]) {
+                t->z[i] = z;
+                if (t->ids) {
+                    t->ids[i] = id;
+                } else {
+                    uint64_t dxn = (uint64_t)(x - x0);
+                    t->rgb[i].r = rad__from_attr(attr_value(val[1] + sx[1] * dxn));
+                    t->rgb[i].g = rad__from_attr(attr_value(val[2] + sx[2] * dxn));
+                    t->rgb[i].b = rad__from_attr(attr_value(val[3] + sx[3] * dxn));
                 }
-            } else if (seen) {
-                break; /* convex: the span has ended */
             }
-            for (k = 0; k < n; k++) e[k] += ed[k].dx;
+            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx; e3 += ed[3].dx;
             w += sx[0];
         }
-        for (k = 0; k < n; k++) ed[k].e += ed[k].dy;
+        for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];
     }
     st->raster_pixels += pixels;
@@ -210,16 +202,15 @@ static void raster_poly(rad_stats_t *st, const rad__target_t *t, const rvert_t *
 
 /* ---- polygons ------------------------------------------------------------------ */
 
+/* Screen position in subpixels and depth of a clipped vertex: one reciprocal of its
+ * depth, then multiplies. */
 static void project(const rad__frustum_t *f, const rad__cvert_t *c, rvert_t *r)
 {
-    rad_real_t hx = rad__mul(f->sx, c->d, 0), hy = rad__mul(f->sy, c->d, 0);
+    rad__recip_t inv = rad__recip(c->d);
     int32_t w16 = f->width * SUB, h16 = f->height * SUB;
-    r->x = clampi(rad__proj(c->a + hx, hx, (uint32_t)(f->width * SUB / 2)), 0, w16);
-    if (f->half)
-        r->y = clampi(rad__proj(hy - c->b, hy, (uint32_t)h16), 0, h16);
-    else
-        r->y = clampi(rad__proj(hy - c->b, hy, (uint32_t)(h16 / 2)), 0, h16);
-    r->at[0] = rad__depth(c->d);
+    r->x = clampi(rad__proj(c->a + c->d, inv, (uint32_t)(w16 / 2)), 0, w16);
+    r->y = clampi(rad__proj(c->d - c->b, inv, (uint32_t)(f->half ? h16 : h16 / 2)), 0, h16);
+    r->at[0] = rad__depth(inv);
     r->at[1] = rad__attr(c->c[0]);
     r->at[2] = rad__attr(c->c[1]);
     r->at[3] = rad__attr(c->c[2]);
@@ -232,7 +223,7 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
     rad__cvert_t buf[2][9];
     rvert_t pv[9];
     const rad__cvert_t *cur = in;
-    unsigned i, p, flip = 0;
+    unsigned i, m, p, flip = 0;
 
     if (any & RAD__CULLED) return;
     for (p = 0; p < 5 && n >= 3; p++) {
@@ -242,15 +233,30 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
         flip ^= 1u;
     }
     if (n < 3) return;
-    for (i = 0; i < n; i++) project(f, &cur[i], &pv[i]);
+    /* Vertices that clipping or projection made equal would leave an edge with no
+     * direction, which owns no pixel and would reject them all: drop them. */
+    for (i = 0, m = 0; i < n; i++) {
+        project(f, &cur[i], &pv[m]);
+        if (m == 0 || pv[m].x != pv[m - 1].x || pv[m].y != pv[m - 1].y) m++;
+    }
+    if (m > 1 && pv[m - 1].x == pv[0].x && pv[m - 1].y == pv[0].y) m--;
+    if (m < 3) return;
     if (!t->rgb) {
-        raster_poly(st, t, pv, n, id);
+        /* A convex polygon as a fan of quads (and a last triangle): pieces share edges,
+         * which the ownership rule keeps watertight. */
+        for (i = 1; i + 1 < m; i += 2) {
+            rvert_t q[4];
+            unsigned k = i + 2 < m ? 4u : 3u;
+            q[0] = pv[0]; q[1] = pv[i]; q[2] = pv[i + 1];
+            if (k == 4) q[3] = pv[i + 2];
+            raster_piece(st, t, q, k, id);
+        }
         return;
     }
     /* Colours vary over a quad bilinearly, not on one plane: fill a fan of triangles. */
-    for (i = 1; i + 1 < n; i++) {
+    for (i = 1; i + 1 < m; i++) {
         rvert_t tri[3];
         tri[0] = pv[0]; tri[1] = pv[i]; tri[2] = pv[i + 1];
-        raster_poly(st, t, tri, 3, id);
+        raster_piece(st, t, tri, 3, id);
     }
 }

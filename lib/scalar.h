@@ -121,13 +121,17 @@ static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t d
 {
     return a + (b - a) * (da / (da - db));
 }
-/* round(num * scale / den), num in [0, 2 den]: a screen coordinate in subpixels. */
-static inline int32_t rad__proj(rad_real_t num, rad_real_t den, uint32_t scale)
+/* The reciprocal of a depth d >= RAD__NEAR, for projecting without dividing. */
+typedef float rad__recip_t;
+static inline rad__recip_t rad__recip(rad_real_t d) { return 1.0f / d; }
+/* round(num * scale / d) for num in [0, 2 d]: a screen coordinate in subpixels. */
+static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
-    float v = num * (float)scale / den;
+    float v = num * inv * (float)scale;
     return v > 0.0f ? (int32_t)(v + 0.5f) : 0;
 }
-static inline uint32_t rad__depth(rad_real_t d) { return (uint32_t)(1073741824.0f * RAD__NEAR / d + 0.5f); }
+/* The depth value w = 2^30 NEAR / d (<= 2^30). */
+static inline uint32_t rad__depth(rad__recip_t inv) { return (uint32_t)(1073741824.0f * RAD__NEAR * inv + 0.5f); }
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area) { return b * area; }
 static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f) { return u * f; }
 static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho) { return u * rho; }
@@ -237,14 +241,20 @@ static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t d
 {
     return a + (rad_real_t)rad__div_round(((int64_t)b - a) * da, (int64_t)da - db);
 }
-static inline int32_t rad__proj(rad_real_t num, rad_real_t den, uint32_t scale)
+/* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
+typedef uint64_t rad__recip_t;
+static inline rad__recip_t rad__recip(rad_real_t d)
 {
-    return num > 0 ? (int32_t)rad__div_round((int64_t)num * scale, den) : 0;
+    return (((uint64_t)1 << 46) + ((uint64_t)d >> 1)) / (uint64_t)d;
 }
-static inline uint32_t rad__depth(rad_real_t d)
+/* num * scale / d for num in [0, 2 d], scale <= 2^15: num * inv <= 2^47, times scale
+ * <= 2^62. */
+static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
-    return (uint32_t)(((((uint64_t)RAD__NEAR) << 30) + ((uint64_t)d >> 1)) / (uint64_t)d);
+    return num > 0 ? (int32_t)(((uint64_t)num * inv * scale + ((uint64_t)1 << 45)) >> 46) : 0;
 }
+/* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
+static inline uint32_t rad__depth(rad__recip_t inv) { return (uint32_t)((inv + 128u) >> 8); }
 /* b, area >= 0 and < 2^31: the product < 2^62. */
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
 {

@@ -94,22 +94,32 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
     rad__frustum_t f;
     rad__target_t t;
     rad_stats_t st = {0, 0, 0, 0};
+    rad_real_t kx, ky;
     uint32_t e, i, sat = 0;
 
     if (!s || !vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
         h > RAD_MAX_RASTER)
         return RAD_ERR_ARG;
     if (!point_ok(cam->eye, lim) || !point_ok(cam->target, lim) ||
-        !(cam->tan_half_fov >= RAD__Q(1.0 / 256.0) && cam->tan_half_fov <= RAD__Q(16.0)))
+        !(cam->tan_half_fov >= RAD__Q(1.0 / 16.0) && cam->tan_half_fov <= RAD__Q(16.0)))
         return RAD_ERR_ARG;
     if (!rad__normalize(rad__sub(cam->target, cam->eye), &ax[2]) ||
         !rad__normalize(rad__cross(ax[2], cam->up), &ax[0]))
         return RAD_ERR_ARG;
     ax[1] = rad__cross(ax[0], ax[2]);
 
-    f.sy = cam->tan_half_fov;
-    f.sx = rad__mul(cam->tan_half_fov, rad__div(rad__from_int((int32_t)w), rad__from_int((int32_t)h), &sat), &sat);
-    if (sat || !(f.sx <= RAD__Q(1024.0))) return RAD_ERR_ARG;
+    /* Scale the screen axes so the field of view has unit slopes: 1 / tan vertically,
+     * 1 / (tan * aspect) across; within [1/16, 16] both keep 12 bits or more. */
+    ky = rad__div(RAD__ONE, cam->tan_half_fov, &sat);
+    kx = rad__div(ky, rad__div(rad__from_int((int32_t)w), rad__from_int((int32_t)h), &sat), &sat);
+    if (sat || !(kx >= RAD__Q(1.0 / 16.0) && kx <= RAD__Q(16.0) && ky >= RAD__Q(1.0 / 16.0) && ky <= RAD__Q(16.0)))
+        return RAD_ERR_ARG;
+    for (i = 0; i < 3; i++) {
+        rad_real_t *r = i == 0 ? &ax[0].x : i == 1 ? &ax[0].y : &ax[0].z;
+        rad_real_t *u = i == 0 ? &ax[1].x : i == 1 ? &ax[1].y : &ax[1].z;
+        *r = rad__mul(*r, kx, &sat);
+        *u = rad__mul(*u, ky, &sat);
+    }
     f.half = 0;
     f.width = (int)w;
     f.height = (int)h;

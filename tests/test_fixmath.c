@@ -184,11 +184,13 @@ static void test_projection_and_depth(void **st)
             int32_t d = edges[i] < 0 ? -edges[i] : edges[i];
             int32_t num = edges[j] < 0 ? -edges[j] : edges[j];
             if (d < RAD__NEAR || num > 2 * d) continue;
-            /* A screen position in subpixels across a 2048-pixel raster. */
-            assert_true(fabs((double)rad__proj(num, d, 2048 * 8) - (double)num * 2048 * 8 / d) <= 0.5);
+            /* A screen position in subpixels across a 2048-pixel raster, through the
+             * rounded reciprocal 2^46 / d: half a subpixel of rounding plus at most
+             * 0.5 num scale / 2^46 <= 2^-6 from the reciprocal. */
+            assert_true(fabs((double)rad__proj(num, rad__recip(d), 2048 * 8) - (double)num * 2048 * 8 / d) <= 0.5 + 1.0 / 64);
             /* Depth w = 2^30 NEAR / d, at most 2^30 at the near plane. */
-            assert_true(fabs((double)rad__depth(d) - 1073741824.0 * (256.0 / d)) <= 0.5);
-            assert_true(rad__depth(d) <= RAD__DEPTH_ONE);
+            assert_true(fabs((double)rad__depth(rad__recip(d)) - 1073741824.0 * (256.0 / d)) <= 0.5 + 1.0 / 256);
+            assert_true(rad__depth(rad__recip(d)) <= RAD__DEPTH_ONE);
         }
     for (i = 0; i < 2000; i++) {
         int32_t a = (int32_t)(rnd() % (1u << 26)) - (1 << 25), b = (int32_t)(rnd() % (1u << 26)) - (1 << 25);

@@ -133,7 +133,7 @@ static double parse_pos(const char *opt, const char *s)
 }
 
 /* A camera from EX,EY,EZ,LX,LY,LZ[,FOV]: up is +y, or -z when looking straight up or
- * down. Fails for a zero view direction or a field of view outside (0.5, 170). */
+ * down. Fails for a zero view direction or a field of view outside 8..170 degrees. */
 static int set_camera(sc_camera *c, const double *v, int k)
 {
     double d[3], len2 = 0, side;
@@ -149,7 +149,7 @@ static int set_camera(sc_camera *c, const double *v, int k)
     c->up[0] = 0;
     c->up[1] = side > 1e-6 * len2 ? 1 : 0;
     c->up[2] = side > 1e-6 * len2 ? 0 : -1;
-    return len2 > 0 && c->fov_deg > 0.5 && c->fov_deg < 170.0;
+    return len2 > 0 && c->fov_deg >= 8.0 && c->fov_deg <= 170.0; /* the core's 1/16..16 */
 }
 
 static void add_view(opts_t *o, const sc_camera *cam, const char *out)
@@ -193,7 +193,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
             int k = parse_list(val, v, 7, 1);
             if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
             if (k < 0 || !set_camera(&pending, v, k))
-                die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, 0.5 < FOV < 170", val);
+                die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, FOV 8..170", val);
             o->pending_cam = 1;
         } else if (strcmp(a, "--views") == 0) o->views_file = val;
         else if (strcmp(a, "--width") == 0) o->width = (int)parse_int(a, val, 1, 2048);

@@ -228,14 +228,15 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
 /* ---- viewing ------------------------------------------------------------------- */
 typedef struct {
     rad_vec3_t eye, target, up;
-    rad_real_t tan_half_fov;  /* tangent of half the vertical field of view */
+    rad_real_t tan_half_fov;  /* tangent of half the vertical field of view, 1/16..16 */
 } rad_camera_t;
 
 /* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
  * FB (W*H linear radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer,
  * through the same rasterizer as the hemi-cube. Pixels no surface covers are black.
  * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
- * a degenerate camera). */
+ * a degenerate camera, an eye or target beyond 4 * RAD_COORD_LIMIT, tan_half_fov or
+ * tan_half_fov * W / H outside 1/16..16). */
 int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
                rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h);
 
