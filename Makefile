@@ -68,6 +68,13 @@ $(BUILDDIR)/rad_cli: $(BUILDDIR)/tools/rad_cli_main.o $(TWIN_FIXED) $(LIBTOOLS) 
 $(BUILDDIR)/rad_cli_float: $(BUILDDIR)/tools/float/rad_cli_main.o $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
 
+# The benchmark: both builds of the core side by side (see tools/bench_main.c).
+$(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench_main.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+
+bench: $(BUILDDIR)/rad_bench
+	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
+
 # Every test links both builds of the core (through tools/*_twin.c) and the host tools.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
 	@mkdir -p $(@D)

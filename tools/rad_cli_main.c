@@ -14,6 +14,7 @@
 
 #include "image.h"
 #include "obj.h"
+#include "objpoly.h"
 #include "scene.h"
 
 #if defined(RAD_FLOAT) && RAD_FLOAT
@@ -264,6 +265,12 @@ static void obj_warning(void *ctx, const char *msg)
     if (!o->quiet) fprintf(stderr, PROG ": warning: %s\n", msg);
 }
 
+static void poly_warning(void *ctx, int line, const char *msg)
+{
+    const opts_t *o = ctx;
+    fprintf(stderr, PROG ": warning: %s:%d: %s\n", o->scene, line, msg);
+}
+
 static void apply_emit(const opts_t *o, obj_scene *sc)
 {
     int i;
@@ -297,60 +304,6 @@ static void list_materials(const obj_scene *sc)
         snprintf(ke, sizeof ke, "%.4g %.4g %.4g", m->ke[0], m->ke[1], m->ke[2]);
         printf("%-24s %-26s %-26s %10.4g %6d\n", m->name, kd, ke, m->area, m->nfaces);
     }
-}
-
-static void poly_material(sc_poly *p, const obj_material *m, int tag)
-{
-    memcpy(p->rho, m->kd, sizeof p->rho);
-    memcpy(p->emit, m->ke, sizeof p->emit);
-    p->tag = tag;
-}
-
-/* Faces of 3 or 4 vertices go to the core as they are (it splits non-planar quads);
- * larger polygons are ear-clipped into triangles. */
-static sc_poly *to_polys(const obj_scene *sc, int *n, const char *path)
-{
-    int f, cap = 0, cnt = 0, *tri = NULL, tcap = 0;
-    sc_poly *p;
-    for (f = 0; f < sc->nfaces; f++) cap += sc->faces[f].count <= 4 ? 1 : sc->faces[f].count - 2;
-    p = calloc((size_t)(cap ? cap : 1), sizeof *p);
-    if (!p) return NULL;
-    for (f = 0; f < sc->nfaces; f++) {
-        const obj_face *fc = &sc->faces[f];
-        const obj_material *m = &sc->materials[fc->material];
-        int k, t, nt;
-        if (fc->count <= 4) {
-            p[cnt].n = fc->count;
-            for (k = 0; k < fc->count; k++) {
-                const obj_vec3 *v = &sc->verts[sc->indices[fc->first + k]];
-                p[cnt].v[k][0] = v->x; p[cnt].v[k][1] = v->y; p[cnt].v[k][2] = v->z;
-            }
-            poly_material(&p[cnt++], m, f);
-            continue;
-        }
-        if (3 * (fc->count - 2) > tcap) {
-            int *nt2 = realloc(tri, (size_t)(3 * (fc->count - 2)) * sizeof *tri);
-            if (!nt2) { free(tri); free(p); return NULL; }
-            tri = nt2;
-            tcap = 3 * (fc->count - 2);
-        }
-        nt = obj_triangulate(sc, fc, tri);
-        if (nt < 0) {
-            fprintf(stderr, PROG ": warning: %s:%d: skipped a degenerate polygon\n", path, fc->line);
-            continue;
-        }
-        for (t = 0; t < nt; t++) {
-            p[cnt].n = 3;
-            for (k = 0; k < 3; k++) {
-                const obj_vec3 *v = &sc->verts[tri[3 * t + k]];
-                p[cnt].v[k][0] = v->x; p[cnt].v[k][1] = v->y; p[cnt].v[k][2] = v->z;
-            }
-            poly_material(&p[cnt++], m, f);
-        }
-    }
-    free(tri);
-    *n = cnt;
-    return p;
 }
 
 /* ---- views --------------------------------------------------------------------- */
@@ -542,7 +495,7 @@ int main(int argc, char **argv)
     if (!emitters && !o.quiet)
         fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; "
                         "set one with --emit NAME=R,G,B (--list-materials shows them)\n", o.scene);
-    polys = to_polys(&sc, &npolys, o.scene);
+    polys = obj_to_polys(&sc, &npolys, o.quiet ? NULL : poly_warning, &o);
     if (!polys) { fprintf(stderr, PROG ": out of memory\n"); obj_free(&sc); return 1; }
     t_load = now();
 

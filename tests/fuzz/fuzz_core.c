@@ -151,12 +151,12 @@ static rad_vec3_t vertex(reader_t *r)
     rad_vec3_t v;
     uint8_t k = u8(r);
     if ((k & 7u) == 7u && r->nhist) {
-        v = r->hist[(k >> 3) % r->nhist];          /* a shared or repeated corner */
+        v = r->hist[(k >> 3) % (r->nhist < 16u ? r->nhist : 16u)]; /* a shared corner */
     } else {
         v.x = real(r); v.y = real(r); v.z = real(r);
     }
     r->hist[r->nhist++ % 16u] = v;
-    if (r->nhist > 32) r->nhist = 16;
+    if (r->nhist >= 32u) r->nhist = 16u;
     return v;
 }
 

@@ -1,0 +1,184 @@
+# rad — `make check`: the reliability gates (sanitizers, valgrind, clang, static analysis,
+# configuration variants, fuzzing). Included from the top Makefile:
+#
+#     include tests/check.mk
+#
+# Debian packages on top of `make deps`: clang libclang-rt-dev (libFuzzer and the
+# sanitizer runtimes: not pulled in by clang with --no-install-recommends), valgrind,
+# cppcheck, clang-tidy.
+#
+# Every stage builds in its own directory under $(CHECKDIR) through a recursive make of
+# this Makefile, so the same suite runs everywhere; each logs to $(CHECKDIR)/<stage>.log
+# and prints one line, and `check` ends with a summary table. Stages run in parallel
+# ($(CHECK_JOBS) jobs unless make was given -j) and a failing stage does not stop the
+# others (-k); `check` fails if any stage did. Each stage is also a target of its own:
+#
+#   check-asan      gcc, AddressSanitizer + UndefinedBehaviorSanitizer (+ float-cast-
+#                   overflow, which gcc leaves out of -fsanitize=undefined), no recovery
+#   check-valgrind  gcc -O1 -g under valgrind memcheck, leaks included: VALGRIND_TESTS
+#   check-clang     clang -Werror, the whole suite, and the core's nm check
+#   check-lint      cppcheck and clang-tidy on lib/, fixed and float builds
+#   check-idx16     -DRAD_INDEX_BITS=16: the whole suite
+#   check-small     -DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64 (the Cortex-M0 shape): the
+#                   programs that need no hemi-cube above 64 (SMALL_TESTS), including
+#                   test_hostile's band-mode and small-limit tests
+#   check-fuzz      libFuzzer + ASan + UBSan, FUZZ_SECONDS per harness (tests/fuzz/)
+#
+# test_cli runs "build/rad_cli" relative to the working directory, so each suite runs
+# in $(CHECKDIR)/<stage>/root: symbolic links to this tree, with build/ pointing at the
+# stage's build directory. The CLI tests then exercise that stage's (instrumented)
+# rad_cli rather than the plain build's.
+
+CHECKDIR     := $(BUILDDIR)/check
+CHECK_STATUS := $(CHECKDIR)/status
+CHECK_JOBS   ?= 2
+CHECK_GCC    ?= gcc
+CHECK_CLANG  ?= clang
+FUZZ_SECONDS ?= 60
+CHECK_STAGE  := sh tests/fuzz/check_stage.sh $(CHECK_STATUS)
+
+# Test programs by name (tests/test_NAME.c).
+CHECK_TESTS     = $(TEST_SRCS:tests/test_%.c=%)
+VALGRIND_TESTS ?= $(CHECK_TESTS)
+SMALL_TESTS    ?= api fixmath render obj image hostile
+check_progs = $(addprefix build/tests/test_,$(1))
+
+CHECK_ASAN_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all \
+                    -fno-omit-frame-pointer
+CHECK_ASAN_ENV   := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:abort_on_error=0 \
+                    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+CHECK_VALGRIND   := valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect
+
+# -fno-tree-loop-distribute-patterns in LIBFLAGS is gcc's; clang refuses it.
+CHECK_CLANG_LIBFLAGS := -ffreestanding
+
+# The stage's view of the tree: every top-level entry but the build directory, and
+# build -> the stage directory.
+CHECK_ROOT_ITEMS = $(filter-out $(firstword $(subst /, ,$(BUILDDIR))) .git,$(notdir $(wildcard $(CURDIR)/* $(CURDIR)/.clang-tidy)))
+define check_root
+rm -rf $(1)/root && mkdir -p $(1)/root && \
+for f in $(CHECK_ROOT_ITEMS); do ln -s $(CURDIR)/$$f $(1)/root/$$f; done && \
+ln -s .. $(1)/root/build
+endef
+# $(call check_make,STAGE-DIR,CC,OPT,CFLAGS_EXTRA,[extra make arguments]) TARGETS...
+check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
+
+CHECK_STAGES := asan valgrind clang lint idx16 small fuzz-obj fuzz-core fuzz-image
+CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
+
+.PHONY: check check-stages check-asan check-valgrind check-clang check-lint check-idx16 \
+        check-small check-fuzz check-fuzz-build check-fuzz-obj check-fuzz-core check-fuzz-image \
+        check-asan-run check-valgrind-run check-clang-run check-lint-run check-idx16-run \
+        check-small-run check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run
+
+check:
+	@rm -rf $(CHECK_STATUS); mkdir -p $(CHECK_STATUS); start=$$(date +%s); \
+	$(MAKE) --no-print-directory $(CHECK_PARALLEL) -k check-stages; \
+	sh tests/fuzz/check_summary.sh $(CHECK_STATUS) $$(($$(date +%s) - start)) $(CHECK_STAGES)
+
+# Longest first, so that -j2 overlaps valgrind with everything else.
+check-stages: check-valgrind check-asan check-fuzz check-clang check-idx16 check-small check-lint
+
+check-asan:
+	@$(CHECK_STAGE) asan $(CHECKDIR)/asan.log $(MAKE) --no-print-directory check-asan-run
+check-asan-run:
+	$(call check_root,$(CHECKDIR)/asan)
+	$(CHECK_ASAN_ENV) $(call check_make,$(CHECKDIR)/asan,$(CHECK_GCC),-O1 -g,$(CHECK_ASAN_FLAGS),-o nm-check) test
+	@echo "nm-check skipped: sanitizer runtime calls are expected in an instrumented librad.a"
+
+check-valgrind:
+	@$(CHECK_STAGE) valgrind $(CHECKDIR)/valgrind.log $(MAKE) --no-print-directory check-valgrind-run
+check-valgrind-run:
+	$(call check_root,$(CHECKDIR)/valgrind)
+	RAD_TEST_WRAP='$(CHECK_VALGRIND)' RAD_TEST_LIGHT=1 \
+	  $(call check_make,$(CHECKDIR)/valgrind,$(CHECK_GCC),-O1 -g,,TESTS='$(call check_progs,$(VALGRIND_TESTS))') test
+
+check-clang:
+	@$(CHECK_STAGE) clang $(CHECKDIR)/clang.log $(MAKE) --no-print-directory check-clang-run
+check-clang-run:
+	$(call check_root,$(CHECKDIR)/clang)
+	$(call check_make,$(CHECKDIR)/clang,$(CHECK_CLANG),-O2 -g,,LIBFLAGS='$(CHECK_CLANG_LIBFLAGS)' -o nm-check) test
+	@# The host nm check refuses every libc symbol; clang turns struct copies into
+	@# memcpy calls even with -ffreestanding (as gcc does at -Os on the ports), so
+	@# accept the four functions every freestanding C environment must provide, as
+	@# ports/ports.mk does, and nothing else.
+	@out=$$(sh tests/nm_check.sh $(CHECKDIR)/clang/librad.a); echo "$$out"; \
+	case "$$out" in *FAIL*) \
+	  extra=$$(echo "$$out" | sed -n 's/.*outside the core://p' | tr ' ' '\n' | grep -v -x -E 'memcpy|memmove|memset|memcmp|' || true); \
+	  if [ -n "$$extra" ]; then echo "clang nm-check: FAIL:" $$extra; exit 1; fi; \
+	  echo "clang nm-check: ok apart from freestanding memcpy/memset/memmove/memcmp";; \
+	esac
+
+# Static analysis of the core, in both builds. Reasons for the suppressed warnings are in
+# tests/cppcheck-suppressions.txt and .clang-tidy.
+CHECK_LINT_DEFS := -DRAD_FLOAT=0 -DRAD_FLOAT=1
+check-lint:
+	@$(CHECK_STAGE) lint $(CHECKDIR)/lint.log $(MAKE) --no-print-directory check-lint-run
+check-lint-run:
+	@mkdir -p $(CHECKDIR)/lint
+	set -e; for d in $(CHECK_LINT_DEFS); do \
+	  cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr -q \
+	    --std=c99 --platform=unix64 --suppressions-list=tests/cppcheck-suppressions.txt \
+	    -Iinclude -Ilib $$d $(LIB_SRCS); \
+	  cppcheck --enable=warning,portability --error-exitcode=1 --inline-suppr -q \
+	    --std=c99 --platform=unix32 --suppressions-list=tests/cppcheck-suppressions.txt \
+	    -Iinclude -Ilib $$d -DRAD_INDEX_BITS=16 $(LIB_SRCS); \
+	  clang-tidy --quiet $(LIB_SRCS) -- -std=c99 -Iinclude -Ilib -ffreestanding $$d; \
+	done
+	@echo "cppcheck and clang-tidy: no findings in lib/ (fixed and float builds)"
+
+check-idx16:
+	@$(CHECK_STAGE) idx16 $(CHECKDIR)/idx16.log $(MAKE) --no-print-directory check-idx16-run
+check-idx16-run:
+	$(call check_root,$(CHECKDIR)/idx16)
+	$(call check_make,$(CHECKDIR)/idx16,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16) test
+
+check-small:
+	@$(CHECK_STAGE) small $(CHECKDIR)/small.log $(MAKE) --no-print-directory check-small-run
+check-small-run:
+	$(call check_root,$(CHECKDIR)/small)
+	$(call check_make,$(CHECKDIR)/small,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64,TESTS='$(call check_progs,$(SMALL_TESTS))') test
+
+# ---- fuzzing ---------------------------------------------------------------------------
+# Harnesses in tests/fuzz/, seeds in tests/fuzz/corpus/NAME (read only); what a run adds
+# goes to $(FUZZDIR)/corpus-NAME and is kept for the next run, crashes to
+# $(FUZZDIR)/NAME-crash-*. Reproduce one with: $(FUZZDIR)/fuzz_NAME FILE
+FUZZDIR     := $(CHECKDIR)/fuzz
+FUZZ_CFLAGS := -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+               -fno-omit-frame-pointer -Wall -Wextra -Werror $(CPPFLAGS) -Ilib -Itools
+# FUZZ_SECONDS=0 only replays the seeds and the saved corpus.
+FUZZ_RUN     = $(if $(filter 0,$(FUZZ_SECONDS)),-runs=0,-max_total_time=$(FUZZ_SECONDS)) \
+               -timeout=30 -rss_limit_mb=2560 -print_final_stats=1
+FUZZ_HARNESSES := obj core image
+FUZZ_FIXED   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/fixed/%.o)
+FUZZ_FLOAT   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/float/%.o)
+
+$(FUZZDIR)/lib/fixed/%.o: lib/%.c $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -ffreestanding -c $< -o $@
+$(FUZZDIR)/lib/float/%.o: lib/%.c $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -ffreestanding -DRAD_FLOAT=1 -c $< -o $@
+$(FUZZDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) -c $< -o $@
+$(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/obj.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/obj.o -lm -o $@
+$(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/image.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/image.o $(PNG_LIBS) -lm -o $@
+$(FUZZDIR)/fuzz_core_float.o: tests/fuzz/fuzz_core.c $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -DRAD_FLOAT=1 -c $< -o $@
+$(FUZZDIR)/fuzz_core: tests/fuzz/fuzz_core.c $(FUZZDIR)/fuzz_core_float.o $(FUZZ_FIXED) $(FUZZ_FLOAT)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) $< $(FUZZDIR)/fuzz_core_float.o $(FUZZ_FIXED) $(FUZZ_FLOAT) -o $@
+
+check-fuzz-build: $(FUZZ_HARNESSES:%=$(FUZZDIR)/fuzz_%)
+check-fuzz: check-fuzz-obj check-fuzz-core check-fuzz-image
+
+# One stage per harness, so that two can run at once; each builds its own harness.
+check-fuzz-obj check-fuzz-core check-fuzz-image: check-fuzz-%:
+	@$(CHECK_STAGE) fuzz-$* $(CHECKDIR)/fuzz-$*.log $(MAKE) --no-print-directory check-fuzz-$*-run
+check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run: check-fuzz-%-run: $(FUZZDIR)/fuzz_%
+	@mkdir -p $(FUZZDIR)/corpus-$*
+	cd $(FUZZDIR) && UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
+	  ./fuzz_$* $(FUZZ_RUN) -artifact_prefix=$*- corpus-$* $(CURDIR)/tests/fuzz/corpus/$*

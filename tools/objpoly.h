@@ -1,0 +1,17 @@
+/* rad host glue: an OBJ scene as the core's polygons. Faces of 3 or 4 vertices go as
+ * they are (the core splits non-planar quads); larger ones are ear-clipped into
+ * triangles. Kd becomes reflectance, Ke emission; each polygon's tag is its OBJ face
+ * index. */
+#ifndef RAD_TOOLS_OBJPOLY_H
+#define RAD_TOOLS_OBJPOLY_H
+
+#include "obj.h"
+#include "scene.h"
+
+typedef void (*obj_poly_warn_fn)(void *ctx, int line, const char *msg);
+
+/* A malloc'd array of *N polygons (free it), or NULL when out of memory. Degenerate
+ * polygons are skipped with a warning naming their OBJ line. */
+sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *ctx);
+
+#endif

@@ -1,0 +1,105 @@
+/* rad — analytic references (see reference.h), written independently of the core. */
+#include "reference.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+double ref_point_ff(const sc_poly *p)
+{
+    /* Lambert: F = 1/(2 pi) |sum of theta_i (n . unit(R_i x R_i+1))|, n = +z. */
+    double sum = 0;
+    int i;
+    for (i = 0; i < p->n; i++) {
+        const double *a = p->v[i], *b = p->v[(i + 1) % p->n];
+        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        double th = acos((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb));
+        sum += th * c[2] / lc;
+    }
+    return fabs(sum) / (2 * 3.14159265358979323846);
+}
+
+static sc_poly quad4(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
+                     double cz, double dx, double dy, double dz)
+{
+    sc_poly p;
+    memset(&p, 0, sizeof p);
+    p.n = 4;
+    p.v[0][0] = ax; p.v[0][1] = ay; p.v[0][2] = az;
+    p.v[1][0] = bx; p.v[1][1] = by; p.v[1][2] = bz;
+    p.v[2][0] = cx; p.v[2][1] = cy; p.v[2][2] = cz;
+    p.v[3][0] = dx; p.v[3][1] = dy; p.v[3][2] = dz;
+    return p;
+}
+
+int ref_receiver(int k, sc_poly *p)
+{
+    const double s45 = sqrt(0.5);
+    double *a, *b, *c, n[3];
+    switch (k) {
+    case 0: *p = quad4(-0.5, -0.5, 1, -0.5, 0.5, 1, 0.5, 0.5, 1, 0.5, -0.5, 1); break;       /* parallel, centred */
+    case 1: *p = quad4(0.3, -0.2, 1, 0.3, 0.8, 1, 1.3, 0.8, 1, 1.3, -0.2, 1); break;         /* parallel, offset */
+    case 2: *p = quad4(0.6, -0.5, 0.1, 0.6, 0.5, 0.1, 0.6, 0.5, 1.1, 0.6, -0.5, 1.1); break; /* perpendicular */
+    case 3: *p = quad4(-0.5, -0.5, 0.8, -0.5 + s45, -0.5, 0.8 + s45, -0.5 + s45, 0.5, 0.8 + s45, -0.5, 0.5, 0.8);
+        break;                                                                                  /* tilted 45 deg */
+    case 4: *p = quad4(-1, -1, 0.5, -1, 1, 0.5, 1, 1, 0.5, 1, -1, 0.5); break;              /* large, all faces */
+    case 5: *p = quad4(1.5, -1, 0.02, 1.5, 1, 0.02, 1.5, 1, 0.6, 1.5, -1, 0.6); break;       /* grazing */
+    case 6:                                                                                     /* tilted triangle */
+        *p = quad4(-0.4, 0.2, 0.7, 0.6, -0.3, 1.0, 0.1, 0.7, 1.2, 0, 0, 0);
+        p->n = 3;
+        break;
+    default: return 0;
+    }
+    /* Face the origin: reverse the winding if the normal points away. */
+    a = p->v[0]; b = p->v[1]; c = p->v[2];
+    n[0] = (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]);
+    n[1] = (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]);
+    n[2] = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if (n[0] * a[0] + n[1] * a[1] + n[2] * a[2] > 0) {
+        sc_poly r = *p;
+        int i;
+        for (i = 0; i < p->n; i++) memcpy(r.v[i], p->v[p->n - 1 - i], sizeof r.v[i]);
+        *p = r;
+    }
+    p->tag = 1;
+    return 1;
+}
+
+double ref_hemicube_ff(int k, int res, int twin, double *want)
+{
+    sc_poly p[2];
+    sc_opts o = {0, 0, 0, 0, 0};
+    sc_stats stt;
+    char err[256];
+    double sum = 0, *ff = NULL;
+    int e;
+    memset(p, 0, sizeof p);
+    /* A shooter small enough to be a point, at the origin facing +z. */
+    p[0] = quad4(-0.005, -0.005, 0, 0.005, -0.005, 0, 0.005, 0.005, 0, -0.005, 0.005, 0);
+    if (!ref_receiver(k, &p[1])) return -1;
+    *want = ref_point_ff(&p[1]);
+    o.res = res;
+    if (twin) {
+        scf_solver *s = scf_create(p, 2, &o, NULL, NULL, err, sizeof err);
+        if (!s) return -1;
+        scf_get_stats(s, &stt);
+        ff = calloc((size_t)stt.elements, sizeof *ff);
+        if (ff && scf_form_factors(s, 0, ff) == 0)
+            for (e = 0; e < stt.elements; e++) if (scf_element_tag(s, e) == 1) sum += ff[e];
+        scf_destroy(s);
+    } else {
+        sc_solver *s = sc_create(p, 2, &o, NULL, NULL, err, sizeof err);
+        if (!s) return -1;
+        sc_get_stats(s, &stt);
+        ff = calloc((size_t)stt.elements, sizeof *ff);
+        if (ff && sc_form_factors(s, 0, ff) == 0)
+            for (e = 0; e < stt.elements; e++) if (sc_element_tag(s, e) == 1) sum += ff[e];
+        sc_destroy(s);
+    }
+    if (!ff) return -1;
+    free(ff);
+    return sum;
+}

@@ -1,0 +1,23 @@
+/* rad — analytic references for tests and benchmarks, computed in double and written
+ * independently of the core: Lambert's contour formula for the form factor from a
+ * point to a polygon, and a set of unoccluded receivers to check the hemi-cube on. */
+#ifndef RAD_TOOLS_REFERENCE_H
+#define RAD_TOOLS_REFERENCE_H
+
+#include "scene.h"
+
+#define REF_RECEIVERS 7
+
+/* Form factor from a differential area at the origin with normal +z to polygon P
+ * (wholly above z = 0): F = 1/(2 pi) |sum theta_i (n . unit(R_i x R_i+1))|. */
+double ref_point_ff(const sc_poly *p);
+/* Receiver K (0..REF_RECEIVERS-1) facing the origin: parallel centred, parallel
+ * offset, perpendicular, tilted 45 degrees, large, grazing, tilted triangle. Returns 0
+ * past the last. Its tag is 1. */
+int ref_receiver(int k, sc_poly *p);
+/* The hemi-cube's form factor to receiver K from a tiny shooter at the origin, at
+ * resolution RES, through the fixed core (twin 0) or the float twin (1); the analytic
+ * value in *WANT. Returns -1 on failure. */
+double ref_hemicube_ff(int k, int res, int twin, double *want);
+
+#endif
