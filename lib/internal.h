@@ -6,6 +6,8 @@
 
 #if RAD_FLOAT
 #define rad__outcodes radf__outcodes
+#define rad__receive radf__receive
+#define rad__shoot radf__shoot
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -47,6 +49,25 @@ int rad__hemicube_init(rad_scene_t *s);
 /* Form factors from point C with normal N to every element, into s->acc; SPIN picks
  * the cube's turn about N. */
 void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin);
+
+/* Element E receives power F * U (three channels) from a shooter; its patch's unshot
+ * power grows by what it reflects (solve.c). */
+void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f);
+/* Progressive refinement through hemi-cubes (ROWS null) or stored rows. */
+int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
+
+/* The 16-bit code of a stored form factor (Q2.30 in): 5-bit exponent, 11-bit mantissa,
+ * rounded to nearest; relative error below 2^-11, exact below 2^11. */
+static inline uint16_t rad__ff_code(uint32_t q)
+{
+    unsigned e = 0;
+    uint32_t m;
+    while ((q >> e) >= 2048u) e++;
+    m = e ? (q + (1u << (e - 1))) >> e : q;
+    if (m == 2048u) { m = 1024u; e++; }
+    return (uint16_t)(e << 11 | m);
+}
+static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u) << (c >> 11); }
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

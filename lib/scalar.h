@@ -27,11 +27,13 @@
 #define RAD__ONE 1.0f
 #define RAD__NEAR (1.0f / 256.0f)
 #define RAD__Q(x) ((float)(x))
+#define RAD__EPS 1e-6f /* the least change that counts */
 #else
 #define RAD__ONE 65536
 #define RAD__NEAR 256
 /* Compile-time constants only: folded by the compiler, no floating point at run time. */
 #define RAD__Q(x) ((rad_real_t)((x) * 65536.0 + 0.5))
+#define RAD__EPS 1 /* the least change that counts: one LSB */
 #endif
 #define RAD__DEPTH_ONE (1u << 30)
 #define RAD__FF_ONE_Q30 (1u << 30)
@@ -148,6 +150,17 @@ static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
 }
 static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a + b; }
 static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return (float)q * (1.0f / 1073741824.0f); }
+static inline uint32_t rad__ff_to_q30(rad_ff_t f)
+{
+    float v = f * 1073741824.0f + 0.5f;
+    return v <= 0.0f ? 0u : v >= 4294967295.0f ? 0xFFFFFFFFu : (uint32_t)v;
+}
+/* Gauss-Seidel sums: a form factor times a radiosity, summed, then read as radiosity. */
+typedef float rad__gsum_t;
+static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b) { return g * b; }
+static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat) { (void)sat; return a; }
+/* G = F * a / b: a form factor taken to another area by reciprocity. */
+static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return f * (a / b); }
 /* Raster attribute (<= 2^30) of a radiosity, and back: Q16.15 in both builds. */
 static inline uint32_t rad__attr(rad_real_t b)
 {
@@ -295,6 +308,27 @@ static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
     return rad__sat32((int64_t)a + b, sat);
 }
 static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return q; }
+static inline uint32_t rad__ff_to_q30(rad_ff_t f) { return f; }
+/* Gauss-Seidel sums: each term (Q2.30 * Q16.16) >> 14 < 2^49, so 2^14 patches' sum fits
+ * 64 bits; the sum >> 16 is a Q16.16 radiosity. */
+typedef uint64_t rad__gsum_t;
+static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b)
+{
+    return ((uint64_t)g * (uint64_t)(b > 0 ? b : 0) + 8192u) >> 14;
+}
+static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
+{
+    uint64_t v = (a + 32768u) >> 16;
+    if (v > (uint64_t)INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
+    return (rad_real_t)v;
+}
+/* G = F * a / b in Q2.30, saturating at 4.0 (F <= 2^30, a < 2^31). */
+static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    uint64_t v = ((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u) / (uint64_t)(b > 0 ? b : 1);
+    if (v > 0xFFFFFFFFu) { if (sat) (*sat)++; return 0xFFFFFFFFu; }
+    return (rad_ff_t)v;
+}
 static inline uint32_t rad__attr(rad_real_t b) { return b > 0 ? (uint32_t)b >> 1 : 0u; }
 static inline rad_real_t rad__from_attr(uint32_t a)
 {

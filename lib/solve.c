@@ -31,44 +31,55 @@ static rad_real_t receive(rad_scene_t *s, rad_energy_t u, rad_ff_t f, rad_real_t
     return rad__add_sat(b, rad__energy_to_rad(recv, area, &s->stats.saturations), &s->stats.saturations);
 }
 
-static void shoot_patch(rad_scene_t *s, uint32_t p)
+/* Element E receives power F * U (per channel) from a shooter. */
+void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
+{
+    rad_element_t *el = &s->pools.elements[e];
+    const rad_surface_t *sf = &s->pools.surfaces[el->surface];
+    rad_energy_t *pu = s->pools.patches[el->patch].unshot;
+    el->radiosity.r = receive(s, u[0], f, sf->reflectance.r, el->area, el->radiosity.r, &pu[0]);
+    el->radiosity.g = receive(s, u[1], f, sf->reflectance.g, el->area, el->radiosity.g, &pu[1]);
+    el->radiosity.b = receive(s, u[2], f, sf->reflectance.b, el->area, el->radiosity.b, &pu[2]);
+}
+
+/* Shoots patch P's unshot power through its hemi-cube, or through its stored row. */
+static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_rows_t *rows)
 {
     rad_patch_t *pt = &s->pools.patches[p];
     rad_energy_t u[3];
     uint32_t e;
 
-    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
     u[0] = pt->unshot[0]; u[1] = pt->unshot[1]; u[2] = pt->unshot[2];
     pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0;
-    for (e = 0; e < s->n_elements; e++) {
-        rad_element_t *el;
-        const rad_surface_t *sf;
-        rad_energy_t *pu;
-        rad_ff_t f = s->acc[e];
-        if (!(f > 0)) continue;
-        el = &s->pools.elements[e];
-        sf = &s->pools.surfaces[el->surface];
-        pu = s->pools.patches[el->patch].unshot;
-        el->radiosity.r = receive(s, u[0], f, sf->reflectance.r, el->area, el->radiosity.r, &pu[0]);
-        el->radiosity.g = receive(s, u[1], f, sf->reflectance.g, el->area, el->radiosity.g, &pu[1]);
-        el->radiosity.b = receive(s, u[2], f, sf->reflectance.b, el->area, el->radiosity.b, &pu[2]);
+    if (rows) {
+        for (e = rows->start[p]; e < rows->start[p + 1]; e++)
+            rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
+    } else {
+        rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+        for (e = 0; e < s->n_elements; e++)
+            if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
     s->stats.shots++;
 }
 
-int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
-    if (!s) return RAD_ERR_ARG;
     s->solving = 1;
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
         uint32_t p = select_shooter(s, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
-        shoot_patch(s, p);
+        shoot_patch(s, p, rows);
         done++;
     }
     return (int)done;
+}
+
+int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+{
+    if (!s) return RAD_ERR_ARG;
+    return rad__shoot(s, 0, max_shots, tol);
 }
 
 rad_real_t rad_unshot_fraction(const rad_scene_t *s)

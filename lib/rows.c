@@ -1,0 +1,149 @@
+/* rad — stored form factors: rows of the patch-to-element matrix kept in caller memory,
+ * shooting from them, the full-matrix Gauss-Seidel solve, and light-group mixing.
+ * None of this renders a hemi-cube once the rows are stored. */
+#include "internal.h"
+
+rad_ff_t rad_ff_from_code(uint16_t code) { return rad__ff_from_q30(rad__ff_decode(code)); }
+
+int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
+{
+    uint32_t done = 0;
+    if (!s || !rows || !rows->start || !rows->ids || !rows->ffs || rows->max_rows < s->n_patches ||
+        rows->n_rows > s->n_patches)
+        return RAD_ERR_ARG;
+    s->solving = 1; /* rows describe this geometry: no more polygons */
+    if (rows->n_rows == 0) rows->start[0] = 0;
+    while (done < count && rows->n_rows < s->n_patches) {
+        uint32_t p = rows->n_rows, e, n = rows->start[p], seen = 0;
+        const rad_patch_t *pt = &s->pools.patches[p];
+        rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+        for (e = 0; e < s->n_elements; e++) seen += rad__ff_to_q30(s->acc[e]) > 0;
+        if (seen > rows->max_entries - n) return done ? (int)done : RAD_ERR_FULL;
+        for (e = 0; e < s->n_elements; e++) {
+            uint32_t q = rad__ff_to_q30(s->acc[e]);
+            if (q == 0) continue;
+            rows->ids[n] = (rad_index_t)e;
+            rows->ffs[n] = rad__ff_code(q);
+            n++;
+        }
+        rows->start[p + 1] = n;
+        rows->n_rows++;
+        done++;
+    }
+    return (int)done;
+}
+
+static int rows_ready(const rad_scene_t *s, const rad_rows_t *rows)
+{
+    return rows && rows->start && rows->ids && rows->ffs && rows->n_rows == s->n_patches;
+}
+
+int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
+{
+    if (!s || !rows) return RAD_ERR_ARG;
+    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    return rad__shoot(s, rows, max_shots, tol);
+}
+
+/* G[m][k] = (A_m / A_k) * sum over k's elements j of F(m -> j). */
+static void assemble(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *g)
+{
+    uint32_t np = s->n_patches, m, i;
+    for (i = 0; i < np * np; i++) g[i] = 0;
+    for (m = 0; m < np; m++) {
+        rad_real_t am = s->pools.patches[m].area;
+        for (i = rows->start[m]; i < rows->start[m + 1]; i++) {
+            uint32_t k = s->pools.elements[rows->ids[i]].patch;
+            rad_ff_t f = rad__ff_from_q30(rad__ff_decode(rows->ffs[i]));
+            rad_ff_t add = rad__ff_scale(f, am, s->pools.patches[k].area, &s->stats.saturations);
+            rad_ff_t *cell = &g[(size_t)m * np + k];
+            /* Sums past Q2.30's 4.0 would be numerical nonsense: clamp and count. */
+            if (rad__ff_to_q30(add) > 0xFFFFFFFFu - rad__ff_to_q30(*cell)) { *cell = rad__ff_from_q30(0xFFFFFFFFu); s->stats.saturations++; }
+            else *cell += add;
+        }
+    }
+}
+
+/* Patch K's emission-plus-reflection from the current patch radiosities B (3 per patch). */
+static rad_real_t gather(rad_scene_t *s, const rad_ff_t *g, const rad_real_t *b, uint32_t k, unsigned c,
+                         rad_real_t e, rad_real_t rho)
+{
+    uint32_t np = s->n_patches, m;
+    rad__gsum_t sum = 0;
+    for (m = 0; m < np; m++) sum += rad__gs_term(g[(size_t)m * np + k], b[3 * m + c]);
+    return rad__add_sat(e, rad__mul(rho, rad__gs_value(sum, &s->stats.saturations), &s->stats.saturations),
+                        &s->stats.saturations);
+}
+
+int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
+                          uint32_t max_iter, rad_real_t tol)
+{
+    uint32_t np, k, it, e;
+    rad_real_t *b;
+    if (!s || !rows || !matrix) return RAD_ERR_ARG;
+    np = s->n_patches;
+    /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
+    if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
+    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    s->solving = 1;
+    assemble(s, rows, matrix);
+    /* The patch radiosities live after the matrix, in its type's room (4 bytes). */
+    b = (rad_real_t *)(void *)(matrix + (size_t)np * np);
+    for (k = 0; k < np; k++) {
+        const rad_rgb_t *em = &s->pools.surfaces[s->pools.patches[k].surface].emission;
+        b[3 * k] = em->r; b[3 * k + 1] = em->g; b[3 * k + 2] = em->b;
+    }
+    for (it = 0; it < max_iter;) {
+        int moved = 0;
+        it++;
+        for (k = 0; k < np; k++) {
+            const rad_surface_t *sf = &s->pools.surfaces[s->pools.patches[k].surface];
+            const rad_real_t *em = &sf->emission.r, *rho = &sf->reflectance.r;
+            unsigned c;
+            for (c = 0; c < 3; c++) {
+                rad_real_t v = gather(s, matrix, b, k, c, em[c], rho[c]);
+                rad_real_t d = v > b[3 * k + c] ? v - b[3 * k + c] : b[3 * k + c] - v;
+                /* Relative to each value, so dim patches converge as well as bright ones. */
+                if (d > rad__mul(v, tol, 0) + RAD__EPS) moved = 1;
+                b[3 * k + c] = v; /* used at once by the patches after it: Gauss-Seidel */
+            }
+        }
+        if (!moved) break;
+    }
+    /* Elements: their emission plus every patch's total power shot once. */
+    for (e = 0; e < s->n_elements; e++)
+        s->pools.elements[e].radiosity = s->pools.surfaces[s->pools.elements[e].surface].emission;
+    for (k = 0; k < np; k++) {
+        rad_energy_t u[3];
+        const rad_patch_t *pt = &s->pools.patches[k];
+        u[0] = rad__energy(b[3 * k], pt->area);
+        u[1] = rad__energy(b[3 * k + 1], pt->area);
+        u[2] = rad__energy(b[3 * k + 2], pt->area);
+        for (e = rows->start[k]; e < rows->start[k + 1]; e++)
+            rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
+    }
+    for (k = 0; k < np; k++) {
+        rad_patch_t *pt = &s->pools.patches[k];
+        pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0; /* nothing is left to shoot */
+    }
+    return (int)it;
+}
+
+int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity, uint32_t n_groups,
+            rad_rgb_t *out)
+{
+    uint32_t e, g, *sat;
+    if (!s || !groups || !intensity || !out) return RAD_ERR_ARG;
+    for (g = 0; g < n_groups; g++) if (!groups[g]) return RAD_ERR_ARG;
+    sat = &s->stats.saturations;
+    for (e = 0; e < s->n_elements; e++) {
+        rad_rgb_t o = {0, 0, 0};
+        for (g = 0; g < n_groups; g++) {
+            o.r = rad__add_sat(o.r, rad__mul(intensity[g].r, groups[g][e].r, sat), sat);
+            o.g = rad__add_sat(o.g, rad__mul(intensity[g].g, groups[g][e].g, sat), sat);
+            o.b = rad__add_sat(o.b, rad__mul(intensity[g].b, groups[g][e].b, sat), sat);
+        }
+        out[e] = o;
+    }
+    return RAD_OK;
+}
