@@ -71,7 +71,9 @@ typedef int (*sc_progress_fn)(void *ctx, int shots, double unshot); /* nonzero: 
     /* Form factors from patch p to every element (n >= stats.elements). */            \
     int P##_form_factors(P##_solver *s, int p, double *ff);                             \
     /* The raw bits of every element's radiosity, hashed (FNV-1a 64). */                \
-    uint64_t P##_checksum(P##_solver *s);
+    uint64_t P##_checksum(P##_solver *s);                                               \
+    /* The core's rad_scene_t (of this build) inside, for glue of the same build. */    \
+    void *P##_core(P##_solver *s);
 
 SC_DECLARE(sc)
 SC_DECLARE(scf)

@@ -405,3 +405,5 @@ uint64_t SC(checksum)(SC(solver) *h)
     }
     return x;
 }
+
+void *SC(core)(SC(solver) *h) { return &h->s; }
