@@ -162,8 +162,15 @@ static uint32_t cube_codes(rad_vec3_t l)
     return top | px << 5 | nx << 10 | py << 15 | ny << 20;
 }
 
-static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, uint32_t e,
-                           rad_vec3_t c, const rad_vec3_t *frame)
+/* Where a pass draws: the face buffers (region offsets index into them). */
+typedef struct {
+    uint32_t *z;
+    rad_index_t *ids;
+    rad_stats_t *st;
+} canvas_t;
+
+static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const region_t *reg, unsigned nreg,
+                           uint32_t e, rad_vec3_t c, const rad_vec3_t *frame)
 {
     const rad_element_t *el = &s->pools.elements[e];
     const rad_surface_t *sf = &s->pools.surfaces[el->surface];
@@ -193,13 +200,13 @@ static void render_element(rad_scene_t *s, const region_t *reg, unsigned nreg, u
         f.half = face != 0;
         f.width = (int)s->cfg.res;
         f.height = (int)face_rows(s, face);
-        t.z = s->zbuf + reg[r].offset;
-        t.ids = s->ibuf + reg[r].offset;
+        t.z = cv_out->z + reg[r].offset;
+        t.ids = cv_out->ids + reg[r].offset;
         t.rgb = 0;
         t.width = (int)s->cfg.res;
         t.row0 = reg[r].row0;
         t.row1 = reg[r].row1;
-        rad__draw(&s->stats, &t, &f, cv, nv, (any >> (5 * face)) & 0x1F, (rad_index_t)e);
+        rad__draw(cv_out->st, &t, &f, cv, nv, (any >> (5 * face)) & 0x1F, (rad_index_t)e);
     }
 }
 
@@ -223,12 +230,12 @@ static void accumulate(rad_scene_t *s, const region_t *reg)
     }
 }
 
-static void clear_region(rad_scene_t *s, const region_t *reg)
+static void clear_region(const rad_scene_t *s, const canvas_t *cv, const region_t *reg)
 {
     uint32_t i, n = (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
     for (i = 0; i < n; i++) {
-        s->zbuf[reg->offset + i] = 0;
-        s->ibuf[reg->offset + i] = RAD_INDEX_NONE;
+        cv->z[reg->offset + i] = 0;
+        cv->ids[reg->offset + i] = RAD_INDEX_NONE;
     }
 }
 
@@ -241,14 +248,10 @@ static void clear_region(rad_scene_t *s, const region_t *reg)
 static const uint8_t spins[8][3] = {
     {3, 4, 5}, {12, 5, 13}, {8, 15, 17}, {24, 7, 25}, {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
 
-void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
+static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 {
-    region_t reg[5];
-    rad_vec3_t frame[3], helper = {0, 0, 0}, u0, v0;
+    rad_vec3_t helper = {0, 0, 0}, u0, v0;
     const uint8_t *t = spins[spin % 8u];
-    unsigned k, nreg, r;
-    uint32_t e;
-
     /* A tangent frame from the axis least aligned with the normal, then turned. */
     if ((n.x < 0 ? -n.x : n.x) < RAD__Q(0.57)) helper.x = RAD__ONE;
     else helper.y = RAD__ONE;
@@ -257,11 +260,87 @@ void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
     frame[0] = rad__turn(u0, v0, t[0], t[1], t[2]);
     frame[1] = rad__cross(n, frame[0]);
     frame[2] = n;
+}
 
+void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
+{
+    region_t reg[5];
+    rad_vec3_t frame[3];
+    canvas_t cv;
+    unsigned k, nreg, r;
+    uint32_t e;
+
+    cube_frame(n, spin, frame);
+    cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
-        for (r = 0; r < nreg; r++) clear_region(s, &reg[r]);
-        for (e = 0; e < s->n_elements; e++) render_element(s, reg, nreg, e, c, frame);
+        for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
+        for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, c, frame);
         for (r = 0; r < nreg; r++) accumulate(s, &reg[r]);
     }
+}
+
+/* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
+
+/* A part's buffer: its counters, then depth and ids for all five faces. */
+typedef struct {
+    uint32_t calls, pad;
+    uint64_t pixels;
+} part_head_t;
+
+static canvas_t part_canvas(const rad_scene_t *s, void *buf)
+{
+    canvas_t cv;
+    part_head_t *h = (part_head_t *)buf;
+    cv.z = (uint32_t *)(void *)(h + 1);
+    cv.ids = (rad_index_t *)(void *)(cv.z + RAD_PIXELS_ALL(s->cfg.res));
+    cv.st = 0;
+    return cv;
+}
+
+int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
+{
+    const rad_patch_t *pt = &s->pools.patches[p];
+    region_t reg[5];
+    rad_vec3_t frame[3];
+    rad_stats_t st = {0, 0, 0, 0};
+    canvas_t cv = part_canvas(s, buf);
+    part_head_t *h = (part_head_t *)buf;
+    /* Contiguous element ranges, in order, so merging keeps the serial tie-break. */
+    uint32_t e0 = (uint32_t)((uint64_t)s->n_elements * part / nparts);
+    uint32_t e1 = (uint32_t)((uint64_t)s->n_elements * (part + 1u) / nparts), e;
+    unsigned r, nreg = pass_regions(s, 0, reg);
+
+    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
+    cv.st = &st;
+    for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
+    for (e = e0; e < e1; e++) render_element(s, &cv, reg, nreg, e, pt->center, frame);
+    h->calls = st.raster_calls;
+    h->pixels = st.raster_pixels;
+    return (int)st.raster_calls;
+}
+
+void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
+{
+    region_t reg[5];
+    uint32_t i, n = RAD_PIXELS_ALL(s->cfg.res), e;
+    unsigned k, r, nreg = pass_regions(s, 0, reg);
+    /* Per pixel the nearest part wins, the lower one on a tie: as the serial pass,
+     * where the lower element (drawn first) keeps a tie. */
+    for (i = 0; i < n; i++) {
+        uint32_t best = 0;
+        rad_index_t id = RAD_INDEX_NONE;
+        for (k = 0; k < nparts; k++) {
+            canvas_t cv = part_canvas(s, bufs[k]);
+            if (cv.z[i] > best) { best = cv.z[i]; id = cv.ids[i]; }
+        }
+        s->ibuf[i] = id;
+    }
+    for (k = 0; k < nparts; k++) {
+        const part_head_t *h = (const part_head_t *)bufs[k];
+        s->stats.raster_calls += h->calls;
+        s->stats.raster_pixels += h->pixels;
+    }
+    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    for (r = 0; r < nreg; r++) accumulate(s, &reg[r]);
 }

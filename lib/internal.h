@@ -8,6 +8,8 @@
 #define rad__outcodes radf__outcodes
 #define rad__receive radf__receive
 #define rad__shoot radf__shoot
+#define rad__cube_part radf__cube_part
+#define rad__cube_merge radf__cube_merge
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -68,6 +70,12 @@ static inline uint16_t rad__ff_code(uint32_t q)
     return (uint16_t)(e << 11 | m);
 }
 static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u) << (c >> 11); }
+
+/* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its contiguous
+ * range of elements into BUF (RAD_PART_BYTES); merging fills s->acc as rad__hemicube
+ * would, bit for bit. Needs all five faces in one pass (band_rows 0). */
+int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf);
+void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

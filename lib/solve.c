@@ -42,8 +42,9 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
     el->radiosity.b = receive(s, u[2], f, sf->reflectance.b, el->area, el->radiosity.b, &pu[2]);
 }
 
-/* Shoots patch P's unshot power through its hemi-cube, or through its stored row. */
-static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_rows_t *rows)
+/* Shoots patch P's unshot power through its stored row, or through the form factors
+ * in s->acc, rendering its hemi-cube first when CUBE is set. */
+static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_rows_t *rows, int cube)
 {
     rad_patch_t *pt = &s->pools.patches[p];
     rad_energy_t u[3];
@@ -55,7 +56,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_rows_t *rows)
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
     } else {
-        rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+        if (cube) rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
         for (e = 0; e < s->n_elements; e++)
             if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
@@ -70,7 +71,7 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
         rad_energy_t total;
         uint32_t p = select_shooter(s, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
-        shoot_patch(s, p, rows);
+        shoot_patch(s, p, rows, 1);
         done++;
     }
     return (int)done;
@@ -124,4 +125,35 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
     rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
     for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
     return (int)s->n_elements;
+}
+
+int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
+{
+    rad_energy_t total;
+    uint32_t p;
+    if (!s || !patch) return RAD_ERR_ARG;
+    if (s->band_rows != 0) return RAD_ERR_STATE;
+    s->solving = 1;
+    p = select_shooter(s, &total);
+    if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
+    *patch = p;
+    return 1;
+}
+
+int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes)
+{
+    if (!s || !buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
+        bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
+        return RAD_ERR_ARG;
+    return rad__cube_part(s, patch, part, nparts, buf);
+}
+
+int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    unsigned k;
+    if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
+    for (k = 0; k < nparts; k++) if (!bufs[k]) return RAD_ERR_ARG;
+    rad__cube_merge(s, bufs, nparts);
+    shoot_patch(s, patch, 0, 0);
+    return 1;
 }

@@ -57,6 +57,9 @@ extern "C" {
 #define rad_rows_gauss_seidel radf_rows_gauss_seidel
 #define rad_mix radf_mix
 #define rad_ff_from_code radf_ff_from_code
+#define rad_shot_begin radf_shot_begin
+#define rad_shot_part radf_shot_part
+#define rad_shot_end radf_shot_end
 #endif
 
 /* ---- scalar types -------------------------------------------------------------- */
@@ -210,6 +213,19 @@ int rad_restart(rad_scene_t *s);
  * stops early once the unshot fraction is at most TOL. Returns the number of patches
  * shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
+
+/* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
+ * picks the shooter (returns 1, or 0 once the unshot fraction is at most TOL);
+ * rad_shot_part renders part PART of NPARTS of its hemi-cube (a contiguous range of
+ * elements) into BUF, reading the scene only, so parts may run at once; rad_shot_end
+ * merges the parts' buffers in order and shoots. The result is bit for bit that of
+ * rad_shoot in the fixed build (the float twin sums in another order). Needs the work
+ * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
+ * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
+#define RAD_PART_BYTES(res) (16u + (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
+int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
+int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes);
+int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
 
 /* Unshot power as a fraction of the emitted power (0 when nothing emits). */
 rad_real_t rad_unshot_fraction(const rad_scene_t *s);
