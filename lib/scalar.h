@@ -45,12 +45,12 @@ uint64_t rad__isqrt64(uint64_t v);
 uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit);
 float rad__fsqrt(float x);
 
-/* v / 2^n rounded half away from zero, n >= 1: never shifts a negative number. */
+/* v / 2^n rounded to nearest (halves up), 1 <= n <= 32, |v| < 2^62: shifts v + 2^62,
+ * never a negative number, and takes no branch. */
 static inline int64_t rad__shr_round(int64_t v, unsigned n)
 {
-    uint64_t half = (uint64_t)1 << (n - 1);
-    if (v >= 0) return (int64_t)(((uint64_t)v + half) >> n);
-    return -(int64_t)(((uint64_t)0 - (uint64_t)v + half) >> n);
+    uint64_t biased = (uint64_t)v + ((uint64_t)1 << 62) + ((uint64_t)1 << (n - 1));
+    return (int64_t)(biased >> n) - (int64_t)((uint64_t)1 << (62 - n));
 }
 
 /* num / den rounded half away from zero (C99 division truncates toward zero). */
