@@ -3,20 +3,10 @@
 #define RAD_TEST_SCENES_H
 
 #include <string.h>
+#include "reference.h"
 #include "scene.h"
 
-static inline sc_poly quad(double ax, double ay, double az, double bx, double by, double bz,
-                           double cx, double cy, double cz, double dx, double dy, double dz)
-{
-    sc_poly p;
-    memset(&p, 0, sizeof p);
-    p.n = 4;
-    p.v[0][0] = ax; p.v[0][1] = ay; p.v[0][2] = az;
-    p.v[1][0] = bx; p.v[1][1] = by; p.v[1][2] = bz;
-    p.v[2][0] = cx; p.v[2][1] = cy; p.v[2][2] = cz;
-    p.v[3][0] = dx; p.v[3][1] = dy; p.v[3][2] = dz;
-    return p;
-}
+#define quad ref_quad
 
 static inline void set_mat(sc_poly *p, double r, double g, double b, double er, double eg, double eb)
 {

@@ -149,11 +149,11 @@ static void test_twin_cornell(void **st)
      * each covers four times the pixels: measured max 0.30%, rms 0.04%. */
     sc_opts o = {0, 0, 128, 0, 0};
     char err[256];
-    int n = cornell(p), e, c, compared = 0;
+    int n = cornell(p), compared;
     sc_solver *fx = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
     scf_solver *fl = scf_create(p, n, &o, NULL, NULL, err, sizeof err);
     sc_stats a, b;
-    double maxb = 0, worst = 0, rms = 0;
+    double worst, rms;
     (void)st;
     assert_non_null(fx);
     assert_non_null(fl);
@@ -164,25 +164,7 @@ static void test_twin_cornell(void **st)
     sc_get_stats(fx, &a);
     scf_get_stats(fl, &b);
     assert_int_equal(a.elements, b.elements);
-    for (e = 0; e < a.elements; e++) {
-        double rgb[3];
-        sc_element_rgb(fx, e, 0, rgb);
-        for (c = 0; c < 3; c++) if (rgb[c] > maxb) maxb = rgb[c];
-    }
-    for (e = 0; e < a.elements; e++) {
-        double x[3], y[3];
-        sc_element_rgb(fx, e, 1, x);
-        scf_element_rgb(fl, e, 1, y);
-        for (c = 0; c < 3; c++) {
-            double d;
-            if (y[c] < 0.01 * maxb) continue;
-            d = fabs(x[c] / y[c] - 1);
-            rms += d * d;
-            compared++;
-            if (d > worst) worst = d;
-        }
-    }
-    rms = sqrt(rms / compared);
+    compared = ref_twin_diff(fx, fl, &worst, &rms);
     print_message("fixed vs float: %d elements, %d channels above 1%% of max compared: max %.4f%%, rms %.4f%%\n",
                   a.elements, compared, 100 * worst, 100 * rms);
     /* The bound: 1% per element above 1% of the maximum. */

@@ -22,8 +22,8 @@ double ref_point_ff(const sc_poly *p)
     return fabs(sum) / (2 * 3.14159265358979323846);
 }
 
-static sc_poly quad4(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
-                     double cz, double dx, double dy, double dz)
+sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
+                 double cz, double dx, double dy, double dz)
 {
     sc_poly p;
     memset(&p, 0, sizeof p);
@@ -40,15 +40,15 @@ int ref_receiver(int k, sc_poly *p)
     const double s45 = sqrt(0.5);
     double *a, *b, *c, n[3];
     switch (k) {
-    case 0: *p = quad4(-0.5, -0.5, 1, -0.5, 0.5, 1, 0.5, 0.5, 1, 0.5, -0.5, 1); break;       /* parallel, centred */
-    case 1: *p = quad4(0.3, -0.2, 1, 0.3, 0.8, 1, 1.3, 0.8, 1, 1.3, -0.2, 1); break;         /* parallel, offset */
-    case 2: *p = quad4(0.6, -0.5, 0.1, 0.6, 0.5, 0.1, 0.6, 0.5, 1.1, 0.6, -0.5, 1.1); break; /* perpendicular */
-    case 3: *p = quad4(-0.5, -0.5, 0.8, -0.5 + s45, -0.5, 0.8 + s45, -0.5 + s45, 0.5, 0.8 + s45, -0.5, 0.5, 0.8);
+    case 0: *p = ref_quad(-0.5, -0.5, 1, -0.5, 0.5, 1, 0.5, 0.5, 1, 0.5, -0.5, 1); break;       /* parallel, centred */
+    case 1: *p = ref_quad(0.3, -0.2, 1, 0.3, 0.8, 1, 1.3, 0.8, 1, 1.3, -0.2, 1); break;         /* parallel, offset */
+    case 2: *p = ref_quad(0.6, -0.5, 0.1, 0.6, 0.5, 0.1, 0.6, 0.5, 1.1, 0.6, -0.5, 1.1); break; /* perpendicular */
+    case 3: *p = ref_quad(-0.5, -0.5, 0.8, -0.5 + s45, -0.5, 0.8 + s45, -0.5 + s45, 0.5, 0.8 + s45, -0.5, 0.5, 0.8);
         break;                                                                                  /* tilted 45 deg */
-    case 4: *p = quad4(-1, -1, 0.5, -1, 1, 0.5, 1, 1, 0.5, 1, -1, 0.5); break;              /* large, all faces */
-    case 5: *p = quad4(1.5, -1, 0.02, 1.5, 1, 0.02, 1.5, 1, 0.6, 1.5, -1, 0.6); break;       /* grazing */
+    case 4: *p = ref_quad(-1, -1, 0.5, -1, 1, 0.5, 1, 1, 0.5, 1, -1, 0.5); break;              /* large, all faces */
+    case 5: *p = ref_quad(1.5, -1, 0.02, 1.5, 1, 0.02, 1.5, 1, 0.6, 1.5, -1, 0.6); break;       /* grazing */
     case 6:                                                                                     /* tilted triangle */
-        *p = quad4(-0.4, 0.2, 0.7, 0.6, -0.3, 1.0, 0.1, 0.7, 1.2, 0, 0, 0);
+        *p = ref_quad(-0.4, 0.2, 0.7, 0.6, -0.3, 1.0, 0.1, 0.7, 1.2, 0, 0, 0);
         p->n = 3;
         break;
     default: return 0;
@@ -78,7 +78,7 @@ double ref_hemicube_ff(int k, int res, int twin, double *want)
     int e;
     memset(p, 0, sizeof p);
     /* A shooter small enough to be a point, at the origin facing +z. */
-    p[0] = quad4(-0.005, -0.005, 0, 0.005, -0.005, 0, 0.005, 0.005, 0, -0.005, 0.005, 0);
+    p[0] = ref_quad(-0.005, -0.005, 0, 0.005, -0.005, 0, 0.005, 0.005, 0, -0.005, 0.005, 0);
     if (!ref_receiver(k, &p[1])) return -1;
     *want = ref_point_ff(&p[1]);
     o.res = res;
@@ -102,4 +102,33 @@ double ref_hemicube_ff(int k, int res, int twin, double *want)
     if (!ff) return -1;
     free(ff);
     return sum;
+}
+
+int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms)
+{
+    sc_stats st;
+    double top = 0, s2 = 0;
+    int e, c, n = 0;
+    sc_get_stats(fx, &st);
+    for (e = 0; e < st.elements; e++) {
+        double x[3];
+        sc_element_rgb(fx, e, 1, x);
+        for (c = 0; c < 3; c++) if (x[c] > top) top = x[c];
+    }
+    *worst = 0;
+    for (e = 0; e < st.elements; e++) {
+        double x[3], y[3];
+        sc_element_rgb(fx, e, 1, x);
+        scf_element_rgb(fl, e, 1, y);
+        for (c = 0; c < 3; c++) {
+            double d;
+            if (y[c] < 0.01 * top) continue;
+            d = fabs(x[c] / y[c] - 1);
+            if (d > *worst) *worst = d;
+            s2 += d * d;
+            n++;
+        }
+    }
+    *rms = n ? sqrt(s2 / n) : 0;
+    return n;
 }

@@ -8,6 +8,14 @@
 
 #define REF_RECEIVERS 7
 
+/* A quad from its four corners (reflectance and emission zero, tag 0). */
+sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
+                 double cz, double dx, double dy, double dz);
+/* The fixed solver FX against the float twin FL of the same scene, per element with the
+ * ambient term, over channels above 1% of the brightest: the largest relative
+ * difference into *WORST, the rms into *RMS; returns the channels compared. */
+int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms);
+
 /* Form factor from a differential area at the origin with normal +z to polygon P
  * (wholly above z = 0): F = 1/(2 pi) |sum theta_i (n . unit(R_i x R_i+1))|. */
 double ref_point_ff(const sc_poly *p);
