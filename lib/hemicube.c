@@ -9,6 +9,12 @@
  */
 #include "internal.h"
 
+/* A vertex in the current cube's frame, with its outcodes for the five faces. */
+typedef struct {
+    rad_vec3_t loc;
+    uint32_t code, stamp;
+} vcache_t;
+
 typedef struct {
     unsigned face;       /* 0 top, 1..4 sides */
     int row0, row1;      /* rows of the face this region holds */
@@ -92,6 +98,16 @@ int rad__hemicube_init(rad_scene_t *s)
     s->acc = s->dff_side + (size_t)q * q;
     s->zbuf = (uint32_t *)(s->acc + nacc);
     s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
+    {
+        uintptr_t c = ((uintptr_t)(s->ibuf + s->pass_pixels) + 7u) & ~(uintptr_t)7u;
+        size_t need = (size_t)s->pools.max_vertices * sizeof(vcache_t);
+        s->vcache = c - base <= s->pools.work_bytes && s->pools.work_bytes - (c - base) >= need ? (void *)c : 0;
+        if (s->vcache) {
+            uint32_t v;
+            for (v = 0; v < s->pools.max_vertices; v++) ((vcache_t *)s->vcache)[v].stamp = 0;
+        }
+        s->vstamp = 0;
+    }
     build_table(s);
     return RAD_OK;
 }
@@ -162,12 +178,38 @@ static uint32_t cube_codes(rad_vec3_t l)
     return top | px << 5 | nx << 10 | py << 15 | ny << 20;
 }
 
-/* Where a pass draws: the face buffers (region offsets index into them). */
+/* Where a pass draws: the face buffers (region offsets index into them), and the
+ * vertex memo to use (NULL: transform every element's vertices itself). */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_stats_t *st;
+    vcache_t *memo;
+    uint32_t stamp;
 } canvas_t;
+
+/* Vertex V in the cube's frame at C and its outcodes, from the memo when it is there. */
+static void vertex_local(const rad_scene_t *s, const canvas_t *cv, uint32_t v, rad_vec3_t c,
+                         const rad_vec3_t *frame, rad_vec3_t *loc, uint32_t *code)
+{
+    vcache_t *m = cv->memo ? &cv->memo[v] : 0;
+    rad_vec3_t d;
+    if (m && m->stamp == cv->stamp) {
+        *loc = m->loc;
+        *code = m->code;
+        return;
+    }
+    d = rad__sub(s->pools.vertices[v], c);
+    loc->x = rad__dot(d, frame[0]);
+    loc->y = rad__dot(d, frame[1]);
+    loc->z = rad__dot(d, frame[2]);
+    *code = cube_codes(*loc);
+    if (m) {
+        m->loc = *loc;
+        m->code = *code;
+        m->stamp = cv->stamp;
+    }
+}
 
 static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const region_t *reg, unsigned nreg,
                            uint32_t e, rad_vec3_t c, const rad_vec3_t *frame)
@@ -182,12 +224,8 @@ static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const r
     /* Facing away (or coplanar with the shooter, as its own surface is): invisible. */
     if (rad__dot(sf->normal, rad__sub(c, s->pools.vertices[el->v[0]])) <= 0) return;
     for (i = 0; i < nv; i++) {
-        rad_vec3_t d = rad__sub(s->pools.vertices[el->v[i]], c);
         uint32_t code;
-        loc[i].x = rad__dot(d, frame[0]);
-        loc[i].y = rad__dot(d, frame[1]);
-        loc[i].z = rad__dot(d, frame[2]);
-        code = cube_codes(loc[i]);
+        vertex_local(s, cv_out, el->v[i], c, frame, &loc[i], &code);
         all &= code;
         any |= code;
     }
@@ -272,6 +310,12 @@ void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
 
     cube_frame(n, spin, frame);
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
+    cv.memo = (vcache_t *)s->vcache;
+    if (cv.memo && ++s->vstamp == 0) { /* after 2^32 cubes: forget every entry */
+        for (e = 0; e < s->pools.max_vertices; e++) cv.memo[e].stamp = 0;
+        s->vstamp = 1;
+    }
+    cv.stamp = s->vstamp;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
@@ -295,6 +339,8 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
     cv.z = (uint32_t *)(void *)(h + 1);
     cv.ids = (rad_index_t *)(void *)(cv.z + RAD_PIXELS_ALL(s->cfg.res));
     cv.st = 0;
+    cv.memo = 0; /* parts run at once: they share no memo */
+    cv.stamp = 0;
     return cv;
 }
 
