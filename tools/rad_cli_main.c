@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "ffio.h"
 #include "image.h"
 #include "obj.h"
 #include "objpoly.h"
@@ -26,12 +27,26 @@
 #endif
 
 #define MAX_VIEWS 4096
+#define MAX_GROUP_NAME 64
+#define GS_MAX_SWEEPS 1000
 
 typedef struct {
     int has_cam;
     sc_camera cam;
     const char *out;
 } view_t;
+
+/* A light group: emitting materials solved together, mixed with an intensity. */
+typedef struct {
+    char name[MAX_GROUP_NAME];
+    const char *mats;              /* "MAT1,MAT2,..." as given */
+    double k[3];                   /* --group-intensity (1,1,1) */
+} group_t;
+
+typedef struct {
+    sc_camera cam;
+    double (*k)[3];                /* intensity of every group in this frame */
+} frame_t;
 
 typedef struct {
     const char *scene;
@@ -41,7 +56,16 @@ typedef struct {
     double tol, exposure, max_patch, max_element;
     const char *ply, *csv, *views_file;
     char **emit; int nemit;
+    /* stored form factors and relighting */
+    const char *save_ff, *load_ff, *animate;
+    int gauss_seidel, each_group, ncams;
+    group_t *groups; int ngroups;  /* --light-group, then "other" once the scene is known */
+    int nuser_groups;
+    char **gint; int ngint;        /* --group-intensity as given */
+    frame_t *frames; int nframes;
 } opts_t;
+
+#define OTHER_GROUP "other"
 
 static void usage(FILE *f)
 {
@@ -68,6 +92,26 @@ static void usage(FILE *f)
         "  --tol F                 stop when the unshot fraction is below F (0.001)\n"
         "  --max-shots N           stop after N shots (1000000)\n"
         "  --emit NAME=R,G,B       set the emission of material NAME (repeatable)\n"
+        "stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
+        "no hemi-cube):\n"
+        "  --save-ff FILE          compute all rows, save them to FILE, solve from them\n"
+        "  --load-ff FILE          load rows saved for this scene and settings (same build,\n"
+        "                          --max-element, --max-patch, --res), solve from them\n"
+        "  --solver shoot|gauss-seidel\n"
+        "                          progressive refinement (default) or the full-matrix\n"
+        "                          Gauss-Seidel solve (needs rows: computed if not loaded;\n"
+        "                          --tol: stop when no patch changes by more than F of itself)\n"
+        "  --light-group NAME=MAT1,MAT2,...\n"
+        "                          a group of emitting materials (repeatable); emitters in no\n"
+        "                          group form the group 'other'; each group is solved once\n"
+        "                          from the rows and the image mixes them\n"
+        "  --group-intensity NAME=R,G,B\n"
+        "                          a group's intensity in the mix (1,1,1)\n"
+        "  --each-group            one image per group (group name before the extension:\n"
+        "                          out.png -> out.NAME.png), at the exposure of the whole mix\n"
+        "  --animate FILE          frames from one visibility computation: each line\n"
+        "                          'EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]' is a frame,\n"
+        "                          written as -o's name + _0000, _0001, ... (PNG or PPM)\n"
         "information:\n"
         "  --list-materials        print materials with Kd, Ke and area, then exit\n"
         "  --stats                 print counts, times and memory\n"
@@ -162,6 +206,67 @@ static void add_view(opts_t *o, const sc_camera *cam, const char *out)
     o->nviews++;
 }
 
+/* A group or material list name: letters, digits, '_' and '-' (it goes into file names). */
+static int good_group_name(const char *s, size_t len)
+{
+    size_t i;
+    if (len == 0 || len >= MAX_GROUP_NAME) return 0;
+    for (i = 0; i < len; i++)
+        if (!((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= 'A' && s[i] <= 'Z') || (s[i] >= '0' && s[i] <= '9') ||
+              s[i] == '_' || s[i] == '-'))
+            return 0;
+    return 1;
+}
+
+static group_t *find_group(opts_t *o, const char *name, size_t len)
+{
+    int g;
+    for (g = 0; g < o->ngroups; g++)
+        if (strlen(o->groups[g].name) == len && strncmp(o->groups[g].name, name, len) == 0) return &o->groups[g];
+    return NULL;
+}
+
+/* --light-group NAME=MAT1,MAT2,...: checked here, materials resolved with the scene. */
+static void add_group(opts_t *o, const char *val)
+{
+    const char *eq = strchr(val, '='), *p;
+    group_t *g;
+    size_t len;
+    if (!eq || !good_group_name(val, (size_t)(eq - val)))
+        die_usage("--light-group wants NAME=MAT1,MAT2,... with NAME of letters, digits, '_', '-' (up to 63)", val);
+    len = (size_t)(eq - val);
+    if (len == strlen(OTHER_GROUP) && strncmp(val, OTHER_GROUP, len) == 0)
+        die_usage("--light-group: 'other' is the group of the emitters in no group; choose another name", val);
+    if (find_group(o, val, len)) die_usage("--light-group: a group name given twice", val);
+    for (p = eq + 1;; p++) /* no empty material names: "a,,b", ",a", "a," */
+        if ((*p == ',' || *p == '\0') && (p == eq + 1 || p[-1] == ',')) die_usage("--light-group: an empty material name", val);
+        else if (*p == '\0') break;
+    g = &o->groups[o->ngroups++];
+    memcpy(g->name, val, len);
+    g->name[len] = '\0';
+    g->mats = eq + 1;
+    g->k[0] = g->k[1] = g->k[2] = 1.0;
+    o->nuser_groups = o->ngroups;
+}
+
+/* --group-intensity for the groups given; "other" waits for the scene. */
+static void resolve_intensities(opts_t *o)
+{
+    int i, j;
+    for (i = 0; i < o->ngint; i++) {
+        const char *eq = strrchr(o->gint[i], '=');
+        size_t len = (size_t)(eq - o->gint[i]);
+        group_t *g = find_group(o, o->gint[i], len);
+        for (j = 0; j < i; j++)
+            if (strncmp(o->gint[j], o->gint[i], len + 1) == 0) die_usage("--group-intensity: a group given twice", o->gint[i]);
+        if (!g && !(len == strlen(OTHER_GROUP) && strncmp(o->gint[i], OTHER_GROUP, len) == 0))
+            die_usage("--group-intensity: no --light-group of that name (or 'other')", o->gint[i]);
+        if (g) {
+            parse_list(eq + 1, g->k, 3, 0);
+        }
+    }
+}
+
 static void parse_args(int argc, char **argv, opts_t *o)
 {
     int i;
@@ -171,7 +276,9 @@ static void parse_args(int argc, char **argv, opts_t *o)
     o->tol = 0.001;
     o->max_shots = 1000000;
     o->emit = calloc((size_t)argc, sizeof *o->emit);
-    if (!o->emit) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
+    o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
+    o->gint = calloc((size_t)argc, sizeof *o->gint);
+    if (!o->emit || !o->groups || !o->gint) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *val = NULL;
@@ -180,7 +287,10 @@ static void parse_args(int argc, char **argv, opts_t *o)
                     strcmp(a, "--exposure") == 0 || strcmp(a, "--export-ply") == 0 ||
                     strcmp(a, "--dump-radiosity") == 0 || strcmp(a, "--res") == 0 ||
                     strcmp(a, "--max-patch") == 0 || strcmp(a, "--max-element") == 0 ||
-                    strcmp(a, "--tol") == 0 || strcmp(a, "--max-shots") == 0 || strcmp(a, "--emit") == 0;
+                    strcmp(a, "--tol") == 0 || strcmp(a, "--max-shots") == 0 || strcmp(a, "--emit") == 0 ||
+                    strcmp(a, "--save-ff") == 0 || strcmp(a, "--load-ff") == 0 || strcmp(a, "--solver") == 0 ||
+                    strcmp(a, "--light-group") == 0 || strcmp(a, "--group-intensity") == 0 ||
+                    strcmp(a, "--animate") == 0;
         if (needs) {
             if (i + 1 >= argc) die_usage("option needs a value", a);
             val = argv[++i];
@@ -196,6 +306,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
             if (k < 0 || !set_camera(&pending, v, k))
                 die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, FOV 8..170", val);
             o->pending_cam = 1;
+            o->ncams++;
         } else if (strcmp(a, "--views") == 0) o->views_file = val;
         else if (strcmp(a, "--width") == 0) o->width = (int)parse_int(a, val, 1, 2048);
         else if (strcmp(a, "--height") == 0) o->height = (int)parse_int(a, val, 1, 2048);
@@ -216,7 +327,23 @@ static void parse_args(int argc, char **argv, opts_t *o)
             if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || v[0] < 0 || v[1] < 0 || v[2] < 0)
                 die_usage("--emit wants NAME=R,G,B with R, G, B >= 0", val);
             o->emit[o->nemit++] = (char *)val;
-        } else if (strcmp(a, "--list-materials") == 0) o->list = 1;
+        } else if (strcmp(a, "--save-ff") == 0) o->save_ff = val;
+        else if (strcmp(a, "--load-ff") == 0) o->load_ff = val;
+        else if (strcmp(a, "--animate") == 0) o->animate = val;
+        else if (strcmp(a, "--solver") == 0) {
+            if (strcmp(val, "shoot") == 0) o->gauss_seidel = 0;
+            else if (strcmp(val, "gauss-seidel") == 0) o->gauss_seidel = 1;
+            else die_usage("--solver wants shoot or gauss-seidel", val);
+        } else if (strcmp(a, "--light-group") == 0) add_group(o, val);
+        else if (strcmp(a, "--group-intensity") == 0) {
+            const char *eq = strrchr(val, '=');
+            double v[3];
+            if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) ||
+                v[0] >= 32768 || v[1] >= 32768 || v[2] >= 32768)
+                die_usage("--group-intensity wants NAME=R,G,B with R, G, B in [0, 32768)", val);
+            o->gint[o->ngint++] = (char *)val;
+        } else if (strcmp(a, "--each-group") == 0) o->each_group = 1;
+        else if (strcmp(a, "--list-materials") == 0) o->list = 1;
         else if (strcmp(a, "--stats") == 0) o->stats = 1;
         else if (strcmp(a, "--quiet") == 0) o->quiet = 1;
         else if (strcmp(a, "--no-ambient") == 0) o->no_ambient = 1;
@@ -226,6 +353,14 @@ static void parse_args(int argc, char **argv, opts_t *o)
     }
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
+    if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
+    if (o->animate) {
+        if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
+        if (o->nviews > 1) die_usage("--animate writes frames from one -o name", NULL);
+        if (o->each_group) die_usage("--animate and --each-group exclude each other", NULL);
+    }
+    resolve_intensities(o);
 }
 
 /* ---- output checks, before the solve ------------------------------------------ */
@@ -451,7 +586,246 @@ static int progress(void *ctx, int shots, double unshot)
     return 0;
 }
 
+/* ---- light groups and animation ------------------------------------------------ */
+
+static int emits(const obj_material *m)
+{
+    return m->nfaces > 0 && (m->ke[0] > 0 || m->ke[1] > 0 || m->ke[2] > 0);
+}
+
+/* Material -> group (-1: none, or it emits nothing), after --emit. Adds the group
+ * "other" for emitting materials in no group, and applies its --group-intensity. */
+static int *resolve_groups(opts_t *o, const obj_scene *sc)
+{
+    int *of = malloc((size_t)(sc->nmaterials ? sc->nmaterials : 1) * sizeof *of), g, m, i, other = 0;
+    if (!of) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
+    for (m = 0; m < sc->nmaterials; m++) of[m] = -1;
+    for (g = 0; g < o->nuser_groups; g++) {
+        const char *p = o->groups[g].mats;
+        while (*p) {
+            const char *q = strchr(p, ',');
+            size_t len = q ? (size_t)(q - p) : strlen(p);
+            char name[512];
+            if (len >= sizeof name) len = sizeof name - 1;
+            memcpy(name, p, len);
+            name[len] = '\0';
+            m = obj_find_material(sc, name);
+            if (m < 0) {
+                fprintf(stderr, PROG ": %s: --light-group %s: no material named '%s' (--list-materials shows them)\n",
+                        o->scene, o->groups[g].name, name);
+                exit(1);
+            }
+            if (of[m] >= 0 && of[m] != g) {
+                fprintf(stderr, PROG ": %s: --light-group %s: material '%s' is already in group '%s'\n", o->scene,
+                        o->groups[g].name, name, o->groups[of[m]].name);
+                exit(1);
+            }
+            of[m] = g;
+            if (!emits(&sc->materials[m]) && !o->quiet)
+                fprintf(stderr, PROG ": warning: %s: --light-group %s: material '%s' emits no light (Ke 0 0 0; --emit sets it)\n",
+                        o->scene, o->groups[g].name, name);
+            p += len;
+            if (*p == ',') p++;
+        }
+    }
+    for (m = 0; m < sc->nmaterials; m++)
+        if (of[m] < 0 && emits(&sc->materials[m])) {
+            if (!other) {
+                group_t *og = &o->groups[o->ngroups];
+                memset(og, 0, sizeof *og);
+                strcpy(og->name, OTHER_GROUP);
+                og->mats = "";
+                og->k[0] = og->k[1] = og->k[2] = 1.0;
+                other = ++o->ngroups;
+            }
+            of[m] = other - 1;
+        }
+    for (i = 0; i < o->ngint; i++) {
+        const char *eq = strrchr(o->gint[i], '=');
+        if ((size_t)(eq - o->gint[i]) != strlen(OTHER_GROUP) || strncmp(o->gint[i], OTHER_GROUP, strlen(OTHER_GROUP)) != 0)
+            continue;
+        if (!other) {
+            fprintf(stderr, PROG ": %s: --group-intensity other: every emitting material is in a --light-group, "
+                            "so there is no group 'other'\n", o->scene);
+            exit(1);
+        }
+        parse_list(eq + 1, o->groups[other - 1].k, 3, 0);
+    }
+    /* Emitting materials outside the user's groups are all in "other": unused if none. */
+    for (m = 0; m < sc->nmaterials; m++)
+        if (!emits(&sc->materials[m])) of[m] = -1;
+    return of;
+}
+
+/* The frames of --animate: "EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]" a line. */
+static void read_frames(opts_t *o)
+{
+    FILE *f = fopen(o->animate, "r");
+    char line[8192];
+    int ln = 0, cap = 0;
+    if (!f) {
+        fprintf(stderr, PROG ": %s: cannot open: %s\n", o->animate, strerror(errno));
+        exit(1);
+    }
+    while (fgets(line, sizeof line, f)) {
+        char *tok, *save = NULL;
+        double v[7];
+        int nv = 0, g;
+        frame_t fr;
+        ln++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            fprintf(stderr, PROG ": %s:%d: line too long\n", o->animate, ln);
+            exit(1);
+        }
+        tok = strtok_r(line, " \t\r\n", &save);
+        if (!tok || tok[0] == '#') continue;
+        fr.k = malloc((size_t)(o->ngroups ? o->ngroups : 1) * sizeof *fr.k);
+        if (!fr.k) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
+        for (g = 0; g < o->ngroups; g++) memcpy(fr.k[g], o->groups[g].k, sizeof fr.k[g]);
+        for (; tok; tok = strtok_r(NULL, " \t\r\n", &save)) {
+            char *eq = strchr(tok, '=');
+            if (!eq && nv < 7) {
+                char *end;
+                v[nv] = strtod(tok, &end);
+                if (*end || end == tok || !isfinite(v[nv])) break;
+                nv++;
+            } else if (eq && nv >= 6) {
+                group_t *gp = find_group(o, tok, (size_t)(eq - tok));
+                double k[3];
+                if (!gp) {
+                    fprintf(stderr, PROG ": %s:%d: no light group named '%.*s' (", o->animate, ln, (int)(eq - tok), tok);
+                    for (g = 0; g < o->ngroups; g++) fprintf(stderr, "%s%s", g ? ", " : "", o->groups[g].name);
+                    fprintf(stderr, "%s)\n", o->ngroups ? "" : "the scene has no emitter");
+                    exit(1);
+                }
+                if (parse_list(eq + 1, k, 3, 0) != 3 || !(k[0] >= 0 && k[1] >= 0 && k[2] >= 0) || k[0] >= 32768 ||
+                    k[1] >= 32768 || k[2] >= 32768) {
+                    fprintf(stderr, PROG ": %s:%d: %s: intensity wants R,G,B in [0, 32768)\n", o->animate, ln, tok);
+                    exit(1);
+                }
+                memcpy(fr.k[gp - o->groups], k, sizeof k);
+            } else break;
+        }
+        if (tok || nv < 6 || !set_camera(&fr.cam, v, nv)) {
+            fprintf(stderr, PROG ": %s:%d: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, FOV 8..170\n",
+                    o->animate, ln);
+            exit(1);
+        }
+        if (o->nframes == cap) {
+            frame_t *nf = realloc(o->frames, (size_t)(cap = cap ? 2 * cap : 64) * sizeof *nf);
+            if (!nf) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
+            o->frames = nf;
+        }
+        o->frames[o->nframes++] = fr;
+    }
+    fclose(f);
+    if (o->nframes == 0) {
+        fprintf(stderr, PROG ": %s: no frames (one a line: EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...])\n", o->animate);
+        exit(1);
+    }
+}
+
+/* PATH with SEP + MID inserted before its extension: out.png -> out.MID.png. */
+static char *insert_name(const char *path, const char *sep, const char *mid)
+{
+    const char *ext = ext_of(path);
+    size_t base = (size_t)(ext - path);
+    char *out = malloc(strlen(path) + strlen(sep) + strlen(mid) + 1);
+    if (!out) { fprintf(stderr, PROG ": out of memory\n"); exit(1); }
+    memcpy(out, path, base);
+    strcpy(out + base, sep);
+    strcat(out, mid);
+    strcat(out, ext);
+    return out;
+}
+
+typedef struct {
+    const obj_scene *sc;
+    int material;
+} mat_match_t;
+
+static int match_material(void *ctx, int tag)
+{
+    const mat_match_t *m = ctx;
+    return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
+}
+
+/* ---- rows progress ------------------------------------------------------------- */
+
+static int rows_progress(void *ctx, int rows, int total)
+{
+    progress_t *p = ctx;
+    double t = now();
+    if (p->tty && (t - p->last >= 0.1 || rows == total)) {
+        int bar = total ? (int)(30.0 * rows / total) : 30;
+        fprintf(stderr, "\rform factors [%.*s%*s] rows %d/%d  %.1fs ", bar, "##############################", 30 - bar, "",
+                rows, total, t - p->start);
+        p->last = t;
+    }
+    return 0;
+}
+
+/* ---- rendering ----------------------------------------------------------------- */
+
+typedef struct {
+    float *img;
+    unsigned char *rgb8;
+    double exposure;           /* 0 until the first view fixes it */
+    double t_render, t_write;
+} out_t;
+
+/* Renders CAM (NULL: the default camera) and writes PATH (NULL: only render, to fix
+ * the exposure). One exposure for every output, from the first view, so views match. */
+static int render_view(SC(solver) *s, const opts_t *o, const obj_scene *sc, const sc_camera *cam, const char *path,
+                       int ambient, out_t *ot)
+{
+    sc_camera c;
+    char err[1024];
+    double t1 = now();
+    size_t npix = (size_t)o->width * o->height;
+    if (cam) c = *cam;
+    else default_camera(sc, o->width, o->height, &c);
+    if (SC(render)(s, &c, ambient, o->width, o->height, ot->img, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
+        return -1;
+    }
+    if (ot->exposure <= 0) ot->exposure = o->exposure > 0 ? o->exposure : tonemap_auto_exposure(ot->img, npix);
+    tonemap(ot->img, npix, ot->exposure, ot->rgb8);
+    ot->t_render += now() - t1;
+    t1 = now();
+    if (path && img_write(path, ot->rgb8, o->width, o->height, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return -1;
+    }
+    ot->t_write += now() - t1;
+    return 0;
+}
+
+/* Mixes the group solutions with intensities K (one RGB per group). */
+static void mix_groups(SC(solver) *s, SC(solution) *const *sol, const double (*k)[3], int n)
+{
+    char err[256];
+    if (SC(mix)(s, sol, k, n, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        exit(1);
+    }
+}
+
 /* ---- main ---------------------------------------------------------------------- */
+
+/* Solves from the rows with the chosen solver; returns shots or sweeps. */
+static int solve_rows(SC(solver) *s, const opts_t *o, progress_t *pg)
+{
+    char err[512];
+    int n;
+    if (!o->gauss_seidel) return SC(rows_solve)(s, o->max_shots, o->tol, pg->tty ? progress : NULL, pg);
+    n = SC(rows_gauss_seidel)(s, GS_MAX_SWEEPS, o->tol, err, sizeof err);
+    if (n < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
+        exit(1);
+    }
+    return n;
+}
 
 int main(int argc, char **argv)
 {
@@ -460,13 +834,16 @@ int main(int argc, char **argv)
     sc_poly *polys;
     sc_opts so;
     sc_stats st;
+    sc_rows_stats rst;
     SC(solver) *s;
+    SC(solution) **sol = NULL;
     progress_t pg;
+    out_t ot;
     char err[1024];
-    double t0 = now(), t_load, t_mesh, t_solve, t_render = 0, t_write = 0, exposure = 0;
-    int npolys, i, emitters = 0, rc = 0, ambient;
-    float *img;
-    unsigned char *rgb8;
+    double t0 = now(), t_load, t_mesh, t_rows = 0, t_solve;
+    double (*ks)[3] = NULL;
+    int npolys, i, g, emitters = 0, rc = 0, ambient, rows_mode, groups_mode, *group_of = NULL, work = 0;
+    unsigned long raster_before_solve = 0;
 
     parse_args(argc, argv, &o);
     if (o.views_file) read_views(&o);
@@ -475,8 +852,11 @@ int main(int argc, char **argv)
         for (i = 0; i < o.nviews; i++) check_output(o.views[i].out, 1);
         if (o.ply) check_output(o.ply, 0);
         if (o.csv) check_output(o.csv, 0);
+        if (o.save_ff) check_output(o.save_ff, 0);
     }
     ambient = !o.no_ambient;
+    rows_mode = o.save_ff || o.load_ff || o.gauss_seidel || o.nuser_groups || o.animate;
+    groups_mode = o.nuser_groups || o.animate;
 
     if (obj_load(o.scene, &sc, o.quiet ? NULL : obj_warning, &o, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
@@ -490,11 +870,12 @@ int main(int argc, char **argv)
         return 1;
     }
     for (i = 0; i < sc.nmaterials; i++)
-        if (sc.materials[i].nfaces && (sc.materials[i].ke[0] > 0 || sc.materials[i].ke[1] > 0 || sc.materials[i].ke[2] > 0))
-            emitters++;
+        if (emits(&sc.materials[i])) emitters++;
     if (!emitters && !o.quiet)
         fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; "
                         "set one with --emit NAME=R,G,B (--list-materials shows them)\n", o.scene);
+    if (groups_mode) group_of = resolve_groups(&o, &sc);
+    if (o.animate) read_frames(&o);
     polys = obj_to_polys(&sc, &npolys, o.quiet ? NULL : poly_warning, &o);
     if (!polys) { fprintf(stderr, PROG ": out of memory\n"); obj_free(&sc); return 1; }
     t_load = now();
@@ -516,50 +897,136 @@ int main(int argc, char **argv)
     pg.last -= 1.0;
     pg.tty = !o.quiet && isatty(2);
     pg.tol = o.tol;
-    SC(solve)(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
+    if (!rows_mode) {
+        SC(solve)(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
+    } else {
+        /* Visibility once: every patch's row, loaded or rendered (then saved). */
+        if (o.load_ff ? SC(rows_load)(s, o.load_ff, err, sizeof err) < 0
+                      : SC(rows_compute)(s, pg.tty ? rows_progress : NULL, &pg, err, sizeof err) < 0) {
+            if (pg.tty) fprintf(stderr, "\r%70s\r", "");
+            fprintf(stderr, PROG ": %s%s%s\n", o.load_ff ? "" : o.scene, o.load_ff ? "" : ": ", err);
+            SC(destroy)(s);
+            obj_free(&sc);
+            return 1;
+        }
+        if (pg.tty) fprintf(stderr, "\r%70s\r", "");
+        if (o.save_ff && SC(rows_save)(s, o.save_ff, err, sizeof err) < 0) {
+            fprintf(stderr, PROG ": %s\n", err);
+            SC(destroy)(s);
+            obj_free(&sc);
+            return 1;
+        }
+        SC(get_stats)(s, &st);
+        raster_before_solve = st.raster_calls;
+        t_rows = now() - t_mesh;
+        pg.start = pg.last = now();
+        pg.last -= 1.0;
+        if (!groups_mode) {
+            work = solve_rows(s, &o, &pg);
+        } else {
+            /* Each group alone (the other emitters dark), kept aside for mixing. */
+            sol = calloc((size_t)(o.ngroups ? o.ngroups : 1), sizeof *sol);
+            ks = calloc((size_t)(o.ngroups ? o.ngroups : 1), sizeof *ks);
+            if (!sol || !ks) { fprintf(stderr, PROG ": out of memory\n"); return 1; }
+            for (g = 0; g < o.ngroups; g++) {
+                int m;
+                for (m = 0; m < sc.nmaterials; m++) {
+                    static const double dark[3] = {0, 0, 0};
+                    mat_match_t mm;
+                    if (group_of[m] < 0) continue;
+                    mm.sc = &sc;
+                    mm.material = m;
+                    if (SC(set_surfaces)(s, match_material, &mm, NULL, group_of[m] == g ? sc.materials[m].ke : dark,
+                                         err, sizeof err) < 0) {
+                        fprintf(stderr, PROG ": %s: %s: %s\n", o.scene, sc.materials[m].name, err);
+                        return 1;
+                    }
+                }
+                work += solve_rows(s, &o, &pg);
+                sol[g] = SC(keep)(s, ambient);
+                if (!sol[g]) { fprintf(stderr, PROG ": out of memory\n"); return 1; }
+                memcpy(ks[g], o.groups[g].k, sizeof ks[g]);
+            }
+            mix_groups(s, sol, (const double(*)[3])ks, o.ngroups);
+        }
+    }
     if (pg.tty) fprintf(stderr, "\r%70s\r", "");
     t_solve = now();
     SC(get_stats)(s, &st);
 
-    img = malloc((size_t)o.width * o.height * 3 * sizeof *img);
-    rgb8 = malloc((size_t)o.width * o.height * 3);
-    if (!img || !rgb8) { fprintf(stderr, PROG ": out of memory\n"); rc = 1; }
-    for (i = 0; rc == 0 && i < o.nviews; i++) {
-        sc_camera cam;
-        double t1 = now();
-        if (o.views[i].has_cam) cam = o.views[i].cam;
-        else default_camera(&sc, o.width, o.height, &cam);
-        if (SC(render)(s, &cam, ambient, o.width, o.height, img, err, sizeof err) < 0) {
-            fprintf(stderr, PROG ": %s: %s\n", o.views[i].out, err);
-            rc = 1;
-            break;
+    memset(&ot, 0, sizeof ot);
+    ot.img = malloc((size_t)o.width * o.height * 3 * sizeof *ot.img);
+    ot.rgb8 = malloc((size_t)o.width * o.height * 3);
+    if (!ot.img || !ot.rgb8) { fprintf(stderr, PROG ": out of memory\n"); rc = 1; }
+    if (rc == 0 && o.animate) {
+        const char *pattern = o.views[0].out;
+        for (i = 0; rc == 0 && i < o.nframes; i++) {
+            char num[32];
+            char *path;
+            snprintf(num, sizeof num, "%04d", i);
+            path = insert_name(pattern, "_", num);
+            mix_groups(s, sol, (const double(*)[3])o.frames[i].k, o.ngroups);
+            rc = render_view(s, &o, &sc, &o.frames[i].cam, path, ambient, &ot) < 0;
+            free(path);
         }
-        /* One exposure for every output, from the first view, so views match. */
-        if (i == 0) exposure = o.exposure > 0 ? o.exposure : tonemap_auto_exposure(img, (size_t)o.width * o.height);
-        tonemap(img, (size_t)o.width * o.height, exposure, rgb8);
-        t_render += now() - t1;
-        t1 = now();
-        if (img_write(o.views[i].out, rgb8, o.width, o.height, err, sizeof err) < 0) {
-            fprintf(stderr, PROG ": %s\n", err);
-            rc = 1;
+        mix_groups(s, sol, (const double(*)[3])ks, o.ngroups); /* for --dump-radiosity, --export-ply */
+    } else if (rc == 0 && o.each_group) {
+        /* The exposure of the whole mix, so each group shows its share of the light. */
+        rc = render_view(s, &o, &sc, o.views[0].has_cam ? &o.views[0].cam : NULL, NULL, ambient, &ot) < 0;
+        for (g = 0; rc == 0 && g < o.ngroups; g++) {
+            mix_groups(s, &sol[g], (const double(*)[3])&ks[g], 1);
+            for (i = 0; rc == 0 && i < o.nviews; i++) {
+                char *path = insert_name(o.views[i].out, ".", o.groups[g].name);
+                rc = render_view(s, &o, &sc, o.views[i].has_cam ? &o.views[i].cam : NULL, path, ambient, &ot) < 0;
+                free(path);
+            }
         }
-        t_write += now() - t1;
+        mix_groups(s, sol, (const double(*)[3])ks, o.ngroups);
+    } else {
+        for (i = 0; rc == 0 && i < o.nviews; i++)
+            rc = render_view(s, &o, &sc, o.views[i].has_cam ? &o.views[i].cam : NULL, o.views[i].out, ambient, &ot) < 0;
     }
     if (rc == 0 && o.csv && write_csv(o.csv, s, &sc, ambient, &st) < 0) rc = 1;
-    if (rc == 0 && o.ply && write_ply(o.ply, s, ambient, exposure, &st) < 0) rc = 1;
+    if (rc == 0 && o.ply && write_ply(o.ply, s, ambient, ot.exposure, &st) < 0) rc = 1;
 
     if (o.stats) {
         printf("surfaces %d (split quads %d, skipped %d, reflectances clamped %d)\n", st.surfaces, st.split, st.skipped, st.clamped);
         printf("patches %d  elements %d  vertices %d\n", st.patches, st.elements, st.vertices);
-        printf("shots %d  unshot fraction %.6f  saturations %lu\n", st.shots, st.unshot, st.saturations);
+        if (!rows_mode) printf("shots %d  unshot fraction %.6f  saturations %lu\n", st.shots, st.unshot, st.saturations);
+        else if (o.gauss_seidel) printf("shots 0  gauss-seidel sweeps %d  saturations %lu\n", work, st.saturations);
+        else printf("shots %d  unshot fraction %.6f  saturations %lu\n", work, st.unshot, st.saturations);
         printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", so.res, st.raster_calls, st.raster_pixels);
+        if (rows_mode) {
+            SC(get_rows_stats)(s, &rst);
+            printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n", rst.rows,
+                   o.load_ff ? "loaded from " : "computed", o.load_ff ? o.load_ff : "", rst.entries, rst.bytes,
+                   rst.rows ? (double)rst.bytes / rst.rows : 0.0, o.save_ff ? "saved" : "not saved");
+            printf("solve from rows: %s, %lu hemi-cube polygons rendered during the solve\n",
+                   o.gauss_seidel ? "gauss-seidel" : "shoot", st.raster_calls - raster_before_solve);
+            if (groups_mode) {
+                printf("light groups %d:", o.ngroups);
+                for (g = 0; g < o.ngroups; g++)
+                    printf(" %s (%g,%g,%g)", o.groups[g].name, o.groups[g].k[0], o.groups[g].k[1], o.groups[g].k[2]);
+                printf("\n");
+            }
+            if (o.gauss_seidel && rst.matrix_bytes) printf("gauss-seidel matrix %zu bytes\n", rst.matrix_bytes);
+        }
         printf("unknown statements skipped %ld, warnings %ld\n", sc.unknown_statements, sc.nwarnings);
-        printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", t_load - t0,
-               t_mesh - t_load, t_solve - t_mesh, t_render, t_write);
+        if (rows_mode)
+            printf("time: load %.3fs  mesh %.3fs  rows %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", t_load - t0,
+                   t_mesh - t_load, t_rows, t_solve - t_mesh - t_rows, ot.t_render, ot.t_write);
+        else
+            printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", t_load - t0,
+                   t_mesh - t_load, t_solve - t_mesh, ot.t_render, ot.t_write);
         printf("memory: pools %zu bytes, work buffer %zu bytes\n", st.pool_bytes, st.work_bytes);
     }
-    free(img);
-    free(rgb8);
+    if (sol)
+        for (g = 0; g < o.ngroups; g++) SC(solution_free)(sol[g]);
+    free(sol);
+    free(ks);
+    free(group_of);
+    free(ot.img);
+    free(ot.rgb8);
     SC(destroy)(s);
     obj_free(&sc);
     return rc;

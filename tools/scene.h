@@ -45,6 +45,16 @@ typedef struct {
 
 typedef void (*sc_warn_fn)(void *ctx, int tag, const char *msg);
 typedef int (*sc_progress_fn)(void *ctx, int shots, double unshot); /* nonzero: stop */
+typedef int (*sc_rows_progress_fn)(void *ctx, int rows, int total); /* nonzero: stop */
+typedef int (*sc_tag_match_fn)(void *ctx, int tag);                 /* nonzero: this tag */
+
+typedef struct {
+    int rows;                       /* patches with a stored row (0: none) */
+    unsigned long entries;          /* non-zero form factors stored */
+    size_t bytes;                   /* memory of the rows in use: starts, ids, codes */
+    size_t matrix_bytes;            /* Gauss-Seidel matrix, once allocated */
+    unsigned long raster_calls;     /* hemi-cube polygons rendered to compute them */
+} sc_rows_stats;
 
 #define SC_DECLARE(P)                                                                   \
     typedef struct P##_solver P##_solver;                                               \
@@ -73,7 +83,48 @@ typedef int (*sc_progress_fn)(void *ctx, int shots, double unshot); /* nonzero: 
     /* The raw bits of every element's radiosity, hashed (FNV-1a 64). */                \
     uint64_t P##_checksum(P##_solver *s);                                               \
     /* The core's rad_scene_t (of this build) inside, for glue of the same build. */    \
-    void *P##_core(P##_solver *s);
+    void *P##_core(P##_solver *s);                                                      \
+                                                                                        \
+    /* ---- stored form factors (rad_rows_t): visibility once, then relighting ---- */  \
+    /* Renders every patch's hemi-cube once and keeps its row (malloc'd, grown until   \
+     * it fits). Progress may stop it (-1). Returns 0 or -1 with err. */               \
+    int P##_rows_compute(P##_solver *s, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen); \
+    /* Writes the rows to PATH (tools/ffio.h, atomic) / reads them from PATH, checking  \
+     * that the file was made by this build for this very mesh (fingerprint) at this   \
+     * resolution. No hemi-cube is rendered. 0 or -1 with "PATH: what" in err. */      \
+    int P##_rows_save(P##_solver *s, const char *path, char *err, size_t errlen);      \
+    int P##_rows_load(P##_solver *s, const char *path, char *err, size_t errlen);      \
+    /* Rows memory and counters (all zero without rows). */                           \
+    void P##_get_rows_stats(P##_solver *s, sc_rows_stats *st);                          \
+    /* Progressive refinement through the rows (no hemi-cube), as P##_solve. Returns   \
+     * the shots, or -1 without rows. */                                                \
+    int P##_rows_solve(P##_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx); \
+    /* The full-matrix Gauss-Seidel solve on the rows (rad_rows_gauss_seidel; matrix of \
+     * RAD_GS_ENTRIES(patches) malloc'd once and kept). Returns the sweeps, or -1 with  \
+     * err (no rows, more than 16384 patches, out of memory). */                        \
+    int P##_rows_gauss_seidel(P##_solver *s, int max_iter, double tol, char *err, size_t errlen); \
+    /* New reflectance RHO and/or emission EMIT (caller units; NULL keeps it) for every \
+     * surface whose polygon tag MATCH accepts, then P##_restart. Reflectance >= 1 is   \
+     * clamped as at create. Returns the surfaces changed, or -1 with err (negative or  \
+     * non-finite values). */                                                           \
+    int P##_set_surfaces(P##_solver *s, sc_tag_match_fn match, void *ctx, const double *rho, \
+                         const double *emit, char *err, size_t errlen);                 \
+    /* Resets the solution to the emission alone (the rows stay). As at create, the     \
+     * brightest emission now set goes to the core at 256, so a dim relit scene (one    \
+     * light group alone) keeps the core's precision; results map back to caller units. */ \
+    void P##_restart(P##_solver *s);                                                    \
+    /* A solution kept aside: every element's radiosity, with the ambient term baked in \
+     * if AMBIENT (radiosity is linear in emission, so is the ambient term). */         \
+    typedef struct P##_solution P##_solution;                                           \
+    P##_solution *P##_keep(P##_solver *s, int ambient);                                 \
+    void P##_solution_free(P##_solution *k);                                            \
+    /* Light groups: sets every element's radiosity to sum_g INTENSITY[g] * GROUPS[g]   \
+     * per channel (rad_mix's sum, in double over caller units, since every solution    \
+     * has its own scale). Until the next solve or restart, element_rgb, shade and      \
+     * render show this mix and ignore their ambient flag (the kept solutions carry     \
+     * their own); solving again starts from the emission. 0 or -1 with err. */         \
+    int P##_mix(P##_solver *s, P##_solution *const *groups, const double (*intensity)[3], int n, \
+                char *err, size_t errlen);
 
 SC_DECLARE(sc)
 SC_DECLARE(scf)

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ffio.h"
 #include "rad/rad.h"
 
 #if RAD_FLOAT
@@ -22,8 +23,17 @@ struct SC(solver) {
     rad_scene_t s;
     rad_pools_t pools;
     int *tags;                  /* per surface */
+    double *emit;               /* per surface: emission in caller units (3 each) */
     double scale, off[3], escale;
+    double escale0;             /* escale of the scene as built */
     int skipped, split, clamped;
+    /* stored form factors */
+    rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
+    int has_rows;
+    unsigned long rows_raster;  /* hemi-cube polygons rendered for the rows */
+    rad_ff_t *gs;               /* Gauss-Seidel matrix, RAD_GS_ENTRIES(patches) */
+    size_t gs_entries;
+    int mixed;                  /* elements hold a mix with the ambient term baked in */
 };
 
 typedef struct {
@@ -44,9 +54,10 @@ static void warnf(warner_t *w, int tag, const char *msg, int code)
 static void free_pools(struct SC(solver) *h)
 {
     free(h->pools.surfaces); free(h->pools.patches); free(h->pools.elements);
-    free(h->pools.vertices); free(h->pools.work); free(h->tags);
+    free(h->pools.vertices); free(h->pools.work); free(h->tags); free(h->emit);
     memset(&h->pools, 0, sizeof h->pools);
     h->tags = NULL;
+    h->emit = NULL;
 }
 
 static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const rad_config_t *cfg)
@@ -60,14 +71,15 @@ static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const ra
     p->max_vertices = (uint32_t)(3 * elements);
     nacc = p->max_vertices;
     pixels = cfg->band_rows ? (size_t)cfg->res * cfg->band_rows : RAD_PIXELS_ALL(cfg->res);
-    p->work_bytes = RAD_WORK_BYTES(cfg->res, pixels, nacc);
+    p->work_bytes = RAD_WORK_BYTES(cfg->res, pixels, nacc) + RAD_CACHE_BYTES(p->max_vertices);
     p->surfaces = calloc(p->max_surfaces, sizeof *p->surfaces);
     p->patches = calloc(p->max_patches, sizeof *p->patches);
     p->elements = calloc(p->max_elements, sizeof *p->elements);
     p->vertices = calloc(p->max_vertices, sizeof *p->vertices);
     p->work = malloc(p->work_bytes);
     h->tags = calloc(p->max_surfaces, sizeof *h->tags);
-    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags;
+    h->emit = calloc(3u * (size_t)p->max_surfaces, sizeof *h->emit);
+    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
 }
 
 static rad_real_t emit_ch(struct SC(solver) *h, double e)
@@ -100,7 +112,7 @@ static int add_poly(struct SC(solver) *h, const sc_poly *q, warner_t *w)
     rho.r = rho_ch(h, q->rho[0]); rho.g = rho_ch(h, q->rho[1]); rho.b = rho_ch(h, q->rho[2]);
     em.r = emit_ch(h, q->emit[0]); em.g = emit_ch(h, q->emit[1]); em.b = emit_ch(h, q->emit[2]);
     rc = rad_add_polygon(&h->s, v, (unsigned)q->n, &rho, &em);
-    if (rc >= 0) { h->tags[rc] = q->tag; return RAD_OK; }
+    if (rc >= 0) { h->tags[rc] = q->tag; memcpy(&h->emit[3 * rc], q->emit, sizeof q->emit); return RAD_OK; }
     if (q->n == 4 && (rc == RAD_ERR_NONPLANAR || rc == RAD_ERR_DEGENERATE)) {
         rad_vec3_t t[3];
         int k;
@@ -108,7 +120,7 @@ static int add_poly(struct SC(solver) *h, const sc_poly *q, warner_t *w)
         for (k = 0; k < 2; k++) {
             t[0] = v[0]; t[1] = v[1 + k]; t[2] = v[2 + k];
             rc = rad_add_polygon(&h->s, t, 3, &rho, &em);
-            if (rc >= 0) h->tags[rc] = q->tag;
+            if (rc >= 0) { h->tags[rc] = q->tag; memcpy(&h->emit[3 * rc], q->emit, sizeof q->emit); }
             else if (rc == RAD_ERR_DEGENERATE) { h->skipped++; warnf(w, q->tag, "skipped a degenerate triangle of a split quad", rc); }
             else return rc;
         }
@@ -160,7 +172,7 @@ static int frame_scene(struct SC(solver) *h, const sc_poly *polys, int n, char *
         return -1;
     }
     h->scale = CORE_HALF_EXTENT / half;
-    h->escale = emax > 0.0 ? CORE_EMIT_PEAK / emax : 1.0;
+    h->escale = h->escale0 = emax > 0.0 ? CORE_EMIT_PEAK / emax : 1.0;
     return 0;
 }
 
@@ -248,13 +260,20 @@ void SC(destroy)(SC(solver) *h)
 {
     if (!h) return;
     free_pools(h);
+    free(h->rows.start); free(h->rows.ids); free(h->rows.ffs); free(h->gs);
     free(h);
+}
+
+static void unmix(struct SC(solver) *h)
+{
+    if (h->mixed) SC(restart)(h); /* also puts the emissions back at their scale */
 }
 
 int SC(solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     int done = 0;
     rad_real_t t = RAD_REAL(tol);
+    unmix(h);
     while (done < max_shots) {
         int k = rad_shoot(&h->s, progress ? 1u : (uint32_t)(max_shots - done), t);
         if (k <= 0) break;
@@ -283,7 +302,8 @@ void SC(get_stats)(SC(solver) *h, sc_stats *st)
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
                      h->s.n_elements * sizeof *p->elements + h->s.n_vertices * sizeof *p->vertices;
     st->work_bytes = RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
-                                    h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
+                                    h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices) +
+                     (h->s.vcache ? RAD_CACHE_BYTES(h->s.n_vertices) : 0);
 }
 
 static void rgb_out(const struct SC(solver) *h, const rad_rgb_t *c, double *o)
@@ -296,7 +316,7 @@ static void rgb_out(const struct SC(solver) *h, const rad_rgb_t *c, double *o)
 void SC(element_rgb)(SC(solver) *h, int e, int ambient, double rgb[3])
 {
     rad_rgb_t c = {0, 0, 0};
-    rad_element_radiosity(&h->s, (uint32_t)e, ambient ? RAD_SHADE_AMBIENT : 0, &c);
+    rad_element_radiosity(&h->s, (uint32_t)e, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, &c);
     rgb_out(h, &c, rgb);
 }
 
@@ -337,10 +357,13 @@ int SC(element_tag)(SC(solver) *h, int e)
     return h->tags[h->pools.elements[e].surface];
 }
 
+/* A double that RAD_REAL converts without overflow (and not NaN). */
+static int fits_core(double x) { return x > -32767.0 && x < 32767.0; }
+
 static rad_rgb_t *shade_core(struct SC(solver) *h, int ambient)
 {
     rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v);
-    if (v) rad_shade_vertices(&h->s, ambient ? RAD_SHADE_AMBIENT : 0, v, h->s.n_vertices);
+    if (v) rad_shade_vertices(&h->s, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, v, h->s.n_vertices);
     return v;
 }
 
@@ -363,11 +386,19 @@ int SC(render)(SC(solver) *h, const sc_camera *cam, int ambient, int w, int hgt,
     int rc = -1;
     if (v && fb && z) {
         size_t i;
-        to_core(h, cam->eye, &c.eye);
-        to_core(h, cam->target, &c.target);
-        c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
-        c.tan_half_fov = RAD_REAL(tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0));
-        rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
+        double t = tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0);
+        int a, ok = fits_core(t) && fits_core(cam->up[0]) && fits_core(cam->up[1]) && fits_core(cam->up[2]);
+        /* Values past Q16.16 cannot even be converted: the core's refusal, without it. */
+        for (a = 0; a < 3; a++)
+            ok = ok && fits_core((cam->eye[a] - h->off[a]) * h->scale) && fits_core((cam->target[a] - h->off[a]) * h->scale);
+        rc = RAD_ERR_ARG;
+        if (ok) {
+            to_core(h, cam->eye, &c.eye);
+            to_core(h, cam->target, &c.target);
+            c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
+            c.tan_half_fov = RAD_REAL(t);
+            rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
+        }
         if (rc < 0) snprintf(err, errlen, "cannot render this view: %s (camera too far, degenerate, or image too large)", rad_strerror(rc));
         for (i = 0; rc >= 0 && i < (size_t)w * hgt; i++) {
             double o[3];
@@ -407,3 +438,344 @@ uint64_t SC(checksum)(SC(solver) *h)
 }
 
 void *SC(core)(SC(solver) *h) { return &h->s; }
+
+/* ---- stored form factors --------------------------------------------------------- */
+
+#if RAD_FLOAT
+#define FF_KIND FFIO_KIND_FLOAT
+#else
+#define FF_KIND FFIO_KIND_FIXED
+#endif
+
+static void rows_free(struct SC(solver) *h)
+{
+    free(h->rows.start); free(h->rows.ids); free(h->rows.ffs);
+    memset(&h->rows, 0, sizeof h->rows);
+    h->has_rows = 0;
+    h->rows_raster = 0;
+}
+
+/* Room for ENTRIES entries (contents kept). 0 or -1 (out of memory: nothing changed). */
+static int rows_reserve(struct SC(solver) *h, uint32_t entries)
+{
+    rad_index_t *ids = realloc(h->rows.ids, (entries ? entries : 1) * sizeof *ids);
+    uint16_t *ffs;
+    if (!ids) return -1;
+    h->rows.ids = ids;
+    ffs = realloc(h->rows.ffs, (entries ? entries : 1) * sizeof *ffs);
+    if (!ffs) return -1;
+    h->rows.ffs = ffs;
+    h->rows.max_entries = entries;
+    return 0;
+}
+
+static uint32_t bits32(rad_real_t r)
+{
+    uint32_t b;
+    memcpy(&b, &r, sizeof b); /* Q16.16 int32, or IEEE float: 4 bytes either way */
+    return b;
+}
+
+static uint32_t idx32(rad_index_t i) { return i == RAD_INDEX_NONE ? 0xFFFFFFFFu : (uint32_t)i; }
+
+/* The meshed geometry as the core holds it (see ffio.h). */
+static uint64_t fingerprint(const struct SC(solver) *h)
+{
+    const rad_scene_t *s = &h->s;
+    uint64_t x = FFIO_FNV_START;
+    uint32_t i, k;
+    typedef char real_is_4_bytes[sizeof(rad_real_t) == 4 ? 1 : -1];
+    (void)sizeof(real_is_4_bytes);
+    x = ffio_fnv_u32(x, s->n_surfaces);
+    x = ffio_fnv_u32(x, s->n_patches);
+    x = ffio_fnv_u32(x, s->n_elements);
+    x = ffio_fnv_u32(x, s->n_vertices);
+    for (i = 0; i < s->n_vertices; i++) {
+        const rad_vec3_t *v = &s->pools.vertices[i];
+        x = ffio_fnv_u32(x, bits32(v->x));
+        x = ffio_fnv_u32(x, bits32(v->y));
+        x = ffio_fnv_u32(x, bits32(v->z));
+    }
+    for (i = 0; i < s->n_elements; i++) {
+        const rad_element_t *e = &s->pools.elements[i];
+        for (k = 0; k < 4; k++) x = ffio_fnv_u32(x, idx32(e->v[k]));
+        x = ffio_fnv_u32(x, idx32(e->patch));
+        x = ffio_fnv_u32(x, idx32(e->surface));
+    }
+    for (i = 0; i < s->n_patches; i++) {
+        const rad_patch_t *p = &s->pools.patches[i];
+        x = ffio_fnv_u32(x, idx32(p->surface));
+        x = ffio_fnv_u32(x, idx32(p->first_element));
+        x = ffio_fnv_u32(x, idx32(p->n_elements));
+    }
+    return x;
+}
+
+static void ff_info(const struct SC(solver) *h, ffio_info *in)
+{
+    memset(in, 0, sizeof *in);
+    in->kind = FF_KIND;
+    in->res = h->s.cfg.res;
+    in->patches = h->s.n_patches;
+    in->elements = h->s.n_elements;
+    in->vertices = h->s.n_vertices;
+    in->entries = h->has_rows ? h->rows.start[h->s.n_patches] : 0;
+    in->fingerprint = fingerprint(h);
+}
+
+int SC(rows_compute)(SC(solver) *h, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen)
+{
+    rad_scene_t *s = &h->s;
+    uint32_t np = s->n_patches, ne = s->n_elements;
+    unsigned long calls0 = s->stats.raster_calls;
+    /* First guess: each patch sees a quarter of the elements (a closed room: about
+     * half); grown by doubling, rows already stored are kept. */
+    uint64_t cap = (uint64_t)np * (ne / 4u + 1u);
+    rows_free(h);
+    if (cap > 0xFFFFFFFFu) cap = 0xFFFFFFFFu;
+    h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
+    if (!h->rows.start || rows_reserve(h, (uint32_t)cap) < 0) {
+        snprintf(err, errlen, "out of memory for the form factor rows");
+        rows_free(h);
+        return -1;
+    }
+    h->rows.max_rows = np;
+    h->rows.n_rows = 0;
+    for (;;) {
+        int rc = rad_rows_compute(s, &h->rows, progress ? 1u : np);
+        if (rc == 0) break;
+        if (rc == RAD_ERR_FULL) {
+            uint64_t more = 2u * (uint64_t)h->rows.max_entries;
+            if (more < (uint64_t)h->rows.max_entries + ne) more = (uint64_t)h->rows.max_entries + ne;
+            if (h->rows.max_entries == 0xFFFFFFFFu) {
+                snprintf(err, errlen, "the form factor rows need more than 2^32 entries: raise the element size");
+                rows_free(h);
+                return -1;
+            }
+            if (more > 0xFFFFFFFFu) more = 0xFFFFFFFFu;
+            if (rows_reserve(h, (uint32_t)more) < 0) {
+                snprintf(err, errlen, "out of memory for %llu form factor entries", (unsigned long long)more);
+                rows_free(h);
+                return -1;
+            }
+            continue;
+        }
+        if (rc < 0) {
+            snprintf(err, errlen, "cannot compute the form factor rows: %s", rad_strerror(rc));
+            rows_free(h);
+            return -1;
+        }
+        if (progress && progress(ctx, (int)h->rows.n_rows, (int)np)) {
+            snprintf(err, errlen, "stopped");
+            rows_free(h);
+            return -1;
+        }
+    }
+    rows_reserve(h, h->rows.start[np]); /* shrink to fit (a failure keeps the larger) */
+    h->has_rows = 1;
+    h->rows_raster = s->stats.raster_calls - calls0;
+    return 0;
+}
+
+int SC(rows_save)(SC(solver) *h, const char *path, char *err, size_t errlen)
+{
+    ffio_info in;
+    if (!h->has_rows) { snprintf(err, errlen, "%s: no form factor rows to save", path); return -1; }
+    ff_info(h, &in);
+    return ffio_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs, err, errlen);
+}
+
+int SC(rows_load)(SC(solver) *h, const char *path, char *err, size_t errlen)
+{
+    ffio_file f;
+    ffio_info want;
+    uint32_t np = h->s.n_patches;
+    if (ffio_load(path, &f, err, errlen) < 0) return -1;
+    rows_free(h);
+    ff_info(h, &want);
+    if (ffio_match(&f, &want, path, err, errlen) < 0) { ffio_free(&f); return -1; }
+    h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
+    if (!h->rows.start || rows_reserve(h, f.info.entries) < 0) {
+        snprintf(err, errlen, "%s: out of memory for %u form factor entries", path, f.info.entries);
+        rows_free(h);
+        ffio_free(&f);
+        return -1;
+    }
+    ffio_rows(&f, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs);
+    ffio_free(&f);
+    h->rows.max_rows = np;
+    h->rows.n_rows = np;
+    h->has_rows = 1;
+    h->rows_raster = 0;
+    return 0;
+}
+
+void SC(get_rows_stats)(SC(solver) *h, sc_rows_stats *st)
+{
+    memset(st, 0, sizeof *st);
+    if (!h->has_rows) return;
+    st->rows = (int)h->rows.n_rows;
+    st->entries = h->rows.start[h->rows.n_rows];
+    st->bytes = ((size_t)h->rows.n_rows + 1u) * sizeof *h->rows.start +
+                (size_t)st->entries * (sizeof *h->rows.ids + sizeof *h->rows.ffs);
+    st->matrix_bytes = h->gs_entries * sizeof *h->gs;
+    st->raster_calls = h->rows_raster;
+}
+
+int SC(rows_solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
+{
+    int done = 0;
+    rad_real_t t = RAD_REAL(tol);
+    if (!h->has_rows) return -1;
+    unmix(h);
+    while (done < max_shots) {
+        int k = rad_rows_shoot(&h->s, &h->rows, progress ? 16u : (uint32_t)(max_shots - done), t);
+        if (k <= 0) break;
+        done += k;
+        if (progress && progress(ctx, done, RAD_TO_DOUBLE(rad_unshot_fraction(&h->s)))) break;
+    }
+    return done;
+}
+
+int SC(rows_gauss_seidel)(SC(solver) *h, int max_iter, double tol, char *err, size_t errlen)
+{
+    uint32_t np = h->s.n_patches;
+    size_t need = RAD_GS_ENTRIES(np);
+    int rc;
+    if (!h->has_rows) { snprintf(err, errlen, "Gauss-Seidel needs the form factor rows"); return -1; }
+    if (np > 16384u) {
+        snprintf(err, errlen, "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch size or shoot)", np);
+        return -1;
+    }
+    if (h->gs_entries < need) {
+        free(h->gs);
+        h->gs = malloc(need * sizeof *h->gs);
+        h->gs_entries = h->gs ? need : 0;
+        if (!h->gs) {
+            snprintf(err, errlen, "out of memory for the %u x %u Gauss-Seidel matrix", np, np);
+            return -1;
+        }
+    }
+    unmix(h); /* Gauss-Seidel starts from the emission */
+    rc = rad_rows_gauss_seidel(&h->s, &h->rows, h->gs, h->gs_entries, (uint32_t)(max_iter > 0 ? max_iter : 1),
+                               RAD_REAL(tol));
+    if (rc < 0) { snprintf(err, errlen, "Gauss-Seidel: %s", rad_strerror(rc)); return -1; }
+    return rc;
+}
+
+int SC(set_surfaces)(SC(solver) *h, sc_tag_match_fn match, void *ctx, const double *rho, const double *emit,
+                     char *err, size_t errlen)
+{
+    rad_rgb_t r;
+    uint32_t i;
+    int n = 0, k, rc;
+    for (k = 0; k < 3; k++)
+        if ((rho && !(rho[k] >= 0 && rho[k] <= 1e30)) || (emit && !(emit[k] >= 0 && emit[k] <= 1e30))) {
+            snprintf(err, errlen, "reflectance and emission must be finite and >= 0");
+            return -1;
+        }
+    if (rho) { r.r = rho_ch(h, rho[0]); r.g = rho_ch(h, rho[1]); r.b = rho_ch(h, rho[2]); }
+    for (i = 0; i < h->s.n_surfaces; i++) {
+        if (!match(ctx, h->tags[i])) continue;
+        if (rho && (rc = rad_set_surface(&h->s, i, &r, NULL)) < 0) {
+            snprintf(err, errlen, "surface %u: %s", i, rad_strerror(rc));
+            return -1;
+        }
+        if (emit) memcpy(&h->emit[3 * i], emit, 3 * sizeof *emit);
+        n++;
+    }
+    SC(restart)(h);
+    return n;
+}
+
+/* Emissions to the core at a scale that maps the brightest to CORE_EMIT_PEAK, as at
+ * create: a relit scene (or one light group alone) keeps the core's full precision
+ * however dim it is. Results map back through the same scale. */
+void SC(restart)(SC(solver) *h)
+{
+    double peak = 0;
+    uint32_t i;
+    for (i = 0; i < 3u * h->s.n_surfaces; i++)
+        if (h->emit[i] > peak) peak = h->emit[i];
+    if (peak > 0 && isfinite(CORE_EMIT_PEAK / peak)) h->escale = CORE_EMIT_PEAK / peak;
+    for (i = 0; i < h->s.n_surfaces; i++) {
+        rad_rgb_t e;
+        e.r = emit_ch(h, h->emit[3 * i]); e.g = emit_ch(h, h->emit[3 * i + 1]); e.b = emit_ch(h, h->emit[3 * i + 2]);
+        rad_set_surface(&h->s, i, NULL, &e); /* in range by construction */
+    }
+    rad_restart(&h->s);
+    h->mixed = 0;
+}
+
+struct SC(solution) {
+    uint32_t n;
+    double escale;              /* the scale its radiosities are in */
+    rad_rgb_t rgb[1];           /* n entries, core units */
+};
+
+SC(solution) *SC(keep)(SC(solver) *h, int ambient)
+{
+    uint32_t n = h->s.n_elements, e;
+    struct SC(solution) *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
+    if (!k) return NULL;
+    k->n = n;
+    k->escale = h->escale;
+    for (e = 0; e < n; e++)
+        rad_element_radiosity(&h->s, e, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, &k->rgb[e]);
+    return k;
+}
+
+void SC(solution_free)(SC(solution) *k) { free(k); }
+
+int SC(mix)(SC(solver) *h, SC(solution) *const *groups, const double (*intensity)[3], int n, char *err,
+            size_t errlen)
+{
+    uint32_t ne = h->s.n_elements, e;
+    double *out = malloc((ne ? ne : 1u) * 3u * sizeof *out), top = 0, scale;
+    int i, c;
+    if (!out) { snprintf(err, errlen, "out of memory"); return -1; }
+    for (i = 0; i < n; i++) {
+        for (c = 0; c < 3; c++)
+            if (!(intensity[i][c] >= 0 && intensity[i][c] <= 1e30)) {
+                snprintf(err, errlen, "intensity %g is not a finite number >= 0", intensity[i][c]);
+                free(out);
+                return -1;
+            }
+        if (!groups[i] || groups[i]->n != ne) {
+            snprintf(err, errlen, "a solution of another scene");
+            free(out);
+            return -1;
+        }
+    }
+    /* In double, in caller units: each solution has its own scale (its brightest
+     * emitter at the core's peak), and no intensity is rounded to Q16.16. */
+    for (e = 0; e < ne; e++) {
+        double v[3] = {0, 0, 0};
+        for (i = 0; i < n; i++) {
+            const rad_rgb_t *g = &groups[i]->rgb[e];
+            v[0] += intensity[i][0] * RAD_TO_DOUBLE(g->r) / groups[i]->escale;
+            v[1] += intensity[i][1] * RAD_TO_DOUBLE(g->g) / groups[i]->escale;
+            v[2] += intensity[i][2] * RAD_TO_DOUBLE(g->b) / groups[i]->escale;
+        }
+        for (c = 0; c < 3; c++) {
+            out[3 * e + c] = v[c];
+            if (v[c] > top) top = v[c];
+        }
+    }
+    /* Back into the core (it shades and renders) at the scale the scene was built with,
+     * or lower if the mix is brighter than the core's radiosity range takes. */
+    scale = h->escale0;
+    if (top * scale > 16384.0) scale = 16384.0 / top;
+    h->escale = scale;
+    for (e = 0; e < ne; e++) {
+        rad_rgb_t *b = &h->pools.elements[e].radiosity;
+        b->r = RAD_REAL(out[3 * e] * scale);
+        b->g = RAD_REAL(out[3 * e + 1] * scale);
+        b->b = RAD_REAL(out[3 * e + 2] * scale);
+    }
+    /* rad_element_t.radiosity is the caller's pools' memory, which the glue owns; the
+     * core's emissions still stand at the last solve's scale: solving again restarts. */
+    h->mixed = 1;
+    free(out);
+    return 0;
+}

@@ -1,0 +1,360 @@
+/* ffio — stored form factors on disk (see ffio.h for the format). */
+#include "ffio.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#define HEADER_BYTES 40u
+#define TRAILER_BYTES 8u
+static const unsigned char MAGIC[6] = {'R', 'A', 'D', 'F', 'F', '\0'};
+
+uint64_t ffio_fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        h ^= b[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+uint64_t ffio_fnv_u32(uint64_t h, uint32_t v)
+{
+    unsigned char b[4];
+    b[0] = (unsigned char)v; b[1] = (unsigned char)(v >> 8);
+    b[2] = (unsigned char)(v >> 16); b[3] = (unsigned char)(v >> 24);
+    return ffio_fnv(h, b, 4);
+}
+
+const char *ffio_kind_name(unsigned kind)
+{
+    return kind == FFIO_KIND_FIXED ? "fixed" : kind == FFIO_KIND_FLOAT ? "float" : "unknown";
+}
+
+static void set_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    if (!err || !errlen) return;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    snprintf(err, errlen, "%s: %s", path, msg);
+}
+
+/* ---- little-endian fields ------------------------------------------------------ */
+
+static void put16(unsigned char *p, uint32_t v) { p[0] = (unsigned char)v; p[1] = (unsigned char)(v >> 8); }
+static void put32(unsigned char *p, uint32_t v) { put16(p, v); put16(p + 2, v >> 16); }
+static void put64(unsigned char *p, uint64_t v) { put32(p, (uint32_t)v); put32(p + 4, (uint32_t)(v >> 32)); }
+static uint32_t get16(const unsigned char *p) { return (uint32_t)p[0] | (uint32_t)p[1] << 8; }
+static uint32_t get32(const unsigned char *p) { return get16(p) | get16(p + 2) << 16; }
+static uint64_t get64(const unsigned char *p) { return (uint64_t)get32(p) | (uint64_t)get32(p + 4) << 32; }
+
+/* File size for P patches and M entries (fits 64 bits for any 32-bit counts). */
+static uint64_t file_bytes(uint32_t patches, uint32_t entries)
+{
+    return (uint64_t)HEADER_BYTES + 4u * ((uint64_t)patches + 1u) + 6u * (uint64_t)entries + TRAILER_BYTES;
+}
+
+static uint32_t id_at(const void *ids, unsigned id_bytes, uint32_t i)
+{
+    return id_bytes == 2 ? ((const uint16_t *)ids)[i] : ((const uint32_t *)ids)[i];
+}
+
+/* ---- writing ------------------------------------------------------------------- */
+
+/* A buffered writer that hashes what it writes. */
+typedef struct {
+    FILE *fp;
+    uint64_t hash;
+    unsigned char buf[65536];
+    size_t n;
+    int failed;
+} writer_t;
+
+static void w_flush(writer_t *w)
+{
+    if (w->n && !w->failed && fwrite(w->buf, 1, w->n, w->fp) != w->n) w->failed = 1;
+    w->n = 0;
+}
+
+static void w_bytes(writer_t *w, const unsigned char *p, size_t n)
+{
+    w->hash = ffio_fnv(w->hash, p, n);
+    while (n) {
+        size_t k = sizeof w->buf - w->n < n ? sizeof w->buf - w->n : n;
+        memcpy(w->buf + w->n, p, k);
+        w->n += k; p += k; n -= k;
+        if (w->n == sizeof w->buf) w_flush(w);
+    }
+}
+
+static void w_u32(writer_t *w, uint32_t v) { unsigned char b[4]; put32(b, v); w_bytes(w, b, 4); }
+static void w_u16(writer_t *w, uint32_t v) { unsigned char b[2]; put16(b, v); w_bytes(w, b, 2); }
+
+/* Mode for the new file: that of the file it replaces, else 0666 & ~umask. */
+static mode_t target_mode(const char *path)
+{
+    struct stat st;
+    mode_t um;
+    if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 0777;
+    um = umask(022);
+    umask(um);
+    return 0666 & ~um;
+}
+
+int ffio_save(const char *path, const ffio_info *info, const uint32_t *start, const void *ids,
+              unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen)
+{
+    static writer_t w; /* 64 KB: not on the stack */
+    unsigned char head[HEADER_BYTES], tail[TRAILER_BYTES];
+    char *tmp;
+    int fd, ok;
+    uint32_t i;
+    if (!info || !start || (info->entries && (!ids || !codes)) || (id_bytes != 2 && id_bytes != 4) ||
+        info->res > 0xFFFFu || info->kind > 0xFFFFu || start[info->patches] != info->entries) {
+        set_err(err, errlen, path, "invalid rows to save");
+        return -1;
+    }
+    tmp = malloc(strlen(path) + 12);
+    if (!tmp) { set_err(err, errlen, path, "out of memory"); return -1; }
+    strcpy(tmp, path);
+    strcat(tmp, ".tmpXXXXXX");
+    if ((fd = mkstemp(tmp)) < 0) {
+        set_err(err, errlen, path, "cannot create a temporary file: %s", strerror(errno));
+        free(tmp);
+        return -1;
+    }
+    memset(&w, 0, sizeof w);
+    w.fp = fdopen(fd, "wb");
+    if (!w.fp) {
+        set_err(err, errlen, path, "cannot write: %s", strerror(errno));
+        close(fd); unlink(tmp); free(tmp);
+        return -1;
+    }
+    w.hash = FFIO_FNV_START;
+    memset(head, 0, sizeof head);
+    memcpy(head, MAGIC, sizeof MAGIC);
+    put16(head + 6, FFIO_VERSION);
+    put16(head + 8, info->kind);
+    put16(head + 10, info->res);
+    put32(head + 12, info->patches);
+    put32(head + 16, info->elements);
+    put32(head + 20, info->vertices);
+    put32(head + 24, info->entries);
+    put64(head + 32, info->fingerprint);
+    w_bytes(&w, head, sizeof head);
+    for (i = 0; i <= info->patches; i++) w_u32(&w, start[i]);
+    for (i = 0; i < info->entries; i++) w_u32(&w, id_at(ids, id_bytes, i));
+    for (i = 0; i < info->entries; i++) w_u16(&w, codes[i]);
+    put64(tail, w.hash);
+    w_bytes(&w, tail, sizeof tail);
+    w_flush(&w);
+    /* The data must be on disk before the rename makes it visible under PATH. */
+    ok = !w.failed && fflush(w.fp) == 0 && fsync(fileno(w.fp)) == 0 && fchmod(fileno(w.fp), target_mode(path)) == 0;
+    if (!ok) set_err(err, errlen, path, "write error: %s", strerror(errno ? errno : EIO));
+    if (fclose(w.fp) != 0 && ok) { set_err(err, errlen, path, "write error: %s", strerror(errno)); ok = 0; }
+    if (ok && rename(tmp, path) != 0) {
+        set_err(err, errlen, path, "cannot rename the temporary file into place: %s", strerror(errno));
+        ok = 0;
+    }
+    if (!ok) unlink(tmp);
+    free(tmp);
+    return ok ? 0 : -1;
+}
+
+/* ---- reading ------------------------------------------------------------------- */
+
+static unsigned char *slurp(const char *path, size_t *size, char *err, size_t errlen)
+{
+    FILE *fp = fopen(path, "rb");
+    struct stat st;
+    unsigned char *buf;
+    size_t got;
+    if (!fp) { set_err(err, errlen, path, "cannot open: %s", strerror(errno)); return NULL; }
+    if (fstat(fileno(fp), &st) != 0 || !S_ISREG(st.st_mode)) {
+        set_err(err, errlen, path, "not a regular file");
+        fclose(fp);
+        return NULL;
+    }
+    if ((uint64_t)st.st_size > (uint64_t)SIZE_MAX - 1u || (uint64_t)st.st_size > file_bytes(0xFFFFFFFFu, 0xFFFFFFFFu)) {
+        set_err(err, errlen, path, "too large (%lld bytes) to be a form factor file", (long long)st.st_size);
+        fclose(fp);
+        return NULL;
+    }
+    buf = malloc((size_t)st.st_size + 1u);
+    if (!buf) {
+        set_err(err, errlen, path, "out of memory for %lld bytes", (long long)st.st_size);
+        fclose(fp);
+        return NULL;
+    }
+    got = fread(buf, 1, (size_t)st.st_size, fp);
+    if (got != (size_t)st.st_size || ferror(fp)) {
+        set_err(err, errlen, path, "read error: %s", ferror(fp) ? strerror(errno) : "the file changed while read");
+        free(buf);
+        fclose(fp);
+        return NULL;
+    }
+    fclose(fp);
+    *size = got;
+    return buf;
+}
+
+/* A code stands for a form factor in (0, 2^30] with a normalized mantissa. */
+static int code_ok(uint32_t c)
+{
+    uint32_t e = c >> 11, m = c & 2047u;
+    if (m == 0 || (e > 0 && m < 1024u)) return 0;
+    return ((uint64_t)m << e) <= (1ull << 30);
+}
+
+int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen)
+{
+    unsigned char *d;
+    size_t size;
+    uint64_t want;
+    ffio_info *in;
+    const unsigned char *st, *id, *cd;
+    uint32_t p, i, version;
+    memset(f, 0, sizeof *f);
+    if (!(d = slurp(path, &size, err, errlen))) return -1;
+    if (memcmp(d, MAGIC, size < sizeof MAGIC ? size : sizeof MAGIC) != 0) {
+        set_err(err, errlen, path, "not a rad form factor file (bad magic: it should start with \"RADFF\")");
+        goto fail;
+    }
+    if (size < 8) {
+        set_err(err, errlen, path, "truncated: %zu bytes, shorter than the %u-byte header", size, HEADER_BYTES);
+        goto fail;
+    }
+    version = get16(d + 6);
+    if (version != FFIO_VERSION) {
+        set_err(err, errlen, path, "unsupported format version %u (this program reads version %u)", version, FFIO_VERSION);
+        goto fail;
+    }
+    if (size < HEADER_BYTES) {
+        set_err(err, errlen, path, "truncated: %zu bytes, shorter than the %u-byte header", size, HEADER_BYTES);
+        goto fail;
+    }
+    in = &f->info;
+    in->kind = get16(d + 8);
+    in->res = get16(d + 10);
+    in->patches = get32(d + 12);
+    in->elements = get32(d + 16);
+    in->vertices = get32(d + 20);
+    in->entries = get32(d + 24);
+    in->fingerprint = get64(d + 32);
+    want = file_bytes(in->patches, in->entries);
+    /* A bad checksum is reported as truncation when the size explains it. */
+    if ((uint64_t)size < want) {
+        set_err(err, errlen, path, "truncated: %zu bytes, its header (%u rows, %u entries) needs %llu",
+                size, in->patches, in->entries, (unsigned long long)want);
+        goto fail;
+    }
+    if (get64(d + size - TRAILER_BYTES) != ffio_fnv(FFIO_FNV_START, d, size - TRAILER_BYTES)) {
+        set_err(err, errlen, path, "checksum mismatch: the file is corrupt%s",
+                (uint64_t)size > want ? " (or has bytes past its end)" : "");
+        goto fail;
+    }
+    if ((uint64_t)size != want) {
+        set_err(err, errlen, path, "corrupt: %zu bytes, its header says %llu", size, (unsigned long long)want);
+        goto fail;
+    }
+    if (get32(d + 28) != 0 || (in->kind != FFIO_KIND_FIXED && in->kind != FFIO_KIND_FLOAT)) {
+        set_err(err, errlen, path, "corrupt header (build kind %u)", in->kind);
+        goto fail;
+    }
+    /* The structure, so that nothing in a file with a valid checksum can index out of
+     * range or stand for a form factor no hemi-cube gives. */
+    st = d + HEADER_BYTES;
+    id = st + 4u * ((size_t)in->patches + 1u);
+    cd = id + 4u * (size_t)in->entries;
+    if (get32(st) != 0 || get32(st + 4u * (size_t)in->patches) != in->entries) {
+        set_err(err, errlen, path, "corrupt row table (the rows do not cover the %u entries)", in->entries);
+        goto fail;
+    }
+    for (p = 0; p < in->patches; p++) {
+        uint32_t a = get32(st + 4u * (size_t)p), b = get32(st + 4u * ((size_t)p + 1u));
+        if (b < a || b > in->entries) {
+            set_err(err, errlen, path, "corrupt row table at row %u", p);
+            goto fail;
+        }
+        for (i = a; i < b; i++) {
+            uint32_t e = get32(id + 4u * (size_t)i);
+            if (e >= in->elements || (i > a && e <= get32(id + 4u * ((size_t)i - 1u)))) {
+                set_err(err, errlen, path, "corrupt entry %u of row %u (element %u of %u)", i - a, p, e, in->elements);
+                goto fail;
+            }
+            if (!code_ok(get16(cd + 2u * (size_t)i))) {
+                set_err(err, errlen, path, "corrupt form factor code 0x%04x in row %u", get16(cd + 2u * (size_t)i), p);
+                goto fail;
+            }
+        }
+    }
+    f->data = d;
+    f->size = size;
+    return 0;
+fail:
+    free(d);
+    memset(f, 0, sizeof *f);
+    return -1;
+}
+
+int ffio_match(const ffio_file *f, const ffio_info *want, const char *path, char *err, size_t errlen)
+{
+    const ffio_info *in = &f->info;
+    if (in->kind != want->kind) {
+        set_err(err, errlen, path, "made by the %s build, this is the %s build (stored form factors do not cross builds)",
+                ffio_kind_name(in->kind), ffio_kind_name(want->kind));
+        return -1;
+    }
+    if (in->patches != want->patches || in->elements != want->elements || in->vertices != want->vertices) {
+        set_err(err, errlen, path,
+                "scene mismatch: made for %u patches, %u elements, %u vertices; this scene has %u, %u, %u "
+                "(another scene, or other --max-element / --max-patch)",
+                in->patches, in->elements, in->vertices, want->patches, want->elements, want->vertices);
+        return -1;
+    }
+    if (in->fingerprint != want->fingerprint) {
+        set_err(err, errlen, path,
+                "scene mismatch: the geometry fingerprint differs (%016llx, this scene %016llx): another scene "
+                "or mesh with the same counts",
+                (unsigned long long)in->fingerprint, (unsigned long long)want->fingerprint);
+        return -1;
+    }
+    if (in->res != want->res) {
+        set_err(err, errlen, path, "computed at hemi-cube resolution %u, this run uses %u (--res)", in->res, want->res);
+        return -1;
+    }
+    return 0;
+}
+
+void ffio_rows(const ffio_file *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes)
+{
+    const ffio_info *in = &f->info;
+    const unsigned char *st = f->data + HEADER_BYTES;
+    const unsigned char *id = st + 4u * ((size_t)in->patches + 1u);
+    const unsigned char *cd = id + 4u * (size_t)in->entries;
+    uint32_t i;
+    for (i = 0; i <= in->patches; i++) start[i] = get32(st + 4u * (size_t)i);
+    for (i = 0; i < in->entries; i++) {
+        uint32_t e = get32(id + 4u * (size_t)i);
+        if (id_bytes == 2) ((uint16_t *)ids)[i] = (uint16_t)e;
+        else ((uint32_t *)ids)[i] = e;
+        codes[i] = (uint16_t)get16(cd + 2u * (size_t)i);
+    }
+}
+
+void ffio_free(ffio_file *f)
+{
+    if (!f) return;
+    free(f->data);
+    memset(f, 0, sizeof *f);
+}
