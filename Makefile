@@ -39,7 +39,7 @@ LIBRADF    := $(BUILDDIR)/librad_float.a
 LIBTOOLS   := $(BUILDDIR)/libradtools.a
 TESTS      := $(TEST_SRCS:tests/%.c=$(BUILDDIR)/tests/%)
 
-.PHONY: all test check ports port-test port-bench port-size bench install clean nm-check deps example readme-image
+.PHONY: all test check ports port-test port-bench port-size bench install clean nm-check example readme-image
 all: $(LIBRAD) $(LIBRADF) $(BUILDDIR)/rad_cli $(BUILDDIR)/rad_cli_float
 
 $(BUILDDIR)/lib/fixed/%.o: lib/%.c $(LIB_HDRS)
@@ -90,15 +90,8 @@ test: all $(TESTS) nm-check
 clean:
 	rm -rf $(BUILDDIR)
 
-# Debian packages for building, testing and the ports (sudo unless already root).
-DEPS := gcc make pkg-config libpng-dev libcmocka-dev
-SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-deps:
-	$(SUDO) apt-get update -qq
-	DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $(DEPS)
-
 # The main job on the bundled example.
-example: $(BUILDDIR)/rad_cli
+example: all
 	$(BUILDDIR)/rad_cli examples/cornell_box.obj -o cornell_box.png --stats
 
 # The README's picture, regenerated (never edited by hand).
