@@ -26,6 +26,7 @@ struct SC(solver) {
     double *emit;               /* per surface: emission in caller units (3 each) */
     double scale, off[3], escale;
     double escale0;             /* escale of the scene as built */
+    double epeak;               /* the brightest emission escale maps to the core's peak */
     int skipped, split, clamped;
     /* stored form factors */
     rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
@@ -65,10 +66,11 @@ static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const ra
     uint32_t nacc;
     rad_pools_t *p = &h->pools;
     size_t pixels;
-    p->max_surfaces = (uint32_t)(2 * npolys + 1);
+    const long lim = (long)RAD_INDEX_NONE - 1; /* what the index type can count */
+    p->max_surfaces = (uint32_t)(2L * npolys + 1 < lim ? 2L * npolys + 1 : lim);
     p->max_elements = (uint32_t)elements;
     p->max_patches = (uint32_t)elements;
-    p->max_vertices = (uint32_t)(3 * elements);
+    p->max_vertices = (uint32_t)(3 * elements < lim ? 3 * elements : lim);
     nacc = p->max_vertices;
     pixels = cfg->band_rows ? (size_t)cfg->res * cfg->band_rows : RAD_PIXELS_ALL(cfg->res);
     p->work_bytes = RAD_WORK_BYTES(cfg->res, pixels, nacc) + RAD_CACHE_BYTES(p->max_vertices);
@@ -84,7 +86,9 @@ static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const ra
 
 static rad_real_t emit_ch(struct SC(solver) *h, double e)
 {
-    double v = e * h->escale;
+    /* Emissions so small that 256 / peak overflows still scale by their ratio to the
+     * peak (results in caller units then underflow to 0). */
+    double v = isfinite(h->escale) ? e * h->escale : e / h->epeak * CORE_EMIT_PEAK;
     return RAD_REAL(v > 4096.0 ? 4096.0 : v);
 }
 
@@ -172,6 +176,11 @@ static int frame_scene(struct SC(solver) *h, const sc_poly *polys, int n, char *
         return -1;
     }
     h->scale = CORE_HALF_EXTENT / half;
+    if (!isfinite(h->scale)) { /* a denormal extent */
+        snprintf(err, errlen, "the scene has no extent");
+        return -1;
+    }
+    h->epeak = emax;
     h->escale = h->escale0 = emax > 0.0 ? CORE_EMIT_PEAK / emax : 1.0;
     return 0;
 }
@@ -226,6 +235,7 @@ SC(solver) *SC(create)(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn
         cap = estimate_elements(h, polys, n, me);
     }
     limit = o->max_elements > 0 ? o->max_elements : 4000000L;
+    if (limit > (long)RAD_INDEX_NONE - 1) limit = (long)RAD_INDEX_NONE - 1; /* 65534 with 16-bit indices */
     w.warn = warn; w.ctx = ctx; w.emitted = 0;
     for (;;) {
         int i, rc = RAD_OK;
@@ -697,7 +707,10 @@ void SC(restart)(SC(solver) *h)
     uint32_t i;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
-    if (peak > 0 && isfinite(CORE_EMIT_PEAK / peak)) h->escale = CORE_EMIT_PEAK / peak;
+    if (peak > 0) {
+        h->epeak = peak;
+        h->escale = CORE_EMIT_PEAK / peak;
+    }
     for (i = 0; i < h->s.n_surfaces; i++) {
         rad_rgb_t e;
         e.r = emit_ch(h, h->emit[3 * i]); e.g = emit_ch(h, h->emit[3 * i + 1]); e.b = emit_ch(h, h->emit[3 * i + 2]);
@@ -765,7 +778,7 @@ int SC(mix)(SC(solver) *h, SC(solution) *const *groups, const double (*intensity
     /* Back into the core (it shades and renders) at the scale the scene was built with,
      * or lower if the mix is brighter than the core's radiosity range takes. */
     scale = h->escale0;
-    if (top * scale > 16384.0) scale = 16384.0 / top;
+    if (!isfinite(scale) || top * scale > 16384.0) scale = top > 0 ? 16384.0 / top : 1.0;
     h->escale = scale;
     for (e = 0; e < ne; e++) {
         rad_rgb_t *b = &h->pools.elements[e].radiosity;
