@@ -105,3 +105,4 @@ install: all
 	install -m 644 include/rad/*.h $(DESTDIR)$(PREFIX)/include/rad
 	install -m 755 $(BUILDDIR)/rad_cli $(BUILDDIR)/rad_cli_float $(DESTDIR)$(PREFIX)/bin
 include ports/ports.mk
+include tests/check.mk

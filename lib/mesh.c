@@ -36,11 +36,12 @@ int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
     if (cfg) z.cfg = *cfg;
     if (z.cfg.res == 0) z.cfg.res = 64;
     if (z.cfg.max_element == 0) z.cfg.max_element = RAD__Q(4.0);
-    if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
     if (z.cfg.res < 8 || z.cfg.res > RAD_MAX_RES || (z.cfg.res & 1u)) return RAD_ERR_ARG;
-    if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT)) ||
-        !in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT)))
-        return RAD_ERR_ARG;
+    /* Checked before the default patch size is derived from it: 4 * max_element of an
+     * out-of-range value would overflow. */
+    if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
+    if (!in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
     {
         int rc = rad__hemicube_init(&z);
         if (rc < 0) return rc;

@@ -3,9 +3,10 @@
 #
 #     include tests/check.mk
 #
-# Debian packages on top of `make deps`: clang libclang-rt-dev (libFuzzer and the
-# sanitizer runtimes: not pulled in by clang with --no-install-recommends), valgrind,
-# cppcheck, clang-tidy.
+# Debian packages on top of `make deps`: clang libclang-rt-dev (libFuzzer and clang's
+# sanitizer runtimes: a Recommends of clang, so --no-install-recommends leaves them
+# out), valgrind, cppcheck, clang-tidy; llvm (llvm-symbolizer) for readable stack
+# traces is optional.
 #
 # Every stage builds in its own directory under $(CHECKDIR) through a recursive make of
 # this Makefile, so the same suite runs everywhere; each logs to $(CHECKDIR)/<stage>.log
@@ -29,6 +30,13 @@
 # stage's build directory. The CLI tests then exercise that stage's (instrumented)
 # rad_cli rather than the plain build's.
 
+# How to call this file again: through the top Makefile when it includes it, else (as
+# in `make -f Makefile -f tests/check.mk check`) with both files.
+CHECK_SELF   := $(lastword $(MAKEFILE_LIST))
+CHECK_TOP    := $(firstword $(MAKEFILE_LIST))
+CHECK_MAKE    = $(MAKE) --no-print-directory -f $(CHECK_TOP) \
+                $(if $(shell grep -s -q '^ *-\{0,1\}include  *$(CHECK_SELF)' $(CHECK_TOP) && echo y),,-f $(CHECK_SELF))
+
 CHECKDIR     := $(BUILDDIR)/check
 CHECK_STATUS := $(CHECKDIR)/status
 CHECK_JOBS   ?= 2
@@ -47,18 +55,19 @@ CHECK_ASAN_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-saniti
                     -fno-omit-frame-pointer
 CHECK_ASAN_ENV   := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:abort_on_error=0 \
                     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-CHECK_VALGRIND   := valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect
+CHECK_VALGRIND   := valgrind -q --error-exitcode=99 --leak-check=full
 
 # -fno-tree-loop-distribute-patterns in LIBFLAGS is gcc's; clang refuses it.
 CHECK_CLANG_LIBFLAGS := -ffreestanding
 
 # The stage's view of the tree: every top-level entry but the build directory, and
 # build -> the stage directory.
-CHECK_ROOT_ITEMS = $(filter-out $(firstword $(subst /, ,$(BUILDDIR))) .git,$(notdir $(wildcard $(CURDIR)/* $(CURDIR)/.clang-tidy)))
+CHECK_BUILD_TOP  = $(firstword $(subst /, ,$(patsubst $(CURDIR)/%,%,$(abspath $(BUILDDIR)))))
+CHECK_ROOT_ITEMS = $(filter-out $(CHECK_BUILD_TOP) build,$(notdir $(wildcard $(CURDIR)/* $(CURDIR)/.clang-tidy)))
 define check_root
 rm -rf $(1)/root && mkdir -p $(1)/root && \
 for f in $(CHECK_ROOT_ITEMS); do ln -s $(CURDIR)/$$f $(1)/root/$$f; done && \
-ln -s .. $(1)/root/build
+ln -sfn .. $(1)/root/build
 endef
 # $(call check_make,STAGE-DIR,CC,OPT,CFLAGS_EXTRA,[extra make arguments]) TARGETS...
 check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
@@ -72,32 +81,32 @@ CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
         check-small-run check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run
 
 check:
-	@rm -rf $(CHECK_STATUS); mkdir -p $(CHECK_STATUS); start=$$(date +%s); \
-	$(MAKE) --no-print-directory $(CHECK_PARALLEL) -k check-stages; \
+	@+rm -rf $(CHECK_STATUS); mkdir -p $(CHECK_STATUS); start=$$(date +%s); \
+	$(CHECK_MAKE) $(CHECK_PARALLEL) -k check-stages; \
 	sh tests/fuzz/check_summary.sh $(CHECK_STATUS) $$(($$(date +%s) - start)) $(CHECK_STAGES)
 
 # Longest first, so that -j2 overlaps valgrind with everything else.
 check-stages: check-valgrind check-asan check-fuzz check-clang check-idx16 check-small check-lint
 
 check-asan:
-	@$(CHECK_STAGE) asan $(CHECKDIR)/asan.log $(MAKE) --no-print-directory check-asan-run
+	@+$(CHECK_STAGE) asan $(CHECKDIR)/asan.log $(CHECK_MAKE) check-asan-run
 check-asan-run:
 	$(call check_root,$(CHECKDIR)/asan)
-	$(CHECK_ASAN_ENV) $(call check_make,$(CHECKDIR)/asan,$(CHECK_GCC),-O1 -g,$(CHECK_ASAN_FLAGS),-o nm-check) test
+	+$(CHECK_ASAN_ENV) $(call check_make,$(CHECKDIR)/asan,$(CHECK_GCC),-O1 -g,$(CHECK_ASAN_FLAGS),-o nm-check) test
 	@echo "nm-check skipped: sanitizer runtime calls are expected in an instrumented librad.a"
 
 check-valgrind:
-	@$(CHECK_STAGE) valgrind $(CHECKDIR)/valgrind.log $(MAKE) --no-print-directory check-valgrind-run
+	@+$(CHECK_STAGE) valgrind $(CHECKDIR)/valgrind.log $(CHECK_MAKE) check-valgrind-run
 check-valgrind-run:
 	$(call check_root,$(CHECKDIR)/valgrind)
-	RAD_TEST_WRAP='$(CHECK_VALGRIND)' RAD_TEST_LIGHT=1 \
+	+RAD_TEST_WRAP='$(CHECK_VALGRIND)' RAD_TEST_LIGHT=1 \
 	  $(call check_make,$(CHECKDIR)/valgrind,$(CHECK_GCC),-O1 -g,,TESTS='$(call check_progs,$(VALGRIND_TESTS))') test
 
 check-clang:
-	@$(CHECK_STAGE) clang $(CHECKDIR)/clang.log $(MAKE) --no-print-directory check-clang-run
+	@+$(CHECK_STAGE) clang $(CHECKDIR)/clang.log $(CHECK_MAKE) check-clang-run
 check-clang-run:
 	$(call check_root,$(CHECKDIR)/clang)
-	$(call check_make,$(CHECKDIR)/clang,$(CHECK_CLANG),-O2 -g,,LIBFLAGS='$(CHECK_CLANG_LIBFLAGS)' -o nm-check) test
+	+$(call check_make,$(CHECKDIR)/clang,$(CHECK_CLANG),-O2 -g,,LIBFLAGS='$(CHECK_CLANG_LIBFLAGS)' -o nm-check) test
 	@# The host nm check refuses every libc symbol; clang turns struct copies into
 	@# memcpy calls even with -ffreestanding (as gcc does at -Os on the ports), so
 	@# accept the four functions every freestanding C environment must provide, as
@@ -113,31 +122,37 @@ check-clang-run:
 # tests/cppcheck-suppressions.txt and .clang-tidy.
 CHECK_LINT_DEFS := -DRAD_FLOAT=0 -DRAD_FLOAT=1
 check-lint:
-	@$(CHECK_STAGE) lint $(CHECKDIR)/lint.log $(MAKE) --no-print-directory check-lint-run
+	@+$(CHECK_STAGE) lint $(CHECKDIR)/lint.log $(CHECK_MAKE) check-lint-run
 check-lint-run:
 	@mkdir -p $(CHECKDIR)/lint
-	set -e; for d in $(CHECK_LINT_DEFS); do \
+	@rc=0; for d in $(CHECK_LINT_DEFS); do \
+	  echo "== cppcheck $$d (64-bit)"; \
 	  cppcheck --enable=warning,performance,portability --error-exitcode=1 --inline-suppr -q \
 	    --std=c99 --platform=unix64 --suppressions-list=tests/cppcheck-suppressions.txt \
-	    -Iinclude -Ilib $$d $(LIB_SRCS); \
+	    -Iinclude -Ilib $$d $(LIB_SRCS) || rc=1; \
+	  echo "== cppcheck $$d -DRAD_INDEX_BITS=16 (32-bit)"; \
 	  cppcheck --enable=warning,portability --error-exitcode=1 --inline-suppr -q \
 	    --std=c99 --platform=unix32 --suppressions-list=tests/cppcheck-suppressions.txt \
-	    -Iinclude -Ilib $$d -DRAD_INDEX_BITS=16 $(LIB_SRCS); \
-	  clang-tidy --quiet $(LIB_SRCS) -- -std=c99 -Iinclude -Ilib -ffreestanding $$d; \
-	done
-	@echo "cppcheck and clang-tidy: no findings in lib/ (fixed and float builds)"
+	    -Iinclude -Ilib $$d -DRAD_INDEX_BITS=16 $(LIB_SRCS) || rc=1; \
+	  echo "== clang-tidy $$d (.clang-tidy)"; \
+	  clang-tidy --quiet $(LIB_SRCS) -- -std=c99 -Iinclude -Ilib -ffreestanding $$d \
+	    >$(CHECKDIR)/lint/tidy.out 2>&1 || rc=1; \
+	  grep -v 'warnings generated' $(CHECKDIR)/lint/tidy.out || true; \
+	done; \
+	if [ $$rc -ne 0 ]; then echo "lint: findings above"; exit 1; fi; \
+	echo "cppcheck and clang-tidy: no findings in lib/ (fixed and float builds)"
 
 check-idx16:
-	@$(CHECK_STAGE) idx16 $(CHECKDIR)/idx16.log $(MAKE) --no-print-directory check-idx16-run
+	@+$(CHECK_STAGE) idx16 $(CHECKDIR)/idx16.log $(CHECK_MAKE) check-idx16-run
 check-idx16-run:
 	$(call check_root,$(CHECKDIR)/idx16)
-	$(call check_make,$(CHECKDIR)/idx16,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16) test
+	+$(call check_make,$(CHECKDIR)/idx16,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16) test
 
 check-small:
-	@$(CHECK_STAGE) small $(CHECKDIR)/small.log $(MAKE) --no-print-directory check-small-run
+	@+$(CHECK_STAGE) small $(CHECKDIR)/small.log $(CHECK_MAKE) check-small-run
 check-small-run:
 	$(call check_root,$(CHECKDIR)/small)
-	$(call check_make,$(CHECKDIR)/small,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64,TESTS='$(call check_progs,$(SMALL_TESTS))') test
+	+$(call check_make,$(CHECKDIR)/small,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64,TESTS='$(call check_progs,$(SMALL_TESTS))') test
 
 # ---- fuzzing ---------------------------------------------------------------------------
 # Harnesses in tests/fuzz/, seeds in tests/fuzz/corpus/NAME (read only); what a run adds
@@ -150,6 +165,7 @@ FUZZ_CFLAGS := -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize
 FUZZ_RUN     = $(if $(filter 0,$(FUZZ_SECONDS)),-runs=0,-max_total_time=$(FUZZ_SECONDS)) \
                -timeout=30 -rss_limit_mb=2560 -print_final_stats=1
 FUZZ_HARNESSES := obj core image
+FUZZ_DICT_obj   = -dict=$(CURDIR)/tests/fuzz/obj.dict
 FUZZ_FIXED   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/fixed/%.o)
 FUZZ_FLOAT   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/float/%.o)
 
@@ -177,8 +193,8 @@ check-fuzz: check-fuzz-obj check-fuzz-core check-fuzz-image
 
 # One stage per harness, so that two can run at once; each builds its own harness.
 check-fuzz-obj check-fuzz-core check-fuzz-image: check-fuzz-%:
-	@$(CHECK_STAGE) fuzz-$* $(CHECKDIR)/fuzz-$*.log $(MAKE) --no-print-directory check-fuzz-$*-run
+	@+$(CHECK_STAGE) fuzz-$* $(CHECKDIR)/fuzz-$*.log $(CHECK_MAKE) check-fuzz-$*-run
 check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run: check-fuzz-%-run: $(FUZZDIR)/fuzz_%
 	@mkdir -p $(FUZZDIR)/corpus-$*
 	cd $(FUZZDIR) && UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
-	  ./fuzz_$* $(FUZZ_RUN) -artifact_prefix=$*- corpus-$* $(CURDIR)/tests/fuzz/corpus/$*
+	  ./fuzz_$* $(FUZZ_RUN) $(FUZZ_DICT_$*) -artifact_prefix=$*- corpus-$* $(CURDIR)/tests/fuzz/corpus/$*

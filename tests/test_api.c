@@ -122,6 +122,12 @@ static void test_init_errors(void **st)
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    /* Out of range with the default patch size (0): refused before 4 * max_element is
+     * formed (it overflowed in the fixed build: found by fuzz_core). */
+    c = cfg; c.max_patch = 0; c.max_element = -Q(16384.0);
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0);
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     /* Work: the table and accumulators fit, but not one row of a face. */
     p = g.p; p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_WORK);

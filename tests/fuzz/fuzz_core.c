@@ -12,7 +12,10 @@
  *                  hemi-cube's eye, tiny, huge; any reflectance and emission, or NULL),
  *                  set_surface, restart, shoot, unshot_fraction, ambient,
  *                  element_radiosity, shade_vertices, render (small views, any camera),
- *                  form_factors, strerror.
+ *                  form_factors, the threaded shot (shot_begin / shot_part / shot_end),
+ *                  stored rows (rows_compute / rows_shoot / rows_gauss_seidel), mix,
+ *                  ff_from_code, strerror; the work buffer sometimes has room for the
+ *                  vertex memo (RAD_CACHE_BYTES) or is one byte short of it.
  * Values come in Q16.16 for the fixed core; the float core gets the same numbers as
  * floats, or (selector bit 3) raw float bits: NaN, infinities, denormals, 1e38.
  *
@@ -285,6 +288,7 @@ typedef struct {
     rad_pools_t pools;
     unsigned char *work_block;
     void *blocks[4];      /* the pools as allocated (setup may hide one from rad_init) */
+    rad_rows_t rows;      /* stored form factors, once an op asks for them */
 } ctx_t;
 
 static void *alloc_exact(size_t n) { return malloc(n ? n : 1); }
@@ -332,7 +336,10 @@ static int setup(reader_t *r, ctx_t *c)
         if (rr >= 1024 && pixels > (size_t)rr * 8u) pixels = (size_t)rr * 2u; /* keep it small */
         need = RAD_WORK_BYTES(rr, pixels, nacc);
         n = (w & 0x80) ? need - (w >> 4 & 7u) * 3u : need;
-        misalign = u8(r) % 8u;
+        misalign = u8(r);
+        if (misalign & 8u) n += RAD_CACHE_BYTES(c->pools.max_vertices);          /* the memo */
+        else if (misalign & 16u) n += RAD_CACHE_BYTES(c->pools.max_vertices) - 1u; /* not quite */
+        misalign %= 8u;
         c->work_block = malloc(n + misalign);
         CHECK(c->work_block != NULL);
         c->pools.work = c->work_block + misalign;
@@ -541,6 +548,171 @@ static void op_form_factors(reader_t *r, ctx_t *c)
     free(out);
 }
 
+/* The threaded shot: begin, NPARTS parts into their own buffers, end. */
+static void op_parallel(reader_t *r, ctx_t *c)
+{
+    uint8_t f = u8(r);
+    rad_real_t tol = real(r);
+    unsigned nparts = 1u + u8(r) % 4u, k, ok = 1;
+    uint32_t patch = 0xDEADBEEFu, shots = c->s.stats.shots;
+    size_t bytes;
+    void *bufs[4] = {0, 0, 0, 0};
+    unsigned char *blk[4] = {0, 0, 0, 0};
+    snap_t sn;
+    int rc;
+    if (c->s.cfg.res > 64) return;
+    bytes = RAD_PART_BYTES(c->s.cfg.res) - ((f & 1) ? 1u : 0u);
+    snap_take(&sn, &c->s);
+    rc = rad_shot_begin(&c->s, tol, (f & 0x40) ? NULL : &patch);
+    if (rc < 0) {
+        CHECK(is_err(rc));
+        snap_same(&sn, &c->s);
+    }
+    snap_free(&sn);
+    if (rc != 1) {
+        CHECK(rc != 0 || patch == 0xDEADBEEFu);
+        return;
+    }
+    CHECK(patch < c->s.n_patches && c->s.band_rows == 0);
+    if (f & 2) patch = (f & 4) ? u32(r) : patch + u8(r) % 3u; /* maybe another, maybe none */
+    for (k = 0; k < nparts; k++) {
+        blk[k] = malloc(bytes + 8u);
+        CHECK(blk[k] != NULL);
+        bufs[k] = (f & 8) ? blk[k] + 4 : blk[k]; /* misaligned: refused */
+        snap_take(&sn, &c->s);
+        rc = rad_shot_part(&c->s, patch, k, nparts, bufs[k], bytes);
+        snap_same(&sn, &c->s); /* parts only read the scene */
+        snap_free(&sn);
+        if (rc < 0) { CHECK(rc == RAD_ERR_ARG); ok = 0; }
+        else CHECK(!(f & 9) && patch < c->s.n_patches); /* short or misaligned buffers are refused */
+    }
+    if (ok) {
+        unsigned n = (f & 0x10) ? 1u + u8(r) % nparts : nparts;
+        snap_take(&sn, &c->s);
+        rc = rad_shot_end(&c->s, patch, bufs, n);
+        if (rc < 0) {
+            CHECK(rc == RAD_ERR_ARG);
+            snap_same(&sn, &c->s);
+        } else {
+            CHECK(rc == 1 && c->s.stats.shots == shots + 1u);
+            check_unshot(&c->s);
+        }
+        snap_free(&sn);
+    }
+    for (k = 0; k < nparts; k++) free(blk[k]);
+}
+
+static void rows_free(rad_rows_t *rows)
+{
+    free(rows->start); free(rows->ids); free(rows->ffs);
+    memset(rows, 0, sizeof *rows);
+}
+
+/* Stored rows: (re)allocate, compute some, shoot through them, or Gauss-Seidel. */
+static void op_rows(reader_t *r, ctx_t *c)
+{
+    uint8_t f = u8(r);
+    rad_rows_t *rows = &c->rows;
+    uint32_t i;
+    int rc;
+    if (c->s.cfg.res > 64) return;
+    if (!rows->start || (f & 3) == 3) {
+        rows_free(rows);
+        rows->max_rows = c->s.n_patches + (uint32_t)(int8_t)(u8(r) % 3u) - 1u;  /* -1, 0, +1 */
+        if (rows->max_rows == 0xFFFFFFFFu) rows->max_rows = 0;
+        rows->max_entries = u16(r) % 6000u;
+        rows->start = alloc_exact(((size_t)rows->max_rows + 1u) * sizeof *rows->start);
+        rows->ids = alloc_exact(rows->max_entries * sizeof *rows->ids);
+        rows->ffs = alloc_exact(rows->max_entries * sizeof *rows->ffs);
+        CHECK(rows->start && rows->ids && rows->ffs);
+        rows->n_rows = 0;
+    }
+    switch ((f >> 2) & 3u) {
+    case 0: case 1: {
+        uint32_t before = rows->n_rows, ns = c->s.n_surfaces, ne = c->s.n_elements;
+        rc = rad_rows_compute(&c->s, rows, u8(r) % 8u);
+        if (rc < 0) {
+            CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_FULL);
+            CHECK(rows->n_rows == before);
+        } else {
+            CHECK(rows->n_rows == before + (uint32_t)rc && rows->n_rows <= c->s.n_patches);
+        }
+        CHECK(c->s.n_surfaces == ns && c->s.n_elements == ne);
+        if (rows->n_rows) CHECK(rows->start[0] == 0);
+        for (i = 0; i < rows->n_rows; i++) {
+            uint32_t k;
+            CHECK(rows->start[i] <= rows->start[i + 1] && rows->start[i + 1] <= rows->max_entries);
+            for (k = rows->start[i]; k < rows->start[i + 1]; k++) CHECK(rows->ids[k] < c->s.n_elements);
+        }
+        break;
+    }
+    case 2: {
+        uint32_t shots = u8(r) % 4u;
+        rc = rad_rows_shoot(&c->s, rows, shots, real(r));
+        if (rc < 0) CHECK(rc == RAD_ERR_STATE || rc == RAD_ERR_ARG);
+        else { CHECK((uint32_t)rc <= shots); check_unshot(&c->s); }
+        break;
+    }
+    default: {
+        size_t entries = RAD_GS_ENTRIES(c->s.n_patches);
+        if ((f & 0x10) && entries) entries--; /* one short: refused */
+        rad_ff_t *m = alloc_exact(entries * sizeof *m);
+        uint32_t iters = u8(r) % 6u;
+        CHECK(m != NULL);
+        rc = rad_rows_gauss_seidel(&c->s, rows, m, entries, iters, real(r));
+        if (rc < 0) CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE);
+        else CHECK((uint32_t)rc <= iters);
+        free(m);
+        break;
+    }
+    }
+}
+
+/* Light groups: any mix of any radiosities, saturating. */
+static void op_mix(reader_t *r, ctx_t *c)
+{
+    uint8_t f = u8(r);
+    uint32_t ng = f % 4u, ne = c->s.n_elements, g, e;
+    rad_rgb_t *grp[3] = {0, 0, 0}, inten[3], *out = alloc_exact(ne * sizeof *out);
+    const rad_rgb_t *cg[3];
+    snap_t sn;
+    int rc;
+    CHECK(out != NULL);
+    for (g = 0; g < ng; g++) {
+        rad_rgb_t fill = colour(r);
+        grp[g] = alloc_exact(ne * sizeof(rad_rgb_t));
+        CHECK(grp[g] != NULL);
+        for (e = 0; e < ne; e++) grp[g][e] = (f & 0x10) ? c->s.pools.elements[e].radiosity : fill;
+        inten[g] = colour(r);
+        cg[g] = (f & 0x20) && g == ng - 1u ? NULL : grp[g];
+    }
+    snap_take(&sn, &c->s);
+    rc = rad_mix(&c->s, cg, inten, ng, (f & 0x40) ? NULL : out);
+    if (rc < 0) {
+        CHECK(rc == RAD_ERR_ARG);
+        snap_same(&sn, &c->s);
+    } else {
+        CHECK(rc == RAD_OK);
+    }
+    snap_free(&sn);
+    for (g = 0; g < ng; g++) free(grp[g]);
+    free(out);
+}
+
+static void op_code(reader_t *r)
+{
+    uint16_t code = u16(r), e = (uint16_t)(code >> 11), m = (uint16_t)(code & 2047u);
+    uint16_t next = m == 2047u ? (uint16_t)((e + 1u) << 11 | 1024u) : (uint16_t)(code + 1u);
+    rad_ff_t f = rad_ff_from_code(code), g = rad_ff_from_code(next);
+#if RAD_FLOAT
+    CHECK(!(f < 0.0f) && f <= 4.0f);
+#endif
+    /* Over the codes rad_rows_compute makes (normalised: mantissa >= 1024 unless the
+     * exponent is 0; form factors up to 2^30: exponents up to 19), decoding is monotone
+     * and exact to 11 bits. */
+    if (e <= 19u && (e == 0u || m >= 1024u)) CHECK(g > f);
+}
+
 int FUZZ_FN(const uint8_t *data, size_t size)
 {
     reader_t r;
@@ -552,7 +724,7 @@ int FUZZ_FN(const uint8_t *data, size_t size)
     if (setup(&r, &c) == 0) {
         for (ops = 0; ops < MAX_OPS && r.pos < r.n; ops++) {
             uint8_t op = u8(&r);
-            switch (op % 13u) {
+            switch (op % 17u) {
             case 0: case 1: case 2: op_add(&r, &c); break;
             case 3: op_set_surface(&r, &c); break;
             case 4: CHECK(rad_restart(&c.s) == RAD_OK && c.s.stats.shots == 0 && !c.s.solving); break;
@@ -562,7 +734,11 @@ int FUZZ_FN(const uint8_t *data, size_t size)
             case 9: op_element(&r, &c); break;
             case 10: op_shade(&r, &c); break;
             case 11: op_render(&r, &c); break;
-            default: op_form_factors(&r, &c); break;
+            case 12: op_form_factors(&r, &c); break;
+            case 13: op_parallel(&r, &c); break;
+            case 14: op_rows(&r, &c); break;
+            case 15: op_mix(&r, &c); break;
+            default: op_code(&r); break;
             }
             check_mesh(&c.s, !r.nonfinite);
         }
@@ -578,6 +754,7 @@ int FUZZ_FN(const uint8_t *data, size_t size)
     }
     free(c.blocks[0]); free(c.blocks[1]); free(c.blocks[2]); free(c.blocks[3]);
     free(c.work_block);
+    rows_free(&c.rows);
     return 0;
 }
 

@@ -311,6 +311,35 @@ def core_seeds():
         + bytes([3, 0x30, 2]) + colour(0.9, 0.9, 0.9) + colour(100, 0, 0) + bytes([4]) + shoot(3) + bytes([7])
         + bytes([9, 1]) + struct.pack("<I", 0xFFFFFFFF) + bytes([1]) + bytes([12, 1]) + struct.pack("<I", 0xFFFFFFFF)
         + bytes([10, 1, 0]) + bytes([10, 2, 3, 1]) + bytes([10, 4, 0]) + bytes([8, 1]))
+    # The threaded shot, stored rows, light groups, form factor codes, the vertex memo.
+    par = (bytes([13, 0]) + real(0) + bytes([3])              # 4 parts, then end
+           + bytes([13, 0x10]) + real(0) + bytes([1, 0])      # 2 parts, end with 1
+           + bytes([13, 0x02]) + real(0) + bytes([0, 1])      # parts of the next patch
+           + bytes([13, 0x01]) + real(0) + bytes([0])         # one byte short
+           + bytes([13, 0x08]) + real(0) + bytes([0])         # misaligned
+           + bytes([13, 0x40]) + real(0) + bytes([0]))        # no patch pointer
+    out("core", "room_parallel.bin", setup(res_index=2) + room() + par + bytes([7]))
+    out("core", "bands_parallel.bin", setup(flags=4, res_index=2, band=2) + room() + par)
+    rows = (bytes([14, 0x00, 1]) + struct.pack("<H", 5000) + bytes([3])   # 3 rows
+            + bytes([14, 0x04, 7])                                          # the rest
+            + bytes([14, 0x08, 3]) + real(0)                                # shoot through them
+            + bytes([4]) + bytes([14, 0x0C, 5]) + real(0.001)               # Gauss-Seidel
+            + bytes([14, 0x1C, 5]) + real(0)                                # matrix one short
+            + bytes([14, 0x03, 2]) + struct.pack("<H", 5000) + bytes([7])   # a row too many
+            + bytes([14, 0x03, 1]) + struct.pack("<H", 10) + bytes([7])     # entries run out
+            + bytes([14, 0x08, 1]) + real(0))                               # rows missing
+    out("core", "room_rows.bin", setup(res_index=0) + room() + rows)
+    mix = (bytes([15, 0x12]) + colour(1, 1, 1) + colour(0.5, 0.25, 2) + colour(1, 1, 1) + colour(3, 0, 1)
+           + bytes([15, 0x03]) + colour(30000, 30000, 30000) + colour(2, 2, 2) + colour(1, 1, 1) + colour(1, 1, 1)
+           + colour(1, 1, 1) + colour(1, 1, 1)
+           + bytes([15, 0x22]) + colour(1, 1, 1) + colour(1, 1, 1) + colour(1, 1, 1) + colour(1, 1, 1)
+           + bytes([15, 0x40]) + bytes([15, 0x00]))
+    out("core", "room_mix.bin", setup(res_index=0) + room() + shoot(3) + mix)
+    codes = b"".join(bytes([16]) + struct.pack("<H", c) for c in (0, 1, 1023, 1024, 2047, 2048, 3072, 19 << 11 | 2047,
+                                                                     20 << 11, 21 << 11 | 2047, 22 << 11 | 1024, 0xFFFF))
+    out("core", "codes.bin", setup(res_index=0) + codes)
+    out("core", "room_cache.bin", setup(res_index=2, misalign=8 | 3) + room() + shoot(3) + par + rows)
+    out("core", "room_cache_short.bin", setup(res_index=2, misalign=16) + room() + shoot(2))
     out("core", "res1024_bands.bin", setup(flags=4, surfaces=2, patches=4, elements=8, vertices=16, res_index=14, band=1, work=1)
         + add([vert(-8, -8, 0), vert(8, -8, 0), vert(8, 8, 0), vert(-8, 8, 0)], (0.5, 0.5, 0.5), (1, 1, 1)) + render((0, 0, 6), (0, 0, 0)))
 
