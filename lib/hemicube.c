@@ -248,14 +248,15 @@ static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const r
     }
 }
 
-/* Adds each covered pixel's delta form factor to its element's sum. */
-static void accumulate(rad_scene_t *s, const region_t *reg)
+/* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
+ * as the work buffer's) to its element's sum. */
+static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg)
 {
     uint32_t res = s->cfg.res, q = res / 2u, i;
     const uint32_t n = s->n_elements;
     int r;
     for (r = reg->row0; r < reg->row1; r++) {
-        const rad_index_t *ids = s->ibuf + reg->offset + (size_t)(r - reg->row0) * res;
+        const rad_index_t *ids = ibuf + reg->offset + (size_t)(r - reg->row0) * res;
         const rad_ff_t *row;
         if (reg->face == 0)
             row = s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
@@ -320,13 +321,13 @@ void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
         for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, c, frame);
-        for (r = 0; r < nreg; r++) accumulate(s, &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
     }
 }
 
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
 
-/* A part's buffer: its counters, then depth and ids for all five faces. */
+/* A part's buffer: its counters, then depth and ids laid out as all five faces. */
 typedef struct {
     uint32_t calls, pad;
     uint64_t pixels;
@@ -344,6 +345,29 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
     return cv;
 }
 
+/* The regions of part PART of NPARTS: the cube's rows, face after face (3 res rows of
+ * res pixels), cut into NPARTS runs of equal length. Every pixel belongs to one part,
+ * and accumulating the parts in order adds in the serial pass's order. */
+static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned nparts, region_t *r)
+{
+    uint32_t res = s->cfg.res, g = 0, total = 3u * res, f, n = 0;
+    uint32_t a = (uint32_t)((uint64_t)total * part / nparts), b = (uint32_t)((uint64_t)total * (part + 1u) / nparts);
+    region_t all[5];
+    pass_regions(s, 0, all);
+    for (f = 0; f < 5; f++) {
+        uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
+        if (b > g && lo < hi && lo < rows) {
+            r[n] = all[f];
+            r[n].row0 = (int)lo;
+            r[n].row1 = (int)hi;
+            r[n].offset = all[f].offset + lo * res;
+            n++;
+        }
+        g += rows;
+    }
+    return n;
+}
+
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
     const rad_patch_t *pt = &s->pools.patches[p];
@@ -352,15 +376,14 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     rad_stats_t st = {0, 0, 0, 0};
     canvas_t cv = part_canvas(s, buf);
     part_head_t *h = (part_head_t *)buf;
-    /* Contiguous element ranges, in order, so merging keeps the serial tie-break. */
-    uint32_t e0 = (uint32_t)((uint64_t)s->n_elements * part / nparts);
-    uint32_t e1 = (uint32_t)((uint64_t)s->n_elements * (part + 1u) / nparts), e;
-    unsigned r, nreg = pass_regions(s, 0, reg);
+    unsigned r, nreg = part_regions(s, part, nparts, reg);
+    uint32_t e;
 
     cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.st = &st;
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-    for (e = e0; e < e1; e++) render_element(s, &cv, reg, nreg, e, pt->center, frame);
+    if (nreg)
+        for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, pt->center, frame);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     return (int)st.raster_calls;
@@ -369,24 +392,15 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
 void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
 {
     region_t reg[5];
-    uint32_t i, n = RAD_PIXELS_ALL(s->cfg.res), e;
-    unsigned k, r, nreg = pass_regions(s, 0, reg);
-    /* Per pixel the nearest part wins, the lower one on a tie: as the serial pass,
-     * where the lower element (drawn first) keeps a tie. */
-    for (i = 0; i < n; i++) {
-        uint32_t best = 0;
-        rad_index_t id = RAD_INDEX_NONE;
-        for (k = 0; k < nparts; k++) {
-            canvas_t cv = part_canvas(s, bufs[k]);
-            if (cv.z[i] > best) { best = cv.z[i]; id = cv.ids[i]; }
-        }
-        s->ibuf[i] = id;
-    }
+    uint32_t e;
+    unsigned k, r, nreg;
+    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
         const part_head_t *h = (const part_head_t *)bufs[k];
+        canvas_t cv = part_canvas(s, bufs[k]);
         s->stats.raster_calls += h->calls;
         s->stats.raster_pixels += h->pixels;
+        nreg = part_regions(s, k, nparts, reg);
+        for (r = 0; r < nreg; r++) accumulate(s, cv.ids, &reg[r]);
     }
-    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
-    for (r = 0; r < nreg; r++) accumulate(s, &reg[r]);
 }

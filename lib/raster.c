@@ -125,6 +125,41 @@ static uint32_t attr_value(uint64_t v)
     return v > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)v;
 }
 
+/* Pixels XS..XE-1 of a row of the item buffer: depth W (* 2^16) stepping by DW. */
+static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw, rad_index_t id)
+{
+    int32_t x;
+    for (x = xs; x < xe; x++, w += dw) {
+        /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
+        uint32_t d = (uint32_t)(w >> 16);
+        if (d > z[x]) {
+            z[x] = d;
+            ids[x] = id;
+        }
+    }
+}
+
+/* The same for a colour raster; VAL are the attributes at the row's first pixel of
+ * the bounding box, SKIP pixels before XS. */
+static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64_t w, const uint64_t *val,
+                     const uint64_t *sx, int32_t skip)
+{
+    int32_t x;
+    uint64_t c[3];
+    unsigned k;
+    for (k = 0; k < 3; k++) c[k] = val[k + 1] + sx[k + 1] * (uint64_t)skip;
+    for (x = xs; x < xe; x++, w += sx[0]) {
+        uint32_t d = (uint32_t)(w >> 16);
+        if (d > z[x]) {
+            z[x] = d;
+            rgb[x].r = rad__from_attr(attr_value(c[0]));
+            rgb[x].g = rad__from_attr(attr_value(c[1]));
+            rgb[x].b = rad__from_attr(attr_value(c[2]));
+        }
+        for (k = 0; k < 3; k++) c[k] += sx[k + 1];
+    }
+}
+
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : v > hi ? hi : v; }
 
 /* Fills the convex polygon V of N = 3 or 4 vertices (either winding). Attributes are
@@ -164,38 +199,32 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rvert_t 
     if (n == 3) ed[3] = ed[0];
     for (k = 0; k < nat; k++) attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
 
-    for (y = y0; y <= y1; y++) {
-        int64_t e0 = ed[0].e, e1 = ed[1].e, e2 = ed[2].e, e3 = ed[3].e;
-        uint64_t w = val[0];
-        size_t row = (size_t)(y - t->row0) * (size_t)t->width;
-        int32_t x = x0;
-        /* Convex: step to the span, then fill it to its end. */
-        while (x <= x1 && (e0 | e1 | e2 | e3) < 0) {
-            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx; e3 += ed[3].dx;
-            w += sx[0];
-            x++;
-        }
-        for (; x <= x1 && (e0 | e1 | e2 | e3) >= 0; x++) {
-            /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
-            uint32_t z = (uint32_t)(w >> 16);
-            size_t i = row + (size_t)x;
-            pixels++;
-            if (z > t->z[i]) {
-                t->z[i] = z;
-                if (t->ids) {
-                    t->ids[i] = id;
-                } else {
-                    uint64_t dxn = (uint64_t)(x - x0);
-                    t->rgb[i].r = rad__from_attr(attr_value(val[1] + sx[1] * dxn));
-                    t->rgb[i].g = rad__from_attr(attr_value(val[2] + sx[2] * dxn));
-                    t->rgb[i].b = rad__from_attr(attr_value(val[3] + sx[3] * dxn));
-                }
+    {
+        /* The edges' values at the row's first pixel, kept in locals across rows. */
+        int64_t r0 = ed[0].e, r1 = ed[1].e, r2 = ed[2].e, r3 = ed[3].e;
+        const int64_t dx0 = ed[0].dx, dx1 = ed[1].dx, dx2 = ed[2].dx, dx3 = ed[3].dx;
+        for (y = y0; y <= y1; y++) {
+            int64_t e0 = r0, e1 = r1, e2 = r2, e3 = r3;
+            uint64_t w = val[0];
+            size_t row = (size_t)(y - t->row0) * (size_t)t->width;
+            int32_t x = x0, xs;
+            /* Convex: step to the span, then find its end, then fill it. */
+            while (x <= x1 && (e0 | e1 | e2 | e3) < 0) {
+                e0 += dx0; e1 += dx1; e2 += dx2; e3 += dx3;
+                w += sx[0];
+                x++;
             }
-            e0 += ed[0].dx; e1 += ed[1].dx; e2 += ed[2].dx; e3 += ed[3].dx;
-            w += sx[0];
+            xs = x;
+            while (x <= x1 && (e0 | e1 | e2 | e3) >= 0) {
+                e0 += dx0; e1 += dx1; e2 += dx2; e3 += dx3;
+                x++;
+            }
+            pixels += (uint64_t)(x - xs);
+            if (t->ids) fill_ids(t->z + row, t->ids + row, xs, x, w, sx[0], id);
+            else fill_rgb(t->z + row, t->rgb + row, xs, x, w, val, sx, xs - x0);
+            r0 += ed[0].dy; r1 += ed[1].dy; r2 += ed[2].dy; r3 += ed[3].dy;
+            for (k = 0; k < nat; k++) val[k] += sy[k];
         }
-        for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
-        for (k = 0; k < nat; k++) val[k] += sy[k];
     }
     st->raster_pixels += pixels;
 }

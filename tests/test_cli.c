@@ -624,6 +624,37 @@ static void test_ppm_matches_png(void **state)
     img_free(&ppm2);
 }
 
+/* --threads splits every shot's hemi-cube by rows: the solution must be the same bits,
+ * so the dumped radiosities are the same bytes. */
+static void test_threads_same_result(void **state)
+{
+    run_t r;
+    size_t la, lb;
+    char *a, *b;
+    (void)state;
+    need(FIXED);
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--dump-radiosity",
+        tmp_path("t1.csv"), "-o", tmp_path("t1.ppm"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    RUN(&r, FIXED, "--quiet", "--threads", "3", "--width", "16", "--height", "16", COARSE,
+        "--dump-radiosity", tmp_path("t3.csv"), "-o", tmp_path("t3.ppm"), CORNELL);
+    expect_status(&r, 0);
+    run_free(&r);
+    a = slurp(tmp_path("t1.csv"), &la);
+    b = slurp(tmp_path("t3.csv"), &lb);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(count_lines(a) > 100); /* a real solution, so equality means something */
+    assert_int_equal(la, lb);
+    assert_memory_equal(a, b, la);
+    free(a);
+    free(b);
+    RUN(&r, FIXED, "--threads", "0", CORNELL);
+    expect_status(&r, 2);
+    run_free(&r);
+}
+
 /* ---- 4. several views --------------------------------------------------------- */
 
 /* The default eye is at (-0.278, 0.274, 0.696) looking down -z at the box's centre.
@@ -1302,6 +1333,7 @@ int main(void)
         cmocka_unit_test(test_cornell_box),
         cmocka_unit_test(test_orientation),
         cmocka_unit_test(test_ppm_matches_png),
+        cmocka_unit_test(test_threads_same_result),
         cmocka_unit_test(test_multiple_cameras),
         cmocka_unit_test(test_dump_radiosity),
         cmocka_unit_test(test_export_ply),

@@ -357,7 +357,7 @@ int main(int argc, char **argv)
                 fx[i].elements, fx[i].t[1], fx[i].total, fx[i].bytes / 1048576.0);
         }
     /* The parallel solve: the same shots, each shot's hemi-cube split over threads. */
-    OUT("\nParallel solve (pthreads in tools/, each shot's elements split over threads, merged in order: "
+    OUT("\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, summed in order: "
         "bit-exact with the serial solve, checked by tests/test_parallel.c), fixed build, to 0.001, median of 3:\n\n"
         "| scene | elements | 1 thread s | 2 threads s | speed-up |\n| --- | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {

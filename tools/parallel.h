@@ -1,6 +1,6 @@
 /* rad host glue: progressive refinement with each shot's hemi-cube rendered by several
- * threads (pthreads here; the core has none). In the fixed build the result is bit for
- * bit that of the serial solve. Compiled twice, like scene_twin.c: sc_* and scf_*. */
+ * threads (pthreads here; the core has none), each a run of its rows. The result is
+ * bit for bit that of the serial solve. Compiled twice, like scene_twin.c: sc_* and scf_*. */
 #ifndef RAD_TOOLS_PARALLEL_H
 #define RAD_TOOLS_PARALLEL_H
 

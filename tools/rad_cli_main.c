@@ -16,6 +16,7 @@
 #include "image.h"
 #include "obj.h"
 #include "objpoly.h"
+#include "parallel.h"
 #include "scene.h"
 
 #if defined(RAD_FLOAT) && RAD_FLOAT
@@ -52,7 +53,7 @@ typedef struct {
     const char *scene;
     view_t views[MAX_VIEWS];
     int nviews, pending_cam;       /* pending_cam: a --camera still waiting for its -o */
-    int width, height, res, max_shots, quiet, stats, list, no_ambient;
+    int width, height, res, max_shots, threads, quiet, stats, list, no_ambient;
     double tol, exposure, max_patch, max_element;
     const char *ply, *csv, *views_file;
     char **emit; int nemit;
@@ -91,6 +92,7 @@ static void usage(FILE *f)
         "  --max-element L         longest element edge (scene extent / 24)\n"
         "  --tol F                 stop when the unshot fraction is below F (0.001)\n"
         "  --max-shots N           stop after N shots (1000000)\n"
+        "  --threads N             render each shot's hemi-cube on N threads, same result (1)\n"
         "  --emit NAME=R,G,B       set the emission of material NAME (repeatable)\n"
         "stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
         "no hemi-cube):\n"
@@ -275,6 +277,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
     o->width = o->height = 512;
     o->tol = 0.001;
     o->max_shots = 1000000;
+    o->threads = 1;
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
     o->gint = calloc((size_t)argc, sizeof *o->gint);
@@ -288,6 +291,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
                     strcmp(a, "--dump-radiosity") == 0 || strcmp(a, "--res") == 0 ||
                     strcmp(a, "--max-patch") == 0 || strcmp(a, "--max-element") == 0 ||
                     strcmp(a, "--tol") == 0 || strcmp(a, "--max-shots") == 0 || strcmp(a, "--emit") == 0 ||
+                    strcmp(a, "--threads") == 0 ||
                     strcmp(a, "--save-ff") == 0 || strcmp(a, "--load-ff") == 0 || strcmp(a, "--solver") == 0 ||
                     strcmp(a, "--light-group") == 0 || strcmp(a, "--group-intensity") == 0 ||
                     strcmp(a, "--animate") == 0;
@@ -321,6 +325,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
         else if (strcmp(a, "--tol") == 0) {
             if (parse_list(val, &o->tol, 1, 0) != 1 || !(o->tol >= 0 && o->tol < 1)) die_usage("--tol wants a number in [0, 1)", val);
         } else if (strcmp(a, "--max-shots") == 0) o->max_shots = (int)parse_int(a, val, 0, 1000000000);
+        else if (strcmp(a, "--threads") == 0) o->threads = (int)parse_int(a, val, 1, 64);
         else if (strcmp(a, "--emit") == 0) {
             const char *eq = strrchr(val, '=');
             double v[3];
@@ -898,7 +903,10 @@ int main(int argc, char **argv)
     pg.tty = !o.quiet && isatty(2);
     pg.tol = o.tol;
     if (!rows_mode) {
-        SC(solve)(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
+        /* Threads split each shot's hemi-cube by rows: the same bits as one thread. */
+        if (o.threads < 2 ||
+            SC(solve_parallel)(s, o.threads, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg) < 0)
+            SC(solve)(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
     } else {
         /* Visibility once: every patch's row, loaded or rendered (then saved). */
         if (o.load_ff ? SC(rows_load)(s, o.load_ff, err, sizeof err) < 0

@@ -222,10 +222,10 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
  * picks the shooter (returns 1, or 0 once the unshot fraction is at most TOL);
- * rad_shot_part renders part PART of NPARTS of its hemi-cube (a contiguous range of
- * elements) into BUF, reading the scene only, so parts may run at once; rad_shot_end
- * merges the parts' buffers in order and shoots. The result is bit for bit that of
- * rad_shoot in the fixed build (the float twin sums in another order). Needs the work
+ * rad_shot_part renders part PART of NPARTS of its hemi-cube (a run of the cube's
+ * rows, face after face: every element clipped to them) into BUF, reading the scene
+ * only, so parts may run at once; rad_shot_end sums the parts' pixels in order and
+ * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
  * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
 #define RAD_PART_BYTES(res) (16u + (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
