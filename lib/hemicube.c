@@ -9,11 +9,20 @@
  */
 #include "internal.h"
 
-/* A vertex in the current cube's frame, with its outcodes for the five faces. */
+/* A vertex in the current cube's frame, with its outcodes for the five faces, and its
+ * projection onto face PFACE (NO_FACE: none yet). A vertex lies inside one face's
+ * frustum, or on the edge of two, so one projection serves nearly every use. */
 typedef struct {
     rad_vec3_t loc;
     uint32_t code, stamp;
+    int32_t px, py;
+    uint32_t pw;
+    uint32_t pface;
 } vcache_t;
+#define NO_FACE 5u
+
+/* RAD_CACHE_BYTES(n) must hold n entries after 8-byte alignment. */
+typedef char vcache_fits[sizeof(vcache_t) * 1000u + 8u <= RAD_CACHE_BYTES(1000) ? 1 : -1];
 
 typedef struct {
     unsigned face;       /* 0 top, 1..4 sides */
@@ -208,7 +217,28 @@ static void vertex_local(const rad_scene_t *s, const canvas_t *cv, uint32_t v, r
         m->loc = *loc;
         m->code = *code;
         m->stamp = cv->stamp;
+        m->pface = NO_FACE;
     }
+}
+
+/* Vertex V (in the memo, inside FACE) projected onto FACE: from the memo, or computed
+ * and kept there if its one projection is still free. */
+static void vertex_projected(const canvas_t *cv, uint32_t v, unsigned face, const rad__frustum_t *f,
+                             rad__pvert_t *pv)
+{
+    vcache_t *m = &cv->memo[v];
+    if (m->pface != face) {
+        rad__cvert_t c;
+        face_vertex(face, m->loc, &c);
+        rad__project(f, &c, pv);
+        if (m->pface != NO_FACE) return;
+        m->px = pv->x; m->py = pv->y; m->pw = pv->at[0];
+        m->pface = face;
+        return;
+    }
+    pv->x = m->px; pv->y = m->py;
+    pv->at[0] = m->pw;
+    pv->at[1] = pv->at[2] = pv->at[3] = 0;
 }
 
 static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const region_t *reg, unsigned nreg,
@@ -232,9 +262,8 @@ static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const r
     for (r = 0; r < nreg; r++) {
         rad__frustum_t f;
         rad__target_t t;
-        unsigned face = reg[r].face;
+        unsigned face = reg[r].face, out = (any >> (5 * face)) & 0x1F;
         if ((all >> (5 * face)) & 0x1F) continue; /* wholly outside this face */
-        for (i = 0; i < nv; i++) face_vertex(face, loc[i], &cv[i]);
         f.half = face != 0;
         f.width = (int)s->cfg.res;
         f.height = (int)face_rows(s, face);
@@ -244,7 +273,16 @@ static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const r
         t.width = (int)s->cfg.res;
         t.row0 = reg[r].row0;
         t.row1 = reg[r].row1;
-        rad__draw(cv_out->st, &t, &f, cv, nv, (any >> (5 * face)) & 0x1F, (rad_index_t)e);
+        if (out == 0 && cv_out->memo) {
+            /* Wholly inside: nothing to clip, and the shared vertices' projections
+             * come from the memo (the same bits rad__draw would compute). */
+            rad__pvert_t pv[4];
+            for (i = 0; i < nv; i++) vertex_projected(cv_out, el->v[i], face, &f, &pv[i]);
+            rad__fill(cv_out->st, &t, pv, nv, (rad_index_t)e);
+            continue;
+        }
+        for (i = 0; i < nv; i++) face_vertex(face, loc[i], &cv[i]);
+        rad__draw(cv_out->st, &t, &f, cv, nv, out, (rad_index_t)e);
     }
 }
 

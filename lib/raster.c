@@ -14,11 +14,6 @@
 
 #define SUB 16 /* subpixels per pixel */
 
-typedef struct {
-    int32_t x, y;
-    uint32_t at[4]; /* at[0]: depth w; at[1..3]: colour */
-} rvert_t;
-
 /* ---- clipping ------------------------------------------------------------------ */
 
 /* Signed distance of V inside clip plane P (>= 0: inside). */
@@ -81,7 +76,7 @@ typedef struct {
     int64_t e, dx, dy; /* value at the first pixel centre, steps per pixel in x and y */
 } edge_t;
 
-static void edge_setup(edge_t *ed, const rvert_t *a, const rvert_t *b, int32_t px, int32_t py, int flip)
+static void edge_setup(edge_t *ed, const rad__pvert_t *a, const rad__pvert_t *b, int32_t px, int32_t py, int flip)
 {
     int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
     int owned;
@@ -95,14 +90,14 @@ static void edge_setup(edge_t *ed, const rvert_t *a, const rvert_t *b, int32_t p
 }
 
 /* Twice the signed area of triangle A, B, C in subpixels^2. */
-static int64_t area2(const rvert_t *a, const rvert_t *b, const rvert_t *c)
+static int64_t area2(const rad__pvert_t *a, const rad__pvert_t *b, const rad__pvert_t *c)
 {
     return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
 }
 
 /* Plane of attribute K through triangle V0, V1, V2 (twice its area AR): the value at
  * the first pixel centre and its steps, all * 2^16, modulo 2^64. */
-static void attr_setup(const rvert_t *v0, const rvert_t *v1, const rvert_t *v2, unsigned k, int64_t ar,
+static void attr_setup(const rad__pvert_t *v0, const rad__pvert_t *v1, const rad__pvert_t *v2, unsigned k, int64_t ar,
                        int32_t px, int32_t py, uint64_t *val, uint64_t *sx, uint64_t *sy)
 {
     int64_t d1 = (int64_t)v1->at[k] - v0->at[k], d2 = (int64_t)v2->at[k] - v0->at[k];
@@ -166,7 +161,7 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : 
  * interpolated on the plane of the wider of its two fan triangles: exact for a planar
  * polygon's depth; callers with colours pass triangles. A triangle's fourth edge
  * repeats its first, so one loop with four edges in registers serves both. */
-static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rvert_t *v, unsigned n, rad_index_t id)
+static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pvert_t *v, unsigned n, rad_index_t id)
 {
     edge_t ed[4];
     uint64_t val[4], sx[4], sy[4], pixels = 0;
@@ -233,7 +228,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rvert_t 
 
 /* Screen position in subpixels and depth of a clipped vertex: one reciprocal of its
  * depth, then multiplies. */
-static void project(const rad__frustum_t *f, const rad__cvert_t *c, rvert_t *r)
+void rad__project(const rad__frustum_t *f, const rad__cvert_t *c, rad__pvert_t *r)
 {
     rad__recip_t inv = rad__recip(c->d);
     int32_t w16 = f->width * SUB, h16 = f->height * SUB;
@@ -245,36 +240,20 @@ static void project(const rad__frustum_t *f, const rad__cvert_t *c, rvert_t *r)
     r->at[3] = rad__attr(c->c[2]);
 }
 
-void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
-               const rad__cvert_t *in, unsigned n, unsigned any, rad_index_t id)
+void rad__fill(rad_stats_t *st, const rad__target_t *t, rad__pvert_t *pv, unsigned n, rad_index_t id)
 {
-    /* Each plane adds at most one vertex: 4 + 5 = 9. */
-    rad__cvert_t buf[2][9];
-    rvert_t pv[9];
-    const rad__cvert_t *cur = in;
-    unsigned i, m, p, flip = 0;
-
-    if (any & RAD__CULLED) return;
-    for (p = 0; p < 5 && n >= 3; p++) {
-        if (!(any & (1u << p))) continue;
-        n = clip_plane(f, p, cur, n, buf[flip]);
-        cur = buf[flip];
-        flip ^= 1u;
-    }
-    if (n < 3) return;
+    unsigned i, m;
     /* Vertices that clipping or projection made equal would leave an edge with no
      * direction, which owns no pixel and would reject them all: drop them. */
-    for (i = 0, m = 0; i < n; i++) {
-        project(f, &cur[i], &pv[m]);
-        if (m == 0 || pv[m].x != pv[m - 1].x || pv[m].y != pv[m - 1].y) m++;
-    }
+    for (i = 1, m = 1; i < n; i++)
+        if (pv[i].x != pv[m - 1].x || pv[i].y != pv[m - 1].y) pv[m++] = pv[i];
     if (m > 1 && pv[m - 1].x == pv[0].x && pv[m - 1].y == pv[0].y) m--;
     if (m < 3) return;
     if (!t->rgb) {
         /* A convex polygon as a fan of quads (and a last triangle): pieces share edges,
          * which the ownership rule keeps watertight. */
         for (i = 1; i + 1 < m; i += 2) {
-            rvert_t q[4];
+            rad__pvert_t q[4];
             unsigned k = i + 2 < m ? 4u : 3u;
             q[0] = pv[0]; q[1] = pv[i]; q[2] = pv[i + 1];
             if (k == 4) q[3] = pv[i + 2];
@@ -284,8 +263,29 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
     }
     /* Colours vary over a quad bilinearly, not on one plane: fill a fan of triangles. */
     for (i = 1; i + 1 < m; i++) {
-        rvert_t tri[3];
+        rad__pvert_t tri[3];
         tri[0] = pv[0]; tri[1] = pv[i]; tri[2] = pv[i + 1];
         raster_piece(st, t, tri, 3, id);
     }
+}
+
+void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
+               const rad__cvert_t *in, unsigned n, unsigned any, rad_index_t id)
+{
+    /* Each plane adds at most one vertex: 4 + 5 = 9. */
+    rad__cvert_t buf[2][9];
+    rad__pvert_t pv[9];
+    const rad__cvert_t *cur = in;
+    unsigned i, p, flip = 0;
+
+    if (any & RAD__CULLED) return;
+    for (p = 0; p < 5 && n >= 3; p++) {
+        if (!(any & (1u << p))) continue;
+        n = clip_plane(f, p, cur, n, buf[flip]);
+        cur = buf[flip];
+        flip ^= 1u;
+    }
+    if (n < 3) return;
+    for (i = 0; i < n; i++) rad__project(f, &cur[i], &pv[i]);
+    rad__fill(st, t, pv, n, id);
 }
