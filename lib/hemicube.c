@@ -371,15 +371,24 @@ typedef struct {
     uint64_t pixels;
 } part_head_t;
 
-static canvas_t part_canvas(const rad_scene_t *s, void *buf)
+/* The part's canvas in BUF; with BYTES room after the face buffers, a vertex memo of
+ * its own (parts run at once: they share none), emptied for this shot. */
+static canvas_t part_canvas(const rad_scene_t *s, void *buf, size_t bytes)
 {
     canvas_t cv;
     part_head_t *h = (part_head_t *)buf;
+    uintptr_t base = (uintptr_t)buf, m;
+    uint32_t v;
     cv.z = (uint32_t *)(void *)(h + 1);
     cv.ids = (rad_index_t *)(void *)(cv.z + RAD_PIXELS_ALL(s->cfg.res));
     cv.st = 0;
-    cv.memo = 0; /* parts run at once: they share no memo */
-    cv.stamp = 0;
+    cv.memo = 0;
+    cv.stamp = 1;
+    m = ((uintptr_t)(cv.ids + RAD_PIXELS_ALL(s->cfg.res)) + 7u) & ~(uintptr_t)7u;
+    if (m - base <= bytes && (bytes - (m - base)) / sizeof(vcache_t) >= s->n_vertices) {
+        cv.memo = (vcache_t *)m;
+        for (v = 0; v < s->n_vertices; v++) cv.memo[v].stamp = 0;
+    }
     return cv;
 }
 
@@ -406,13 +415,13 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
     return n;
 }
 
-int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
+int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf, size_t bytes)
 {
     const rad_patch_t *pt = &s->pools.patches[p];
     region_t reg[5];
     rad_vec3_t frame[3];
     rad_stats_t st = {0, 0, 0, 0};
-    canvas_t cv = part_canvas(s, buf);
+    canvas_t cv = part_canvas(s, buf, bytes);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
     uint32_t e;
@@ -435,10 +444,11 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
         const part_head_t *h = (const part_head_t *)bufs[k];
-        canvas_t cv = part_canvas(s, bufs[k]);
+        const rad_index_t *ids = (const rad_index_t *)(const void *)((const uint32_t *)(const void *)(h + 1) +
+                                                                     RAD_PIXELS_ALL(s->cfg.res));
         s->stats.raster_calls += h->calls;
         s->stats.raster_pixels += h->pixels;
         nreg = part_regions(s, k, nparts, reg);
-        for (r = 0; r < nreg; r++) accumulate(s, cv.ids, &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, ids, &reg[r]);
     }
 }

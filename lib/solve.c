@@ -145,7 +145,7 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     if (!s || !buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
-    return rad__cube_part(s, patch, part, nparts, buf);
+    return rad__cube_part(s, patch, part, nparts, buf, bytes);
 }
 
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)

@@ -228,7 +228,9 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * only, so parts may run at once; rad_shot_end sums the parts' pixels in order and
  * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
- * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
+ * RAD_PART_BYTES(res); with RAD_CACHE_BYTES(n_vertices) more, the part keeps a vertex
+ * memo there (as the work buffer's: same bits, less work). Each returns RAD_ERR_ARG on
+ * a bad argument. */
 #define RAD_PART_BYTES(res) (16u + (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes);
