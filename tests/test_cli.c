@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "image.h"
+#include "tmpdir.h"
 #include "obj.h"
 
 extern char **environ;
@@ -50,43 +51,16 @@ extern char **environ;
 
 /* ---- temporary directory ------------------------------------------------------ */
 
-static char tmpdir[64];
-
-/* A path in the temporary directory. Up to 32 results stay valid at once. */
-static const char *tmp_path(const char *name)
-{
-    static char ring[32][320];
-    static int next;
-    char *p = ring[next++ % 32];
-    assert_true(strlen(name) <= 200);
-    snprintf(p, sizeof ring[0], "%s/%.200s", tmpdir, name);
-    return p;
-}
-
 static int group_setup(void **state)
 {
     (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/rad_test_cli.XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        fprintf(stderr, "mkdtemp: %s\n", strerror(errno));
-        return -1;
-    }
-    return 0;
+    return tmpdir_make("cli");
 }
 
-/* The directory is flat: remove its files, then it. */
 static int group_teardown(void **state)
 {
-    DIR *d = opendir(tmpdir);
-    struct dirent *de;
     (void)state;
-    if (d) {
-        while ((de = readdir(d)) != NULL)
-            if (strcmp(de->d_name, ".") != 0 && strcmp(de->d_name, "..") != 0)
-                unlink(tmp_path(de->d_name));
-        closedir(d);
-    }
-    rmdir(tmpdir);
+    tmpdir_remove();
     return 0;
 }
 

@@ -35,6 +35,7 @@
 #include <unistd.h>
 
 #include "image.h"
+#include "tmpdir.h"
 #include "obj.h"
 #include "rad/rad.h"
 #include "scenes.h"
@@ -47,46 +48,16 @@ extern char **environ;
 
 /* ---- the temporary directory ------------------------------------------------------ */
 
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name)
-{
-    static char ring[16][320];
-    static int next;
-    char *p = ring[next++ % 16];
-    snprintf(p, sizeof ring[0], "%s/%.200s", tmpdir, name);
-    return p;
-}
-
-static void remove_tree(const char *path)
-{
-    DIR *d = opendir(path);
-    struct dirent *de;
-    char p[600];
-    if (!d) {
-        unlink(path);
-        return;
-    }
-    while ((de = readdir(d)) != NULL) {
-        if (!strcmp(de->d_name, ".") || !strcmp(de->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", path, de->d_name);
-        remove_tree(p);
-    }
-    closedir(d);
-    rmdir(path);
-}
-
 static int group_setup(void **state)
 {
     (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/rad_test_hostile.XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return tmpdir_make("hostile");
 }
 
 static int group_teardown(void **state)
 {
     (void)state;
-    remove_tree(tmpdir);
+    tmpdir_remove();
     return 0;
 }
 

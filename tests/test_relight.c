@@ -35,6 +35,7 @@
 
 #include "ffio.h"
 #include "image.h"
+#include "tmpdir.h"
 #include "obj.h"
 #include "objpoly.h"
 #include "scene.h"
@@ -57,35 +58,16 @@ extern char **environ;
 
 /* ---- temporary directory ---------------------------------------------------------- */
 
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name)
-{
-    static char ring[32][320];
-    static int next;
-    char *p = ring[next++ % 32];
-    snprintf(p, sizeof ring[0], "%s/%.200s", tmpdir, name);
-    return p;
-}
-
 static int group_setup(void **state)
 {
     (void)state;
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/rad_test_relight.XXXXXX");
-    return mkdtemp(tmpdir) ? 0 : -1;
+    return tmpdir_make("relight");
 }
 
 static int group_teardown(void **state)
 {
-    DIR *d = opendir(tmpdir);
-    struct dirent *de;
     (void)state;
-    if (d) {
-        while ((de = readdir(d)) != NULL)
-            if (strcmp(de->d_name, ".") != 0 && strcmp(de->d_name, "..") != 0) unlink(tmp_path(de->d_name));
-        closedir(d);
-    }
-    rmdir(tmpdir);
+    tmpdir_remove();
     return 0;
 }
 
