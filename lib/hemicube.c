@@ -371,16 +371,21 @@ typedef struct {
     uint64_t pixels;
 } part_head_t;
 
+static uint32_t *part_z(void *buf) { return (uint32_t *)(void *)((part_head_t *)buf + 1); }
+static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
+{
+    return (rad_index_t *)(void *)(part_z(buf) + RAD_PIXELS_ALL(s->cfg.res));
+}
+
 /* The part's canvas in BUF; with BYTES room after the face buffers, a vertex memo of
  * its own (parts run at once: they share none), emptied for this shot. */
 static canvas_t part_canvas(const rad_scene_t *s, void *buf, size_t bytes)
 {
     canvas_t cv;
-    part_head_t *h = (part_head_t *)buf;
     uintptr_t base = (uintptr_t)buf, m;
     uint32_t v;
-    cv.z = (uint32_t *)(void *)(h + 1);
-    cv.ids = (rad_index_t *)(void *)(cv.z + RAD_PIXELS_ALL(s->cfg.res));
+    cv.z = part_z(buf);
+    cv.ids = part_ids(s, buf);
     cv.st = 0;
     cv.memo = 0;
     cv.stamp = 1;
@@ -444,11 +449,9 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
         const part_head_t *h = (const part_head_t *)bufs[k];
-        const rad_index_t *ids = (const rad_index_t *)(const void *)((const uint32_t *)(const void *)(h + 1) +
-                                                                     RAD_PIXELS_ALL(s->cfg.res));
         s->stats.raster_calls += h->calls;
         s->stats.raster_pixels += h->pixels;
         nreg = part_regions(s, k, nparts, reg);
-        for (r = 0; r < nreg; r++) accumulate(s, ids, &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, part_ids(s, bufs[k]), &reg[r]);
     }
 }

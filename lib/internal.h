@@ -87,10 +87,10 @@ static inline uint16_t rad__ff_code(uint32_t q)
 }
 static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u) << (c >> 11); }
 
-/* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its contiguous
- * run of the cube's rows into BUF (RAD_PART_BYTES, plus a vertex memo when
- * BYTES has room); merging fills s->acc as rad__hemicube
- * would, bit for bit. Needs all five faces in one pass (band_rows 0). */
+/* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
+ * cube's rows into BUF (RAD_PART_BYTES, and a vertex memo if BYTES has room for one);
+ * merging fills s->acc as rad__hemicube would, bit for bit. Needs all five faces in
+ * one pass (band_rows 0). */
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf, size_t bytes);
 void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
 
