@@ -31,6 +31,12 @@ typedef struct {
 } region_t;
 
 static uint32_t face_rows(const rad_scene_t *s, unsigned f) { return f ? s->cfg.res / 2u : s->cfg.res; }
+/* First pixel of face F when all five faces are in the buffers: the top, then the sides. */
+static uint32_t face_offset(const rad_scene_t *s, unsigned f)
+{
+    uint32_t res = s->cfg.res;
+    return f ? res * res + (f - 1u) * res * (res / 2u) : 0u;
+}
 
 /* ---- the delta form factor table ----------------------------------------------- */
 
@@ -127,7 +133,7 @@ int rad__hemicube_init(rad_scene_t *s)
  * returns how many, 0 past the last pass. */
 static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 {
-    uint32_t res = s->cfg.res, band = s->band_rows;
+    uint32_t band = s->band_rows;
     unsigned f;
     if (band == 0) {
         if (k) return 0;
@@ -135,7 +141,7 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
             r[f].face = f;
             r[f].row0 = 0;
             r[f].row1 = (int)face_rows(s, f);
-            r[f].offset = f ? res * res + (f - 1u) * res * (res / 2u) : 0u;
+            r[f].offset = face_offset(s, f);
         }
         return 5;
     }
@@ -404,15 +410,13 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
 {
     uint32_t res = s->cfg.res, g = 0, total = 3u * res, f, n = 0;
     uint32_t a = (uint32_t)((uint64_t)total * part / nparts), b = (uint32_t)((uint64_t)total * (part + 1u) / nparts);
-    region_t all[5];
-    pass_regions(s, 0, all);
     for (f = 0; f < 5; f++) {
         uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
         if (b > g && lo < hi && lo < rows) {
-            r[n] = all[f];
+            r[n].face = f;
             r[n].row0 = (int)lo;
             r[n].row1 = (int)hi;
-            r[n].offset = all[f].offset + lo * res;
+            r[n].offset = face_offset(s, f) + lo * res;
             n++;
         }
         g += rows;

@@ -29,7 +29,7 @@ typedef struct {
 } rad__frustum_t;
 
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
- * just those rows. ids or rgb may be NULL; with rgb, colours are interpolated. */
+ * just those rows. One of ids and rgb is set: with rgb, colours are interpolated. */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;

@@ -215,8 +215,8 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pve
                 x++;
             }
             pixels += (uint64_t)(x - xs);
-            if (t->ids) fill_ids(t->z + row, t->ids + row, xs, x, w, sx[0], id);
-            else fill_rgb(t->z + row, t->rgb + row, xs, x, w, val, sx, xs - x0);
+            if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, x, w, val, sx, xs - x0);
+            else fill_ids(t->z + row, t->ids + row, xs, x, w, sx[0], id);
             r0 += ed[0].dy; r1 += ed[1].dy; r2 += ed[2].dy; r3 += ed[3].dy;
             for (k = 0; k < nat; k++) val[k] += sy[k];
         }
