@@ -559,9 +559,12 @@ static void op_parallel(reader_t *r, ctx_t *c)
     void *bufs[4] = {0, 0, 0, 0};
     unsigned char *blk[4] = {0, 0, 0, 0};
     snap_t sn;
-    int rc;
+    int rc, short_buf = (f & 1) && !(f & 0x20);
     if (c->s.cfg.res > 64) return;
-    bytes = RAD_PART_BYTES(c->s.cfg.res) - ((f & 1) ? 1u : 0u);
+    /* One byte short of a part; or room for the part's vertex memo, or one byte short
+     * of that (the part then works without one). */
+    bytes = RAD_PART_BYTES(c->s.cfg.res) - (short_buf ? 1u : 0u);
+    if (f & 0x20) bytes += RAD_CACHE_BYTES(c->s.n_vertices) - ((f & 0x80) ? 1u : 0u);
     snap_take(&sn, &c->s);
     rc = rad_shot_begin(&c->s, tol, (f & 0x40) ? NULL : &patch);
     if (rc < 0) {
@@ -584,7 +587,7 @@ static void op_parallel(reader_t *r, ctx_t *c)
         snap_same(&sn, &c->s); /* parts only read the scene */
         snap_free(&sn);
         if (rc < 0) { CHECK(rc == RAD_ERR_ARG); ok = 0; }
-        else CHECK(!(f & 9) && patch < c->s.n_patches); /* short or misaligned buffers are refused */
+        else CHECK(!short_buf && !(f & 8) && patch < c->s.n_patches); /* short or misaligned: refused */
     }
     if (ok) {
         unsigned n = (f & 0x10) ? 1u + u8(r) % nparts : nparts;

@@ -317,7 +317,9 @@ def core_seeds():
            + bytes([13, 0x02]) + real(0) + bytes([0, 1])      # parts of the next patch
            + bytes([13, 0x01]) + real(0) + bytes([0])         # one byte short
            + bytes([13, 0x08]) + real(0) + bytes([0])         # misaligned
-           + bytes([13, 0x40]) + real(0) + bytes([0]))        # no patch pointer
+           + bytes([13, 0x40]) + real(0) + bytes([0])         # no patch pointer
+           + bytes([13, 0x20]) + real(0) + bytes([2])         # 3 parts, each with a vertex memo
+           + bytes([13, 0xA1]) + real(0) + bytes([1]))        # a memo one byte short
     out("core", "room_parallel.bin", setup(res_index=2) + room() + par + bytes([7]))
     out("core", "bands_parallel.bin", setup(flags=4, res_index=2, band=2) + room() + par)
     rows = (bytes([14, 0x00, 1]) + struct.pack("<H", 5000) + bytes([3])   # 3 rows
