@@ -48,18 +48,7 @@ extern char **environ;
 
 /* ---- the temporary directory ------------------------------------------------------ */
 
-static int group_setup(void **state)
-{
-    (void)state;
-    return tmpdir_make("hostile");
-}
-
-static int group_teardown(void **state)
-{
-    (void)state;
-    tmpdir_remove();
-    return 0;
-}
+TMPDIR_GROUP("hostile")
 
 static int light(void) { return getenv("RAD_TEST_LIGHT") != NULL; }
 

@@ -58,18 +58,7 @@ extern char **environ;
 
 /* ---- temporary directory ---------------------------------------------------------- */
 
-static int group_setup(void **state)
-{
-    (void)state;
-    return tmpdir_make("relight");
-}
-
-static int group_teardown(void **state)
-{
-    (void)state;
-    tmpdir_remove();
-    return 0;
-}
+TMPDIR_GROUP("relight")
 
 static double now(void)
 {
