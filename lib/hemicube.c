@@ -9,12 +9,13 @@
  */
 #include "internal.h"
 
-/* A vertex in the current cube's frame, with its outcodes for the five faces, and its
- * projection onto face PFACE (NO_FACE: none yet). A vertex lies inside one face's
- * frustum, or on the edge of two, so one projection serves nearly every use. */
+/* A vertex in the current cube's frame, with its outcodes for the five faces (filled
+ * for every vertex when the cube starts), and its projection onto face PFACE (NO_FACE:
+ * none yet). A vertex lies inside one face's frustum, or on the edge of two, so one
+ * projection serves nearly every use. */
 typedef struct {
     rad_vec3_t loc;
-    uint32_t code, stamp;
+    uint32_t code;
     int32_t px, py;
     uint32_t pw;
     uint32_t pface;
@@ -117,11 +118,6 @@ int rad__hemicube_init(rad_scene_t *s)
         uintptr_t c = ((uintptr_t)(s->ibuf + s->pass_pixels) + 7u) & ~(uintptr_t)7u;
         size_t need = (size_t)s->pools.max_vertices * sizeof(vcache_t);
         s->vcache = c - base <= s->pools.work_bytes && s->pools.work_bytes - (c - base) >= need ? (void *)c : 0;
-        if (s->vcache) {
-            uint32_t v;
-            for (v = 0; v < s->pools.max_vertices; v++) ((vcache_t *)s->vcache)[v].stamp = 0;
-        }
-        s->vstamp = 0;
     }
     build_table(s);
     return RAD_OK;
@@ -200,31 +196,39 @@ typedef struct {
     rad_index_t *ids;
     rad_stats_t *st;
     vcache_t *memo;
-    uint32_t stamp;
 } canvas_t;
 
-/* Vertex V in the cube's frame at C and its outcodes, from the memo when it is there. */
-static void vertex_local(const rad_scene_t *s, const canvas_t *cv, uint32_t v, rad_vec3_t c,
-                         const rad_vec3_t *frame, rad_vec3_t *loc, uint32_t *code)
+/* Vertex V in the cube's frame at C and its outcodes. */
+static void transform(const rad_scene_t *s, uint32_t v, rad_vec3_t c, const rad_vec3_t *frame, rad_vec3_t *loc,
+                      uint32_t *code)
 {
-    vcache_t *m = cv->memo ? &cv->memo[v] : 0;
-    rad_vec3_t d;
-    if (m && m->stamp == cv->stamp) {
-        *loc = m->loc;
-        *code = m->code;
-        return;
-    }
-    d = rad__sub(s->pools.vertices[v], c);
+    rad_vec3_t d = rad__sub(s->pools.vertices[v], c);
     loc->x = rad__dot(d, frame[0]);
     loc->y = rad__dot(d, frame[1]);
     loc->z = rad__dot(d, frame[2]);
     *code = cube_codes(*loc);
-    if (m) {
-        m->loc = *loc;
-        m->code = *code;
-        m->stamp = cv->stamp;
-        m->pface = NO_FACE;
+}
+
+/* The memo for a new cube: every vertex transformed once, in order, none projected. */
+static void memo_fill(const rad_scene_t *s, vcache_t *memo, rad_vec3_t c, const rad_vec3_t *frame)
+{
+    uint32_t v;
+    for (v = 0; v < s->n_vertices; v++) {
+        transform(s, v, c, frame, &memo[v].loc, &memo[v].code);
+        memo[v].pface = NO_FACE;
     }
+}
+
+/* Vertex V in the cube's frame at C and its outcodes, from the memo when there is one. */
+static void vertex_local(const rad_scene_t *s, const canvas_t *cv, uint32_t v, rad_vec3_t c,
+                         const rad_vec3_t *frame, rad_vec3_t *loc, uint32_t *code)
+{
+    if (cv->memo) {
+        *loc = cv->memo[v].loc;
+        *code = cv->memo[v].code;
+        return;
+    }
+    transform(s, v, c, frame, loc, code);
 }
 
 /* Vertex V (in the memo, inside FACE) projected onto FACE: from the memo, or computed
@@ -356,11 +360,7 @@ void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
     cube_frame(n, spin, frame);
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
     cv.memo = (vcache_t *)s->vcache;
-    if (cv.memo && ++s->vstamp == 0) { /* after 2^32 cubes: forget every entry */
-        for (e = 0; e < s->pools.max_vertices; e++) cv.memo[e].stamp = 0;
-        s->vstamp = 1;
-    }
-    cv.stamp = s->vstamp;
+    if (cv.memo) memo_fill(s, cv.memo, c, frame);
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
@@ -384,22 +384,17 @@ static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 }
 
 /* The part's canvas in BUF; with BYTES room after the face buffers, a vertex memo of
- * its own (parts run at once: they share none), emptied for this shot. */
+ * its own (parts run at once: they share none), to be filled for the shot. */
 static canvas_t part_canvas(const rad_scene_t *s, void *buf, size_t bytes)
 {
     canvas_t cv;
     uintptr_t base = (uintptr_t)buf, m;
-    uint32_t v;
     cv.z = part_z(buf);
     cv.ids = part_ids(s, buf);
     cv.st = 0;
     cv.memo = 0;
-    cv.stamp = 1;
     m = ((uintptr_t)(cv.ids + RAD_PIXELS_ALL(s->cfg.res)) + 7u) & ~(uintptr_t)7u;
-    if (m - base <= bytes && (bytes - (m - base)) / sizeof(vcache_t) >= s->n_vertices) {
-        cv.memo = (vcache_t *)m;
-        for (v = 0; v < s->n_vertices; v++) cv.memo[v].stamp = 0;
-    }
+    if (m - base <= bytes && (bytes - (m - base)) / sizeof(vcache_t) >= s->n_vertices) cv.memo = (vcache_t *)m;
     return cv;
 }
 
@@ -437,6 +432,7 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
 
     cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.st = &st;
+    if (cv.memo && nreg) memo_fill(s, cv.memo, pt->center, frame);
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
     if (nreg)
         for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, pt->center, frame);

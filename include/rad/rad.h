@@ -149,7 +149,7 @@ typedef struct {
  * hemi-cube transforms and projects a vertex once, not once for every element sharing
  * it (23% of a shot's instructions on CornellBox-Original at res 128; more when
  * banding). Results are the same bits either way. */
-#define RAD_CACHE_BYTES(vertices) ((size_t)(vertices) * 36u + 8u)
+#define RAD_CACHE_BYTES(vertices) ((size_t)(vertices) * 32u + 8u)
 #define RAD_WORK_BYTES(res, pixels, n)                                          \
     (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) +     \
      (size_t)(n) * sizeof(rad_ff_t) +                                          \
@@ -186,7 +186,6 @@ typedef struct {
     uint32_t pass_pixels;         /* pixels the face buffers hold */
     uint16_t band_rows;           /* rows per band, or 0: all faces in one pass */
     void *vcache;                 /* per-vertex transform memo, if the work buffer had room */
-    uint32_t vstamp;              /* hemi-cubes rendered: marks the memo's entries current */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
