@@ -185,6 +185,8 @@ static void twin_accuracy(const bscene *sc, double *mx, double *rms)
 
 /* ---- patch size: shots against accuracy ------------------------------------------- */
 
+static int poly_emits(const sc_poly *p) { return p->emit[0] + p->emit[1] + p->emit[2] > 0; }
+
 /* Area-weighted mean radiosity (r + g + b, with the ambient term) of every OBJ face
  * (polygon tag < NTAG) into M. */
 static void face_means(sc_solver *s, int ntag, double *m)
@@ -221,7 +223,7 @@ static void face_diff(const bscene *sc, sc_solver *a, sc_solver *b, double *wors
     emits = calloc((size_t)ntag, 1);
     if (!ma || !mb || !emits) exit(1);
     for (i = 0; i < sc->n; i++)
-        if (sc->polys[i].emit[0] + sc->polys[i].emit[1] + sc->polys[i].emit[2] > 0) emits[sc->polys[i].tag] = 1;
+        if (poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
     face_means(a, ntag, ma);
     face_means(b, ntag, mb);
     for (t = 0; t < ntag; t++) if (!emits[t] && ma[t] > top) top = ma[t];
@@ -281,7 +283,7 @@ static int is_emitter(void *ctx, int tag)
     const emitters_t *em = ctx;
     int i;
     for (i = 0; i < em->n; i++)
-        if (em->p[i].tag == tag) return em->p[i].emit[0] + em->p[i].emit[1] + em->p[i].emit[2] > 0;
+        if (em->p[i].tag == tag) return poly_emits(&em->p[i]);
     return 0;
 }
 
@@ -335,7 +337,7 @@ static void relight_bench(const bscene *sc, relight_t *r)
     if (!q) exit(1);
     memcpy(q, sc->polys, (size_t)sc->n * sizeof *q);
     for (i = 0; i < sc->n; i++)
-        if (q[i].emit[0] + q[i].emit[1] + q[i].emit[2] > 0) memcpy(q[i].emit, blue, sizeof blue);
+        if (poly_emits(&q[i])) memcpy(q[i].emit, blue, sizeof blue);
     t0 = now();
     f = sc_create(q, sc->n, &o, NULL, NULL, err, sizeof err);
     if (!f) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
