@@ -37,6 +37,7 @@ int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
     if (z.cfg.res == 0) z.cfg.res = 64;
     if (z.cfg.max_element == 0) z.cfg.max_element = RAD__Q(4.0);
     if (z.cfg.res < 8 || z.cfg.res > RAD_MAX_RES || (z.cfg.res & 1u)) return RAD_ERR_ARG;
+    if (z.cfg.flags & ~RAD_NO_OVERSHOOT) return RAD_ERR_ARG;
     /* Checked before the default patch size is derived from it: 4 * max_element of an
      * out-of-range value would overflow. */
     if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;

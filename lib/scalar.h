@@ -271,36 +271,38 @@ static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale
 }
 /* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
 static inline uint32_t rad__depth(rad__recip_t inv) { return (uint32_t)((inv + 128u) >> 8); }
+/* Energies are signed (overshooting owes power), but these take and give magnitudes:
+ * callers carry the sign (rad__eabs), so no product or shift sees a negative value. */
 /* b, area >= 0 and < 2^31: the product < 2^62. */
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
 {
-    return ((uint64_t)b * (uint64_t)area + 32768u) >> 16;
+    return (rad_energy_t)(((uint64_t)b * (uint64_t)area + 32768u) >> 16);
 }
-/* u < 2^46, f <= 2^30: (u * f) >> 30 without a 128-bit product. */
+/* 0 <= u < 2^46, f <= 2^30: (u * f) >> 30 without a 128-bit product. */
 static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f)
 {
-    uint64_t hi = u >> 32, lo = u & 0xFFFFFFFFu;
-    return ((hi * f) << 2) + ((lo * f + (1u << 29)) >> 30);
+    uint64_t hi = (uint64_t)u >> 32, lo = (uint64_t)u & 0xFFFFFFFFu;
+    return (rad_energy_t)(((hi * f) << 2) + ((lo * f + (1u << 29)) >> 30));
 }
 static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 {
-    return (u * (uint32_t)rho + 32768u) >> 16;
+    return (rad_energy_t)(((uint64_t)u * (uint32_t)rho + 32768u) >> 16);
 }
-/* Radiosity of power U spread over AREA (> 0); U < 2^47. */
+/* Radiosity of power 0 <= U < 2^47 spread over AREA (> 0). */
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
 {
     uint64_t a = (uint64_t)(area > 0 ? area : 1);
-    uint64_t q = ((u << 16) + (a >> 1)) / a;
+    uint64_t q = (((uint64_t)u << 16) + (a >> 1)) / a;
     if (q > (uint64_t)INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
     return (rad_real_t)q;
 }
-/* num / den in Q16.16 for any two energies (the larger is scaled down to fit). */
+/* num / den in Q16.16 for any two energies >= 0 (the larger is scaled down to fit). */
 static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
 {
-    uint64_t q;
-    while (num >> 46) { num >>= 1; den >>= 1; }
-    if (den == 0) return num ? INT32_MAX : 0;
-    q = ((num << 16) + (den >> 1)) / den;
+    uint64_t q, n = (uint64_t)num, d = (uint64_t)den;
+    while (n >> 46) { n >>= 1; d >>= 1; }
+    if (d == 0) return n ? INT32_MAX : 0;
+    q = ((n << 16) + (d >> 1)) / d;
     return q > (uint64_t)INT32_MAX ? INT32_MAX : (rad_real_t)q;
 }
 static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
@@ -351,4 +353,8 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 }
 
 #endif
+
+/* The magnitude of a signed energy (|u| < 2^47 in the fixed build: no overflow). */
+static inline rad_energy_t rad__eabs(rad_energy_t u) { return u < 0 ? -u : u; }
+
 #endif

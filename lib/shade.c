@@ -2,7 +2,8 @@
  * by the same rasterizer as the hemi-cube (raster.c) with colours instead of ids. */
 #include "internal.h"
 
-/* Element radiosity, plus reflectance times AMB when AMB is given. */
+/* Element radiosity, plus reflectance times AMB when AMB is given, at least 0 (while
+ * overshooting, power owed can make either negative for a while). */
 static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
 {
     const rad_element_t *el = &s->pools.elements[e];
@@ -14,6 +15,9 @@ static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
         b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
         b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
     }
+    if (b.r < 0) b.r = 0;
+    if (b.g < 0) b.g = 0;
+    if (b.b < 0) b.b = 0;
     return b;
 }
 

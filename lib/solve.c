@@ -4,31 +4,92 @@
  * centre. With F the form factor from the patch to element j (the item buffer's sum),
  * reciprocity gives element j the power rho_j F U, hence radiosity rho_j F U / A_j,
  * and adds that power to the unshot power of j's patch. No element-to-patch division
- * is needed, and unshot power never grows: the sum of F is at most 1 and rho < 1.
+ * is needed. Shooting plainly, unshot power never grows: the sum of F is at most 1 and
+ * rho < 1.
+ *
+ * Overshooting (the default; Feda & Purgathofer 1992) adds to a shot the power the
+ * patch will get back: its reflectance times its area times the ambient radiosity
+ * (the unshot power spread over the scene, times 1 / (1 - mean reflectance)). The
+ * patch is left owing that much, as negative unshot power; when it arrives the debt
+ * is paid, and if the estimate was too high the patch shoots the difference back as
+ * negative power. The fixed point of the iteration is unchanged.
  */
 #include "internal.h"
 
-static uint32_t select_shooter(const rad_scene_t *s, rad_energy_t *total)
+/* Power RECV = rho * F * U reaching an element (computed on U's magnitude, with U's
+ * sign), added to its radiosity and patch. */
+static rad_real_t receive(rad_scene_t *s, rad_energy_t u, rad_ff_t f, rad_real_t rho,
+                          rad_real_t area, rad_real_t b, rad_energy_t *patch_unshot)
 {
-    uint32_t p, best = RAD_INDEX_NONE;
+    uint32_t *sat = &s->stats.saturations;
+    rad_energy_t recv = rad__energy_refl(rad__energy_ff(rad__eabs(u), f), rho);
+    rad_real_t db = rad__energy_to_rad(recv, area, sat);
+    if (u < 0) {
+        *patch_unshot -= recv;
+        return rad__add_sat(b, -db, sat);
+    }
+    *patch_unshot += recv;
+    return rad__add_sat(b, db, sat);
+}
+
+/* The ambient radiosity per channel (negative while more power is owed than held). */
+static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+{
+    rad_energy_t area = 0, unshot[3] = {0, 0, 0}, rho[3] = {0, 0, 0};
+    uint32_t p, c;
+    for (p = 0; p < s->n_patches; p++) {
+        const rad_patch_t *pt = &s->pools.patches[p];
+        const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
+        area += rad__energy(RAD__ONE, pt->area);
+        rho[0] += rad__energy(r->r, pt->area);
+        rho[1] += rad__energy(r->g, pt->area);
+        rho[2] += rad__energy(r->b, pt->area);
+        for (c = 0; c < 3; c++) unshot[c] += pt->unshot[c];
+    }
+    /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
+    for (c = 0; c < 3; c++) {
+        rad_real_t inter = rad__div(RAD__ONE, RAD__ONE - rad__energy_ratio(rho[c], area), sat);
+        rad_real_t a = rad__mul(rad__energy_ratio(rad__eabs(unshot[c]), area), inter, sat);
+        amb[c] = unshot[c] < 0 ? -a : a;
+    }
+}
+
+/* The power patch PT will get back in channel C, from the ambient radiosity AMB:
+ * what overshooting adds to its shot (0 for every patch when AMB is 0). */
+static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb, unsigned c)
+{
+    const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
+    const rad_real_t rho = c == 0 ? r->r : c == 1 ? r->g : r->b;
+    rad_energy_t over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area), rho);
+    return amb[c] < 0 ? -over : over;
+}
+
+/* The ambient radiosity to overshoot by: 0 when shooting plainly. */
+static void shot_ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+{
+    amb[0] = amb[1] = amb[2] = 0;
+    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, sat);
+}
+
+/* The patch whose shot moves the most power (its unshot power plus the overshoot, in
+ * magnitude, summed over channels), or RAD_INDEX_NONE; TOTAL gets the magnitude of all
+ * unshot power. Choosing by the shot, not by the unshot power alone, skips a patch
+ * whose debt is just what it expects back: shooting it would move nothing. */
+static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
+{
+    uint32_t p, c, best = RAD_INDEX_NONE;
     rad_energy_t most = 0, sum = 0;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
-        rad_energy_t u = pt->unshot[0] + pt->unshot[1] + pt->unshot[2];
-        sum += u;
+        rad_energy_t u = 0;
+        for (c = 0; c < 3; c++) {
+            sum += rad__eabs(pt->unshot[c]);
+            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, amb, c));
+        }
         if (u > most) { most = u; best = p; }
     }
     *total = sum;
     return best;
-}
-
-/* Power RECV = rho * F * U reaching an element, added to its radiosity and patch. */
-static rad_real_t receive(rad_scene_t *s, rad_energy_t u, rad_ff_t f, rad_real_t rho,
-                          rad_real_t area, rad_real_t b, rad_energy_t *patch_unshot)
-{
-    rad_energy_t recv = rad__energy_refl(rad__energy_ff(u, f), rho);
-    *patch_unshot += recv;
-    return rad__add_sat(b, rad__energy_to_rad(recv, area, &s->stats.saturations), &s->stats.saturations);
 }
 
 /* Element E receives power F * U (per channel) from a shooter. */
@@ -42,16 +103,21 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
     el->radiosity.b = receive(s, u[2], f, sf->reflectance.b, el->area, el->radiosity.b, &pu[2]);
 }
 
-/* Shoots patch P's unshot power through its stored row, or through the form factors
- * in s->acc, rendering its hemi-cube first when CUBE is set. */
-static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_rows_t *rows, int cube)
+/* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
+ * stored row, or through the form factors in s->acc, rendering its hemi-cube first
+ * when CUBE is set. */
+static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows, int cube)
 {
     rad_patch_t *pt = &s->pools.patches[p];
     rad_energy_t u[3];
-    uint32_t e;
+    uint32_t e, c;
 
-    u[0] = pt->unshot[0]; u[1] = pt->unshot[1]; u[2] = pt->unshot[2];
-    pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0;
+    for (c = 0; c < 3; c++) {
+        /* The power coming back to this patch is shot now and owed until it comes. */
+        rad_energy_t over = overshoot(s, pt, amb, c);
+        u[c] = pt->unshot[c] + over;
+        pt->unshot[c] = -over;
+    }
     if (rows) {
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
@@ -69,9 +135,12 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
     s->solving = 1;
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
-        uint32_t p = select_shooter(s, &total);
+        rad_real_t amb[3];
+        uint32_t p;
+        shot_ambient(s, amb, &s->stats.saturations);
+        p = select_shooter(s, amb, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
-        shoot_patch(s, p, rows, 1);
+        shoot_patch(s, p, amb, rows, 1);
         done++;
     }
     return (int)done;
@@ -85,33 +154,18 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 
 rad_real_t rad_unshot_fraction(const rad_scene_t *s)
 {
+    static const rad_real_t none[3] = {0, 0, 0};
     rad_energy_t total;
     if (!s) return 0;
-    select_shooter(s, &total);
+    select_shooter(s, none, &total);
     return rad__energy_ratio(total, s->emitted);
 }
 
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 {
-    rad_energy_t area = 0, unshot[3] = {0, 0, 0}, rho[3] = {0, 0, 0};
     rad_real_t amb[3];
-    uint32_t p, c;
     if (!s || !out) return RAD_ERR_ARG;
-    for (p = 0; p < s->n_patches; p++) {
-        const rad_patch_t *pt = &s->pools.patches[p];
-        const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
-        area += rad__energy(RAD__ONE, pt->area);
-        rho[0] += rad__energy(r->r, pt->area);
-        rho[1] += rad__energy(r->g, pt->area);
-        rho[2] += rad__energy(r->b, pt->area);
-        for (c = 0; c < 3; c++) unshot[c] += pt->unshot[c];
-    }
-    /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
-    for (c = 0; c < 3; c++) {
-        rad_real_t inter = rad__div(RAD__ONE, RAD__ONE - rad__energy_ratio(rho[c], area),
-                                    &s->stats.saturations);
-        amb[c] = rad__mul(rad__energy_ratio(unshot[c], area), inter, &s->stats.saturations);
-    }
+    ambient(s, amb, &s->stats.saturations);
     out->r = amb[0]; out->g = amb[1]; out->b = amb[2];
     return RAD_OK;
 }
@@ -130,11 +184,13 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
 {
     rad_energy_t total;
+    rad_real_t amb[3];
     uint32_t p;
     if (!s || !patch) return RAD_ERR_ARG;
     if (s->band_rows != 0) return RAD_ERR_STATE;
     s->solving = 1;
-    p = select_shooter(s, &total);
+    shot_ambient(s, amb, &s->stats.saturations);
+    p = select_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
     *patch = p;
     return 1;
@@ -150,10 +206,12 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
 
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
 {
+    rad_real_t amb[3];
     unsigned k;
     if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++) if (!bufs[k]) return RAD_ERR_ARG;
     rad__cube_merge(s, bufs, nparts);
-    shoot_patch(s, patch, 0, 0);
+    shot_ambient(s, amb, &s->stats.saturations);
+    shoot_patch(s, patch, amb, 0, 0);
     return 1;
 }

@@ -1,5 +1,6 @@
 /* Every public function's error paths, the state after errors, guard bytes after every
  * caller buffer, relighting by restart, and saturation counting (fixed build). */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -94,7 +95,7 @@ static void add_cube_with(rad_scene_t *s, const rad_rgb_t *rho, const rad_rgb_t 
 
 static void add_cube(rad_scene_t *s) { add_cube_with(s, &grey, &light); }
 
-static const rad_config_t cfg = {RAD_REAL(4.0), RAD_REAL(2.0), 32, 0};
+static const rad_config_t cfg = {RAD_REAL(4.0), RAD_REAL(2.0), 32, 0, 0};
 
 static void test_init_errors(void **st)
 {
@@ -121,6 +122,8 @@ static void test_init_errors(void **st)
     c = cfg; c.max_element = Q(1.0 / 32);         /* below 1/16 */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.flags = 2;                         /* no such flag */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     /* Out of range with the default patch size (0): refused before 4 * max_element is
      * formed (it overflowed in the fixed build: found by fuzz_core). */
@@ -364,6 +367,44 @@ static void test_saturation_counted(void **st)
     pools_free(&g);
 }
 
+/* After one shot the shooter holds nothing (plain) or owes what it expects back
+ * (overshooting), and the unshot fraction counts debts by their magnitude. */
+static void test_overshoot_debt(void **st)
+{
+    int k;
+    (void)st;
+    for (k = 0; k < 2; k++) {
+        guarded_t g;
+        rad_scene_t s;
+        rad_config_t c = cfg;
+        uint32_t shooter, p, e;
+        double sum = 0;
+        int ch;
+        c.flags = k ? RAD_NO_OVERSHOOT : 0;
+        pools_make(&g, NS, NP, NE, NV, WORK);
+        assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
+        add_cube(&s);
+        assert_int_equal(rad_shot_begin(&s, 0, &shooter), 1);
+        assert_int_equal(rad_shoot(&s, 1, 0), 1);
+        for (ch = 0; ch < 3; ch++) {
+            rad_energy_t u = s.pools.patches[shooter].unshot[ch];
+            if (k) assert_true(u == 0);
+            else assert_true(u < 0); /* a closed grey cube: the ambient term is > 0 */
+        }
+        for (p = 0; p < s.n_patches; p++)
+            for (ch = 0; ch < 3; ch++) sum += fabs((double)s.pools.patches[p].unshot[ch]);
+        assert_true(fabs(sum / (double)s.emitted * 65536.0 - rad_unshot_fraction(&s)) <= 1.0);
+        /* Whatever is owed, nothing is displayed below black. */
+        for (e = 0; e < s.n_elements; e++) {
+            rad_rgb_t b;
+            assert_int_equal(rad_element_radiosity(&s, e, RAD_SHADE_AMBIENT, &b), RAD_OK);
+            assert_true(b.r >= 0 && b.g >= 0 && b.b >= 0);
+        }
+        pools_check(&g);
+        pools_free(&g);
+    }
+}
+
 static void test_vertex_memo_same_bits(void **st)
 {
     guarded_t a, b;
@@ -411,6 +452,7 @@ int main(void)
         cmocka_unit_test(test_calls_and_guards),
         cmocka_unit_test(test_restart_relight),
         cmocka_unit_test(test_saturation_counted),
+        cmocka_unit_test(test_overshoot_debt),
         cmocka_unit_test(test_vertex_memo_same_bits),
         cmocka_unit_test(test_strerror),
     };

@@ -153,11 +153,11 @@ static void test_energy_ops(void **st)
         int32_t area = (int32_t)(rnd() % 0x7FFFFFFFu) + 1;
         u128 exact = ((u128)u * f + (1u << 29)) >> 30;
         /* Exactly the rounded 94-bit product, without 128-bit arithmetic. */
-        assert_true(rad__energy_ff(u, f) == (uint64_t)exact);
-        assert_true(rad__energy_refl(u, rho) == ((u * (uint64_t)rho + 32768u) >> 16));
+        assert_true((uint64_t)rad__energy_ff((rad_energy_t)u, f) == (uint64_t)exact);
+        assert_true((uint64_t)rad__energy_refl((rad_energy_t)u, rho) == ((u * (uint64_t)rho + 32768u) >> 16));
         {
             double want = ldexp((double)u, 16) / area;
-            rad_real_t b = rad__energy_to_rad(u >> 2, area, &sat);
+            rad_real_t b = rad__energy_to_rad((rad_energy_t)(u >> 2), area, &sat);
             want = ldexp((double)(u >> 2), 16) / area;
             if (want < 2147483647.0) assert_true(fabs((double)b - want) <= 0.5 + want * 1e-15);
             else assert_int_equal(b, INT32_MAX);
@@ -165,13 +165,13 @@ static void test_energy_ops(void **st)
     }
     /* Saturation of radiosity is counted. */
     sat = 0;
-    assert_int_equal(rad__energy_to_rad((uint64_t)1 << 46, 1, &sat), INT32_MAX);
+    assert_int_equal(rad__energy_to_rad((rad_energy_t)1 << 46, 1, &sat), INT32_MAX);
     assert_int_equal(sat, 1);
     assert_int_equal(rad__add_sat(INT32_MAX - 1, 5, &sat), INT32_MAX);
     assert_int_equal(sat, 2);
     /* Ratios of any two energies. */
     assert_int_equal(rad__energy_ratio(1, 2), 32768);
-    assert_int_equal(rad__energy_ratio((uint64_t)1 << 62, (uint64_t)1 << 62), 65536);
+    assert_int_equal(rad__energy_ratio((rad_energy_t)1 << 62, (rad_energy_t)1 << 62), 65536);
     assert_int_equal(rad__energy_ratio(0, 0), 0);
 }
 

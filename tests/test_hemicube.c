@@ -28,7 +28,7 @@ static void test_table_sums_to_one(void **st)
         size_t bytes = RAD_WORK_BYTES(res[i], RAD_PIXELS_ALL(res[i]), 1);
         void *work = malloc(bytes);
         rad_pools_t p = {sf, 1, pt, 1, el, 1, vx, 1, work, bytes};
-        rad_config_t c = {0, 0, res[i], 0};
+        rad_config_t c = {0, 0, res[i], 0, 0};
         rad_scene_t s;
         uint64_t sum = 0;
         uint32_t q = res[i] / 2u, k;
@@ -93,7 +93,7 @@ static void test_point_to_polygon(void **st)
  * factor is the area-weighted mean of each patch's sum over the receiver's elements. */
 static double area_ff(const sc_poly *p, int res)
 {
-    sc_opts o = {1.0 / 16, 1.0 / 16, res, 0, 0};
+    sc_opts o = {1.0 / 16, 1.0 / 16, res, 0, 0, 0};
     char err[256];
     sc_solver *s = sc_create(p, 2, &o, NULL, NULL, err, sizeof err);
     sc_stats stt;
@@ -143,7 +143,7 @@ static void test_catalog(void **st)
 static void test_closed_box_rows(void **st)
 {
     sc_poly p[12];
-    sc_opts o = {0.5, 0.25, 64, 0, 0};
+    sc_opts o = {0.5, 0.25, 64, 0, 0, 0};
     char err[256];
     int n = box(p, -1, -1, -1, 1, 1, 1, 1), pt, e, twin;
     (void)st;
@@ -183,7 +183,7 @@ static void test_bands_bit_exact(void **st)
     for (i = 0; i < n; i++) set_mat(&p[i], 0.6, 0.5, 0.4, 0, 0, 0);
     set_mat(&p[1], 0.5, 0.5, 0.5, 1, 1, 1);
     for (b = 0; b < 5; b++) {
-        sc_opts o = {0.5, 0.25, 32, bands[b], 0};
+        sc_opts o = {0.5, 0.25, 32, bands[b], 0, 0};
         sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
         assert_non_null(s);
         assert_true(sc_solve(s, 100, 0, NULL, NULL) == 100);
@@ -211,7 +211,7 @@ static void test_blocker_no_leak(void **st)
     p[n] = quad(0, 0, 1, 0, 3, 1, 3, 3, 1, 3, 0, 1); p[n++].tag = 1;
     p[n] = quad(-1, -1, 2, -1, 1, 2, 1, 1, 2, 1, -1, 2); set_mat(&p[n], 0.8, 0.8, 0.8, 0, 0, 0); p[n++].tag = 2;
     for (twin = 0; twin < 2; twin++) {
-        sc_opts o = {0.25, 0.125, 128, 0, 0};
+        sc_opts o = {0.25, 0.125, 128, 0, 0, 0};
         sc_stats stt;
         double rgb[3], lit = 0;
         void *s = twin ? (void *)scf_create(p, n, &o, NULL, NULL, err, sizeof err)

@@ -315,7 +315,7 @@ static void test_millions_of_vertices(void **st)
     const char *path = tmp_path("millions.obj");
     obj_scene sc;
     sc_poly *p;
-    sc_opts o = {0, 0, 16, 0, 5000};
+    sc_opts o = {0, 0, 16, 0, 5000, 0};
     char err[512];
     sc_solver *s;
     scf_solver *sf;
@@ -365,7 +365,7 @@ typedef struct {
 
 static int solve_scene(int twin, const sc_poly *p, int n, solved_t *out, char *err, size_t errlen)
 {
-    sc_opts o = {0.5, 0.25, 32, 0, 0};
+    sc_opts o = {0.5, 0.25, 32, 0, 0, 0};
     sc_stats st;
     if (twin) {
         scf_solver *s = scf_create(p, n, &o, NULL, NULL, err, errlen);
@@ -472,7 +472,7 @@ static void test_extent_denormal(void **st)
 static void test_no_emitter(void **st)
 {
     sc_poly p[16];
-    sc_opts o = {0.5, 0.25, 16, 0, 0};
+    sc_opts o = {0.5, 0.25, 16, 0, 0, 0};
     sc_stats stt;
     char err[256];
     int n = lit_room(p, 0, 0), e, twin;
@@ -518,7 +518,7 @@ static void test_no_emitter(void **st)
         static rad_vec3_t vert[256];
         static unsigned char work[RAD_WORK_BYTES(8, RAD_PIXELS_ALL(8), 256)];
         rad_pools_t pools = {surf, 4, pat, 64, el, 64, vert, 256, work, sizeof work};
-        rad_config_t cfg = {RAD_REAL(8.0), RAD_REAL(4.0), 8, 0};
+        rad_config_t cfg = {RAD_REAL(8.0), RAD_REAL(4.0), 8, 0, 0};
         rad_vec3_t v[3] = {{0, 0, 0}, {RAD_REAL(4.0), 0, 0}, {0, RAD_REAL(4.0), 0}};
         rad_rgb_t grey = {RAD_REAL(0.5), RAD_REAL(0.5), RAD_REAL(0.5)}, amb;
         rad_scene_t s;
@@ -595,7 +595,7 @@ static void test_bands_bit_exact(void **st)
             double *ff_all = NULL;
             int ne = 0;
             for (r = -1; r < 4; r++) {
-                sc_opts o = {0.5, 0.25, res, r < 0 ? 0 : rows[r], 0};
+                sc_opts o = {0.5, 0.25, res, r < 0 ? 0 : rows[r], 0, 0};
                 uint64_t sum;
                 double *ff;
                 sc_stats stt;
@@ -639,7 +639,7 @@ static void test_bands_bit_exact(void **st)
 static void test_max_res(void **st)
 {
     sc_poly p[16];
-    sc_opts o = {0.5, 0.25, RAD_MAX_RES, 0, 0};
+    sc_opts o = {0.5, 0.25, RAD_MAX_RES, 0, 0, 0};
     char err[256];
     int n = lit_room(p, 1, 0);
     sc_solver *s;
@@ -666,7 +666,7 @@ static void test_index_limits(void **st)
     static rad_vec3_t vert[1];
     static unsigned char work[1 << 16];
     rad_pools_t pools = {surf, 1, pat, 1, el, 1, vert, 1, work, sizeof work};
-    rad_config_t cfg = {0, 0, 8, 0};
+    rad_config_t cfg = {0, 0, 8, 0, 0};
     rad_scene_t s;
     (void)st;
     /* Counts beyond the index width are refused before any pool is touched. */

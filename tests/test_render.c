@@ -31,7 +31,7 @@ static rad_vec3_t V(double x, double y, double z)
 static void setup(rad_scene_t *s)
 {
     rad_pools_t p = {sf, 8, pt, 512, el, 512, vx, 1024, work, sizeof work};
-    rad_config_t c = {RAD_REAL(2.0), RAD_REAL(1.0), 16, 0};
+    rad_config_t c = {RAD_REAL(2.0), RAD_REAL(1.0), 16, 0, 0};
     assert_int_equal(rad_init(s, &p, &c), RAD_OK);
 }
 

@@ -48,7 +48,7 @@ static world_t *room(const rad_rgb_t *l1, const rad_rgb_t *l2, const rad_rgb_t *
 {
     world_t *w = calloc(1, sizeof *w);
     rad_pools_t p;
-    rad_config_t c = {RAD_REAL(16), RAD_REAL(8), 64, 0};
+    rad_config_t c = {RAD_REAL(16), RAD_REAL(8), 64, 0, 0};
     const rad_rgb_t white = C(0.7, 0.7, 0.7), green = C(0.15, 0.5, 0.1);
     rad_vec3_t f[9][4] = {
         {V(-32, -32, -32), V(-32, -32, 32), V(32, -32, 32), V(32, -32, -32)},   /* floor */

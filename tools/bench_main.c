@@ -141,7 +141,7 @@ static double median(double *v, int n)
  * (by total time), the others are freed. */
 static void bench_pair(const bscene *sc, brun *out_fx, brun *out_fl)
 {
-    sc_opts o = {0, 0, 0, 0, 0};
+    sc_opts o = {0, 0, 0, 0, 0, 0};
     brun runs[2][5];
     double tot[2][5];
     int i, k;
@@ -166,7 +166,7 @@ static void bench_pair(const bscene *sc, brun *out_fx, brun *out_fl)
 /* Fixed against float per element, solved to 0.001 (see ref_twin_diff). */
 static void twin_accuracy(const bscene *sc, double *mx, double *rms)
 {
-    sc_opts o = {0, 0, 0, 0, 0};
+    sc_opts o = {0, 0, 0, 0, 0, 0};
     char err[256];
     sc_solver *a;
     scf_solver *b;
@@ -250,7 +250,7 @@ typedef struct {
  * (the element edge: every element shoots for itself); the solver is returned. */
 static sc_solver *solve_patches(const bscene *sc, double max_patch, tradeoff_t *t)
 {
-    sc_opts o = {0, 0, 0, 0, 0};
+    sc_opts o = {0, 0, 0, 0, 0, 0};
     char err[256];
     sc_solver *s;
     sc_stats st;
@@ -297,7 +297,7 @@ typedef struct {
 static void relight_bench(const bscene *sc, relight_t *r)
 {
     static const double blue[3] = {4, 8, 18};
-    sc_opts o = {0, 0, 0, 0, 0};
+    sc_opts o = {0, 0, 0, 0, 0, 0};
     char err[256];
     sc_solver *s, *f;
     sc_rows_stats rs;
@@ -583,7 +583,7 @@ int main(int argc, char **argv)
         int rep;
         if (scenes[i].runs < 3) continue; /* the two largest take too long to repeat */
         for (rep = 0; rep < 3; rep++) {
-            sc_opts o = {0, 0, 0, 0, 0};
+            sc_opts o = {0, 0, 0, 0, 0, 0};
             char err[256];
             sc_solver *a, *b;
             double t0;

@@ -53,7 +53,7 @@ typedef struct {
     const char *scene;
     view_t views[MAX_VIEWS];
     int nviews, pending_cam;       /* pending_cam: a --camera still waiting for its -o */
-    int width, height, res, max_shots, threads, quiet, stats, list, no_ambient;
+    int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
     double tol, exposure, max_patch, max_element;
     const char *ply, *csv, *views_file;
     char **emit; int nemit;
@@ -93,6 +93,8 @@ static void usage(FILE *f)
         "  --tol F                 stop when the unshot fraction is below F (0.001)\n"
         "  --max-shots N           stop after N shots (1000000)\n"
         "  --threads N             render each shot's hemi-cube on N threads, same result (1)\n"
+        "  --no-overshoot          shoot only the unshot power (Cohen et al. 1988); by default\n"
+        "                          each shot adds the power expected back (fewer shots)\n"
         "  --emit NAME=R,G,B       set the emission of material NAME (repeatable)\n"
         "stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
         "no hemi-cube):\n"
@@ -352,6 +354,7 @@ static void parse_args(int argc, char **argv, opts_t *o)
         else if (strcmp(a, "--stats") == 0) o->stats = 1;
         else if (strcmp(a, "--quiet") == 0) o->quiet = 1;
         else if (strcmp(a, "--no-ambient") == 0) o->no_ambient = 1;
+        else if (strcmp(a, "--no-overshoot") == 0) o->no_overshoot = 1;
         else if (a[0] == '-' && a[1]) die_usage("unknown option", a);
         else if (o->scene) die_usage("more than one scene given", a);
         else o->scene = a;
@@ -889,6 +892,7 @@ int main(int argc, char **argv)
     so.max_patch = o.max_patch;
     so.max_element = o.max_element;
     so.res = o.res ? o.res : 128; /* 64 aliases visibly on elements a few pixels wide */
+    so.no_overshoot = o.no_overshoot;
     s = SC(create)(polys, npolys, &so, NULL, NULL, err, sizeof err);
     free(polys);
     if (!s) {

@@ -71,7 +71,7 @@ int ref_receiver(int k, sc_poly *p)
 double ref_hemicube_ff(int k, int res, int twin, double *want)
 {
     sc_poly p[2];
-    sc_opts o = {0, 0, 0, 0, 0};
+    sc_opts o = {0, 0, 0, 0, 0, 0};
     sc_stats stt;
     char err[256];
     double sum = 0, *ff = NULL;
@@ -104,31 +104,59 @@ double ref_hemicube_ff(int k, int res, int twin, double *want)
     return sum;
 }
 
-int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms)
+/* X against REF, 3 channels an element: see ref_twin_diff. */
+static int rgb_diff(const double *x, const double *ref, int n, double *worst, double *rms)
+{
+    double top = 0, s2 = 0;
+    int i, m = 0;
+    for (i = 0; i < 3 * n; i++) if (x[i] > top) top = x[i];
+    *worst = 0;
+    for (i = 0; i < 3 * n; i++) {
+        double d;
+        if (ref[i] < 0.01 * top) continue;
+        d = fabs(x[i] / ref[i] - 1);
+        if (d > *worst) *worst = d;
+        s2 += d * d;
+        m++;
+    }
+    *rms = m ? sqrt(s2 / m) : 0;
+    return m;
+}
+
+/* The displayed radiosities of the N elements of FX, or of the twin FL when FX is NULL. */
+static double *rgb_of(sc_solver *fx, scf_solver *fl, int n)
+{
+    double *v = malloc((size_t)(n > 0 ? n : 1) * 3 * sizeof *v);
+    int e;
+    if (!v) return NULL;
+    for (e = 0; e < n; e++) {
+        if (fx) sc_element_rgb(fx, e, 1, v + 3 * e);
+        else scf_element_rgb(fl, e, 1, v + 3 * e);
+    }
+    return v;
+}
+
+/* X against the fixed solver RFX, or the twin RFL when RFX is NULL. */
+static int diff_of(sc_solver *x, sc_solver *rfx, scf_solver *rfl, double *worst, double *rms)
 {
     sc_stats st;
-    double top = 0, s2 = 0;
-    int e, c, n = 0;
-    sc_get_stats(fx, &st);
-    for (e = 0; e < st.elements; e++) {
-        double x[3];
-        sc_element_rgb(fx, e, 1, x);
-        for (c = 0; c < 3; c++) if (x[c] > top) top = x[c];
-    }
-    *worst = 0;
-    for (e = 0; e < st.elements; e++) {
-        double x[3], y[3];
-        sc_element_rgb(fx, e, 1, x);
-        scf_element_rgb(fl, e, 1, y);
-        for (c = 0; c < 3; c++) {
-            double d;
-            if (y[c] < 0.01 * top) continue;
-            d = fabs(x[c] / y[c] - 1);
-            if (d > *worst) *worst = d;
-            s2 += d * d;
-            n++;
-        }
-    }
-    *rms = n ? sqrt(s2 / n) : 0;
-    return n;
+    double *a, *b;
+    int m = -1;
+    sc_get_stats(x, &st);
+    a = rgb_of(x, NULL, st.elements);
+    b = rgb_of(rfx, rfl, st.elements);
+    if (a && b) m = rgb_diff(a, b, st.elements, worst, rms);
+    free(a);
+    free(b);
+    return m;
+}
+
+int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms)
+{
+    return diff_of(fx, NULL, fl, worst, rms);
+}
+
+int ref_solution_diff(sc_solver *x, sc_solver *ref, double *worst, double *rms)
+{
+    return diff_of(x, ref, NULL, worst, rms);
 }

@@ -15,6 +15,8 @@ sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double b
  * ambient term, over channels above 1% of the brightest: the largest relative
  * difference into *WORST, the rms into *RMS; returns the channels compared. */
 int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms);
+/* The same for two solutions X and REF of one mesh in the fixed build (-1: no memory). */
+int ref_solution_diff(sc_solver *x, sc_solver *ref, double *worst, double *rms);
 
 /* Form factor from a differential area at the origin with normal +z to polygon P
  * (wholly above z = 0): F = 1/(2 pi) |sum theta_i (n . unit(R_i x R_i+1))|. */

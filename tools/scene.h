@@ -26,6 +26,7 @@ typedef struct {
     int res;                        /* hemi-cube resolution; 0: 64 */
     int band_rows;                  /* 0: all faces at once */
     long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
+    int no_overshoot;               /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
 } sc_opts;
 
 typedef struct {

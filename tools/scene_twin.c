@@ -209,7 +209,7 @@ static long estimate_elements(const struct SC(solver) *h, const sc_poly *polys, 
 SC(solver) *SC(create)(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
                        char *err, size_t errlen)
 {
-    static const sc_opts defaults = {0, 0, 0, 0, 0};
+    static const sc_opts defaults = {0, 0, 0, 0, 0, 0};
     struct SC(solver) *h = calloc(1, sizeof *h);
     rad_config_t cfg;
     long cap, limit;
@@ -232,6 +232,7 @@ SC(solver) *SC(create)(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn
         cfg.max_patch = RAD_REAL(mp);
         cfg.res = (uint16_t)(o->res ? o->res : 64);
         cfg.band_rows = (uint16_t)o->band_rows;
+        cfg.flags = o->no_overshoot ? RAD_NO_OVERSHOOT : 0u;
         cap = estimate_elements(h, polys, n, me);
     }
     limit = o->max_elements > 0 ? o->max_elements : 4000000L;

@@ -258,6 +258,7 @@ static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
     cfg.max_patch = rad_real_from_q16(MAX_PATCH);
     cfg.res = res;
     cfg.band_rows = band_rows;
+    cfg.flags = 0;
     rc = rad_init(s, &pools, &cfg);
     if (rc < 0) return rc;
 
