@@ -261,7 +261,7 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
         pt->unshot[0] = rad__energy(sf->emission.r, pt->area);
         pt->unshot[1] = rad__energy(sf->emission.g, pt->area);
         pt->unshot[2] = rad__energy(sf->emission.b, pt->area);
-        s->emitted += pt->unshot[0] + pt->unshot[1] + pt->unshot[2];
+        s->emitted = rad__esum(s->emitted, pt->unshot[0] + pt->unshot[1] + pt->unshot[2]);
     }
 }
 

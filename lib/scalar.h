@@ -354,7 +354,31 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 
 #endif
 
-/* The magnitude of a signed energy (|u| < 2^47 in the fixed build: no overflow). */
+/* The magnitude of a signed energy (|u| < 2^62 in the fixed build: no overflow). */
 static inline rad_energy_t rad__eabs(rad_energy_t u) { return u < 0 ? -u : u; }
+
+/* A patch's unshot power is kept within +-RAD__EMAX (2^30 units of power: 2^46 in
+ * Q16.16, the range the fixed build's products are exact in), clamped and counted past
+ * it: overshooting in a scene that reflects nearly everything can owe more than that. */
+#if RAD_FLOAT
+#define RAD__EMAX 1073741824.0f
+#define RAD__ESUM 4.6e18f
+#else
+#define RAD__EMAX ((rad_energy_t)1 << 46)
+#define RAD__ESUM ((rad_energy_t)1 << 61)
+#endif
+static inline rad_energy_t rad__eclamp(rad_energy_t u, uint32_t *sat)
+{
+    if (u > RAD__EMAX) { if (sat) (*sat)++; return RAD__EMAX; }
+    if (u < -RAD__EMAX) { if (sat) (*sat)++; return -RAD__EMAX; }
+    return u;
+}
+/* A running sum of energies, each within +-RAD__ESUM, stopped at +-RAD__ESUM so that no
+ * number of terms overflows (sums over every patch). */
+static inline rad_energy_t rad__esum(rad_energy_t a, rad_energy_t b)
+{
+    rad_energy_t v = a + b;
+    return v > RAD__ESUM ? RAD__ESUM : v < -RAD__ESUM ? -RAD__ESUM : v;
+}
 
 #endif

@@ -25,10 +25,10 @@ static rad_real_t receive(rad_scene_t *s, rad_energy_t u, rad_ff_t f, rad_real_t
     rad_energy_t recv = rad__energy_refl(rad__energy_ff(rad__eabs(u), f), rho);
     rad_real_t db = rad__energy_to_rad(recv, area, sat);
     if (u < 0) {
-        *patch_unshot -= recv;
+        *patch_unshot = rad__eclamp(*patch_unshot - recv, sat);
         return rad__add_sat(b, -db, sat);
     }
-    *patch_unshot += recv;
+    *patch_unshot = rad__eclamp(*patch_unshot + recv, sat);
     return rad__add_sat(b, db, sat);
 }
 
@@ -40,11 +40,11 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
-        area += rad__energy(RAD__ONE, pt->area);
-        rho[0] += rad__energy(r->r, pt->area);
-        rho[1] += rad__energy(r->g, pt->area);
-        rho[2] += rad__energy(r->b, pt->area);
-        for (c = 0; c < 3; c++) unshot[c] += pt->unshot[c];
+        area = rad__esum(area, rad__energy(RAD__ONE, pt->area));
+        rho[0] = rad__esum(rho[0], rad__energy(r->r, pt->area));
+        rho[1] = rad__esum(rho[1], rad__energy(r->g, pt->area));
+        rho[2] = rad__esum(rho[2], rad__energy(r->b, pt->area));
+        for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], pt->unshot[c]);
     }
     /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
     for (c = 0; c < 3; c++) {
@@ -61,6 +61,7 @@ static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const
     const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
     const rad_real_t rho = c == 0 ? r->r : c == 1 ? r->g : r->b;
     rad_energy_t over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area), rho);
+    if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
 }
 
@@ -83,7 +84,7 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
         const rad_patch_t *pt = &s->pools.patches[p];
         rad_energy_t u = 0;
         for (c = 0; c < 3; c++) {
-            sum += rad__eabs(pt->unshot[c]);
+            sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
             u += rad__eabs(pt->unshot[c] + overshoot(s, pt, amb, c));
         }
         if (u > most) { most = u; best = p; }
@@ -115,7 +116,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
     for (c = 0; c < 3; c++) {
         /* The power coming back to this patch is shot now and owed until it comes. */
         rad_energy_t over = overshoot(s, pt, amb, c);
-        u[c] = pt->unshot[c] + over;
+        u[c] = rad__eclamp(pt->unshot[c] + over, &s->stats.saturations);
         pt->unshot[c] = -over;
     }
     if (rows) {

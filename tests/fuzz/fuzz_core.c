@@ -22,9 +22,11 @@
  * Checked after every call: the return value is >= 0 or one of the RAD_ERR_* codes;
  * after an error the scene structure and the used part of every pool are bit-for-bit
  * unchanged; after success the counts grow as documented, the mesh is consistent
- * (indices in range, patches and surfaces cover their elements), radiosity is never
- * negative, a form factor row sums to at most 1, unshot power never exceeds what was
- * emitted. Every buffer is allocated at its exact size, so AddressSanitizer sees any
+ * (indices in range, patches and surfaces cover their elements), displayed radiosity
+ * is never negative, a form factor row sums to at most 1; shooting plainly
+ * (RAD_NO_OVERSHOOT, selector bit 6), the partial radiosities and the ambient term are
+ * never negative either and unshot power never exceeds what was emitted (overshooting
+ * owes power for a while: then only displayed values are bounded). Every buffer is allocated at its exact size, so AddressSanitizer sees any
  * access past it; UndefinedBehaviorSanitizer sees overflows and bad conversions.
  */
 #include <float.h>
@@ -258,7 +260,8 @@ static void check_mesh(const rad_scene_t *s, int finite)
         for (k = 0; k < nv; k++)
             CHECK(el->v[k] >= sf->first_vertex && el->v[k] < (uint32_t)sf->first_vertex + sf->n_vertices);
         CHECK(nonneg(el->area) && el->area != 0);
-        CHECK(nonneg(el->radiosity.r) && nonneg(el->radiosity.g) && nonneg(el->radiosity.b));
+        if (s->cfg.flags & RAD_NO_OVERSHOOT)
+            CHECK(nonneg(el->radiosity.r) && nonneg(el->radiosity.g) && nonneg(el->radiosity.b));
 #if RAD_FLOAT
         if (finite) CHECK(isfinite(el->radiosity.r) && isfinite(el->radiosity.g) && isfinite(el->radiosity.b));
 #endif
@@ -274,10 +277,11 @@ static void check_mesh(const rad_scene_t *s, int finite)
 static void check_unshot(const rad_scene_t *s)
 {
     rad_real_t f = rad_unshot_fraction(s);
+    int plain = (s->cfg.flags & RAD_NO_OVERSHOOT) != 0;
 #if RAD_FLOAT
-    CHECK(!(f < 0.0f) && !(f > 1.001f));
+    CHECK(!(f < 0.0f) && !(plain && f > 1.001f));
 #else
-    CHECK(f >= 0 && f <= 65536 + 66);  /* at most 1, give or take rounding */
+    CHECK(f >= 0 && !(plain && f > 65536 + 66));  /* at most 1, give or take rounding */
 #endif
 }
 
@@ -313,6 +317,7 @@ static int setup(reader_t *r, ctx_t *c)
     res = resv[u8(r) % 16u];
     cfg.res = res;
     cfg.band_rows = (f & 4) ? (uint16_t)(u8(r) % 40u) : 0;
+    cfg.flags = (f & 0x40) ? RAD_NO_OVERSHOOT : 0u;
     c->pools.surfaces = alloc_exact(c->pools.max_surfaces * sizeof(rad_surface_t));
     c->pools.patches = alloc_exact(c->pools.max_patches * sizeof(rad_patch_t));
     c->pools.elements = alloc_exact(c->pools.max_elements * sizeof(rad_element_t));
@@ -449,7 +454,7 @@ static void op_ambient(reader_t *r, ctx_t *c)
     rad_rgb_t out;
     int rc = rad_ambient(&c->s, (u8(r) & 1) ? NULL : &out);
     if (rc < 0) CHECK(rc == RAD_ERR_ARG);
-    else CHECK(rc == RAD_OK && nonneg(out.r) && nonneg(out.g) && nonneg(out.b));
+    else CHECK(rc == RAD_OK && (!(c->s.cfg.flags & RAD_NO_OVERSHOOT) || (nonneg(out.r) && nonneg(out.g) && nonneg(out.b))));
 }
 
 static void op_shade(reader_t *r, ctx_t *c)
