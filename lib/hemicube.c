@@ -209,11 +209,13 @@ static void transform(const rad_scene_t *s, uint32_t v, rad_vec3_t c, const rad_
     *code = cube_codes(*loc);
 }
 
-/* The memo for a new cube: every vertex transformed once, in order, none projected. */
-static void memo_fill(const rad_scene_t *s, vcache_t *memo, rad_vec3_t c, const rad_vec3_t *frame)
+/* The memo for a new cube, for the N vertices from V0 (a surface's): each transformed
+ * once, in order, none projected. */
+static void memo_fill(const rad_scene_t *s, vcache_t *memo, uint32_t v0, uint32_t n, rad_vec3_t c,
+                      const rad_vec3_t *frame)
 {
     uint32_t v;
-    for (v = 0; v < s->n_vertices; v++) {
+    for (v = v0; v < v0 + n; v++) {
         transform(s, v, c, frame, &memo[v].loc, &memo[v].code);
         memo[v].pface = NO_FACE;
     }
@@ -296,6 +298,39 @@ static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const r
     }
 }
 
+/* Whether no element of surface SF can be seen from C: its plane faces away from C,
+ * or it lies below the cube's horizon (normal UP), by more than rounding at every
+ * corner. Each vertex of a surface is a rounded convex combination of its corners, so
+ * then each element's own tests (render_element's facing test, the outcodes) would
+ * reject it too: this only skips the work, the result is the same bits. */
+#define CULL_MARGIN RAD__Q(1.0 / 4096.0)
+static int surface_hidden(const rad_scene_t *s, const rad_surface_t *sf, rad_vec3_t c, rad_vec3_t up)
+{
+    uint32_t k[4];
+    unsigned i, n = rad__surface_corners(s, sf, k), away = 1, below = 1;
+    for (i = 0; i < n; i++) {
+        rad_vec3_t v = s->pools.vertices[k[i]];
+        if (!(rad__dot(sf->normal, rad__sub(c, v)) < -CULL_MARGIN)) away = 0;
+        if (!(rad__dot(rad__sub(v, c), up) < -CULL_MARGIN)) below = 0;
+    }
+    return away || below;
+}
+
+/* Every element that may be seen from C into the regions, surface by surface; with a
+ * memo and FILL set, the memo is filled for each surface's vertices first. */
+static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg,
+                         rad_vec3_t c, const rad_vec3_t *frame, int fill)
+{
+    uint32_t k, e;
+    for (k = 0; k < s->n_surfaces; k++) {
+        const rad_surface_t *sf = &s->pools.surfaces[k];
+        if (surface_hidden(s, sf, c, frame[2])) continue;
+        if (fill && cv->memo) memo_fill(s, cv->memo, sf->first_vertex, sf->n_vertices, c, frame);
+        for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++)
+            render_element(s, cv, reg, nreg, e, c, frame);
+    }
+}
+
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
  * as the work buffer's) to its element's sum. */
 static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg)
@@ -360,11 +395,10 @@ void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
     cube_frame(n, spin, frame);
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
     cv.memo = (vcache_t *)s->vcache;
-    if (cv.memo) memo_fill(s, cv.memo, c, frame);
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-        for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, c, frame);
+        render_scene(s, &cv, reg, nreg, c, frame, k == 0);
         for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
     }
 }
@@ -428,14 +462,11 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     canvas_t cv = part_canvas(s, buf, bytes);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
-    uint32_t e;
 
     cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.st = &st;
-    if (cv.memo && nreg) memo_fill(s, cv.memo, pt->center, frame);
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-    if (nreg)
-        for (e = 0; e < s->n_elements; e++) render_element(s, &cv, reg, nreg, e, pt->center, frame);
+    if (nreg) render_scene(s, &cv, reg, nreg, pt->center, frame, 1);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     return (int)st.raster_calls;

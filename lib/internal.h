@@ -12,6 +12,7 @@
 #define rad__shoot radf__shoot
 #define rad__cube_part radf__cube_part
 #define rad__cube_merge radf__cube_merge
+#define rad__surface_corners radf__surface_corners
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -93,6 +94,10 @@ static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u)
  * one pass (band_rows 0). */
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf, size_t bytes);
 void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
+
+/* The 3 or 4 corners of surface SF's vertex lattice (mesh.c): every vertex of the
+ * surface is a rounded convex combination of them. Returns how many, indices in K. */
+unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k);
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

@@ -200,6 +200,24 @@ static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const 
 #undef G
 }
 
+/* The corners of surface SF's vertex lattice, as mesh_quad and mesh_tri lay it out:
+ * quads G(0,0), G(nu,0), G(nu,nv), G(0,nv), with nu read off the first element (its
+ * fourth vertex is G(0,1) = v0 + nu + 1); triangles T(0,0), T(m,0), T(0,m), with m from
+ * the first element's third vertex T(0,1) = v0 + m + 1. */
+unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k)
+{
+    const rad_element_t *el = &s->pools.elements[sf->first_element];
+    uint32_t v0 = sf->first_vertex, last = v0 + sf->n_vertices - 1u, n;
+    if (el->v[3] == RAD_INDEX_NONE) {
+        n = el->v[2] - v0 - 1u;
+        k[0] = v0; k[1] = v0 + n; k[2] = last;
+        return 3;
+    }
+    n = el->v[3] - v0 - 1u;
+    k[0] = v0; k[1] = v0 + n; k[2] = last; k[3] = last - n;
+    return 4;
+}
+
 /* Index of lattice point (i, j), i + j <= m, of a triangle's vertex block at V0. */
 static uint32_t tri_index(uint32_t v0, uint32_t m, uint32_t i, uint32_t j)
 {
