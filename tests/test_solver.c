@@ -221,6 +221,48 @@ static void test_overshoot(void **st)
     sc_destroy(over);
 }
 
+/* A closed box of reflectance 0.9 lit by one face: plain shooting needs about as many
+ * rounds of shots as the light takes bounces to fade (0.9^k), overshooting shoots most
+ * of them at once. Both display the mean the energy balance gives, (1/6) / (1 - 0.9). */
+static void test_overshoot_bright_box(void **st)
+{
+    int k, shots[2];
+    double mean[2];
+    (void)st;
+    for (k = 0; k < 2; k++) {
+        sc_poly p[6];
+        sc_opts o = {0.5, 0.25, 32, 0, 0, 0};
+        char err[256];
+        int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, e;
+        sc_solver *s;
+        sc_stats stt;
+        double area = 0, sum = 0;
+        o.no_overshoot = k == 0;
+        for (i = 0; i < n; i++) set_mat(&p[i], 0.9, 0.9, 0.9, i == 0, i == 0, i == 0);
+        s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+        assert_non_null(s);
+        shots[k] = sc_solve(s, 100000, 0.01, NULL, NULL);
+        sc_get_stats(s, &stt);
+        assert_true(stt.unshot <= 0.01 + 1.0 / 65536);
+        assert_int_equal(stt.saturations, 0);
+        for (e = 0; e < stt.elements; e++) {
+            double rgb[3], a = sc_element_area(s, e);
+            sc_element_rgb(s, e, 1, rgb);
+            sum += rgb[0] * a;
+            area += a;
+        }
+        mean[k] = sum / area;
+        sc_destroy(s);
+    }
+    print_message("closed box, rho 0.9, to 0.01: plain %d shots, overshooting %d; mean displayed %.4f and %.4f "
+                  "(energy balance %.4f)\n", shots[0], shots[1], mean[0], mean[1], 1.0 / 6 / (1 - 0.9));
+    /* Measured: 3116 against 377 shots. Bound: a quarter. */
+    assert_true(4 * shots[1] <= shots[0]);
+    /* The ambient term covers the 1% left unshot exactly for uniform reflectance: the
+     * means agree with the balance within rounding (measured 0.01%). */
+    for (k = 0; k < 2; k++) assert_true(fabs(mean[k] * 6 * (1 - 0.9) - 1) <= 0.002);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -229,6 +271,7 @@ int main(void)
         cmocka_unit_test(test_unshot_decreases),
         cmocka_unit_test(test_twin_cornell),
         cmocka_unit_test(test_overshoot),
+        cmocka_unit_test(test_overshoot_bright_box),
     };
     return cmocka_run_group_tests_name("solver", tests, NULL, NULL);
 }
