@@ -17,8 +17,9 @@
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
- *   rad_energy_t  Q16.16 in int64: radiosity times area (power), magnitude below 2^46
- *                 units. Signed: overshooting (rad_config_t.flags) leaves a shooter
+ *   rad_energy_t  Q16.16 in int64: radiosity times area (power). A patch's unshot
+ *                 power stays below 2^30 units in magnitude (clamped and counted past
+ *                 it). Signed: overshooting (rad_config_t.flags) leaves a shooter
  *                 owing power, which its later receipts pay back.
  *   form factors  Q2.30 in uint32 (internal): the delta form factor table of a
  *                 hemi-cube sums to exactly 2^30.
