@@ -106,7 +106,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
                 rad_real_t v = gather(s, matrix, b, k, c, em[c], rho[c]);
                 rad_real_t d = v > b[3 * k + c] ? v - b[3 * k + c] : b[3 * k + c] - v;
                 /* Relative to each value, so dim patches converge as well as bright ones. */
-                if (d > rad__mul(v, tol, 0) + RAD__EPS) moved = 1;
+                /* (saturating: v * tol may already be the largest value) */
+                if (d > rad__add_sat(rad__mul(v, tol, 0), RAD__EPS, 0)) moved = 1;
                 b[3 * k + c] = v; /* used at once by the patches after it: Gauss-Seidel */
             }
         }

@@ -234,6 +234,9 @@ static void test_gauss_seidel_vs_shooting(void **st)
     print_message("Gauss-Seidel (%d sweeps) vs progressive refinement: max %.4f%% per element\n", it, 100 * d);
     assert_true(d <= 0.005); /* the bound */
     assert_true(rad_unshot_fraction(&b->s) == 0);
+    /* The largest tolerance: value * tol saturates, and the test against it must not
+     * overflow (found by fuzz_core under UBSan); nothing moves by more, so one sweep. */
+    assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n, 100, INT32_MAX), 1);
     free(m); free(ra); free(rb); free(a); free(b);
 }
 
