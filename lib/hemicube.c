@@ -253,67 +253,97 @@ static void vertex_projected(const canvas_t *cv, uint32_t v, unsigned face, cons
     pv->at[1] = pv->at[2] = pv->at[3] = 0;
 }
 
-static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const region_t *reg, unsigned nreg,
-                           uint32_t e, rad_vec3_t c, const rad_vec3_t *frame)
+/* One pass of a cube: the shooter's centre C and frame, the regions drawn, and for each
+ * its frustum and target (set up once a pass, not once an element). */
+typedef struct {
+    rad_vec3_t c;
+    const rad_vec3_t *frame;
+    const region_t *reg;
+    unsigned nreg;
+    rad__frustum_t f[5];
+    rad__target_t t[5];
+} pass_t;
+
+static void pass_setup(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg, rad_vec3_t c,
+                       const rad_vec3_t *frame, pass_t *ps)
+{
+    unsigned r;
+    ps->c = c;
+    ps->frame = frame;
+    ps->reg = reg;
+    ps->nreg = nreg;
+    for (r = 0; r < nreg; r++) {
+        unsigned face = reg[r].face;
+        ps->f[r].half = face != 0;
+        ps->f[r].width = (int)s->cfg.res;
+        ps->f[r].height = (int)face_rows(s, face);
+        ps->t[r].z = cv->z + reg[r].offset;
+        ps->t[r].ids = cv->ids + reg[r].offset;
+        ps->t[r].rgb = 0;
+        ps->t[r].width = (int)s->cfg.res;
+        ps->t[r].row0 = reg[r].row0;
+        ps->t[r].row1 = reg[r].row1;
+    }
+}
+
+/* Element E into the pass's regions; CHECK_FACING: its surface may face C only in part
+ * (see surface_view), so the element tests its own facing. */
+static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const pass_t *ps, uint32_t e,
+                           int check_facing)
 {
     const rad_element_t *el = &s->pools.elements[e];
-    const rad_surface_t *sf = &s->pools.surfaces[el->surface];
     rad_vec3_t loc[4];
     rad__cvert_t cv[4];
     uint32_t all = 0x1FFFFFF, any = 0;
     unsigned i, r, nv = rad__nverts(el);
 
     /* Facing away (or coplanar with the shooter, as its own surface is): invisible. */
-    if (rad__dot(sf->normal, rad__sub(c, s->pools.vertices[el->v[0]])) <= 0) return;
+    if (check_facing &&
+        rad__dot(s->pools.surfaces[el->surface].normal, rad__sub(ps->c, s->pools.vertices[el->v[0]])) <= 0)
+        return;
     for (i = 0; i < nv; i++) {
         uint32_t code;
-        vertex_local(s, cv_out, el->v[i], c, frame, &loc[i], &code);
+        vertex_local(s, cv_out, el->v[i], ps->c, ps->frame, &loc[i], &code);
         all &= code;
         any |= code;
     }
-    for (r = 0; r < nreg; r++) {
-        rad__frustum_t f;
-        rad__target_t t;
-        unsigned face = reg[r].face, out = (any >> (5 * face)) & 0x1F;
+    for (r = 0; r < ps->nreg; r++) {
+        unsigned face = ps->reg[r].face, out = (any >> (5 * face)) & 0x1F;
         if ((all >> (5 * face)) & 0x1F) continue; /* wholly outside this face */
-        f.half = face != 0;
-        f.width = (int)s->cfg.res;
-        f.height = (int)face_rows(s, face);
-        t.z = cv_out->z + reg[r].offset;
-        t.ids = cv_out->ids + reg[r].offset;
-        t.rgb = 0;
-        t.width = (int)s->cfg.res;
-        t.row0 = reg[r].row0;
-        t.row1 = reg[r].row1;
         if (out == 0 && cv_out->memo) {
             /* Wholly inside: nothing to clip, and the shared vertices' projections
              * come from the memo (the same bits rad__draw would compute). */
             rad__pvert_t pv[4];
-            for (i = 0; i < nv; i++) vertex_projected(cv_out, el->v[i], face, &f, &pv[i]);
-            rad__fill(cv_out->st, &t, pv, nv, (rad_index_t)e);
+            for (i = 0; i < nv; i++) vertex_projected(cv_out, el->v[i], face, &ps->f[r], &pv[i]);
+            rad__fill(cv_out->st, &ps->t[r], pv, nv, (rad_index_t)e);
             continue;
         }
         for (i = 0; i < nv; i++) face_vertex(face, loc[i], &cv[i]);
-        rad__draw(cv_out->st, &t, &f, cv, nv, out, (rad_index_t)e);
+        rad__draw(cv_out->st, &ps->t[r], &ps->f[r], cv, nv, out, (rad_index_t)e);
     }
 }
 
-/* Whether no element of surface SF can be seen from C: its plane faces away from C,
- * or it lies below the cube's horizon (normal UP), by more than rounding at every
- * corner. Each vertex of a surface is a rounded convex combination of its corners, so
- * then each element's own tests (render_element's facing test, the outcodes) would
- * reject it too: this only skips the work, the result is the same bits. */
+/* How surface SF is seen from C, judged at the corners of its vertex lattice by more
+ * than rounding (each vertex of a surface is a rounded convex combination of them, so
+ * what holds at every corner holds at every vertex): VIEW_HIDDEN when its plane faces
+ * away or it lies below the cube's horizon (normal UP), so that each element's own
+ * tests (the facing test, the outcodes) would reject it; VIEW_FACING when every
+ * element faces C; else VIEW_MIXED (coplanar or nearly: each element tests itself).
+ * Only work is skipped: the result is the same bits. */
 #define CULL_MARGIN RAD__Q(1.0 / 4096.0)
-static int surface_hidden(const rad_scene_t *s, const rad_surface_t *sf, rad_vec3_t c, rad_vec3_t up)
+enum { VIEW_HIDDEN, VIEW_FACING, VIEW_MIXED };
+static int surface_view(const rad_scene_t *s, const rad_surface_t *sf, rad_vec3_t c, rad_vec3_t up)
 {
     uint32_t k[4];
-    unsigned i, n = rad__surface_corners(s, sf, k), away = 1, below = 1;
+    unsigned i, n = rad__surface_corners(s, sf, k), away = 1, facing = 1, below = 1;
     for (i = 0; i < n; i++) {
         rad_vec3_t v = s->pools.vertices[k[i]];
-        if (!(rad__dot(sf->normal, rad__sub(c, v)) < -CULL_MARGIN)) away = 0;
+        rad_real_t d = rad__dot(sf->normal, rad__sub(c, v));
+        if (!(d < -CULL_MARGIN)) away = 0;
+        if (!(d > CULL_MARGIN)) facing = 0;
         if (!(rad__dot(rad__sub(v, c), up) < -CULL_MARGIN)) below = 0;
     }
-    return away || below;
+    return away || below ? VIEW_HIDDEN : facing ? VIEW_FACING : VIEW_MIXED;
 }
 
 /* Every element that may be seen from C into the regions, surface by surface; with a
@@ -321,13 +351,16 @@ static int surface_hidden(const rad_scene_t *s, const rad_surface_t *sf, rad_vec
 static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg,
                          rad_vec3_t c, const rad_vec3_t *frame, int fill)
 {
+    pass_t ps;
     uint32_t k, e;
+    pass_setup(s, cv, reg, nreg, c, frame, &ps);
     for (k = 0; k < s->n_surfaces; k++) {
         const rad_surface_t *sf = &s->pools.surfaces[k];
-        if (surface_hidden(s, sf, c, frame[2])) continue;
+        int view = surface_view(s, sf, c, frame[2]);
+        if (view == VIEW_HIDDEN) continue;
         if (fill && cv->memo) memo_fill(s, cv->memo, sf->first_vertex, sf->n_vertices, c, frame);
         for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++)
-            render_element(s, cv, reg, nreg, e, c, frame);
+            render_element(s, cv, &ps, e, view == VIEW_MIXED);
     }
 }
 

@@ -99,6 +99,9 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
  * surface is a rounded convex combination of them. Returns how many, indices in K. */
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k);
 
+/* Channel K (0 r, 1 g, 2 b) of C. */
+static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k) { return k == 0 ? c->r : k == 1 ? c->g : c->b; }
+
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)
 {

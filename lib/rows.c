@@ -98,12 +98,10 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
         it++;
         for (k = 0; k < np; k++) {
             const rad_surface_t *sf = &s->pools.surfaces[s->pools.patches[k].surface];
-            /* The channels as arrays: indexing &x.r past .r would be undefined. */
-            const rad_real_t em[3] = {sf->emission.r, sf->emission.g, sf->emission.b};
-            const rad_real_t rho[3] = {sf->reflectance.r, sf->reflectance.g, sf->reflectance.b};
             unsigned c;
             for (c = 0; c < 3; c++) {
-                rad_real_t v = gather(s, matrix, b, k, c, em[c], rho[c]);
+                rad_real_t v = gather(s, matrix, b, k, c, rad__channel(&sf->emission, c),
+                                      rad__channel(&sf->reflectance, c));
                 rad_real_t d = v > b[3 * k + c] ? v - b[3 * k + c] : b[3 * k + c] - v;
                 /* Relative to each value, so dim patches converge as well as bright ones. */
                 /* (saturating: v * tol may already be the largest value) */

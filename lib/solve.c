@@ -1,7 +1,7 @@
 /* rad — progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
  *
- * Each step shoots the patch with the most unshot power U through a hemi-cube at its
- * centre. With F the form factor from the patch to element j (the item buffer's sum),
+ * Each step shoots a patch's unshot power U through a hemi-cube at its centre: the
+ * patch with the most unshot power, or, overshooting, the one whose shot moves most. With F the form factor from the patch to element j (the item buffer's sum),
  * reciprocity gives element j the power rho_j F U, hence radiosity rho_j F U / A_j,
  * and adds that power to the unshot power of j's patch. No element-to-patch division
  * is needed. Shooting plainly, unshot power never grows: the sum of F is at most 1 and
@@ -58,9 +58,10 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
  * what overshooting adds to its shot (0 for every patch when AMB is 0). */
 static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb, unsigned c)
 {
-    const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
-    const rad_real_t rho = c == 0 ? r->r : c == 1 ? r->g : r->b;
-    rad_energy_t over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area), rho);
+    rad_energy_t over;
+    if (amb[c] == 0) return 0; /* shooting plainly */
+    over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area),
+                            rad__channel(&s->pools.surfaces[pt->surface].reflectance, c));
     if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
 }

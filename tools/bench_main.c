@@ -136,46 +136,69 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/* Both builds, their runs interleaved (fixed, float, fixed, ...) so that a machine
- * whose speed drifts during the benchmark biases neither; each keeps its median run
- * (by total time), the others are freed. */
-static void bench_pair(const bscene *sc, brun *out_fx, brun *out_fl)
+/* The scene's mesh and resolution as solver options. */
+static sc_opts scene_opts(const bscene *sc)
 {
     sc_opts o = {0, 0, 0, 0, 0, 0};
-    brun runs[2][5];
-    double tot[2][5];
-    int i, k;
     o.max_element = sc->max_element;
     o.max_patch = sc->max_patch;
     o.res = sc->res;
-    for (i = 0; i < sc->runs; i++)
+    return o;
+}
+
+/* A fixed-build solver of POLYS (the scene's, or a variant of them) with O; exits on
+ * failure. */
+static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_opts *o)
+{
+    char err[256];
+    sc_solver *s = sc_create(polys, sc->n, o, NULL, NULL, err, sizeof err);
+    if (!s) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
+    return s;
+}
+
+/* Two variants (a build and options each), their RUNS runs interleaved (first,
+ * second, first, ...) so that a machine whose speed drifts during the benchmark biases
+ * neither; each keeps its median run (by total time) in OUT, the others are freed. */
+static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs, brun *out)
+{
+    brun r[2][5];
+    double tot[2][5];
+    int i, k;
+    for (i = 0; i < runs; i++)
         for (k = 0; k < 2; k++) {
-            run_alloc(&runs[k][i]);
-            solve_one(&builds[k], sc, &o, &runs[k][i]);
-            tot[k][i] = runs[k][i].total;
+            run_alloc(&r[k][i]);
+            solve_one(b[k], sc, &o[k], &r[k][i]);
+            tot[k][i] = r[k][i].total;
         }
     for (k = 0; k < 2; k++) {
-        double m = median(tot[k], sc->runs);
+        double m = median(tot[k], runs);
         int best = 0;
-        for (i = 0; i < sc->runs; i++) if (runs[k][i].total == m) best = i;
-        for (i = 0; i < sc->runs; i++) if (i != best) run_free(&runs[k][i]);
-        *(k ? out_fl : out_fx) = runs[k][best];
+        for (i = 0; i < runs; i++) if (r[k][i].total == m) best = i;
+        for (i = 0; i < runs; i++) if (i != best) run_free(&r[k][i]);
+        out[k] = r[k][best];
     }
+}
+
+/* Both builds at the scene's settings. */
+static void bench_pair(const bscene *sc, brun *out_fx, brun *out_fl)
+{
+    const build_t *b[2] = {&builds[0], &builds[1]};
+    sc_opts o[2];
+    brun out[2];
+    o[0] = o[1] = scene_opts(sc);
+    interleaved(sc, b, o, sc->runs, out);
+    *out_fx = out[0];
+    *out_fl = out[1];
 }
 
 /* Fixed against float per element, solved to 0.001 (see ref_twin_diff). */
 static void twin_accuracy(const bscene *sc, double *mx, double *rms)
 {
-    sc_opts o = {0, 0, 0, 0, 0, 0};
+    sc_opts o = scene_opts(sc);
     char err[256];
-    sc_solver *a;
-    scf_solver *b;
-    o.max_element = sc->max_element;
-    o.max_patch = sc->max_patch;
-    o.res = sc->res;
-    a = sc_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    b = scf_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!a || !b) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    sc_solver *a = fixed_solver(sc, sc->polys, &o);
+    scf_solver *b = scf_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
+    if (!b) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
     sc_solve(a, 1000000, 0.001, NULL, NULL);
     scf_solve(b, 1000000, 0.001, NULL, NULL);
     ref_twin_diff(a, b, mx, rms);
@@ -250,16 +273,12 @@ typedef struct {
  * (the element edge: every element shoots for itself); the solver is returned. */
 static sc_solver *solve_patches(const bscene *sc, double max_patch, tradeoff_t *t)
 {
-    sc_opts o = {0, 0, 0, 0, 0, 0};
-    char err[256];
+    sc_opts o = scene_opts(sc);
     sc_solver *s;
     sc_stats st;
     double t0;
-    o.max_element = sc->max_element;
     o.max_patch = max_patch;
-    o.res = sc->res;
-    s = sc_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!s) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
+    s = fixed_solver(sc, sc->polys, &o);
     t0 = now();
     t->shots = sc_solve(s, 1000000, 0.01, NULL, NULL);
     t->secs = now() - t0;
@@ -297,20 +316,15 @@ typedef struct {
 static void relight_bench(const bscene *sc, relight_t *r)
 {
     static const double blue[3] = {4, 8, 18};
-    sc_opts o = {0, 0, 0, 0, 0, 0};
+    sc_opts o = scene_opts(sc);
     char err[256];
-    sc_solver *s, *f;
+    sc_solver *s = fixed_solver(sc, sc->polys, &o), *f;
     sc_rows_stats rs;
     sc_stats st;
     sc_poly *q;
     emitters_t em;
     double t0;
     int i;
-    o.max_element = sc->max_element;
-    o.max_patch = sc->max_patch;
-    o.res = sc->res;
-    s = sc_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!s) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
     t0 = now();
     if (sc_rows_compute(s, NULL, NULL, err, sizeof err) < 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
     r->t_rows = now() - t0;
@@ -339,8 +353,7 @@ static void relight_bench(const bscene *sc, relight_t *r)
     for (i = 0; i < sc->n; i++)
         if (poly_emits(&q[i])) memcpy(q[i].emit, blue, sizeof blue);
     t0 = now();
-    f = sc_create(q, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!f) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    f = fixed_solver(sc, q, &o);
     r->fresh_shots = sc_solve(f, 1000000, 0.001, NULL, NULL);
     r->t_fresh = now() - t0;
     sc_destroy(f);
@@ -434,38 +447,17 @@ typedef struct {
 
 static void overshoot_bench(const bscene *sc, shootcmp_t *c)
 {
-    sc_opts o = {0, 0, 0, 0, 0, 1};
-    char err[256];
-    brun runs[2][3];
-    double tot[2][3];
+    const build_t *b[2] = {&builds[0], &builds[0]};
+    sc_opts o[2];
     sc_solver *ref;
-    int i, k;
-    o.max_element = sc->max_element;
-    o.max_patch = sc->max_patch;
-    o.res = sc->res;
-    for (i = 0; i < 3; i++)
-        for (k = 0; k < 2; k++) {
-            o.no_overshoot = !k;
-            run_alloc(&runs[k][i]);
-            solve_one(&builds[0], sc, &o, &runs[k][i]);
-            tot[k][i] = runs[k][i].total;
-        }
-    for (k = 0; k < 2; k++) {
-        double m = median(tot[k], 3);
-        int best = 0;
-        for (i = 0; i < 3; i++) if (runs[k][i].total == m) best = i;
-        for (i = 0; i < 3; i++) if (i != best) run_free(&runs[k][i]);
-        c->run[k] = runs[k][best];
-    }
-    o.no_overshoot = 0;
-    ref = sc_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!ref) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    int k;
+    o[0] = o[1] = scene_opts(sc);
+    o[0].no_overshoot = 1;
+    interleaved(sc, b, o, 3, c->run);
+    ref = fixed_solver(sc, sc->polys, &o[1]);
     sc_solve(ref, 1000000, 1e-5, NULL, NULL);
     for (k = 0; k < 2; k++) {
-        sc_solver *s;
-        o.no_overshoot = !k;
-        s = sc_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-        if (!s) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+        sc_solver *s = fixed_solver(sc, sc->polys, &o[k]);
         sc_solve(s, 1000000, 0.01, NULL, NULL);
         ref_solution_diff(s, ref, &c->worst[k], &c->rms[k]);
         sc_destroy(s);
@@ -658,16 +650,10 @@ int main(int argc, char **argv)
         int rep;
         if (scenes[i].runs < 3) continue; /* the two largest take too long to repeat */
         for (rep = 0; rep < 3; rep++) {
-            sc_opts o = {0, 0, 0, 0, 0, 0};
-            char err[256];
-            sc_solver *a, *b;
+            sc_opts o = scene_opts(&scenes[i]);
+            sc_solver *a = fixed_solver(&scenes[i], scenes[i].polys, &o);
+            sc_solver *b = fixed_solver(&scenes[i], scenes[i].polys, &o);
             double t0;
-            o.max_element = scenes[i].max_element;
-            o.max_patch = scenes[i].max_patch;
-            o.res = scenes[i].res;
-            a = sc_create(scenes[i].polys, scenes[i].n, &o, NULL, NULL, err, sizeof err);
-            b = sc_create(scenes[i].polys, scenes[i].n, &o, NULL, NULL, err, sizeof err);
-            if (!a || !b) return 1;
             t0 = now();
             sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
             t1[rep] = now() - t0;

@@ -228,10 +228,10 @@ int rad_restart(rad_scene_t *s);
 
 /* ---- solving ------------------------------------------------------------------- */
 
-/* Shoots up to MAX_SHOTS patches, each time the one with the most unshot power (in
- * magnitude, summed over channels), and stops early once the unshot fraction is at
- * most TOL. Returns the number of patches
- * shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
+/* Shoots up to MAX_SHOTS patches, each time the one whose shot moves the most power
+ * (its unshot power, plus the overshoot unless RAD_NO_OVERSHOOT; in magnitude, summed
+ * over channels), and stops early once the unshot fraction is at most TOL. Returns
+ * the number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
