@@ -9,22 +9,6 @@
  */
 #include "internal.h"
 
-/* A vertex in the current cube's frame, with its outcodes for the five faces (filled
- * for every vertex when the cube starts), and its projection onto face PFACE (NO_FACE:
- * none yet). A vertex lies inside one face's frustum, or on the edge of two, so one
- * projection serves nearly every use. */
-typedef struct {
-    rad_vec3_t loc;
-    uint32_t code;
-    int32_t px, py;
-    uint32_t pw;
-    uint32_t pface;
-} vcache_t;
-#define NO_FACE 5u
-
-/* RAD_CACHE_BYTES(n) must hold n entries after 8-byte alignment. */
-typedef char vcache_fits[sizeof(vcache_t) * 1000u + 8u <= RAD_CACHE_BYTES(1000) ? 1 : -1];
-
 typedef struct {
     unsigned face;       /* 0 top, 1..4 sides */
     int row0, row1;      /* rows of the face this region holds */
@@ -114,11 +98,6 @@ int rad__hemicube_init(rad_scene_t *s)
     s->acc = s->dff_side + (size_t)q * q;
     s->zbuf = (uint32_t *)(s->acc + nacc);
     s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
-    {
-        uintptr_t c = ((uintptr_t)(s->ibuf + s->pass_pixels) + 7u) & ~(uintptr_t)7u;
-        size_t need = (size_t)s->pools.max_vertices * sizeof(vcache_t);
-        s->vcache = c - base <= s->pools.work_bytes && s->pools.work_bytes - (c - base) >= need ? (void *)c : 0;
-    }
     build_table(s);
     return RAD_OK;
 }
@@ -155,16 +134,22 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
     return 0;
 }
 
-/* Element vertex in the face's view space: the faces look along +z, +x, -x, +y, -y. */
+/* The faces look along +z, +x, -x, +y, -y: their axes a (across), b (up) and d (depth)
+ * as the cube's axes x, y, z (1-based; negative: reversed). */
+static const signed char face_axes[5][3] = {{1, 2, 3}, {2, 3, 1}, {2, 3, -1}, {1, 3, 2}, {1, 3, -2}};
+
+static rad_real_t axis(rad_vec3_t l, int a)
+{
+    rad_real_t v = (a < 0 ? -a : a) == 1 ? l.x : (a < 0 ? -a : a) == 2 ? l.y : l.z;
+    return a < 0 ? -v : v;
+}
+
+/* A point in the cube's frame in the face's view space. */
 static void face_vertex(unsigned face, rad_vec3_t l, rad__cvert_t *c)
 {
-    switch (face) {
-    case 0: c->a = l.x; c->b = l.y; c->d = l.z; break;
-    case 1: c->a = l.y; c->b = l.z; c->d = l.x; break;
-    case 2: c->a = l.y; c->b = l.z; c->d = -l.x; break;
-    case 3: c->a = l.x; c->b = l.z; c->d = l.y; break;
-    default: c->a = l.x; c->b = l.z; c->d = -l.y; break;
-    }
+    c->a = axis(l, face_axes[face][0]);
+    c->b = axis(l, face_axes[face][1]);
+    c->d = axis(l, face_axes[face][2]);
     c->c[0] = c->c[1] = c->c[2] = 0;
 }
 
@@ -189,72 +174,15 @@ static uint32_t cube_codes(rad_vec3_t l)
     return top | px << 5 | nx << 10 | py << 15 | ny << 20;
 }
 
-/* Where a pass draws: the face buffers (region offsets index into them), and the
- * vertex memo to use (NULL: transform every element's vertices itself). */
+/* Where a pass draws: the face buffers (region offsets index into them). */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_stats_t *st;
-    vcache_t *memo;
 } canvas_t;
 
-/* Vertex V in the cube's frame at C and its outcodes. */
-static void transform(const rad_scene_t *s, uint32_t v, rad_vec3_t c, const rad_vec3_t *frame, rad_vec3_t *loc,
-                      uint32_t *code)
-{
-    rad_vec3_t d = rad__sub(s->pools.vertices[v], c);
-    loc->x = rad__dot(d, frame[0]);
-    loc->y = rad__dot(d, frame[1]);
-    loc->z = rad__dot(d, frame[2]);
-    *code = cube_codes(*loc);
-}
-
-/* The memo for a new cube, for the N vertices from V0 (a surface's): each transformed
- * once, in order, none projected. */
-static void memo_fill(const rad_scene_t *s, vcache_t *memo, uint32_t v0, uint32_t n, rad_vec3_t c,
-                      const rad_vec3_t *frame)
-{
-    uint32_t v;
-    for (v = v0; v < v0 + n; v++) {
-        transform(s, v, c, frame, &memo[v].loc, &memo[v].code);
-        memo[v].pface = NO_FACE;
-    }
-}
-
-/* Vertex V in the cube's frame at C and its outcodes, from the memo when there is one. */
-static void vertex_local(const rad_scene_t *s, const canvas_t *cv, uint32_t v, rad_vec3_t c,
-                         const rad_vec3_t *frame, rad_vec3_t *loc, uint32_t *code)
-{
-    if (cv->memo) {
-        *loc = cv->memo[v].loc;
-        *code = cv->memo[v].code;
-        return;
-    }
-    transform(s, v, c, frame, loc, code);
-}
-
-/* Vertex V (in the memo, inside FACE) projected onto FACE: from the memo, or computed
- * and kept there if its one projection is still free. */
-static void vertex_projected(const canvas_t *cv, uint32_t v, unsigned face, const rad__frustum_t *f,
-                             rad__pvert_t *pv)
-{
-    vcache_t *m = &cv->memo[v];
-    if (m->pface != face) {
-        rad__cvert_t c;
-        face_vertex(face, m->loc, &c);
-        rad__project(f, &c, pv);
-        if (m->pface != NO_FACE) return;
-        m->px = pv->x; m->py = pv->y; m->pw = pv->at[0];
-        m->pface = face;
-        return;
-    }
-    pv->x = m->px; pv->y = m->py;
-    pv->at[0] = m->pw;
-    pv->at[1] = pv->at[2] = pv->at[3] = 0;
-}
-
 /* One pass of a cube: the shooter's centre C and frame, the regions drawn, and for each
- * its frustum and target (set up once a pass, not once an element). */
+ * its frustum and target (set up once a pass). */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
@@ -280,88 +208,60 @@ static void pass_setup(const rad_scene_t *s, const canvas_t *cv, const region_t 
         ps->t[r].z = cv->z + reg[r].offset;
         ps->t[r].ids = cv->ids + reg[r].offset;
         ps->t[r].rgb = 0;
+        ps->t[r].lat = 0;
         ps->t[r].width = (int)s->cfg.res;
         ps->t[r].row0 = reg[r].row0;
         ps->t[r].row1 = reg[r].row1;
     }
 }
 
-/* Element E into the pass's regions; CHECK_FACING: its surface may face C only in part
- * (see surface_view), so the element tests its own facing. */
-static void render_element(const rad_scene_t *s, const canvas_t *cv_out, const pass_t *ps, uint32_t e,
-                           int check_facing)
+/* Surface SF into the pass's regions: its outline drawn once a face, each pixel given
+ * the element of its lattice it sees (one element: that one). */
+static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps, const rad_surface_t *sf)
 {
-    const rad_element_t *el = &s->pools.elements[e];
+    uint32_t k[4], all = 0x1FFFFFF, any = 0;
     rad_vec3_t loc[4];
-    rad__cvert_t cv[4];
-    uint32_t all = 0x1FFFFFF, any = 0;
-    unsigned i, r, nv = rad__nverts(el);
+    rad__cvert_t cvt[4];
+    rad__lattice_t cube, face;
+    unsigned i, r, n = rad__surface_corners(s, sf, k), grid = sf->n_elements > 1, front = 0;
 
-    /* Facing away (or coplanar with the shooter, as its own surface is): invisible. */
-    if (check_facing &&
-        rad__dot(s->pools.surfaces[el->surface].normal, rad__sub(ps->c, s->pools.vertices[el->v[0]])) <= 0)
-        return;
-    for (i = 0; i < nv; i++) {
+    /* Facing away at every corner (a quad may be planar only within rounding):
+     * invisible. */
+    for (i = 0; i < n; i++) front |= rad__dot(sf->normal, rad__sub(ps->c, s->pools.vertices[k[i]])) > 0;
+    if (!front) return;
+    for (i = 0; i < n; i++) {
+        rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
         uint32_t code;
-        vertex_local(s, cv_out, el->v[i], ps->c, ps->frame, &loc[i], &code);
+        loc[i].x = rad__dot(d, ps->frame[0]);
+        loc[i].y = rad__dot(d, ps->frame[1]);
+        loc[i].z = rad__dot(d, ps->frame[2]);
+        code = cube_codes(loc[i]);
         all &= code;
         any |= code;
     }
+    if (grid) rad__lattice_init(&cube, sf, loc, n);
     for (r = 0; r < ps->nreg; r++) {
-        unsigned face = ps->reg[r].face, out = (any >> (5 * face)) & 0x1F;
-        if ((all >> (5 * face)) & 0x1F) continue; /* wholly outside this face */
-        if (out == 0 && cv_out->memo) {
-            /* Wholly inside: nothing to clip, and the shared vertices' projections
-             * come from the memo (the same bits rad__draw would compute). */
-            rad__pvert_t pv[4];
-            for (i = 0; i < nv; i++) vertex_projected(cv_out, el->v[i], face, &ps->f[r], &pv[i]);
-            rad__fill(cv_out->st, &ps->t[r], pv, nv, (rad_index_t)e);
-            continue;
+        unsigned f = ps->reg[r].face;
+        rad__target_t t = ps->t[r];
+        if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
+        if (grid) {
+            rad__lattice_face(&cube, face_axes[f], (int32_t)s->cfg.res, &face);
+            t.lat = &face;
         }
-        for (i = 0; i < nv; i++) face_vertex(face, loc[i], &cv[i]);
-        rad__draw(cv_out->st, &ps->t[r], &ps->f[r], cv, nv, out, (rad_index_t)e);
+        for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
+        rad__draw(cv->st, &t, &ps->f[r], cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
     }
 }
 
-/* How surface SF is seen from C, judged at the corners of its vertex lattice by more
- * than rounding (each vertex of a surface is a rounded convex combination of them, so
- * what holds at every corner holds at every vertex): VIEW_HIDDEN when its plane faces
- * away or it lies below the cube's horizon (normal UP), so that each element's own
- * tests (the facing test, the outcodes) would reject it; VIEW_FACING when every
- * element faces C; else VIEW_MIXED (coplanar or nearly: each element tests itself).
- * Only work is skipped: the result is the same bits. */
-#define CULL_MARGIN RAD__Q(1.0 / 4096.0)
-enum { VIEW_HIDDEN, VIEW_FACING, VIEW_MIXED };
-static int surface_view(const rad_scene_t *s, const rad_surface_t *sf, rad_vec3_t c, rad_vec3_t up)
-{
-    uint32_t k[4];
-    unsigned i, n = rad__surface_corners(s, sf, k), away = 1, facing = 1, below = 1;
-    for (i = 0; i < n; i++) {
-        rad_vec3_t v = s->pools.vertices[k[i]];
-        rad_real_t d = rad__dot(sf->normal, rad__sub(c, v));
-        if (!(d < -CULL_MARGIN)) away = 0;
-        if (!(d > CULL_MARGIN)) facing = 0;
-        if (!(rad__dot(rad__sub(v, c), up) < -CULL_MARGIN)) below = 0;
-    }
-    return away || below ? VIEW_HIDDEN : facing ? VIEW_FACING : VIEW_MIXED;
-}
-
-/* Every element that may be seen from C into the regions, surface by surface; with a
- * memo and FILL set, the memo is filled for each surface's vertices first. */
+/* Every surface but the shooter's own into the regions, seen from patch PT's centre. */
 static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg,
-                         rad_vec3_t c, const rad_vec3_t *frame, int fill)
+                         const rad_patch_t *pt, const rad_vec3_t *frame)
 {
     pass_t ps;
-    uint32_t k, e;
-    pass_setup(s, cv, reg, nreg, c, frame, &ps);
-    for (k = 0; k < s->n_surfaces; k++) {
-        const rad_surface_t *sf = &s->pools.surfaces[k];
-        int view = surface_view(s, sf, c, frame[2]);
-        if (view == VIEW_HIDDEN) continue;
-        if (fill && cv->memo) memo_fill(s, cv->memo, sf->first_vertex, sf->n_vertices, c, frame);
-        for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++)
-            render_element(s, cv, &ps, e, view == VIEW_MIXED);
-    }
+    uint32_t k;
+    pass_setup(s, cv, reg, nreg, pt->center, frame, &ps);
+    for (k = 0; k < s->n_surfaces; k++)
+        if (k != pt->surface) render_surface(s, cv, &ps, &s->pools.surfaces[k]);
 }
 
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
@@ -417,21 +317,21 @@ static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
     frame[2] = n;
 }
 
-void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin)
+void rad__hemicube(rad_scene_t *s, uint32_t p)
 {
+    const rad_patch_t *pt = &s->pools.patches[p];
     region_t reg[5];
     rad_vec3_t frame[3];
     canvas_t cv;
     unsigned k, nreg, r;
     uint32_t e;
 
-    cube_frame(n, spin, frame);
+    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
-    cv.memo = (vcache_t *)s->vcache;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-        render_scene(s, &cv, reg, nreg, c, frame, k == 0);
+        render_scene(s, &cv, reg, nreg, pt, frame);
         for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
     }
 }
@@ -450,18 +350,13 @@ static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
     return (rad_index_t *)(void *)(part_z(buf) + RAD_PIXELS_ALL(s->cfg.res));
 }
 
-/* The part's canvas in BUF; with BYTES room after the face buffers, a vertex memo of
- * its own (parts run at once: they share none), to be filled for the shot. */
-static canvas_t part_canvas(const rad_scene_t *s, void *buf, size_t bytes)
+/* The part's canvas in BUF. */
+static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 {
     canvas_t cv;
-    uintptr_t base = (uintptr_t)buf, m;
     cv.z = part_z(buf);
     cv.ids = part_ids(s, buf);
     cv.st = 0;
-    cv.memo = 0;
-    m = ((uintptr_t)(cv.ids + RAD_PIXELS_ALL(s->cfg.res)) + 7u) & ~(uintptr_t)7u;
-    if (m - base <= bytes && (bytes - (m - base)) / sizeof(vcache_t) >= s->n_vertices) cv.memo = (vcache_t *)m;
     return cv;
 }
 
@@ -486,20 +381,20 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
     return n;
 }
 
-int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf, size_t bytes)
+int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
     const rad_patch_t *pt = &s->pools.patches[p];
     region_t reg[5];
     rad_vec3_t frame[3];
     rad_stats_t st = {0, 0, 0, 0};
-    canvas_t cv = part_canvas(s, buf, bytes);
+    canvas_t cv = part_canvas(s, buf);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
 
     cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.st = &st;
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-    if (nreg) render_scene(s, &cv, reg, nreg, pt->center, frame, 1);
+    if (nreg) render_scene(s, &cv, reg, nreg, pt, frame);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     return (int)st.raster_calls;

@@ -13,6 +13,9 @@
 #define rad__cube_part radf__cube_part
 #define rad__cube_merge radf__cube_merge
 #define rad__surface_corners radf__surface_corners
+#define rad__lattice_init radf__lattice_init
+#define rad__lattice_face radf__lattice_face
+#define rad__lattice_span radf__lattice_span
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -29,12 +32,43 @@ typedef struct {
     int width, height;
 } rad__frustum_t;
 
+/* A family of lattice lines on a hemi-cube face (lattice.c): line k's plane through
+ * the cube's centre has normal C0 + k C1 + k^2 C2 (face axes a, b, d), k = 0..N, with
+ * K elements to a patch across the lines. */
+typedef struct {
+    int64_t c[3][3];
+    uint32_t n, k;
+} rad__family_t;
+
+/* A surface's lattice on one face of a hemi-cube of resolution RES: 2 families (quad
+ * columns, rows) or 3 (triangle i, j, i + j); element ids from FIRST, PU patches
+ * across a quad (a triangle's patch levels). */
+typedef struct {
+    rad__family_t fam[3];
+    unsigned nfam;
+    int32_t res;
+    uint32_t first, pu;
+} rad__lattice_t;
+
+/* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
+ * to the cube's centre, on the cube's axes. */
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n);
+/* CUBE turned onto a face of resolution RES whose axes a, b, d are the cube's axes
+ * AXES (1-based, negative: reversed). */
+void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int32_t res, rad__lattice_t *out);
+/* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
+ * the elements of LT under each pixel. */
+void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
+                       uint64_t w, uint64_t dw);
+
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
- * just those rows. One of ids and rgb is set: with rgb, colours are interpolated. */
+ * just those rows. One of ids and rgb is set: with rgb, colours are interpolated; with
+ * ids, every pixel gets the polygon's id, or with LAT the id of its lattice element. */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_rgb_t *rgb;
+    const rad__lattice_t *lat;
     int width, row0, row1;
 } rad__target_t;
 
@@ -65,9 +99,8 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
 
 /* Work buffer layout and delta form factor table (hemicube.c). */
 int rad__hemicube_init(rad_scene_t *s);
-/* Form factors from point C with normal N to every element, into s->acc; SPIN picks
- * the cube's turn about N. */
-void rad__hemicube(rad_scene_t *s, rad_vec3_t c, rad_vec3_t n, unsigned spin);
+/* Form factors from patch P's centre to every element, into s->acc. */
+void rad__hemicube(rad_scene_t *s, uint32_t p);
 
 /* Element E receives power F * U (three channels) from a shooter; its patch's unshot
  * power grows by what it reflects (solve.c). */
@@ -89,10 +122,10 @@ static inline uint16_t rad__ff_code(uint32_t q)
 static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u) << (c >> 11); }
 
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
- * cube's rows into BUF (RAD_PART_BYTES, and a vertex memo if BYTES has room for one);
+ * cube's rows into BUF (RAD_PART_BYTES);
  * merging fills s->acc as rad__hemicube would, bit for bit. Needs all five faces in
  * one pass (band_rows 0). */
-int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf, size_t bytes);
+int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf);
 void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
 
 /* The 3 or 4 corners of surface SF's vertex lattice (mesh.c): every vertex of the

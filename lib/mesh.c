@@ -201,20 +201,13 @@ static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const 
 }
 
 /* The corners of surface SF's vertex lattice, as mesh_quad and mesh_tri lay it out:
- * quads G(0,0), G(nu,0), G(nu,nv), G(0,nv), with nu read off the first element (its
- * fourth vertex is G(0,1) = v0 + nu + 1); triangles T(0,0), T(m,0), T(0,m), with m from
- * the first element's third vertex T(0,1) = v0 + m + 1. */
+ * quads G(0,0), G(nu,0), G(nu,nv), G(0,nv); triangles T(0,0), T(m,0), T(0,m). */
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k)
 {
-    const rad_element_t *el = &s->pools.elements[sf->first_element];
-    uint32_t v0 = sf->first_vertex, last = v0 + sf->n_vertices - 1u, n;
-    if (el->v[3] == RAD_INDEX_NONE) {
-        n = el->v[2] - v0 - 1u;
-        k[0] = v0; k[1] = v0 + n; k[2] = last;
-        return 3;
-    }
-    n = el->v[3] - v0 - 1u;
-    k[0] = v0; k[1] = v0 + n; k[2] = last; k[3] = last - n;
+    uint32_t v0 = sf->first_vertex, last = v0 + sf->n_vertices - 1u, nu = (uint32_t)sf->pu * sf->ku;
+    k[0] = v0; k[1] = v0 + nu; k[2] = last;
+    if (s->pools.elements[sf->first_element].v[3] == RAD_INDEX_NONE) return 3;
+    k[3] = last - nu;
     return 4;
 }
 
@@ -313,6 +306,10 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
     sf->first_patch = (rad_index_t)s->n_patches;
     sf->first_element = (rad_index_t)s->n_elements;
     sf->first_vertex = (rad_index_t)s->n_vertices;
+    sf->pu = (rad_index_t)(n == 4 ? plan.pu : plan.np);
+    sf->pv = (rad_index_t)(n == 4 ? plan.pv : plan.np);
+    sf->ku = (rad_index_t)(n == 4 ? plan.ku : plan.k);
+    sf->kv = (rad_index_t)(n == 4 ? plan.kv : plan.k);
     if (n == 4) mesh_quad(s, s->n_surfaces, v, &plan);
     else mesh_tri(s, s->n_surfaces, v, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);

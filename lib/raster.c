@@ -89,6 +89,25 @@ static void edge_setup(edge_t *ed, const rad__pvert_t *a, const rad__pvert_t *b,
     ed->dy = ex * SUB;
 }
 
+/* Narrows pixels LO..HI of a row (from the bounding box's first) to those where edge
+ * ED, E + t DX at pixel t, is >= 0: exact integer bounds, the same pixels as testing
+ * each one. */
+static void span_edge(const edge_t *ed, int32_t *lo, int32_t *hi)
+{
+    int64_t e = ed->e, dx = ed->dx;
+    if (dx > 0) {
+        if (e < 0) {
+            int64_t t = (-e + dx - 1) / dx;
+            if (t > *lo) *lo = t > *hi ? *hi + 1 : (int32_t)t;
+        }
+    } else if (e < 0) {
+        *hi = -1;
+    } else if (dx < 0) {
+        int64_t t = e / -dx;
+        if (t < *hi) *hi = (int32_t)t;
+    }
+}
+
 /* Twice the signed area of triangle A, B, C in subpixels^2. */
 static int64_t area2(const rad__pvert_t *a, const rad__pvert_t *b, const rad__pvert_t *c)
 {
@@ -194,32 +213,22 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pve
     if (n == 3) ed[3] = ed[0];
     for (k = 0; k < nat; k++) attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
 
-    {
-        /* The edges' values at the row's first pixel, kept in locals across rows. */
-        int64_t r0 = ed[0].e, r1 = ed[1].e, r2 = ed[2].e, r3 = ed[3].e;
-        const int64_t dx0 = ed[0].dx, dx1 = ed[1].dx, dx2 = ed[2].dx, dx3 = ed[3].dx;
-        for (y = y0; y <= y1; y++) {
-            int64_t e0 = r0, e1 = r1, e2 = r2, e3 = r3;
-            uint64_t w = val[0];
-            size_t row = (size_t)(y - t->row0) * (size_t)t->width;
-            int32_t x = x0, xs;
-            /* Convex: step to the span, then find its end, then fill it. */
-            while (x <= x1 && (e0 | e1 | e2 | e3) < 0) {
-                e0 += dx0; e1 += dx1; e2 += dx2; e3 += dx3;
-                w += sx[0];
-                x++;
-            }
-            xs = x;
-            while (x <= x1 && (e0 | e1 | e2 | e3) >= 0) {
-                e0 += dx0; e1 += dx1; e2 += dx2; e3 += dx3;
-                x++;
-            }
-            pixels += (uint64_t)(x - xs);
-            if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, x, w, val, sx, xs - x0);
-            else fill_ids(t->z + row, t->ids + row, xs, x, w, sx[0], id);
-            r0 += ed[0].dy; r1 += ed[1].dy; r2 += ed[2].dy; r3 += ed[3].dy;
-            for (k = 0; k < nat; k++) val[k] += sy[k];
+    for (y = y0; y <= y1; y++) {
+        /* Convex: the span is where every edge's value, linear along the row, is >= 0. */
+        int32_t lo = 0, hi = x1 - x0;
+        size_t row = (size_t)(y - t->row0) * (size_t)t->width;
+        uint64_t w;
+        for (k = 0; k < 4; k++) span_edge(&ed[k], &lo, &hi);
+        if (lo <= hi) {
+            int32_t xs = x0 + lo, xe = x0 + hi + 1;
+            w = val[0] + sx[0] * (uint64_t)lo;
+            pixels += (uint64_t)(xe - xs);
+            if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
+            else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0]);
+            else fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
         }
+        for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
+        for (k = 0; k < nat; k++) val[k] += sy[k];
     }
     st->raster_pixels += pixels;
 }

@@ -15,8 +15,7 @@ int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
     if (rows->n_rows == 0) rows->start[0] = 0;
     while (done < count && rows->n_rows < s->n_patches) {
         uint32_t p = rows->n_rows, e, n = rows->start[p], seen = 0;
-        const rad_patch_t *pt = &s->pools.patches[p];
-        rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+        rad__hemicube(s, p);
         for (e = 0; e < s->n_elements; e++) seen += rad__ff_to_q30(s->acc[e]) > 0;
         if (seen > rows->max_entries - n) return done ? (int)done : RAD_ERR_FULL;
         for (e = 0; e < s->n_elements; e++) {

@@ -171,6 +171,12 @@ static inline rad_real_t rad__from_attr(uint32_t a) { return (float)a * (1.0f / 
 static inline rad_ff_t rad__vweight(rad_real_t area) { return area; }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum) { return b * (w / wsum); }
 static inline rad_real_t rad__from_int(int32_t i) { return (float)i; }
+/* V in [-M, M] as an integer in [-2^S, 2^S], rounded (S <= 23, M > 0). */
+static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
+{
+    float q = v / m * (float)((int32_t)1 << s);
+    return (int64_t)(q < 0 ? q - 0.5f : q + 0.5f);
+}
 /* (a U + b V) / c: U turned toward V by the angle whose cosine is a / c. */
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
@@ -343,6 +349,10 @@ static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
     return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i) { return (rad_real_t)((uint32_t)i << 16); }
+static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
+{
+    return rad__div_round((int64_t)v * ((int64_t)1 << s), m);
+}
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
     rad_vec3_t r;

@@ -124,7 +124,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
     } else {
-        if (cube) rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+        if (cube) rad__hemicube(s, p);
         for (e = 0; e < s->n_elements; e++)
             if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
@@ -174,11 +174,9 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
 {
-    const rad_patch_t *pt;
     uint32_t e;
     if (!s || !out || p >= s->n_patches) return RAD_ERR_ARG;
-    pt = &s->pools.patches[p];
-    rad__hemicube(s, pt->center, s->pools.surfaces[pt->surface].normal, p);
+    rad__hemicube(s, p);
     for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
     return (int)s->n_elements;
 }
@@ -203,7 +201,7 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     if (!s || !buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
-    return rad__cube_part(s, patch, part, nparts, buf, bytes);
+    return rad__cube_part(s, patch, part, nparts, buf);
 }
 
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)

@@ -405,32 +405,6 @@ static void test_overshoot_debt(void **st)
     }
 }
 
-static void test_vertex_memo_same_bits(void **st)
-{
-    guarded_t a, b;
-    rad_scene_t s, t;
-    rad_config_t banded = cfg;
-    (void)st;
-    /* Room for the vertex memo in one, not in the other; banded too, where the memo
-     * also spares the passes after the first. */
-    pools_make(&a, NS, NP, NE, NV, WORK + RAD_CACHE_BYTES(NV));
-    pools_make(&b, NS, NP, NE, NV, WORK);
-    banded.band_rows = 5;
-    assert_int_equal(rad_init(&s, &a.p, &banded), RAD_OK);
-    assert_int_equal(rad_init(&t, &b.p, &banded), RAD_OK);
-    assert_non_null(s.vcache);
-    assert_null(t.vcache);
-    add_cube(&s);
-    add_cube(&t);
-    assert_int_equal(rad_shoot(&s, 40, 0), 40);
-    assert_int_equal(rad_shoot(&t, 40, 0), 40);
-    assert_true(checksum(&s) == checksum(&t));
-    assert_int_equal(s.stats.raster_calls, t.stats.raster_calls);
-    pools_check(&a);
-    pools_free(&a);
-    pools_free(&b);
-}
-
 static void test_strerror(void **st)
 {
     int k;
@@ -453,7 +427,6 @@ int main(void)
         cmocka_unit_test(test_restart_relight),
         cmocka_unit_test(test_saturation_counted),
         cmocka_unit_test(test_overshoot_debt),
-        cmocka_unit_test(test_vertex_memo_same_bits),
         cmocka_unit_test(test_strerror),
     };
     return cmocka_run_group_tests_name("api", tests, NULL, NULL);

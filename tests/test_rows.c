@@ -23,7 +23,7 @@ typedef struct {
     rad_patch_t pt[NP];
     rad_element_t el[NE];
     rad_vec3_t vx[NV];
-    unsigned char work[RAD_WORK_BYTES(64, RAD_PIXELS_ALL(64), NV) + RAD_CACHE_BYTES(NV)];
+    unsigned char work[RAD_WORK_BYTES(64, RAD_PIXELS_ALL(64), NV)];
     rad_scene_t s;
 } world_t;
 

@@ -47,7 +47,7 @@ int SC(solve_parallel)(SC(solver) *h, int threads, int max_shots, double tol, sc
     if (threads < 1) threads = 1;
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     if (s->band_rows != 0) return -1;
-    bytes = RAD_PART_BYTES(s->cfg.res) + RAD_CACHE_BYTES(s->n_vertices); /* with a vertex memo */
+    bytes = RAD_PART_BYTES(s->cfg.res);
     for (k = 0; k < threads; k++) {
         bufs[k] = malloc(bytes);
         ok = ok && bufs[k];

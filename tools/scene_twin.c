@@ -73,7 +73,7 @@ static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const ra
     p->max_vertices = (uint32_t)(3 * elements < lim ? 3 * elements : lim);
     nacc = p->max_vertices;
     pixels = cfg->band_rows ? (size_t)cfg->res * cfg->band_rows : RAD_PIXELS_ALL(cfg->res);
-    p->work_bytes = RAD_WORK_BYTES(cfg->res, pixels, nacc) + RAD_CACHE_BYTES(p->max_vertices);
+    p->work_bytes = RAD_WORK_BYTES(cfg->res, pixels, nacc);
     p->surfaces = calloc(p->max_surfaces, sizeof *p->surfaces);
     p->patches = calloc(p->max_patches, sizeof *p->patches);
     p->elements = calloc(p->max_elements, sizeof *p->elements);
@@ -313,8 +313,7 @@ void SC(get_stats)(SC(solver) *h, sc_stats *st)
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
                      h->s.n_elements * sizeof *p->elements + h->s.n_vertices * sizeof *p->vertices;
     st->work_bytes = RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
-                                    h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices) +
-                     (h->s.vcache ? RAD_CACHE_BYTES(h->s.n_vertices) : 0);
+                                    h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
 }
 
 static void rgb_out(const struct SC(solver) *h, const rad_rgb_t *c, double *o)

@@ -116,6 +116,9 @@ typedef struct {
     rad_index_t first_patch, n_patches;
     rad_index_t first_element, n_elements;
     rad_index_t first_vertex, n_vertices;
+    /* the lattice: a quad has pu x pv patches of ku x kv elements; a triangle pu = pv
+     * patch levels of ku = kv element levels each (its sides cut in pu ku) */
+    rad_index_t pu, pv, ku, kv;
 } rad_surface_t;
 
 /* A shooter: a block of elements whose hemi-cube sits at its centre. */
@@ -148,11 +151,6 @@ typedef struct {
  * All five faces at once:  PIXELS = RAD_PIXELS_ALL(RES) = 3 RES^2 (top + 4 half sides).
  * One band of ROWS rows:   PIXELS = RES * ROWS (RAM for time: each band re-renders).   */
 #define RAD_PIXELS_ALL(res) (3u * (uint32_t)(res) * (uint32_t)(res))
-/* Optional, added to RAD_WORK_BYTES: with room for it after the face buffers, each
- * hemi-cube transforms and projects a vertex once, not once for every element sharing
- * it (23% of a shot's instructions on CornellBox-Original at res 128; more when
- * banding). Results are the same bits either way. */
-#define RAD_CACHE_BYTES(vertices) ((size_t)(vertices) * 32u + 8u)
 #define RAD_WORK_BYTES(res, pixels, n)                                          \
     (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) +     \
      (size_t)(n) * sizeof(rad_ff_t) +                                          \
@@ -198,7 +196,6 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels;         /* pixels the face buffers hold */
     uint16_t band_rows;           /* rows per band, or 0: all faces in one pass */
-    void *vcache;                 /* per-vertex transform memo, if the work buffer had room */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
@@ -237,13 +234,11 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
  * picks the shooter (returns 1, or 0 once the unshot fraction is at most TOL);
  * rad_shot_part renders part PART of NPARTS of its hemi-cube (a run of the cube's
- * rows, face after face: every element clipped to them) into BUF, reading the scene
+ * rows, face after face: every surface clipped to them) into BUF, reading the scene
  * only, so parts may run at once; rad_shot_end sums the parts' pixels in order and
  * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
- * RAD_PART_BYTES(res); with RAD_CACHE_BYTES(n_vertices) more, the part keeps a vertex
- * memo there (as the work buffer's: same bits, less work). Each returns RAD_ERR_ARG on
- * a bad argument. */
+ * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
 #define RAD_PART_BYTES(res) (16u + (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes);

@@ -14,8 +14,8 @@
  *                  element_radiosity, shade_vertices, render (small views, any camera),
  *                  form_factors, the threaded shot (shot_begin / shot_part / shot_end),
  *                  stored rows (rows_compute / rows_shoot / rows_gauss_seidel), mix,
- *                  ff_from_code, strerror; the work buffer sometimes has room for the
- *                  vertex memo (RAD_CACHE_BYTES) or is one byte short of it.
+ *                  ff_from_code, strerror; the work buffer is exact, short, or has
+ *                  bytes to spare.
  * Values come in Q16.16 for the fixed core; the float core gets the same numbers as
  * floats, or (selector bit 3) raw float bits: NaN, infinities, denormals, 1e38.
  *
@@ -342,8 +342,7 @@ static int setup(reader_t *r, ctx_t *c)
         need = RAD_WORK_BYTES(rr, pixels, nacc);
         n = (w & 0x80) ? need - (w >> 4 & 7u) * 3u : need;
         misalign = u8(r);
-        if (misalign & 8u) n += RAD_CACHE_BYTES(c->pools.max_vertices);          /* the memo */
-        else if (misalign & 16u) n += RAD_CACHE_BYTES(c->pools.max_vertices) - 1u; /* not quite */
+        if (misalign & 8u) n += 1u + (misalign >> 4) * 97u; /* bytes to spare */
         misalign %= 8u;
         c->work_block = malloc(n + misalign);
         CHECK(c->work_block != NULL);
@@ -566,10 +565,9 @@ static void op_parallel(reader_t *r, ctx_t *c)
     snap_t sn;
     int rc, short_buf = (f & 1) && !(f & 0x20);
     if (c->s.cfg.res > 64) return;
-    /* One byte short of a part; or room for the part's vertex memo, or one byte short
-     * of that (the part then works without one). */
+    /* One byte short of a part, or bytes to spare. */
     bytes = RAD_PART_BYTES(c->s.cfg.res) - (short_buf ? 1u : 0u);
-    if (f & 0x20) bytes += RAD_CACHE_BYTES(c->s.n_vertices) - ((f & 0x80) ? 1u : 0u);
+    if (f & 0x20) bytes += (f & 0x80) ? 1u : 4096u;
     snap_take(&sn, &c->s);
     rc = rad_shot_begin(&c->s, tol, (f & 0x40) ? NULL : &patch);
     if (rc < 0) {

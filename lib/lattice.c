@@ -1,0 +1,276 @@
+/* rad — which element of a surface a hemi-cube pixel sees.
+ *
+ * The hemi-cube draws each surface as one polygon (its outline, clipped and rasterized
+ * once) and finds the element under each pixel from the surface's lattice, not by
+ * drawing every element. A quad's element column lies between lattice lines k and
+ * k + 1, where line k joins the points k/n along two opposite edges (the mesher's
+ * bilinear grid); its row likewise; a triangle's elements lie between lines of its
+ * barycentric lattice in three directions (i, j and i + j).
+ *
+ * Line k and the cube's centre span a plane, with normal L_k = P_k x R_k for the line's
+ * two end points; a pixel's ray is past line k when E_k = L_k . ray >= 0. With the
+ * corners as integers relative to the centre, P_k = (n - k) p0 + k p1 and R_k alike,
+ * so L_k = C0 + k C1 + k^2 C2 exactly, and along a row of pixels every E_k steps by a
+ * constant. A span finds its first and last pixels' columns by bisection, and between
+ * them walks: a step is an add and a compare, a change of column a few multiplies.
+ *
+ * Integer ranges: corners scaled to |c| <= 2^S with S = 23 - bits(n); the ray's
+ * components are at most RES <= 2^10; then |C0| <= 2 n^2 2^2S, |C1| <= 8 n 2^2S,
+ * |C2| <= 8 2^2S, and every E_k, k in [0, n], stays below 54 2^10 n^2 2^2S < 2^62.
+ * The same integers serve both builds; a pixel's element depends on its own span
+ * alone, so parts of a cube rendered apart, or in bands, give the same bits.
+ */
+#include "internal.h"
+
+static unsigned bits(uint32_t v)
+{
+    unsigned b = 0;
+    while (v) { b++; v >>= 1; }
+    return b;
+}
+
+static void cross(const int64_t *a, const int64_t *b, int64_t *r)
+{
+    r[0] = a[1] * b[2] - a[2] * b[1];
+    r[1] = a[2] * b[0] - a[0] * b[2];
+    r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The family of lines k = 0..N joining (N - k) P0 + k P1 to (N - k) R0 + k R1, K
+ * elements to a patch along it, oriented so that E_k >= 0 on P1's side. */
+static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const int64_t *r0, const int64_t *r1,
+                   uint32_t n, uint32_t k, unsigned shift)
+{
+    int64_t x[3], y[3], y2[3], z[3], pm[3], rm[3], far[3], l[3];
+    const int64_t nn = n;
+    unsigned c;
+    f->n = n;
+    f->k = k;
+    cross(p0, r0, x);
+    cross(p0, r1, y);
+    cross(p1, r0, y2);
+    cross(p1, r1, z);
+    for (c = 0; c < 3; c++) {
+        y[c] += y2[c];
+        f->c[0][c] = nn * nn * x[c];
+        f->c[1][c] = nn * (y[c] - 2 * x[c]);
+        f->c[2][c] = x[c] - y[c] + z[c];
+    }
+    /* The sign of the line half way, (p0 + p1) to (r0 + r1), seen against P1: on at most
+     * 17 bits a corner, so the triple product fits (the same sign as for every line
+     * k < n, unless the surface is seen edge-on, where it covers next to no pixels). */
+    for (c = 0; c < 3; c++) {
+        pm[c] = shift ? rad__shr_round(p0[c] + p1[c], shift) : p0[c] + p1[c];
+        rm[c] = shift ? rad__shr_round(r0[c] + r1[c], shift) : r0[c] + r1[c];
+        far[c] = shift ? rad__shr_round(p1[c], shift) : p1[c];
+    }
+    cross(pm, rm, l);
+    if (l[0] * far[0] + l[1] * far[1] + l[2] * far[2] < 0)
+        for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
+}
+
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n)
+{
+    int64_t q[4][3];
+    rad_real_t m = RAD__EPS;
+    uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
+    unsigned i, s = 23u - bits(len), shift = s > 17u ? s - 17u : 0u;
+    for (i = 0; i < n; i++) {
+        rad_real_t a = corner[i].x < 0 ? -corner[i].x : corner[i].x;
+        rad_real_t b = corner[i].y < 0 ? -corner[i].y : corner[i].y;
+        rad_real_t c = corner[i].z < 0 ? -corner[i].z : corner[i].z;
+        if (a > m) m = a;
+        if (b > m) m = b;
+        if (c > m) m = c;
+    }
+    for (i = 0; i < n; i++) {
+        q[i][0] = rad__grid(corner[i].x, m, s);
+        q[i][1] = rad__grid(corner[i].y, m, s);
+        q[i][2] = rad__grid(corner[i].z, m, s);
+    }
+    lt->first = sf->first_element;
+    lt->pu = sf->pu;
+    if (n == 4) {
+        /* Columns between Q0Q3 and Q1Q2, rows between Q0Q1 and Q3Q2. */
+        lt->nfam = 2;
+        family(&lt->fam[0], q[0], q[1], q[3], q[2], sf->pu * sf->ku, sf->ku, shift);
+        family(&lt->fam[1], q[0], q[3], q[1], q[2], sf->pv * sf->kv, sf->kv, shift);
+    } else {
+        /* T0 = (0, 0), T1 = (m, 0), T2 = (0, m): lines of constant i, j and i + j. */
+        uint32_t len3 = sf->pu * sf->ku;
+        lt->nfam = 3;
+        family(&lt->fam[0], q[0], q[1], q[2], q[1], len3, sf->ku, shift);
+        family(&lt->fam[1], q[0], q[2], q[1], q[2], len3, sf->ku, shift);
+        family(&lt->fam[2], q[0], q[1], q[0], q[2], len3, sf->ku, shift);
+    }
+}
+
+void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int32_t res, rad__lattice_t *out)
+{
+    unsigned f, j, c;
+    *out = *cube;
+    out->res = res;
+    for (f = 0; f < cube->nfam; f++)
+        for (j = 0; j < 3; j++)
+            for (c = 0; c < 3; c++) {
+                int a = axes[c];
+                int64_t v = cube->fam[f].c[j][(a < 0 ? -a : a) - 1];
+                out->fam[f].c[j][c] = a < 0 ? -v : v;
+            }
+}
+
+/* ---- spans --------------------------------------------------------------------- */
+
+/* One family along a span: line index I (coarse CO and fine FI parts, K a patch),
+ * walking by STEP (+1, -1 or 0) until END; E is the test value AT pixels into the span
+ * (E_{I+1} when walking up, -E_I - 1 when walking down: a change when E >= 0), S its
+ * step. E0 and D are the coefficients' values at the span's first pixel and steps. */
+typedef struct {
+    int64_t e0[3], d[3], e, s, at;
+    int32_t i, end, step, co, fi;
+} walk_t;
+
+static int64_t at(const int64_t *e, int64_t k) { return e[0] + k * (e[1] + k * e[2]); }
+
+/* Largest k in [0, n - 1] with E_k >= 0 (0 when none), the coefficients E at a pixel. */
+static int32_t search(const int64_t *e, uint32_t n)
+{
+    int32_t lo = 0, hi = (int32_t)n - 1;
+    while (lo < hi) {
+        int32_t mid = (lo + hi + 1) / 2;
+        if (at(e, mid) >= 0) lo = mid;
+        else hi = mid - 1;
+    }
+    return lo;
+}
+
+/* The test value and step for the walk's current index, DX pixels into the span. */
+static void aim(walk_t *w, int64_t dx)
+{
+    int64_t e[3];
+    unsigned j;
+    for (j = 0; j < 3; j++) e[j] = w->e0[j] + dx * w->d[j];
+    w->at = dx;
+    if (w->step > 0) {
+        w->e = at(e, w->i + 1);
+        w->s = at(w->d, w->i + 1);
+    } else {
+        w->e = -at(e, w->i) - 1;
+        w->s = -at(w->d, w->i);
+    }
+}
+
+/* Sets W up for family F on row Y from pixel XS to XE - 1. */
+static void walk_start(const rad__family_t *f, int32_t res, int32_t y, int32_t xs, int32_t xe, walk_t *w)
+{
+    int64_t last[3];
+    unsigned j;
+    for (j = 0; j < 3; j++) {
+        const int64_t *c = f->c[j];
+        w->d[j] = 2 * c[0];
+        w->e0[j] = c[0] * (2 * (int64_t)xs + 1 - res) + c[1] * ((int64_t)res - 2 * (int64_t)y - 1) + c[2] * res;
+        last[j] = w->e0[j] + (int64_t)(xe - 1 - xs) * w->d[j];
+    }
+    w->i = search(w->e0, f->n);
+    w->end = search(last, f->n);
+    w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
+    w->co = w->i / (int32_t)f->k;
+    w->fi = w->i % (int32_t)f->k;
+    w->e = -1;
+    w->s = 0;
+    w->at = 0;
+    if (w->step) aim(w, 0);
+}
+
+/* W's index at the pixel DX into the span: lines crossed until the test fails or the
+ * walk ends. */
+static void cross_lines(walk_t *w, int32_t k, int64_t dx)
+{
+    w->e += (dx - w->at) * w->s;
+    w->at = dx;
+    while (w->i != w->end && w->e >= 0) {
+        w->i += w->step;
+        w->fi += w->step;
+        if (w->fi == k) { w->fi = 0; w->co++; }
+        if (w->fi < 0) { w->fi = k - 1; w->co--; }
+        aim(w, dx);
+    }
+}
+
+/* The first pixel from W's (into a span of N) where its test holds: E + t S >= 0 for
+ * t = ceil(-E / S); N when the walk has ended or never gets there. */
+static int64_t next_change(const walk_t *w, int64_t n)
+{
+    int64_t t;
+    if (w->i == w->end) return n;
+    if (w->e >= 0) return w->at;
+    if (w->s <= 0) return n;
+    t = (-w->e + w->s - 1) / w->s;
+    return t < n - w->at ? w->at + t : n;
+}
+
+/* The element of a triangle's lattice cell: columns X, rows Y (coarse, fine) and the
+ * i + j line L, as mesh_tri numbers them (up patches, then down patches; in each,
+ * rows of up and down elements). */
+static uint32_t tri_element(const rad__lattice_t *lt, const walk_t *w)
+{
+    uint32_t m = lt->fam[0].n, k = lt->fam[0].k, np = lt->pu;
+    uint32_t x = (uint32_t)w[0].i, y = (uint32_t)w[1].i, I = (uint32_t)w[0].co, a = (uint32_t)w[0].fi;
+    uint32_t J = (uint32_t)w[1].co, b = (uint32_t)w[1].fi, dn, patch;
+    if (x + y > m - 1u) { /* past the far edge by rounding */
+        y = m - 1u - x;
+        J = y / k;
+        b = y % k;
+    }
+    dn = (uint32_t)w[2].i > x + y && x + y + 1u <= m - 1u;
+    if (a + b + dn <= k - 1u) {
+        patch = J * np - J * (J - 1u) / 2u + I;
+    } else {
+        patch = np * (np + 1u) / 2u + J * (np - 1u) - J * (J - 1u) / 2u + I;
+        a = k - 1u - a;
+        b = k - 1u - b;
+        dn = 1u - dn;
+    }
+    return lt->first + patch * k * k + 2u * k * b - b * b + 2u * a + dn;
+}
+
+static uint32_t element(const rad__lattice_t *lt, const walk_t *w)
+{
+    if (lt->nfam == 3) return tri_element(lt, w);
+    return lt->first + ((uint32_t)w[1].co * lt->pu + (uint32_t)w[0].co) * lt->fam[0].k * lt->fam[1].k +
+           (uint32_t)w[1].fi * lt->fam[0].k + (uint32_t)w[0].fi;
+}
+
+/* Walks the span in runs of one element: each family's next change is found by a
+ * division, not by testing every pixel. */
+void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
+                       uint64_t w, uint64_t dw)
+{
+    walk_t wk[3];
+    int64_t next[3], n = xe - xs, dx = 0;
+    unsigned f;
+    if (n <= 0) return;
+    for (f = 0; f < lt->nfam; f++) {
+        walk_start(&lt->fam[f], lt->res, y, xs, xe, &wk[f]);
+        next[f] = next_change(&wk[f], n);
+    }
+    for (;;) {
+        rad_index_t id = (rad_index_t)element(lt, wk);
+        int64_t end = n;
+        for (f = 0; f < lt->nfam; f++)
+            if (next[f] < end) end = next[f];
+        for (; dx < end; dx++, w += dw) {
+            uint32_t d = (uint32_t)(w >> 16);
+            if (d > z[xs + dx]) {
+                z[xs + dx] = d;
+                ids[xs + dx] = id;
+            }
+        }
+        if (dx >= n) return;
+        for (f = 0; f < lt->nfam; f++)
+            if (next[f] == dx) {
+                cross_lines(&wk[f], (int32_t)lt->fam[f].k, dx);
+                next[f] = next_change(&wk[f], n);
+            }
+    }
+}
