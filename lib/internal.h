@@ -34,10 +34,11 @@ typedef struct {
 
 /* A family of lattice lines on a hemi-cube face (lattice.c): line k's plane through
  * the cube's centre has normal C0 + k C1 + k^2 C2 (face axes a, b, d), k = 0..N, with
- * K elements to a patch across the lines. */
+ * K elements to a patch across the lines (lattice.c). */
 typedef struct {
     int64_t c[3][3];
     uint32_t n, k;
+    uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
 } rad__family_t;
 
 /* A surface's lattice on one face of a hemi-cube of resolution RES: 2 families (quad

@@ -14,9 +14,10 @@
  * constant. A span finds its first and last pixels' columns by bisection, and between
  * them walks: a step is an add and a compare, a change of column a few multiplies.
  *
- * Integer ranges: corners scaled to |c| <= 2^S with S = 23 - bits(n); the ray's
+ * Integer ranges: corners scaled to |c| <= 2^S with S = 22 - bits(n); the ray's
  * components are at most RES <= 2^10; then |C0| <= 2 n^2 2^2S, |C1| <= 8 n 2^2S,
- * |C2| <= 8 2^2S, and every E_k, k in [0, n], stays below 54 2^10 n^2 2^2S < 2^62.
+ * |C2| <= 8 2^2S, and every E_k, k in [0, n], stays below 54 2^10 n^2 2^2S < 2^60, so
+ * differences of two fit as well.
  * The same integers serve both builds; a pixel's element depends on its own span
  * alone, so parts of a cube rendered apart, or in bands, give the same bits.
  */
@@ -46,6 +47,7 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
     unsigned c;
     f->n = n;
     f->k = k;
+    f->unit = f->coarse = 0;
     cross(p0, r0, x);
     cross(p0, r1, y);
     cross(p1, r0, y2);
@@ -74,7 +76,7 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     int64_t q[4][3];
     rad_real_t m = RAD__EPS;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
-    unsigned i, s = 23u - bits(len), shift = s > 17u ? s - 17u : 0u;
+    unsigned i, s = 22u - bits(len), shift = s > 17u ? s - 17u : 0u;
     for (i = 0; i < n; i++) {
         rad_real_t a = corner[i].x < 0 ? -corner[i].x : corner[i].x;
         rad_real_t b = corner[i].y < 0 ? -corner[i].y : corner[i].y;
@@ -95,6 +97,11 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
         lt->nfam = 2;
         family(&lt->fam[0], q[0], q[1], q[3], q[2], sf->pu * sf->ku, sf->ku, shift);
         family(&lt->fam[1], q[0], q[3], q[1], q[2], sf->pv * sf->kv, sf->kv, shift);
+        /* id = first + (pj pu + pi) ku kv + b ku + a, for column pi ku + a, row pj kv + b */
+        lt->fam[0].unit = 1u;
+        lt->fam[0].coarse = (uint32_t)sf->ku * sf->kv;
+        lt->fam[1].unit = sf->ku;
+        lt->fam[1].coarse = (uint32_t)sf->pu * sf->ku * sf->kv;
     } else {
         /* T0 = (0, 0), T1 = (m, 0), T2 = (0, m): lines of constant i, j and i + j. */
         uint32_t len3 = sf->pu * sf->ku;
@@ -121,13 +128,16 @@ void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int3
 
 /* ---- spans --------------------------------------------------------------------- */
 
-/* One family along a span: line index I (coarse CO and fine FI parts, K a patch),
- * walking by STEP (+1, -1 or 0) until END; E is the test value AT pixels into the span
- * (E_{I+1} when walking up, -E_I - 1 when walking down: a change when E >= 0), S its
- * step. E0 and D are the coefficients' values at the span's first pixel and steps. */
+/* One family along a span. Pixels lie between lines I and I + 1 (CO, FI: I's coarse
+ * and fine parts, K elements a patch; PART: what I adds to a quad's element id); the
+ * walk goes by STEP (+1, -1 or 0) until END. T tests the next line, k = I + 1 up or
+ * k = I down: T = E_k up, -E_k - 1 down, so the line is crossed once T >= 0. Crossing
+ * it adds D to T, and D2 to D; all three are linear along the row (ST, SD, SD2 a
+ * pixel), held at pixel AT of the span. */
 typedef struct {
-    int64_t e0[3], d[3], e, s, at;
+    int64_t t, d, d2, st, sd, sd2, at;
     int32_t i, end, step, co, fi;
+    uint32_t part;
 } walk_t;
 
 static int64_t at(const int64_t *e, int64_t k) { return e[0] + k * (e[1] + k * e[2]); }
@@ -144,68 +154,68 @@ static int32_t search(const int64_t *e, uint32_t n)
     return lo;
 }
 
-/* The test value and step for the walk's current index, DX pixels into the span. */
-static void aim(walk_t *w, int64_t dx)
-{
-    int64_t e[3];
-    unsigned j;
-    for (j = 0; j < 3; j++) e[j] = w->e0[j] + dx * w->d[j];
-    w->at = dx;
-    if (w->step > 0) {
-        w->e = at(e, w->i + 1);
-        w->s = at(w->d, w->i + 1);
-    } else {
-        w->e = -at(e, w->i) - 1;
-        w->s = -at(w->d, w->i);
-    }
-}
-
 /* Sets W up for family F on row Y from pixel XS to XE - 1. */
 static void walk_start(const rad__family_t *f, int32_t res, int32_t y, int32_t xs, int32_t xe, walk_t *w)
 {
-    int64_t last[3];
+    int64_t e[3], de[3], last[3], k, sg;
     unsigned j;
     for (j = 0; j < 3; j++) {
         const int64_t *c = f->c[j];
-        w->d[j] = 2 * c[0];
-        w->e0[j] = c[0] * (2 * (int64_t)xs + 1 - res) + c[1] * ((int64_t)res - 2 * (int64_t)y - 1) + c[2] * res;
-        last[j] = w->e0[j] + (int64_t)(xe - 1 - xs) * w->d[j];
+        de[j] = 2 * c[0];
+        e[j] = c[0] * (2 * (int64_t)xs + 1 - res) + c[1] * ((int64_t)res - 2 * (int64_t)y - 1) + c[2] * res;
+        last[j] = e[j] + (int64_t)(xe - 1 - xs) * de[j];
     }
-    w->i = search(w->e0, f->n);
+    w->i = search(e, f->n);
     w->end = search(last, f->n);
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
     w->co = w->i / (int32_t)f->k;
     w->fi = w->i % (int32_t)f->k;
-    w->e = -1;
-    w->s = 0;
+    w->part = (uint32_t)w->co * f->coarse + (uint32_t)w->fi * f->unit;
     w->at = 0;
-    if (w->step) aim(w, 0);
+    if (!w->step) return;
+    sg = w->step;
+    k = w->i + (sg > 0);
+    w->t = sg * at(e, k) - (sg < 0);
+    w->st = sg * at(de, k);
+    w->d = e[1] + (2 * k + sg) * e[2];
+    w->sd = de[1] + (2 * k + sg) * de[2];
+    w->d2 = 2 * sg * e[2];
+    w->sd2 = 2 * sg * de[2];
 }
 
-/* W's index at the pixel DX into the span: lines crossed until the test fails or the
- * walk ends. */
-static void cross_lines(walk_t *w, int32_t k, int64_t dx)
+/* W at pixel DX of the span: lines crossed until the test fails or the walk ends. */
+static void cross_lines(walk_t *w, const rad__family_t *f, int64_t dx)
 {
-    w->e += (dx - w->at) * w->s;
+    int64_t t = dx - w->at;
+    w->t += t * w->st;
+    w->d += t * w->sd;
+    w->d2 += t * w->sd2;
     w->at = dx;
-    while (w->i != w->end && w->e >= 0) {
+    while (w->i != w->end && w->t >= 0) {
         w->i += w->step;
-        w->fi += w->step;
-        if (w->fi == k) { w->fi = 0; w->co++; }
-        if (w->fi < 0) { w->fi = k - 1; w->co--; }
-        aim(w, dx);
+        if (w->step > 0) {
+            if (++w->fi == (int32_t)f->k) { w->fi = 0; w->co++; w->part += f->coarse - (f->k - 1u) * f->unit; }
+            else w->part += f->unit;
+        } else {
+            if (w->fi-- == 0) { w->fi = (int32_t)f->k - 1; w->co--; w->part -= f->coarse - (f->k - 1u) * f->unit; }
+            else w->part -= f->unit;
+        }
+        w->t += w->d;
+        w->st += w->sd;
+        w->d += w->d2;
+        w->sd += w->sd2;
     }
 }
 
-/* The first pixel from W's (into a span of N) where its test holds: E + t S >= 0 for
- * t = ceil(-E / S); N when the walk has ended or never gets there. */
+/* The first pixel from W's (into a span of N) where its test holds: T + t ST >= 0 for
+ * t = ceil(-T / ST); N when the walk has ended or never gets there. */
 static int64_t next_change(const walk_t *w, int64_t n)
 {
     int64_t t;
     if (w->i == w->end) return n;
-    if (w->e >= 0) return w->at;
-    if (w->s <= 0) return n;
-    t = (-w->e + w->s - 1) / w->s;
+    if (w->t >= 0) return w->at;
+    if (w->st <= 0) return n;
+    t = (-w->t + w->st - 1) / w->st;
     return t < n - w->at ? w->at + t : n;
 }
 
@@ -236,9 +246,7 @@ static uint32_t tri_element(const rad__lattice_t *lt, const walk_t *w)
 
 static uint32_t element(const rad__lattice_t *lt, const walk_t *w)
 {
-    if (lt->nfam == 3) return tri_element(lt, w);
-    return lt->first + ((uint32_t)w[1].co * lt->pu + (uint32_t)w[0].co) * lt->fam[0].k * lt->fam[1].k +
-           (uint32_t)w[1].fi * lt->fam[0].k + (uint32_t)w[0].fi;
+    return lt->nfam == 3 ? tri_element(lt, w) : lt->first + w[0].part + w[1].part;
 }
 
 /* Walks the span in runs of one element: each family's next change is found by a
@@ -269,7 +277,7 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
         if (dx >= n) return;
         for (f = 0; f < lt->nfam; f++)
             if (next[f] == dx) {
-                cross_lines(&wk[f], (int32_t)lt->fam[f].k, dx);
+                cross_lines(&wk[f], &lt->fam[f], dx);
                 next[f] = next_change(&wk[f], n);
             }
     }
