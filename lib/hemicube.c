@@ -6,6 +6,9 @@
  * (Cohen & Greenberg 1985). Both are symmetric in x (and the top in y), so one quadrant
  * of each is stored. The table is built in integers in both builds and normalised so
  * that the whole hemi-cube sums to exactly 2^30 (1.0 in Q2.30).
+ *
+ * A cube draws every surface (but the shooter's own) once a face, and each pixel gets
+ * the element of the surface under its centre from the surface's lattice (lattice.c).
  */
 #include "internal.h"
 
@@ -135,21 +138,23 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 }
 
 /* The faces look along +z, +x, -x, +y, -y: their axes a (across), b (up) and d (depth)
- * as the cube's axes x, y, z (1-based; negative: reversed). */
-static const signed char face_axes[5][3] = {{1, 2, 3}, {2, 3, 1}, {2, 3, -1}, {1, 3, 2}, {1, 3, -2}};
+ * are the cube's axes x, y, z (0, 1, 2) of FACE_AXIS, times FACE_SIGN. */
+static const unsigned char face_axis[5][3] = {{0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {0, 2, 1}, {0, 2, 1}};
+static const signed char face_sign[5][3] = {{1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {1, 1, 1}, {1, 1, -1}};
 
-static rad_real_t axis(rad_vec3_t l, int a)
+static rad_real_t axis(rad_vec3_t l, unsigned face, unsigned k)
 {
-    rad_real_t v = (a < 0 ? -a : a) == 1 ? l.x : (a < 0 ? -a : a) == 2 ? l.y : l.z;
-    return a < 0 ? -v : v;
+    unsigned a = face_axis[face][k];
+    rad_real_t v = a == 0 ? l.x : a == 1 ? l.y : l.z;
+    return face_sign[face][k] < 0 ? -v : v;
 }
 
 /* A point in the cube's frame in the face's view space. */
 static void face_vertex(unsigned face, rad_vec3_t l, rad__cvert_t *c)
 {
-    c->a = axis(l, face_axes[face][0]);
-    c->b = axis(l, face_axes[face][1]);
-    c->d = axis(l, face_axes[face][2]);
+    c->a = axis(l, face, 0);
+    c->b = axis(l, face, 1);
+    c->d = axis(l, face, 2);
     c->c[0] = c->c[1] = c->c[2] = 0;
 }
 
@@ -245,7 +250,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         rad__target_t t = ps->t[r];
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
         if (grid) {
-            rad__lattice_face(&cube, face_axes[f], (int32_t)s->cfg.res, &face);
+            rad__lattice_face(&cube, face_axis[f], face_sign[f], (int32_t)s->cfg.res, &face);
             t.lat = &face;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);

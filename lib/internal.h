@@ -55,8 +55,9 @@ typedef struct {
  * to the cube's centre, on the cube's axes. */
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n);
 /* CUBE turned onto a face of resolution RES whose axes a, b, d are the cube's axes
- * AXES (1-based, negative: reversed). */
-void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int32_t res, rad__lattice_t *out);
+ * AXIS (0 x, 1 y, 2 z) times SIGN (+-1). */
+void rad__lattice_face(const rad__lattice_t *cube, const unsigned char *axis, const signed char *sign, int32_t res,
+                       rad__lattice_t *out);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,

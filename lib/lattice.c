@@ -73,7 +73,7 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
 
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n)
 {
-    int64_t q[4][3];
+    int64_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     unsigned i, s = 22u - bits(len), shift = s > 17u ? s - 17u : 0u;
@@ -112,7 +112,8 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     }
 }
 
-void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int32_t res, rad__lattice_t *out)
+void rad__lattice_face(const rad__lattice_t *cube, const unsigned char *axis, const signed char *sign, int32_t res,
+                       rad__lattice_t *out)
 {
     unsigned f, j, c;
     *out = *cube;
@@ -120,9 +121,8 @@ void rad__lattice_face(const rad__lattice_t *cube, const signed char *axes, int3
     for (f = 0; f < cube->nfam; f++)
         for (j = 0; j < 3; j++)
             for (c = 0; c < 3; c++) {
-                int a = axes[c];
-                int64_t v = cube->fam[f].c[j][(a < 0 ? -a : a) - 1];
-                out->fam[f].c[j][c] = a < 0 ? -v : v;
+                int64_t v = cube->fam[f].c[j][axis[c] % 3u];
+                out->fam[f].c[j][c] = sign[c] < 0 ? -v : v;
             }
 }
 
@@ -244,9 +244,9 @@ static uint32_t tri_element(const rad__lattice_t *lt, const walk_t *w)
     return lt->first + patch * k * k + 2u * k * b - b * b + 2u * a + dn;
 }
 
-static uint32_t element(const rad__lattice_t *lt, const walk_t *w)
+static uint32_t element(const rad__lattice_t *lt, unsigned nfam, const walk_t *w)
 {
-    return lt->nfam == 3 ? tri_element(lt, w) : lt->first + w[0].part + w[1].part;
+    return nfam == 3 ? tri_element(lt, w) : lt->first + w[0].part + w[1].part;
 }
 
 /* Walks the span in runs of one element: each family's next change is found by a
@@ -256,16 +256,16 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
 {
     walk_t wk[3];
     int64_t next[3], n = xe - xs, dx = 0;
-    unsigned f;
+    unsigned f, nfam = lt->nfam == 3 ? 3u : 2u;
     if (n <= 0) return;
-    for (f = 0; f < lt->nfam; f++) {
+    for (f = 0; f < nfam; f++) {
         walk_start(&lt->fam[f], lt->res, y, xs, xe, &wk[f]);
         next[f] = next_change(&wk[f], n);
     }
     for (;;) {
-        rad_index_t id = (rad_index_t)element(lt, wk);
+        rad_index_t id = (rad_index_t)element(lt, nfam, wk);
         int64_t end = n;
-        for (f = 0; f < lt->nfam; f++)
+        for (f = 0; f < nfam; f++)
             if (next[f] < end) end = next[f];
         for (; dx < end; dx++, w += dw) {
             uint32_t d = (uint32_t)(w >> 16);
@@ -275,7 +275,7 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
             }
         }
         if (dx >= n) return;
-        for (f = 0; f < lt->nfam; f++)
+        for (f = 0; f < nfam; f++)
             if (next[f] == dx) {
                 cross_lines(&wk[f], &lt->fam[f], dx);
                 next[f] = next_change(&wk[f], n);

@@ -177,7 +177,7 @@ typedef struct {
 typedef struct {
     uint32_t shots;            /* patches shot */
     uint32_t saturations;      /* values clamped to their format's range */
-    uint32_t raster_calls;     /* triangles handed to the rasterizer */
+    uint32_t raster_calls;     /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels;    /* pixels covered (before the depth test) */
 } rad_stats_t;
 
