@@ -186,38 +186,28 @@ typedef struct {
     rad_stats_t *st;
 } canvas_t;
 
-/* One pass of a cube: the shooter's centre C and frame, the regions drawn, and for each
- * its frustum and target (set up once a pass). */
+/* One pass of a cube: the shooter's centre C and frame, and the regions drawn. */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
     const region_t *reg;
     unsigned nreg;
-    rad__frustum_t f[5];
-    rad__target_t t[5];
 } pass_t;
 
-static void pass_setup(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg, rad_vec3_t c,
-                       const rad_vec3_t *frame, pass_t *ps)
+/* The frustum of region R's face and the target of its rows. */
+static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t *r, rad__frustum_t *f,
+                        rad__target_t *t)
 {
-    unsigned r;
-    ps->c = c;
-    ps->frame = frame;
-    ps->reg = reg;
-    ps->nreg = nreg;
-    for (r = 0; r < nreg; r++) {
-        unsigned face = reg[r].face;
-        ps->f[r].half = face != 0;
-        ps->f[r].width = (int)s->cfg.res;
-        ps->f[r].height = (int)face_rows(s, face);
-        ps->t[r].z = cv->z + reg[r].offset;
-        ps->t[r].ids = cv->ids + reg[r].offset;
-        ps->t[r].rgb = 0;
-        ps->t[r].lat = 0;
-        ps->t[r].width = (int)s->cfg.res;
-        ps->t[r].row0 = reg[r].row0;
-        ps->t[r].row1 = reg[r].row1;
-    }
+    f->half = r->face != 0;
+    f->width = (int)s->cfg.res;
+    f->height = (int)face_rows(s, r->face);
+    t->z = cv->z + r->offset;
+    t->ids = cv->ids + r->offset;
+    t->rgb = 0;
+    t->lat = 0;
+    t->width = (int)s->cfg.res;
+    t->row0 = r->row0;
+    t->row1 = r->row1;
 }
 
 /* Surface SF into the pass's regions: its outline drawn once a face, each pixel given
@@ -227,7 +217,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     uint32_t k[4], all = 0x1FFFFFF, any = 0;
     rad_vec3_t loc[4];
     rad__cvert_t cvt[4];
-    rad__lattice_t cube, face;
+    rad__lattice_t lat;
     unsigned i, r, n = rad__surface_corners(s, sf, k), grid = sf->n_elements > 1, front = 0;
 
     /* Facing away at every corner (a quad may be planar only within rounding):
@@ -244,17 +234,19 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         all &= code;
         any |= code;
     }
-    if (grid) rad__lattice_init(&cube, sf, loc, n);
+    if (grid) rad__lattice_init(&lat, sf, loc, n);
     for (r = 0; r < ps->nreg; r++) {
         unsigned f = ps->reg[r].face;
-        rad__target_t t = ps->t[r];
+        rad__frustum_t fr;
+        rad__target_t t;
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
+        region_view(s, cv, &ps->reg[r], &fr, &t);
         if (grid) {
-            rad__lattice_face(&cube, face_axis[f], face_sign[f], (int32_t)s->cfg.res, &face);
-            t.lat = &face;
+            rad__lattice_face(&lat, face_axis[f], face_sign[f], (int32_t)s->cfg.res);
+            t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
-        rad__draw(cv->st, &t, &ps->f[r], cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
+        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
     }
 }
 
@@ -264,7 +256,10 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
 {
     pass_t ps;
     uint32_t k;
-    pass_setup(s, cv, reg, nreg, pt->center, frame, &ps);
+    ps.c = pt->center;
+    ps.frame = frame;
+    ps.reg = reg;
+    ps.nreg = nreg;
     for (k = 0; k < s->n_surfaces; k++)
         if (k != pt->surface) render_surface(s, cv, &ps, &s->pools.surfaces[k]);
 }

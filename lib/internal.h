@@ -32,32 +32,34 @@ typedef struct {
     int width, height;
 } rad__frustum_t;
 
-/* A family of lattice lines on a hemi-cube face (lattice.c): line k's plane through
- * the cube's centre has normal C0 + k C1 + k^2 C2 (face axes a, b, d), k = 0..N, with
- * K elements to a patch across the lines (lattice.c). */
+/* A family of lattice lines (lattice.c): line k's plane through the cube's centre has
+ * normal C0 + k C1 + k^2 C2 (the cube's axes x, y, z), k = 0..N, with K elements to a
+ * patch across the lines. */
 typedef struct {
     int64_t c[3][3];
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
 } rad__family_t;
 
-/* A surface's lattice on one face of a hemi-cube of resolution RES: 2 families (quad
- * columns, rows) or 3 (triangle i, j, i + j); element ids from FIRST, PU patches
- * across a quad (a triangle's patch levels). */
+/* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
+ * element ids from FIRST, PU patches across a quad (a triangle's patch levels); seen
+ * on a face of resolution RES whose axes a, b, d are the cube's AXIS (0 x, 1 y, 2 z)
+ * times SIGN. */
 typedef struct {
     rad__family_t fam[3];
     unsigned nfam;
     int32_t res;
     uint32_t first, pu;
+    unsigned char axis[3];
+    signed char sign[3];
 } rad__lattice_t;
 
 /* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
  * to the cube's centre, on the cube's axes. */
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n);
-/* CUBE turned onto a face of resolution RES whose axes a, b, d are the cube's axes
- * AXIS (0 x, 1 y, 2 z) times SIGN (+-1). */
-void rad__lattice_face(const rad__lattice_t *cube, const unsigned char *axis, const signed char *sign, int32_t res,
-                       rad__lattice_t *out);
+/* LT seen on a face of resolution RES whose axes a, b, d are the cube's AXIS times
+ * SIGN (+-1). */
+void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign, int32_t res);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,

@@ -112,18 +112,14 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     }
 }
 
-void rad__lattice_face(const rad__lattice_t *cube, const unsigned char *axis, const signed char *sign, int32_t res,
-                       rad__lattice_t *out)
+void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign, int32_t res)
 {
-    unsigned f, j, c;
-    *out = *cube;
-    out->res = res;
-    for (f = 0; f < cube->nfam; f++)
-        for (j = 0; j < 3; j++)
-            for (c = 0; c < 3; c++) {
-                int64_t v = cube->fam[f].c[j][axis[c] % 3u];
-                out->fam[f].c[j][c] = sign[c] < 0 ? -v : v;
-            }
+    unsigned c;
+    lt->res = res;
+    for (c = 0; c < 3; c++) {
+        lt->axis[c] = (unsigned char)(axis[c] % 3u);
+        lt->sign[c] = sign[c] < 0 ? -1 : 1;
+    }
 }
 
 /* ---- spans --------------------------------------------------------------------- */
@@ -155,18 +151,23 @@ static int32_t search(const int64_t *e, uint32_t n)
 }
 
 /* Sets W up for family F on row Y from pixel XS to XE - 1. */
-static void walk_start(const rad__family_t *f, int32_t res, int32_t y, int32_t xs, int32_t xe, walk_t *w)
+static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t y, int32_t xs, int32_t xe,
+                       walk_t *w)
 {
-    int64_t e[3], de[3], last[3], k, sg;
+    int64_t e[3], de[3], k, sg, res = lt->res, span = xe - 1 - xs;
     unsigned j;
     for (j = 0; j < 3; j++) {
+        /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d. */
         const int64_t *c = f->c[j];
-        de[j] = 2 * c[0];
-        e[j] = c[0] * (2 * (int64_t)xs + 1 - res) + c[1] * ((int64_t)res - 2 * (int64_t)y - 1) + c[2] * res;
-        last[j] = e[j] + (int64_t)(xe - 1 - xs) * de[j];
+        int64_t ca = lt->sign[0] * c[lt->axis[0]], cb = lt->sign[1] * c[lt->axis[1]], cd = lt->sign[2] * c[lt->axis[2]];
+        de[j] = 2 * ca;
+        e[j] = ca * (2 * (int64_t)xs + 1 - res) + cb * ((int64_t)res - 2 * (int64_t)y - 1) + cd * res;
     }
     w->i = search(e, f->n);
-    w->end = search(last, f->n);
+    /* The last pixel's column, with E moved there and back (one array less of stack). */
+    for (j = 0; j < 3; j++) e[j] += span * de[j];
+    w->end = search(e, f->n);
+    for (j = 0; j < 3; j++) e[j] -= span * de[j];
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
     w->co = w->i / (int32_t)f->k;
     w->fi = w->i % (int32_t)f->k;
@@ -259,7 +260,7 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
     unsigned f, nfam = lt->nfam == 3 ? 3u : 2u;
     if (n <= 0) return;
     for (f = 0; f < nfam; f++) {
-        walk_start(&lt->fam[f], lt->res, y, xs, xe, &wk[f]);
+        walk_start(lt, &lt->fam[f], y, xs, xe, &wk[f]);
         next[f] = next_change(&wk[f], n);
     }
     for (;;) {

@@ -258,43 +258,44 @@ void rad__fill(rad_stats_t *st, const rad__target_t *t, rad__pvert_t *pv, unsign
         if (pv[i].x != pv[m - 1].x || pv[i].y != pv[m - 1].y) pv[m++] = pv[i];
     if (m > 1 && pv[m - 1].x == pv[0].x && pv[m - 1].y == pv[0].y) m--;
     if (m < 3) return;
+    /* A fan from PV[0]: each piece's first vertex is copied over the one before its
+     * others, which no later piece uses, so every piece is four (or three) in a row. */
     if (!t->rgb) {
-        /* A convex polygon as a fan of quads (and a last triangle): pieces share edges,
-         * which the ownership rule keeps watertight. */
+        /* Quads (and a last triangle): pieces share edges, which the ownership rule
+         * keeps watertight. */
         for (i = 1; i + 1 < m; i += 2) {
-            rad__pvert_t q[4];
-            unsigned k = i + 2 < m ? 4u : 3u;
-            q[0] = pv[0]; q[1] = pv[i]; q[2] = pv[i + 1];
-            if (k == 4) q[3] = pv[i + 2];
-            raster_piece(st, t, q, k, id);
+            pv[i - 1] = pv[0];
+            raster_piece(st, t, &pv[i - 1], i + 2 < m ? 4u : 3u, id);
         }
         return;
     }
-    /* Colours vary over a quad bilinearly, not on one plane: fill a fan of triangles. */
+    /* Colours vary over a quad bilinearly, not on one plane: a fan of triangles. */
     for (i = 1; i + 1 < m; i++) {
-        rad__pvert_t tri[3];
-        tri[0] = pv[0]; tri[1] = pv[i]; tri[2] = pv[i + 1];
-        raster_piece(st, t, tri, 3, id);
+        pv[i - 1] = pv[0];
+        raster_piece(st, t, &pv[i - 1], 3, id);
     }
 }
 
 void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
                const rad__cvert_t *in, unsigned n, unsigned any, rad_index_t id)
 {
-    /* Each plane adds at most one vertex: 4 + 5 = 9. */
-    rad__cvert_t buf[2][9];
-    rad__pvert_t pv[9];
+    /* Each plane adds at most one vertex: 4 + 5 = 9. The projected vertices go to the
+     * buffer the last clip did not write (stack is scarce on small targets). */
+    union {
+        rad__cvert_t c[9];
+        rad__pvert_t p[9];
+    } buf[2];
     const rad__cvert_t *cur = in;
     unsigned i, p, flip = 0;
 
     if (any & RAD__CULLED) return;
     for (p = 0; p < 5 && n >= 3; p++) {
         if (!(any & (1u << p))) continue;
-        n = clip_plane(f, p, cur, n, buf[flip]);
-        cur = buf[flip];
+        n = clip_plane(f, p, cur, n, buf[flip].c);
+        cur = buf[flip].c;
         flip ^= 1u;
     }
     if (n < 3) return;
-    for (i = 0; i < n; i++) rad__project(f, &cur[i], &pv[i]);
-    rad__fill(st, t, pv, n, id);
+    for (i = 0; i < n; i++) rad__project(f, &cur[i], &buf[flip].p[i]);
+    rad__fill(st, t, buf[flip].p, n, id);
 }
