@@ -6,8 +6,6 @@
 
 #if RAD_FLOAT
 #define rad__outcodes radf__outcodes
-#define rad__project radf__project
-#define rad__fill radf__fill
 #define rad__receive radf__receive
 #define rad__shoot radf__shoot
 #define rad__cube_part radf__cube_part
@@ -81,19 +79,21 @@ typedef struct {
 #define RAD__CULLED 0x100u
 unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned n);
 
-/* A projected vertex: position in 1/16 pixel, depth w = 2^30 NEAR / d (at[0]) and
- * colour (at[1..3], used by colour targets only). */
-typedef struct {
-    int32_t x, y;
-    uint32_t at[4];
-} rad__pvert_t;
-
-/* Projects view-space vertex C, inside frustum F, onto F's raster. */
-void rad__project(const rad__frustum_t *f, const rad__cvert_t *c, rad__pvert_t *r);
-
-/* Rasterizes the convex polygon PV of N projected vertices (either winding; PV is
- * rewritten) into T with item id ID. */
-void rad__fill(rad_stats_t *st, const rad__target_t *t, rad__pvert_t *pv, unsigned n, rad_index_t id);
+/* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW; a
+ * pixel nearer than Z's (depth is 1/distance: larger is nearer) gets it and ID. */
+static inline void rad__fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw,
+                                 rad_index_t id)
+{
+    int32_t x;
+    for (x = xs; x < xe; x++, w += dw) {
+        /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
+        uint32_t d = (uint32_t)(w >> 16);
+        if (d > z[x]) {
+            z[x] = d;
+            ids[x] = id;
+        }
+    }
+}
 
 /* Clips the convex polygon IN (N <= 4 vertices) against the planes in ANY (from
  * rad__outcodes, or an equal test of the caller's), projects it and rasterizes it

@@ -11,8 +11,9 @@
  * two end points; a pixel's ray is past line k when E_k = L_k . ray >= 0. With the
  * corners as integers relative to the centre, P_k = (n - k) p0 + k p1 and R_k alike,
  * so L_k = C0 + k C1 + k^2 C2 exactly, and along a row of pixels every E_k steps by a
- * constant. A span finds its first and last pixels' columns by bisection, and between
- * them walks: a step is an add and a compare, a change of column a few multiplies.
+ * constant. A span finds its first and last pixels' columns by bisection and is filled
+ * in runs of one element: the pixel where the next line is crossed is one division
+ * away, and crossing it a few adds (its test's steps are updated by differences).
  *
  * Integer ranges: corners scaled to |c| <= 2^S with S = 22 - bits(n); the ray's
  * components are at most RES <= 2^10; then |C0| <= 2 n^2 2^2S, |C1| <= 8 n 2^2S,
@@ -76,7 +77,9 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     int64_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
-    unsigned i, s = 22u - bits(len), shift = s > 17u ? s - 17u : 0u;
+    /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
+     * limits), so S >= 10. */
+    unsigned i, nb = bits(len), s = nb < 22u ? 22u - nb : 0u, shift = s > 17u ? s - 17u : 0u;
     for (i = 0; i < n; i++) {
         rad_real_t a = corner[i].x < 0 ? -corner[i].x : corner[i].x;
         rad_real_t b = corner[i].y < 0 ? -corner[i].y : corner[i].y;
@@ -268,13 +271,9 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
         int64_t end = n;
         for (f = 0; f < nfam; f++)
             if (next[f] < end) end = next[f];
-        for (; dx < end; dx++, w += dw) {
-            uint32_t d = (uint32_t)(w >> 16);
-            if (d > z[xs + dx]) {
-                z[xs + dx] = d;
-                ids[xs + dx] = id;
-            }
-        }
+        rad__fill_ids(z, ids, xs + (int32_t)dx, xs + (int32_t)end, w, dw, id);
+        w += dw * (uint64_t)(end - dx);
+        dx = end;
         if (dx >= n) return;
         for (f = 0; f < nfam; f++)
             if (next[f] == dx) {

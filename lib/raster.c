@@ -14,6 +14,13 @@
 
 #define SUB 16 /* subpixels per pixel */
 
+/* A projected vertex: position in 1/16 pixel, depth w = 2^30 NEAR / d (at[0]) and
+ * colour (at[1..3], used by colour targets only). */
+typedef struct {
+    int32_t x, y;
+    uint32_t at[4];
+} pvert_t;
+
 /* ---- clipping ------------------------------------------------------------------ */
 
 /* Signed distance of V inside clip plane P (>= 0: inside). */
@@ -76,7 +83,7 @@ typedef struct {
     int64_t e, dx, dy; /* value at the first pixel centre, steps per pixel in x and y */
 } edge_t;
 
-static void edge_setup(edge_t *ed, const rad__pvert_t *a, const rad__pvert_t *b, int32_t px, int32_t py, int flip)
+static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t px, int32_t py, int flip)
 {
     int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
     int owned;
@@ -109,14 +116,14 @@ static void span_edge(const edge_t *ed, int32_t *lo, int32_t *hi)
 }
 
 /* Twice the signed area of triangle A, B, C in subpixels^2. */
-static int64_t area2(const rad__pvert_t *a, const rad__pvert_t *b, const rad__pvert_t *c)
+static int64_t area2(const pvert_t *a, const pvert_t *b, const pvert_t *c)
 {
     return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
 }
 
 /* Plane of attribute K through triangle V0, V1, V2 (twice its area AR): the value at
  * the first pixel centre and its steps, all * 2^16, modulo 2^64. */
-static void attr_setup(const rad__pvert_t *v0, const rad__pvert_t *v1, const rad__pvert_t *v2, unsigned k, int64_t ar,
+static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, unsigned k, int64_t ar,
                        int32_t px, int32_t py, uint64_t *val, uint64_t *sx, uint64_t *sy)
 {
     int64_t d1 = (int64_t)v1->at[k] - v0->at[k], d2 = (int64_t)v2->at[k] - v0->at[k];
@@ -139,21 +146,7 @@ static uint32_t attr_value(uint64_t v)
     return v > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)v;
 }
 
-/* Pixels XS..XE-1 of a row of the item buffer: depth W (* 2^16) stepping by DW. */
-static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw, rad_index_t id)
-{
-    int32_t x;
-    for (x = xs; x < xe; x++, w += dw) {
-        /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
-        uint32_t d = (uint32_t)(w >> 16);
-        if (d > z[x]) {
-            z[x] = d;
-            ids[x] = id;
-        }
-    }
-}
-
-/* The same for a colour raster; VAL are the attributes at the row's first pixel of
+/* rad__fill_ids for a colour raster; VAL are the attributes at the row's first pixel of
  * the bounding box, SKIP pixels before XS. */
 static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64_t w, const uint64_t *val,
                      const uint64_t *sx, int32_t skip)
@@ -180,7 +173,7 @@ static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : 
  * interpolated on the plane of the wider of its two fan triangles: exact for a planar
  * polygon's depth; callers with colours pass triangles. A triangle's fourth edge
  * repeats its first, so one loop with four edges in registers serves both. */
-static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pvert_t *v, unsigned n, rad_index_t id)
+static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t *v, unsigned n, rad_index_t id)
 {
     edge_t ed[4];
     uint64_t val[4], sx[4], sy[4], pixels = 0;
@@ -225,7 +218,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pve
             pixels += (uint64_t)(xe - xs);
             if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
             else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0]);
-            else fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
+            else rad__fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
         }
         for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];
@@ -235,9 +228,9 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const rad__pve
 
 /* ---- polygons ------------------------------------------------------------------ */
 
-/* Screen position in subpixels and depth of a clipped vertex: one reciprocal of its
- * depth, then multiplies. */
-void rad__project(const rad__frustum_t *f, const rad__cvert_t *c, rad__pvert_t *r)
+/* Screen position in subpixels and depth of the clipped vertex C, inside frustum F:
+ * one reciprocal of its depth, then multiplies. */
+static void project(const rad__frustum_t *f, const rad__cvert_t *c, pvert_t *r)
 {
     rad__recip_t inv = rad__recip(c->d);
     int32_t w16 = f->width * SUB, h16 = f->height * SUB;
@@ -249,7 +242,9 @@ void rad__project(const rad__frustum_t *f, const rad__cvert_t *c, rad__pvert_t *
     r->at[3] = rad__attr(c->c[2]);
 }
 
-void rad__fill(rad_stats_t *st, const rad__target_t *t, rad__pvert_t *pv, unsigned n, rad_index_t id)
+/* Rasterizes the convex polygon PV of N projected vertices (either winding; PV is
+ * rewritten) into T with item id ID. */
+static void fill(rad_stats_t *st, const rad__target_t *t, pvert_t *pv, unsigned n, rad_index_t id)
 {
     unsigned i, m;
     /* Vertices that clipping or projection made equal would leave an edge with no
@@ -283,7 +278,7 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
      * buffer the last clip did not write (stack is scarce on small targets). */
     union {
         rad__cvert_t c[9];
-        rad__pvert_t p[9];
+        pvert_t p[9];
     } buf[2];
     const rad__cvert_t *cur = in;
     unsigned i, p, flip = 0;
@@ -296,6 +291,6 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
         flip ^= 1u;
     }
     if (n < 3) return;
-    for (i = 0; i < n; i++) rad__project(f, &cur[i], &buf[flip].p[i]);
-    rad__fill(st, t, buf[flip].p, n, id);
+    for (i = 0; i < n; i++) project(f, &cur[i], &buf[flip].p[i]);
+    fill(st, t, buf[flip].p, n, id);
 }
