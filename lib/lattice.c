@@ -21,6 +21,12 @@
  * differences of two fit as well.
  * The same integers serve both builds; a pixel's element depends on its own span
  * alone, so parts of a cube rendered apart, or in bands, give the same bits.
+ *
+ * Precision: a corner moves by at most M 2^-S (M its largest coordinate from the
+ * centre), and so does every lattice line; seen from distance D that is M / D 2^-S
+ * radians: a tenth of a pixel at res 128 for M / D = 100 and n < 64 (S = 16). Only a
+ * huge lattice passing close to the shooter errs by more, and there its elements are
+ * many pixels wide. The outline, and so which surface a pixel sees, is exact.
  */
 #include "internal.h"
 
