@@ -234,7 +234,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         all &= code;
         any |= code;
     }
-    if (grid) rad__lattice_init(&lat, sf, loc, n);
+    if (grid) rad__lattice_init(&lat, sf, loc, n, (int32_t)s->cfg.res);
     for (r = 0; r < ps->nreg; r++) {
         unsigned f = ps->reg[r].face;
         rad__frustum_t fr;
@@ -242,26 +242,12 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
         region_view(s, cv, &ps->reg[r], &fr, &t);
         if (grid) {
-            rad__lattice_face(&lat, face_axis[f], face_sign[f], (int32_t)s->cfg.res);
+            rad__lattice_face(&lat, face_axis[f], face_sign[f]);
             t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
         rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
     }
-}
-
-/* Every surface but the shooter's own into the regions, seen from patch PT's centre. */
-static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg,
-                         const rad_patch_t *pt, const rad_vec3_t *frame)
-{
-    pass_t ps;
-    uint32_t k;
-    ps.c = pt->center;
-    ps.frame = frame;
-    ps.reg = reg;
-    ps.nreg = nreg;
-    for (k = 0; k < s->n_surfaces; k++)
-        if (k != pt->surface) render_surface(s, cv, &ps, &s->pools.surfaces[k]);
 }
 
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
@@ -326,21 +312,35 @@ static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
     frame[2] = n;
 }
 
-void rad__hemicube(rad_scene_t *s, uint32_t p)
+/* Every surface but the shooter's own into the regions, seen from patch P's centre
+ * through its cube's frame. */
+static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg, uint32_t p)
 {
     const rad_patch_t *pt = &s->pools.patches[p];
-    region_t reg[5];
     rad_vec3_t frame[3];
+    pass_t ps;
+    uint32_t k;
+    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
+    ps.c = pt->center;
+    ps.frame = frame;
+    ps.reg = reg;
+    ps.nreg = nreg;
+    for (k = 0; k < s->n_surfaces; k++)
+        if (k != pt->surface) render_surface(s, cv, &ps, &s->pools.surfaces[k]);
+}
+
+void rad__hemicube(rad_scene_t *s, uint32_t p)
+{
+    region_t reg[5];
     canvas_t cv;
     unsigned k, nreg, r;
     uint32_t e;
 
-    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-        render_scene(s, &cv, reg, nreg, pt, frame);
+        render_scene(s, &cv, reg, nreg, p);
         for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
     }
 }
@@ -392,18 +392,15 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
 
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
-    const rad_patch_t *pt = &s->pools.patches[p];
     region_t reg[5];
-    rad_vec3_t frame[3];
     rad_stats_t st = {0, 0, 0, 0};
     canvas_t cv = part_canvas(s, buf);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
 
-    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     cv.st = &st;
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
-    if (nreg) render_scene(s, &cv, reg, nreg, pt, frame);
+    if (nreg) render_scene(s, &cv, reg, nreg, p);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     return (int)st.raster_calls;

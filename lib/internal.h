@@ -53,11 +53,10 @@ typedef struct {
 } rad__lattice_t;
 
 /* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
- * to the cube's centre, on the cube's axes. */
-void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n);
-/* LT seen on a face of resolution RES whose axes a, b, d are the cube's AXIS times
- * SIGN (+-1). */
-void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign, int32_t res);
+ * to the centre of a cube of resolution RES, on the cube's axes. */
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n, int32_t res);
+/* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1). */
+void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,

@@ -78,7 +78,7 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
         for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
 }
 
-void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n)
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n, int32_t res)
 {
     int64_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
@@ -101,6 +101,7 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     }
     lt->first = sf->first_element;
     lt->pu = sf->pu;
+    lt->res = res;
     if (n == 4) {
         /* Columns between Q0Q3 and Q1Q2, rows between Q0Q1 and Q3Q2. */
         lt->nfam = 2;
@@ -112,19 +113,18 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
         lt->fam[1].unit = sf->ku;
         lt->fam[1].coarse = (uint32_t)sf->pu * sf->ku * sf->kv;
     } else {
-        /* T0 = (0, 0), T1 = (m, 0), T2 = (0, m): lines of constant i, j and i + j. */
-        uint32_t len3 = sf->pu * sf->ku;
+        /* T0 = (0, 0), T1 = (m, 0), T2 = (0, m), m = len: lines of constant i, j and
+         * i + j. */
         lt->nfam = 3;
-        family(&lt->fam[0], q[0], q[1], q[2], q[1], len3, sf->ku, shift);
-        family(&lt->fam[1], q[0], q[2], q[1], q[2], len3, sf->ku, shift);
-        family(&lt->fam[2], q[0], q[1], q[0], q[2], len3, sf->ku, shift);
+        family(&lt->fam[0], q[0], q[1], q[2], q[1], len, sf->ku, shift);
+        family(&lt->fam[1], q[0], q[2], q[1], q[2], len, sf->ku, shift);
+        family(&lt->fam[2], q[0], q[1], q[0], q[2], len, sf->ku, shift);
     }
 }
 
-void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign, int32_t res)
+void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
     unsigned c;
-    lt->res = res;
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;

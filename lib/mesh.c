@@ -89,9 +89,10 @@ static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, ra
 
 /* ---- meshing ------------------------------------------------------------------- */
 
+/* The lattice as rad_surface_t keeps it: a quad's patches and elements per patch along
+ * u and v; a triangle's patch and element subdivision levels in pu = pv, ku = kv. */
 typedef struct {
-    uint32_t pu, pv, ku, kv;  /* quad: patches and elements per patch along u and v */
-    uint32_t np, k;           /* triangle: patch and element subdivision levels */
+    uint32_t pu, pv, ku, kv;
     uint32_t patches, elements, vertices;
 } plan_t;
 
@@ -102,7 +103,7 @@ static rad_real_t max2(rad_real_t a, rad_real_t b) { return a > b ? a : b; }
  * the aliasing of any one cube, which a single shot from a big light leaves as blotches. */
 static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int emits, plan_t *p)
 {
-    static const plan_t zero = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    static const plan_t zero = {0, 0, 0, 0, 0, 0, 0};
     rad_real_t me = s->cfg.max_element, mp = emits ? me : s->cfg.max_patch;
     *p = zero;
     if (n == 4) {
@@ -119,10 +120,10 @@ static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int
         rad_real_t l = max2(rad__length(rad__sub(v[1], v[0])),
                             max2(rad__length(rad__sub(v[2], v[1])), rad__length(rad__sub(v[0], v[2]))));
         uint32_t m;
-        p->np = rad__ceil_div(l, mp, 1);
-        p->k = rad__ceil_div(l, me, p->np);
-        m = p->np * p->k;
-        p->patches = p->np * p->np;
+        p->pu = p->pv = rad__ceil_div(l, mp, 1);
+        p->ku = p->kv = rad__ceil_div(l, me, p->pu);
+        m = p->pu * p->ku;
+        p->patches = p->pu * p->pu;
         p->elements = m * m;
         p->vertices = (m + 1u) * (m + 2u) / 2u;
     }
@@ -219,7 +220,7 @@ static uint32_t tri_index(uint32_t v0, uint32_t m, uint32_t i, uint32_t j)
 
 static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const plan_t *p)
 {
-    uint32_t m = p->np * p->k, k = p->k, v0 = s->n_vertices, i, j, I, J, a, b, down;
+    uint32_t np = p->pu, k = p->ku, m = np * k, v0 = s->n_vertices, i, j, I, J, a, b, down;
     for (j = 0; j <= m; j++)
         for (i = 0; i + j <= m; i++) {
             uint32_t w[3];
@@ -228,14 +229,14 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
         }
 #define T(ii, jj) tri_index(v0, m, (ii), (jj))
     for (down = 0; down < 2; down++)
-        for (J = 0; J < p->np; J++)
-            for (I = 0; I + J + down < p->np; I++) {
+        for (J = 0; J < np; J++)
+            for (I = 0; I + J + down < np; I++) {
                 /* Coarse triangle: up (I,J),(I+1,J),(I,J+1); down is its point reflection
                  * about corner (I+1,J+1). Centroid weights on a 3np lattice. */
                 uint32_t ci = 3u * I + (down ? 2u : 1u), cj = 3u * J + (down ? 2u : 1u), w[3];
                 rad_patch_t *pt;
-                w[0] = 3u * p->np - ci - cj; w[1] = ci; w[2] = cj;
-                pt = new_patch(s, surf, rad__wavg(c, w, 3, 3u * p->np));
+                w[0] = 3u * np - ci - cj; w[1] = ci; w[2] = cj;
+                pt = new_patch(s, surf, rad__wavg(c, w, 3, 3u * np));
                 for (b = 0; b < k; b++)
                     for (a = 0; a + b < k; a++) {
                         uint32_t P = s->n_patches;
@@ -306,10 +307,10 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
     sf->first_patch = (rad_index_t)s->n_patches;
     sf->first_element = (rad_index_t)s->n_elements;
     sf->first_vertex = (rad_index_t)s->n_vertices;
-    sf->pu = (rad_index_t)(n == 4 ? plan.pu : plan.np);
-    sf->pv = (rad_index_t)(n == 4 ? plan.pv : plan.np);
-    sf->ku = (rad_index_t)(n == 4 ? plan.ku : plan.k);
-    sf->kv = (rad_index_t)(n == 4 ? plan.kv : plan.k);
+    sf->pu = (rad_index_t)plan.pu;
+    sf->pv = (rad_index_t)plan.pv;
+    sf->ku = (rad_index_t)plan.ku;
+    sf->kv = (rad_index_t)plan.kv;
     if (n == 4) mesh_quad(s, s->n_surfaces, v, &plan);
     else mesh_tri(s, s->n_surfaces, v, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);

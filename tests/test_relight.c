@@ -38,6 +38,7 @@
 #include "tmpdir.h"
 #include "obj.h"
 #include "objpoly.h"
+#include "reference.h"
 #include "scene.h"
 
 extern char **environ;
@@ -206,18 +207,9 @@ static double *values(sc_solver *h)
 /* Max relative difference of A against B over channels above 1% of B's brightest. */
 static double max_rel(const double *a, const double *b, int n, double *rms)
 {
-    double top = 0, worst = 0, sq = 0;
-    int i, k = 0;
-    for (i = 0; i < 3 * n; i++) if (b[i] > top) top = b[i];
-    for (i = 0; i < 3 * n; i++) {
-        double d;
-        if (b[i] < 0.01 * top) continue;
-        d = fabs(a[i] / b[i] - 1);
-        if (d > worst) worst = d;
-        sq += d * d;
-        k++;
-    }
-    if (rms) *rms = k ? sqrt(sq / k) : 0;
+    double worst, r;
+    ref_rgb_diff(a, b, n, &worst, &r);
+    if (rms) *rms = r;
     return worst;
 }
 

@@ -104,12 +104,11 @@ double ref_hemicube_ff(int k, int res, int twin, double *want)
     return sum;
 }
 
-/* X against REF, 3 channels an element: see ref_twin_diff. */
-static int rgb_diff(const double *x, const double *ref, int n, double *worst, double *rms)
+int ref_rgb_diff(const double *x, const double *ref, int n, double *worst, double *rms)
 {
     double top = 0, s2 = 0;
     int i, m = 0;
-    for (i = 0; i < 3 * n; i++) if (x[i] > top) top = x[i];
+    for (i = 0; i < 3 * n; i++) if (ref[i] > top) top = ref[i];
     *worst = 0;
     for (i = 0; i < 3 * n; i++) {
         double d;
@@ -145,7 +144,7 @@ static int diff_of(sc_solver *x, sc_solver *rfx, scf_solver *rfl, double *worst,
     sc_get_stats(x, &st);
     a = rgb_of(x, NULL, st.elements);
     b = rgb_of(rfx, rfl, st.elements);
-    if (a && b) m = rgb_diff(a, b, st.elements, worst, rms);
+    if (a && b) m = ref_rgb_diff(a, b, st.elements, worst, rms);
     free(a);
     free(b);
     return m;

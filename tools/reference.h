@@ -11,9 +11,12 @@
 /* A quad from its four corners (reflectance and emission zero, tag 0). */
 sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
                  double cz, double dx, double dy, double dz);
+/* X against REF, N elements of 3 channels (rgb rgb ...), over the channels above 1% of
+ * REF's brightest: the largest relative difference into *WORST, the rms into *RMS;
+ * returns the channels compared. */
+int ref_rgb_diff(const double *x, const double *ref, int n, double *worst, double *rms);
 /* The fixed solver FX against the float twin FL of the same scene, per element with the
- * ambient term, over channels above 1% of the brightest: the largest relative
- * difference into *WORST, the rms into *RMS; returns the channels compared. */
+ * ambient term, as ref_rgb_diff. */
 int ref_twin_diff(sc_solver *fx, scf_solver *fl, double *worst, double *rms);
 /* The same for two solutions X and REF of one mesh in the fixed build (-1: no memory). */
 int ref_solution_diff(sc_solver *x, sc_solver *ref, double *worst, double *rms);
