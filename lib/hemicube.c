@@ -80,7 +80,7 @@ int rad__hemicube_init(rad_scene_t *s)
     uint32_t nacc = s->pools.max_elements > s->pools.max_vertices ? s->pools.max_elements
                                                                   : s->pools.max_vertices;
     uintptr_t base = (uintptr_t)s->pools.work, start = (base + 7u) & ~(uintptr_t)7u;
-    size_t fixed = (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
+    size_t fixed = res * sizeof(int64_t) + (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
 
     if (s->pools.work_bytes < (size_t)(start - base) + fixed) return RAD_ERR_WORK;
     avail = s->pools.work_bytes - (size_t)(start - base) - fixed;
@@ -96,7 +96,8 @@ int rad__hemicube_init(rad_scene_t *s)
         s->band_rows = (uint16_t)band;
         s->pass_pixels = (uint32_t)(band * res);
     }
-    s->dff_top = (rad_ff_t *)start;
+    s->steps = (int64_t *)start;
+    s->dff_top = (rad_ff_t *)(void *)(s->steps + res);
     s->dff_side = s->dff_top + (size_t)q * q;
     s->acc = s->dff_side + (size_t)q * q;
     s->zbuf = (uint32_t *)(s->acc + nacc);
@@ -183,6 +184,7 @@ static uint32_t cube_codes(rad_vec3_t l)
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
+    int64_t *steps;
     rad_stats_t *st;
 } canvas_t;
 
@@ -205,6 +207,7 @@ static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t
     t->ids = cv->ids + r->offset;
     t->rgb = 0;
     t->lat = 0;
+    t->steps = cv->steps;
     t->width = (int)s->cfg.res;
     t->row0 = r->row0;
     t->row1 = r->row1;
@@ -336,7 +339,8 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     unsigned k, nreg, r;
     uint32_t e;
 
-    cv.z = s->zbuf; cv.ids = s->ibuf; cv.st = &s->stats;
+    cv.z = s->zbuf; cv.ids = s->ibuf; cv.steps = s->steps; cv.st = &s->stats;
+    for (e = 0; e < s->cfg.res; e++) cv.steps[e] = 0;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
@@ -347,25 +351,30 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
 
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
 
-/* A part's buffer: its counters, then depth and ids laid out as all five faces. */
+/* A part's buffer: its counters, a row of id steps, then depth and ids laid out as
+ * all five faces. */
 typedef struct {
     uint32_t calls, pad;
     uint64_t pixels;
 } part_head_t;
 
-static uint32_t *part_z(void *buf) { return (uint32_t *)(void *)((part_head_t *)buf + 1); }
+static int64_t *part_steps(void *buf) { return (int64_t *)(void *)((part_head_t *)buf + 1); }
+static uint32_t *part_z(const rad_scene_t *s, void *buf) { return (uint32_t *)(void *)(part_steps(buf) + s->cfg.res); }
 static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 {
-    return (rad_index_t *)(void *)(part_z(buf) + RAD_PIXELS_ALL(s->cfg.res));
+    return (rad_index_t *)(void *)(part_z(s, buf) + RAD_PIXELS_ALL(s->cfg.res));
 }
 
-/* The part's canvas in BUF. */
+/* The part's canvas in BUF, its steps zeroed. */
 static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 {
     canvas_t cv;
-    cv.z = part_z(buf);
+    uint32_t i;
+    cv.z = part_z(s, buf);
     cv.ids = part_ids(s, buf);
+    cv.steps = part_steps(buf);
     cv.st = 0;
+    for (i = 0; i < s->cfg.res; i++) cv.steps[i] = 0;
     return cv;
 }
 

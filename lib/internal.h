@@ -58,18 +58,20 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 /* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1). */
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
- * the elements of LT under each pixel. */
+ * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw);
+                       uint64_t w, uint64_t dw, int64_t *steps);
 
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
  * just those rows. One of ids and rgb is set: with rgb, colours are interpolated; with
- * ids, every pixel gets the polygon's id, or with LAT the id of its lattice element. */
+ * ids, every pixel gets the polygon's id, or with LAT the id of its lattice element
+ * (STEPS: WIDTH entries of zero for rad__lattice_span). */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_rgb_t *rgb;
     const rad__lattice_t *lat;
+    int64_t *steps;
     int width, row0, row1;
 } rad__target_t;
 

@@ -133,16 +133,14 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
 
 /* ---- spans --------------------------------------------------------------------- */
 
-/* One family along a span. Pixels lie between lines I and I + 1 (CO, FI: I's coarse
- * and fine parts, K elements a patch; PART: what I adds to a quad's element id); the
- * walk goes by STEP (+1, -1 or 0) until END. T tests the next line, k = I + 1 up or
- * k = I down: T = E_k up, -E_k - 1 down, so the line is crossed once T >= 0. Crossing
- * it adds D to T, and D2 to D; all three are linear along the row (ST, SD, SD2 a
- * pixel), held at pixel AT of the span. */
+/* One family along a span. Its first pixel lies between lines I and I + 1; the walk goes
+ * by STEP (+1, -1 or 0) to END, the line of its last pixel. T tests the next line,
+ * k = I + 1 up or k = I down: T = E_k up, -E_k - 1 down, so the line is crossed at the
+ * first pixel where T >= 0. Crossing it adds D to T, and D2 to D. All three are linear
+ * along the row: T + x ST at the span's pixel x (D and D2 alike, by SD and SD2). */
 typedef struct {
-    int64_t t, d, d2, st, sd, sd2, at;
-    int32_t i, end, step, co, fi;
-    uint32_t part;
+    int64_t t, d, d2, st, sd, sd2;
+    int32_t i, end, step;
 } walk_t;
 
 static int64_t at(const int64_t *e, int64_t k) { return e[0] + k * (e[1] + k * e[2]); }
@@ -178,10 +176,6 @@ static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t
     w->end = search(e, f->n);
     for (j = 0; j < 3; j++) e[j] -= span * de[j];
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
-    w->co = w->i / (int32_t)f->k;
-    w->fi = w->i % (int32_t)f->k;
-    w->part = (uint32_t)w->co * f->coarse + (uint32_t)w->fi * f->unit;
-    w->at = 0;
     if (!w->step) return;
     sg = w->step;
     k = w->i + (sg > 0);
@@ -193,56 +187,70 @@ static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t
     w->sd2 = 2 * sg * de[2];
 }
 
-/* W at pixel DX of the span: lines crossed until the test fails or the walk ends. */
-static void cross_lines(walk_t *w, const rad__family_t *f, int64_t dx)
+/* Family F (of LT) along the span XS..XE-1 of row Y: every line it crosses adds its
+ * change of the element id to STEPS at the first pixel past it, the pixel found by one
+ * division. A quad's change is F's unit within a patch and what moves to the next
+ * patch at a patch's edge; a triangle's is one in F's 12 bits of its packed line
+ * numbers. Returns the first pixel's part of the id (or its packed line number). */
+static int64_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, int64_t *steps)
 {
-    int64_t t = dx - w->at;
-    w->t += t * w->st;
-    w->d += t * w->sd;
-    w->d2 += t * w->sd2;
-    w->at = dx;
-    while (w->i != w->end && w->t >= 0) {
-        w->i += w->step;
-        if (w->step > 0) {
-            if (++w->fi == (int32_t)f->k) { w->fi = 0; w->co++; w->part += f->coarse - (f->k - 1u) * f->unit; }
-            else w->part += f->unit;
-        } else {
-            if (w->fi-- == 0) { w->fi = (int32_t)f->k - 1; w->co--; w->part -= f->coarse - (f->k - 1u) * f->unit; }
-            else w->part -= f->unit;
-        }
-        w->t += w->d;
-        w->st += w->sd;
-        w->d += w->d2;
-        w->sd += w->sd2;
+    const rad__family_t *fm = &lt->fam[f];
+    const int32_t k = (int32_t)fm->k;
+    int64_t n = xe - xs, p = 0, unit, wrap, first;
+    int64_t t, st, d, sd, d2, sd2;
+    int32_t i, fi;
+    walk_t w;
+    walk_start(lt, fm, y, xs, xe, &w);
+    if (lt->nfam == 3) {
+        unit = wrap = (int64_t)1 << (12u * f);
+        first = (int64_t)w.i << (12u * f);
+    } else {
+        unit = fm->unit;
+        wrap = (int64_t)fm->coarse - (int64_t)(k - 1) * fm->unit;
+        first = (int64_t)(w.i / k) * fm->coarse + (int64_t)(w.i % k) * fm->unit;
     }
+    if (!w.step) return first;
+    if (w.step < 0) { unit = -unit; wrap = -wrap; }
+    t = w.t; st = w.st; d = w.d; sd = w.sd; d2 = w.d2; sd2 = w.sd2;
+    i = w.i;
+    fi = w.i % k;
+    while (i != w.end) {
+        int64_t tp = t + p * st;
+        if (tp < 0) { /* not at pixel p: at ceil(-tp / st), if ever */
+            if (st <= 0) break;
+            p += (-tp + st - 1) / st;
+            if (p >= n) break;
+        }
+        i += w.step;
+        if (w.step > 0) {
+            if (++fi == k) { fi = 0; steps[p] += wrap; }
+            else steps[p] += unit;
+        } else {
+            if (fi-- == 0) { fi = k - 1; steps[p] += wrap; }
+            else steps[p] += unit;
+        }
+        t += d;
+        st += sd;
+        d += d2;
+        sd += sd2;
+    }
+    return first;
 }
 
-/* The first pixel from W's (into a span of N) where its test holds: T + t ST >= 0 for
- * t = ceil(-T / ST); N when the walk has ended or never gets there. */
-static int64_t next_change(const walk_t *w, int64_t n)
-{
-    int64_t t;
-    if (w->i == w->end) return n;
-    if (w->t >= 0) return w->at;
-    if (w->st <= 0) return n;
-    t = (-w->t + w->st - 1) / w->st;
-    return t < n - w->at ? w->at + t : n;
-}
-
-/* The element of a triangle's lattice cell: columns X, rows Y (coarse, fine) and the
- * i + j line L, as mesh_tri numbers them (up patches, then down patches; in each,
- * rows of up and down elements). */
-static uint32_t tri_element(const rad__lattice_t *lt, const walk_t *w)
+/* The element of a triangle's lattice cell: column X, row Y and the i + j line L, 12
+ * bits each in PACKED, as mesh_tri numbers them (up patches, then down patches; in
+ * each, rows of up and down elements). */
+static uint32_t tri_element(const rad__lattice_t *lt, int64_t packed)
 {
     uint32_t m = lt->fam[0].n, k = lt->fam[0].k, np = lt->pu;
-    uint32_t x = (uint32_t)w[0].i, y = (uint32_t)w[1].i, I = (uint32_t)w[0].co, a = (uint32_t)w[0].fi;
-    uint32_t J = (uint32_t)w[1].co, b = (uint32_t)w[1].fi, dn, patch;
-    if (x + y > m - 1u) { /* past the far edge by rounding */
-        y = m - 1u - x;
-        J = y / k;
-        b = y % k;
-    }
-    dn = (uint32_t)w[2].i > x + y && x + y + 1u <= m - 1u;
+    uint32_t x = (uint32_t)packed & 4095u, y = (uint32_t)(packed >> 12) & 4095u, l = (uint32_t)(packed >> 24) & 4095u;
+    uint32_t I, a, J, b, dn, patch;
+    if (x + y > m - 1u) y = m - 1u - x; /* past the far edge by rounding */
+    I = x / k;
+    a = x % k;
+    J = y / k;
+    b = y % k;
+    dn = l > x + y && x + y + 1u <= m - 1u;
     if (a + b + dn <= k - 1u) {
         patch = J * np - J * (J - 1u) / 2u + I;
     } else {
@@ -254,37 +262,44 @@ static uint32_t tri_element(const rad__lattice_t *lt, const walk_t *w)
     return lt->first + patch * k * k + 2u * k * b - b * b + 2u * a + dn;
 }
 
-static uint32_t element(const rad__lattice_t *lt, unsigned nfam, const walk_t *w)
+/* Pixel X gets depth D and ID if D is nearer, without a branch. */
+static void depth_put(uint32_t *z, rad_index_t *ids, int32_t x, uint32_t d, uint32_t id)
 {
-    return nfam == 3 ? tri_element(lt, w) : lt->first + w[0].part + w[1].part;
+    uint32_t old = z[x];
+    rad_index_t keep = ids[x];
+    z[x] = d > old ? d : old;
+    ids[x] = d > old ? (rad_index_t)id : keep;
 }
 
-/* Walks the span in runs of one element: each family's next change is found by a
- * division, not by testing every pixel. */
+/* The families' steps first, then one pass over the pixels: each sums the steps so
+ * far into its element id and is depth-tested without a branch (runs are short: under
+ * two pixels on average at res 128, too short to predict). The pass zeroes the steps
+ * for the next span. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw)
+                       uint64_t w, uint64_t dw, int64_t *steps)
 {
-    walk_t wk[3];
-    int64_t next[3], n = xe - xs, dx = 0;
-    unsigned f, nfam = lt->nfam == 3 ? 3u : 2u;
+    int64_t acc = 0;
+    unsigned f;
+    int32_t x, n = xe - xs;
     if (n <= 0) return;
-    for (f = 0; f < nfam; f++) {
-        walk_start(lt, &lt->fam[f], y, xs, xe, &wk[f]);
-        next[f] = next_change(&wk[f], n);
-    }
-    for (;;) {
-        rad_index_t id = (rad_index_t)element(lt, nfam, wk);
-        int64_t end = n;
-        for (f = 0; f < nfam; f++)
-            if (next[f] < end) end = next[f];
-        rad__fill_ids(z, ids, xs + (int32_t)dx, xs + (int32_t)end, w, dw, id);
-        w += dw * (uint64_t)(end - dx);
-        dx = end;
-        if (dx >= n) return;
-        for (f = 0; f < nfam; f++)
-            if (next[f] == dx) {
-                cross_lines(&wk[f], &lt->fam[f], dx);
-                next[f] = next_change(&wk[f], n);
-            }
+    for (f = 0; f < lt->nfam; f++) acc += family_steps(lt, f, y, xs, xe, steps);
+    z += xs;
+    ids += xs;
+    if (lt->nfam == 2) {
+        uint32_t id = lt->first + (uint32_t)acc;
+        for (x = 0; x < n; x++, w += dw) {
+            id += (uint32_t)steps[x];
+            steps[x] = 0;
+            depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+        }
+    } else {
+        int64_t last = acc;
+        uint32_t id = tri_element(lt, acc);
+        for (x = 0; x < n; x++, w += dw) {
+            acc += steps[x];
+            steps[x] = 0;
+            if (acc != last) { last = acc; id = tri_element(lt, acc); }
+            depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+        }
     }
 }

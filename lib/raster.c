@@ -217,7 +217,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
             w = val[0] + sx[0] * (uint64_t)lo;
             pixels += (uint64_t)(xe - xs);
             if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
-            else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0]);
+            else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0], t->steps);
             else rad__fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
         }
         for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
