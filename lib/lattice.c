@@ -145,14 +145,15 @@ typedef struct {
 
 static int64_t at(const int64_t *e, int64_t k) { return e[0] + k * (e[1] + k * e[2]); }
 
-/* Largest k in [0, n - 1] with E_k >= 0 (0 when none), the coefficients E at a pixel. */
+/* Largest k in [0, n - 1] with E_k >= 0 (0 when none), the coefficients E at a pixel:
+ * a bisection whose halving does not branch (its tests are coin flips). */
 static int32_t search(const int64_t *e, uint32_t n)
 {
-    int32_t lo = 0, hi = (int32_t)n - 1;
-    while (lo < hi) {
-        int32_t mid = (lo + hi + 1) / 2;
-        if (at(e, mid) >= 0) lo = mid;
-        else hi = mid - 1;
+    int32_t lo = 0, size = (int32_t)n;
+    while (size > 1) {
+        int32_t half = size / 2;
+        lo = at(e, lo + half) >= 0 ? lo + half : lo;
+        size -= half;
     }
     return lo;
 }
@@ -215,20 +216,22 @@ static int64_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int
     i = w.i;
     fi = w.i % k;
     while (i != w.end) {
-        int64_t tp = t + p * st;
-        if (tp < 0) { /* not at pixel p: at ceil(-tp / st), if ever */
-            if (st <= 0) break;
-            p += (-tp + st - 1) / st;
+        int64_t c;
+        uint32_t wraps;
+        if (st <= 0) { /* a line seen going backwards: crossed here or not at all */
+            if (t + p * st < 0) break;
+        } else {
+            /* the first pixel with T >= 0, p or later (a negative quotient truncates to
+             * at most 0) */
+            c = (-t + st - 1) / st;
+            p = c > p ? c : p;
             if (p >= n) break;
         }
         i += w.step;
-        if (w.step > 0) {
-            if (++fi == k) { fi = 0; steps[p] += wrap; }
-            else steps[p] += unit;
-        } else {
-            if (fi-- == 0) { fi = k - 1; steps[p] += wrap; }
-            else steps[p] += unit;
-        }
+        fi += w.step;
+        wraps = fi == k || fi < 0;
+        fi = fi == k ? 0 : fi < 0 ? k - 1 : fi;
+        steps[p] += wraps ? wrap : unit;
         t += d;
         st += sd;
         d += d2;
