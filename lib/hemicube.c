@@ -80,7 +80,7 @@ int rad__hemicube_init(rad_scene_t *s)
     uint32_t nacc = s->pools.max_elements > s->pools.max_vertices ? s->pools.max_elements
                                                                   : s->pools.max_vertices;
     uintptr_t base = (uintptr_t)s->pools.work, start = (base + 7u) & ~(uintptr_t)7u;
-    size_t fixed = res * sizeof(int64_t) + (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
+    size_t fixed = res * sizeof(uint32_t) + (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
 
     if (s->pools.work_bytes < (size_t)(start - base) + fixed) return RAD_ERR_WORK;
     avail = s->pools.work_bytes - (size_t)(start - base) - fixed;
@@ -96,7 +96,7 @@ int rad__hemicube_init(rad_scene_t *s)
         s->band_rows = (uint16_t)band;
         s->pass_pixels = (uint32_t)(band * res);
     }
-    s->steps = (int64_t *)start;
+    s->steps = (uint32_t *)start;
     s->dff_top = (rad_ff_t *)(void *)(s->steps + res);
     s->dff_side = s->dff_top + (size_t)q * q;
     s->acc = s->dff_side + (size_t)q * q;
@@ -184,7 +184,7 @@ static uint32_t cube_codes(rad_vec3_t l)
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
-    int64_t *steps;
+    uint32_t *steps;
     rad_stats_t *st;
 } canvas_t;
 
@@ -358,7 +358,7 @@ typedef struct {
     uint64_t pixels;
 } part_head_t;
 
-static int64_t *part_steps(void *buf) { return (int64_t *)(void *)((part_head_t *)buf + 1); }
+static uint32_t *part_steps(void *buf) { return (uint32_t *)(void *)((part_head_t *)buf + 1); }
 static uint32_t *part_z(const rad_scene_t *s, void *buf) { return (uint32_t *)(void *)(part_steps(buf) + s->cfg.res); }
 static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 {

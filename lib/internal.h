@@ -60,7 +60,7 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw, int64_t *steps);
+                       uint64_t w, uint64_t dw, uint32_t *steps);
 
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
  * just those rows. One of ids and rgb is set: with rgb, colours are interpolated; with
@@ -71,7 +71,7 @@ typedef struct {
     rad_index_t *ids;
     rad_rgb_t *rgb;
     const rad__lattice_t *lat;
-    int64_t *steps;
+    uint32_t *steps;
     int width, row0, row1;
 } rad__target_t;
 

@@ -191,30 +191,37 @@ static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t
     w->sd2 = 2 * sg * de[2];
 }
 
+/* A triangle's element needs its cell's column x and row y and which side of the
+ * i + j line l it is on: the steps add up to x + 2^12 y + 2^24 (l - x - y + 128), mod
+ * 2^32, and these are each family's steps. */
+static const uint32_t tri_unit[3] = {1u - (1u << 24), (1u << 12) - (1u << 24), 1u << 24};
+#define TRI_BIAS (128u << 24)
+
 /* Family F (of LT) along the span XS..XE-1 of row Y: every line it crosses adds its
  * change of the element id to STEPS at the first pixel past it, the pixel found by one
  * division. A quad's change is F's unit within a patch and what moves to the next
- * patch at a patch's edge; a triangle's is one in F's 12 bits of its packed line
- * numbers. Returns the first pixel's part of the id (or its packed line number). */
-static int64_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, int64_t *steps)
+ * patch at a patch's edge; a triangle's, F's part of the packed cell (tri_unit).
+ * Returns the first pixel's part of the id (or of the packed cell). Steps add mod 2^32. */
+static uint32_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, uint32_t *steps)
 {
     const rad__family_t *fm = &lt->fam[f];
     const int32_t k = (int32_t)fm->k;
-    int64_t n = xe - xs, p = 0, unit, wrap, first;
+    int64_t n = xe - xs, p = 0;
     int64_t t, st, d, sd, d2, sd2;
+    uint32_t unit, wrap, first;
     int32_t i, fi;
     walk_t w;
     walk_start(lt, fm, y, xs, xe, &w);
     if (lt->nfam == 3) {
-        unit = wrap = (int64_t)1 << (12u * f);
-        first = (int64_t)w.i << (12u * f);
+        unit = wrap = tri_unit[f];
+        first = (uint32_t)w.i * unit;
     } else {
         unit = fm->unit;
-        wrap = (int64_t)fm->coarse - (int64_t)(k - 1) * fm->unit;
-        first = (int64_t)(w.i / k) * fm->coarse + (int64_t)(w.i % k) * fm->unit;
+        wrap = fm->coarse - (fm->k - 1u) * fm->unit;
+        first = (uint32_t)(w.i / k) * fm->coarse + (uint32_t)(w.i % k) * fm->unit;
     }
     if (!w.step) return first;
-    if (w.step < 0) { unit = -unit; wrap = -wrap; }
+    if (w.step < 0) { unit = 0u - unit; wrap = 0u - wrap; }
     t = w.t; st = w.st; d = w.d; sd = w.sd; d2 = w.d2; sd2 = w.sd2;
     i = w.i;
     fi = w.i % k;
@@ -243,20 +250,22 @@ static int64_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int
     return first;
 }
 
-/* The element of a triangle's lattice cell: column X, row Y and the i + j line L, 12
- * bits each in PACKED, as mesh_tri numbers them (up patches, then down patches; in
- * each, rows of up and down elements). */
-static uint32_t tri_element(const rad__lattice_t *lt, int64_t packed)
+/* The element of a triangle's lattice cell, packed as family_steps sums it (l - x - y
+ * is -1 to 2 where the three families' rounding disagrees, far inside the 8 bits), as
+ * mesh_tri numbers them (up patches, then down patches; in each, rows of up and down
+ * elements). */
+static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
 {
     uint32_t m = lt->fam[0].n, k = lt->fam[0].k, np = lt->pu;
-    uint32_t x = (uint32_t)packed & 4095u, y = (uint32_t)(packed >> 12) & 4095u, l = (uint32_t)(packed >> 24) & 4095u;
+    uint32_t x = packed & 4095u, y = (packed >> 12) & 4095u;
+    int32_t l = (int32_t)(packed >> 24) - 128 + (int32_t)(x + y);
     uint32_t I, a, J, b, dn, patch;
     if (x + y > m - 1u) y = m - 1u - x; /* past the far edge by rounding */
     I = x / k;
     a = x % k;
     J = y / k;
     b = y % k;
-    dn = l > x + y && x + y + 1u <= m - 1u;
+    dn = l > (int32_t)(x + y) && x + y + 1u <= m - 1u;
     if (a + b + dn <= k - 1u) {
         patch = J * np - J * (J - 1u) / 2u + I;
     } else {
@@ -282,9 +291,9 @@ static void depth_put(uint32_t *z, rad_index_t *ids, int32_t x, uint32_t d, uint
  * two pixels on average at res 128, too short to predict). The pass zeroes the steps
  * for the next span. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw, int64_t *steps)
+                       uint64_t w, uint64_t dw, uint32_t *steps)
 {
-    int64_t acc = 0;
+    uint32_t acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
     unsigned f;
     int32_t x, n = xe - xs;
     if (n <= 0) return;
@@ -292,15 +301,13 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
     z += xs;
     ids += xs;
     if (lt->nfam == 2) {
-        uint32_t id = lt->first + (uint32_t)acc;
         for (x = 0; x < n; x++, w += dw) {
-            id += (uint32_t)steps[x];
+            acc += steps[x];
             steps[x] = 0;
-            depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+            depth_put(z, ids, x, (uint32_t)(w >> 16), acc);
         }
     } else {
-        int64_t last = acc;
-        uint32_t id = tri_element(lt, acc);
+        uint32_t last = acc, id = tri_element(lt, acc);
         for (x = 0; x < n; x++, w += dw) {
             acc += steps[x];
             steps[x] = 0;

@@ -148,13 +148,13 @@ typedef struct {
 
 /* Work buffer bytes for hemi-cube resolution RES rendering PIXELS pixels per pass, with
  * room for N per-element (or per-vertex) accumulators, N = max(elements, vertices), and
- * one row of RES 64-bit id steps (a surface's elements along a row of pixels).
+ * one row of RES 32-bit id steps (a surface's elements along a row of pixels).
  * All five faces at once:  PIXELS = RAD_PIXELS_ALL(RES) = 3 RES^2 (top + 4 half sides).
  * One band of ROWS rows:   PIXELS = RES * ROWS (RAM for time: each band re-renders).   */
 #define RAD_PIXELS_ALL(res) (3u * (uint32_t)(res) * (uint32_t)(res))
 #define RAD_WORK_BYTES(res, pixels, n)                                          \
     (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) +     \
-     (size_t)(n) * sizeof(rad_ff_t) + (size_t)(res) * sizeof(int64_t) +       \
+     (size_t)(n) * sizeof(rad_ff_t) + (size_t)(res) * sizeof(uint32_t) +      \
      (size_t)(pixels) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
 
 /* ---- configuration (zero means default) ---------------------------------------- */
@@ -193,7 +193,7 @@ typedef struct {
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
     rad_ff_t *acc;                /* per-element form factor sums */
-    int64_t *steps;               /* res: a row's element id steps (zero between spans) */
+    uint32_t *steps;              /* res: a row's element id steps (zero between spans) */
     uint32_t *zbuf;
     rad_index_t *ibuf;
     uint32_t pass_pixels;         /* pixels the face buffers hold */
@@ -242,7 +242,7 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
  * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
 #define RAD_PART_BYTES(res)                                                          \
-    (16u + (size_t)(res) * sizeof(int64_t) +                                         \
+    (16u + (size_t)(res) * sizeof(uint32_t) +                                        \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes);
