@@ -159,12 +159,14 @@ static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_
 
 /* Two variants (a build and options each), their RUNS runs interleaved (first,
  * second, first, ...) so that a machine whose speed drifts during the benchmark biases
- * neither; each keeps its median run (by total time) in OUT, the others are freed. */
+ * neither; each keeps its median run (by total time) in OUT, the others are freed, and
+ * its times to each fraction become the medians over the runs (each its own median: a
+ * run slowed in its first part alone would otherwise set them). */
 static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs, brun *out)
 {
     brun r[2][5];
-    double tot[2][5];
-    int i, k;
+    double tot[2][5], ti[3][5];
+    int i, j, k;
     for (i = 0; i < runs; i++)
         for (k = 0; k < 2; k++) {
             run_alloc(&r[k][i]);
@@ -174,9 +176,12 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
     for (k = 0; k < 2; k++) {
         double m = median(tot[k], runs);
         int best = 0;
+        for (j = 0; j < 3; j++)
+            for (i = 0; i < runs; i++) ti[j][i] = r[k][i].t[j];
         for (i = 0; i < runs; i++) if (r[k][i].total == m) best = i;
         for (i = 0; i < runs; i++) if (i != best) run_free(&r[k][i]);
         out[k] = r[k][best];
+        for (j = 0; j < 3; j++) out[k].t[j] = median(ti[j], runs);
     }
 }
 
