@@ -250,10 +250,13 @@ static uint32_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, in
     return first;
 }
 
-/* The element of a triangle's lattice cell, packed as family_steps sums it (l - x - y
- * is -1 to 2 where the three families' rounding disagrees, far inside the 8 bits), as
- * mesh_tri numbers them (up patches, then down patches; in each, rows of up and down
- * elements). */
+/* The element of a triangle's lattice cell, packed as family_steps sums it, as mesh_tri
+ * numbers them (up patches, then down patches; in each, rows of up and down elements).
+ * l - x - y is 0 or 1 inside the lattice; at pixels the outline covers but the
+ * quantised lattice misses (a tenth of a pixel wide) it is down to minus the elements
+ * that fit across that strip: -30 measured with elements of 1/300 pixel. Past -128
+ * (elements under 1/1000 pixel) it wraps, which only moves such a pixel to the other
+ * element of its cell. */
 static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
 {
     uint32_t m = lt->fam[0].n, k = lt->fam[0].k, np = lt->pu;
