@@ -80,20 +80,15 @@ typedef struct {
 #define RAD__CULLED 0x100u
 unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned n);
 
-/* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW; a
- * pixel nearer than Z's (depth is 1/distance: larger is nearer) gets it and ID. */
-static inline void rad__fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw,
-                                 rad_index_t id)
+/* Pixel X of a row of an item buffer gets depth D and ID if D is nearer than Z's (depth
+ * is 1/distance: larger is nearer), without a branch (an element's run in a row is
+ * under two pixels on average at res 128: too short for a branch to be predicted). */
+static inline void rad__depth_put(uint32_t *z, rad_index_t *ids, int32_t x, uint32_t d, uint32_t id)
 {
-    int32_t x;
-    for (x = xs; x < xe; x++, w += dw) {
-        /* Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
-        uint32_t d = (uint32_t)(w >> 16);
-        if (d > z[x]) {
-            z[x] = d;
-            ids[x] = id;
-        }
-    }
+    uint32_t old = z[x];
+    rad_index_t keep = ids[x];
+    z[x] = d > old ? d : old;
+    ids[x] = d > old ? (rad_index_t)id : keep;
 }
 
 /* Clips the convex polygon IN (N <= 4 vertices) against the planes in ANY (from

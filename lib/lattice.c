@@ -137,7 +137,7 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
 /* ---- spans --------------------------------------------------------------------- */
 
 /* One family along a span. Its first pixel lies between lines I and I + 1; the walk goes
- * by STEP (+1, -1 or 0) to END, the line of its last pixel. T tests the next line,
+ * by STEP (+1, -1 or 0) to END, the cell of its last pixel. T tests the next line,
  * k = I + 1 up or k = I down: T = E_k up, -E_k - 1 down, so the line is crossed at the
  * first pixel where T >= 0. Crossing it adds D to T, and D2 to D. All three are linear
  * along the row: T + x ST at the span's pixel x (D and D2 alike, by SD and SD2). */
@@ -280,19 +280,9 @@ static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
     return lt->first + patch * k * k + 2u * k * b - b * b + 2u * a + dn;
 }
 
-/* Pixel X gets depth D and ID if D is nearer, without a branch. */
-static void depth_put(uint32_t *z, rad_index_t *ids, int32_t x, uint32_t d, uint32_t id)
-{
-    uint32_t old = z[x];
-    rad_index_t keep = ids[x];
-    z[x] = d > old ? d : old;
-    ids[x] = d > old ? (rad_index_t)id : keep;
-}
-
 /* The families' steps first, then one pass over the pixels: each sums the steps so
- * far into its element id and is depth-tested without a branch (runs are short: under
- * two pixels on average at res 128, too short to predict). The pass zeroes the steps
- * for the next span. */
+ * far into its element id and is depth-tested (rad__depth_put). The pass zeroes the
+ * steps for the next span. */
 void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
                        uint64_t w, uint64_t dw, uint32_t *steps)
 {
@@ -307,7 +297,7 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
         for (x = 0; x < n; x++, w += dw) {
             acc += steps[x];
             steps[x] = 0;
-            depth_put(z, ids, x, (uint32_t)(w >> 16), acc);
+            rad__depth_put(z, ids, x, (uint32_t)(w >> 16), acc);
         }
     } else {
         uint32_t last = acc, id = tri_element(lt, acc);
@@ -315,7 +305,7 @@ void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t 
             acc += steps[x];
             steps[x] = 0;
             if (acc != last) { last = acc; id = tri_element(lt, acc); }
-            depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+            rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
         }
     }
 }

@@ -146,7 +146,15 @@ static uint32_t attr_value(uint64_t v)
     return v > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)v;
 }
 
-/* rad__fill_ids for a colour raster; VAL are the attributes at the row's first pixel of
+/* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW, id ID.
+ * Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
+static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw, rad_index_t id)
+{
+    int32_t x;
+    for (x = xs; x < xe; x++, w += dw) rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+}
+
+/* fill_ids for a colour raster; VAL are the attributes at the row's first pixel of
  * the bounding box, SKIP pixels before XS. */
 static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64_t w, const uint64_t *val,
                      const uint64_t *sx, int32_t skip)
@@ -218,7 +226,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
             pixels += (uint64_t)(xe - xs);
             if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
             else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0], t->steps);
-            else rad__fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
+            else fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
         }
         for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];

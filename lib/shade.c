@@ -127,7 +127,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
     f.half = 0;
     f.width = (int)w;
     f.height = (int)h;
-    t.z = zbuf; t.ids = 0; t.rgb = fb; t.lat = 0;
+    t.z = zbuf; t.ids = 0; t.rgb = fb; t.lat = 0; t.steps = 0;
     t.width = (int)w; t.row0 = 0; t.row1 = (int)h;
     for (i = 0; i < w * h; i++) {
         zbuf[i] = 0;
