@@ -4,8 +4,9 @@
  * Markdown report, writes it to docs/bench.md, replaces the README's section between
  * the bench markers, and draws the convergence plots with the project's PNG writer.
  *
- * Times are wall-clock medians of several runs in this one process; compare the
- * ratios measured here, not absolute times across machines.
+ * Times are wall-clock medians of several runs in this one process, two variants
+ * solved shot by shot in turn; compare the ratios measured here, not absolute times
+ * across machines.
  */
 #include <errno.h>
 #include <math.h>
@@ -52,18 +53,22 @@ typedef struct {
     double *xs, *xt, *y;                /* convergence: shots, seconds, unshot */
 } brun;
 
+/* A run's progress: its own time so far (SPENT before the current call, which began at
+ * T0) and shots (BASE before it). */
 typedef struct {
     brun *r;
-    double start;
+    double spent, t0;
+    int base;
 } prog_t;
 
 static int on_shot(void *ctx, int shots, double unshot)
 {
     prog_t *p = ctx;
     brun *r = p->r;
-    double t = now() - p->start;
+    double t = p->spent + now() - p->t0;
     int k;
     static const double lim[3] = {0.1, 0.01, 0.001};
+    shots += p->base;
     /* The fixed build reports Q16.16 fractions: 0.001 is 66 / 65536 there. */
     for (k = 0; k < 3; k++)
         if (r->shots[k] == 0 && unshot <= lim[k] + 1.0 / 65536) { r->shots[k] = shots; r->t[k] = t; }
@@ -91,28 +96,6 @@ static int fl_solve(void *s, int m, double t, sc_progress_fn f, void *c) { retur
 static void fl_stats(void *s, sc_stats *st) { scf_get_stats(s, st); }
 static void fl_destroy(void *s) { scf_destroy(s); }
 static const build_t builds[2] = {{fx_create, fx_solve, fx_stats, fx_destroy}, {fl_create, fl_solve, fl_stats, fl_destroy}};
-
-static void solve_one(const build_t *b, const bscene *sc, const sc_opts *o, brun *r)
-{
-    char err[256];
-    double t0 = now();
-    void *s = b->create(sc->polys, sc->n, o, err, sizeof err);
-    sc_stats st;
-    prog_t pg;
-    if (!s) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
-    r->mesh = now() - t0;
-    pg.r = r;
-    pg.start = now();
-    b->solve(s, 1000000, 0.001, on_shot, &pg);
-    r->total = now() - pg.start;
-    b->stats(s, &st);
-    r->elements = st.elements;
-    r->patches = st.patches;
-    r->all_shots = st.shots;
-    r->pix_per_s = (double)st.raster_pixels / r->total;
-    r->bytes = st.pool_bytes + st.work_bytes;
-    b->destroy(s);
-}
 
 static void run_alloc(brun *r)
 {
@@ -157,22 +140,56 @@ static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_
     return s;
 }
 
-/* Two variants (a build and options each), their RUNS runs interleaved (first,
- * second, first, ...) so that a machine whose speed drifts during the benchmark biases
- * neither; each keeps its median run (by total time) in OUT, the others are freed, and
- * its times to each fraction become the medians over the runs (each its own median: a
- * run slowed in its first part alone would otherwise set them). */
+/* Two variants (a build and options each) solved side by side RUNS times, shot by shot
+ * (one shot of the first, one of the second, ...): each shot's time is its variant's
+ * own, and both see the same machine, whose speed on a shared host drifts by 20% and
+ * more within seconds (whole runs in turn measured fixed/float anywhere from 0.8 to
+ * 1.2). Each keeps its median run (by total time) in OUT, with its times to each
+ * fraction the medians over the runs; the others are freed. */
 static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs, brun *out)
 {
     brun r[2][5];
     double tot[2][5], ti[3][5];
     int i, j, k;
-    for (i = 0; i < runs; i++)
+    for (i = 0; i < runs; i++) {
+        void *s[2];
+        prog_t pg[2];
+        int live = 3;
         for (k = 0; k < 2; k++) {
+            char err[256];
+            double t0 = now();
             run_alloc(&r[k][i]);
-            solve_one(b[k], sc, &o[k], &r[k][i]);
-            tot[k][i] = r[k][i].total;
+            s[k] = b[k]->create(sc->polys, sc->n, &o[k], err, sizeof err);
+            if (!s[k]) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
+            r[k][i].mesh = now() - t0;
+            pg[k].r = &r[k][i];
+            pg[k].spent = 0;
+            pg[k].base = 0;
         }
+        while (live)
+            for (k = 0; k < 2; k++) {
+                int shot;
+                if (!(live & (1 << k))) continue;
+                pg[k].t0 = now();
+                shot = b[k]->solve(s[k], 1, 0.001, on_shot, &pg[k]);
+                pg[k].spent += now() - pg[k].t0;
+                pg[k].base += shot;
+                if (!shot) live &= ~(1 << k);
+            }
+        for (k = 0; k < 2; k++) {
+            sc_stats st;
+            brun *x = &r[k][i];
+            b[k]->stats(s[k], &st);
+            x->total = pg[k].spent;
+            x->elements = st.elements;
+            x->patches = st.patches;
+            x->all_shots = st.shots;
+            x->pix_per_s = (double)st.raster_pixels / x->total;
+            x->bytes = st.pool_bytes + st.work_bytes;
+            b[k]->destroy(s[k]);
+            tot[k][i] = x->total;
+        }
+    }
     for (k = 0; k < 2; k++) {
         double m = median(tot[k], runs);
         int best = 0;
@@ -444,7 +461,7 @@ static sc_poly *gen_hall(int *n)
 /* ---- report -------------------------------------------------------------------- */
 
 /* Plain shooting (k = 0) against overshooting (k = 1), fixed build: shots and time to
- * each fraction (median of 3 interleaved), and the distance of the solution at 0.01
+ * each fraction (median of 3, shot by shot), and the distance of the solution at 0.01
  * from one converged to 1e-5. */
 typedef struct {
     brun run[2];
@@ -538,9 +555,9 @@ int main(int argc, char **argv)
 
 #define OUT(...) (len += (size_t)snprintf(md + len, sizeof md - len, __VA_ARGS__))
     OUT("Solve to an unshot fraction of 0.001 at hemi-cube resolution 128, one core; times are medians of "
-        "3 runs (5 for CornellBox-Original) in one process, the two builds' runs "
-        "interleaved. fixed/float is the ratio of the two builds' times in the same run: below 1 the fixed build "
-        "is faster.\n\n");
+        "3 runs (5 for CornellBox-Original) in one process, the two builds solved side by side, one shot of each "
+        "in turn, so that both see the same machine. fixed/float is the ratio of the two builds' times: below 1 "
+        "the fixed build is faster.\n\n");
     OUT("| scene | elements | patches | build | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot "
         "| Mpixel/s | memory KB |\n| --- | ---: | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
@@ -617,7 +634,7 @@ int main(int argc, char **argv)
         }
     /* Overshooting against plain progressive refinement. */
     OUT("\nOvershooting (the default; Feda & Purgathofer 1992) against plain progressive refinement (Cohen et al. "
-        "1988, `--no-overshoot`), fixed build, res 128, median of 3 interleaved runs; the last two columns are the "
+        "1988, `--no-overshoot`), fixed build, res 128, median of 3 runs, the two shot by shot; the last two columns are the "
         "solution at 0.01 (with the ambient term) against one converged to 1e-5, per element above 1%% of the "
         "brightest:\n\n| scene | elements | shooting | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | "
         "max difference at 0.01 | rms |\n| --- | ---: | --- | --- | ---: | ---: | ---: | ---: |\n");
