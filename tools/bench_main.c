@@ -174,7 +174,7 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
                 shot = b[k]->solve(s[k], 1, 0.001, on_shot, &pg[k]);
                 pg[k].spent += now() - pg[k].t0;
                 pg[k].base += shot;
-                if (!shot) live &= ~(1 << k);
+                if (!shot || pg[k].base >= 1000000) live &= ~(1 << k);
             }
         for (k = 0; k < 2; k++) {
             sc_stats st;
