@@ -405,6 +405,57 @@ static void test_overshoot_debt(void **st)
     }
 }
 
+/* The core assumes nothing of the caller's buffers' contents: a work buffer and parts'
+ * buffers full of 0xA5 (the lattice's row of id steps, depth and ids among them) give
+ * the bits of zeroed ones, serially and in parts. */
+static void test_dirty_buffers(void **st)
+{
+    enum { SHOTS = 20, PARTS = 3 };
+    static rad_rgb_t want[NE];
+    guarded_t g;
+    rad_scene_t s;
+    uint32_t e, n;
+    int k, shot;
+    (void)st;
+    for (k = 0; k < 3; k++) {
+        pools_make(&g, NS, NP, NE, NV, WORK);
+        if (k == 1) memset(g.work, 0xA5, WORK);
+        assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+        add_cube(&s);
+        if (k < 2) {
+            assert_int_equal(rad_shoot(&s, SHOTS, 0), SHOTS);
+        } else {
+            size_t bytes = RAD_PART_BYTES(cfg.res);
+            void *bufs[PARTS];
+            unsigned part;
+            for (part = 0; part < PARTS; part++) assert_non_null(bufs[part] = malloc(bytes));
+            for (shot = 0; shot < SHOTS; shot++) {
+                uint32_t p;
+                assert_int_equal(rad_shot_begin(&s, 0, &p), 1);
+                for (part = 0; part < PARTS; part++) {
+                    memset(bufs[part], 0xA5, bytes);
+                    assert_true(rad_shot_part(&s, p, part, PARTS, bufs[part], bytes) >= 0);
+                }
+                assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), 1);
+            }
+            for (part = 0; part < PARTS; part++) free(bufs[part]);
+        }
+        n = s.n_elements;
+        assert_true(n > 6 && n <= NE); /* a lattice on every face, not one element each */
+        for (e = 0; e < n; e++) {
+            const rad_rgb_t *b = &s.pools.elements[e].radiosity;
+            if (k == 0) want[e] = *b;
+            else {
+                assert_int_equal(b->r, want[e].r);
+                assert_int_equal(b->g, want[e].g);
+                assert_int_equal(b->b, want[e].b);
+            }
+        }
+        pools_check(&g);
+        pools_free(&g);
+    }
+}
+
 static void test_strerror(void **st)
 {
     int k;
@@ -427,6 +478,7 @@ int main(void)
         cmocka_unit_test(test_restart_relight),
         cmocka_unit_test(test_saturation_counted),
         cmocka_unit_test(test_overshoot_debt),
+        cmocka_unit_test(test_dirty_buffers),
         cmocka_unit_test(test_strerror),
     };
     return cmocka_run_group_tests_name("api", tests, NULL, NULL);
