@@ -76,7 +76,7 @@ static void build_table(rad_scene_t *s)
 
 int rad__hemicube_init(rad_scene_t *s)
 {
-    uint32_t res = s->cfg.res, q = res / 2u;
+    uint32_t res = s->cfg.res, q = res / 2u, k;
     uint32_t nacc = s->pools.max_elements > s->pools.max_vertices ? s->pools.max_elements
                                                                   : s->pools.max_vertices;
     uintptr_t base = (uintptr_t)s->pools.work, start = (base + 7u) & ~(uintptr_t)7u;
@@ -96,7 +96,8 @@ int rad__hemicube_init(rad_scene_t *s)
         s->band_rows = (uint16_t)band;
         s->pass_pixels = (uint32_t)(band * res);
     }
-    s->steps = (uint32_t *)start;
+    s->steps = (uint32_t *)start; /* zeroed here once: every span leaves it zero */
+    for (k = 0; k < res; k++) s->steps[k] = 0;
     s->dff_top = (rad_ff_t *)(void *)(s->steps + res);
     s->dff_side = s->dff_top + (size_t)q * q;
     s->acc = s->dff_side + (size_t)q * q;
@@ -237,7 +238,6 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         all &= code;
         any |= code;
     }
-    if (grid) rad__lattice_init(&lat, sf, loc, n, (int32_t)s->cfg.res);
     for (r = 0; r < ps->nreg; r++) {
         unsigned f = ps->reg[r].face;
         rad__frustum_t fr;
@@ -245,6 +245,9 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
         region_view(s, cv, &ps->reg[r], &fr, &t);
         if (grid) {
+            /* set up on the first face that draws it */
+            if (grid == 1) rad__lattice_init(&lat, sf, loc, n, (int32_t)s->cfg.res);
+            grid = 2;
             rad__lattice_face(&lat, face_axis[f], face_sign[f]);
             t.lat = &lat;
         }
@@ -340,7 +343,6 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     uint32_t e;
 
     cv.z = s->zbuf; cv.ids = s->ibuf; cv.steps = s->steps; cv.st = &s->stats;
-    for (e = 0; e < s->cfg.res; e++) cv.steps[e] = 0;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);

@@ -1,7 +1,8 @@
 /* rad — progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
  *
  * Each step shoots a patch's unshot power U through a hemi-cube at its centre: the
- * patch with the most unshot power, or, overshooting, the one whose shot moves most. With F the form factor from the patch to element j (the item buffer's sum),
+ * patch with the most unshot power, or, overshooting, the one whose shot moves most.
+ * With F the form factor from the patch to element j (the item buffer's sum),
  * reciprocity gives element j the power rho_j F U, hence radiosity rho_j F U / A_j,
  * and adds that power to the unshot power of j's patch. No element-to-patch division
  * is needed. Shooting plainly, unshot power never grows: the sum of F is at most 1 and
