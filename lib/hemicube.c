@@ -96,14 +96,14 @@ int rad__hemicube_init(rad_scene_t *s)
         s->band_rows = (uint16_t)band;
         s->pass_pixels = (uint32_t)(band * res);
     }
-    s->steps = (uint32_t *)start; /* zeroed here once: every span leaves it zero */
-    for (k = 0; k < res; k++) s->steps[k] = 0;
+    s->steps = (uint32_t *)start;
     s->dff_top = (rad_ff_t *)(void *)(s->steps + res);
     s->dff_side = s->dff_top + (size_t)q * q;
     s->acc = s->dff_side + (size_t)q * q;
     s->zbuf = (uint32_t *)(s->acc + nacc);
     s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
     build_table(s);
+    for (k = 0; k < res; k++) s->steps[k] = 0; /* once: every span leaves it zero */
     return RAD_OK;
 }
 
