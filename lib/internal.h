@@ -37,6 +37,7 @@ typedef struct {
     int64_t c[3][3];
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
+    int32_t hint[2];       /* the last span's first and last cells on this face, or -1 */
 } rad__family_t;
 
 /* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
@@ -59,7 +60,7 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */
-void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
+void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
                        uint64_t w, uint64_t dw, uint32_t *steps);
 
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
@@ -70,7 +71,7 @@ typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_rgb_t *rgb;
-    const rad__lattice_t *lat;
+    rad__lattice_t *lat;
     uint32_t *steps;
     int width, row0, row1;
 } rad__target_t;

@@ -11,10 +11,10 @@
  * two end points; a pixel's ray is past line k when E_k = L_k . ray >= 0. With the
  * corners as integers relative to the centre, P_k = (n - k) p0 + k p1 and R_k alike,
  * so L_k = C0 + k C1 + k^2 C2 exactly, and along a row of pixels every E_k steps by a
- * constant. A span finds its first and last pixels' columns by bisection; then each
- * family walks the lines between them, each line's first pixel one division away and
- * the next line's test a few adds away (by differences), and adds the line's change of
- * the element id to a row of steps. One pass over the pixels sums the steps into ids
+ * constant. A span finds its first and last pixels' columns by a walk from the
+ * previous span's (or by bisection); then each family walks the lines between them,
+ * each line's first pixel one division away and the next line's test a few adds away
+ * (by differences), and adds the line's change of the element id to a row of steps. One pass over the pixels sums the steps into ids
  * and depth-tests, without a branch: an element's run in a row is under two pixels on
  * average at res 128, too short for branches on it to be predicted.
  *
@@ -131,6 +131,7 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
+        lt->fam[c].hint[0] = lt->fam[c].hint[1] = -1; /* no span yet on this face */
     }
 }
 
@@ -161,8 +162,30 @@ static int32_t search(const int64_t *e, uint32_t n)
     return lo;
 }
 
-/* Sets W up for family F on row Y from pixel XS to XE - 1. */
-static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t y, int32_t xs, int32_t xe,
+/* search(E, N), found by walking from cell H, the previous span's (-1: none): on CornellBox-
+ * Original 81% of spans start in the previous row's cell, 17% one cell away, 1.4%
+ * more than two away. The walk gives the bisection's answer when E_k does not
+ * increase with k over [0, N - 1]: then {k : E_k >= 0} is a prefix, and both find its
+ * last k (or 0). E_k's step to k + 1, e1 + (2 k + 1) e2, is linear in k, so two ends
+ * check that. Otherwise, and past two cells, the bisection: the result never depends
+ * on H, so parts and bands give the same bits. */
+static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
+{
+    int32_t last = (int32_t)n - 1, i;
+    if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + (2 * (int64_t)n - 3) * e[2] > 0) return search(e, n);
+    if (at(e, h) >= 0) {
+        for (i = 0; i < 2; i++, h++)
+            if (h == last || at(e, h + 1) < 0) return h;
+    } else {
+        for (i = 0; i < 2; i++, h--)
+            if (h == 0 || at(e, h - 1) >= 0) return h == 0 ? 0 : h - 1;
+    }
+    return search(e, n);
+}
+
+/* Sets W up for family F on row Y from pixel XS to XE - 1, searching from F's hints
+ * and leaving this span's cells there. */
+static void walk_start(const rad__lattice_t *lt, rad__family_t *f, int32_t y, int32_t xs, int32_t xe,
                        walk_t *w)
 {
     int64_t e[3], de[3], k, sg, res = lt->res, span = xe - 1 - xs;
@@ -174,10 +197,10 @@ static void walk_start(const rad__lattice_t *lt, const rad__family_t *f, int32_t
         de[j] = 2 * ca;
         e[j] = ca * (2 * (int64_t)xs + 1 - res) + cb * ((int64_t)res - 2 * (int64_t)y - 1) + cd * res;
     }
-    w->i = search(e, f->n);
+    w->i = f->hint[0] = search_from(e, f->n, f->hint[0]);
     /* The last pixel's column, with E moved there and back (one array less of stack). */
     for (j = 0; j < 3; j++) e[j] += span * de[j];
-    w->end = search(e, f->n);
+    w->end = f->hint[1] = search_from(e, f->n, f->hint[1]);
     for (j = 0; j < 3; j++) e[j] -= span * de[j];
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
     if (!w->step) return;
@@ -202,9 +225,9 @@ static const uint32_t tri_unit[3] = {1u - (1u << 24), (1u << 12) - (1u << 24), 1
  * division. A quad's change is F's unit within a patch and what moves to the next
  * patch at a patch's edge; a triangle's, F's part of the packed cell (tri_unit).
  * Returns the first pixel's part of the id (or of the packed cell). Steps add mod 2^32. */
-static uint32_t family_steps(const rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, uint32_t *steps)
+static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, uint32_t *steps)
 {
-    const rad__family_t *fm = &lt->fam[f];
+    rad__family_t *fm = &lt->fam[f];
     const int32_t k = (int32_t)fm->k;
     int64_t n = xe - xs, p = 0;
     int64_t t, st, d, sd, d2, sd2;
@@ -283,7 +306,7 @@ static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
 /* The families' steps first, then one pass over the pixels: each sums the steps so
  * far into its element id and is depth-tested (rad__depth_put). The pass zeroes the
  * steps for the next span. */
-void rad__lattice_span(const rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
+void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
                        uint64_t w, uint64_t dw, uint32_t *steps)
 {
     uint32_t acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
