@@ -14,9 +14,10 @@
  * constant. A span finds its first and last pixels' columns by a walk from the
  * previous span's (or by bisection); then each family walks the lines between them,
  * each line's first pixel one division away and the next line's test a few adds away
- * (by differences), and adds the line's change of the element id to a row of steps. One pass over the pixels sums the steps into ids
- * and depth-tests, without a branch: an element's run in a row is under two pixels on
- * average at res 128, too short for branches on it to be predicted.
+ * (by differences), and adds the line's change of the element id to a row of steps.
+ * One pass over the pixels sums the steps into ids and depth-tests, without a branch:
+ * an element's run in a row is under two pixels on average at res 128, too short for
+ * branches on it to be predicted.
  *
  * Integer ranges: corners scaled to |c| <= 2^S with S = 22 - bits(n); the ray's
  * components are at most RES <= 2^10; then |C0| <= 2 n^2 2^2S, |C1| <= 8 n 2^2S,
@@ -127,12 +128,13 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned c;
+    unsigned c, f;
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
-        lt->fam[c].hint[0] = lt->fam[c].hint[1] = -1; /* no span yet on this face */
     }
+    /* no span yet on this face */
+    for (f = 0; f < lt->nfam; f++) lt->fam[f].hint[0] = lt->fam[f].hint[1] = -1;
 }
 
 /* ---- spans --------------------------------------------------------------------- */
@@ -162,9 +164,9 @@ static int32_t search(const int64_t *e, uint32_t n)
     return lo;
 }
 
-/* search(E, N), found by walking from cell H, the previous span's (-1: none): on CornellBox-
- * Original 81% of spans start in the previous row's cell, 17% one cell away, 1.4%
- * more than two away. The walk gives the bisection's answer when E_k does not
+/* search(E, N), found by walking from cell H, the previous span's (-1: none): on
+ * CornellBox-Original 81% of spans start in the previous row's cell, 17% one cell
+ * away, 1.4% more than two away. The walk gives the bisection's answer when E_k does not
  * increase with k over [0, N - 1]: then {k : E_k >= 0} is a prefix, and both find its
  * last k (or 0). E_k's step to k + 1, e1 + (2 k + 1) e2, is linear in k, so two ends
  * check that. Otherwise, and past two cells, the bisection: the result never depends
