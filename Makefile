@@ -1,21 +1,30 @@
-# rad — one entry point: make, make test, make check, make ports, make bench, make install
+# rad — one entry point: make, make test, make check, make port-test, make bench, make install
 #
 # Layout of the build (all under $(BUILDDIR)):
 #   lib/fixed/*.o  -> librad.a        the product: fixed point, no malloc/libm/stdio
 #   lib/float/*.o  -> librad_float.a  the float twin: same sources, -DRAD_FLOAT=1
-#   tools/*.o      -> libradtools.a   host helpers (OBJ/MTL, images); *_main.c are programs
+#   tools/...      -> libradtools.a   host helpers: tools/formats (file formats),
+#                                     tools/host (the glue over the core), tools/reference
+#                                     (analytic references), tools/bench/plot.c
+#   rad_cli, rad_cli_float, rad_bench the programs of tools/cli and tools/bench
 #   tests/test_*   one CMocka runner per tests/test_*.c, linked with everything above
+#
+# WERROR=-Werror (CI and make check set it) turns warnings into errors; a user's newer
+# compiler may warn where ours does not, so the default build does not stop on them.
 
 BUILDDIR ?= build
 CC       ?= cc
+AR       ?= ar
 PREFIX   ?= /usr/local
-WARN     := -std=c99 -Wall -Wextra -pedantic -Wshadow -Wundef -Wmissing-prototypes -Werror
+WERROR   ?=
+WARN     := -std=c99 -Wall -Wextra -pedantic -Wshadow -Wundef -Wmissing-prototypes $(WERROR)
 OPT      ?= -O2 -g
 CFLAGS_EXTRA ?=
 # The core must not call memset/memcpy behind our back: no loop-to-libcall rewriting.
 LIBFLAGS := -ffreestanding -fno-tree-loop-distribute-patterns
 CPPFLAGS := -Iinclude
 ALLCFLAGS = $(WARN) $(OPT) $(CFLAGS_EXTRA) $(CPPFLAGS)
+TOOLFLAGS := -D_POSIX_C_SOURCE=200809L -Itools
 
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
@@ -23,10 +32,11 @@ CMOCKA_LIBS := -lcmocka
 
 LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
-TOOL_SRCS  := $(filter-out %_main.c %_twin.c,$(wildcard tools/*.c))
-TWIN_SRCS  := $(wildcard tools/*_twin.c)
-TOOL_HDRS  := $(wildcard tools/*.h)
-MAIN_SRCS  := $(wildcard tools/*_main.c)
+# Host glue built once per build of the core (fixed: sc_*, float: scf_*).
+TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
+# Host helpers built once.
+TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_polys.c tools/bench/plot.c
+TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 
 FIXED_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/fixed/%.o)
@@ -49,36 +59,36 @@ $(BUILDDIR)/lib/float/%.o: lib/%.c $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(LIBFLAGS) -DRAD_FLOAT=1 -c $< -o $@
 $(LIBRAD): $(FIXED_OBJS)
-	@rm -f $@; ar rcs $@ $^
+	@rm -f $@; $(AR) rcs $@ $^
 $(LIBRADF): $(FLOAT_OBJS)
-	@rm -f $@; ar rcs $@ $^
+	@rm -f $@; $(AR) rcs $@ $^
 
-$(BUILDDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
-	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) -c $< -o $@
 $(BUILDDIR)/tools/float/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) -D_POSIX_C_SOURCE=200809L -DRAD_FLOAT=1 $(PNG_CFLAGS) -c $< -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -DRAD_FLOAT=1 $(PNG_CFLAGS) -c $< -o $@
+$(BUILDDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) $(PNG_CFLAGS) -c $< -o $@
 $(LIBTOOLS): $(TOOL_OBJS)
-	@rm -f $@; ar rcs $@ $^
+	@rm -f $@; $(AR) rcs $@ $^
 
 # rad_cli is one source built twice: rad_cli (fixed) and rad_cli_float (the twin).
-$(BUILDDIR)/rad_cli: $(BUILDDIR)/tools/rad_cli_main.o $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
+$(BUILDDIR)/rad_cli: $(BUILDDIR)/tools/cli/rad_cli.o $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
-$(BUILDDIR)/rad_cli_float: $(BUILDDIR)/tools/float/rad_cli_main.o $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
+$(BUILDDIR)/rad_cli_float: $(BUILDDIR)/tools/float/cli/rad_cli.o $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
 
-# The benchmark: both builds of the core side by side (see tools/bench_main.c).
-$(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench_main.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
+# The benchmark: both builds of the core side by side (see tools/bench/rad_bench.c).
+$(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
 
 bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
 
-# Every test links both builds of the core (through tools/*_twin.c) and the host tools.
+# Every test links both builds of the core (through the host glue) and the host tools.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) -D_POSIX_C_SOURCE=200809L -Itests -Itools -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
 
 # The core's promise, proven from the objects: nothing from outside but compiler helpers.
 nm-check: $(LIBRAD)

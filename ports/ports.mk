@@ -35,13 +35,14 @@ PORT_LIB_HDRS := $(wildcard lib/*.h include/rad/*.h)
 PORT_HDRS := $(PORT_LIB_HDRS) ports/common/port.h ports/common/semihost.h
 PORT_TEST_SRC := ports/common/port_test.c
 
-# The flags of the brief: the core, the port test and the platform files alike.
+# The project's warnings, as errors: the core, the port test and the platform files alike
+# (the cross compilers are pinned by the Debian release, so -Werror cannot surprise a user).
 PORT_WARN := -std=c99 -Wall -Wextra -pedantic -Werror
 PORT_FREE := -ffreestanding -fno-tree-loop-distribute-patterns
 PORT_CPPFLAGS := -DRAD_INDEX_BITS=16 -Iinclude -Ilib -Iports/common
 PORT_TFLAGS := $(PORT_WARN) -Os $(PORT_FREE) $(PORT_CPPFLAGS)
 PORT_HOST_CFLAGS := $(PORT_WARN) -O2 $(PORT_CPPFLAGS)
-# The port's own files also get the rest of the project's warnings (DESIGN.md).
+# The port's own files also get the rest of the project's warnings (the Makefile's WARN).
 PORT_OWN_WARN := -Wshadow -Wundef -Wmissing-prototypes
 
 # ---- targets -----------------------------------------------------------------------

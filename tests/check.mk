@@ -3,7 +3,7 @@
 #
 #     include tests/check.mk
 #
-# Debian packages on top of `make deps`: clang libclang-rt-dev (libFuzzer and clang's
+# Debian packages on top of the README's install line: clang libclang-rt-dev (libFuzzer and clang's
 # sanitizer runtimes: a Recommends of clang, so --no-install-recommends leaves them
 # out), valgrind, cppcheck, clang-tidy; llvm (llvm-symbolizer) for readable stack
 # traces is optional.
@@ -70,7 +70,7 @@ for f in $(CHECK_ROOT_ITEMS); do ln -s $(CURDIR)/$$f $(1)/root/$$f; done && \
 ln -sfn .. $(1)/root/build
 endef
 # $(call check_make,STAGE-DIR,CC,OPT,CFLAGS_EXTRA,[extra make arguments]) TARGETS...
-check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
+check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build WERROR=-Werror CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
 
 CHECK_STAGES := asan valgrind clang lint idx16 small fuzz-obj fuzz-core fuzz-image
 CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
@@ -178,10 +178,10 @@ $(FUZZDIR)/lib/float/%.o: lib/%.c $(LIB_HDRS)
 $(FUZZDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) -c $< -o $@
-$(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/obj.o $(TOOL_HDRS)
-	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/obj.o -lm -o $@
-$(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/image.o $(TOOL_HDRS)
-	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/image.o $(PNG_LIBS) -lm -o $@
+$(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/formats/obj.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/formats/obj.o -lm -o $@
+$(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/formats/image.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/formats/image.o $(PNG_LIBS) -lm -o $@
 $(FUZZDIR)/fuzz_core_float.o: tests/fuzz/fuzz_core.c $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -DRAD_FLOAT=1 -c $< -o $@

@@ -3,8 +3,8 @@
 #define RAD_TEST_SCENES_H
 
 #include <string.h>
-#include "reference.h"
-#include "scene.h"
+#include "reference/reference.h"
+#include "host/scene.h"
 
 #define quad ref_quad
 

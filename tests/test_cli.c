@@ -30,9 +30,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "image.h"
+#include "formats/image.h"
 #include "tmpdir.h"
-#include "obj.h"
+#include "formats/obj.h"
 
 extern char **environ;
 

@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "rad/rad.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "scenes.h"
 
 /* ---- the table ----------------------------------------------------------------- */

@@ -34,9 +34,9 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "image.h"
+#include "formats/image.h"
 #include "tmpdir.h"
-#include "obj.h"
+#include "formats/obj.h"
 #include "rad/rad.h"
 #include "scenes.h"
 
@@ -432,7 +432,7 @@ static void test_emission_overflow(void **st)
     }
 }
 
-/* Was a bug (tools/scene_twin.c, frame_scene()/emit_ch()): with the brightest emission
+/* Was a bug (tools/host/scene.c, frame_scene()/emit_ch()): with the brightest emission
  * below 256 / DBL_MAX (about 1.4e-306, e.g. "Ke 1e-310 0 0", which the loader accepts),
  * escale = 256 / emax was +inf, 0 * inf = NaN went through RAD_REAL (undefined
  * behaviour) and sc_create failed with "polygon 0 (tag 0): value out of range". A
@@ -451,7 +451,7 @@ static void test_emission_denormal(void **st)
     assert_true(got.sum == ref.sum);
 }
 
-/* Was a bug (tools/scene_twin.c, frame_scene()): a denormal half-extent passed the
+/* Was a bug (tools/host/scene.c, frame_scene()): a denormal half-extent passed the
  * isfinite(half) check, gave scale = 32 / half = +inf, and to_core() converted NaN or
  * inf coordinates with RAD_REAL (undefined behaviour). Now: "the scene has no extent". */
 static void test_extent_denormal(void **st)
@@ -680,7 +680,7 @@ static void test_index_limits(void **st)
 }
 
 #if RAD_INDEX_BITS == 16
-/* Was a bug (16-bit indices, tools/scene_twin.c, alloc_pools()): the pools were sized
+/* Was a bug (16-bit indices, tools/host/scene.c, alloc_pools()): the pools were sized
  * from the element estimate (max_vertices = 3 * estimate, max_surfaces = 2 * polygons
  * + 1) without a cap at RAD_INDEX_NONE - 1, so rad_init refused them and sc_create
  * failed with "cannot set up the solver: invalid argument" for any scene estimated

@@ -1,4 +1,4 @@
-/* Tests for tools/image.c (PNG/PPM I/O, tone mapping) and tools/plot.c (line plots). */
+/* Tests for tools/formats/image.c (PNG/PPM I/O, tone mapping) and tools/bench/plot.c (line plots). */
 #include <dirent.h>
 #include <float.h>
 #include <limits.h>
@@ -16,8 +16,8 @@
 
 #include <cmocka.h>
 
-#include "image.h"
-#include "plot.h"
+#include "formats/image.h"
+#include "bench/plot.h"
 
 /* ---- helpers: one fresh temporary directory per test ---- */
 

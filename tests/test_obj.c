@@ -1,4 +1,4 @@
-/* Tests for the OBJ + MTL loader (tools/obj.c). Run from the repository root. */
+/* Tests for the OBJ + MTL loader (tools/formats/obj.c). Run from the repository root. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "obj.h"
+#include "formats/obj.h"
 
 #define DATA "tests/data/obj/"
 

@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
-#include "objpoly.h"
-#include "parallel.h"
+#include "host/obj_polys.h"
+#include "host/parallel.h"
 #include "scenes.h"
 
 static sc_poly *cornell(int *n)

@@ -1,5 +1,5 @@
-/* Stored form factors through the host glue (tools/scene_twin.c) and rad_cli: saving and
- * loading rows (tools/ffio.c), every way a file can be wrong, relighting a solved scene
+/* Stored form factors through the host glue (tools/host/scene.c) and rad_cli: saving and
+ * loading rows (tools/formats/ff_file.c), every way a file can be wrong, relighting a solved scene
  * without rendering a hemi-cube, Gauss-Seidel against progressive refinement, light
  * groups and their mix, --each-group and --animate.
  *
@@ -33,13 +33,13 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "ffio.h"
-#include "image.h"
+#include "formats/ff_file.h"
+#include "formats/image.h"
 #include "tmpdir.h"
-#include "obj.h"
-#include "objpoly.h"
-#include "reference.h"
-#include "scene.h"
+#include "formats/obj.h"
+#include "host/obj_polys.h"
+#include "reference/reference.h"
+#include "host/scene.h"
 
 extern char **environ;
 
@@ -317,7 +317,7 @@ static void test_load_mismatch(void **state)
 /* Rewrites the trailing checksum after an edit, so only the structure checks see it. */
 static void reseal(unsigned char *d, size_t n)
 {
-    uint64_t h = ffio_fnv(FFIO_FNV_START, d, n - 8);
+    uint64_t h = ff_file_fnv(FF_FILE_FNV_START, d, n - 8);
     int i;
     for (i = 0; i < 8; i++) d[n - 8 + (size_t)i] = (unsigned char)(h >> (8 * i));
 }

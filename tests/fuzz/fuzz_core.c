@@ -1,5 +1,5 @@
 /* libFuzzer harness: the core's public API (lib/) driven by arbitrary bytes, in both
- * builds. This file is compiled twice, like tools/scene_twin.c: with RAD_FLOAT=0 it
+ * builds. This file is compiled twice, like tools/host/scene.c: with RAD_FLOAT=0 it
  * defines fuzz_core_fixed() and the libFuzzer entry point, with RAD_FLOAT=1
  * fuzz_core_float(); every input runs through both cores.
  *

@@ -1,4 +1,4 @@
-/* libFuzzer harness: image writing, reading and tone mapping (tools/image.c).
+/* libFuzzer harness: image writing, reading and tone mapping (tools/formats/image.c).
  *
  * Input: a small header, then payload bytes.
  *   byte  0      flags: bit 0-1 path kind (0 name in the directory, 1 in a missing
@@ -26,7 +26,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "image.h"
+#include "formats/image.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,4 +1,4 @@
-/* libFuzzer harness: the OBJ/MTL loader (tools/obj.c) on arbitrary bytes.
+/* libFuzzer harness: the OBJ/MTL loader (tools/formats/obj.c) on arbitrary bytes.
  *
  * Input: OBJ text, optionally followed by a line "%%MTL" and MTL text. The MTL part is
  * written to m.mtl in a private temporary directory that is the loader's base directory,
@@ -20,7 +20,7 @@
 #include <unistd.h>
 #include <math.h>
 
-#include "obj.h"
+#include "formats/obj.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -2,11 +2,11 @@
  * they are (the core splits non-planar quads); larger ones are ear-clipped into
  * triangles. Kd becomes reflectance, Ke emission; each polygon's tag is its OBJ face
  * index. */
-#ifndef RAD_TOOLS_OBJPOLY_H
-#define RAD_TOOLS_OBJPOLY_H
+#ifndef RAD_TOOLS_OBJ_POLYS_H
+#define RAD_TOOLS_OBJ_POLYS_H
 
-#include "obj.h"
-#include "scene.h"
+#include "formats/obj.h"
+#include "host/scene.h"
 
 typedef void (*obj_poly_warn_fn)(void *ctx, int line, const char *msg);
 

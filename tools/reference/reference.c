@@ -1,5 +1,5 @@
 /* rad — analytic references (see reference.h), written independently of the core. */
-#include "reference.h"
+#include "reference/reference.h"
 
 #include <math.h>
 #include <stdlib.h>

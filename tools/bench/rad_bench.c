@@ -15,12 +15,12 @@
 #include <string.h>
 #include <time.h>
 
-#include "obj.h"
-#include "objpoly.h"
-#include "parallel.h"
-#include "plot.h"
-#include "reference.h"
-#include "scene.h"
+#include "formats/obj.h"
+#include "host/obj_polys.h"
+#include "host/parallel.h"
+#include "bench/plot.h"
+#include "reference/reference.h"
+#include "host/scene.h"
 
 #define MAXPTS 200000
 

@@ -1,6 +1,6 @@
 /* plot — line plots onto an RGB canvas with a built-in 5x7 font. See plot.h. */
-#include "plot.h"
-#include "image.h"
+#include "bench/plot.h"
+#include "formats/image.h"
 
 #include <math.h>
 #include <stdio.h>

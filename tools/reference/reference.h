@@ -4,7 +4,7 @@
 #ifndef RAD_TOOLS_REFERENCE_H
 #define RAD_TOOLS_REFERENCE_H
 
-#include "scene.h"
+#include "host/scene.h"
 
 #define REF_RECEIVERS 7
 

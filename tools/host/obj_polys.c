@@ -1,5 +1,5 @@
-/* rad host glue: OBJ faces to the core's polygons (see objpoly.h). */
-#include "objpoly.h"
+/* rad host glue: OBJ faces to the core's polygons (see obj_polys.h). */
+#include "host/obj_polys.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,5 +1,5 @@
-/* ffio — stored form factors on disk (see ffio.h for the format). */
-#include "ffio.h"
+/* ff_file — stored form factors on disk (see ff_file.h for the format). */
+#include "formats/ff_file.h"
 
 #include <errno.h>
 #include <stdarg.h>
@@ -14,7 +14,7 @@
 #define TRAILER_BYTES 8u
 static const unsigned char MAGIC[6] = {'R', 'A', 'D', 'F', 'F', '\0'};
 
-uint64_t ffio_fnv(uint64_t h, const void *p, size_t n)
+uint64_t ff_file_fnv(uint64_t h, const void *p, size_t n)
 {
     const unsigned char *b = p;
     size_t i;
@@ -25,17 +25,17 @@ uint64_t ffio_fnv(uint64_t h, const void *p, size_t n)
     return h;
 }
 
-uint64_t ffio_fnv_u32(uint64_t h, uint32_t v)
+uint64_t ff_file_fnv_u32(uint64_t h, uint32_t v)
 {
     unsigned char b[4];
     b[0] = (unsigned char)v; b[1] = (unsigned char)(v >> 8);
     b[2] = (unsigned char)(v >> 16); b[3] = (unsigned char)(v >> 24);
-    return ffio_fnv(h, b, 4);
+    return ff_file_fnv(h, b, 4);
 }
 
-const char *ffio_kind_name(unsigned kind)
+const char *ff_file_kind_name(unsigned kind)
 {
-    return kind == FFIO_KIND_FIXED ? "fixed" : kind == FFIO_KIND_FLOAT ? "float" : "unknown";
+    return kind == FF_FILE_KIND_FIXED ? "fixed" : kind == FF_FILE_KIND_FLOAT ? "float" : "unknown";
 }
 
 static void set_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
@@ -88,7 +88,7 @@ static void w_flush(writer_t *w)
 
 static void w_bytes(writer_t *w, const unsigned char *p, size_t n)
 {
-    w->hash = ffio_fnv(w->hash, p, n);
+    w->hash = ff_file_fnv(w->hash, p, n);
     while (n) {
         size_t k = sizeof w->buf - w->n < n ? sizeof w->buf - w->n : n;
         memcpy(w->buf + w->n, p, k);
@@ -111,7 +111,7 @@ static mode_t target_mode(const char *path)
     return 0666 & ~um;
 }
 
-int ffio_save(const char *path, const ffio_info *info, const uint32_t *start, const void *ids,
+int ff_file_save(const char *path, const ff_file_info *info, const uint32_t *start, const void *ids,
               unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen)
 {
     static writer_t w; /* 64 KB: not on the stack */
@@ -140,10 +140,10 @@ int ffio_save(const char *path, const ffio_info *info, const uint32_t *start, co
         close(fd); unlink(tmp); free(tmp);
         return -1;
     }
-    w.hash = FFIO_FNV_START;
+    w.hash = FF_FILE_FNV_START;
     memset(head, 0, sizeof head);
     memcpy(head, MAGIC, sizeof MAGIC);
-    put16(head + 6, FFIO_VERSION);
+    put16(head + 6, FF_FILE_VERSION);
     put16(head + 8, info->kind);
     put16(head + 10, info->res);
     put32(head + 12, info->patches);
@@ -216,12 +216,12 @@ static int code_ok(uint32_t c)
     return ((uint64_t)m << e) <= (1ull << 30);
 }
 
-int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen)
+int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen)
 {
     unsigned char *d;
     size_t size;
     uint64_t want;
-    ffio_info *in;
+    ff_file_info *in;
     const unsigned char *st, *id, *cd;
     uint32_t p, i, version;
     memset(f, 0, sizeof *f);
@@ -235,8 +235,8 @@ int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen)
         goto fail;
     }
     version = get16(d + 6);
-    if (version != FFIO_VERSION) {
-        set_err(err, errlen, path, "unsupported format version %u (this program reads version %u)", version, FFIO_VERSION);
+    if (version != FF_FILE_VERSION) {
+        set_err(err, errlen, path, "unsupported format version %u (this program reads version %u)", version, FF_FILE_VERSION);
         goto fail;
     }
     if (size < HEADER_BYTES) {
@@ -258,7 +258,7 @@ int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen)
                 size, in->patches, in->entries, (unsigned long long)want);
         goto fail;
     }
-    if (get64(d + size - TRAILER_BYTES) != ffio_fnv(FFIO_FNV_START, d, size - TRAILER_BYTES)) {
+    if (get64(d + size - TRAILER_BYTES) != ff_file_fnv(FF_FILE_FNV_START, d, size - TRAILER_BYTES)) {
         set_err(err, errlen, path, "checksum mismatch: the file is corrupt%s",
                 (uint64_t)size > want ? " (or has bytes past its end)" : "");
         goto fail;
@@ -267,7 +267,7 @@ int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen)
         set_err(err, errlen, path, "corrupt: %zu bytes, its header says %llu", size, (unsigned long long)want);
         goto fail;
     }
-    if (get32(d + 28) != 0 || (in->kind != FFIO_KIND_FIXED && in->kind != FFIO_KIND_FLOAT)) {
+    if (get32(d + 28) != 0 || (in->kind != FF_FILE_KIND_FIXED && in->kind != FF_FILE_KIND_FLOAT)) {
         set_err(err, errlen, path, "corrupt header (build kind %u)", in->kind);
         goto fail;
     }
@@ -307,12 +307,12 @@ fail:
     return -1;
 }
 
-int ffio_match(const ffio_file *f, const ffio_info *want, const char *path, char *err, size_t errlen)
+int ff_file_match(const ff_file_t *f, const ff_file_info *want, const char *path, char *err, size_t errlen)
 {
-    const ffio_info *in = &f->info;
+    const ff_file_info *in = &f->info;
     if (in->kind != want->kind) {
         set_err(err, errlen, path, "made by the %s build, this is the %s build (stored form factors do not cross builds)",
-                ffio_kind_name(in->kind), ffio_kind_name(want->kind));
+                ff_file_kind_name(in->kind), ff_file_kind_name(want->kind));
         return -1;
     }
     if (in->patches != want->patches || in->elements != want->elements || in->vertices != want->vertices) {
@@ -336,9 +336,9 @@ int ffio_match(const ffio_file *f, const ffio_info *want, const char *path, char
     return 0;
 }
 
-void ffio_rows(const ffio_file *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes)
+void ff_file_rows(const ff_file_t *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes)
 {
-    const ffio_info *in = &f->info;
+    const ff_file_info *in = &f->info;
     const unsigned char *st = f->data + HEADER_BYTES;
     const unsigned char *id = st + 4u * ((size_t)in->patches + 1u);
     const unsigned char *cd = id + 4u * (size_t)in->entries;
@@ -352,7 +352,7 @@ void ffio_rows(const ffio_file *f, uint32_t *start, void *ids, unsigned id_bytes
     }
 }
 
-void ffio_free(ffio_file *f)
+void ff_file_free(ff_file_t *f)
 {
     if (!f) return;
     free(f->data);

@@ -1,5 +1,5 @@
 /* obj — Wavefront OBJ + MTL loader for the host tools. See obj.h. */
-#include "obj.h"
+#include "formats/obj.h"
 
 #include <errno.h>
 #include <limits.h>

@@ -12,20 +12,18 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "ffio.h"
-#include "image.h"
-#include "obj.h"
-#include "objpoly.h"
-#include "parallel.h"
-#include "scene.h"
-
 #if defined(RAD_FLOAT) && RAD_FLOAT
-#define SC(x) scf_##x
+#include "host/float_names.h"
 #define PROG "rad_cli_float"
 #else
-#define SC(x) sc_##x
 #define PROG "rad_cli"
 #endif
+#include "formats/ff_file.h"
+#include "formats/image.h"
+#include "formats/obj.h"
+#include "host/obj_polys.h"
+#include "host/parallel.h"
+#include "host/scene.h"
 
 #define MAX_VIEWS 4096
 #define MAX_GROUP_NAME 64
@@ -504,7 +502,7 @@ static void read_views(opts_t *o)
 
 /* ---- outputs ------------------------------------------------------------------- */
 
-static int write_csv(const char *path, SC(solver) *s, const obj_scene *sc, int ambient, const sc_stats *st)
+static int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
 {
     FILE *f = fopen(path, "w");
     int e;
@@ -512,24 +510,24 @@ static int write_csv(const char *path, SC(solver) *s, const obj_scene *sc, int a
     fprintf(f, "element,surface,material,area,cx,cy,cz,r,g,b\n");
     for (e = 0; e < st->elements; e++) {
         double c[3], rgb[3];
-        int tag = SC(element_tag)(s, e);
+        int tag = sc_element_tag(s, e);
         const char *name = sc->materials[sc->faces[tag].material].name, *q;
-        SC(element_centroid)(s, e, c);
-        SC(element_rgb)(s, e, ambient, rgb);
+        sc_element_centroid(s, e, c);
+        sc_element_rgb(s, e, ambient, rgb);
         fprintf(f, "%d,%d,\"", e, tag);
         for (q = name; *q; q++) fprintf(f, *q == '"' ? "\"\"" : "%c", *q);
-        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", SC(element_area)(s, e), c[0], c[1], c[2], rgb[0], rgb[1], rgb[2]);
+        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1], c[2], rgb[0], rgb[1], rgb[2]);
     }
     if (fclose(f) != 0) { fprintf(stderr, PROG ": %s: write failed\n", path); return -1; }
     return 0;
 }
 
-static int write_ply(const char *path, SC(solver) *s, int ambient, double exposure, const sc_stats *st)
+static int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st)
 {
     FILE *f;
     double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
     int v, e;
-    if (!rgb || SC(shade)(s, ambient, rgb) < 0) { free(rgb); fprintf(stderr, PROG ": out of memory\n"); return -1; }
+    if (!rgb || sc_shade(s, ambient, rgb) < 0) { free(rgb); fprintf(stderr, PROG ": out of memory\n"); return -1; }
     f = fopen(path, "w");
     if (!f) { free(rgb); fprintf(stderr, PROG ": %s: cannot write: %s\n", path, strerror(errno)); return -1; }
     fprintf(f, "ply\nformat ascii 1.0\ncomment rad radiosity, sRGB vertex colours at exposure %g\n", exposure);
@@ -540,13 +538,13 @@ static int write_ply(const char *path, SC(solver) *s, int ambient, double exposu
         double p[3];
         float lin[3];
         unsigned char c[3];
-        SC(vertex_pos)(s, v, p);
+        sc_vertex_pos(s, v, p);
         lin[0] = (float)rgb[3 * v]; lin[1] = (float)rgb[3 * v + 1]; lin[2] = (float)rgb[3 * v + 2];
         tonemap(lin, 1, exposure, c);
         fprintf(f, "%.7g %.7g %.7g %u %u %u\n", p[0], p[1], p[2], c[0], c[1], c[2]);
     }
     for (e = 0; e < st->elements; e++) {
-        int vi[4], k, n = SC(element_vertices)(s, e, vi);
+        int vi[4], k, n = sc_element_vertices(s, e, vi);
         fprintf(f, "%d", n);
         for (k = 0; k < n; k++) fprintf(f, " %d", vi[k]);
         fprintf(f, "\n");
@@ -784,7 +782,7 @@ typedef struct {
 
 /* Renders CAM (NULL: the default camera) and writes PATH (NULL: only render, to fix
  * the exposure). One exposure for every output, from the first view, so views match. */
-static int render_view(SC(solver) *s, const opts_t *o, const obj_scene *sc, const sc_camera *cam, const char *path,
+static int render_view(sc_solver *s, const opts_t *o, const obj_scene *sc, const sc_camera *cam, const char *path,
                        int ambient, out_t *ot)
 {
     sc_camera c;
@@ -793,7 +791,7 @@ static int render_view(SC(solver) *s, const opts_t *o, const obj_scene *sc, cons
     size_t npix = (size_t)o->width * o->height;
     if (cam) c = *cam;
     else default_camera(sc, o->width, o->height, &c);
-    if (SC(render)(s, &c, ambient, o->width, o->height, ot->img, err, sizeof err) < 0) {
+    if (sc_render(s, &c, ambient, o->width, o->height, ot->img, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
         return -1;
     }
@@ -810,10 +808,10 @@ static int render_view(SC(solver) *s, const opts_t *o, const obj_scene *sc, cons
 }
 
 /* Mixes the group solutions with intensities K (one RGB per group). */
-static void mix_groups(SC(solver) *s, SC(solution) *const *sol, const double (*k)[3], int n)
+static void mix_groups(sc_solver *s, sc_solution *const *sol, const double (*k)[3], int n)
 {
     char err[256];
-    if (SC(mix)(s, sol, k, n, err, sizeof err) < 0) {
+    if (sc_mix(s, sol, k, n, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         exit(1);
     }
@@ -822,12 +820,12 @@ static void mix_groups(SC(solver) *s, SC(solution) *const *sol, const double (*k
 /* ---- main ---------------------------------------------------------------------- */
 
 /* Solves from the rows with the chosen solver; returns shots or sweeps. */
-static int solve_rows(SC(solver) *s, const opts_t *o, progress_t *pg)
+static int solve_rows(sc_solver *s, const opts_t *o, progress_t *pg)
 {
     char err[512];
     int n;
-    if (!o->gauss_seidel) return SC(rows_solve)(s, o->max_shots, o->tol, pg->tty ? progress : NULL, pg);
-    n = SC(rows_gauss_seidel)(s, GS_MAX_SWEEPS, o->tol, err, sizeof err);
+    if (!o->gauss_seidel) return sc_rows_solve(s, o->max_shots, o->tol, pg->tty ? progress : NULL, pg);
+    n = sc_rows_gauss_seidel(s, GS_MAX_SWEEPS, o->tol, err, sizeof err);
     if (n < 0) {
         fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
         exit(1);
@@ -843,8 +841,8 @@ int main(int argc, char **argv)
     sc_opts so;
     sc_stats st;
     sc_rows_stats rst;
-    SC(solver) *s;
-    SC(solution) **sol = NULL;
+    sc_solver *s;
+    sc_solution **sol = NULL;
     progress_t pg;
     out_t ot;
     char err[1024];
@@ -893,7 +891,7 @@ int main(int argc, char **argv)
     so.max_element = o.max_element;
     so.res = o.res ? o.res : 128; /* 64 aliases visibly on elements a few pixels wide */
     so.no_overshoot = o.no_overshoot;
-    s = SC(create)(polys, npolys, &so, NULL, NULL, err, sizeof err);
+    s = sc_create(polys, npolys, &so, NULL, NULL, err, sizeof err);
     free(polys);
     if (!s) {
         fprintf(stderr, PROG ": %s: %s\n", o.scene, err);
@@ -909,26 +907,26 @@ int main(int argc, char **argv)
     if (!rows_mode) {
         /* Threads split each shot's hemi-cube by rows: the same bits as one thread. */
         if (o.threads < 2 ||
-            SC(solve_parallel)(s, o.threads, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg) < 0)
-            SC(solve)(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
+            sc_solve_parallel(s, o.threads, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg) < 0)
+            sc_solve(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
     } else {
         /* Visibility once: every patch's row, loaded or rendered (then saved). */
-        if (o.load_ff ? SC(rows_load)(s, o.load_ff, err, sizeof err) < 0
-                      : SC(rows_compute)(s, pg.tty ? rows_progress : NULL, &pg, err, sizeof err) < 0) {
+        if (o.load_ff ? sc_rows_load(s, o.load_ff, err, sizeof err) < 0
+                      : sc_rows_compute(s, pg.tty ? rows_progress : NULL, &pg, err, sizeof err) < 0) {
             if (pg.tty) fprintf(stderr, "\r%70s\r", "");
             fprintf(stderr, PROG ": %s%s%s\n", o.load_ff ? "" : o.scene, o.load_ff ? "" : ": ", err);
-            SC(destroy)(s);
+            sc_destroy(s);
             obj_free(&sc);
             return 1;
         }
         if (pg.tty) fprintf(stderr, "\r%70s\r", "");
-        if (o.save_ff && SC(rows_save)(s, o.save_ff, err, sizeof err) < 0) {
+        if (o.save_ff && sc_rows_save(s, o.save_ff, err, sizeof err) < 0) {
             fprintf(stderr, PROG ": %s\n", err);
-            SC(destroy)(s);
+            sc_destroy(s);
             obj_free(&sc);
             return 1;
         }
-        SC(get_stats)(s, &st);
+        sc_get_stats(s, &st);
         raster_before_solve = st.raster_calls;
         t_rows = now() - t_mesh;
         pg.start = pg.last = now();
@@ -948,14 +946,14 @@ int main(int argc, char **argv)
                     if (group_of[m] < 0) continue;
                     mm.sc = &sc;
                     mm.material = m;
-                    if (SC(set_surfaces)(s, match_material, &mm, NULL, group_of[m] == g ? sc.materials[m].ke : dark,
+                    if (sc_set_surfaces(s, match_material, &mm, NULL, group_of[m] == g ? sc.materials[m].ke : dark,
                                          err, sizeof err) < 0) {
                         fprintf(stderr, PROG ": %s: %s: %s\n", o.scene, sc.materials[m].name, err);
                         return 1;
                     }
                 }
                 work += solve_rows(s, &o, &pg);
-                sol[g] = SC(keep)(s, ambient);
+                sol[g] = sc_keep(s, ambient);
                 if (!sol[g]) { fprintf(stderr, PROG ": out of memory\n"); return 1; }
                 memcpy(ks[g], o.groups[g].k, sizeof ks[g]);
             }
@@ -964,7 +962,7 @@ int main(int argc, char **argv)
     }
     if (pg.tty) fprintf(stderr, "\r%70s\r", "");
     t_solve = now();
-    SC(get_stats)(s, &st);
+    sc_get_stats(s, &st);
 
     memset(&ot, 0, sizeof ot);
     ot.img = malloc((size_t)o.width * o.height * 3 * sizeof *ot.img);
@@ -1009,7 +1007,7 @@ int main(int argc, char **argv)
         else printf("shots %d  unshot fraction %.6f  saturations %lu\n", work, st.unshot, st.saturations);
         printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", so.res, st.raster_calls, st.raster_pixels);
         if (rows_mode) {
-            SC(get_rows_stats)(s, &rst);
+            sc_get_rows_stats(s, &rst);
             printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n", rst.rows,
                    o.load_ff ? "loaded from " : "computed", o.load_ff ? o.load_ff : "", rst.entries, rst.bytes,
                    rst.rows ? (double)rst.bytes / rst.rows : 0.0, o.save_ff ? "saved" : "not saved");
@@ -1033,13 +1031,13 @@ int main(int argc, char **argv)
         printf("memory: pools %zu bytes, work buffer %zu bytes\n", st.pool_bytes, st.work_bytes);
     }
     if (sol)
-        for (g = 0; g < o.ngroups; g++) SC(solution_free)(sol[g]);
+        for (g = 0; g < o.ngroups; g++) sc_solution_free(sol[g]);
     free(sol);
     free(ks);
     free(group_of);
     free(ot.img);
     free(ot.rgb8);
-    SC(destroy)(s);
+    sc_destroy(s);
     obj_free(&sc);
     return rc;
 }

@@ -1,5 +1,5 @@
 /* image — PNG/PPM reading and writing, tone mapping. See image.h. */
-#include "image.h"
+#include "formats/image.h"
 
 #include <errno.h>
 #include <math.h>

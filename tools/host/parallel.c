@@ -4,7 +4,10 @@
  * long as the shot itself on our 2-core VMs (two threads started for each shot ran no
  * faster than one). A worker that cannot start has its part rendered by the calling
  * thread. The counters are GCC/clang __atomic builtins (acquire/release). */
-#include "parallel.h"
+#if defined(RAD_FLOAT) && RAD_FLOAT
+#include "host/float_names.h"
+#endif
+#include "host/parallel.h"
 
 #include <pthread.h>
 #include <sched.h>
@@ -12,11 +15,6 @@
 
 #include "rad/rad.h"
 
-#if RAD_FLOAT
-#define SC(x) scf_##x
-#else
-#define SC(x) sc_##x
-#endif
 
 #define MAX_THREADS 64
 
@@ -60,9 +58,9 @@ static void *work(void *arg)
     }
 }
 
-int SC(solve_parallel)(SC(solver) *h, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx)
+int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
-    rad_scene_t *s = SC(core)(h);
+    rad_scene_t *s = sc_core(h);
     crew_t c;
     worker_t wk[MAX_THREADS];
     pthread_t tid[MAX_THREADS];

@@ -1,4 +1,4 @@
-/* ffio — stored form factors on disk: the rows of rad_rows_t (rad.h) in a small,
+/* ff_file — stored form factors on disk: the rows of rad_rows_t (rad.h) in a small,
  * versioned, checksummed binary file, so a scene's visibility (every patch's hemi-cube
  * row) is computed once and reused to relight it (host tools only: malloc, stdio).
  *
@@ -15,7 +15,7 @@
  *    24  4        entries M (non-zero form factors over all rows)
  *    28  4        reserved, 0
  *    32  8        geometry fingerprint: FNV-1a 64 of the meshed scene as the core
- *                 holds it (see the glue, tools/scene_twin.c: counts, every vertex
+ *                 holds it (see the glue, tools/host/scene.c: counts, every vertex
  *                 coordinate's bits, every element's vertex indices, patch and surface,
  *                 every patch's surface and element range)
  *    40  4(P+1)   row starts: row p is entries start[p] .. start[p+1]-1;
@@ -35,58 +35,58 @@
  * Writing is atomic (PATH.tmpXXXXXX in the same folder, then rename). Reading checks,
  * in this order: the magic, the version, the size against the header's counts
  * (truncated, or bytes past the end), the checksum, then the rows' structure; the
- * caller then compares the header with its scene (ffio_match). Every error is one line
+ * caller then compares the header with its scene (ff_file_match). Every error is one line
  * "PATH: what is wrong".
  */
-#ifndef RAD_TOOLS_FFIO_H
-#define RAD_TOOLS_FFIO_H
+#ifndef RAD_TOOLS_FF_FILE_H
+#define RAD_TOOLS_FF_FILE_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#define FFIO_VERSION 1
-#define FFIO_KIND_FIXED 1
-#define FFIO_KIND_FLOAT 2
+#define FF_FILE_VERSION 1
+#define FF_FILE_KIND_FIXED 1
+#define FF_FILE_KIND_FLOAT 2
 
 typedef struct {
-    unsigned kind;          /* FFIO_KIND_* */
+    unsigned kind;          /* FF_FILE_KIND_* */
     unsigned res;           /* hemi-cube resolution */
     uint32_t patches, elements, vertices, entries;
     uint64_t fingerprint;
-} ffio_info;
+} ff_file_info;
 
-/* A file read and checked, held in memory until ffio_free. */
+/* A file read and checked, held in memory until ff_file_free. */
 typedef struct {
-    ffio_info info;
+    ff_file_info info;
     unsigned char *data;    /* the whole file */
     size_t size;
-} ffio_file;
+} ff_file_t;
 
-/* FNV-1a 64: start with FFIO_FNV_START, feed bytes. */
-#define FFIO_FNV_START 1469598103934665603ull
-uint64_t ffio_fnv(uint64_t h, const void *p, size_t n);
+/* FNV-1a 64: start with FF_FILE_FNV_START, feed bytes. */
+#define FF_FILE_FNV_START 1469598103934665603ull
+uint64_t ff_file_fnv(uint64_t h, const void *p, size_t n);
 /* Feeds V as 4 little-endian bytes. */
-uint64_t ffio_fnv_u32(uint64_t h, uint32_t v);
+uint64_t ff_file_fnv_u32(uint64_t h, uint32_t v);
 
 /* Writes rows: START (patches + 1 offsets), IDS (entries ids, each ID_BYTES = 2 or 4
  * bytes wide in memory, host order), CODES (entries). Returns 0 or -1 with a message. */
-int ffio_save(const char *path, const ffio_info *info, const uint32_t *start, const void *ids,
+int ff_file_save(const char *path, const ff_file_info *info, const uint32_t *start, const void *ids,
               unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen);
 
 /* Reads and checks PATH (magic, version, size, checksum, structure). Returns 0, or -1
  * with a message (nothing to free). */
-int ffio_load(const char *path, ffio_file *f, char *err, size_t errlen);
+int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen);
 
 /* 0 when F was made for the scene WANT describes (same build kind, resolution, counts
  * and fingerprint), else -1 with a message naming PATH and what differs. */
-int ffio_match(const ffio_file *f, const ffio_info *want, const char *path, char *err, size_t errlen);
+int ff_file_match(const ff_file_t *f, const ff_file_info *want, const char *path, char *err, size_t errlen);
 
-/* Copies the rows out of F into caller arrays sized from f->info (as for ffio_save). */
-void ffio_rows(const ffio_file *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes);
+/* Copies the rows out of F into caller arrays sized from f->info (as for ff_file_save). */
+void ff_file_rows(const ff_file_t *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes);
 
-void ffio_free(ffio_file *f);
+void ff_file_free(ff_file_t *f);
 
 /* "fixed" or "float". */
-const char *ffio_kind_name(unsigned kind);
+const char *ff_file_kind_name(unsigned kind);
 
 #endif

@@ -1,25 +1,23 @@
 /* rad host glue (see scene.h): compiled once per build of the core. */
-#include "scene.h"
+#if defined(RAD_FLOAT) && RAD_FLOAT
+#include "host/float_names.h"
+#endif
+#include "host/scene.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "ffio.h"
+#include "formats/ff_file.h"
 #include "rad/rad.h"
 
-#if RAD_FLOAT
-#define SC(x) scf_##x
-#else
-#define SC(x) sc_##x
-#endif
 
 #define CORE_HALF_EXTENT 32.0   /* scene scaled into +-32: half the core's range */
 #define CORE_EMIT_PEAK 256.0    /* brightest emission channel, well inside 4096 */
 #define RHO_MAX (65535.0 / 65536.0)
 
-struct SC(solver) {
+struct sc_solver {
     rad_scene_t s;
     rad_pools_t pools;
     int *tags;                  /* per surface */
@@ -52,7 +50,7 @@ static void warnf(warner_t *w, int tag, const char *msg, int code)
     w->emitted++;
 }
 
-static void free_pools(struct SC(solver) *h)
+static void free_pools(struct sc_solver *h)
 {
     free(h->pools.surfaces); free(h->pools.patches); free(h->pools.elements);
     free(h->pools.vertices); free(h->pools.work); free(h->tags); free(h->emit);
@@ -61,7 +59,7 @@ static void free_pools(struct SC(solver) *h)
     h->emit = NULL;
 }
 
-static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const rad_config_t *cfg)
+static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad_config_t *cfg)
 {
     uint32_t nacc;
     rad_pools_t *p = &h->pools;
@@ -84,7 +82,7 @@ static int alloc_pools(struct SC(solver) *h, long elements, int npolys, const ra
     return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
 }
 
-static rad_real_t emit_ch(struct SC(solver) *h, double e)
+static rad_real_t emit_ch(struct sc_solver *h, double e)
 {
     /* Emissions so small that 256 / peak overflows still scale by their ratio to the
      * peak (results in caller units then underflow to 0). */
@@ -92,13 +90,13 @@ static rad_real_t emit_ch(struct SC(solver) *h, double e)
     return RAD_REAL(v > 4096.0 ? 4096.0 : v);
 }
 
-static rad_real_t rho_ch(struct SC(solver) *h, double r)
+static rad_real_t rho_ch(struct sc_solver *h, double r)
 {
     if (r >= 1.0) { h->clamped++; r = RHO_MAX; }
     return RAD_REAL(r);
 }
 
-static void to_core(const struct SC(solver) *h, const double *p, rad_vec3_t *v)
+static void to_core(const struct sc_solver *h, const double *p, rad_vec3_t *v)
 {
     v->x = RAD_REAL((p[0] - h->off[0]) * h->scale);
     v->y = RAD_REAL((p[1] - h->off[1]) * h->scale);
@@ -107,7 +105,7 @@ static void to_core(const struct SC(solver) *h, const double *p, rad_vec3_t *v)
 
 /* Adds one polygon; a quad the core refuses as non-planar is split in two. Returns
  * RAD_OK, RAD_ERR_FULL (grow and retry) or another error (fatal). */
-static int add_poly(struct SC(solver) *h, const sc_poly *q, warner_t *w)
+static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
 {
     rad_vec3_t v[4];
     rad_rgb_t rho, em;
@@ -138,7 +136,7 @@ static int add_poly(struct SC(solver) *h, const sc_poly *q, warner_t *w)
     return rc;
 }
 
-static int frame_scene(struct SC(solver) *h, const sc_poly *polys, int n, char *err, size_t errlen)
+static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *err, size_t errlen)
 {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     double half = 0.0, emax = 0.0;
@@ -186,7 +184,7 @@ static int frame_scene(struct SC(solver) *h, const sc_poly *polys, int n, char *
 }
 
 /* A generous estimate of the elements the core will make (it grows if short). */
-static long estimate_elements(const struct SC(solver) *h, const sc_poly *polys, int n, double me)
+static long estimate_elements(const struct sc_solver *h, const sc_poly *polys, int n, double me)
 {
     double sum = 0.0;
     int i;
@@ -206,11 +204,11 @@ static long estimate_elements(const struct SC(solver) *h, const sc_poly *polys, 
     return (long)(sum > 1024.0 ? sum : 1024.0);
 }
 
-SC(solver) *SC(create)(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
+sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
                        char *err, size_t errlen)
 {
     static const sc_opts defaults = {0, 0, 0, 0, 0, 0};
-    struct SC(solver) *h = calloc(1, sizeof *h);
+    struct sc_solver *h = calloc(1, sizeof *h);
     rad_config_t cfg;
     long cap, limit;
     warner_t w;
@@ -258,16 +256,16 @@ SC(solver) *SC(create)(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn
         free_pools(h);
         if (cap >= limit) {
             snprintf(err, errlen, "the scene needs more than %ld elements: raise the element size", limit);
-            SC(destroy)(h);
+            sc_destroy(h);
             return NULL;
         }
         cap *= 2;
     }
-    SC(destroy)(h);
+    sc_destroy(h);
     return NULL;
 }
 
-void SC(destroy)(SC(solver) *h)
+void sc_destroy(sc_solver *h)
 {
     if (!h) return;
     free_pools(h);
@@ -275,12 +273,12 @@ void SC(destroy)(SC(solver) *h)
     free(h);
 }
 
-static void unmix(struct SC(solver) *h)
+static void unmix(struct sc_solver *h)
 {
-    if (h->mixed) SC(restart)(h); /* also puts the emissions back at their scale */
+    if (h->mixed) sc_restart(h); /* also puts the emissions back at their scale */
 }
 
-int SC(solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
+int sc_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     int done = 0;
     rad_real_t t = RAD_REAL(tol);
@@ -294,7 +292,7 @@ int SC(solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn progress,
     return done;
 }
 
-void SC(get_stats)(SC(solver) *h, sc_stats *st)
+void sc_get_stats(sc_solver *h, sc_stats *st)
 {
     const rad_pools_t *p = &h->pools;
     memset(st, 0, sizeof *st);
@@ -316,26 +314,26 @@ void SC(get_stats)(SC(solver) *h, sc_stats *st)
                                     h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
 }
 
-static void rgb_out(const struct SC(solver) *h, const rad_rgb_t *c, double *o)
+static void rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
 {
     o[0] = RAD_TO_DOUBLE(c->r) / h->escale;
     o[1] = RAD_TO_DOUBLE(c->g) / h->escale;
     o[2] = RAD_TO_DOUBLE(c->b) / h->escale;
 }
 
-void SC(element_rgb)(SC(solver) *h, int e, int ambient, double rgb[3])
+void sc_element_rgb(sc_solver *h, int e, int ambient, double rgb[3])
 {
     rad_rgb_t c = {0, 0, 0};
     rad_element_radiosity(&h->s, (uint32_t)e, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, &c);
     rgb_out(h, &c, rgb);
 }
 
-double SC(element_area)(SC(solver) *h, int e)
+double sc_element_area(sc_solver *h, int e)
 {
     return RAD_TO_DOUBLE(h->pools.elements[e].area) / (h->scale * h->scale);
 }
 
-void SC(vertex_pos)(SC(solver) *h, int v, double p[3])
+void sc_vertex_pos(sc_solver *h, int v, double p[3])
 {
     const rad_vec3_t *c = &h->pools.vertices[v];
     p[0] = RAD_TO_DOUBLE(c->x) / h->scale + h->off[0];
@@ -343,7 +341,7 @@ void SC(vertex_pos)(SC(solver) *h, int v, double p[3])
     p[2] = RAD_TO_DOUBLE(c->z) / h->scale + h->off[2];
 }
 
-int SC(element_vertices)(SC(solver) *h, int e, int v[4])
+int sc_element_vertices(sc_solver *h, int e, int v[4])
 {
     const rad_element_t *el = &h->pools.elements[e];
     int k, n = el->v[3] == RAD_INDEX_NONE ? 3 : 4;
@@ -351,18 +349,18 @@ int SC(element_vertices)(SC(solver) *h, int e, int v[4])
     return n;
 }
 
-void SC(element_centroid)(SC(solver) *h, int e, double c[3])
+void sc_element_centroid(sc_solver *h, int e, double c[3])
 {
-    int v[4], n = SC(element_vertices)(h, e, v), k, a;
+    int v[4], n = sc_element_vertices(h, e, v), k, a;
     c[0] = c[1] = c[2] = 0.0;
     for (k = 0; k < n; k++) {
         double p[3];
-        SC(vertex_pos)(h, v[k], p);
+        sc_vertex_pos(h, v[k], p);
         for (a = 0; a < 3; a++) c[a] += p[a] / n;
     }
 }
 
-int SC(element_tag)(SC(solver) *h, int e)
+int sc_element_tag(sc_solver *h, int e)
 {
     return h->tags[h->pools.elements[e].surface];
 }
@@ -370,14 +368,14 @@ int SC(element_tag)(SC(solver) *h, int e)
 /* A double that RAD_REAL converts without overflow (and not NaN). */
 static int fits_core(double x) { return x > -32767.0 && x < 32767.0; }
 
-static rad_rgb_t *shade_core(struct SC(solver) *h, int ambient)
+static rad_rgb_t *shade_core(struct sc_solver *h, int ambient)
 {
     rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v);
     if (v) rad_shade_vertices(&h->s, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, v, h->s.n_vertices);
     return v;
 }
 
-int SC(shade)(SC(solver) *h, int ambient, double *rgb)
+int sc_shade(sc_solver *h, int ambient, double *rgb)
 {
     rad_rgb_t *v = shade_core(h, ambient);
     uint32_t i;
@@ -387,7 +385,7 @@ int SC(shade)(SC(solver) *h, int ambient, double *rgb)
     return 0;
 }
 
-int SC(render)(SC(solver) *h, const sc_camera *cam, int ambient, int w, int hgt, float *rgb,
+int sc_render(sc_solver *h, const sc_camera *cam, int ambient, int w, int hgt, float *rgb,
                char *err, size_t errlen)
 {
     rad_camera_t c;
@@ -422,7 +420,7 @@ int SC(render)(SC(solver) *h, const sc_camera *cam, int ambient, int w, int hgt,
     return rc < 0 ? -1 : 0;
 }
 
-int SC(form_factors)(SC(solver) *h, int p, double *ff)
+int sc_form_factors(sc_solver *h, int p, double *ff)
 {
     rad_ff_t *f = malloc((h->s.n_elements ? h->s.n_elements : 1) * sizeof *f);
     int rc, e;
@@ -433,7 +431,7 @@ int SC(form_factors)(SC(solver) *h, int p, double *ff)
     return rc < 0 ? -1 : 0;
 }
 
-uint64_t SC(checksum)(SC(solver) *h)
+uint64_t sc_checksum(sc_solver *h)
 {
     uint64_t x = 1469598103934665603ull;
     uint32_t e;
@@ -447,17 +445,17 @@ uint64_t SC(checksum)(SC(solver) *h)
     return x;
 }
 
-void *SC(core)(SC(solver) *h) { return &h->s; }
+void *sc_core(sc_solver *h) { return &h->s; }
 
 /* ---- stored form factors --------------------------------------------------------- */
 
 #if RAD_FLOAT
-#define FF_KIND FFIO_KIND_FLOAT
+#define FF_KIND FF_FILE_KIND_FLOAT
 #else
-#define FF_KIND FFIO_KIND_FIXED
+#define FF_KIND FF_FILE_KIND_FIXED
 #endif
 
-static void rows_free(struct SC(solver) *h)
+static void rows_free(struct sc_solver *h)
 {
     free(h->rows.start); free(h->rows.ids); free(h->rows.ffs);
     memset(&h->rows, 0, sizeof h->rows);
@@ -466,7 +464,7 @@ static void rows_free(struct SC(solver) *h)
 }
 
 /* Room for ENTRIES entries (contents kept). 0 or -1 (out of memory: nothing changed). */
-static int rows_reserve(struct SC(solver) *h, uint32_t entries)
+static int rows_reserve(struct sc_solver *h, uint32_t entries)
 {
     rad_index_t *ids = realloc(h->rows.ids, (entries ? entries : 1) * sizeof *ids);
     uint16_t *ffs;
@@ -488,40 +486,40 @@ static uint32_t bits32(rad_real_t r)
 
 static uint32_t idx32(rad_index_t i) { return i == RAD_INDEX_NONE ? 0xFFFFFFFFu : (uint32_t)i; }
 
-/* The meshed geometry as the core holds it (see ffio.h). */
-static uint64_t fingerprint(const struct SC(solver) *h)
+/* The meshed geometry as the core holds it (see ff_file.h). */
+static uint64_t fingerprint(const struct sc_solver *h)
 {
     const rad_scene_t *s = &h->s;
-    uint64_t x = FFIO_FNV_START;
+    uint64_t x = FF_FILE_FNV_START;
     uint32_t i, k;
     typedef char real_is_4_bytes[sizeof(rad_real_t) == 4 ? 1 : -1];
     (void)sizeof(real_is_4_bytes);
-    x = ffio_fnv_u32(x, s->n_surfaces);
-    x = ffio_fnv_u32(x, s->n_patches);
-    x = ffio_fnv_u32(x, s->n_elements);
-    x = ffio_fnv_u32(x, s->n_vertices);
+    x = ff_file_fnv_u32(x, s->n_surfaces);
+    x = ff_file_fnv_u32(x, s->n_patches);
+    x = ff_file_fnv_u32(x, s->n_elements);
+    x = ff_file_fnv_u32(x, s->n_vertices);
     for (i = 0; i < s->n_vertices; i++) {
         const rad_vec3_t *v = &s->pools.vertices[i];
-        x = ffio_fnv_u32(x, bits32(v->x));
-        x = ffio_fnv_u32(x, bits32(v->y));
-        x = ffio_fnv_u32(x, bits32(v->z));
+        x = ff_file_fnv_u32(x, bits32(v->x));
+        x = ff_file_fnv_u32(x, bits32(v->y));
+        x = ff_file_fnv_u32(x, bits32(v->z));
     }
     for (i = 0; i < s->n_elements; i++) {
         const rad_element_t *e = &s->pools.elements[i];
-        for (k = 0; k < 4; k++) x = ffio_fnv_u32(x, idx32(e->v[k]));
-        x = ffio_fnv_u32(x, idx32(e->patch));
-        x = ffio_fnv_u32(x, idx32(e->surface));
+        for (k = 0; k < 4; k++) x = ff_file_fnv_u32(x, idx32(e->v[k]));
+        x = ff_file_fnv_u32(x, idx32(e->patch));
+        x = ff_file_fnv_u32(x, idx32(e->surface));
     }
     for (i = 0; i < s->n_patches; i++) {
         const rad_patch_t *p = &s->pools.patches[i];
-        x = ffio_fnv_u32(x, idx32(p->surface));
-        x = ffio_fnv_u32(x, idx32(p->first_element));
-        x = ffio_fnv_u32(x, idx32(p->n_elements));
+        x = ff_file_fnv_u32(x, idx32(p->surface));
+        x = ff_file_fnv_u32(x, idx32(p->first_element));
+        x = ff_file_fnv_u32(x, idx32(p->n_elements));
     }
     return x;
 }
 
-static void ff_info(const struct SC(solver) *h, ffio_info *in)
+static void ff_info(const struct sc_solver *h, ff_file_info *in)
 {
     memset(in, 0, sizeof *in);
     in->kind = FF_KIND;
@@ -533,7 +531,7 @@ static void ff_info(const struct SC(solver) *h, ffio_info *in)
     in->fingerprint = fingerprint(h);
 }
 
-int SC(rows_compute)(SC(solver) *h, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen)
+int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen)
 {
     rad_scene_t *s = &h->s;
     uint32_t np = s->n_patches, ne = s->n_elements;
@@ -587,32 +585,32 @@ int SC(rows_compute)(SC(solver) *h, sc_rows_progress_fn progress, void *ctx, cha
     return 0;
 }
 
-int SC(rows_save)(SC(solver) *h, const char *path, char *err, size_t errlen)
+int sc_rows_save(sc_solver *h, const char *path, char *err, size_t errlen)
 {
-    ffio_info in;
+    ff_file_info in;
     if (!h->has_rows) { snprintf(err, errlen, "%s: no form factor rows to save", path); return -1; }
     ff_info(h, &in);
-    return ffio_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs, err, errlen);
+    return ff_file_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs, err, errlen);
 }
 
-int SC(rows_load)(SC(solver) *h, const char *path, char *err, size_t errlen)
+int sc_rows_load(sc_solver *h, const char *path, char *err, size_t errlen)
 {
-    ffio_file f;
-    ffio_info want;
+    ff_file_t f;
+    ff_file_info want;
     uint32_t np = h->s.n_patches;
-    if (ffio_load(path, &f, err, errlen) < 0) return -1;
+    if (ff_file_load(path, &f, err, errlen) < 0) return -1;
     rows_free(h);
     ff_info(h, &want);
-    if (ffio_match(&f, &want, path, err, errlen) < 0) { ffio_free(&f); return -1; }
+    if (ff_file_match(&f, &want, path, err, errlen) < 0) { ff_file_free(&f); return -1; }
     h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
     if (!h->rows.start || rows_reserve(h, f.info.entries) < 0) {
         snprintf(err, errlen, "%s: out of memory for %u form factor entries", path, f.info.entries);
         rows_free(h);
-        ffio_free(&f);
+        ff_file_free(&f);
         return -1;
     }
-    ffio_rows(&f, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs);
-    ffio_free(&f);
+    ff_file_rows(&f, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs);
+    ff_file_free(&f);
     h->rows.max_rows = np;
     h->rows.n_rows = np;
     h->has_rows = 1;
@@ -620,7 +618,7 @@ int SC(rows_load)(SC(solver) *h, const char *path, char *err, size_t errlen)
     return 0;
 }
 
-void SC(get_rows_stats)(SC(solver) *h, sc_rows_stats *st)
+void sc_get_rows_stats(sc_solver *h, sc_rows_stats *st)
 {
     memset(st, 0, sizeof *st);
     if (!h->has_rows) return;
@@ -632,7 +630,7 @@ void SC(get_rows_stats)(SC(solver) *h, sc_rows_stats *st)
     st->raster_calls = h->rows_raster;
 }
 
-int SC(rows_solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
+int sc_rows_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     int done = 0;
     rad_real_t t = RAD_REAL(tol);
@@ -647,7 +645,7 @@ int SC(rows_solve)(SC(solver) *h, int max_shots, double tol, sc_progress_fn prog
     return done;
 }
 
-int SC(rows_gauss_seidel)(SC(solver) *h, int max_iter, double tol, char *err, size_t errlen)
+int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size_t errlen)
 {
     uint32_t np = h->s.n_patches;
     size_t need = RAD_GS_ENTRIES(np);
@@ -673,7 +671,7 @@ int SC(rows_gauss_seidel)(SC(solver) *h, int max_iter, double tol, char *err, si
     return rc;
 }
 
-int SC(set_surfaces)(SC(solver) *h, sc_tag_match_fn match, void *ctx, const double *rho, const double *emit,
+int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double *rho, const double *emit,
                      char *err, size_t errlen)
 {
     rad_rgb_t r;
@@ -694,14 +692,14 @@ int SC(set_surfaces)(SC(solver) *h, sc_tag_match_fn match, void *ctx, const doub
         if (emit) memcpy(&h->emit[3 * i], emit, 3 * sizeof *emit);
         n++;
     }
-    SC(restart)(h);
+    sc_restart(h);
     return n;
 }
 
 /* Emissions to the core at a scale that maps the brightest to CORE_EMIT_PEAK, as at
  * create: a relit scene (or one light group alone) keeps the core's full precision
  * however dim it is. Results map back through the same scale. */
-void SC(restart)(SC(solver) *h)
+void sc_restart(sc_solver *h)
 {
     double peak = 0;
     uint32_t i;
@@ -720,16 +718,16 @@ void SC(restart)(SC(solver) *h)
     h->mixed = 0;
 }
 
-struct SC(solution) {
+struct sc_solution {
     uint32_t n;
     double escale;              /* the scale its radiosities are in */
     rad_rgb_t rgb[1];           /* n entries, core units */
 };
 
-SC(solution) *SC(keep)(SC(solver) *h, int ambient)
+sc_solution *sc_keep(sc_solver *h, int ambient)
 {
     uint32_t n = h->s.n_elements, e;
-    struct SC(solution) *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
+    struct sc_solution *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
     if (!k) return NULL;
     k->n = n;
     k->escale = h->escale;
@@ -738,9 +736,9 @@ SC(solution) *SC(keep)(SC(solver) *h, int ambient)
     return k;
 }
 
-void SC(solution_free)(SC(solution) *k) { free(k); }
+void sc_solution_free(sc_solution *k) { free(k); }
 
-int SC(mix)(SC(solver) *h, SC(solution) *const *groups, const double (*intensity)[3], int n, char *err,
+int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3], int n, char *err,
             size_t errlen)
 {
     uint32_t ne = h->s.n_elements, e;

@@ -1,0 +1,40 @@
+/* rad host glue: compiled with RAD_FLOAT=1, a file that includes this before
+ * host/scene.h defines and calls the float twin's functions (scf_*, declared in
+ * host/scene_float.h) under the names of the fixed build. Only the files built once
+ * per build of the core include it: tools/host/scene.c, tools/host/parallel.c and
+ * tools/cli/rad_cli.c. */
+#ifndef RAD_TOOLS_FLOAT_NAMES_H
+#define RAD_TOOLS_FLOAT_NAMES_H
+
+#define RAD_HOST_FLOAT_NAMES 1
+#define sc_solver scf_solver
+#define sc_solution scf_solution
+#define sc_create scf_create
+#define sc_destroy scf_destroy
+#define sc_solve scf_solve
+#define sc_get_stats scf_get_stats
+#define sc_element_rgb scf_element_rgb
+#define sc_element_area scf_element_area
+#define sc_element_centroid scf_element_centroid
+#define sc_element_tag scf_element_tag
+#define sc_element_vertices scf_element_vertices
+#define sc_vertex_pos scf_vertex_pos
+#define sc_shade scf_shade
+#define sc_render scf_render
+#define sc_form_factors scf_form_factors
+#define sc_checksum scf_checksum
+#define sc_core scf_core
+#define sc_rows_compute scf_rows_compute
+#define sc_rows_save scf_rows_save
+#define sc_rows_load scf_rows_load
+#define sc_get_rows_stats scf_get_rows_stats
+#define sc_rows_solve scf_rows_solve
+#define sc_rows_gauss_seidel scf_rows_gauss_seidel
+#define sc_set_surfaces scf_set_surfaces
+#define sc_restart scf_restart
+#define sc_keep scf_keep
+#define sc_solution_free scf_solution_free
+#define sc_mix scf_mix
+#define sc_solve_parallel scf_solve_parallel
+
+#endif

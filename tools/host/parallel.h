@@ -1,0 +1,15 @@
+/* rad host glue: progressive refinement with each shot's hemi-cube rendered by several
+ * threads (pthreads here; the core has none), each a run of its rows. The result is
+ * bit for bit that of the serial solve. Built once per build of the core, like
+ * host/scene.c (the float twin's scf_solve_parallel is in host/scene_float.h). */
+#ifndef RAD_TOOLS_PARALLEL_H
+#define RAD_TOOLS_PARALLEL_H
+
+#include "host/scene.h"
+
+/* As sc_solve with THREADS threads (1: serial through the same split). Returns the
+ * shots done, or -1 when the core cannot split (its work buffer bands the hemi-cube)
+ * or threads cannot start. */
+int sc_solve_parallel(sc_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+
+#endif

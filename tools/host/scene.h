@@ -1,0 +1,131 @@
+/* rad host glue: scenes of double-precision polygons solved through the core.
+ *
+ * tools/host/scene.c is compiled twice, once against the fixed library (names sc_*)
+ * and once against the float twin (names scf_*), so a tool or test can run the same
+ * scene through both. It owns the pools (malloc'd, grown until the scene fits),
+ * scales the scene into the core's coordinate range (the radiosity solution does not
+ * depend on scale) and emissions to a fixed peak (it is linear in emission), and maps
+ * every result back to the caller's units.
+ */
+#ifndef RAD_TOOLS_SCENE_H
+#define RAD_TOOLS_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    double v[4][3];
+    int n;            /* 3 or 4 */
+    double rho[3];    /* reflectance, [0, 1) (values >= 1 are clamped and counted) */
+    double emit[3];   /* emission, >= 0 */
+    int tag;          /* caller's id (material, source line): passed back in warnings */
+} sc_poly;
+
+typedef struct {
+    double max_patch, max_element;  /* in the caller's units; 0: 1/8 and 1/32 of the extent */
+    int res;                        /* hemi-cube resolution; 0: 64 */
+    int band_rows;                  /* 0: all faces at once */
+    long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
+    int no_overshoot;               /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
+} sc_opts;
+
+typedef struct {
+    int surfaces, patches, elements, vertices, skipped, split, clamped;
+    int shots;
+    double unshot;                  /* unshot fraction */
+    unsigned long saturations;
+    unsigned long raster_calls;
+    unsigned long long raster_pixels;
+    size_t pool_bytes, work_bytes;  /* memory handed to the core */
+} sc_stats;
+
+typedef struct {
+    double eye[3], target[3], up[3];
+    double fov_deg;                 /* vertical field of view */
+} sc_camera;
+
+typedef void (*sc_warn_fn)(void *ctx, int tag, const char *msg);
+typedef int (*sc_progress_fn)(void *ctx, int shots, double unshot); /* nonzero: stop */
+typedef int (*sc_rows_progress_fn)(void *ctx, int rows, int total); /* nonzero: stop */
+typedef int (*sc_tag_match_fn)(void *ctx, int tag);                 /* nonzero: this tag */
+
+typedef struct {
+    int rows;                       /* patches with a stored row (0: none) */
+    unsigned long entries;          /* non-zero form factors stored */
+    size_t bytes;                   /* memory of the rows in use: starts, ids, codes */
+    size_t matrix_bytes;            /* Gauss-Seidel matrix, once allocated */
+    unsigned long raster_calls;     /* hemi-cube polygons rendered to compute them */
+} sc_rows_stats;
+
+typedef struct sc_solver sc_solver;
+typedef struct sc_solution sc_solution;
+/* Builds the scene; NULL with a message in err on failure. */
+sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn,
+                       void *ctx, char *err, size_t errlen);
+void sc_destroy(sc_solver *s);
+/* Shoots until the unshot fraction <= tol or max_shots; returns shots done. */
+int sc_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+void sc_get_stats(sc_solver *s, sc_stats *st);
+/* Element radiosity in caller units (with the ambient term if ambient != 0). */
+void sc_element_rgb(sc_solver *s, int e, int ambient, double rgb[3]);
+double sc_element_area(sc_solver *s, int e);
+void sc_element_centroid(sc_solver *s, int e, double c[3]);
+int sc_element_tag(sc_solver *s, int e);
+/* Vertex ids of element e (3 or 4, returned). */
+int sc_element_vertices(sc_solver *s, int e, int v[4]);
+void sc_vertex_pos(sc_solver *s, int v, double p[3]);
+/* Gouraud vertex colours (caller units), n >= stats.vertices entries of 3. */
+int sc_shade(sc_solver *s, int ambient, double *rgb);
+/* Renders w x h linear RGB (caller units, row 0 at top); 0 or -1 with err. */
+int sc_render(sc_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb,
+               char *err, size_t errlen);
+/* Form factors from patch p to every element (n >= stats.elements). */
+int sc_form_factors(sc_solver *s, int p, double *ff);
+/* The raw bits of every element's radiosity, hashed (FNV-1a 64). */
+uint64_t sc_checksum(sc_solver *s);
+/* The core's rad_scene_t (of this build) inside, for glue of the same build. */
+void *sc_core(sc_solver *s);
+
+/* ---- stored form factors (rad_rows_t): visibility once, then relighting ---- */
+/* Renders every patch's hemi-cube once and keeps its row (malloc'd, grown until
+ * it fits). Progress may stop it (-1). Returns 0 or -1 with err. */
+int sc_rows_compute(sc_solver *s, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen);
+/* Writes the rows to PATH (tools/formats/ff_file.h, atomic) / reads them from PATH, checking
+ * that the file was made by this build for this very mesh (fingerprint) at this
+ * resolution. No hemi-cube is rendered. 0 or -1 with "PATH: what" in err. */
+int sc_rows_save(sc_solver *s, const char *path, char *err, size_t errlen);
+int sc_rows_load(sc_solver *s, const char *path, char *err, size_t errlen);
+/* Rows memory and counters (all zero without rows). */
+void sc_get_rows_stats(sc_solver *s, sc_rows_stats *st);
+/* Progressive refinement through the rows (no hemi-cube), as sc_solve. Returns
+ * the shots, or -1 without rows. */
+int sc_rows_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+/* The full-matrix Gauss-Seidel solve on the rows (rad_rows_gauss_seidel; matrix of
+ * RAD_GS_ENTRIES(patches) malloc'd once and kept). Returns the sweeps, or -1 with
+ * err (no rows, more than 16384 patches, out of memory). */
+int sc_rows_gauss_seidel(sc_solver *s, int max_iter, double tol, char *err, size_t errlen);
+/* New reflectance RHO and/or emission EMIT (caller units; NULL keeps it) for every
+ * surface whose polygon tag MATCH accepts, then sc_restart. Reflectance >= 1 is
+ * clamped as at create. Returns the surfaces changed, or -1 with err (negative or
+ * non-finite values). */
+int sc_set_surfaces(sc_solver *s, sc_tag_match_fn match, void *ctx, const double *rho,
+                     const double *emit, char *err, size_t errlen);
+/* Resets the solution to the emission alone (the rows stay). As at create, the
+ * brightest emission now set goes to the core at 256, so a dim relit scene (one
+ * light group alone) keeps the core's precision; results map back to caller units. */
+void sc_restart(sc_solver *s);
+/* A solution kept aside: every element's radiosity, with the ambient term baked in
+ * if AMBIENT (radiosity is linear in emission, so is the ambient term). */
+sc_solution *sc_keep(sc_solver *s, int ambient);
+void sc_solution_free(sc_solution *k);
+/* Light groups: sets every element's radiosity to sum_g INTENSITY[g] * GROUPS[g]
+ * per channel (rad_mix's sum, in double over caller units, since every solution
+ * has its own scale). Until the next solve or restart, element_rgb, shade and
+ * render show this mix and ignore their ambient flag (the kept solutions carry
+ * their own); solving again starts from the emission. 0 or -1 with err. */
+int sc_mix(sc_solver *s, sc_solution *const *groups, const double (*intensity)[3], int n,
+            char *err, size_t errlen);
+
+#include "host/scene_float.h"
+
+#endif
