@@ -13,12 +13,15 @@
 #include "internal.h"
 
 typedef struct {
-    unsigned face;       /* 0 top, 1..4 sides */
-    int row0, row1;      /* rows of the face this region holds */
-    uint32_t offset;     /* first pixel in the work buffer's face buffers */
+    unsigned face;   /* 0 top, 1..4 sides */
+    int row0, row1;  /* rows of the face this region holds */
+    uint32_t offset; /* first pixel in the work buffer's face buffers */
 } region_t;
 
-static uint32_t face_rows(const rad_scene_t *s, unsigned f) { return f ? s->cfg.res / 2u : s->cfg.res; }
+static uint32_t face_rows(const rad_scene_t *s, unsigned f)
+{
+    return f ? s->cfg.res / 2u : s->cfg.res;
+}
 /* First pixel of face F when all five faces are in the buffers: the top, then the sides. */
 static uint32_t face_offset(const rad_scene_t *s, unsigned f)
 {
@@ -43,7 +46,10 @@ static uint64_t raw_dff(uint32_t res, unsigned side, uint32_t i, uint32_t j, uns
 static unsigned bitlen64(uint64_t v)
 {
     unsigned b = 0;
-    while (v) { b++; v >>= 1; }
+    while (v) {
+        b++;
+        v >>= 1;
+    }
     return b;
 }
 
@@ -80,7 +86,8 @@ int rad__hemicube_init(rad_scene_t *s)
     uint32_t nacc = s->pools.max_elements > s->pools.max_vertices ? s->pools.max_elements
                                                                   : s->pools.max_vertices;
     uintptr_t base = (uintptr_t)s->pools.work, start = (base + 7u) & ~(uintptr_t)7u;
-    size_t fixed = res * sizeof(uint32_t) + (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail, pixels, band;
+    size_t fixed = res * sizeof(uint32_t) + (2u * (size_t)q * q + nacc) * sizeof(rad_ff_t), avail,
+           pixels, band;
 
     if (s->pools.work_bytes < (size_t)(start - base) + fixed) return RAD_ERR_WORK;
     avail = s->pools.work_bytes - (size_t)(start - base) - fixed;
@@ -141,8 +148,10 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 
 /* The faces look along +z, +x, -x, +y, -y: their axes a (across), b (up) and d (depth)
  * are the cube's axes x, y, z (0, 1, 2) of FACE_AXIS, times FACE_SIGN. */
-static const unsigned char face_axis[5][3] = {{0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {0, 2, 1}, {0, 2, 1}};
-static const signed char face_sign[5][3] = {{1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {1, 1, 1}, {1, 1, -1}};
+static const unsigned char face_axis[5][3] = {
+    {0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {0, 2, 1}, {0, 2, 1}};
+static const signed char face_sign[5][3] = {
+    {1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {1, 1, 1}, {1, 1, -1}};
 
 static rad_real_t axis(rad_vec3_t l, unsigned face, unsigned k)
 {
@@ -198,8 +207,8 @@ typedef struct {
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
-static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t *r, rad__frustum_t *f,
-                        rad__target_t *t)
+static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t *r,
+                        rad__frustum_t *f, rad__target_t *t)
 {
     f->half = r->face != 0;
     f->width = (int)s->cfg.res;
@@ -216,7 +225,8 @@ static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t
 
 /* Surface SF into the pass's regions: its outline drawn once a face, each pixel given
  * the element of its lattice it sees (one element: that one). */
-static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps, const rad_surface_t *sf)
+static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps,
+                           const rad_surface_t *sf)
 {
     uint32_t k[4], all = 0x1FFFFFF, any = 0;
     rad_vec3_t loc[4];
@@ -226,7 +236,8 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
 
     /* Facing away at every corner (a quad may be planar only within rounding):
      * invisible. */
-    for (i = 0; i < n; i++) front |= rad__dot(sf->normal, rad__sub(ps->c, s->pools.vertices[k[i]])) > 0;
+    for (i = 0; i < n; i++)
+        front |= rad__dot(sf->normal, rad__sub(ps->c, s->pools.vertices[k[i]])) > 0;
     if (!front) return;
     for (i = 0; i < n; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
@@ -268,7 +279,8 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
         const rad_index_t *ids = ibuf + reg->offset + (size_t)(r - reg->row0) * res;
         const rad_ff_t *row;
         if (reg->face == 0)
-            row = s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
+            row =
+                s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
         else
             row = s->dff_side + (size_t)r * q;
         for (i = 0; i < q; i++)
@@ -301,16 +313,18 @@ static void clear_region(const rad_scene_t *s, const canvas_t *cv, const region_
  * by a different one for neighbouring shooters, spreads that error so it averages out.
  * The turn depends on the patch alone, not on when it shoots, so the result does not
  * depend on the order of shots among patches of equal power. */
-static const uint8_t spins[8][3] = {
-    {3, 4, 5}, {12, 5, 13}, {8, 15, 17}, {24, 7, 25}, {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
+static const uint8_t spins[8][3] = {{3, 4, 5},    {12, 5, 13},  {8, 15, 17}, {24, 7, 25},
+                                    {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
 
 static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 {
     rad_vec3_t helper = {0, 0, 0}, u0, v0;
     const uint8_t *t = spins[spin % 8u];
     /* A tangent frame from the axis least aligned with the normal, then turned. */
-    if ((n.x < 0 ? -n.x : n.x) < RAD__Q(0.57)) helper.x = RAD__ONE;
-    else helper.y = RAD__ONE;
+    if ((n.x < 0 ? -n.x : n.x) < RAD__Q(0.57))
+        helper.x = RAD__ONE;
+    else
+        helper.y = RAD__ONE;
     rad__normalize(rad__cross(n, helper), &u0);
     v0 = rad__cross(n, u0);
     frame[0] = rad__turn(u0, v0, t[0], t[1], t[2]);
@@ -320,7 +334,8 @@ static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 
 /* Every surface but the shooter's own into the regions, seen from patch P's centre
  * through its cube's frame. */
-static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg, unsigned nreg, uint32_t p)
+static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg,
+                         unsigned nreg, uint32_t p)
 {
     const rad_patch_t *pt = &s->pools.patches[p];
     rad_vec3_t frame[3];
@@ -342,7 +357,10 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     unsigned k, nreg, r;
     uint32_t e;
 
-    cv.z = s->zbuf; cv.ids = s->ibuf; cv.steps = s->steps; cv.st = &s->stats;
+    cv.z = s->zbuf;
+    cv.ids = s->ibuf;
+    cv.steps = s->steps;
+    cv.st = &s->stats;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
@@ -360,8 +378,14 @@ typedef struct {
     uint64_t pixels;
 } part_head_t;
 
-static uint32_t *part_steps(void *buf) { return (uint32_t *)(void *)((part_head_t *)buf + 1); }
-static uint32_t *part_z(const rad_scene_t *s, void *buf) { return (uint32_t *)(void *)(part_steps(buf) + s->cfg.res); }
+static uint32_t *part_steps(void *buf)
+{
+    return (uint32_t *)(void *)((part_head_t *)buf + 1);
+}
+static uint32_t *part_z(const rad_scene_t *s, void *buf)
+{
+    return (uint32_t *)(void *)(part_steps(buf) + s->cfg.res);
+}
 static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 {
     return (rad_index_t *)(void *)(part_z(s, buf) + RAD_PIXELS_ALL(s->cfg.res));
@@ -386,7 +410,8 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned nparts, region_t *r)
 {
     uint32_t res = s->cfg.res, g = 0, total = 3u * res, f, n = 0;
-    uint32_t a = (uint32_t)((uint64_t)total * part / nparts), b = (uint32_t)((uint64_t)total * (part + 1u) / nparts);
+    uint32_t a = (uint32_t)((uint64_t)total * part / nparts),
+             b = (uint32_t)((uint64_t)total * (part + 1u) / nparts);
     for (f = 0; f < 5; f++) {
         uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
         if (b > g && lo < hi && lo < rows) {

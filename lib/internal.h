@@ -5,15 +5,15 @@
 #include "scalar.h"
 
 #if RAD_FLOAT
-#define rad__outcodes radf__outcodes
-#define rad__receive radf__receive
-#define rad__shoot radf__shoot
-#define rad__cube_part radf__cube_part
-#define rad__cube_merge radf__cube_merge
+#define rad__outcodes        radf__outcodes
+#define rad__receive         radf__receive
+#define rad__shoot           radf__shoot
+#define rad__cube_part       radf__cube_part
+#define rad__cube_merge      radf__cube_merge
 #define rad__surface_corners radf__surface_corners
-#define rad__lattice_init radf__lattice_init
-#define rad__lattice_face radf__lattice_face
-#define rad__lattice_span radf__lattice_span
+#define rad__lattice_init    radf__lattice_init
+#define rad__lattice_face    radf__lattice_face
+#define rad__lattice_span    radf__lattice_span
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -55,13 +55,14 @@ typedef struct {
 
 /* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
  * to the centre of a cube of resolution RES, on the cube's axes. */
-void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n, int32_t res);
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
+                       unsigned n, int32_t res);
 /* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1). */
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */
-void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw, uint32_t *steps);
+void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z,
+                       rad_index_t *ids, uint64_t w, uint64_t dw, uint32_t *steps);
 
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
  * just those rows. One of ids and rgb is set: with rgb, colours are interpolated; with
@@ -117,10 +118,16 @@ static inline uint16_t rad__ff_code(uint32_t q)
     uint32_t m;
     while ((q >> e) >= 2048u) e++;
     m = e ? (q + (1u << (e - 1))) >> e : q;
-    if (m == 2048u) { m = 1024u; e++; }
+    if (m == 2048u) {
+        m = 1024u;
+        e++;
+    }
     return (uint16_t)(e << 11 | m);
 }
-static inline uint32_t rad__ff_decode(uint16_t c) { return (uint32_t)(c & 2047u) << (c >> 11); }
+static inline uint32_t rad__ff_decode(uint16_t c)
+{
+    return (uint32_t)(c & 2047u) << (c >> 11);
+}
 
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
  * cube's rows into BUF (RAD_PART_BYTES);
@@ -134,7 +141,10 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k);
 
 /* Channel K (0 r, 1 g, 2 b) of C. */
-static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k) { return k == 0 ? c->r : k == 1 ? c->g : c->b; }
+static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
+{
+    return k == 0 ? c->r : k == 1 ? c->g : c->b;
+}
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

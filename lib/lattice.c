@@ -37,7 +37,10 @@
 static unsigned bits(uint32_t v)
 {
     unsigned b = 0;
-    while (v) { b++; v >>= 1; }
+    while (v) {
+        b++;
+        v >>= 1;
+    }
     return b;
 }
 
@@ -50,8 +53,8 @@ static void cross(const int64_t *a, const int64_t *b, int64_t *r)
 
 /* The family of lines k = 0..N joining (N - k) P0 + k P1 to (N - k) R0 + k R1, K
  * elements to a patch along it, oriented so that E_k >= 0 on P1's side. */
-static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const int64_t *r0, const int64_t *r1,
-                   uint32_t n, uint32_t k, unsigned shift)
+static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const int64_t *r0,
+                   const int64_t *r1, uint32_t n, uint32_t k, unsigned shift)
 {
     int64_t x[3], y[3], y2[3], z[3], pm[3], rm[3], far[3], l[3];
     const int64_t nn = n;
@@ -82,7 +85,8 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
         for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
 }
 
-void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner, unsigned n, int32_t res)
+void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
+                       unsigned n, int32_t res)
 {
     int64_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
@@ -149,7 +153,10 @@ typedef struct {
     int32_t i, end, step;
 } walk_t;
 
-static int64_t at(const int64_t *e, int64_t k) { return e[0] + k * (e[1] + k * e[2]); }
+static int64_t at(const int64_t *e, int64_t k)
+{
+    return e[0] + k * (e[1] + k * e[2]);
+}
 
 /* Largest k in [0, n - 1] with E_k >= 0 (0 when none), the coefficients E at a pixel:
  * a bisection whose halving does not branch (its tests are coin flips). */
@@ -174,7 +181,8 @@ static int32_t search(const int64_t *e, uint32_t n)
 static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
 {
     int32_t last = (int32_t)n - 1, i;
-    if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + (2 * (int64_t)n - 3) * e[2] > 0) return search(e, n);
+    if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + (2 * (int64_t)n - 3) * e[2] > 0)
+        return search(e, n);
     if (at(e, h) >= 0) {
         for (i = 0; i < 2; i++, h++)
             if (h == last || at(e, h + 1) < 0) return h;
@@ -187,17 +195,19 @@ static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
 
 /* Sets W up for family F on row Y from pixel XS to XE - 1, searching from F's hints
  * and leaving this span's cells there. */
-static void walk_start(const rad__lattice_t *lt, rad__family_t *f, int32_t y, int32_t xs, int32_t xe,
-                       walk_t *w)
+static void walk_start(const rad__lattice_t *lt, rad__family_t *f, int32_t y, int32_t xs,
+                       int32_t xe, walk_t *w)
 {
     int64_t e[3], de[3], k, sg, res = lt->res, span = xe - 1 - xs;
     unsigned j;
     for (j = 0; j < 3; j++) {
         /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d. */
         const int64_t *c = f->c[j];
-        int64_t ca = lt->sign[0] * c[lt->axis[0]], cb = lt->sign[1] * c[lt->axis[1]], cd = lt->sign[2] * c[lt->axis[2]];
+        int64_t ca = lt->sign[0] * c[lt->axis[0]], cb = lt->sign[1] * c[lt->axis[1]],
+                cd = lt->sign[2] * c[lt->axis[2]];
         de[j] = 2 * ca;
-        e[j] = ca * (2 * (int64_t)xs + 1 - res) + cb * ((int64_t)res - 2 * (int64_t)y - 1) + cd * res;
+        e[j] =
+            ca * (2 * (int64_t)xs + 1 - res) + cb * ((int64_t)res - 2 * (int64_t)y - 1) + cd * res;
     }
     w->i = f->hint[0] = search_from(e, f->n, f->hint[0]);
     /* The last pixel's column, with E moved there and back (one array less of stack). */
@@ -227,7 +237,8 @@ static const uint32_t tri_unit[3] = {1u - (1u << 24), (1u << 12) - (1u << 24), 1
  * division. A quad's change is F's unit within a patch and what moves to the next
  * patch at a patch's edge; a triangle's, F's part of the packed cell (tri_unit).
  * Returns the first pixel's part of the id (or of the packed cell). Steps add mod 2^32. */
-static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe, uint32_t *steps)
+static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe,
+                             uint32_t *steps)
 {
     rad__family_t *fm = &lt->fam[f];
     const int32_t k = (int32_t)fm->k;
@@ -246,8 +257,16 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
         first = (uint32_t)(w.i / k) * fm->coarse + (uint32_t)(w.i % k) * fm->unit;
     }
     if (!w.step) return first;
-    if (w.step < 0) { unit = 0u - unit; wrap = 0u - wrap; }
-    t = w.t; st = w.st; d = w.d; sd = w.sd; d2 = w.d2; sd2 = w.sd2;
+    if (w.step < 0) {
+        unit = 0u - unit;
+        wrap = 0u - wrap;
+    }
+    t = w.t;
+    st = w.st;
+    d = w.d;
+    sd = w.sd;
+    d2 = w.d2;
+    sd2 = w.sd2;
     i = w.i;
     fi = w.i % k;
     while (i != w.end) {
@@ -308,8 +327,8 @@ static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
 /* The families' steps first, then one pass over the pixels: each sums the steps so
  * far into its element id and is depth-tested (rad__depth_put). The pass zeroes the
  * steps for the next span. */
-void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z, rad_index_t *ids,
-                       uint64_t w, uint64_t dw, uint32_t *steps)
+void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z,
+                       rad_index_t *ids, uint64_t w, uint64_t dw, uint32_t *steps)
 {
     uint32_t acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
     unsigned f;
@@ -329,7 +348,10 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
         for (x = 0; x < n; x++, w += dw) {
             acc += steps[x];
             steps[x] = 0;
-            if (acc != last) { last = acc; id = tri_element(lt, acc); }
+            if (acc != last) {
+                last = acc;
+                id = tri_element(lt, acc);
+            }
             rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
         }
     }

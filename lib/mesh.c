@@ -9,16 +9,18 @@
  */
 #include "internal.h"
 
-#define MIN_AREA RAD__Q(1.0 / 4096.0)   /* smallest surface accepted, in units^2 */
+#define MIN_AREA    RAD__Q(1.0 / 4096.0) /* smallest surface accepted, in units^2 */
 #define MIN_ELEMENT RAD__Q(1.0 / 16.0)   /* smallest max_element setting */
 
-static int in_range(rad_real_t v, rad_real_t lo, rad_real_t hi) { return v >= lo && v <= hi; }
+static int in_range(rad_real_t v, rad_real_t lo, rad_real_t hi)
+{
+    return v >= lo && v <= hi;
+}
 
 static int rgb_ok(const rad_rgb_t *c, rad_real_t hi, int open_top)
 {
     if (!c) return 1;
-    if (open_top)
-        return c->r >= 0 && c->r < hi && c->g >= 0 && c->g < hi && c->b >= 0 && c->b < hi;
+    if (open_top) return c->r >= 0 && c->r < hi && c->g >= 0 && c->g < hi && c->b >= 0 && c->b < hi;
     return in_range(c->r, 0, hi) && in_range(c->g, 0, hi) && in_range(c->b, 0, hi);
 }
 
@@ -42,7 +44,8 @@ int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
      * out-of-range value would overflow. */
     if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
     if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
-    if (!in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    if (!in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT)))
+        return RAD_ERR_ARG;
     {
         int rc = rad__hemicube_init(&z);
         if (rc < 0) return rc;
@@ -53,7 +56,10 @@ int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
 
 /* ---- validation ---------------------------------------------------------------- */
 
-static int vec_eq(rad_vec3_t a, rad_vec3_t b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+static int vec_eq(rad_vec3_t a, rad_vec3_t b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
 /* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_*. */
 static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area)
@@ -66,8 +72,10 @@ static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, ra
             return RAD_ERR_RANGE;
         if (vec_eq(v[i], v[(i + 1) % n])) return RAD_ERR_DEGENERATE;
     }
-    if (n == 3) *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
-    else *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
+    if (n == 3)
+        *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
+    else
+        *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
     if (!(*area >= MIN_AREA)) return RAD_ERR_DEGENERATE;
     if (n == 4) {
         uint32_t sat = 0;
@@ -96,7 +104,10 @@ typedef struct {
     uint32_t patches, elements, vertices;
 } plan_t;
 
-static rad_real_t max2(rad_real_t a, rad_real_t b) { return a > b ? a : b; }
+static rad_real_t max2(rad_real_t a, rad_real_t b)
+{
+    return a > b ? a : b;
+}
 
 /* Emitters shoot from every element: direct light is the largest and most visible
  * term, and shooting it from many points (each hemi-cube turned differently) averages
@@ -117,8 +128,9 @@ static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int
         p->elements = p->patches * p->ku * p->kv;
         p->vertices = (p->pu * p->ku + 1u) * (p->pv * p->kv + 1u);
     } else {
-        rad_real_t l = max2(rad__length(rad__sub(v[1], v[0])),
-                            max2(rad__length(rad__sub(v[2], v[1])), rad__length(rad__sub(v[0], v[2]))));
+        rad_real_t l =
+            max2(rad__length(rad__sub(v[1], v[0])),
+                 max2(rad__length(rad__sub(v[2], v[1])), rad__length(rad__sub(v[0], v[2]))));
         uint32_t m;
         p->pu = p->pv = rad__ceil_div(l, mp, 1);
         p->ku = p->kv = rad__ceil_div(l, me, p->pu);
@@ -129,7 +141,10 @@ static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int
     }
 }
 
-static int fits(uint32_t used, uint32_t want, uint32_t max) { return want <= max - used; }
+static int fits(uint32_t used, uint32_t want, uint32_t max)
+{
+    return want <= max - used;
+}
 
 static void set_area(rad_element_t *el, const rad_vec3_t *vt)
 {
@@ -148,8 +163,10 @@ static rad_real_t add_element(rad_scene_t *s, uint32_t surf, uint32_t p, uint32_
                               uint32_t c, uint32_t d)
 {
     rad_element_t *el = &s->pools.elements[s->n_elements++];
-    el->v[0] = (rad_index_t)a; el->v[1] = (rad_index_t)b;
-    el->v[2] = (rad_index_t)c; el->v[3] = (rad_index_t)d;
+    el->v[0] = (rad_index_t)a;
+    el->v[1] = (rad_index_t)b;
+    el->v[2] = (rad_index_t)c;
+    el->v[3] = (rad_index_t)d;
     el->surface = (rad_index_t)surf;
     el->patch = (rad_index_t)p;
     set_area(el, s->pools.vertices);
@@ -178,7 +195,10 @@ static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const 
     for (j = 0; j <= nv; j++)
         for (i = 0; i <= nu; i++) {
             uint32_t w[4];
-            w[0] = (nu - i) * (nv - j); w[1] = i * (nv - j); w[2] = i * j; w[3] = (nu - i) * j;
+            w[0] = (nu - i) * (nv - j);
+            w[1] = i * (nv - j);
+            w[2] = i * j;
+            w[3] = (nu - i) * j;
             s->pools.vertices[s->n_vertices++] = rad__wavg(c, w, 4, nu * nv);
         }
 #define G(ii, jj) (v0 + (jj) * (nu + 1u) + (ii))
@@ -187,8 +207,10 @@ static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const 
             /* The centre on the doubled lattice: (2 pi ku + ku, 2 pj kv + kv). */
             uint32_t ci = (2u * pi + 1u) * p->ku, cj = (2u * pj + 1u) * p->kv, w[4];
             rad_patch_t *pt;
-            w[0] = (2u * nu - ci) * (2u * nv - cj); w[1] = ci * (2u * nv - cj);
-            w[2] = ci * cj; w[3] = (2u * nu - ci) * cj;
+            w[0] = (2u * nu - ci) * (2u * nv - cj);
+            w[1] = ci * (2u * nv - cj);
+            w[2] = ci * cj;
+            w[3] = (2u * nu - ci) * cj;
             pt = new_patch(s, surf, rad__wavg(c, w, 4, 4u * nu * nv));
             for (b = 0; b < p->kv; b++)
                 for (a = 0; a < p->ku; a++) {
@@ -206,7 +228,9 @@ static void mesh_quad(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const 
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k)
 {
     uint32_t v0 = sf->first_vertex, last = v0 + sf->n_vertices - 1u, nu = (uint32_t)sf->pu * sf->ku;
-    k[0] = v0; k[1] = v0 + nu; k[2] = last;
+    k[0] = v0;
+    k[1] = v0 + nu;
+    k[2] = last;
     if (s->pools.elements[sf->first_element].v[3] == RAD_INDEX_NONE) return 3;
     k[3] = last - nu;
     return 4;
@@ -224,7 +248,9 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
     for (j = 0; j <= m; j++)
         for (i = 0; i + j <= m; i++) {
             uint32_t w[3];
-            w[0] = m - i - j; w[1] = i; w[2] = j;
+            w[0] = m - i - j;
+            w[1] = i;
+            w[2] = j;
             s->pools.vertices[s->n_vertices++] = rad__wavg(c, w, 3, m);
         }
 #define T(ii, jj) tri_index(v0, m, (ii), (jj))
@@ -235,26 +261,30 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
                  * about corner (I+1,J+1). Centroid weights on a 3np lattice. */
                 uint32_t ci = 3u * I + (down ? 2u : 1u), cj = 3u * J + (down ? 2u : 1u), w[3];
                 rad_patch_t *pt;
-                w[0] = 3u * np - ci - cj; w[1] = ci; w[2] = cj;
+                w[0] = 3u * np - ci - cj;
+                w[1] = ci;
+                w[2] = cj;
                 pt = new_patch(s, surf, rad__wavg(c, w, 3, 3u * np));
                 for (b = 0; b < k; b++)
                     for (a = 0; a + b < k; a++) {
                         uint32_t P = s->n_patches;
                         if (!down) {
                             uint32_t x = k * I + a, y = k * J + b;
-                            pt->area += add_element(s, surf, P, T(x, y), T(x + 1u, y), T(x, y + 1u), RAD_INDEX_NONE);
+                            pt->area += add_element(s, surf, P, T(x, y), T(x + 1u, y), T(x, y + 1u),
+                                                    RAD_INDEX_NONE);
                             if (a + b + 1u < k)
                                 pt->area += add_element(s, surf, P, T(x + 1u, y), T(x + 1u, y + 1u),
                                                         T(x, y + 1u), RAD_INDEX_NONE);
                         } else {
                             /* Reflected: local up (a,b) is a fine down triangle and vice versa. */
                             uint32_t cx = k * (I + 1u), cy = k * (J + 1u);
-                            pt->area += add_element(s, surf, P, T(cx - a, cy - b - 1u), T(cx - a, cy - b),
-                                                    T(cx - a - 1u, cy - b), RAD_INDEX_NONE);
+                            pt->area +=
+                                add_element(s, surf, P, T(cx - a, cy - b - 1u), T(cx - a, cy - b),
+                                            T(cx - a - 1u, cy - b), RAD_INDEX_NONE);
                             if (a + b + 1u < k)
                                 pt->area += add_element(s, surf, P, T(cx - a - 1u, cy - b - 1u),
-                                                        T(cx - a, cy - b - 1u), T(cx - a - 1u, cy - b),
-                                                        RAD_INDEX_NONE);
+                                                        T(cx - a, cy - b - 1u),
+                                                        T(cx - a - 1u, cy - b), RAD_INDEX_NONE);
                         }
                     }
                 close_patch(s, pt);
@@ -267,7 +297,8 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
 {
     const rad_surface_t *sf = &s->pools.surfaces[surf];
     uint32_t i;
-    for (i = 0; i < sf->n_elements; i++) s->pools.elements[sf->first_element + i].radiosity = sf->emission;
+    for (i = 0; i < sf->n_elements; i++)
+        s->pools.elements[sf->first_element + i].radiosity = sf->emission;
     for (i = 0; i < sf->n_patches; i++) {
         rad_patch_t *pt = &s->pools.patches[sf->first_patch + i];
         pt->unshot[0] = rad__energy(sf->emission.r, pt->area);
@@ -277,8 +308,8 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
     }
 }
 
-int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
-                    const rad_rgb_t *reflectance, const rad_rgb_t *emission)
+int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
+                    const rad_rgb_t *emission)
 {
     static const rad_rgb_t black = {0, 0, 0};
     rad_surface_t *sf;
@@ -311,8 +342,10 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
     sf->pv = (rad_index_t)plan.pv;
     sf->ku = (rad_index_t)plan.ku;
     sf->kv = (rad_index_t)plan.kv;
-    if (n == 4) mesh_quad(s, s->n_surfaces, v, &plan);
-    else mesh_tri(s, s->n_surfaces, v, &plan);
+    if (n == 4)
+        mesh_quad(s, s->n_surfaces, v, &plan);
+    else
+        mesh_tri(s, s->n_surfaces, v, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);

@@ -61,8 +61,8 @@ static void crossing(const rad__cvert_t *in, const rad__cvert_t *out, rad_real_t
 }
 
 /* Sutherland-Hodgman against plane P: N vertices of SRC into DST; returns the count. */
-static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert_t *src,
-                           unsigned n, rad__cvert_t *dst)
+static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert_t *src, unsigned n,
+                           rad__cvert_t *dst)
 {
     unsigned i, m = 0;
     for (i = 0; i < n; i++) {
@@ -70,8 +70,10 @@ static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert
         rad_real_t da = plane_dist(f, a, p), db = plane_dist(f, b, p);
         if (da >= 0) dst[m++] = *a;
         if ((da >= 0) != (db >= 0)) {
-            if (da >= 0) crossing(a, b, da, db, &dst[m++]);
-            else crossing(b, a, db, da, &dst[m++]);
+            if (da >= 0)
+                crossing(a, b, da, db, &dst[m++]);
+            else
+                crossing(b, a, db, da, &dst[m++]);
         }
     }
     return m;
@@ -83,11 +85,16 @@ typedef struct {
     int64_t e, dx, dy; /* value at the first pixel centre, steps per pixel in x and y */
 } edge_t;
 
-static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t px, int32_t py, int flip)
+static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t px, int32_t py,
+                       int flip)
 {
     int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
     int owned;
-    if (flip) { ex = -ex; ey = -ey; a = b; }
+    if (flip) {
+        ex = -ex;
+        ey = -ey;
+        a = b;
+    }
     /* Half-open ownership: of the two directions along a shared edge, exactly one
      * (pointing down, or right when horizontal) includes centres lying on it. */
     owned = ey > 0 || (ey == 0 && ex > 0);
@@ -118,13 +125,15 @@ static void span_edge(const edge_t *ed, int32_t *lo, int32_t *hi)
 /* Twice the signed area of triangle A, B, C in subpixels^2. */
 static int64_t area2(const pvert_t *a, const pvert_t *b, const pvert_t *c)
 {
-    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) - ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
+    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) -
+           ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
 }
 
 /* Plane of attribute K through triangle V0, V1, V2 (twice its area AR): the value at
  * the first pixel centre and its steps, all * 2^16, modulo 2^64. */
-static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, unsigned k, int64_t ar,
-                       int32_t px, int32_t py, uint64_t *val, uint64_t *sx, uint64_t *sy)
+static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, unsigned k,
+                       int64_t ar, int32_t px, int32_t py, uint64_t *val, uint64_t *sx,
+                       uint64_t *sy)
 {
     int64_t d1 = (int64_t)v1->at[k] - v0->at[k], d2 = (int64_t)v2->at[k] - v0->at[k];
     int64_t x1 = (int64_t)v1->x - v0->x, y1 = (int64_t)v1->y - v0->y;
@@ -148,7 +157,8 @@ static uint32_t attr_value(uint64_t v)
 
 /* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW, id ID.
  * Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
-static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw, rad_index_t id)
+static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw,
+                     rad_index_t id)
 {
     int32_t x;
     for (x = xs; x < xe; x++, w += dw) rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
@@ -156,8 +166,8 @@ static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint
 
 /* fill_ids for a colour raster; VAL are the attributes at the row's first pixel of
  * the bounding box, SKIP pixels before XS. */
-static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64_t w, const uint64_t *val,
-                     const uint64_t *sx, int32_t skip)
+static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64_t w,
+                     const uint64_t *val, const uint64_t *sx, int32_t skip)
 {
     int32_t x;
     uint64_t c[3];
@@ -175,13 +185,17 @@ static void fill_rgb(uint32_t *z, rad_rgb_t *rgb, int32_t xs, int32_t xe, uint64
     }
 }
 
-static int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : v > hi ? hi : v; }
+static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
+{
+    return v < lo ? lo : v > hi ? hi : v;
+}
 
 /* Fills the convex polygon V of N = 3 or 4 vertices (either winding). Attributes are
  * interpolated on the plane of the wider of its two fan triangles: exact for a planar
  * polygon's depth; callers with colours pass triangles. A triangle's fourth edge
  * repeats its first, so one loop with four edges in registers serves both. */
-static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t *v, unsigned n, rad_index_t id)
+static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t *v, unsigned n,
+                         rad_index_t id)
 {
     edge_t ed[4];
     uint64_t val[4], sx[4], sy[4], pixels = 0;
@@ -212,7 +226,8 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
     py = y0 * SUB + SUB / 2;
     for (k = 0; k < n; k++) edge_setup(&ed[k], &v[k], &v[(k + 1) % n], px, py, a1 + a2 < 0);
     if (n == 3) ed[3] = ed[0];
-    for (k = 0; k < nat; k++) attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
+    for (k = 0; k < nat; k++)
+        attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);
 
     for (y = y0; y <= y1; y++) {
         /* Convex: the span is where every edge's value, linear along the row, is >= 0. */
@@ -224,9 +239,12 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
             int32_t xs = x0 + lo, xe = x0 + hi + 1;
             w = val[0] + sx[0] * (uint64_t)lo;
             pixels += (uint64_t)(xe - xs);
-            if (t->rgb) fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
-            else if (t->lat) rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0], t->steps);
-            else fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
+            if (t->rgb)
+                fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
+            else if (t->lat)
+                rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0], t->steps);
+            else
+                fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
         }
         for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];

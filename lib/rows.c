@@ -3,7 +3,10 @@
  * None of this renders a hemi-cube once the rows are stored. */
 #include "internal.h"
 
-rad_ff_t rad_ff_from_code(uint16_t code) { return rad__ff_from_q30(rad__ff_decode(code)); }
+rad_ff_t rad_ff_from_code(uint16_t code)
+{
+    return rad__ff_from_q30(rad__ff_decode(code));
+}
 
 int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
 {
@@ -57,21 +60,25 @@ static void assemble(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *g)
             rad_ff_t add = rad__ff_scale(f, am, s->pools.patches[k].area, &s->stats.saturations);
             rad_ff_t *cell = &g[(size_t)m * np + k];
             /* Sums past Q2.30's 4.0 would be numerical nonsense: clamp and count. */
-            if (rad__ff_to_q30(add) > 0xFFFFFFFFu - rad__ff_to_q30(*cell)) { *cell = rad__ff_from_q30(0xFFFFFFFFu); s->stats.saturations++; }
-            else *cell += add;
+            if (rad__ff_to_q30(add) > 0xFFFFFFFFu - rad__ff_to_q30(*cell)) {
+                *cell = rad__ff_from_q30(0xFFFFFFFFu);
+                s->stats.saturations++;
+            } else
+                *cell += add;
         }
     }
 }
 
 /* Patch K's emission-plus-reflection from the current patch radiosities B (3 per patch). */
-static rad_real_t gather(rad_scene_t *s, const rad_ff_t *g, const rad_real_t *b, uint32_t k, unsigned c,
-                         rad_real_t e, rad_real_t rho)
+static rad_real_t gather(rad_scene_t *s, const rad_ff_t *g, const rad_real_t *b, uint32_t k,
+                         unsigned c, rad_real_t e, rad_real_t rho)
 {
     uint32_t np = s->n_patches, m;
     rad__gsum_t sum = 0;
     for (m = 0; m < np; m++) sum += rad__gs_term(g[(size_t)m * np + k], b[3 * m + c]);
-    return rad__add_sat(e, rad__mul(rho, rad__gs_value(sum, &s->stats.saturations), &s->stats.saturations),
-                        &s->stats.saturations);
+    return rad__add_sat(
+        e, rad__mul(rho, rad__gs_value(sum, &s->stats.saturations), &s->stats.saturations),
+        &s->stats.saturations);
 }
 
 int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
@@ -90,7 +97,9 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     b = (rad_real_t *)(void *)(matrix + (size_t)np * np);
     for (k = 0; k < np; k++) {
         const rad_rgb_t *em = &s->pools.surfaces[s->pools.patches[k].surface].emission;
-        b[3 * k] = em->r; b[3 * k + 1] = em->g; b[3 * k + 2] = em->b;
+        b[3 * k] = em->r;
+        b[3 * k + 1] = em->g;
+        b[3 * k + 2] = em->b;
     }
     for (it = 0; it < max_iter;) {
         int moved = 0;
@@ -129,12 +138,13 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     return (int)it;
 }
 
-int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity, uint32_t n_groups,
-            rad_rgb_t *out)
+int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity,
+            uint32_t n_groups, rad_rgb_t *out)
 {
     uint32_t e, g, *sat;
     if (!s || !groups || !intensity || !out) return RAD_ERR_ARG;
-    for (g = 0; g < n_groups; g++) if (!groups[g]) return RAD_ERR_ARG;
+    for (g = 0; g < n_groups; g++)
+        if (!groups[g]) return RAD_ERR_ARG;
     sat = &s->stats.saturations;
     for (e = 0; e < s->n_elements; e++) {
         rad_rgb_t o = {0, 0, 0};

@@ -9,8 +9,11 @@ uint64_t rad__isqrt64(uint64_t v)
     uint64_t r = 0, bit = (uint64_t)1 << 62;
     while (bit > v) bit >>= 2;
     while (bit) {
-        if (v >= r + bit) { v -= r + bit; r = (r >> 1) + bit; }
-        else r >>= 1;
+        if (v >= r + bit) {
+            v -= r + bit;
+            r = (r >> 1) + bit;
+        } else
+            r >>= 1;
         bit >>= 2;
     }
     return r;
@@ -19,11 +22,17 @@ uint64_t rad__isqrt64(uint64_t v)
 static unsigned bitlen(uint64_t v)
 {
     unsigned b = 0;
-    while (v) { b++; v >>= 1; }
+    while (v) {
+        b++;
+        v >>= 1;
+    }
     return b;
 }
 
-static uint64_t mag(int64_t v) { return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v; }
+static uint64_t mag(int64_t v)
+{
+    return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+}
 
 uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit)
 {
@@ -34,12 +43,19 @@ uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit)
     unsigned b, i;
     if (ay > m) m = ay;
     if (az > m) m = az;
-    if (m == 0) { unit->x = unit->y = unit->z = 0; return 0; }
+    if (m == 0) {
+        unit->x = unit->y = unit->z = 0;
+        return 0;
+    }
     b = bitlen(m);
-    c[0] = x; c[1] = y; c[2] = z;
+    c[0] = x;
+    c[1] = y;
+    c[2] = z;
     for (i = 0; i < 3; i++) {
-        if (b > 30) c[i] = rad__shr_round(c[i], b - 30);
-        else c[i] *= (int64_t)1 << (30 - b);
+        if (b > 30)
+            c[i] = rad__shr_round(c[i], b - 30);
+        else
+            c[i] *= (int64_t)1 << (30 - b);
     }
     len = rad__isqrt64((uint64_t)(c[0] * c[0]) + (uint64_t)(c[1] * c[1]) + (uint64_t)(c[2] * c[2]));
     unit->x = (rad_real_t)rad__div_round(c[0] * 65536, (int64_t)len);

@@ -13,29 +13,29 @@
 
 /* The twin's private names differ too, so both libraries link into one program. */
 #if RAD_FLOAT
-#define rad__isqrt64 radf__isqrt64
-#define rad__unit64 radf__unit64
-#define rad__fsqrt radf__fsqrt
-#define rad__draw radf__draw
+#define rad__isqrt64       radf__isqrt64
+#define rad__unit64        radf__unit64
+#define rad__fsqrt         radf__fsqrt
+#define rad__draw          radf__draw
 #define rad__hemicube_init radf__hemicube_init
-#define rad__hemicube radf__hemicube
+#define rad__hemicube      radf__hemicube
 #endif
 
 /* Near plane of every view, in scene units: 2^-8. The depth value stored in z-buffers
  * is w = 2^30 * NEAR / d, so w <= 2^30 for every visible point. */
 #if RAD_FLOAT
-#define RAD__ONE 1.0f
+#define RAD__ONE  1.0f
 #define RAD__NEAR (1.0f / 256.0f)
 #define RAD__Q(x) ((float)(x))
-#define RAD__EPS 1e-6f /* the least change that counts */
+#define RAD__EPS  1e-6f /* the least change that counts */
 #else
-#define RAD__ONE 65536
+#define RAD__ONE  65536
 #define RAD__NEAR 256
 /* Compile-time constants only: folded by the compiler, no floating point at run time. */
-#define RAD__Q(x) ((rad_real_t)((x) * 65536.0 + 0.5))
-#define RAD__EPS 1 /* the least change that counts: one LSB */
+#define RAD__Q(x) ((rad_real_t)((x)*65536.0 + 0.5))
+#define RAD__EPS  1 /* the least change that counts: one LSB */
 #endif
-#define RAD__DEPTH_ONE (1u << 30)
+#define RAD__DEPTH_ONE  (1u << 30)
 #define RAD__FF_ONE_Q30 (1u << 30)
 
 /* Helpers shared by the shim (scalar.c): integer ones in the fixed build, fsqrt in the twin. */
@@ -66,28 +66,51 @@ static inline int64_t rad__div_round(int64_t num, int64_t den)
 static inline rad_vec3_t rad__sub(rad_vec3_t a, rad_vec3_t b)
 {
     rad_vec3_t r;
-    r.x = a.x - b.x; r.y = a.y - b.y; r.z = a.z - b.z;
+    r.x = a.x - b.x;
+    r.y = a.y - b.y;
+    r.z = a.z - b.z;
     return r;
 }
 
 #if RAD_FLOAT
 
-static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 static inline rad_vec3_t rad__cross(rad_vec3_t a, rad_vec3_t b)
 {
     rad_vec3_t r;
-    r.x = a.y * b.z - a.z * b.y; r.y = a.z * b.x - a.x * b.z; r.z = a.x * b.y - a.y * b.x;
+    r.x = a.y * b.z - a.z * b.y;
+    r.y = a.z * b.x - a.x * b.z;
+    r.z = a.x * b.y - a.y * b.x;
     return r;
 }
-static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a * b; }
-static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a / b; }
-static inline rad_real_t rad__length(rad_vec3_t v) { return rad__fsqrt(rad__dot(v, v)); }
+static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    (void)sat;
+    return a * b;
+}
+static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    (void)sat;
+    return a / b;
+}
+static inline rad_real_t rad__length(rad_vec3_t v)
+{
+    return rad__fsqrt(rad__dot(v, v));
+}
 /* Unit vector of V; returns 0 for a zero vector. */
 static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
 {
     float l = rad__length(v);
-    if (!(l > 0.0f)) { u->x = u->y = u->z = 0.0f; return 0; }
-    u->x = v.x / l; u->y = v.y / l; u->z = v.z / l;
+    if (!(l > 0.0f)) {
+        u->x = u->y = u->z = 0.0f;
+        return 0;
+    }
+    u->x = v.x / l;
+    u->y = v.y / l;
+    u->z = v.z / l;
     return 1;
 }
 /* Half the length of D1 x D2 (the area of a triangle on D1, D2, or of a quad with
@@ -96,8 +119,13 @@ static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3
 {
     rad_vec3_t c = rad__cross(d1, d2);
     float l = rad__length(c);
-    if (!(l > 0.0f)) { n->x = n->y = n->z = 0.0f; return 0.0f; }
-    n->x = c.x / l; n->y = c.y / l; n->z = c.z / l;
+    if (!(l > 0.0f)) {
+        n->x = n->y = n->z = 0.0f;
+        return 0.0f;
+    }
+    n->x = c.x / l;
+    n->y = c.y / l;
+    n->z = c.z / l;
     return 0.5f * l;
 }
 /* Weighted mean of K points with integer weights W summing to DEN. */
@@ -107,7 +135,9 @@ static inline rad_vec3_t rad__wavg(const rad_vec3_t *c, const uint32_t *w, unsig
     unsigned i;
     for (i = 0; i < k; i++) {
         float f = (float)w[i] / (float)den;
-        r.x += c[i].x * f; r.y += c[i].y * f; r.z += c[i].z * f;
+        r.x += c[i].x * f;
+        r.y += c[i].y * f;
+        r.z += c[i].z * f;
     }
     return r;
 }
@@ -127,7 +157,10 @@ static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t d
 }
 /* The reciprocal of a depth d >= RAD__NEAR, for projecting without dividing. */
 typedef float rad__recip_t;
-static inline rad__recip_t rad__recip(rad_real_t d) { return 1.0f / d; }
+static inline rad__recip_t rad__recip(rad_real_t d)
+{
+    return 1.0f / d;
+}
 /* round(num * scale / d) for num in [0, 2 d]: a screen coordinate in subpixels. */
 static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
@@ -135,10 +168,22 @@ static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale
     return v > 0.0f ? (int32_t)(v + 0.5f) : 0;
 }
 /* The depth value w = 2^30 NEAR / d (<= 2^30). */
-static inline uint32_t rad__depth(rad__recip_t inv) { return (uint32_t)(1073741824.0f * RAD__NEAR * inv + 0.5f); }
-static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area) { return b * area; }
-static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f) { return u * f; }
-static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho) { return u * rho; }
+static inline uint32_t rad__depth(rad__recip_t inv)
+{
+    return (uint32_t)(1073741824.0f * RAD__NEAR * inv + 0.5f);
+}
+static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
+{
+    return b * area;
+}
+static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f)
+{
+    return u * f;
+}
+static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
+{
+    return u * rho;
+}
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
 {
     (void)sat;
@@ -148,8 +193,15 @@ static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
 {
     return den > 0.0f ? num / den : 0.0f;
 }
-static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return a + b; }
-static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return (float)q * (1.0f / 1073741824.0f); }
+static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    (void)sat;
+    return a + b;
+}
+static inline rad_ff_t rad__ff_from_q30(uint32_t q)
+{
+    return (float)q * (1.0f / 1073741824.0f);
+}
 static inline uint32_t rad__ff_to_q30(rad_ff_t f)
 {
     float v = f * 1073741824.0f + 0.5f;
@@ -157,20 +209,43 @@ static inline uint32_t rad__ff_to_q30(rad_ff_t f)
 }
 /* Gauss-Seidel sums: a form factor times a radiosity, summed, then read as radiosity. */
 typedef float rad__gsum_t;
-static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b) { return g * b; }
-static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat) { (void)sat; return a; }
+static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b)
+{
+    return g * b;
+}
+static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
+{
+    (void)sat;
+    return a;
+}
 /* G = F * a / b: a form factor taken to another area by reciprocity. */
-static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat) { (void)sat; return f * (a / b); }
+static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat)
+{
+    (void)sat;
+    return f * (a / b);
+}
 /* Raster attribute (<= 2^30) of a radiosity, and back: Q16.15 in both builds. */
 static inline uint32_t rad__attr(rad_real_t b)
 {
     float v = b * 32768.0f;
     return v <= 0.0f ? 0u : v >= 1073741824.0f ? 1073741824u : (uint32_t)(v + 0.5f);
 }
-static inline rad_real_t rad__from_attr(uint32_t a) { return (float)a * (1.0f / 32768.0f); }
-static inline rad_ff_t rad__vweight(rad_real_t area) { return area; }
-static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum) { return b * (w / wsum); }
-static inline rad_real_t rad__from_int(int32_t i) { return (float)i; }
+static inline rad_real_t rad__from_attr(uint32_t a)
+{
+    return (float)a * (1.0f / 32768.0f);
+}
+static inline rad_ff_t rad__vweight(rad_real_t area)
+{
+    return area;
+}
+static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
+{
+    return b * (w / wsum);
+}
+static inline rad_real_t rad__from_int(int32_t i)
+{
+    return (float)i;
+}
 /* V in [-M, M] as an integer in [-2^S, 2^S], rounded (S <= 23, M > 0). */
 static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
 {
@@ -191,8 +266,14 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 
 static inline rad_real_t rad__sat32(int64_t v, uint32_t *sat)
 {
-    if (v > INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
-    if (v < INT32_MIN) { if (sat) (*sat)++; return INT32_MIN; }
+    if (v > INT32_MAX) {
+        if (sat) (*sat)++;
+        return INT32_MAX;
+    }
+    if (v < INT32_MIN) {
+        if (sat) (*sat)++;
+        return INT32_MIN;
+    }
     return (rad_real_t)v;
 }
 /* Inputs: |a|, |b| < 2^25 (differences of in-range coordinates, or unit vectors). */
@@ -234,7 +315,7 @@ static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3
     int64_t cx = (int64_t)d1.y * d2.z - (int64_t)d1.z * d2.y;
     int64_t cy = (int64_t)d1.z * d2.x - (int64_t)d1.x * d2.z;
     int64_t cz = (int64_t)d1.x * d2.y - (int64_t)d1.y * d2.x;
-    uint64_t len = rad__unit64(cx, cy, cz, n);  /* |c| in Q32 */
+    uint64_t len = rad__unit64(cx, cy, cz, n);     /* |c| in Q32 */
     return (rad_real_t)((len + (1u << 16)) >> 17); /* |c| / 2 in Q16.16, rounded */
 }
 static inline rad_vec3_t rad__wavg(const rad_vec3_t *c, const uint32_t *w, unsigned k, uint32_t den)
@@ -242,7 +323,9 @@ static inline rad_vec3_t rad__wavg(const rad_vec3_t *c, const uint32_t *w, unsig
     int64_t x = 0, y = 0, z = 0;
     unsigned i;
     for (i = 0; i < k; i++) {
-        x += (int64_t)c[i].x * w[i]; y += (int64_t)c[i].y * w[i]; z += (int64_t)c[i].z * w[i];
+        x += (int64_t)c[i].x * w[i];
+        y += (int64_t)c[i].y * w[i];
+        z += (int64_t)c[i].z * w[i];
     }
     {
         rad_vec3_t r;
@@ -276,7 +359,10 @@ static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale
     return num > 0 ? (int32_t)(((uint64_t)num * inv * scale + ((uint64_t)1 << 45)) >> 46) : 0;
 }
 /* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
-static inline uint32_t rad__depth(rad__recip_t inv) { return (uint32_t)((inv + 128u) >> 8); }
+static inline uint32_t rad__depth(rad__recip_t inv)
+{
+    return (uint32_t)((inv + 128u) >> 8);
+}
 /* Energies are signed (overshooting owes power), but these take and give magnitudes:
  * callers carry the sign (rad__eabs), so no product or shift sees a negative value. */
 /* b, area >= 0 and < 2^31: the product < 2^62. */
@@ -299,14 +385,20 @@ static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uin
 {
     uint64_t a = (uint64_t)(area > 0 ? area : 1);
     uint64_t q = (((uint64_t)u << 16) + (a >> 1)) / a;
-    if (q > (uint64_t)INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
+    if (q > (uint64_t)INT32_MAX) {
+        if (sat) (*sat)++;
+        return INT32_MAX;
+    }
     return (rad_real_t)q;
 }
 /* num / den in Q16.16 for any two energies >= 0 (the larger is scaled down to fit). */
 static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
 {
     uint64_t q, n = (uint64_t)num, d = (uint64_t)den;
-    while (n >> 46) { n >>= 1; d >>= 1; }
+    while (n >> 46) {
+        n >>= 1;
+        d >>= 1;
+    }
     if (d == 0) return n ? INT32_MAX : 0;
     q = ((n << 16) + (d >> 1)) / d;
     return q > (uint64_t)INT32_MAX ? INT32_MAX : (rad_real_t)q;
@@ -315,8 +407,14 @@ static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
 {
     return rad__sat32((int64_t)a + b, sat);
 }
-static inline rad_ff_t rad__ff_from_q30(uint32_t q) { return q; }
-static inline uint32_t rad__ff_to_q30(rad_ff_t f) { return f; }
+static inline rad_ff_t rad__ff_from_q30(uint32_t q)
+{
+    return q;
+}
+static inline uint32_t rad__ff_to_q30(rad_ff_t f)
+{
+    return f;
+}
 /* Gauss-Seidel sums: each term (Q2.30 * Q16.16) >> 14 < 2^49, so 2^14 patches' sum fits
  * 64 bits; the sum >> 16 is a Q16.16 radiosity. */
 typedef uint64_t rad__gsum_t;
@@ -327,28 +425,43 @@ static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b)
 static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
 {
     uint64_t v = (a + 32768u) >> 16;
-    if (v > (uint64_t)INT32_MAX) { if (sat) (*sat)++; return INT32_MAX; }
+    if (v > (uint64_t)INT32_MAX) {
+        if (sat) (*sat)++;
+        return INT32_MAX;
+    }
     return (rad_real_t)v;
 }
 /* G = F * a / b in Q2.30, saturating at 4.0 (F <= 2^30, a < 2^31). */
 static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat)
 {
     uint64_t v = ((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u) / (uint64_t)(b > 0 ? b : 1);
-    if (v > 0xFFFFFFFFu) { if (sat) (*sat)++; return 0xFFFFFFFFu; }
+    if (v > 0xFFFFFFFFu) {
+        if (sat) (*sat)++;
+        return 0xFFFFFFFFu;
+    }
     return (rad_ff_t)v;
 }
-static inline uint32_t rad__attr(rad_real_t b) { return b > 0 ? (uint32_t)b >> 1 : 0u; }
+static inline uint32_t rad__attr(rad_real_t b)
+{
+    return b > 0 ? (uint32_t)b >> 1 : 0u;
+}
 static inline rad_real_t rad__from_attr(uint32_t a)
 {
     return a >= 0x40000000u ? INT32_MAX : (rad_real_t)(a << 1);
 }
 /* Vertex weights: area / 4, so that six of them (the most around a vertex) fit 32 bits. */
-static inline rad_ff_t rad__vweight(rad_real_t area) { return area > 3 ? (uint32_t)area >> 2 : 1u; }
+static inline rad_ff_t rad__vweight(rad_real_t area)
+{
+    return area > 3 ? (uint32_t)area >> 2 : 1u;
+}
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 {
     return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
 }
-static inline rad_real_t rad__from_int(int32_t i) { return (rad_real_t)((uint32_t)i << 16); }
+static inline rad_real_t rad__from_int(int32_t i)
+{
+    return (rad_real_t)((uint32_t)i << 16);
+}
 static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
 {
     return rad__div_round((int64_t)v * ((int64_t)1 << s), m);
@@ -365,7 +478,10 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 #endif
 
 /* The magnitude of a signed energy (|u| < 2^62 in the fixed build: no overflow). */
-static inline rad_energy_t rad__eabs(rad_energy_t u) { return u < 0 ? -u : u; }
+static inline rad_energy_t rad__eabs(rad_energy_t u)
+{
+    return u < 0 ? -u : u;
+}
 
 /* A patch's unshot power is kept within +-RAD__EMAX (2^30 units of power: 2^46 in
  * Q16.16, the range the fixed build's products are exact in), clamped and counted past
@@ -379,8 +495,14 @@ static inline rad_energy_t rad__eabs(rad_energy_t u) { return u < 0 ? -u : u; }
 #endif
 static inline rad_energy_t rad__eclamp(rad_energy_t u, uint32_t *sat)
 {
-    if (u > RAD__EMAX) { if (sat) (*sat)++; return RAD__EMAX; }
-    if (u < -RAD__EMAX) { if (sat) (*sat)++; return -RAD__EMAX; }
+    if (u > RAD__EMAX) {
+        if (sat) (*sat)++;
+        return RAD__EMAX;
+    }
+    if (u < -RAD__EMAX) {
+        if (sat) (*sat)++;
+        return -RAD__EMAX;
+    }
     return u;
 }
 /* A running sum of energies, each within +-RAD__ESUM, stopped at +-RAD__ESUM so that no

@@ -75,9 +75,14 @@ static void fill_cracks(rad_rgb_t *fb, uint32_t *z, unsigned w, unsigned h)
         for (x = 0; x < w; x++) {
             size_t i = (size_t)y * w + x, a = 0, b = 0;
             if (z[i] != 0) continue;
-            if (x > 0 && x + 1 < w && z[i - 1] > 1 && z[i + 1] > 1) { a = i - 1; b = i + 1; }
-            else if (y > 0 && y + 1 < h && z[i - w] > 1 && z[i + w] > 1) { a = i - w; b = i + w; }
-            else continue;
+            if (x > 0 && x + 1 < w && z[i - 1] > 1 && z[i + 1] > 1) {
+                a = i - 1;
+                b = i + 1;
+            } else if (y > 0 && y + 1 < h && z[i - w] > 1 && z[i + w] > 1) {
+                a = i - w;
+                b = i + w;
+            } else
+                continue;
             fb[i].r = fb[a].r / 2 + fb[b].r / 2;
             fb[i].g = fb[a].g / 2 + fb[b].g / 2;
             fb[i].b = fb[a].b / 2 + fb[b].b / 2;
@@ -90,8 +95,8 @@ static int point_ok(rad_vec3_t p, rad_real_t lim)
     return p.x >= -lim && p.x <= lim && p.y >= -lim && p.y <= lim && p.z >= -lim && p.z <= lim;
 }
 
-int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
-               rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h)
+int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, rad_rgb_t *fb,
+               uint32_t *zbuf, unsigned w, unsigned h)
 {
     const rad_real_t lim = RAD__Q(4 * RAD_COORD_LIMIT);
     rad_vec3_t ax[3]; /* right, up, forward */
@@ -116,7 +121,8 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
      * 1 / (tan * aspect) across; within [1/16, 16] both keep 12 bits or more. */
     ky = rad__div(RAD__ONE, cam->tan_half_fov, &sat);
     kx = rad__div(ky, rad__div(rad__from_int((int32_t)w), rad__from_int((int32_t)h), &sat), &sat);
-    if (sat || !(kx >= RAD__Q(1.0 / 16.0) && kx <= RAD__Q(16.0) && ky >= RAD__Q(1.0 / 16.0) && ky <= RAD__Q(16.0)))
+    if (sat || !(kx >= RAD__Q(1.0 / 16.0) && kx <= RAD__Q(16.0) && ky >= RAD__Q(1.0 / 16.0) &&
+                 ky <= RAD__Q(16.0)))
         return RAD_ERR_ARG;
     for (i = 0; i < 3; i++) {
         rad_real_t *r = i == 0 ? &ax[0].x : i == 1 ? &ax[0].y : &ax[0].z;
@@ -127,8 +133,14 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
     f.half = 0;
     f.width = (int)w;
     f.height = (int)h;
-    t.z = zbuf; t.ids = 0; t.rgb = fb; t.lat = 0; t.steps = 0;
-    t.width = (int)w; t.row0 = 0; t.row1 = (int)h;
+    t.z = zbuf;
+    t.ids = 0;
+    t.rgb = fb;
+    t.lat = 0;
+    t.steps = 0;
+    t.width = (int)w;
+    t.row0 = 0;
+    t.row1 = (int)h;
     for (i = 0; i < w * h; i++) {
         zbuf[i] = 0;
         fb[i].r = fb[i].g = fb[i].b = 0;
@@ -146,7 +158,9 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
             cv[k].a = rad__dot(d, ax[0]);
             cv[k].b = rad__dot(d, ax[1]);
             cv[k].d = rad__dot(d, ax[2]);
-            cv[k].c[0] = c->r; cv[k].c[1] = c->g; cv[k].c[2] = c->b;
+            cv[k].c[0] = c->r;
+            cv[k].c[1] = c->g;
+            cv[k].c[2] = c->b;
         }
         rad__draw(&st, &t, &f, cv, nv, rad__outcodes(&f, cv, nv), 0);
     }

@@ -19,8 +19,8 @@
 
 /* Power RECV = rho * F * U reaching an element (computed on U's magnitude, with U's
  * sign), added to its radiosity and patch. */
-static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_real_t rho, rad_real_t area,
-                                 rad_real_t b, rad_energy_t *patch_unshot)
+static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_real_t rho,
+                                 rad_real_t area, rad_real_t b, rad_energy_t *patch_unshot)
 {
     rad_energy_t recv = rad__energy_refl(rad__energy_ff(rad__eabs(u), f), rho);
     rad_real_t db = rad__energy_to_rad(recv, area, sat);
@@ -56,7 +56,8 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
 
 /* The power patch PT will get back in channel C, from the ambient radiosity AMB:
  * what overshooting adds to its shot (0 for every patch when AMB is 0). */
-static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb, unsigned c)
+static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb,
+                              unsigned c)
 {
     rad_energy_t over;
     if (amb[c] == 0) return 0; /* shooting plainly */
@@ -88,7 +89,10 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
             sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
             u += rad__eabs(pt->unshot[c] + overshoot(s, pt, amb, c));
         }
-        if (u > most) { most = u; best = p; }
+        if (u > most) {
+            most = u;
+            best = p;
+        }
     }
     *total = sum;
     return best;
@@ -117,7 +121,8 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 /* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
  * stored row, or through the form factors in s->acc, rendering its hemi-cube first
  * when CUBE is set. */
-static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows, int cube)
+static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows,
+                        int cube)
 {
     rad_patch_t *pt = &s->pools.patches[p];
     rad_energy_t u[3];
@@ -177,7 +182,9 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
     rad_real_t amb[3];
     if (!s || !out) return RAD_ERR_ARG;
     ambient(s, amb, &s->stats.saturations);
-    out->r = amb[0]; out->g = amb[1]; out->b = amb[2];
+    out->r = amb[0];
+    out->g = amb[1];
+    out->b = amb[2];
     return RAD_OK;
 }
 
@@ -205,7 +212,8 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     return 1;
 }
 
-int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes)
+int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
+                  size_t bytes)
 {
     if (!s || !buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
@@ -217,8 +225,10 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
 {
     rad_real_t amb[3];
     unsigned k;
-    if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
-    for (k = 0; k < nparts; k++) if (!bufs[k]) return RAD_ERR_ARG;
+    if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0)
+        return RAD_ERR_ARG;
+    for (k = 0; k < nparts; k++)
+        if (!bufs[k]) return RAD_ERR_ARG;
     rad__cube_merge(s, bufs, nparts);
     shot_ambient(s, amb, &s->stats.saturations);
     shoot_patch(s, patch, amb, 0, 0);

@@ -42,27 +42,27 @@ extern "C" {
 
 /* The float twin links beside the fixed library, so its symbols carry another prefix. */
 #if RAD_FLOAT
-#define rad_init radf_init
-#define rad_add_polygon radf_add_polygon
-#define rad_shoot radf_shoot
-#define rad_unshot_fraction radf_unshot_fraction
-#define rad_ambient radf_ambient
+#define rad_init              radf_init
+#define rad_add_polygon       radf_add_polygon
+#define rad_shoot             radf_shoot
+#define rad_unshot_fraction   radf_unshot_fraction
+#define rad_ambient           radf_ambient
 #define rad_element_radiosity radf_element_radiosity
-#define rad_shade_vertices radf_shade_vertices
-#define rad_render radf_render
-#define rad_restart radf_restart
-#define rad_set_surface radf_set_surface
-#define rad_form_factors radf_form_factors
-#define rad_strerror radf_strerror
-#define rad_real_from_q16 radf_real_from_q16
-#define rad_rows_compute radf_rows_compute
-#define rad_rows_shoot radf_rows_shoot
+#define rad_shade_vertices    radf_shade_vertices
+#define rad_render            radf_render
+#define rad_restart           radf_restart
+#define rad_set_surface       radf_set_surface
+#define rad_form_factors      radf_form_factors
+#define rad_strerror          radf_strerror
+#define rad_real_from_q16     radf_real_from_q16
+#define rad_rows_compute      radf_rows_compute
+#define rad_rows_shoot        radf_rows_shoot
 #define rad_rows_gauss_seidel radf_rows_gauss_seidel
-#define rad_mix radf_mix
-#define rad_ff_from_code radf_ff_from_code
-#define rad_shot_begin radf_shot_begin
-#define rad_shot_part radf_shot_part
-#define rad_shot_end radf_shot_end
+#define rad_mix               radf_mix
+#define rad_ff_from_code      radf_ff_from_code
+#define rad_shot_begin        radf_shot_begin
+#define rad_shot_part         radf_shot_part
+#define rad_shot_end          radf_shot_end
 #endif
 
 /* ---- scalar types -------------------------------------------------------------- */
@@ -70,16 +70,16 @@ extern "C" {
 typedef float rad_real_t;
 typedef float rad_energy_t;
 typedef float rad_ff_t;
-#define RAD_REAL(x) ((rad_real_t)(x))
-#define RAD_TO_DOUBLE(r) ((double)(r))
+#define RAD_REAL(x)         ((rad_real_t)(x))
+#define RAD_TO_DOUBLE(r)    ((double)(r))
 #define RAD_FF_TO_DOUBLE(f) ((double)(f))
 #else
 typedef int32_t rad_real_t;
 typedef int64_t rad_energy_t;
 typedef uint32_t rad_ff_t;
 /* For host code only: converts a double constant or variable, rounding to nearest. */
-#define RAD_REAL(x) ((rad_real_t)((x) * 65536.0 + ((x) < 0 ? -0.5 : 0.5)))
-#define RAD_TO_DOUBLE(r) ((double)(r) / 65536.0)
+#define RAD_REAL(x)         ((rad_real_t)((x)*65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+#define RAD_TO_DOUBLE(r)    ((double)(r) / 65536.0)
 #define RAD_FF_TO_DOUBLE(f) ((double)(f) / 1073741824.0)
 #endif
 
@@ -91,26 +91,30 @@ typedef uint32_t rad_index_t;
 #define RAD_INDEX_NONE 0xFFFFFFFFu
 #endif
 
-#define RAD_COORD_LIMIT 64     /* |coordinate| <= 64.0 units */
+#define RAD_COORD_LIMIT    64   /* |coordinate| <= 64.0 units */
 #define RAD_EMISSION_LIMIT 4096 /* emission <= 4096.0 per channel */
 
-typedef struct { rad_real_t x, y, z; } rad_vec3_t;
-typedef struct { rad_real_t r, g, b; } rad_rgb_t;
+typedef struct {
+    rad_real_t x, y, z;
+} rad_vec3_t;
+typedef struct {
+    rad_real_t r, g, b;
+} rad_rgb_t;
 
 /* ---- errors -------------------------------------------------------------------- */
-#define RAD_OK 0
-#define RAD_ERR_ARG (-1)        /* NULL pointer or an argument outside its domain */
-#define RAD_ERR_FULL (-2)       /* a pool is full: nothing was added */
-#define RAD_ERR_RANGE (-3)      /* coordinate, reflectance or emission out of range */
+#define RAD_OK             0
+#define RAD_ERR_ARG        (-1) /* NULL pointer or an argument outside its domain */
+#define RAD_ERR_FULL       (-2) /* a pool is full: nothing was added */
+#define RAD_ERR_RANGE      (-3) /* coordinate, reflectance or emission out of range */
 #define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
-#define RAD_ERR_NONPLANAR (-5)  /* a quad that is not planar or not convex */
-#define RAD_ERR_STATE (-6)      /* call out of order (e.g. adding after shooting) */
-#define RAD_ERR_WORK (-7)       /* work buffer too small for this configuration */
+#define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
+#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting) */
+#define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
 
 /* ---- pools --------------------------------------------------------------------- */
 /* A polygon as given (3 or 4 vertices), meshed into a grid of patches and elements. */
 typedef struct {
-    rad_vec3_t normal;        /* unit normal, right-handed from the vertex order */
+    rad_vec3_t normal; /* unit normal, right-handed from the vertex order */
     rad_rgb_t reflectance;
     rad_rgb_t emission;
     rad_index_t first_patch, n_patches;
@@ -125,25 +129,30 @@ typedef struct {
 typedef struct {
     rad_vec3_t center;
     rad_real_t area;
-    rad_energy_t unshot[3];   /* unshot power (radiosity times area) per channel */
+    rad_energy_t unshot[3]; /* unshot power (radiosity times area) per channel */
     rad_index_t surface;
     rad_index_t first_element, n_elements;
 } rad_patch_t;
 
 /* A receiver: a triangle or planar quad of shared surface vertices. */
 typedef struct {
-    rad_index_t v[4];         /* v[3] == RAD_INDEX_NONE for a triangle */
+    rad_index_t v[4]; /* v[3] == RAD_INDEX_NONE for a triangle */
     rad_index_t surface, patch;
     rad_real_t area;
-    rad_rgb_t radiosity;      /* the solution so far (without the ambient term) */
+    rad_rgb_t radiosity; /* the solution so far (without the ambient term) */
 } rad_element_t;
 
 typedef struct {
-    rad_surface_t *surfaces; uint32_t max_surfaces;
-    rad_patch_t *patches;    uint32_t max_patches;
-    rad_element_t *elements; uint32_t max_elements;
-    rad_vec3_t *vertices;    uint32_t max_vertices;
-    void *work;              size_t work_bytes;
+    rad_surface_t *surfaces;
+    uint32_t max_surfaces;
+    rad_patch_t *patches;
+    uint32_t max_patches;
+    rad_element_t *elements;
+    uint32_t max_elements;
+    rad_vec3_t *vertices;
+    uint32_t max_vertices;
+    void *work;
+    size_t work_bytes;
 } rad_pools_t;
 
 /* Work buffer bytes for hemi-cube resolution RES rendering PIXELS pixels per pass, with
@@ -152,9 +161,9 @@ typedef struct {
  * All five faces at once:  PIXELS = RAD_PIXELS_ALL(RES) = 3 RES^2 (top + 4 half sides).
  * One band of ROWS rows:   PIXELS = RES * ROWS (RAM for time: each band re-renders).   */
 #define RAD_PIXELS_ALL(res) (3u * (uint32_t)(res) * (uint32_t)(res))
-#define RAD_WORK_BYTES(res, pixels, n)                                          \
-    (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) +     \
-     (size_t)(n) * sizeof(rad_ff_t) + (size_t)(res) * sizeof(uint32_t) +      \
+#define RAD_WORK_BYTES(res, pixels, n)                                     \
+    (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) + \
+     (size_t)(n) * sizeof(rad_ff_t) + (size_t)(res) * sizeof(uint32_t) +   \
      (size_t)(pixels) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
 
 /* ---- configuration (zero means default) ---------------------------------------- */
@@ -176,10 +185,10 @@ typedef struct {
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
-    uint32_t shots;            /* patches shot */
-    uint32_t saturations;      /* values clamped to their format's range */
-    uint32_t raster_calls;     /* polygons rasterized: hemi-cube surface pieces */
-    uint64_t raster_pixels;    /* pixels covered (before the depth test) */
+    uint32_t shots;         /* patches shot */
+    uint32_t saturations;   /* values clamped to their format's range */
+    uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
+    uint64_t raster_pixels; /* pixels covered (before the depth test) */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -187,8 +196,8 @@ typedef struct {
     rad_config_t cfg;
     rad_pools_t pools;
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
-    int solving;                 /* set by the first shot: geometry is frozen */
-    rad_energy_t emitted;        /* total emitted power, all channels */
+    int solving;          /* set by the first shot: geometry is frozen */
+    rad_energy_t emitted; /* total emitted power, all channels */
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -196,8 +205,8 @@ typedef struct {
     uint32_t *steps;              /* res: a row's element id steps (zero between spans) */
     uint32_t *zbuf;
     rad_index_t *ibuf;
-    uint32_t pass_pixels;         /* pixels the face buffers hold */
-    uint16_t band_rows;           /* rows per band, or 0: all faces in one pass */
+    uint32_t pass_pixels; /* pixels the face buffers hold */
+    uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
@@ -213,8 +222,8 @@ int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg);
  * patches and elements. Returns the new surface's index, or RAD_ERR_ARG, RAD_ERR_RANGE,
  * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR (split such a quad into triangles),
  * RAD_ERR_FULL (no pool changed) or RAD_ERR_STATE after shooting started. */
-int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
-                    const rad_rgb_t *reflectance, const rad_rgb_t *emission);
+int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
+                    const rad_rgb_t *emission);
 
 /* Changes the reflectance and emission of surface SURF (either may be NULL to keep it).
  * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE. */
@@ -241,11 +250,12 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
  * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
-#define RAD_PART_BYTES(res)                                                          \
-    (16u + (size_t)(res) * sizeof(uint32_t) +                                        \
+#define RAD_PART_BYTES(res)                   \
+    (16u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
-int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf, size_t bytes);
+int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
+                  size_t bytes);
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
 
 /* Unshot power as a fraction of the emitted power (0 when nothing emits): the sum of
@@ -259,7 +269,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s);
  * rad_shade_vertices) are clamped at zero. */
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
-#define RAD_SHADE_AMBIENT 1   /* add reflectance times the ambient term */
+#define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
 
 /* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
@@ -273,7 +283,7 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
 /* ---- viewing ------------------------------------------------------------------- */
 typedef struct {
     rad_vec3_t eye, target, up;
-    rad_real_t tan_half_fov;  /* tangent of half the vertical field of view, 1/16..16 */
+    rad_real_t tan_half_fov; /* tangent of half the vertical field of view, 1/16..16 */
 } rad_camera_t;
 
 /* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
@@ -282,8 +292,8 @@ typedef struct {
  * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
  * a degenerate camera, an eye or target beyond 4 * RAD_COORD_LIMIT, tan_half_fov or
  * tan_half_fov * W / H outside 1/16..16). */
-int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam,
-               rad_rgb_t *fb, uint32_t *zbuf, unsigned w, unsigned h);
+int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, rad_rgb_t *fb,
+               uint32_t *zbuf, unsigned w, unsigned h);
 
 /* Form factors from the centre of patch P to every element, written to OUT (one per
  * element, summing to 1 in a closed scene): the hemi-cube row the solver uses when P
@@ -301,11 +311,11 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
  * Memory: (max_rows + 1) * 4 + entries * (sizeof(rad_index_t) + 2) bytes, entries
  * being about the number of elements each patch sees, summed over patches. */
 typedef struct {
-    uint32_t *start;        /* max_rows + 1 offsets: row p is entries start[p]..start[p+1]-1 */
-    rad_index_t *ids;       /* max_entries element ids */
-    uint16_t *ffs;          /* max_entries coded form factors */
+    uint32_t *start;  /* max_rows + 1 offsets: row p is entries start[p]..start[p+1]-1 */
+    rad_index_t *ids; /* max_entries element ids */
+    uint16_t *ffs;    /* max_entries coded form factors */
     uint32_t max_rows, max_entries;
-    uint32_t n_rows;        /* rows stored so far: patches 0..n_rows-1 */
+    uint32_t n_rows; /* rows stored so far: patches 0..n_rows-1 */
 } rad_rows_t;
 
 /* Stores the rows of up to COUNT more patches (spread the work over frames by calling
@@ -334,8 +344,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
  * (the others dark) and keep each solution's element radiosities; then any mix is
  * OUT[e] = sum_g INTENSITY[g] * GROUPS[g][e] per channel, for n_elements elements.
  * Saturations are counted in s->stats. Returns RAD_OK or RAD_ERR_ARG. */
-int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity, uint32_t n_groups,
-            rad_rgb_t *out);
+int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity,
+            uint32_t n_groups, rad_rgb_t *out);
 
 /* The form factor a stored code stands for (Q2.30 in the fixed build). */
 rad_ff_t rad_ff_from_code(uint16_t code);
