@@ -141,7 +141,8 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
 /* ---- a hemisphere --------------------------------------------------------------- */
 
 /* Adds face FACE's sum of F B, per channel, to SUM. Row by row, so that the twin's
- * float sums add at most res terms at a time. */
+ * float sums add at most res terms at a time; an element's B is looked up once a run
+ * of its pixels (saturations are counted a run). */
 static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, unsigned face,
                      rad__wsum_t *sum)
 {
@@ -151,11 +152,12 @@ static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb
         const rad_index_t *ids = g->ibuf + (size_t)r * res;
         const rad_ff_t *row = rad__dff_row(top, side, res, face, r);
         rad__wsum_t acc[3] = {0, 0, 0};
+        uint32_t seen = RAD_INDEX_NONE;
+        rad_rgb_t b = {0, 0, 0};
         for (x = 0; x < res; x++) {
             rad_ff_t w = row[x < q ? q - 1u - x : x - q];
-            rad_rgb_t b;
             if (ids[x] >= s->n_elements) continue;
-            b = rad__shown(s, ids[x], amb, &g->stats.saturations);
+            if (ids[x] != seen) b = rad__shown(s, seen = ids[x], amb, &g->stats.saturations);
             acc[0] += rad__wterm(w, b.r);
             acc[1] += rad__wterm(w, b.g);
             acc[2] += rad__wterm(w, b.b);
@@ -209,13 +211,14 @@ static void row_moments(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *
     const rad_index_t *ids = g->ibuf + (size_t)r * res;
     const rad_ff_t *t = g->table;
     rad__wsum_t half[2][NMOM][3];
+    uint32_t seen = RAD_INDEX_NONE;
+    rad_rgb_t b = {0, 0, 0};
     for (x = 0; x < 2u * NMOM * 3u; x++) (&half[0][0][0])[x] = 0;
     for (x = 0; x < res; x++) {
         uint32_t i = x < q ? q - 1u - x : x - q, ij = j * q + i, ji = i * q + j;
         rad_ff_t w[NMOM];
-        rad_rgb_t b;
         if (ids[x] >= s->n_elements) continue;
-        b = rad__shown(s, ids[x], amb, &g->stats.saturations);
+        if (ids[x] != seen) b = rad__shown(s, seen = ids[x], amb, &g->stats.saturations);
         w[M0] = t[T0 * n + ij];
         w[MA] = t[TA * n + ij];
         w[MB] = t[TA * n + ji];
