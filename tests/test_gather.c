@@ -1,12 +1,13 @@
 /* Gathering (lib/gather.c) in both builds: a closed box glowing uniformly gathers its
  * radiance exactly and its probe has band 0 alone; a point under a square emitter
  * against Lambert's point-to-polygon form factor; a gather at a patch's centre against
- * the patch's own hemi-cube row; the twin against the fixed build; bad input.
+ * the patch's own hemi-cube row; the twin against the fixed build; threads; bad input.
  *
  * This file is compiled twice (Makefile: tests/float/test_gather.o): with RAD_FLOAT=1
  * it defines the *_float scene functions, without it the *_fixed ones and the tests.
  * The scene functions speak doubles only, so one test can drive both cores. */
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -581,6 +582,65 @@ static void test_patch_row(void **st)
     }
 }
 
+/* Gathers only read the scene: threads with a gatherer each get the serial bits. */
+typedef struct {
+    const rad_scene_t *s;
+    const rad_rgb_t *amb;
+    unsigned first;
+    rad_rgb_t out[16];
+    int rc;
+} job_t;
+
+static void *gather_job(void *arg)
+{
+    job_t *j = arg;
+    unsigned char *buf = malloc(RAD_GATHER_BYTES(32));
+    rad_gather_t g;
+    unsigned k;
+    j->rc = buf ? rad_gather_init(&g, 32, 0, buf, RAD_GATHER_BYTES(32)) : -1;
+    for (k = 0; k < 16 && j->rc == 0; k++) {
+        unsigned i = j->first + k;
+        rad_vec3_t p = vec(-15 + 0.9 * i, -15.5 + 0.95 * i, 14 - 0.9 * i), n = vec(1, 0.5 * i, -2);
+        g.turn = i;
+        j->rc = rad_gather(j->s, &g, &p, &n, RAD_INDEX_NONE, j->amb, &j->out[k]);
+    }
+    free(buf);
+    return NULL;
+}
+
+static void test_threads(void **st)
+{
+    world_t *w = world_new(32, 8, 4);
+    rad_rgb_t amb;
+    job_t serial[2], par[2];
+    pthread_t t[2];
+    int k, i;
+    (void)st;
+    assert_non_null(w);
+    assert_int_equal(add_box(w, 0.5, 8, 1), 0);
+    assert_int_equal(rad_shoot(&w->s, 40, 0), 40);
+    rad_ambient(&w->s, &amb);
+    for (k = 0; k < 2; k++) {
+        serial[k].s = par[k].s = &w->s;
+        serial[k].amb = par[k].amb = &amb;
+        serial[k].first = par[k].first = 16u * (unsigned)k;
+        gather_job(&serial[k]);
+        assert_int_equal(serial[k].rc, 0);
+        for (i = 0; i < 16; i++) assert_true(serial[k].out[i].r > 0); /* inside: lit */
+    }
+    for (k = 0; k < 2; k++) assert_int_equal(pthread_create(&t[k], NULL, gather_job, &par[k]), 0);
+    for (k = 0; k < 2; k++) {
+        assert_int_equal(pthread_join(t[k], NULL), 0);
+        assert_int_equal(par[k].rc, 0);
+        for (i = 0; i < 16; i++) {
+            assert_int_equal(par[k].out[i].r, serial[k].out[i].r);
+            assert_int_equal(par[k].out[i].g, serial[k].out[i].g);
+            assert_int_equal(par[k].out[i].b, serial[k].out[i].b);
+        }
+    }
+    free(w);
+}
+
 /* Bad input: a clear error, nothing written, no byte past the work buffer touched. */
 static void test_errors(void **st)
 {
@@ -633,7 +693,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_box_uniform),   cmocka_unit_test(test_box_solved_between),
         cmocka_unit_test(test_probe_uniform), cmocka_unit_test(test_under_emitter),
-        cmocka_unit_test(test_patch_row),     cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_patch_row),     cmocka_unit_test(test_threads),
+        cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
