@@ -140,31 +140,47 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
 
 /* ---- a hemisphere --------------------------------------------------------------- */
 
+/* Adds a run of element ID's pixels (ID past the last: none seen), the sums W[k] of
+ * their NW weights, times its shown radiosity, to ACC[k]. Summing the weights first
+ * is exact in the fixed build (a run's weights sum to less than 2^30) and looks B up
+ * once a run; saturations are counted a run. */
+static void add_run(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, uint32_t id,
+                    const rad_ff_t *w, unsigned nw, rad__wsum_t (*acc)[3])
+{
+    rad_rgb_t b;
+    unsigned k;
+    if (id >= s->n_elements) return;
+    b = rad__shown(s, id, amb, &g->stats.saturations);
+    for (k = 0; k < nw; k++) {
+        acc[k][0] += rad__wterm(w[k], b.r);
+        acc[k][1] += rad__wterm(w[k], b.g);
+        acc[k][2] += rad__wterm(w[k], b.b);
+    }
+}
+
 /* Adds face FACE's sum of F B, per channel, to SUM. Row by row, so that the twin's
- * float sums add at most res terms at a time; an element's B is looked up once a run
- * of its pixels (saturations are counted a run). */
+ * float sums add at most res terms at a time. */
 static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, unsigned face,
                      rad__wsum_t *sum)
 {
-    uint32_t res = g->res, q = res / 2u, rows = face ? q : res, r, x;
+    uint32_t res = g->res, q = res / 2u, rows = face ? q : res, r, x, c;
     const rad_ff_t *top = g->table, *side = g->table + (size_t)q * q;
     for (r = 0; r < rows; r++) {
         const rad_index_t *ids = g->ibuf + (size_t)r * res;
         const rad_ff_t *row = rad__dff_row(top, side, res, face, r);
-        rad__wsum_t acc[3] = {0, 0, 0};
-        uint32_t seen = RAD_INDEX_NONE;
-        rad_rgb_t b = {0, 0, 0};
+        rad__wsum_t acc[1][3] = {{0, 0, 0}};
+        rad_ff_t w[1] = {0};
+        uint32_t id = RAD_INDEX_NONE;
         for (x = 0; x < res; x++) {
-            rad_ff_t w = row[x < q ? q - 1u - x : x - q];
-            if (ids[x] >= s->n_elements) continue;
-            if (ids[x] != seen) b = rad__shown(s, seen = ids[x], amb, &g->stats.saturations);
-            acc[0] += rad__wterm(w, b.r);
-            acc[1] += rad__wterm(w, b.g);
-            acc[2] += rad__wterm(w, b.b);
+            if (ids[x] != id) {
+                add_run(s, g, amb, id, w, 1, acc);
+                id = ids[x];
+                w[0] = 0;
+            }
+            w[0] += row[x < q ? q - 1u - x : x - q];
         }
-        sum[0] += acc[0];
-        sum[1] += acc[1];
-        sum[2] += acc[2];
+        add_run(s, g, amb, id, w, 1, acc);
+        for (c = 0; c < 3; c++) sum[c] += acc[0][c];
     }
 }
 
@@ -201,40 +217,37 @@ typedef struct {
 static const unsigned char second[3][3] = {{4, 7, 9}, {7, 5, 8}, {9, 8, 6}};
 
 /* Row R's moments (per channel) into face sums FS: the pixels left of the centre have
- * a < 0, those of the rows below it b < 0. */
+ * a < 0, those of the rows below it b < 0; a run ends at the centre too. */
 static void row_moments(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, uint32_t r,
                         rad__msum_t (*fs)[3])
 {
     static const signed char odd_a[NMOM] = {0, 1, 0, 0, 0, 0, 1, 1, 0};
     static const signed char odd_b[NMOM] = {0, 0, 1, 0, 0, 0, 1, 0, 1};
     uint32_t res = g->res, q = res / 2u, n = q * q, j = r < q ? q - 1u - r : r - q, x, m, c;
+    uint32_t id = RAD_INDEX_NONE;
     const rad_index_t *ids = g->ibuf + (size_t)r * res;
     const rad_ff_t *t = g->table;
     rad__wsum_t half[2][NMOM][3];
-    uint32_t seen = RAD_INDEX_NONE;
-    rad_rgb_t b = {0, 0, 0};
+    rad_ff_t w[NMOM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (x = 0; x < 2u * NMOM * 3u; x++) (&half[0][0][0])[x] = 0;
     for (x = 0; x < res; x++) {
         uint32_t i = x < q ? q - 1u - x : x - q, ij = j * q + i, ji = i * q + j;
-        rad_ff_t w[NMOM];
-        if (ids[x] >= s->n_elements) continue;
-        if (ids[x] != seen) b = rad__shown(s, seen = ids[x], amb, &g->stats.saturations);
-        w[M0] = t[T0 * n + ij];
-        w[MA] = t[TA * n + ij];
-        w[MB] = t[TA * n + ji];
-        w[MD] = t[TD * n + ij];
-        w[MAA] = t[TAA * n + ij];
-        w[MBB] = t[TAA * n + ji];
-        w[MAB] = t[TAB * n + ij];
-        w[MAD] = t[TAD * n + ij];
-        w[MBD] = t[TAD * n + ji];
-        for (m = 0; m < NMOM; m++) {
-            rad__wsum_t *h = half[x >= q][m];
-            h[0] += rad__wterm(w[m], b.r);
-            h[1] += rad__wterm(w[m], b.g);
-            h[2] += rad__wterm(w[m], b.b);
+        if (ids[x] != id || x == q) {
+            add_run(s, g, amb, id, w, NMOM, half[x > q]);
+            id = ids[x];
+            for (m = 0; m < NMOM; m++) w[m] = 0;
         }
+        w[M0] += t[T0 * n + ij];
+        w[MA] += t[TA * n + ij];
+        w[MB] += t[TA * n + ji];
+        w[MD] += t[TD * n + ij];
+        w[MAA] += t[TAA * n + ij];
+        w[MBB] += t[TAA * n + ji];
+        w[MAB] += t[TAB * n + ij];
+        w[MAD] += t[TAD * n + ij];
+        w[MBD] += t[TAD * n + ji];
     }
+    add_run(s, g, amb, id, w, NMOM, half[1]);
     for (m = 0; m < NMOM; m++)
         for (c = 0; c < 3; c++) {
             rad__msum_t right = (rad__msum_t)half[1][m][c], left = (rad__msum_t)half[0][m][c];
