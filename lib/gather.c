@@ -227,9 +227,8 @@ static void row_moments(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *
     uint32_t id = RAD_INDEX_NONE;
     const rad_index_t *ids = g->ibuf + (size_t)r * res;
     const rad_ff_t *t = g->table;
-    rad__wsum_t half[2][NMOM][3];
+    rad__wsum_t half[2][NMOM][3] = {{{0, 0, 0}}};
     rad_ff_t w[NMOM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    for (x = 0; x < 2u * NMOM * 3u; x++) (&half[0][0][0])[x] = 0;
     for (x = 0; x < res; x++) {
         uint32_t i = x < q ? q - 1u - x : x - q, ij = j * q + i, ji = i * q + j;
         if (ids[x] != id || x == q) {
@@ -303,14 +302,15 @@ static void to_scene(const sphere_t *cube, sphere_t *sp)
         sp->m[0][c] = cube->m[0][c];
         for (i = 0; i < 3; i++) {
             rad__msum_t v = 0;
-            for (k = 0; k < 3; k++) v += turn3[k][i] * cube->m[1 + k][c];
+            for (k = 0; k < 3; k++) v += (rad__msum_t)turn3[k][i] * cube->m[1 + k][c];
             sp->m[1 + i][c] = rad__msum_div(v, 3);
         }
         for (i = 0; i < 6; i++) {
             rad__msum_t v = 0;
             for (k = 0; k < 3; k++)
                 for (l = 0; l < 3; l++)
-                    v += turn3[k][ii[i]] * turn3[l][jj[i]] * cube->m[second[k][l]][c];
+                    v +=
+                        (rad__msum_t)(turn3[k][ii[i]] * turn3[l][jj[i]]) * cube->m[second[k][l]][c];
             sp->m[4 + i][c] = rad__msum_div(v, 9);
         }
     }
@@ -330,17 +330,15 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
                   const rad_rgb_t *ambient, rad_rgb_t *sh)
 {
     rad__eye_t e;
-    sphere_t cube, sp;
+    sphere_t cube = {{{0, 0, 0}}}, sp;
     uint32_t *sat;
     unsigned f, r, c, k;
     int rc = sh ? eye_setup(s, g, point, skip, 1, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
     sat = &g->stats.saturations;
     probe_frame(e.frame);
-    for (k = 0; k < 30u; k++) (&cube.m[0][0])[k] = 0;
     for (f = 0; f < 6; f++) {
-        rad__msum_t fs[NMOM][3];
-        for (k = 0; k < NMOM * 3u; k++) (&fs[0][0])[k] = 0;
+        rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
         rad__eye_face(s, &e, f);
         for (r = 0; r < g->res; r++) row_moments(s, g, ambient, r, fs);
         add_face(f, fs, &cube);
