@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
 #include "scenes.h"
@@ -43,11 +44,12 @@ static sc_poly *cornell(int *n)
             assert_non_null(s);                                                           \
             assert_int_equal(P##_solve_parallel(s, threads, 300, 0, NULL, NULL), 300);    \
             P##_get_stats(s, &b);                                                         \
-            assert_true(P##_checksum(s) == want);                                         \
+            assert_int_equal(P##_checksum(s), want);                                      \
             /* Parts split the cube's rows: each pixel is drawn by one part, but a      \
              * polygon crossing a cut is set up once in each part it touches. */         \
-            assert_true(b.raster_pixels == a.raster_pixels);                              \
-            assert_true(b.raster_calls >= a.raster_calls);                                \
+            assert_int_equal(b.raster_pixels, a.raster_pixels);                           \
+            CHECK_INT_GE(b.raster_calls, a.raster_calls, "polygons set up on %d threads "    \
+                         "against 1", threads);                                           \
             if (threads == 1) assert_int_equal(b.raster_calls, a.raster_calls);           \
             P##_destroy(s);                                                               \
         }                                                                                 \
