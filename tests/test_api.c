@@ -145,7 +145,8 @@ static void test_init_errors(void **st)
     assert_int_equal(s.cfg.max_element, Q(4.0));
     assert_int_equal(s.cfg.max_patch, Q(16.0));
     /* the work buffer was sized for 32: it bands */
-    CHECK_INT_GT(s.band_rows, 0, "rows per band at the default res 64 in a work buffer sized for 32");
+    CHECK_INT_GT(s.band_rows, 0,
+                 "rows per band at the default res 64 in a work buffer sized for 32");
     pools_check(&g);
     pools_free(&g);
 }
@@ -194,7 +195,8 @@ static void test_add_errors(void **st)
     memcpy(v, ok, sizeof v); v[2] = V(0.3, 0.3, 0);
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
     v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
-    CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0, "rad_add_polygon of a bow-tie quad: an error");
+    CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0,
+                 "rad_add_polygon of a bow-tie quad: an error");
     /* Nothing was added by any of these, except the in-range triangle above. */
     assert_int_equal(s.n_surfaces, 1);
     /* A slightly bent quad (1/200 of its side) is accepted as planar. */
@@ -268,7 +270,8 @@ static void test_calls_and_guards(void **st)
         rad_rgb_t a;
         assert_int_equal(rad_element_radiosity(&s, e, 0, &out), RAD_OK);
         assert_int_equal(rad_element_radiosity(&s, e, RAD_SHADE_AMBIENT, &a), RAD_OK);
-        CHECK_INT_GE(a.r, out.r, "element %u: red with the ambient term against without (it only adds)",
+        CHECK_INT_GE(a.r, out.r,
+                     "element %u: red with the ambient term against without (it only adds)",
                      (unsigned)e);
     }
     vb = galloc(s.n_vertices * sizeof *vrgb);
@@ -292,7 +295,8 @@ static void test_calls_and_guards(void **st)
         c2 = cam; c2.tan_half_fov = 0;
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
     }
-    CHECK_INT_GT(rad_render(&s, vrgb, &cam, fb, zb, 40, 30), 0, "triangles drawn from inside the cube");
+    CHECK_INT_GT(rad_render(&s, vrgb, &cam, fb, zb, 40, 30), 0,
+                 "triangles drawn from inside the cube");
     gcheck(fbb, 40 * 30 * sizeof *fb);
     gcheck(zbb, 40 * 30 * sizeof *zb);
     ffb = galloc(s.n_elements * sizeof *ff);
@@ -396,7 +400,8 @@ static void test_overshoot_debt(void **st)
             rad_energy_t u = s.pools.patches[shooter].unshot[ch];
             if (k) CHECK_INT_EQ(u, 0, "the plain shooter's unshot power, channel %d", ch);
             else /* a closed grey cube: the ambient term is > 0 */
-                CHECK_INT_LT(u, 0, "the overshooting shooter's unshot power (owed), channel %d", ch);
+                CHECK_INT_LT(u, 0, "the overshooting shooter's unshot power (owed), channel %d",
+                             ch);
         }
         for (p = 0; p < s.n_patches; p++)
             for (ch = 0; ch < 3; ch++) sum += fabs((double)s.pools.patches[p].unshot[ch]);

@@ -62,9 +62,11 @@ static void test_table_sums_to_one(void **st)
                     sd = ldexp(1, 30) * z / pow(x * x + z * z + 1, 2) / tot;
                     /* Within 2 units: the floor, one unit of deficit, and the 32-bit
                      * pre-scaling of the raw values. */
-                    CHECK_NEAR(s.dff_top[b * q + a], t, 2.0, "res %u: top face entry %u, %u (Q2.30)",
+                    CHECK_NEAR(s.dff_top[b * q + a], t, 2.0,
+                               "res %u: top face entry %u, %u (Q2.30)",
                                res[i], (unsigned)a, (unsigned)b);
-                    CHECK_NEAR(s.dff_side[b * q + a], sd, 2.0, "res %u: side face entry %u, %u (Q2.30)",
+                    CHECK_NEAR(s.dff_side[b * q + a], sd, 2.0,
+                               "res %u: side face entry %u, %u (Q2.30)",
                                res[i], (unsigned)a, (unsigned)b);
                     if (fabs(s.dff_top[b * q + a] - t) / t > maxrel) maxrel = fabs(s.dff_top[b * q + a] - t) / t;
                 }
@@ -137,7 +139,8 @@ static void test_catalog(void **st)
     p[1].tag = 1;
     f = area_ff(p, 128);
     print_message("opposed squares: %.5f (catalog 0.19982, %+.2f%%)\n", f, 100 * (f / 0.19982 - 1));
-    CHECK_LE(fabs(f / 0.19982 - 1), 0.02, "opposed unit squares: relative error against the catalog");
+    CHECK_LE(fabs(f / 0.19982 - 1), 0.02,
+             "opposed unit squares: relative error against the catalog");
     /* Perpendicular unit squares sharing an edge: 0.20004. */
     p[0] = quad(0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0);
     p[1] = quad(0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0);
@@ -173,7 +176,8 @@ static void test_closed_box_rows(void **st)
             for (e = 0; e < stt.elements; e++) sum += ff[e];
             /* Every pixel sees some element, so the row is the table's sum: 1 within
              * float rounding (exactly 1 in fixed point). */
-            CHECK_NEAR(sum, 1, 1e-4, "%s: patch %d's row sum in a closed box", twin ? "float" : "fixed",
+            CHECK_NEAR(sum, 1, 1e-4, "%s: patch %d's row sum in a closed box",
+                       twin ? "float" : "fixed",
                        pt);
             if (!twin) CHECK_EQ(sum, 1.0, "fixed: patch %d's row sum in a closed box", pt);
         }
@@ -245,7 +249,8 @@ static void test_blocker_no_leak(void **st)
         }
         /* The blocker is black: it reflects nothing although it is hit. */
         CHECK_EQ(lit, 0, "%s: red reflected by the black blocker", twin ? "float" : "fixed");
-        CHECK_INT_GT(stt.raster_pixels, 0, "%s: hemi-cube pixels covered", twin ? "float" : "fixed");
+        CHECK_INT_GT(stt.raster_pixels, 0, "%s: hemi-cube pixels covered",
+                     twin ? "float" : "fixed");
         if (twin) scf_destroy(s); else sc_destroy(s);
     }
 }
@@ -329,7 +334,8 @@ static void test_element_lattice(void **st)
          * pixel all along: up to 1/20 for two such edges. */
         CHECK_LE(fabs(sum / want - 1), 0.001,
                  "receiver %d: the whole's relative error against Lambert's contour formula", k);
-        CHECK_LE(worst, 0.06, "receiver %d: the worst element's relative error against Lambert's formula",
+        CHECK_LE(worst, 0.06,
+                 "receiver %d: the worst element's relative error against Lambert's formula",
                  k);
         CHECK_LE(sqrt(s2 / sf[1].n_elements), 0.02,
                  "receiver %d: rms relative error of the elements against Lambert's formula", k);

@@ -662,7 +662,8 @@ static void test_max_res(void **st)
     (void)st;
     s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
-    CHECK_INT_EQ(sc_solve(s, light() ? 1 : 3, 0, NULL, NULL), light() ? 1 : 3, "shots at RAD_MAX_RES");
+    CHECK_INT_EQ(sc_solve(s, light() ? 1 : 3, 0, NULL, NULL), light() ? 1 : 3,
+                 "shots at RAD_MAX_RES");
     sc_destroy(s);
     o.res = RAD_MAX_RES + 2;
     assert_null(sc_create(p, n, &o, NULL, NULL, err, sizeof err));

@@ -363,7 +363,8 @@ static void truncations(tmpdir *t, const char *name)
         assert_int_equal(im.w, 0);
         CHECK_THAT(strncmp(err, t->path, strlen(t->path)) == 0,
                    "%s cut at %ld bytes: the error \"%s\" starts with the path", name, k, err);
-        CHECK_INT_GT(strlen(err), strlen(t->path) + 2, "%s cut at %ld bytes: length of the error \"%s\"",
+        CHECK_INT_GT(strlen(err), strlen(t->path) + 2,
+                     "%s cut at %ld bytes: length of the error \"%s\"",
                      name, k, err);
     }
     spit(in_dir(t, "cut"), full, (size_t)n);     /* and the whole file still reads */
@@ -586,10 +587,12 @@ static void test_auto_exposure(void **state)
     assert_non_null(big);
     for (i = 0; i < 3000; i++)
         big[i] = (i / 3) < 970 ? 0.5f : 100.0f;
-    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0, "exposure with 3%% of lights at 100, the rest 0.5");
+    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
+             "exposure with 3%% of lights at 100, the rest 0.5");
     big[970 * 3] = NAN;               /* non-finite values are not "lit" */
     big[971 * 3] = INFINITY;
-    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0, "exposure with a NaN and an infinity among the lights");
+    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
+             "exposure with a NaN and an infinity among the lights");
     free(big);
 }
 

@@ -176,7 +176,8 @@ static void check_triangulation(const obj_scene *sc, int face)
         for (k = 0; k < 3; k++) { /* a vertex of this polygon */
             for (j = 0; j < f->count && face_indices(sc, face)[j] != tri[k]; j++)
                 ;
-            CHECK_INT_LT(j, f->count, "face %d, triangle %d: corner %d's vertex %d among the face's",
+            CHECK_INT_LT(j, f->count,
+                         "face %d, triangle %d: corner %d's vertex %d among the face's",
                          face, t, k, tri[k]);
         }
         a = sc->verts[tri[0]];
@@ -188,7 +189,8 @@ static void check_triangulation(const obj_scene *sc, int face)
         centroid.x = (a.x + b.x + c.x) / 3;
         centroid.y = (a.y + b.y + c.y) / 3;
         centroid.z = (a.z + b.z + c.z) / 3;
-        CHECK_THAT(inside(sc, f, centroid, n), "face %d, triangle %d: centroid %g %g %g inside the face",
+        CHECK_THAT(inside(sc, f, centroid, n),
+                   "face %d, triangle %d: centroid %g %g %g inside the face",
                    face, t, centroid.x, centroid.y, centroid.z);
     }
     assert_near(total, obj_face_area(sc, f), 1e-9);

@@ -135,7 +135,8 @@ static void test_code(void **st)
     (void)st;
     /* Exact below 2^11; within 2^-11 relative (half an 11-bit step) above. */
     for (q = 0; q < 4096; q++)
-        if (q < 2048) CHECK_INT_EQ(rad_ff_from_code((uint16_t)q), q, "code %u (exact below 2^11)", (unsigned)q);
+        if (q < 2048) CHECK_INT_EQ(rad_ff_from_code((uint16_t)q), q, "code %u (exact below 2^11)",
+                                   (unsigned)q);
     for (q = 1; q < (1u << 30); q = q * 3 / 2 + 7) {
         uint16_t c = 0;
         uint32_t e = 0, m;

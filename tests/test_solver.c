@@ -210,7 +210,8 @@ static void test_overshoot(void **st)
      * Bounds, with room over what the test prints: 0.8 of the shots, 1.25 times plain's
      * rms. */
     CHECK_INT_LE(shots[1] * 5, shots[0] * 4, "5 x overshooting's shots against 4 x plain's");
-    CHECK_LE(rms[1], 1.25 * rms[0], "overshooting's rms distance from converged against 1.25 x plain's");
+    CHECK_LE(rms[1], 1.25 * rms[0],
+             "overshooting's rms distance from converged against 1.25 x plain's");
     /* Converged, both are the one solution of the same equations: what remains is the
      * last 1e-4 of unshot power, which the ambient term covers on average. */
     sc_solve(over, 100000, 1e-4, NULL, NULL);
@@ -222,7 +223,8 @@ static void test_overshoot(void **st)
     for (k = 0; k < 2; k++) {
         sc_stats stt;
         sc_get_stats(k ? over : plain, &stt);
-        CHECK_GE(stt.unshot, 0, "%s: unshot fraction (debts count by magnitude)", k ? "overshooting" : "plain");
+        CHECK_GE(stt.unshot, 0, "%s: unshot fraction (debts count by magnitude)",
+                 k ? "overshooting" : "plain");
     }
     sc_destroy(ref);
     sc_destroy(plain);
