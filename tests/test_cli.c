@@ -691,8 +691,8 @@ static void test_multiple_cameras(void **state)
     expect_same_pixels(&rt, &r1);
     expect_same_pixels(&l, &vl);
     expect_same_pixels(&rt, &vr);
-    assert_false(same_pixels(&l, &rt));
-    assert_false(same_pixels(&rt, &vn)); /* the FOV is used */
+    CHECK_THAT(!same_pixels(&l, &rt), "images %s and %s differ", "l", "rt");
+    CHECK_THAT(!same_pixels(&rt, &vn), "images %s and %s differ", "rt", "vn"); /* the FOV is used */
 
     /* Moving the camera left moves the scene right in the picture: both walls'
      * centroids must move right. 0.24 m of eye motion at 0.7..1.26 m depth moves a
@@ -1006,7 +1006,7 @@ static void test_emit_lights_dark_scene(void **state)
     RUN(&r, FIXED, "--emit", "nosuch=1,1,1", "-o", tmp_path("nosuch.png"), DATA "dark.obj");
     expect_status(&r, 1);
     assert_non_null(strstr(r.err, "nosuch"));
-    assert_false(file_exists(tmp_path("nosuch.png")));
+    CHECK_THAT(!file_exists(tmp_path("nosuch.png")), "%s is not written", tmp_path("nosuch.png"));
     run_free(&r);
 }
 
@@ -1058,7 +1058,7 @@ static void test_usage_errors(void **state)
         expect_usage_error(bin, prog, "--tol", "1", CORNELL);
         expect_usage_error(bin, prog, CORNELL, CORNELL); /* two scenes */
         expect_usage_error(bin, prog, CORNELL, "-o");    /* option without its value */
-        assert_false(file_exists(out));
+        CHECK_THAT(!file_exists(out), "%s is not written", out);
         /* --help: the usage on stdout, exit 0. */
         RUN(&r, bin, "--help");
         expect_status(&r, 0);
@@ -1113,7 +1113,7 @@ static void test_runtime_errors(void **state)
         snprintf(want, sizeof want, "%s: %s:2: ", prog, tmp_path("bad_views.txt"));
         expect_runtime_error(&r, want);
         run_free(&r);
-        assert_false(file_exists(tmp_path("err.png")));
+        CHECK_THAT(!file_exists(tmp_path("err.png")), "%s is not written", tmp_path("err.png"));
     }
 }
 
@@ -1128,7 +1128,8 @@ static void test_unwritable_output(void **state)
     RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", "/nonexistent_dir/x.png", CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
     assert_non_null(strstr(r.err, "/nonexistent_dir/x.png"));
-    assert_false(file_exists("/nonexistent_dir/x.png"));
+    CHECK_THAT(!file_exists("/nonexistent_dir/x.png"), "%s is not written",
+               "/nonexistent_dir/x.png");
     run_free(&r);
 
     /* An unknown extension: exit 1, the path named, neither the file nor a temporary

@@ -858,7 +858,7 @@ static void test_cli_huge_emission(void **st)
         snprintf(want, sizeof want, "rad_cli: %s:11: number out of range '1e31' (limit 1e30)\n", tmp_path("ke31.obj.mtl"));
         expect_cli(&a, 1, want);
     }
-    assert_false(file_exists(tmp_path("ke31.png")));
+    CHECK_THAT(!file_exists(tmp_path("ke31.png")), "%s is not written", tmp_path("ke31.png"));
     run_free(&a);
 }
 
@@ -887,7 +887,7 @@ static void test_cli_hostile_files(void **st)
     RUN(&r, tmp_path("bin.obj"), "-o", tmp_path("bin.png"));
     snprintf(want, sizeof want, "rad_cli: %s:2: binary data (NUL byte)\n", tmp_path("bin.obj"));
     expect_cli(&r, 1, want);
-    assert_false(file_exists(tmp_path("bin.png")));
+    CHECK_THAT(!file_exists(tmp_path("bin.png")), "%s is not written", tmp_path("bin.png"));
     run_free(&r);
     /* A megabyte line. */
     text = malloc((1 << 20) + 16);
@@ -964,7 +964,7 @@ static void test_cli_many_faces(void **st)
         char want[600];
         snprintf(want, sizeof want, "rad_cli: %s: the scene needs more than 65534 elements: raise the element size\n", obj);
         expect_cli(&r, 1, want);
-        assert_false(file_exists(tmp_path("many.png")));
+        CHECK_THAT(!file_exists(tmp_path("many.png")), "%s is not written", tmp_path("many.png"));
         run_free(&r);
         unlink(obj);
         return;

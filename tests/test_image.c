@@ -286,7 +286,7 @@ static void test_unwritable_path(void **state)
     assert_int_equal(img_write(in_dir(t, "d.ppm"), rgb, W, H, err, sizeof err), -1);
     CHECK_INT_NE(err[0], '\0', "the error message's first character");
     assert_int_equal(count_entries(t->dir), 1);
-    assert_false(has_tmp_file(t->dir));
+    CHECK_THAT(!has_tmp_file(t->dir), "no temporary file left in %s", t->dir);
     assert_int_equal(count_entries(in_dir(t, "d.ppm")), 0);
 
     if (geteuid() != 0) {   /* root ignores directory permissions */

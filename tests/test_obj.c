@@ -497,13 +497,13 @@ static void test_materials(void **state)
     assert_rgb(m->kd, 0.8, 0.8, 0.8);
     assert_int_equal(m->nfaces, 1);
     assert_near(m->area, 6, 1e-12);
-    assert_false(m->defined);
+    CHECK_INT_EQ(m->defined, 0, "material %s: not defined by newmtl", m->name);
     m = &sc.materials[ghost];
     assert_rgb(m->kd, 0.8, 0.8, 0.8);
     assert_rgb(m->ke, 0, 0, 0);
     assert_int_equal(m->nfaces, 1);
     assert_near(m->area, 3, 1e-12);
-    assert_false(m->defined);
+    CHECK_INT_EQ(m->defined, 0, "material %s: not defined by newmtl", m->name);
 
     assert_int_equal(sc.nfaces, 6);
     assert_int_equal(sc.faces[0].material, def);

@@ -878,7 +878,8 @@ static void test_cli_groups(void **state)
                  "access(%s): the file was written", tmp_path("eg.warm.png"));
     CHECK_INT_EQ(access(tmp_path("eg.cool.png"), R_OK), 0,
                  "access(%s): the file was written", tmp_path("eg.cool.png"));
-    assert_false(same_image(tmp_path("eg.warm.png"), tmp_path("eg.cool.png")));
+    CHECK_THAT(!same_image(tmp_path("eg.warm.png"), tmp_path("eg.cool.png")), "%s and %s differ",
+               tmp_path("eg.warm.png"), tmp_path("eg.cool.png"));
 
     /* Errors. */
     RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber,brass", "-o", out, GALLERY);
@@ -961,10 +962,14 @@ static void test_cli_animate(void **state)
      * 3 the camera. */
     CHECK_THAT(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0004.png")),
                "%s and %s: the same pixels", tmp_path("fr_0000.png"), tmp_path("fr_0004.png"));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0001.png")));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0002.png")));
-    assert_false(same_image(tmp_path("fr_0001.png"), tmp_path("fr_0002.png")));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0003.png")));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0001.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0001.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0002.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0002.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0001.png"), tmp_path("fr_0002.png")), "%s and %s differ",
+               tmp_path("fr_0001.png"), tmp_path("fr_0002.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0003.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0003.png"));
     /* Without --light-group every emitter is in "other". */
     {
         const char *f = tmp_path("frames2.txt");
@@ -975,7 +980,8 @@ static void test_cli_animate(void **state)
         RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", GCOARSE, "--animate", f, "-o", tmp_path("o.ppm"), GALLERY);
         expect_status(&r, 0);
         run_free(&r);
-        assert_false(same_image(tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm")));
+        CHECK_THAT(!same_image(tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm")), "%s and %s differ",
+                   tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm"));
         fp = fopen(f, "w");
         assert_non_null(fp);
         fputs("0 2 6 0 1.2 0\n0 2 6 nope 1.2 0\n", fp);
