@@ -246,7 +246,8 @@ static void test_calls_and_guards(void **st)
     rad_rgb_t amb, out, *vrgb, *fb;
     rad_ff_t *ff;
     uint32_t *zb, e;
-    rad_camera_t cam = {.eye = {0, 0, Q(3.9)}, .target = {0, 0, 0}, .up = {0, Q(1), 0}, .tan_half_fov = Q(1.0)};
+    rad_camera_t cam = {.eye = {0, 0, Q(3.9)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
+                        .tan_half_fov = Q(1.0)};
     rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
     unsigned char *vb, *fbb, *zbb, *ffb;
     (void)st;

@@ -104,7 +104,7 @@ static void test_point_to_polygon(void **st)
  * factor is the area-weighted mean of each patch's sum over the receiver's elements. */
 static double area_ff(const sc_poly *p, int res)
 {
-    sc_opts o = {1.0 / 16, 1.0 / 16, res, 0, 0, 0};
+    sc_opts o = {.max_patch = 1.0 / 16, .max_element = 1.0 / 16, .res = res};
     char err[256];
     sc_solver *s = sc_create(p, 2, &o, NULL, NULL, err, sizeof err);
     sc_stats stt;
@@ -156,7 +156,7 @@ static void test_catalog(void **st)
 static void test_closed_box_rows(void **st)
 {
     sc_poly p[12];
-    sc_opts o = {0.5, 0.25, 64, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 64};
     char err[256];
     int n = box(p, -1, -1, -1, 1, 1, 1, 1), pt, e, twin;
     (void)st;
@@ -198,7 +198,7 @@ static void test_bands_bit_exact(void **st)
     for (i = 0; i < n; i++) set_mat(&p[i], 0.6, 0.5, 0.4, 0, 0, 0);
     set_mat(&p[1], 0.5, 0.5, 0.5, 1, 1, 1);
     for (b = 0; b < 5; b++) {
-        sc_opts o = {0.5, 0.25, 32, bands[b], 0, 0};
+        sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32, .band_rows = bands[b]};
         sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
         assert_non_null(s);
         CHECK_INT_EQ(sc_solve(s, 100, 0, NULL, NULL), 100, "shots with %d band rows", bands[b]);
@@ -226,7 +226,7 @@ static void test_blocker_no_leak(void **st)
     p[n] = quad(0, 0, 1, 0, 3, 1, 3, 3, 1, 3, 0, 1); p[n++].tag = 1;
     p[n] = quad(-1, -1, 2, -1, 1, 2, 1, 1, 2, 1, -1, 2); set_mat(&p[n], 0.8, 0.8, 0.8, 0, 0, 0); p[n++].tag = 2;
     for (twin = 0; twin < 2; twin++) {
-        sc_opts o = {0.25, 0.125, 128, 0, 0, 0};
+        sc_opts o = {.max_patch = 0.25, .max_element = 0.125, .res = 128};
         sc_stats stt;
         double rgb[3], lit = 0;
         void *s = twin ? (void *)scf_create(p, n, &o, NULL, NULL, err, sizeof err)

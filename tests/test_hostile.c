@@ -318,7 +318,7 @@ static void test_millions_of_vertices(void **st)
     const char *path = tmp_path("millions.obj");
     obj_scene sc;
     sc_poly *p;
-    sc_opts o = {0, 0, 16, 0, 5000, 0};
+    sc_opts o = {.res = 16, .max_elements = 5000};
     char err[512];
     sc_solver *s;
     scf_solver *sf;
@@ -368,7 +368,7 @@ typedef struct {
 
 static int solve_scene(int twin, const sc_poly *p, int n, solved_t *out, char *err, size_t errlen)
 {
-    sc_opts o = {0.5, 0.25, 32, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32};
     sc_stats st;
     if (twin) {
         scf_solver *s = scf_create(p, n, &o, NULL, NULL, err, errlen);
@@ -479,7 +479,7 @@ static void test_extent_denormal(void **st)
 static void test_no_emitter(void **st)
 {
     sc_poly p[16];
-    sc_opts o = {0.5, 0.25, 16, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 16};
     sc_stats stt;
     char err[256];
     int n = lit_room(p, 0, 0), e, twin;
@@ -487,7 +487,7 @@ static void test_no_emitter(void **st)
     for (twin = 0; twin < 2; twin++) {
         double rgb[3];
         float img[8 * 8 * 3];
-        sc_camera cam = {{0, 0, 0.9}, {0, 0, 0}, {0, 1, 0}, 60};
+        sc_camera cam = {.eye = {0, 0, 0.9}, .target = {0, 0, 0}, .up = {0, 1, 0}, .fov_deg = 60};
         int i;
         if (twin) {
             scf_solver *s = scf_create(p, n, &o, NULL, NULL, err, sizeof err);
@@ -611,7 +611,8 @@ static void test_bands_bit_exact(void **st)
             double *ff_all = NULL;
             int ne = 0;
             for (r = -1; r < 4; r++) {
-                sc_opts o = {0.5, 0.25, res, r < 0 ? 0 : rows[r], 0, 0};
+                sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = res,
+                             .band_rows = r < 0 ? 0 : rows[r]};
                 uint64_t sum;
                 double *ff;
                 sc_stats stt;
@@ -655,7 +656,7 @@ static void test_bands_bit_exact(void **st)
 static void test_max_res(void **st)
 {
     sc_poly p[16];
-    sc_opts o = {0.5, 0.25, RAD_MAX_RES, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = RAD_MAX_RES};
     char err[256];
     int n = lit_room(p, 1, 0);
     sc_solver *s;
@@ -682,8 +683,10 @@ static void test_index_limits(void **st)
     static rad_element_t el[1];
     static rad_vec3_t vert[1];
     static unsigned char work[1 << 16];
-    rad_pools_t pools = {surf, 1, pat, 1, el, 1, vert, 1, work, sizeof work};
-    rad_config_t cfg = {0, 0, 8, 0, 0};
+    rad_pools_t pools = {.surfaces = surf, .max_surfaces = 1, .patches = pat, .max_patches = 1,
+                         .elements = el, .max_elements = 1, .vertices = vert, .max_vertices = 1,
+                         .work = work, .work_bytes = sizeof work};
+    rad_config_t cfg = {.res = 8};
     rad_scene_t s;
     (void)st;
     /* Counts beyond the index width are refused before any pool is touched. */

@@ -650,7 +650,7 @@ static void test_plot_lines(void **state)
 {
     double x[11], up[11], down[11];
     plot_series s[2] = {{NULL, x, up, 11, {255, 0, 0}}, {NULL, x, down, 11, {0, 0, 255}}};
-    plot_opts o = {"Title", "iteration", "residual", 0, 0, 0};
+    plot_opts o = {.title = "Title", .xlabel = "iteration", .ylabel = "residual"};
     unsigned char *rgb = malloc(PW * PH * 3);
     int i, x0, y1, top, bot, t2, b2;
     (void)state;
@@ -725,7 +725,7 @@ static void test_plot_degenerate(void **state)
 {
     double y[6] = {1, 0, -5, 10, 100, NAN}, neg[3] = {0, -1, -2}, one = 42;
     plot_series s[3] = {{"a", NULL, y, 6, {255, 0, 0}}, {NULL, NULL, neg, 3, {0, 0, 255}}, {"", NULL, &one, 0, {0, 0, 255}}};
-    plot_opts o = {NULL, NULL, NULL, 1, 0, 0};
+    plot_opts o = {.log_y = 1};
     unsigned char *rgb = malloc(PW * PH * 3), tiny[10 * 10 * 3 + 64];
     int x0, y1, i, tw, th;
     (void)state;
@@ -798,7 +798,7 @@ static void test_plot_write(void **state)
     tmpdir *t = *state;
     double y[3] = {3, 1, 2};
     plot_series s = {"s", NULL, y, 3, {0, 128, 0}};
-    plot_opts o = {"t", "x", "y", 0, 400, 300};
+    plot_opts o = {.title = "t", .xlabel = "x", .ylabel = "y", .width = 400, .height = 300};
     char err[256] = "";
     img_t im;
     assert_int_equal(plot_write(in_dir(t, "p.png"), &s, 1, &o, err, sizeof err), 0);

@@ -29,7 +29,7 @@ static sc_poly *cornell(int *n)
     static void bit_exact_##P(const sc_poly *p, int n)                                    \
     {                                                                                     \
         int threads;                                                                      \
-        sc_opts o = {0, 0.04, 64, 0, 0, 0};                                                  \
+        sc_opts o = {.max_element = 0.04, .res = 64};                                     \
         char err[256];                                                                    \
         P##_solver *ref = P##_create(p, n, &o, NULL, NULL, err, sizeof err);              \
         uint64_t want;                                                                    \
@@ -68,7 +68,7 @@ static void test_bit_exact(void **st)
     bit_exact_scf(p, n);
     /* A banded core cannot split a shot: a clear refusal, not a wrong answer. */
     {
-        sc_opts ob = {0, 0.04, 64, 8, 0, 0};
+        sc_opts ob = {.max_element = 0.04, .res = 64, .band_rows = 8};
         sc_solver *s = sc_create(p, n, &ob, NULL, NULL, err, sizeof err);
         assert_non_null(s);
         assert_int_equal(sc_solve_parallel(s, 2, 10, 0, NULL, NULL), -1);

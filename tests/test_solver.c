@@ -24,7 +24,7 @@ static void check_closed_box(int twin, double max_patch, double max_elem, double
 {
     static const double rho[3] = {0.3, 0.5, 0.8};
     sc_poly p[6];
-    sc_opts o = {max_patch, max_elem, 128, 0, 0, 0};
+    sc_opts o = {.max_patch = max_patch, .max_element = max_elem, .res = 128};
     char err[256];
     int n = closed_box(p, rho), e, c;
     double mean[3] = {0, 0, 0}, area = 0, worst = 0;
@@ -79,7 +79,7 @@ static void test_ambient_partial(void **st)
 {
     static const double rho[3] = {0.5, 0.5, 0.5};
     sc_poly p[6];
-    sc_opts o = {0.5, 0.25, 64, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 64};
     char err[256];
     int n = closed_box(p, rho), e, shots;
     sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
@@ -110,7 +110,8 @@ static void test_unshot_decreases(void **st)
 {
     sc_poly p[6];
     static const double rho[3] = {0.7, 0.6, 0.5};
-    sc_opts o = {0.5, 0.25, 32, 0, 0, 1}; /* plain shooting: overshooting owes power */
+    /* plain shooting: overshooting owes power */
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32, .no_overshoot = 1};
     char err[256];
     int n = closed_box(p, rho), i;
     sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
@@ -152,7 +153,7 @@ static void test_twin_cornell(void **st)
      * light patch's hemi-cube, and a last-bit difference in a vertex can move a pixel
      * centre across its edge. At 128 (rad_cli's default) each covers four times the
      * pixels, and the difference is several times smaller. */
-    sc_opts o = {0, 0, 128, 0, 0, 0};
+    sc_opts o = {.res = 128};
     char err[256];
     int n = cornell(p), compared;
     sc_solver *fx = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
@@ -185,7 +186,8 @@ static void test_twin_cornell(void **st)
 static void test_overshoot(void **st)
 {
     sc_poly p[24];
-    sc_opts plain_o = {0.5, 0.125, 32, 0, 0, 1}, over_o = {0.5, 0.125, 32, 0, 0, 0};
+    sc_opts plain_o = {.max_patch = 0.5, .max_element = 0.125, .res = 32, .no_overshoot = 1};
+    sc_opts over_o = {.max_patch = 0.5, .max_element = 0.125, .res = 32};
     char err[256];
     int n = cornell(p), k;
     sc_solver *ref = sc_create(p, n, &plain_o, NULL, NULL, err, sizeof err);
@@ -241,7 +243,7 @@ static void test_overshoot_bright_box(void **st)
     (void)st;
     for (k = 0; k < 2; k++) {
         sc_poly p[6];
-        sc_opts o = {0.5, 0.25, 32, 0, 0, 0};
+        sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32};
         char err[256];
         int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, e;
         sc_solver *s;
