@@ -511,7 +511,7 @@ int main(int argc, char **argv)
     {
         /* The bundled box is 0.56 m across: element edges for 535, 1,796 and 8,360
          * elements (meshing is by whole divisions of each face: the nearest to the
-         * issue's 500, 2,000 and 8,000). */
+         * benchmark's targets of 500, 2,000 and 8,000). */
         static const double me[3] = {0.065, 0.035, 0.0165};
         static const char *nm[3] = {"Cornell box (bundled), coarse", "Cornell box (bundled), medium",
                                     "Cornell box (bundled), fine"};
