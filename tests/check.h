@@ -6,8 +6,9 @@
  *
  * and the file and line. WHAT is a printf format and its arguments (at least the format):
  * the requirement in the project's own words, with what varies in a loop (an element, a
- * pixel) among its arguments; a literal % is written %%. Each macro evaluates each of its
- * operands once, in order, so a call with side effects can stand in the measured place.
+ * pixel) among its arguments, evaluated only on failure; a literal % is written %%. Each
+ * macro evaluates each of its operands once, in order, so a call with side effects can
+ * stand in the measured place.
  *
  * CHECK_LE, _LT, _GE, _GT, _EQ compare doubles (a float or an integer below 2^53
  * converts exactly); CHECK_NEAR(measured, expected, tol, what...) requires
