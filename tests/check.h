@@ -16,9 +16,10 @@
  * compare as intmax_t and print in decimal (a negative RAD_ERR_* code reads as itself):
  * for signed or small unsigned integers. A 64-bit checksum or bit pattern uses CMocka's
  * assert_int_equal, exact over all 64 bits; pointers assert_non_null, strings
- * assert_string_equal, bytes assert_memory_equal. CHECK_THAT(cond, what...) is for a
- * condition none of these express (128-bit products, a text that must contain a line):
- * WHAT's arguments then carry the values.
+ * assert_string_equal, bytes assert_memory_equal. CHECK_CONTAINS(text, part, what...)
+ * and CHECK_LACKS require PART in TEXT (or not) and print both. CHECK_THAT(cond,
+ * what...) is for a condition none of these express (128-bit products, a line that must
+ * start a text): WHAT's arguments then carry the values.
  *
  * Include after <cmocka.h>. */
 #ifndef RAD_TESTS_CHECK_H
@@ -26,6 +27,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #define CHECK_CMP_(type, fmt, measured, op, bound, ...)                                    \
     do {                                                                                   \
@@ -51,6 +53,21 @@
 #define CHECK_INT_GT(m, b, ...) CHECK_CMP_(intmax_t, "%jd", m, >, b, __VA_ARGS__)
 #define CHECK_INT_EQ(m, b, ...) CHECK_CMP_(intmax_t, "%jd", m, ==, b, __VA_ARGS__)
 #define CHECK_INT_NE(m, b, ...) CHECK_CMP_(intmax_t, "%jd", m, !=, b, __VA_ARGS__)
+
+#define CHECK_TEXT_(text, part, found, ...)                                                 \
+    do {                                                                                   \
+        const char *check_t_ = (text);                                                     \
+        const char *check_p_ = (part);                                                     \
+        if ((strstr(check_t_, check_p_) != NULL) != (found)) {                             \
+            print_error(__VA_ARGS__);                                                      \
+            print_error(": \"%s\" %s in:\n%s\n", check_p_, (found) ? "not found" : "found",   \
+                        check_t_);                                                         \
+            fail();                                                                        \
+        }                                                                                  \
+    } while (0)
+
+#define CHECK_CONTAINS(text, part, ...) CHECK_TEXT_(text, part, 1, __VA_ARGS__)
+#define CHECK_LACKS(text, part, ...)    CHECK_TEXT_(text, part, 0, __VA_ARGS__)
 
 #define CHECK_THAT(cond, ...)                                                              \
     do {                                                                                   \

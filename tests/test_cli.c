@@ -974,7 +974,7 @@ static void test_emit_lights_dark_scene(void **state)
     RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o", tmp_path("dark.png"),
         DATA "dark.obj");
     expect_status(&r, 0);
-    assert_non_null(strstr(r.err, "no material emits"));
+    CHECK_CONTAINS(r.err, "no material emits", "rad_cli's stderr");
     run_free(&r);
     load_img(tmp_path("dark.png"), &im);
     assert_int_equal(count_black(&im), 48 * 48);
@@ -984,7 +984,7 @@ static void test_emit_lights_dark_scene(void **state)
     RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "--emit", "lamp=10,10,10",
         "-o", tmp_path("lit.png"), DATA "dark.obj");
     expect_status(&r, 0);
-    assert_null(strstr(r.err, "no material emits"));
+    CHECK_LACKS(r.err, "no material emits", "rad_cli's stderr");
     run_free(&r);
     load_img(tmp_path("lit.png"), &im);
     black = count_black(&im);
@@ -1005,7 +1005,7 @@ static void test_emit_lights_dark_scene(void **state)
     /* An unknown material name is an error. */
     RUN(&r, FIXED, "--emit", "nosuch=1,1,1", "-o", tmp_path("nosuch.png"), DATA "dark.obj");
     expect_status(&r, 1);
-    assert_non_null(strstr(r.err, "nosuch"));
+    CHECK_CONTAINS(r.err, "nosuch", "rad_cli's stderr");
     CHECK_THAT(!file_exists(tmp_path("nosuch.png")), "%s is not written", tmp_path("nosuch.png"));
     run_free(&r);
 }
@@ -1100,7 +1100,7 @@ static void test_runtime_errors(void **state)
         RUN(&r, bin, "-o", tmp_path("err.png"), DATA "bad_index.obj");
         snprintf(want, sizeof want, "%s: " DATA "bad_index.obj:5: ", prog);
         expect_runtime_error(&r, want);
-        assert_non_null(strstr(r.err, "out of range"));
+        CHECK_CONTAINS(r.err, "out of range", "rad_cli's stderr");
         run_free(&r);
         /* A missing file has no line to name: "PROG: FILE: reason". */
         RUN(&r, bin, "-o", tmp_path("err.png"), DATA "no_such_scene.obj");
@@ -1127,7 +1127,7 @@ static void test_unwritable_output(void **state)
     /* A directory that does not exist: exit 1, the path in a one-line message, no file. */
     RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", "/nonexistent_dir/x.png", CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
-    assert_non_null(strstr(r.err, "/nonexistent_dir/x.png"));
+    CHECK_CONTAINS(r.err, "/nonexistent_dir/x.png", "rad_cli's stderr");
     CHECK_THAT(!file_exists("/nonexistent_dir/x.png"), "%s is not written",
                "/nonexistent_dir/x.png");
     run_free(&r);
@@ -1136,7 +1136,7 @@ static void test_unwritable_output(void **state)
      * file left behind in the directory. */
     RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", tmp_path("x.bmp"), CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
-    assert_non_null(strstr(r.err, tmp_path("x.bmp")));
+    CHECK_CONTAINS(r.err, tmp_path("x.bmp"), "rad_cli's stderr");
     assert_int_equal(count_tmp_files("x.bmp"), 0);
     run_free(&r);
 
@@ -1147,7 +1147,7 @@ static void test_unwritable_output(void **state)
     RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "--camera", "0,0.2,1000,0,0.2,0", "-o",
         tmp_path("keep.png"), CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
-    assert_non_null(strstr(r.err, tmp_path("keep.png")));
+    CHECK_CONTAINS(r.err, tmp_path("keep.png"), "rad_cli's stderr");
     run_free(&r);
     after = slurp(tmp_path("keep.png"), &n1);
     assert_non_null(after);

@@ -837,7 +837,7 @@ static void test_cli_huge_emission(void **st)
         "--max-element", "0.05", "--stats");
     expect_cli(&a, 0, NULL);
     expect_cli(&b, 0, NULL);
-    assert_non_null(strstr(b.out, "saturations 0\n"));
+    CHECK_CONTAINS(b.out, "saturations 0\n", "rad_cli's stdout");
     assert_int_equal(img_read(tmp_path("ke1.png"), &ia, e1, sizeof e1), 0);
     assert_int_equal(img_read(tmp_path("ke30.png"), &ib, e2, sizeof e2), 0);
     assert_int_equal(ia.w, ib.w);
@@ -916,7 +916,8 @@ static void test_cli_hostile_files(void **st)
     write_text(tmp_path("dark.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
     RUN(&r, tmp_path("dark.obj"), "-o", tmp_path("dark.png"), "--res", "8", "--width", "8", "--height", "8");
     expect_cli(&r, 0, NULL);
-    assert_non_null(strstr(r.err, "no material emits light (Ke), so the image is black"));
+    CHECK_CONTAINS(r.err, "no material emits light (Ke), so the image is black",
+                   "rad_cli's stderr");
     CHECK_THAT(file_exists(tmp_path("dark.png")), "%s was written", tmp_path("dark.png"));
     run_free(&r);
     unlink(tmp_path("dark.png"));
@@ -974,7 +975,7 @@ static void test_cli_many_faces(void **st)
     }
 #endif
     expect_cli(&r, 0, NULL);
-    assert_non_null(strstr(r.out, "shots 1 "));
+    CHECK_CONTAINS(r.out, "shots 1 ", "rad_cli's stdout");
     i = 0;
     sscanf(strstr(r.out, "elements ") + 9, "%ld", &i);
     CHECK_INT_GE(i, nf, "elements of the many-faces scene against its faces");

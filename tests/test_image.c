@@ -247,7 +247,7 @@ static void test_invalid_sizes(void **state)
     for (i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         err[0] = '\0';
         assert_int_equal(img_write(in_dir(t, "s.png"), rgb, sizes[i][0], sizes[i][1], err, sizeof err), -1);
-        assert_non_null(strstr(err, "invalid image size"));
+        CHECK_CONTAINS(err, "invalid image size", "the error message");
         assert_int_equal(img_write(in_dir(t, "s.ppm"), rgb, sizes[i][0], sizes[i][1], NULL, 0), -1);
     }
     assert_int_equal(img_write(in_dir(t, "s.png"), NULL, 1, 1, err, sizeof err), -1);
@@ -277,7 +277,7 @@ static void test_unwritable_path(void **state)
     assert_int_equal(img_write(p, rgb, W, H, err, sizeof err), -1);
     CHECK_THAT(strncmp(err, p, strlen(p)) == 0, "the error \"%s\" starts with the path %s", err, p);
     CHECK_THAT(strchr(err, '\n') == NULL, "the error \"%s\" is one line", err);
-    assert_non_null(strstr(err, "No such file"));
+    CHECK_CONTAINS(err, "No such file", "the error message");
     assert_int_equal(count_entries(t->dir), 0);
 
     /* A directory in the way fails only at the rename: the temporary must be gone. */
@@ -392,10 +392,10 @@ static void test_ppm_header(void **state)
 
     spit(in_dir(t, "d.ppm"), "P6\n1 1\n65535\n\0\0\0\0\0\0", 19);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "maxval"));
+    CHECK_CONTAINS(err, "maxval", "the error message");
     spit(in_dir(t, "e.ppm"), "P3\n1 1\n255\n0 0 0\n", 17);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "not a PNG or binary PPM"));
+    CHECK_CONTAINS(err, "not a PNG or binary PPM", "the error message");
     spit(in_dir(t, "f.ppm"), "P6\n0 1\n255\n", 11);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
     spit(in_dir(t, "g.ppm"), "P6\n99999999999 1\n255\n", 21);
@@ -403,7 +403,7 @@ static void test_ppm_header(void **state)
     spit(in_dir(t, "h.ppm"), "P6\n-1 1\n255\n", 12);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
     assert_int_equal(img_read(in_dir(t, "absent.png"), &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "No such file"));
+    CHECK_CONTAINS(err, "No such file", "the error message");
     assert_null(im.rgb);
 }
 
@@ -808,7 +808,7 @@ static void test_plot_write(void **state)
     assert_px(&im, 0, 0, 255, 255, 255);
     img_free(&im);
     assert_int_equal(plot_write(in_dir(t, "p.gif"), &s, 1, &o, err, sizeof err), -1);
-    assert_non_null(strstr(err, "unknown image extension"));
+    CHECK_CONTAINS(err, "unknown image extension", "the error message");
     s.n = -1;
     assert_int_equal(plot_write(in_dir(t, "q.png"), &s, 1, NULL, err, sizeof err), -1);
     assert_int_equal(count_entries(t->dir), 1);

@@ -266,7 +266,7 @@ static void test_save_load_glue(void **state)
     assert_int_equal(scf_rows_load(f, fpath, err, sizeof err), 0);
     expect_load_error(b, fpath, "made by the float build, this is the fixed build");
     assert_int_equal(scf_rows_load(f, path, err, sizeof err), -1);
-    assert_non_null(strstr(err, "made by the fixed build"));
+    CHECK_CONTAINS(err, "made by the fixed build", "the error message");
     scf_destroy(f);
     sc_destroy(a);
     sc_destroy(b);
@@ -385,7 +385,7 @@ static void test_corrupt_files(void **state)
     assert_int_equal(sc_rows_load(a, path, err, sizeof err), 0);
     /* Saving is atomic: into a folder that does not exist fails, nothing is left. */
     assert_int_equal(sc_rows_save(a, tmp_path("nodir/x.ff"), err, sizeof err), -1);
-    assert_non_null(strstr(err, "nodir/x.ff"));
+    CHECK_CONTAINS(err, "nodir/x.ff", "the error message");
     free(c);
     free(d);
     sc_destroy(a);
@@ -589,10 +589,10 @@ static void test_set_surfaces_errors(void **state)
     mt.s = &s;
     mt.m = material_of(&s, "light");
     assert_int_equal(sc_set_surfaces(h, match_mat, &mt, NULL, inf, err, sizeof err), -1);
-    assert_non_null(strstr(err, "finite"));
+    CHECK_CONTAINS(err, "finite", "the error message");
     assert_int_equal(sc_set_surfaces(h, match_mat, &mt, neg, NULL, err, sizeof err), -1);
     assert_int_equal(sc_rows_gauss_seidel(h, 10, 0.001, err, sizeof err), -1); /* no rows yet */
-    assert_non_null(strstr(err, "rows"));
+    CHECK_CONTAINS(err, "rows", "the error message");
     assert_int_equal(sc_rows_save(h, tmp_path("none.ff"), err, sizeof err), -1);
     sc_destroy(h);
     scene_free(&s);
@@ -734,9 +734,9 @@ static void test_cli_save_load(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "96", "--height", "96", COARSE, "--load-ff", ff, "-o", b, CORNELL);
     expect_status(&r, 0);
     /* No hemi-cube at all: the counters of the whole run are zero. */
-    assert_non_null(strstr(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels"));
-    assert_non_null(strstr(r.out, "0 hemi-cube polygons rendered during the solve"));
-    assert_non_null(strstr(r.out, "loaded from"));
+    CHECK_CONTAINS(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "loaded from", "rad_cli's stdout");
     run_free(&r);
     /* Rows computed in memory only (a light group of the one light): the same image. */
     RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--light-group", "lamp=light", "-o", c, CORNELL);
@@ -765,7 +765,8 @@ static void test_cli_save_load(void **state)
     if (need(FLOAT)) {
         RUN(&r, FLOAT, "--quiet", COARSE, "--load-ff", ff, "-o", tmp_path("x.png"), CORNELL);
         expect_status(&r, 1);
-        assert_non_null(strstr(r.err, "made by the fixed build, this is the float build"));
+        CHECK_CONTAINS(r.err, "made by the fixed build, this is the float build",
+                       "rad_cli's stderr");
         run_free(&r);
         RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--save-ff", ff2, "-o", tmp_path("f1.png"), CORNELL);
         expect_status(&r, 0);
@@ -795,7 +796,7 @@ static void test_cli_corrupt(void **state)
     spit(bad, d, n);
     RUN(&r, FIXED, "--quiet", COARSE, "--load-ff", bad, "-o", tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "checksum mismatch");
-    assert_non_null(strstr(r.err, bad));
+    CHECK_CONTAINS(r.err, bad, "rad_cli's stderr");
     run_free(&r);
     d[n / 2] ^= 0x40;
     spit(bad, d, n / 3);
@@ -852,8 +853,8 @@ static void test_cli_groups(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", "--res", "64", "--tol", "0.0001", "--load-ff",
         tmp_path("g.ff"), "--light-group", "warm=amber", "--dump-radiosity", mix, "-o", tmp_path("mix.png"), GALLERY);
     expect_status(&r, 0);
-    assert_non_null(strstr(r.out, "light groups 2: warm (1,1,1) other (1,1,1)"));
-    assert_non_null(strstr(r.out, "hemi-cube: resolution 64, 0 polygons"));
+    CHECK_CONTAINS(r.out, "light groups 2: warm (1,1,1) other (1,1,1)", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "hemi-cube: resolution 64, 0 polygons", "rad_cli's stdout");
     run_free(&r);
     a = read_csv(mix, &na);
     b = read_csv(sum, &nb);
@@ -920,7 +921,7 @@ static void test_cli_gauss_seidel(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--solver", "gauss-seidel", "--tol",
         "0.00001", "--dump-radiosity", gs, "-o", tmp_path("gs.png"), CORNELL);
     expect_status(&r, 0);
-    assert_non_null(strstr(r.out, "gauss-seidel sweeps"));
+    CHECK_CONTAINS(r.out, "gauss-seidel sweeps", "rad_cli's stdout");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.00001", "--dump-radiosity", sh, "-o",
         tmp_path("sh.png"), CORNELL);
@@ -947,7 +948,7 @@ static void test_cli_animate(void **state)
         "--animate", DATA "frames.txt", "-o", tmp_path("fr.png"), GALLERY);
     expect_status(&r, 0);
     /* One visibility computation for every frame. */
-    assert_non_null(strstr(r.out, "0 hemi-cube polygons rendered during the solve"));
+    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
     run_free(&r);
     for (i = 0; i < 5; i++) {
         snprintf(name, sizeof name, "fr_%04d.png", i);
