@@ -440,7 +440,8 @@ static void test_relight_cornell(void **state)
     d = max_rel(a, b, ne, &rms);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%%, rms %.4f%% per element; "
                   "relight %.3f s vs fresh solve %.3f s\n", 100 * d, 100 * rms, t_relight, t_fresh);
-    CHECK_LE(d, REL_BOUND, "max relative difference per element above 1%% of the brightest");
+    CHECK_LE(d, REL_BOUND,
+             "relit from rows against a fresh hemi-cube solve: max relative difference per element");
 
     /* Against a fresh solve from fresh rows: the same bits (relighting is exact). */
     r = make(&fresh, 0, 64);
@@ -480,7 +481,8 @@ static void gs_vs_shoot(const char *path, const char *name, double max_element)
                   "per element\n", name, sweeps, rs.rows, rs.matrix_bytes, 100 * d, 100 * rms);
     CHECK_INT_GT(sweeps, 1, "%s: Gauss-Seidel sweeps", name);
     CHECK_INT_LT(sweeps, 1000, "%s: Gauss-Seidel sweeps", name);
-    CHECK_LE(d, GS_BOUND, "Gauss-Seidel against shooting: max relative difference per element");
+    CHECK_LE(d, GS_BOUND,
+             "%s: Gauss-Seidel against shooting, max relative difference per element", name);
     /* Solving again after Gauss-Seidel (which leaves nothing unshot) starts afresh. */
     sc_restart(h);
     CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL), 0, "shots from the rows");
@@ -542,7 +544,8 @@ static void test_mix_groups_glue(void **state)
     d = max_rel(a, b, ne, &rms);
     print_message("gallery: mix of 2 light groups vs both lights in one hemi-cube solve: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "max relative difference per element above 1%% of the brightest");
+    CHECK_LE(d, REL_BOUND,
+             "gallery, two groups mixed against both lights solved at once: max relative difference");
     free(a); free(b);
     sc_destroy(f);
 
@@ -563,7 +566,8 @@ static void test_mix_groups_glue(void **state)
     d = max_rel(a, b, ne, &rms);
     print_message("gallery: mix at intensities (0.5,1,1.75), (2,0.25,1) vs those emissions solved: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "max relative difference per element above 1%% of the brightest");
+    CHECK_LE(d, REL_BOUND, "gallery, groups mixed at other intensities against those emissions "
+             "solved: max relative difference");
     /* Errors: a negative intensity; solving after a mix starts from the emission. */
     k[0][1] = -1;
     assert_int_equal(sc_mix(h, g, (const double(*)[3])k, 2, err, sizeof err), -1);
@@ -862,7 +866,8 @@ static void test_cli_groups(void **state)
     d = max_rel(a, b, na, &rms);
     print_message("rad_cli gallery: --light-group mix vs one solve, from the same rows: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "max relative difference per element above 1%% of the brightest");
+    CHECK_LE(d, REL_BOUND, "rad_cli gallery, --light-group mix against one solve: max relative "
+             "difference");
     free(a); free(b);
 
     /* --each-group: one file per group, named after it; the base name is not written. */
@@ -933,7 +938,8 @@ static void test_cli_gauss_seidel(void **state)
     d = max_rel(a, b, na, &rms);
     print_message("rad_cli Cornell (coarse): --solver gauss-seidel vs hemi-cube shooting: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, GS_BOUND, "Gauss-Seidel against shooting: max relative difference per element");
+    CHECK_LE(d, GS_BOUND,
+             "rad_cli Cornell box: --solver gauss-seidel against shooting, max relative difference");
     free(a); free(b);
 }
 
