@@ -38,6 +38,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_polys.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
+TEST_HDRS  := $(wildcard tests/*.h)
 
 FIXED_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/fixed/%.o)
 FLOAT_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/float/%.o)
@@ -88,10 +89,10 @@ bench: $(BUILDDIR)/rad_bench
 # Every test links both builds of the core (through the host glue) and the host tools.
 # A test that drives the core's API in both builds is compiled twice: its float half
 # (-DRAD_FLOAT=1, tests/float/*.o, a prerequisite below) is linked into the fixed one.
-$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
+$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/float/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
-$(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS)
+$(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib -DRAD_FLOAT=1 -c $< -o $@
 $(BUILDDIR)/tests/test_gather: $(BUILDDIR)/tests/float/test_gather.o
