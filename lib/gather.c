@@ -22,9 +22,8 @@
  * symmetry, and equal diagonal moments by the cube's: bands 1 and 2 vanish exactly.
  * The cube is turned by the rotation with rows (1, 2, 2) / 3, (2, 1, -2) / 3 and
  * (-2, 2, -1) / 3: no scene axis lies along a face's pixel rows or columns, where the
- * outlines of walls along the axes alias by half a pixel over their whole length (2%
- * of a square emitter's solid angle at res 64, measured on the scene's own axes). The
- * moments turn back to the scene's axes exactly (numerators in integers, then one
+ * outlines of walls along the axes would alias by half a pixel over their whole length.
+ * The moments turn back to the scene's axes exactly (numerators in integers, then one
  * division by 3 or 9), so a uniform environment's stay as they were.
  */
 #include "internal.h"

@@ -17,6 +17,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "rad/rad.h"
 #include "reference/reference.h"
 
@@ -311,22 +312,22 @@ static const double pts[4][6] = {
  * entries, 2^-24: 8e-6 at res 64; bound 2e-5. */
 static void test_box_uniform(void **st)
 {
+    double worst = 0;
     int i, k;
     (void)st;
     for (i = 0; i < 4; i++) {
         gres fx, fl;
-        assert_int_equal(scene_box_fixed(4.25, 0, 64, pts[i], pts[i] + 3, &fx), 0);
-        assert_int_equal(scene_box_float(4.25, 0, 64, pts[i], pts[i] + 3, &fl), 0);
+        CHECK_INT_EQ(scene_box_fixed(4.25, 0, 64, pts[i], pts[i] + 3, &fx), 0, "fixed box %d", i);
+        CHECK_INT_EQ(scene_box_float(4.25, 0, 64, pts[i], pts[i] + 3, &fl), 0, "float box %d", i);
         for (k = 0; k < 3; k++) {
             double want = 4.25 / (1 << k);
-            if (fx.e[k] != want || fabs(fl.e[k] - want) > 2e-5 * want)
-                print_message("point %d channel %d: fixed %.9f float %.9f want %.9f\n", i, k,
-                              fx.e[k], fl.e[k], want);
-            assert_true(fx.e[k] == want);
-            assert_true(fabs(fl.e[k] - want) <= 2e-5 * want);
+            worst = fmax(worst, fabs(fl.e[k] / want - 1));
+            CHECK_EQ(fx.e[k], want, "fixed: point %d channel %d's gather in the glowing box", i, k);
+            CHECK_NEAR(fl.e[k], want, 2e-5 * want, "float: point %d channel %d's gather", i, k);
         }
-        assert_int_equal(fx.sats, 0);
+        CHECK_INT_EQ(fx.sats, 0, "fixed: saturations at point %d", i);
     }
+    print_message("glowing box: fixed exact, float within %.1e\n", worst);
 }
 
 /* Solved with reflectance 0.5 and shown with the ambient term: the element radiosities
@@ -338,12 +339,14 @@ static void test_box_solved_between(void **st)
     (void)st;
     for (i = 0; i < 4; i++) {
         gres fx, fl;
-        assert_int_equal(scene_box_fixed(2, 0.5, 32, pts[i], pts[i] + 3, &fx), 0);
-        assert_int_equal(scene_box_float(2, 0.5, 32, pts[i], pts[i] + 3, &fl), 0);
+        CHECK_INT_EQ(scene_box_fixed(2, 0.5, 32, pts[i], pts[i] + 3, &fx), 0, "fixed box %d", i);
+        CHECK_INT_EQ(scene_box_float(2, 0.5, 32, pts[i], pts[i] + 3, &fl), 0, "float box %d", i);
         print_message("point %d: fixed %.6f in [%.6f, %.6f], float %.6f in [%.6f, %.6f]\n", i,
                       fx.e[0], fx.lo, fx.hi, fl.e[0], fl.lo, fl.hi);
-        assert_true(fx.e[0] >= fx.lo - 1.0 / 65536 && fx.e[0] <= fx.hi + 1.0 / 65536);
-        assert_true(fl.e[0] >= fl.lo * (1 - 1e-5) && fl.e[0] <= fl.hi * (1 + 1e-5));
+        CHECK_GE(fx.e[0], fx.lo - 1.0 / 65536, "fixed: point %d's gather against the least B", i);
+        CHECK_LE(fx.e[0], fx.hi + 1.0 / 65536, "fixed: point %d's gather against the most B", i);
+        CHECK_GE(fl.e[0], fl.lo * (1 - 1e-5), "float: point %d's gather against the least B", i);
+        CHECK_LE(fl.e[0], fl.hi * (1 + 1e-5), "float: point %d's gather against the most B", i);
     }
 }
 
@@ -353,26 +356,30 @@ static void test_box_solved_between(void **st)
  * The twin: float sums of 9 res^2 terms' worth per face, bound 3e-5 of SH[0]. */
 static void test_probe_uniform(void **st)
 {
+    double lsb = 0, worst = 0;
     int i, k, c;
     (void)st;
     for (i = 0; i < 4; i++) {
         gres fx, fl;
-        assert_int_equal(scene_box_fixed(4.25, 0, 64, pts[i], pts[i] + 3, &fx), 0);
-        assert_int_equal(scene_box_float(4.25, 0, 64, pts[i], pts[i] + 3, &fl), 0);
+        CHECK_INT_EQ(scene_box_fixed(4.25, 0, 64, pts[i], pts[i] + 3, &fx), 0, "fixed box %d", i);
+        CHECK_INT_EQ(scene_box_float(4.25, 0, 64, pts[i], pts[i] + 3, &fl), 0, "float box %d", i);
         for (c = 0; c < 3; c++) {
             double want = 4.25 / (1 << c) * sqrt(4 * PI);
-            print_message("point %d channel %d: SH0 fixed %.7f float %.7f want %.7f\n", i, c,
-                          fx.sh[0][c], fl.sh[0][c], want);
-            assert_true(fabs(fx.sh[0][c] - want) <= 2.0 / 65536);
-            assert_true(fabs(fl.sh[0][c] - want) <= 3e-5 * want);
+            lsb = fmax(lsb, fabs(fx.sh[0][c] - want) * 65536);
+            worst = fmax(worst, fabs(fl.sh[0][c] / want - 1));
+            CHECK_NEAR(fx.sh[0][c], want, 2.0 / 65536, "fixed: point %d channel %d's SH0", i, c);
+            CHECK_NEAR(fl.sh[0][c], want, 3e-5 * want, "float: point %d channel %d's SH0", i, c);
             for (k = 1; k < 9; k++) {
-                if (fx.sh[k][c] != 0 || fabs(fl.sh[k][c]) > 3e-5 * want)
-                    print_message("  SH%d: fixed %.9f float %.9f\n", k, fx.sh[k][c], fl.sh[k][c]);
-                assert_true(fx.sh[k][c] == 0);
-                assert_true(fabs(fl.sh[k][c]) <= 3e-5 * want);
+                worst = fmax(worst, fabs(fl.sh[k][c]) / want);
+                CHECK_EQ(fx.sh[k][c], 0, "fixed: point %d channel %d's SH%d", i, c, k);
+                CHECK_NEAR(fl.sh[k][c], 0, 3e-5 * want, "float: point %d channel %d's SH%d", i, c,
+                           k);
             }
         }
     }
+    print_message("glowing box's probe: fixed SH0 within %.2f LSB, the rest 0; float within "
+                  "%.1e of SH0\n",
+                  lsb, worst);
 }
 
 /* Solid angle of polygon P seen from the origin (Van Oosterom & Strackee, by
@@ -498,68 +505,72 @@ static int emitter(int k, sc_poly *p)
 
 /* A point under an emitter in a black open scene: the gather is the point-to-polygon
  * form factor (Lambert) times the emission, within 1% at res 64 (the brief's bound;
- * the hemi-cube's aliasing of the emitter's outline). The probe: SH[0] / Y00 is the
- * emission times the emitter's solid angle, SH[2] / Y1 (z) its emission times pi F;
- * within 1% as well, and SH[3] / Y1, SH[1] / Y1 (x, y) the emission times Lambert's
- * vector's x and y, within 1% of its length. The irradiance rebuilt from the nine
- * coefficients (rad.h's formula) is within 6% of the gather: the truncation after band
- * 2 of a sharp-edged light (measured 5.4% at worst, the smaller emitter), on the
- * normal +z and on a tilted one: a check of rad.h's formula. Every coefficient against
- * the integral of its basis function over the emitter (sh_reference): within 0.5% of
- * the largest (the outline's aliasing again; a sign or order slip errs by far more). The twin renders float geometry, whose outline's pixels may
- * differ at the edges: within two pixels' weight of the fixed build (the largest, at
- * a top face's centre, 4 / (pi res^2) of the hemisphere's F, or (2 / res)^2 sr of the
- * probe's), plus 1e-5 of float sums; measured within 7e-6, no pixel differing. */
+ * the hemi-cube's aliasing of the emitter's outline).
+ * The probe: SH[0] / Y00 is the emission times the emitter's solid angle, SH[2] / Y1
+ * (z) the emission times pi F, within 1% as well; SH[3] and SH[1] (x, y) the emission
+ * times Y1 and Lambert's vector's x and y, and every coefficient the emission times
+ * the integral of its basis function over the emitter (sh_reference), within 0.5% of
+ * the largest coefficient (the outline's aliasing again; every coefficient reaches 10%
+ * of the largest on some emitter, so a sign or order slip errs by 20% or more).
+ * The irradiance rebuilt from the nine (rad.h's formula), on +z and on a tilted normal,
+ * is within 6% of the gather: the truncation after band 2 of a sharp-edged light
+ * (measured 5.4% at worst, the smaller emitter).
+ * The twin renders float geometry, whose outline's pixels may differ at the edges:
+ * within two pixels' weight of the fixed build (the largest, at a top face's centre,
+ * 4 / (pi res^2) of the hemisphere's F, or (2 / res)^2 sr of the probe's), plus 1e-5
+ * of float sums; measured within 7e-6, no pixel differing. */
 static void test_under_emitter(void **st)
 {
-    const double y00 = 0.5 / sqrt(PI), y1 = sqrt(3) / (2 * sqrt(PI)), y20 = sqrt(5) / (4 * sqrt(PI));
-    double phi[3], mag, esh, ref[9], big, worst = 0;
-    int i;
+    const double y00 = 0.5 / sqrt(PI), y1 = sqrt(3) / (2 * sqrt(PI));
+    const double y20 = sqrt(5) / (4 * sqrt(PI)), emit = 10;
+    const double pix = 2 * 4 / (PI * 64 * 64), psr = 2 * (2.0 / 64) * (2.0 / 64);
+    double w_ff = 0, w_sh = 0, w_l2 = 0, w_twin = 0;
     sc_poly em;
-    int k;
+    int k, i;
     (void)st;
     for (k = 0; emitter(k, &em); k++) {
         gres fx, fl;
-        double f = ref_point_ff(&em), om = solid_angle(&em), emit = 10, ef;
-        assert_int_equal(scene_emitter_fixed(&em, emit, 64, &fx), 0);
-        assert_int_equal(scene_emitter_float(&em, emit, 64, &fl), 0);
-        ef = fx.e[0];
-        print_message("emitter %d: F %.6f gather/(F E) fixed %.5f float/fixed - 1 %.1e; "
-                      "SH0/(Y00 E om) %.5f; SH2/(Y1 E pi F) %.5f; float/fixed - 1 %.1e\n",
-                      k, f, ef / (f * emit), fl.e[0] / ef - 1, fx.sh[0][0] / (y00 * emit * om),
-                      fx.sh[2][0] / (y1 * emit * PI * f), fl.sh[0][0] / fx.sh[0][0] - 1);
+        double f = ref_point_ff(&em), om = solid_angle(&em), phi[3], ref[9], big = 0, esh;
+        CHECK_INT_EQ(scene_emitter_fixed(&em, emit, 64, &fx), 0, "fixed emitter %d", k);
+        CHECK_INT_EQ(scene_emitter_float(&em, emit, 64, &fl), 0, "float emitter %d", k);
+        /* the hemisphere against Lambert */
+        w_ff = fmax(w_ff, fabs(fx.e[0] / (f * emit) - 1));
+        CHECK_LE(fabs(fx.e[0] / (f * emit) - 1), 0.01, "fixed: emitter %d's gather / (F E) - 1", k);
+        CHECK_LE(fabs(fx.e[1] / (f * emit / 2) - 1), 0.01, "fixed: emitter %d's green", k);
+        CHECK_LE(fabs(fl.e[0] / (f * emit) - 1), 0.01, "float: emitter %d's gather / (F E) - 1", k);
+        /* the probe against the solid angle, Lambert's vector and the integrals */
         vector_ff(&em, phi);
-        mag = sqrt(phi[0] * phi[0] + phi[1] * phi[1] + phi[2] * phi[2]);
-        esh = fx.sh[0][0] * y00 + 2.0 / 3 * fx.sh[2][0] * y1 + 0.25 * fx.sh[6][0] * 2 * y20;
-        print_message("  SH x, y moments vs Lambert's vector: %.2e %.2e of |phi|; L2 irradiance "
-                      "/ gather %.4f\n",
-                      fx.sh[3][0] / (y1 * emit) / mag - phi[0] / mag,
-                      fx.sh[1][0] / (y1 * emit) / mag - phi[1] / mag, esh / ef);
-        assert_true(fabs(fx.sh[3][0] / (y1 * emit) - phi[0]) <= 0.01 * mag);
-        assert_true(fabs(fx.sh[1][0] / (y1 * emit) - phi[1]) <= 0.01 * mag);
-        assert_true(fabs(esh / ef - 1) <= 0.06);
         sh_reference(&em, ref);
-        for (i = 0, big = 0; i < 9; i++) big = fabs(ref[i]) > big ? fabs(ref[i]) : big;
+        for (i = 0; i < 9; i++) big = fmax(big, fabs(ref[i]));
+        CHECK_LE(fabs(fx.sh[0][0] / (y00 * emit * om) - 1), 0.01, "emitter %d's SH0 / (Y00 E om)", k);
+        CHECK_LE(fabs(fx.sh[2][0] / (y1 * emit * PI * f) - 1), 0.01,
+                 "emitter %d's SH z / (Y1 E pi F)", k);
+        CHECK_NEAR(fx.sh[3][0] / (y1 * emit), phi[0], 0.005 * big / y1,
+                   "emitter %d's SH x / (Y1 E) against Lambert's vector", k);
+        CHECK_NEAR(fx.sh[1][0] / (y1 * emit), phi[1], 0.005 * big / y1,
+                   "emitter %d's SH y / (Y1 E) against Lambert's vector", k);
         for (i = 0; i < 9; i++) {
-            double d = fx.sh[i][0] / emit - ref[i];
-            if (fabs(d) > 0.005 * big)
-                print_message("  SH%d: %.6f, integral %.6f\n", i, fx.sh[i][0] / emit, ref[i]);
-            worst = fabs(d) / big > worst ? fabs(d) / big : worst;
-            assert_true(fabs(d) <= 0.005 * big);
+            w_sh = fmax(w_sh, fabs(fx.sh[i][0] / emit - ref[i]) / big);
+            CHECK_NEAR(fx.sh[i][0] / emit, ref[i], 0.005 * big,
+                       "emitter %d's SH%d / E against the integral of its basis", k, i);
         }
+        /* the irradiance rebuilt from the probe (rad.h's formula) */
+        esh = fx.sh[0][0] * y00 + 2.0 / 3 * fx.sh[2][0] * y1 + 0.25 * fx.sh[6][0] * 2 * y20;
+        w_l2 = fmax(w_l2, fabs(esh / fx.e[0] - 1));
+        CHECK_LE(fabs(esh / fx.e[0] - 1), 0.06, "emitter %d: L2 irradiance / gather - 1 on +z", k);
         esh = sh_irradiance(&fx, 0);
-        print_message("  tilted normal: L2 irradiance / gather %.4f\n", esh / fx.tilted[0]);
-        assert_true(fabs(esh / fx.tilted[0] - 1) <= 0.06);
-        assert_true(fabs(ef / (f * emit) - 1) <= 0.01);
-        assert_true(fabs(fl.e[0] / (f * emit) - 1) <= 0.01);
-        assert_true(fabs(fl.e[0] - ef) <= 2 * 4 / (PI * 64 * 64) * emit + 1e-5 * ef);
-        assert_true(fabs(fx.e[1] / (f * emit / 2) - 1) <= 0.01);
-        assert_true(fabs(fx.sh[0][0] / (y00 * emit * om) - 1) <= 0.01);
-        assert_true(fabs(fx.sh[2][0] / (y1 * emit * PI * f) - 1) <= 0.01);
-        assert_true(fabs(fl.sh[0][0] - fx.sh[0][0]) <=
-                    2 * (2.0 / 64) * (2.0 / 64) * y00 * emit + 1e-5 * fx.sh[0][0]);
+        w_l2 = fmax(w_l2, fabs(esh / fx.tilted[0] - 1));
+        CHECK_LE(fabs(esh / fx.tilted[0] - 1), 0.06,
+                 "emitter %d: L2 irradiance / gather - 1 on the tilted normal", k);
+        /* the twin */
+        w_twin = fmax(w_twin, fmax(fabs(fl.e[0] / fx.e[0] - 1), fabs(fl.sh[0][0] / fx.sh[0][0] - 1)));
+        CHECK_NEAR(fl.e[0], fx.e[0], pix * emit + 1e-5 * fx.e[0], "emitter %d: float gather", k);
+        CHECK_NEAR(fl.sh[0][0], fx.sh[0][0], psr * y00 * emit + 1e-5 * fx.sh[0][0],
+                   "emitter %d: float SH0", k);
     }
-    print_message("SH against the integrals: worst %.2e of the largest coefficient\n", worst);
+    print_message("under emitters, res 64: gather / (F E) within %.2f%%, SH within %.2f%% of the "
+                  "largest coefficient, L2 irradiance within %.1f%%, float / fixed within %.1e\n",
+                  100 * w_ff, 100 * w_sh, 100 * w_l2, w_twin);
 }
 
 /* A gather at patch P's centre on its normal, its surface skipped, with turn P, is
@@ -572,13 +583,10 @@ static void test_patch_row(void **st)
     (void)st;
     for (p = 0; p < 96; p += 7) {
         gres fx, fl;
-        assert_int_equal(scene_patch_row_fixed(32, p, &fx), 0);
-        assert_int_equal(scene_patch_row_float(32, p, &fl), 0);
-        if (fx.e[0] != fx.row || fabs(fl.e[0] - fl.row) > 1e-5 * fl.row)
-            print_message("patch %d: fixed gather %.9f row %.9f; float %.9f %.9f\n", p, fx.e[0],
-                          fx.row, fl.e[0], fl.row);
-        assert_true(fx.e[0] == fx.row);
-        assert_true(fabs(fl.e[0] - fl.row) <= 1e-5 * fl.row);
+        CHECK_INT_EQ(scene_patch_row_fixed(32, p, &fx), 0, "fixed: patch %d's scene", p);
+        CHECK_INT_EQ(scene_patch_row_float(32, p, &fl), 0, "float: patch %d's scene", p);
+        CHECK_EQ(fx.e[0], fx.row, "fixed: gather at patch %d against sum F B over its row", p);
+        CHECK_NEAR(fl.e[0], fl.row, 1e-5 * fl.row, "float: gather at patch %d against its row", p);
     }
 }
 
@@ -617,25 +625,26 @@ static void test_threads(void **st)
     int k, i;
     (void)st;
     assert_non_null(w);
-    assert_int_equal(add_box(w, 0.5, 8, 1), 0);
-    assert_int_equal(rad_shoot(&w->s, 40, 0), 40);
+    CHECK_INT_EQ(add_box(w, 0.5, 8, 1), 0, "the box");
+    CHECK_INT_EQ(rad_shoot(&w->s, 40, 0), 40, "shots");
     rad_ambient(&w->s, &amb);
     for (k = 0; k < 2; k++) {
         serial[k].s = par[k].s = &w->s;
         serial[k].amb = par[k].amb = &amb;
         serial[k].first = par[k].first = 16u * (unsigned)k;
         gather_job(&serial[k]);
-        assert_int_equal(serial[k].rc, 0);
-        for (i = 0; i < 16; i++) assert_true(serial[k].out[i].r > 0); /* inside: lit */
+        CHECK_INT_EQ(serial[k].rc, 0, "serial gathers %d", k);
+        for (i = 0; i < 16; i++) CHECK_INT_GT(serial[k].out[i].r, 0, "gather %d, %d: lit", k, i);
     }
-    for (k = 0; k < 2; k++) assert_int_equal(pthread_create(&t[k], NULL, gather_job, &par[k]), 0);
+    for (k = 0; k < 2; k++)
+        CHECK_INT_EQ(pthread_create(&t[k], NULL, gather_job, &par[k]), 0, "thread %d", k);
     for (k = 0; k < 2; k++) {
-        assert_int_equal(pthread_join(t[k], NULL), 0);
-        assert_int_equal(par[k].rc, 0);
+        CHECK_INT_EQ(pthread_join(t[k], NULL), 0, "thread %d", k);
+        CHECK_INT_EQ(par[k].rc, 0, "thread %d's gathers", k);
         for (i = 0; i < 16; i++) {
-            assert_int_equal(par[k].out[i].r, serial[k].out[i].r);
-            assert_int_equal(par[k].out[i].g, serial[k].out[i].g);
-            assert_int_equal(par[k].out[i].b, serial[k].out[i].b);
+            CHECK_INT_EQ(par[k].out[i].r, serial[k].out[i].r, "thread %d gather %d red", k, i);
+            CHECK_INT_EQ(par[k].out[i].g, serial[k].out[i].g, "thread %d gather %d green", k, i);
+            CHECK_INT_EQ(par[k].out[i].b, serial[k].out[i].b, "thread %d gather %d blue", k, i);
         }
     }
     free(w);
@@ -655,35 +664,36 @@ static void test_errors(void **st)
     buf = malloc(need + 64);
     assert_non_null(buf);
     memset(buf + need, 0xA5, 64);
-    assert_int_equal(rad_gather_init(NULL, 16, 0, buf, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, 16, 0, NULL, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, 15, 0, buf, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, 6, 0, buf, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, 16, 2, buf, need), RAD_ERR_ARG);
-    assert_int_equal(rad_gather_init(&g, 16, 0, buf, need - 17), RAD_ERR_WORK);
-    assert_int_equal(rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need), RAD_ERR_WORK);
-    assert_int_equal(rad_gather_init(&g, 16, 0, buf, need), RAD_OK);
-    assert_int_equal(add_box(w, 0, 1, 0), 0);
+    CHECK_INT_EQ(rad_gather_init(NULL, 16, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(NULL, 16, 0, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, NULL, need), RAD_ERR_ARG, "rad_gather_init(&g, 16, 0, NULL, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 15, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 15, 0, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 6, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 6, 0, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 2, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 16, 2, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need - 17), RAD_ERR_WORK, "rad_gather_init(&g, 16, 0, buf, need - 17)");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need), RAD_ERR_WORK, "rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need), RAD_OK, "rad_gather_init(&g, 16, 0, buf, need)");
+    CHECK_INT_EQ(add_box(w, 0, 1, 0), 0, "the box");
     /* geometry not frozen yet */
-    assert_int_equal(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_STATE);
-    assert_int_equal(rad_shoot(&w->s, 1, 0), 1);
-    assert_int_equal(rad_gather(NULL, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, NULL, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, &g, NULL, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, &g, &o, NULL, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, NULL), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, &g, &o, &zero, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG);
-    assert_int_equal(rad_gather(&w->s, &g, &far, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE);
-    assert_int_equal(rad_gather(&w->s, &g, &o, &far, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE);
-    assert_int_equal(rad_gather_sh(&w->s, &g, &o, RAD_INDEX_NONE, NULL, sh), RAD_ERR_ARG);
-    assert_true(out.r == 7 && out.g == 7 && out.b == 7);
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_STATE, "rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_shoot(&w->s, 1, 0), 1, "rad_shoot(&w->s, 1, 0)");
+    CHECK_INT_EQ(rad_gather(NULL, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(NULL, &g, &o, &n, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, NULL, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, NULL, &o, &n, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, NULL, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, NULL, &n, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, NULL, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, NULL, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, NULL), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, NULL)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &zero, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, &zero, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &far, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &far, &n, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &far, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &o, &far, RAD_INDEX_NONE, NULL, &out)");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, RAD_INDEX_NONE, NULL, sh), RAD_ERR_ARG, "rad_gather_sh(&w->s, &g, &o, RAD_INDEX_NONE, NULL, sh)");
+    CHECK_THAT(out.r == 7 && out.g == 7 && out.b == 7, "out written by a failed gather: %d %d %d",
+               (int)out.r, (int)out.g, (int)out.b);
     /* a huge normal is only a direction; a skipped surface past the last skips none */
-    assert_int_equal(rad_gather(&w->s, &g, &o, &far, 77, NULL, &out), RAD_ERR_RANGE);
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &far, 77, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &o, &far, 77, NULL, &out)");
     n = vec(0, 63, 0);
-    assert_int_equal(rad_gather(&w->s, &g, &o, &n, 77, NULL, &out), RAD_OK);
-    assert_int_equal(out.r, RAD_REAL(1));
-    for (k = 0; k < 64; k++) assert_int_equal(buf[need + k], 0xA5);
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, 77, NULL, &out), RAD_OK, "rad_gather(&w->s, &g, &o, &n, 77, NULL, &out)");
+    CHECK_INT_EQ(out.r, RAD_REAL(1), "gather in the box glowing 1, nothing skipped");
+    for (k = 0; k < 64; k++) CHECK_INT_EQ(buf[need + k], 0xA5, "guard byte %d", (int)k);
     free(buf);
     free(w);
 }
