@@ -650,6 +650,31 @@ static void test_threads(void **st)
     free(w);
 }
 
+/* Saturation is counted: a box glowing 4096 with reflectance 0.9 saturates its
+ * elements' radiosity (32767.99 at most); the gather, a weighted mean of them, stays in
+ * range, but the probe's SH0 = B sqrt(4 pi) cannot: it is clamped, and counted. */
+static void test_saturation(void **st)
+{
+    world_t *w = world_new(16, 8, 4);
+    rad_vec3_t o = vec(1, 2, 3), n = vec(0, 0, 1);
+    rad_rgb_t e, sh[9];
+    (void)st;
+    assert_non_null(w);
+    CHECK_INT_EQ(add_box(w, 0.9, 4096, 0), 0, "the box");
+    CHECK_INT_GT(rad_shoot(&w->s, 2000, 0), 0, "shots");
+    CHECK_INT_GT(w->s.stats.saturations, 0, "the solve's saturations");
+    CHECK_INT_EQ(rad_gather_init(&w->g, 16, 0, w->gwork, sizeof w->gwork), RAD_OK, "init");
+    CHECK_INT_EQ(rad_gather(&w->s, &w->g, &o, &n, RAD_INDEX_NONE, NULL, &e), RAD_OK, "gather");
+    CHECK_INT_EQ(w->g.stats.saturations, 0, "the gather's saturations");
+    CHECK_INT_GT(e.r, RAD_REAL(30000), "the gather in the saturated box");
+    CHECK_INT_EQ(rad_gather_init(&w->p, 16, RAD_GATHER_SH, w->gwork, sizeof w->gwork), RAD_OK,
+                 "init");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &w->p, &o, RAD_INDEX_NONE, NULL, sh), RAD_OK, "probe");
+    CHECK_INT_EQ(sh[0].r, INT32_MAX, "the probe's clamped SH0");
+    CHECK_INT_GE(w->p.stats.saturations, 1, "the probe's saturations");
+    free(w);
+}
+
 /* Bad input: a clear error, nothing written, no byte past the work buffer touched. */
 static void test_errors(void **st)
 {
@@ -704,7 +729,7 @@ int main(void)
         cmocka_unit_test(test_box_uniform),   cmocka_unit_test(test_box_solved_between),
         cmocka_unit_test(test_probe_uniform), cmocka_unit_test(test_under_emitter),
         cmocka_unit_test(test_patch_row),     cmocka_unit_test(test_threads),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_saturation),    cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
