@@ -7,11 +7,10 @@
  * radiosity is >= 0, so the fixed sum sum F B is exact in 64 bits (< 2^61) and is
  * rounded once: in a closed scene whose elements all show B, the gather is B.
  *
- * A probe renders a whole cube (six whole faces) and projects the
- * radiosity seen onto the spherical harmonics of bands 0..2 through the moments of the
- * direction w = (a, b, 1) / r of each pixel (r^2 = a^2 + b^2 + 1, a and b the pixel
- * centre's odd lattice numbers over the resolution): its solid angle dw ~ 1 / r^3 and
- * dw w, dw w w^T. Each face's moments need six quadrant tables, by the face's
+ * A probe renders a whole cube (six whole faces) and projects the radiosity seen onto
+ * the spherical harmonics of bands 0..2 through the moments of the direction
+ * w = (a, b, 1) / r of each pixel (r^2 = a^2 + b^2 + 1, a and b the pixel centre's odd
+ * lattice numbers over the resolution): its solid angle dw ~ 1 / r^3, dw w, dw w w^T. Each face's moments need six quadrant tables, by the face's
  * symmetries in a and b (c = 1 / r):
  *     T0 = c^3 (dw)    TA = c^4 a (dw w_a)    TD = c^4 (dw w_d)
  *     TAA = c^5 a^2 (dw w_a^2)    TAB = c^5 a b (dw w_a w_b)    TAD = c^5 a (dw w_a w_d)
