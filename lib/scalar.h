@@ -252,6 +252,15 @@ static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
     float q = v / m * (float)((int32_t)1 << s);
     return (int64_t)(q < 0 ? q - 0.5f : q + 0.5f);
 }
+/* V times 2^N, -31 <= N <= 31: exact (a power of two), short of float's range. */
+static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
+{
+    float f = 1.0f;
+    (void)sat;
+    for (; n > 0; n--) f *= 2.0f;
+    for (; n < 0; n++) f *= 0.5f;
+    return v * f;
+}
 /* (a U + b V) / c: U turned toward V by the angle whose cosine is a / c. */
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
@@ -466,6 +475,13 @@ static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
 {
     return rad__div_round((int64_t)v * ((int64_t)1 << s), m);
 }
+/* V times 2^N, -31 <= N <= 31: a shift, exact for N >= 0 (saturating, counted),
+ * rounded to nearest for N < 0. */
+static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
+{
+    if (n < 0) return (rad_real_t)rad__shr_round(v, (unsigned)-n);
+    return rad__sat32((int64_t)v * ((int64_t)1 << n), sat);
+}
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
     rad_vec3_t r;
@@ -476,6 +492,15 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 }
 
 #endif
+
+/* V times 2^N, each coordinate as rad__scale2. */
+static inline rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat)
+{
+    v.x = rad__scale2(v.x, n, sat);
+    v.y = rad__scale2(v.y, n, sat);
+    v.z = rad__scale2(v.z, n, sat);
+    return v;
+}
 
 /* The magnitude of a signed energy (|u| < 2^62 in the fixed build: no overflow). */
 static inline rad_energy_t rad__eabs(rad_energy_t u)

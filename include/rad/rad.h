@@ -11,12 +11,20 @@
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
  *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits. Precision is
- *                 2^-16 units, so keep scenes between about 4 and 64 units across
- *                 (rad_cli scales every scene to 64 units; radiosity is scale-free).
+ *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
+ * Scale: results do not depend on the caller's units or emission scale. When the
+ * geometry freezes (the first shot, rad_rows_compute, rad_form_factors), the core
+ * scales coordinates by 2^length_shift (the largest coordinate into (16, 32]) and,
+ * when a solve starts, radiosity and power by 2^power_shift (a brightest emission
+ * channel below 128 into (128, 256]): powers of two, so the scaling is a shift, exact for
+ * coordinates. Radiosity does not depend on geometry scale and is linear in emission,
+ * so outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
+ * caller's units; RAD_SHADE_SCALED keeps the core's scale (all 16 fraction bits of a
+ * dim scene's solution). The pools' geometry (vertices, patch centres, areas) and
+ * rad_element_t.radiosity are at the core's scale.
  *   rad_energy_t  Q16.16 in int64: radiosity times area (power). A patch's unshot
  *                 power stays below 2^30 units in magnitude (clamped and counted past
  *                 it). Signed: overshooting (rad_config_t.flags) leaves a shooter
@@ -139,7 +147,8 @@ typedef struct {
     rad_index_t v[4]; /* v[3] == RAD_INDEX_NONE for a triangle */
     rad_index_t surface, patch;
     rad_real_t area;
-    rad_rgb_t radiosity; /* the solution so far (without the ambient term) */
+    rad_rgb_t radiosity; /* the solution so far (without the ambient term), in the
+                          * core's scale: the caller's radiosity times 2^power_shift */
 } rad_element_t;
 
 typedef struct {
@@ -189,6 +198,11 @@ typedef struct {
     uint32_t saturations;   /* values clamped to their format's range */
     uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels; /* pixels covered (before the depth test) */
+    /* Precision at risk: elements whose area at the core's scale is below 1/64 (2^10
+     * LSB, a rounding of 2^-11 = 0.05% of it), counted when the geometry freezes. The
+     * core scales every scene to the same size, so these are elements small against
+     * their scene (1/2048 of its extent across): mesh coarser. */
+    uint32_t small_elements;
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -198,6 +212,10 @@ typedef struct {
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
     rad_energy_t emitted; /* total emitted power, all channels */
+    /* The core's scale (see the top of this file): coordinates are the caller's times
+     * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
+     * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
+    int8_t length_shift, power_shift;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -270,6 +288,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s);
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
+#define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
 
 /* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
