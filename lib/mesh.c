@@ -335,14 +335,14 @@ static void start_all(rad_scene_t *s)
 
 /* ---- the core's scale (rad.h) ---------------------------------------------------- */
 
-#define SCALE_HALF RAD__Q(RAD_COORD_LIMIT / 2) /* the largest coordinate into (16, 32] */
-#define SCALE_PEAK RAD__Q(256.0)               /* the brightest emission into (128, 256] */
-#define SMALL_AREA RAD__Q(1.0 / 64.0)          /* 2^10 LSB: rounding 2^-11 of the area */
-#define MAX_LENGTH_SHIFT 15                    /* 2^-15 * 32 = 2^-10: below any polygon */
+#define SCALE_HALF       RAD__Q(RAD_COORD_LIMIT / 2) /* the largest coordinate into (16, 32] */
+#define SCALE_PEAK       RAD__Q(256.0)               /* the brightest emission into (128, 256] */
+#define SMALL_AREA       RAD__Q(1.0 / 64.0)          /* 2^10 LSB: rounding 2^-11 of the area */
+#define MAX_LENGTH_SHIFT 15 /* for a scene within 2^-10: smaller than any polygon accepted */
 /* Emission scales up only: outputs come back in the caller's Q16.16, whose range a
  * smaller scale would not widen, while it would round away the low bits of emissions. */
-#define MIN_POWER_SHIFT 0
-#define MAX_POWER_SHIFT 24 /* 2^-16 to 256 */
+#define MIN_POWER_SHIFT  0
+#define MAX_POWER_SHIFT  24 /* 2^-16 to 256 */
 
 /* The N in LO..HI that takes V > 0 into (TARGET / 2, TARGET] times 2^N, or the bound
  * nearest it (0 for V = 0). */
@@ -441,8 +441,7 @@ void rad__freeze(rad_scene_t *s)
 {
     if (s->solving) return;
     rad__scale_geometry(s);
-    if (s->power_shift !=
-        pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT))
+    if (s->power_shift != pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT))
         set_power_shift(s);
     s->solving = 1;
 }
