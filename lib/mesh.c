@@ -394,12 +394,11 @@ static rad_real_t peak(const rad_scene_t *s)
 /* Meshes every surface again, in place, from its corners at length shift G: the same
  * lattice (the plan is kept in the surface), vertices, centres and areas rounded at the
  * new scale as if the caller had given the scaled polygons. The corners scale exactly
- * (G >= 0; back to 0, they are multiples of 2^length_shift). Then the start state. */
-static void set_length_shift(rad_scene_t *s, int g)
+ * (up by 2^(G - length_shift), or back down: they are multiples of 2^length_shift). */
+static void remesh(rad_scene_t *s, int g)
 {
     uint32_t np = s->n_patches, ne = s->n_elements, nv = s->n_vertices, i, k[4];
     int d = g - s->length_shift;
-    if (d == 0) return;
     for (i = 0; i < s->n_surfaces; i++) {
         const rad_surface_t *sf = &s->pools.surfaces[i];
         plan_t p = {0, 0, 0, 0, 0, 0, 0};
@@ -419,30 +418,36 @@ static void set_length_shift(rad_scene_t *s, int g)
     s->n_elements = ne;
     s->n_vertices = nv;
     s->length_shift = (int8_t)g;
+}
+
+/* The core's scale at length shift G and power shift P, and the start state at it;
+ * nothing changes when both stand (only ever called before a solve). */
+static void set_scale(rad_scene_t *s, int g, int p)
+{
+    if (g == s->length_shift && p == s->power_shift) return;
+    if (g != s->length_shift) remesh(s, g);
+    s->power_shift = (int8_t)p;
     start_all(s);
+}
+
+static int pick_power_shift(const rad_scene_t *s)
+{
+    return pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT);
 }
 
 void rad__scale_geometry(rad_scene_t *s)
 {
     uint32_t e, small = 0;
-    set_length_shift(s, pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT));
+    set_scale(s, pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT), s->power_shift);
     for (e = 0; e < s->n_elements; e++) small += s->pools.elements[e].area < SMALL_AREA;
     s->stats.small_elements = small;
-}
-
-/* The power shift for the emissions as they stand, and the start state at it. */
-static void set_power_shift(rad_scene_t *s)
-{
-    s->power_shift = (int8_t)pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT);
-    start_all(s);
 }
 
 void rad__freeze(rad_scene_t *s)
 {
     if (s->solving) return;
     rad__scale_geometry(s);
-    if (s->power_shift != pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT))
-        set_power_shift(s);
+    set_scale(s, s->length_shift, pick_power_shift(s));
     s->solving = 1;
 }
 
@@ -469,12 +474,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
         !fits(s->n_vertices, plan.vertices, s->pools.max_vertices))
         return RAD_ERR_FULL;
 
-    /* New polygons come in the caller's units: back to them (after a rad_restart). */
-    set_length_shift(s, 0);
-    if (s->power_shift != 0) {
-        s->power_shift = 0;
-        start_all(s);
-    }
+    set_scale(s, 0, 0); /* new polygons come in the caller's units (after a restart) */
     sf = &s->pools.surfaces[s->n_surfaces];
     sf->normal = normal;
     sf->reflectance = reflectance ? *reflectance : black;
@@ -508,7 +508,8 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
 int rad_restart(rad_scene_t *s)
 {
     if (!s) return RAD_ERR_ARG;
-    set_power_shift(s); /* new emissions may need another */
+    s->power_shift = (int8_t)pick_power_shift(s); /* new emissions may need another */
+    start_all(s);
     s->solving = 0;
     s->stats.shots = 0;
     return RAD_OK;
