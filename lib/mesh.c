@@ -303,11 +303,7 @@ static void mesh_surface(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, uns
 
 rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf)
 {
-    rad_rgb_t e;
-    e.r = rad__scale2(sf->emission.r, s->power_shift, &s->stats.saturations);
-    e.g = rad__scale2(sf->emission.g, s->power_shift, &s->stats.saturations);
-    e.b = rad__scale2(sf->emission.b, s->power_shift, &s->stats.saturations);
-    return e;
+    return rad__scale2_rgb(sf->emission, s->power_shift, &s->stats.saturations);
 }
 
 /* Emission as the solution's starting point: radiosity E, unshot power E * area. */

@@ -16,6 +16,8 @@
 #define rad__isqrt64       radf__isqrt64
 #define rad__unit64        radf__unit64
 #define rad__fsqrt         radf__fsqrt
+#define rad__scale2_vec    radf__scale2_vec
+#define rad__scale2_rgb    radf__scale2_rgb
 #define rad__draw          radf__draw
 #define rad__hemicube_init radf__hemicube_init
 #define rad__hemicube      radf__hemicube
@@ -493,14 +495,9 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 
 #endif
 
-/* V times 2^N, each coordinate as rad__scale2. */
-static inline rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat)
-{
-    v.x = rad__scale2(v.x, n, sat);
-    v.y = rad__scale2(v.y, n, sat);
-    v.z = rad__scale2(v.z, n, sat);
-    return v;
-}
+/* V and C times 2^N, each component as rad__scale2 (scalar.c: not inlined, for size). */
+rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat);
+rad_rgb_t rad__scale2_rgb(rad_rgb_t c, int n, uint32_t *sat);
 
 /* The magnitude of a signed energy (|u| < 2^62 in the fixed build: no overflow). */
 static inline rad_energy_t rad__eabs(rad_energy_t u)

@@ -36,13 +36,8 @@ static const rad_rgb_t *shade_ambient(rad_scene_t *s, int flags, rad_rgb_t *amb)
 /* B from the core's scale to the caller's, unless FLAGS keep the core's. */
 static rad_rgb_t to_caller(rad_scene_t *s, int flags, rad_rgb_t b)
 {
-    int n = -s->power_shift;
-    uint32_t *sat = &s->stats.saturations;
     if (flags & RAD_SHADE_SCALED) return b;
-    b.r = rad__scale2(b.r, n, sat);
-    b.g = rad__scale2(b.g, n, sat);
-    b.b = rad__scale2(b.b, n, sat);
-    return b;
+    return rad__scale2_rgb(b, -s->power_shift, &s->stats.saturations);
 }
 
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)

@@ -185,13 +185,13 @@ void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 {
     rad_real_t amb[3];
-    uint32_t *sat;
+    rad_rgb_t a;
     if (!s || !out) return RAD_ERR_ARG;
-    sat = &s->stats.saturations;
-    ambient(s, amb, sat);
-    out->r = rad__scale2(amb[0], -s->power_shift, sat); /* in the caller's scale */
-    out->g = rad__scale2(amb[1], -s->power_shift, sat);
-    out->b = rad__scale2(amb[2], -s->power_shift, sat);
+    ambient(s, amb, &s->stats.saturations);
+    a.r = amb[0];
+    a.g = amb[1];
+    a.b = amb[2];
+    *out = rad__scale2_rgb(a, -s->power_shift, &s->stats.saturations); /* the caller's scale */
     return RAD_OK;
 }
 
