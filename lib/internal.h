@@ -17,6 +17,7 @@
 #define rad__emission        radf__emission
 #define rad__scale_geometry  radf__scale_geometry
 #define rad__freeze          radf__freeze
+#define rad__scale_power     radf__scale_power
 #define rad__ambient         radf__ambient
 #endif
 
@@ -146,10 +147,12 @@ unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uin
 
 /* The core's scale (mesh.c; rad.h has the rules). rad__scale_geometry re-meshes the
  * scene at the length shift its extent calls for (a no-op once it is there) and counts
- * small elements; rad__freeze, before a solve, does that, picks the power shift for
- * the emissions and sets s->solving (a no-op while solving). Either restarts the
- * solution when a shift changes: call them only while s->solving is 0 or to begin. */
+ * small elements; rad__scale_power picks the power shift for the emissions as they
+ * stand; rad__freeze, before a solve, does both and sets s->solving (a no-op while
+ * solving). Each restarts the solution when a shift changes: call them only before a
+ * solve, or (Gauss-Seidel) where the solution is replaced anyway. */
 void rad__scale_geometry(rad_scene_t *s);
+void rad__scale_power(rad_scene_t *s);
 void rad__freeze(rad_scene_t *s);
 /* Surface SF's emission in the core's scale (saturations counted). */
 rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf);

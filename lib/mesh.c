@@ -439,11 +439,16 @@ void rad__scale_geometry(rad_scene_t *s)
     s->stats.small_elements = small;
 }
 
+void rad__scale_power(rad_scene_t *s)
+{
+    set_scale(s, s->length_shift, pick_power_shift(s));
+}
+
 void rad__freeze(rad_scene_t *s)
 {
     if (s->solving) return;
     rad__scale_geometry(s);
-    set_scale(s, s->length_shift, pick_power_shift(s));
+    rad__scale_power(s);
     s->solving = 1;
 }
 

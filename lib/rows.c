@@ -92,6 +92,7 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
     if (!rows_ready(s, rows)) return RAD_ERR_STATE;
     rad__freeze(s);
+    rad__scale_power(s); /* for the emissions now: this solve starts from them alone */
     assemble(s, rows, matrix);
     /* The patch radiosities live after the matrix, in its type's room (4 bytes). */
     b = (rad_real_t *)(void *)(matrix + (size_t)np * np);

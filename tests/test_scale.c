@@ -435,6 +435,52 @@ static void test_restart_rescales(void **st)
     }
 }
 
+/* Gauss-Seidel solves from the emissions as they stand: after rad_set_surface, with or
+ * without rad_restart, it takes their power shift, so the room solved with a light of
+ * 0.01 (power shift 14) and then relit to 256 gives the bits of a room built with 256,
+ * with no saturation (at shift 14 a light of 256 would clamp). */
+static void test_gauss_seidel_rescales(void **st)
+{
+    enum { ROWS = NP, ENTRIES = 1 << 17 };
+    static uint32_t start[ROWS + 1];
+    static rad_index_t ids[ENTRIES];
+    static uint16_t ffs[ENTRIES];
+    static rad_ff_t matrix[RAD_GS_ENTRIES(NP)];
+    static rad_rgb_t want[NE];
+    rad_rows_t rows = {start, ids, ffs, ROWS, ENTRIES, 0};
+    rad_rgb_t hot = light_rgb(256.0);
+    rad_scene_t s;
+    uint32_t e, differ = 0;
+    int k, light;
+    (void)st;
+    for (k = 0; k < 2; k++) {
+        assert_int_equal(init(&s, 6.0), RAD_OK);
+        light = build(&s, 6.0, k ? 0.01 : 256.0);
+        assert_true(light >= 0);
+        rows.n_rows = 0;
+        assert_int_equal(rad_rows_compute(&s, &rows, ROWS), (int)s.n_patches);
+        assert_true(rad_rows_gauss_seidel(&s, &rows, matrix, RAD_GS_ENTRIES(NP), 200,
+                                          RAD_REAL(1e-4)) > 0);
+        if (k) {
+            assert_int_equal(s.power_shift, 14);
+            assert_int_equal(rad_set_surface(&s, (uint32_t)light, 0, &hot), RAD_OK);
+            assert_true(rad_rows_gauss_seidel(&s, &rows, matrix, RAD_GS_ENTRIES(NP), 200,
+                                              RAD_REAL(1e-4)) > 0);
+        }
+        for (e = 0; e < s.n_elements; e++) {
+            if (!k) want[e] = elements[e].radiosity;
+            else
+                differ += memcmp(&want[e], &elements[e].radiosity, sizeof *want) != 0;
+        }
+    }
+    printf("Gauss-Seidel relit 0.01 -> 256 without restart: power shift %d, saturations "
+           "%u, %u of %u elements differ from a fresh solve\n",
+           s.power_shift, s.stats.saturations, differ, s.n_elements);
+    assert_int_equal(s.power_shift, 0);
+    assert_int_equal(s.stats.saturations, 0);
+    assert_int_equal(differ, 0);
+}
+
 /* Element radiosities, bit for bit. */
 static int same_solution(const rad_scene_t *a, const rad_scene_t *b)
 {
@@ -541,7 +587,8 @@ int main(void)
         cmocka_unit_test(test_twin_every_scale),  cmocka_unit_test(test_fixed_every_scale),
         cmocka_unit_test(test_shifts_chosen),
         cmocka_unit_test(test_power_of_two_exact), cmocka_unit_test(test_restart_rescales),
-        cmocka_unit_test(test_add_after_restart), cmocka_unit_test(test_small_elements),
+        cmocka_unit_test(test_gauss_seidel_rescales), cmocka_unit_test(test_add_after_restart),
+        cmocka_unit_test(test_small_elements),
         cmocka_unit_test(test_core_scale_untouched),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
