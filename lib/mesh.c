@@ -331,9 +331,9 @@ static void start_all(rad_scene_t *s)
 
 /* ---- the core's scale (rad.h) ---------------------------------------------------- */
 
-#define SCALE_HALF       RAD__Q(RAD_COORD_LIMIT / 2) /* the largest coordinate into (16, 32] */
-#define SCALE_PEAK       RAD__Q(256.0)               /* the brightest emission into (128, 256] */
-#define SMALL_AREA       RAD__Q(1.0 / 64.0)          /* 2^10 LSB: rounding 2^-11 of the area */
+#define SCALE_HALF       RAD__Q(RAD_COORD_LIMIT / 2.0) /* the largest coordinate into (16, 32] */
+#define SCALE_PEAK       RAD__Q(256.0)                 /* the brightest emission into (128, 256] */
+#define SMALL_AREA       RAD__Q(1.0 / 64.0)            /* 2^10 LSB: rounding 2^-11 of the area */
 #define MAX_LENGTH_SHIFT 15 /* for a scene within 2^-10: smaller than any polygon accepted */
 /* Emission scales up only: outputs come back in the caller's Q16.16, whose range a
  * smaller scale would not widen, while it would round away the low bits of emissions. */
