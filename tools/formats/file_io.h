@@ -39,6 +39,14 @@ extern "C" {
 #define FIO_LIMIT_TEXT  (16u * 1024u * 1024u)   /* --views, --animate: 16 MiB */
 #define FIO_LIMIT_IMAGE (256u * 1024u * 1024u)  /* an image or texture file: 256 MiB */
 
+/* "PATH: message" into err (NULL or errlen 0: nothing); the one form of every message
+ * of the file format readers and writers. */
+void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
 /* Reads the whole of PATH (at most LIMIT bytes) into a malloc'd buffer with a NUL
  * after the last byte (*DATA, *SIZE bytes without the NUL). Returns 0, or -1 with err
  * ("PATH: cannot open: No such file", "PATH: is a directory", "PATH: larger than the
