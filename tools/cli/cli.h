@@ -31,6 +31,13 @@
 #define CLI_EXIT_WARNED 3   /* outputs written, but not converged or saturated */
 
 #define MAX_VIEWS 4096
+/* The largest emission channel accepted: the OBJ loader's limit on any number, now also
+ * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
+ * below 32768 with that emission at 256; past it values saturate, and are reported),
+ * and a group's intensity is below 2^15, so an image value stays below
+ * 2^22 * 1e30 = 4.2e36 per light group: inside float's 3.4e38 for up to 80 groups at
+ * full intensity, and no infinity reaches the auto exposure. */
+#define CLI_EMIT_LIMIT 1e30
 #define MAX_GROUP_NAME 64
 #define OTHER_GROUP "other"
 
@@ -98,6 +105,7 @@ typedef struct {
     int unconverged;                /* solves that stopped at the limit above --tol */
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
+    double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
 } run_t;
 
@@ -140,11 +148,23 @@ char *default_output(const char *scene);
 /* Every output of the run checked before the solve; exits 1 on the first that cannot be
  * written. */
 void check_outputs(const opts_t *o);
+/* The names made from them: --animate's frames and --each-group's images (once the
+ * frames and groups are known, still before the solve). */
+void check_group_outputs(const opts_t *o);
 /* Renders CAM and writes PATH (NULL: only render, to fix the exposure). One exposure
  * for every output, from the first view rendered (or --exposure), so views match. */
 int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot);
+/* Renders every view and frame once, small, before the solve: a camera the core refuses
+ * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
+int check_cameras(sc_solver *s, const opts_t *o);
 int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
 int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st);
+
+/* ---- balance.c ---- */
+/* The power-weighted share of the emitters' light that their hemi-cubes land on front
+ * faces of elements (1 in a closed scene), from up to 64 hemi-cubes at res 128; -1 when
+ * nothing emits. Renders hemi-cubes: call it after the solve's statistics are kept. */
+double emitted_share_landing(run_t *r);
 
 /* ---- solve.c ---- */
 /* The solve, by shooting or from the rows (computed, loaded or saved), each light group

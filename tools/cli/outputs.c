@@ -3,12 +3,11 @@
  */
 #include "cli.h"
 
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <unistd.h>
 
+#include "formats/file_io.h"
 #include "formats/image.h"
 #include "host/clock.h"
 
@@ -50,23 +49,18 @@ char *default_output(const char *scene)
     return out;
 }
 
-/* Fails early (exit 1) when PATH could not be written after a long solve: a folder
- * that does not exist or is not writable, or (for images) an unknown extension. */
+/* Fails early (exit 1) when PATH could not be written after a long solve (fio_check_out:
+ * a folder that does not exist or is not writable, a directory, a name too long for its
+ * temporary file) or, for images, has an unknown extension. */
 static void check_output(const char *path, int image)
 {
-    char dir[4096];
-    const char *slash = strrchr(path, '/');
-    size_t len = slash ? (size_t)(slash - path) : 0;
+    char err[1024];
     if (image && strcasecmp(ext_of(path), ".png") != 0 && strcasecmp(ext_of(path), ".ppm") != 0) {
         fprintf(stderr, PROG ": %s: unknown image extension (use .png or .ppm)\n", path);
         exit(CLI_EXIT_ERROR);
     }
-    if (len >= sizeof dir) len = sizeof dir - 1;
-    if (slash) memcpy(dir, path, len ? len : 1);
-    dir[slash ? (len ? len : 1) : 0] = '\0';
-    if (!slash) strcpy(dir, ".");
-    if (access(dir, W_OK) != 0) {
-        fprintf(stderr, PROG ": %s: cannot write into '%s': %s\n", path, dir, strerror(errno));
+    if (fio_check_out(path, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
         exit(CLI_EXIT_ERROR);
     }
 }
@@ -78,6 +72,68 @@ void check_outputs(const opts_t *o)
     if (o->ply) check_output(o->ply, 0);
     if (o->csv) check_output(o->csv, 0);
     if (o->save_ff) check_output(o->save_ff, 0);
+}
+
+void check_group_outputs(const opts_t *o)
+{
+    int i, g;
+    for (i = 0; o->animate && i < o->nframes; i++) {
+        char num[32], *path;
+        snprintf(num, sizeof num, "%04d", i);
+        path = insert_name(o->views[0].out, "_", num);
+        check_output(path, 1);
+        free(path);
+    }
+    for (g = 0; o->each_group && g < o->ngroups; g++)
+        for (i = 0; i < o->nviews; i++) {
+            char *path = insert_name(o->views[i].out, ".", o->groups[g].name);
+            check_output(path, 1);
+            free(path);
+        }
+}
+
+static int gcd(int a, int b)
+{
+    while (b) {
+        int t = a % b;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+/* CAM at the shape of the run's images (their sides divided by their gcd, or at full
+ * size when that is still large: the core's checks depend on the aspect). */
+static int try_camera(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *name, float *buf)
+{
+    char err[1024];
+    int g = gcd(o->width, o->height), w = o->width / g, h = o->height / g;
+    if ((long)w * h > 256L * 256L) {
+        w = o->width;
+        h = o->height;
+    }
+    if (sc_render(s, cam, 0, w, h, buf, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", name, err);
+        return -1;
+    }
+    return 0;
+}
+
+int check_cameras(sc_solver *s, const opts_t *o)
+{
+    float *buf = malloc((size_t)o->width * o->height * 3 * sizeof *buf);
+    int i, rc = buf ? 0 : -1;
+    if (!buf) fprintf(stderr, PROG ": out of memory\n");
+    for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++) rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
+    for (i = 0; rc == 0 && o->animate && i < o->nframes; i++) {
+        char num[32], *path;
+        snprintf(num, sizeof num, "%04d", i);
+        path = insert_name(o->views[0].out, "_", num);
+        rc = try_camera(s, o, &o->frames[i].cam, path, buf);
+        free(path);
+    }
+    free(buf);
+    return rc;
 }
 
 int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot)
@@ -118,19 +174,36 @@ static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, int ambient, co
     }
 }
 
-int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+/* PATH through fio_out: written to a temporary file, committed (checked, synced,
+ * renamed) only if every write succeeded; on error the old file is intact. */
+static FILE *out_open(const char *path, fio_out **fo)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        fprintf(stderr, PROG ": %s: cannot write: %s\n", path, strerror(errno));
-        return -1;
+    char err[1024];
+    *fo = fio_out_open(path, err, sizeof err);
+    if (!*fo) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return NULL;
     }
-    csv_rows(f, s, sc, ambient, st);
-    if (fclose(f) != 0) {
-        fprintf(stderr, PROG ": %s: write failed\n", path);
+    return fio_out_stream(*fo);
+}
+
+static int out_commit(fio_out *fo)
+{
+    char err[1024];
+    if (fio_out_commit(fo, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }
     return 0;
+}
+
+int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+{
+    fio_out *fo;
+    FILE *f = out_open(path, &fo);
+    if (!f) return -1;
+    csv_rows(f, s, sc, ambient, st);
+    return out_commit(fo);
 }
 
 static void ply_body(FILE *f, sc_solver *s, const double *rgb, double exposure, const sc_stats *st)
@@ -161,6 +234,7 @@ static void ply_body(FILE *f, sc_solver *s, const double *rgb, double exposure, 
 
 int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st)
 {
+    fio_out *fo;
     FILE *f;
     double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
     if (!rgb || sc_shade(s, ambient, rgb) < 0) {
@@ -168,17 +242,8 @@ int write_ply(const char *path, sc_solver *s, int ambient, double exposure, cons
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    f = fopen(path, "w");
-    if (!f) {
-        free(rgb);
-        fprintf(stderr, PROG ": %s: cannot write: %s\n", path, strerror(errno));
-        return -1;
-    }
-    ply_body(f, s, rgb, exposure, st);
+    f = out_open(path, &fo);
+    if (f) ply_body(f, s, rgb, exposure, st);
     free(rgb);
-    if (fclose(f) != 0) {
-        fprintf(stderr, PROG ": %s: write failed\n", path);
-        return -1;
-    }
-    return 0;
+    return f ? out_commit(fo) : -1;
 }

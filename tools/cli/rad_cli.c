@@ -6,11 +6,11 @@
  */
 #include "cli.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "formats/file_io.h"
 #include "host/clock.h"
 #include "host/obj_polys.h"
 
@@ -48,6 +48,21 @@ static int apply_emit(const opts_t *o, obj_scene *sc)
         }
         memcpy(sc->materials[m].ke, v, sizeof v);
     }
+    return 0;
+}
+
+/* Emissions the outputs can hold (CLI_EMIT_LIMIT), after --emit: 0 or -1. */
+static int check_emissions(const opts_t *o, const obj_scene *sc)
+{
+    int m, c;
+    for (m = 0; m < sc->nmaterials; m++)
+        for (c = 0; c < 3 && sc->materials[m].nfaces > 0; c++)
+            if (sc->materials[m].ke[c] > CLI_EMIT_LIMIT) {
+                fprintf(stderr, PROG ": %s: material '%s': emission %g is above the limit of %g (the image would "
+                                "overflow); scale every emission down: radiosity is linear in it\n",
+                        o->scene, sc->materials[m].name, sc->materials[m].ke[c], CLI_EMIT_LIMIT);
+                return -1;
+            }
     return 0;
 }
 
@@ -159,24 +174,11 @@ static int resolve_groups(run_t *r)
 
 static int read_text(const char *path, char **text, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    size_t cap = 0, n = 0, got;
-    char *buf = NULL;
-    if (!f) {
-        fprintf(stderr, PROG ": %s: cannot open: %s\n", path, strerror(errno));
+    char err[1024];
+    if (fio_read_all(path, FIO_LIMIT_TEXT, text, len, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }
-    do {
-        char *nb = realloc(buf, cap += 65536);
-        if (!nb) { free(buf); fclose(f); fprintf(stderr, PROG ": out of memory\n"); return -1; }
-        buf = nb;
-        got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-    } while (got > 0);
-    fclose(f);
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
     return 0;
 }
 
@@ -235,6 +237,7 @@ static int load_step(run_t *r)
         fprintf(stderr, PROG ": %s: the scene has no faces\n", o->scene);
         return -1;
     }
+    if (check_emissions(o, &r->sc) < 0) return -1;
     for (i = 0; i < r->sc.nmaterials; i++)
         if (emits(&r->sc.materials[i])) emitters++;
     if (!emitters && !o->quiet)
@@ -332,7 +335,7 @@ static int build_step(run_t *r)
     }
     for (i = 0; i < o->nviews; i++)
         if (!o->views[i].has_cam) o->views[i].cam = def;
-    return 0;
+    return check_cameras(r->s, o);
 }
 
 /* ---- outputs --------------------------------------------------------------------- */
@@ -425,6 +428,10 @@ static void print_stats(const run_t *r)
     printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
+    printf("exposure %g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");
+    if (r->landing >= 0)
+        printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
+               100 * r->landing);
     if (r->rows_mode)
         printf("time: load %.3fs  mesh %.3fs  rows %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", r->t_load - r->t0,
                r->t_mesh - r->t_load, r->t_rows, r->t_solve - r->t_mesh - r->t_rows, r->ot.t_render, r->ot.t_write);
@@ -432,6 +439,44 @@ static void print_stats(const run_t *r)
         printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", r->t_load - r->t0,
                r->t_mesh - r->t_load, r->t_solve - r->t_mesh, r->ot.t_render, r->ot.t_write);
     printf("memory: pools %zu bytes, work buffer %zu bytes\n", st->pool_bytes, st->work_bytes);
+}
+
+/* ---- what the run says after its outputs ---------------------------------------------- */
+
+/* Most of the emitted light lost at its first bounce: a flat, dark picture with no
+ * error, so a warning says why. */
+#define LANDING_WARN 0.5
+
+static void balance_step(run_t *r)
+{
+    r->landing = emitted_share_landing(r);
+    if (r->landing >= 0 && r->landing < LANDING_WARN && !r->o->quiet)
+        fprintf(stderr, PROG ": warning: %s: only %.0f%% of the emitted light reaches a face from its front: the rest "
+                        "leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
+                        "counter-clockwise seen from their lit side)\n", r->o->scene, 100 * r->landing);
+}
+
+/* CLI_EXIT_WARNED with one line each when the solve stopped short or saturated. */
+static int verdict(const run_t *r)
+{
+    const opts_t *o = r->o;
+    int rc = CLI_EXIT_OK;
+    if (r->unconverged && o->gauss_seidel) {
+        fprintf(stderr, PROG ": %s: not converged: Gauss-Seidel stopped at its sweep limit above --tol %g; the "
+                        "outputs show that partial solution (raise --tol)\n", o->scene, o->tol);
+        rc = CLI_EXIT_WARNED;
+    } else if (r->unconverged) {
+        fprintf(stderr, PROG ": %s: not converged: the unshot fraction is %g, above --tol %g, at --max-shots %d%s; "
+                        "the outputs show that partial solution (raise --max-shots or --tol)\n", o->scene,
+                r->st.unshot, o->tol, o->max_shots, r->groups_mode ? " (in a light group)" : "");
+        rc = CLI_EXIT_WARNED;
+    }
+    if (r->st.saturations) {
+        fprintf(stderr, PROG ": %s: %lu values saturated at the core's range, so some radiosities are clipped (lower "
+                        "reflectances near 1, or --max-element)\n", o->scene, r->st.saturations);
+        rc = CLI_EXIT_WARNED;
+    }
+    return rc;
 }
 
 /* ---- main -------------------------------------------------------------------------- */
@@ -473,11 +518,18 @@ int main(int argc, char **argv)
     r.rows_mode = o.save_ff || o.load_ff || o.gauss_seidel || o.nuser_groups || o.animate;
     r.groups_mode = o.nuser_groups || o.animate;
     if (rc == 0) rc = load_step(&r);
+    if (rc > 0) { /* --list-materials: done */
+        free_run(&r);
+        return CLI_EXIT_OK;
+    }
+    if (rc == 0) check_group_outputs(&o);
     if (rc == 0) rc = build_step(&r);
     if (rc == 0) rc = solve_step(&r);
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
+    if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
+    if (rc == 0) rc = verdict(&r);
     free_run(&r);
-    return rc < 0 ? CLI_EXIT_ERROR : CLI_EXIT_OK;
+    return rc < 0 ? CLI_EXIT_ERROR : rc;
 }
