@@ -428,7 +428,7 @@ static void print_stats(const run_t *r)
     printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
-    printf("exposure %g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");
+    printf("exposure %.9g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");
     if (r->landing >= 0)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);
@@ -472,8 +472,8 @@ static int verdict(const run_t *r)
         rc = CLI_EXIT_WARNED;
     }
     if (r->st.saturations) {
-        fprintf(stderr, PROG ": %s: %lu values saturated at the core's range, so some radiosities are clipped (lower "
-                        "reflectances near 1, or --max-element)\n", o->scene, r->st.saturations);
+        fprintf(stderr, PROG ": %s: %lu values saturated at the core's range, so some radiosities are clipped "
+                        "(reflectances near 1 keep more light than it holds: lower them)\n", o->scene, r->st.saturations);
         rc = CLI_EXIT_WARNED;
     }
     return rc;
