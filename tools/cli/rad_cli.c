@@ -496,6 +496,22 @@ static void free_run(run_t *r)
     free_opts(r->o);
 }
 
+/* The views: --views' file, or the default view; every output name checked. */
+static int views_step(opts_t *o)
+{
+    if (o->views_file && read_views(o) < 0) return -1;
+    if (o->nviews == 0) {
+        o->default_out = default_output(o->scene);
+        if (!o->default_out) {
+            fprintf(stderr, PROG ": out of memory\n");
+            return -1;
+        }
+        add_view(o, NULL, o->default_out);
+    }
+    if (!o->list) check_outputs(o);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static opts_t o;
@@ -505,18 +521,10 @@ int main(int argc, char **argv)
     r.o = &o;
     r.t0 = host_now();
     parse_args(argc, argv, &o);
-    rc = o.views_file ? read_views(&o) : 0;
-    if (rc == 0 && o.nviews == 0) {
-        o.default_out = default_output(o.scene);
-        if (!o.default_out) {
-            fprintf(stderr, PROG ": out of memory\n");
-            rc = -1;
-        } else add_view(&o, NULL, o.default_out);
-    }
-    if (rc == 0 && !o.list) check_outputs(&o);
     r.ambient = !o.no_ambient;
     r.rows_mode = o.save_ff || o.load_ff || o.gauss_seidel || o.nuser_groups || o.animate;
     r.groups_mode = o.nuser_groups || o.animate;
+    rc = views_step(&o);
     if (rc == 0) rc = load_step(&r);
     if (rc > 0) { /* --list-materials: done */
         free_run(&r);
