@@ -523,8 +523,8 @@ static void test_outward_room_warns(void **state)
 
 /* ---- the documentation: --help and the README's table ------------------------------ */
 
-/* Every option of the README's rad_cli table is in --help, and --help states the exit
- * statuses and the default camera. */
+/* The README's rad_cli table and --help name the same options, and --help states the
+ * exit statuses and the default camera. */
 static void test_help_matches_readme(void **state)
 {
     result_t r;
@@ -552,6 +552,16 @@ static void test_help_matches_readme(void **state)
     }
     print_message("%d README options found in --help\n", n);
     assert_in_range(n, 25, 100);
+    /* and the other way: every option --help lists has its row (its alias aside) */
+    for (p = r.out; (p = strstr(p, "\n  -")) != NULL; p++) {
+        char opt[64];
+        size_t len = strcspn(p + 3, " ,\n");
+        if (len >= sizeof opt - 1) fail_msg("--help line: %.60s", p);
+        opt[0] = '`';
+        memcpy(opt + 1, p + 3, len);
+        opt[len + 1] = '\0';
+        if (!strstr(readme, opt)) fail_msg("--help's option %s has no row in the README's table", opt + 1);
+    }
     free(readme);
     done(&r);
 }
