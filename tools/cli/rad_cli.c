@@ -28,6 +28,14 @@ static void poly_warning(void *ctx, int line, const char *msg)
     fprintf(stderr, PROG ": warning: %s:%d: %s\n", o->scene, line, msg);
 }
 
+/* The glue's warnings name a polygon by its tag, the OBJ face index: shown as its line. */
+static void glue_warning(void *ctx, int tag, const char *msg)
+{
+    const run_t *r = ctx;
+    fprintf(stderr, PROG ": warning: %s:%d: %s\n", r->o->scene, tag >= 0 && tag < r->sc.nfaces ? r->sc.faces[tag].line : 0,
+            msg);
+}
+
 static int apply_emit(const opts_t *o, obj_scene *sc)
 {
     int i;
@@ -321,7 +329,7 @@ static int build_step(run_t *r)
     r->so.max_element = o->max_element;
     r->so.res = o->res ? o->res : 128; /* 64 aliases visibly on elements a few pixels wide */
     r->so.no_overshoot = o->no_overshoot;
-    r->s = sc_create(polys, npolys, &r->so, NULL, NULL, err, sizeof err);
+    r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
     free(polys);
     if (!r->s) {
         fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
