@@ -6,7 +6,8 @@
  *
  * Files: options.c (the option table, --help from it), views.c (the --views and
  * --animate parsers, on a buffer), rad_cli.c (main: load, build, solve, outputs),
- * solve.c (the solves and their progress), outputs.c (images, PLY, CSV, output checks).
+ * solve.c (the solves and their progress), outputs.c (images, PLY, CSV, output and
+ * camera checks), balance.c (where the emitted light goes).
  */
 #ifndef RAD_CLI_H
 #define RAD_CLI_H
