@@ -15,12 +15,12 @@
 #define GS_MAX_SWEEPS 1000
 
 /* The core compares the unshot fraction with --tol rounded to its own format: in the
- * fixed build Q16.16, to the nearest 2^-16, so a fraction up to half a step above F
- * may be the core's F. */
+ * fixed build Q16.16, to the nearest 2^-16, so a fraction up to half a step above F may
+ * be the core's F; in the float build to the nearest float, half an ulp (2^-24 of F). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
-#define TOL_SLACK 0.0
+#define TOL_SLACK(f) ((f) / 16777216.0)
 #else
-#define TOL_SLACK (0.5 / 65536.0)
+#define TOL_SLACK(f) (0.5 / 65536.0)
 #endif
 
 typedef struct {
@@ -74,7 +74,7 @@ static void check_converged(run_t *r, int shots)
 {
     sc_stats st;
     sc_get_stats(r->s, &st);
-    if (shots >= r->o->max_shots && st.unshot > r->o->tol + TOL_SLACK) r->unconverged++;
+    if (shots >= r->o->max_shots && st.unshot > r->o->tol + TOL_SLACK(r->o->tol)) r->unconverged++;
 }
 
 /* Shooting with hemi-cubes; threads split each shot's cube by rows: the same bits. */
