@@ -531,7 +531,7 @@ static void test_out_missing_folder(void **state)
     expect_text(err, "a.png: cannot write in folder ");
     expect_text(err, "no_such_folder: No such file or directory");
     assert_null(fio_out_open(p, err, sizeof err));
-    expect_text(err, "no_such_folder: No such file or directory");
+    expect_text(err, "a.png: cannot create temporary file: No such file or directory");
 }
 
 /* fio_check_out writes nothing. */

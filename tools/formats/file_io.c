@@ -195,8 +195,8 @@ static int plan_out(const char *path, char **target, mode_t *mode, char *err, si
         return -1;
     }
     if (stat(path, &st) != 0) {
-        int e = errno;
-        if (e != ENOENT || lstat(path, &lst) == 0) {
+        int e = errno; /* else a new file: mkstemp names what is wrong with its folder */
+        if (lstat(path, &lst) == 0) {
             fio_err(err, errlen, path, "cannot write: %s",
                     e == ENOENT ? "a symbolic link to a missing file" : strerror(e));
             return -1;
@@ -321,11 +321,11 @@ static int open_in_place(fio_out *o, char *err, size_t errlen)
     return 0;
 }
 
+/* mkstemp's own error names what is wrong with the folder (missing, not a folder, not
+ * writable, a name too long), so nothing is checked before it. */
 static int open_tmp(fio_out *o, char *err, size_t errlen)
 {
     int fd;
-    if (check_target(o->path, o->target, err, errlen) != 0)
-        return -1;
     if (!(o->tmp = malloc(strlen(o->target) + sizeof TMP_SUFFIX))) {
         fio_err(err, errlen, o->path, "out of memory");
         return -1;
@@ -333,7 +333,7 @@ static int open_tmp(fio_out *o, char *err, size_t errlen)
     strcpy(o->tmp, o->target);
     strcat(o->tmp, TMP_SUFFIX);
     if ((fd = mkstemp(o->tmp)) < 0) {
-        fio_err(err, errlen, o->path, "cannot create a temporary file: %s", strerror(errno));
+        fio_err(err, errlen, o->path, "cannot create temporary file: %s", strerror(errno));
         return -1;
     }
     if (!(o->fp = fdopen(fd, "wb"))) {
