@@ -221,9 +221,11 @@ static int intern_material(parser *p, const char *name)
     if (sc->nmaterials == INT_MAX)
         return fail(p, "too many materials");
     q = reserve(sc->materials, &p->cap_mats, (size_t)sc->nmaterials + 1, sizeof *q);
-    if (!q || grow_names(sc) != 0)
+    if (!q)
         return fail(p, "out of memory");
-    sc->materials = q;
+    sc->materials = q; /* before grow_names, which reads the names */
+    if (grow_names(sc) != 0)
+        return fail(p, "out of memory");
     copy = malloc(len + 1);
     if (!copy)
         return fail(p, "out of memory");
