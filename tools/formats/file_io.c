@@ -32,7 +32,7 @@ struct fio_out {
     char *path;   /* as the caller named it, for messages */
     char *target; /* what the temporary file is renamed to; NULL when written in place */
     char *tmp;    /* the temporary file; NULL when written in place */
-    mode_t mode;  /* permission bits the new file gets */
+    mode_t mode;  /* permission bits the new file gets; written in place: the st_mode */
 };
 
 void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
@@ -44,7 +44,7 @@ void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    snprintf(err, errlen, "%s: %s", path ? path : "(no path)", msg);
+    snprintf(err, errlen, "%s: %s", path ? path : "(null)", msg);
 }
 
 /* "64 MiB (67108864 bytes)" for a whole number of MiB, else "N bytes". */
@@ -184,7 +184,8 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen)
 /* ---- outputs ------------------------------------------------------------------- */
 
 /* How PATH is written: by a temporary file renamed over TARGET (*TARGET malloc'd, the
- * link resolved) or in place (*TARGET NULL). 0, or -1 with err. Writes nothing. */
+ * link resolved, *MODE its permission bits) or in place (*TARGET NULL, *MODE the
+ * st_mode). 0, or -1 with err. Writes nothing. */
 static int plan_out(const char *path, char **target, mode_t *mode, char *err, size_t errlen)
 {
     struct stat st, lst, rst;
@@ -209,7 +210,8 @@ static int plan_out(const char *path, char **target, mode_t *mode, char *err, si
         fio_err(err, errlen, path, "is a directory");
         return -1;
     } else if (!S_ISREG(st.st_mode)) {
-        return 0; /* a device, FIFO or socket: in place */
+        *mode = st.st_mode; /* a device, FIFO or socket: in place (the kind for messages) */
+        return 0;
     } else {
         *mode = st.st_mode & 0777;
         if (lstat(path, &lst) != 0 || !S_ISLNK(lst.st_mode)) {
@@ -309,7 +311,7 @@ static int open_in_place(fio_out *o, char *err, size_t errlen)
     int fd = open(o->path, O_WRONLY | O_NONBLOCK | O_NOCTTY), fl;
     if (fd < 0) {
         fio_err(err, errlen, o->path, "cannot open: %s",
-                errno == ENXIO ? "a FIFO with no reader" : strerror(errno));
+                errno == ENXIO && S_ISFIFO(o->mode) ? "a FIFO with no reader" : strerror(errno));
         return -1;
     }
     if ((fl = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) < 0
