@@ -417,6 +417,37 @@ static void test_out_dangling_symlink(void **state)
     assert_int_equal(fio_check_out(link, err, sizeof err), -1);
 }
 
+/* A name of a descriptor (/dev/stdout's kind) is written through it: appended to a file
+ * opened for appending, as "rad_cli -o /dev/stdout >> log" wants, not renamed over. */
+static void test_out_descriptor(void **state)
+{
+    const char *p = tmp_path("log.txt");
+    char err[256], name[64], *d;
+    size_t n;
+    int fd, rfd;
+    (void)state;
+    write_file(p, "old\n", 4);
+    fd = open(p, O_WRONLY | O_APPEND);
+    assert_true(fd >= 0);
+    snprintf(name, sizeof name, "/dev/fd/%d", fd);
+    assert_int_equal(fio_check_out(name, err, sizeof err), 0);
+    assert_int_equal(put_text(name, "new\n", err, sizeof err), 0);
+    snprintf(name, sizeof name, "/proc/self/fd/%d", fd);
+    assert_int_equal(put_text(name, "more\n", err, sizeof err), 0);
+    close(fd);
+    d = slurp(p, &n);
+    assert_non_null(d);
+    assert_string_equal(d, "old\nnew\nmore\n");
+    free(d);
+    rfd = open(p, O_RDONLY);
+    assert_true(rfd >= 0);
+    snprintf(name, sizeof name, "/dev/fd/%d", rfd);
+    assert_int_equal(fio_check_out(name, err, sizeof err), -1);
+    snprintf(name, sizeof name, "cannot write: descriptor %d is open for reading only", rfd);
+    expect_text(err, name);
+    close(rfd);
+}
+
 /* /dev/null is written in place: still the same character device afterwards. */
 static void test_out_dev_null(void **state)
 {
@@ -1109,6 +1140,7 @@ int main(void)
         cmocka_unit_test(test_out_abort),
         cmocka_unit_test(test_out_symlink),
         cmocka_unit_test(test_out_dangling_symlink),
+        cmocka_unit_test(test_out_descriptor),
         cmocka_unit_test(test_out_dev_null),
         cmocka_unit_test(test_out_dev_full),
         cmocka_unit_test(test_out_fifo_with_reader),
