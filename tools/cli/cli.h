@@ -145,6 +145,8 @@ const char *ext_of(const char *path);
 /* PATH with SEP + MID inserted before its extension: out.png -> out.MID.png (malloc'd;
  * exits on out of memory). */
 char *insert_name(const char *path, const char *sep, const char *mid);
+/* --animate's frame I: -o's name + _0000, _0001, ... (malloc'd). */
+char *frame_name(const opts_t *o, int i);
 char *default_output(const char *scene);
 /* Every output of the run checked before the solve; exits 1 on the first that cannot be
  * written. */

@@ -33,6 +33,13 @@ char *insert_name(const char *path, const char *sep, const char *mid)
     return out;
 }
 
+char *frame_name(const opts_t *o, int i)
+{
+    char num[32];
+    snprintf(num, sizeof num, "%04d", i);
+    return insert_name(o->views[0].out, "_", num);
+}
+
 char *default_output(const char *scene)
 {
     const char *base = strrchr(scene, '/');
@@ -78,9 +85,7 @@ void check_group_outputs(const opts_t *o)
 {
     int i, g;
     for (i = 0; o->animate && i < o->nframes; i++) {
-        char num[32], *path;
-        snprintf(num, sizeof num, "%04d", i);
-        path = insert_name(o->views[0].out, "_", num);
+        char *path = frame_name(o, i);
         check_output(path, 1);
         free(path);
     }
@@ -126,9 +131,7 @@ int check_cameras(sc_solver *s, const opts_t *o)
     if (!buf) fprintf(stderr, PROG ": out of memory\n");
     for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++) rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
     for (i = 0; rc == 0 && o->animate && i < o->nframes; i++) {
-        char num[32], *path;
-        snprintf(num, sizeof num, "%04d", i);
-        path = insert_name(o->views[0].out, "_", num);
+        char *path = frame_name(o, i);
         rc = try_camera(s, o, &o->frames[i].cam, path, buf);
         free(path);
     }

@@ -353,9 +353,7 @@ static int render_frames(run_t *r)
     const opts_t *o = r->o;
     int i, rc = 0;
     for (i = 0; rc == 0 && i < o->nframes; i++) {
-        char num[32], *path;
-        snprintf(num, sizeof num, "%04d", i);
-        path = insert_name(o->views[0].out, "_", num);
+        char *path = frame_name(o, i);
         rc = mix_groups(r, r->sol, (const double(*)[3])o->frames[i].k, o->ngroups);
         if (rc == 0) rc = render_view(r->s, o, &o->frames[i].cam, path, r->ambient, &r->ot);
         free(path);
