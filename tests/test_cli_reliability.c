@@ -418,17 +418,19 @@ static void same_image(const char *pa, const char *pb)
 }
 
 /* A polygon that is skipped (zero area) far from the box must not be framed: the default
- * image equals the one through the camera the README describes for the box alone. */
+ * image equals the one through the camera the README describes for the box alone. The
+ * skipped polygon is named by its line. */
 static void test_default_camera_frames_meshed(void **state)
 {
     result_t r;
-    char *obj = read_whole(CORNELL), *text, cam[512];
+    char *obj = read_whole(CORNELL), *text, cam[512], line[512];
     const char *scene = tmp_path("far.obj");
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, v[3], c[3], h[3], fit;
     double t = tan(22.5 * 3.14159265358979323846 / 180.0);
     const char *p;
-    int k;
+    int k, lines = 0;
     (void)state;
+    for (p = obj; *p; p++) lines += *p == '\n';
     for (p = obj; (p = strstr(p, "\nv ")) != NULL; p++) {
         assert_int_equal(sscanf(p + 3, "%lf %lf %lf", &v[0], &v[1], &v[2]), 3);
         for (k = 0; k < 3; k++) {
@@ -454,8 +456,10 @@ static void test_default_camera_frames_meshed(void **state)
     fit = h[1] > h[0] ? h[1] : h[0];
     snprintf(cam, sizeof cam, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c[0], c[1], c[2] + h[2] + 1.05 * fit / t, c[0],
              c[1], c[2]);
-    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "-o", tmp_path("far_default.png"), "--quiet");
-    expect(&r, 0, "");
+    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "-o", tmp_path("far_default.png"));
+    snprintf(line, sizeof line, "rad_cli: warning: %s:%d: skipped a degenerate polygon (degenerate polygon)\n", scene,
+             lines + 5); /* the face after a blank line and three vertices */
+    expect(&r, 0, line);
     done(&r);
     RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "--camera", cam, "-o", tmp_path("far_cam.png"),
         "--quiet");
