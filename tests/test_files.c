@@ -889,6 +889,37 @@ static void test_img_write_fifo(void **state)
 /* What write_past_limit writes: 100,000 bytes through fio_out, an image (PNG or PPM
  * by the name), or a form factor file of 3000 rows (12 KB). */
 enum { FULL_RAW, FULL_IMAGE, FULL_FF };
+/* An image to /dev/fd/N (what "-o /dev/stdout" is), where the name has no extension:
+ * img_write_as names the format; the bytes are those of the same image in a file. */
+static void test_img_write_descriptor(void **state)
+{
+    const char *p = tmp_path("fd.out"), *ref = tmp_path("fd_ref.png");
+    unsigned char rgb[IW * IH * 3];
+    char err[256], name[64], *a, *b;
+    size_t na, nb;
+    int fd;
+    (void)state;
+    noise(rgb);
+    assert_int_equal(img_write(ref, rgb, IW, IH, err, sizeof err), 0);
+    fd = open(p, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    CHECK_INT_GE(fd, 0, "open: %s", strerror(errno));
+    snprintf(name, sizeof name, "/dev/fd/%d", fd);
+    assert_int_equal(img_write(name, rgb, IW, IH, err, sizeof err), -1);
+    CHECK_CONTAINS(err, ": unknown image extension (use .png or .ppm)", "the message");
+    assert_int_equal(img_write_as(name, "gif", rgb, IW, IH, err, sizeof err), -1);
+    CHECK_CONTAINS(err, ": unknown image format 'gif' (use png or ppm)", "the message");
+    assert_int_equal(img_write_as(name, "PNG", rgb, IW, IH, err, sizeof err), 0);
+    close(fd);
+    a = slurp(p, &na);
+    b = slurp(ref, &nb);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_int_equal(na, nb);
+    assert_memory_equal(a, b, na);
+    free(a);
+    free(b);
+}
+
 typedef struct {
     const char *path;
     int kind;
@@ -1149,6 +1180,7 @@ int main(void)
         cmocka_unit_test(test_writers_symlink),
         cmocka_unit_test(test_writers_devices),
         cmocka_unit_test(test_img_write_fifo),
+        cmocka_unit_test(test_img_write_descriptor),
         cmocka_unit_test(test_writers_full_disk),
         cmocka_unit_test(test_many_materials),
         cmocka_unit_test(test_huge_face),
