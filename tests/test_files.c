@@ -585,8 +585,8 @@ static void test_out_missing_folder(void **state)
     char err[256];
     (void)state;
     assert_int_equal(fio_check_out(p, err, sizeof err), -1);
-    CHECK_CONTAINS(err, "a.png: cannot write in folder ", "the message");
-    CHECK_CONTAINS(err, "no_such_folder: No such file or directory", "the message");
+    CHECK_CONTAINS(err, "a.png: cannot write into '", "the message");
+    CHECK_CONTAINS(err, "no_such_folder': No such file or directory", "the message");
     assert_null(fio_out_open(p, err, sizeof err));
     CHECK_CONTAINS(err, "a.png: cannot create temporary file: No such file or directory", "the message");
 }
