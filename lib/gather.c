@@ -86,6 +86,7 @@ static void sphere_tables(uint32_t res, rad_ff_t *table)
 
 int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, size_t bytes)
 {
+    static const rad_stats_t zero = {0};
     uintptr_t base = (uintptr_t)work, start = (base + 7u) & ~(uintptr_t)7u;
     size_t q = res / 2u, tables = (flags & RAD_GATHER_SH) ? 6u * q * q : 2u * q * q;
     size_t need;
@@ -101,8 +102,7 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
     g->steps = (uint32_t *)(void *)(g->table + tables);
     g->zbuf = g->steps + res;
     g->ibuf = (rad_index_t *)(void *)(g->zbuf + (size_t)res * res);
-    g->stats.shots = g->stats.saturations = g->stats.raster_calls = 0;
-    g->stats.raster_pixels = 0;
+    g->stats = zero;
     for (k = 0; k < res; k++) g->steps[k] = 0; /* once: every span leaves it zero */
     if (g->sh)
         sphere_tables(res, g->table);
@@ -118,14 +118,17 @@ static int in_range(const rad_vec3_t *v)
     return v->x >= -m && v->x <= m && v->y >= -m && v->y <= m && v->z >= -m && v->z <= m;
 }
 
-/* The checks shared by both gathers, and the cube's fixed fields. */
+/* The checks shared by both gathers, and the cube's fixed fields: POINT in the core's
+ * scale (the caller's times 2^length_shift, exact). */
 static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
-                     int sh, rad__eye_t *e)
+                     int sh, int flags, rad__eye_t *e)
 {
-    if (!s || !g || !point || (int)g->sh != sh) return RAD_ERR_ARG;
-    if (!in_range(point)) return RAD_ERR_RANGE;
+    uint32_t sat = 0;
+    if (!s || !g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
+        return RAD_ERR_ARG;
     if (!s->solving) return RAD_ERR_STATE;
-    e->c = *point;
+    e->c = rad__scale2_vec(*point, s->length_shift, &sat);
+    if (sat || !in_range(&e->c)) return RAD_ERR_RANGE;
     e->res = g->res;
     e->skip = skip;
     e->full = sh;
@@ -134,6 +137,27 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     e->ids = g->ibuf;
     e->st = &g->stats;
     return RAD_OK;
+}
+
+/* The ambient term in the core's scale into AMB when FLAGS ask for it (a pass over the
+ * patches), else null. */
+static const rad_rgb_t *gather_ambient(const rad_scene_t *s, rad_gather_t *g, int flags,
+                                       rad_rgb_t *amb)
+{
+    rad_real_t a[3];
+    if (!(flags & RAD_SHADE_AMBIENT)) return 0;
+    rad__ambient(s, a, &g->stats.saturations);
+    amb->r = a[0];
+    amb->g = a[1];
+    amb->b = a[2];
+    return amb;
+}
+
+/* V from the core's scale to the caller's, unless FLAGS keep the core's. */
+static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, rad_rgb_t v)
+{
+    if (flags & RAD_SHADE_SCALED) return v;
+    return rad__scale2_rgb(v, -s->power_shift, &g->stats.saturations);
 }
 
 /* ---- a hemisphere --------------------------------------------------------------- */
@@ -183,24 +207,28 @@ static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb
 }
 
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
-               const rad_vec3_t *normal, uint32_t skip, const rad_rgb_t *ambient, rad_rgb_t *out)
+               const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out)
 {
     rad__eye_t e;
     rad_vec3_t n;
+    rad_rgb_t amb, v;
+    const rad_rgb_t *ap;
     rad__wsum_t sum[3] = {0, 0, 0};
     unsigned f;
-    int rc = normal && out ? eye_setup(s, g, point, skip, 0, &e) : RAD_ERR_ARG;
+    int rc = normal && out ? eye_setup(s, g, point, skip, 0, flags, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
     if (!in_range(normal)) return RAD_ERR_RANGE;
     if (!rad__normalize(*normal, &n)) return RAD_ERR_ARG;
     rad__cube_frame(n, g->turn, e.frame);
+    ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 5; f++) {
         rad__eye_face(s, &e, f);
-        face_sum(s, g, ambient, f, sum);
+        face_sum(s, g, ap, f, sum);
     }
-    out->r = rad__wvalue(sum[0], &g->stats.saturations);
-    out->g = rad__wvalue(sum[1], &g->stats.saturations);
-    out->b = rad__wvalue(sum[2], &g->stats.saturations);
+    v.r = rad__wvalue(sum[0], &g->stats.saturations);
+    v.g = rad__wvalue(sum[1], &g->stats.saturations);
+    v.b = rad__wvalue(sum[2], &g->stats.saturations);
+    *out = gather_out(s, g, flags, v);
     return RAD_OK;
 }
 
@@ -325,20 +353,23 @@ static const uint32_t sh_k[5] = {634385944u, 1098788686u, 2456966195u, 709265047
 #endif
 
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
-                  const rad_rgb_t *ambient, rad_rgb_t *sh)
+                  int flags, rad_rgb_t *sh)
 {
     rad__eye_t e;
     sphere_t cube = {{{0, 0, 0}}}, sp;
+    rad_rgb_t amb;
+    const rad_rgb_t *ap;
     uint32_t *sat;
     unsigned f, r, c, k;
-    int rc = sh ? eye_setup(s, g, point, skip, 1, &e) : RAD_ERR_ARG;
+    int rc = sh ? eye_setup(s, g, point, skip, 1, flags, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
     sat = &g->stats.saturations;
     probe_frame(e.frame);
+    ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 6; f++) {
         rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
         rad__eye_face(s, &e, f);
-        for (r = 0; r < g->res; r++) row_moments(s, g, ambient, r, fs);
+        for (r = 0; r < g->res; r++) row_moments(s, g, ap, r, fs);
         add_face(f, fs, &cube);
     }
     to_scene(&cube, &sp);
@@ -359,5 +390,6 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
             if (c == 2) sh[k].b = v[k];
         }
     }
+    for (k = 0; k < 9; k++) sh[k] = gather_out(s, g, flags, sh[k]);
     return RAD_OK;
 }

@@ -142,26 +142,26 @@ static void put(const rad_rgb_t *c, double *out)
 }
 
 /* The probe at PT into R (through the sphere gatherer). */
-static int probe(world_t *w, const rad_vec3_t *pt, uint32_t skip, const rad_rgb_t *amb, gres *r)
+static int probe(world_t *w, const rad_vec3_t *pt, uint32_t skip, int flags, gres *r)
 {
     rad_rgb_t sh[9];
     int k;
     if (rad_gather_init(&w->p, w->g.res, RAD_GATHER_SH, w->gwork, sizeof w->gwork) != RAD_OK)
         return -1;
-    if (rad_gather_sh(&w->s, &w->p, pt, skip, amb, sh) != RAD_OK) return -1;
+    if (rad_gather_sh(&w->s, &w->p, pt, skip, flags, sh) != RAD_OK) return -1;
     for (k = 0; k < 9; k++) put(&sh[k], r->sh[k]);
     r->sats += w->p.stats.saturations;
     return 0;
 }
 
 static int hemi(world_t *w, const rad_vec3_t *pt, const rad_vec3_t *n, uint32_t skip,
-                const rad_rgb_t *amb, gres *r)
+                int flags, gres *r)
 {
     rad_rgb_t e;
     unsigned turn = w->g.turn;
     if (rad_gather_init(&w->g, w->g.res, 0, w->gwork, sizeof w->gwork) != RAD_OK) return -1;
     w->g.turn = turn;
-    if (rad_gather(&w->s, &w->g, pt, n, skip, amb, &e) != RAD_OK) return -1;
+    if (rad_gather(&w->s, &w->g, pt, n, skip, flags, &e) != RAD_OK) return -1;
     put(&e, r->e);
     r->sats += w->g.stats.saturations;
     return 0;
@@ -174,28 +174,24 @@ int TW(scene_box)(double emit, double rho, int res, const double *pt, const doub
 {
     world_t *w = world_new(res, 8, 4);
     rad_vec3_t p, n;
-    rad_rgb_t amb, *ap = NULL;
+    int flags = rho > 0 ? RAD_SHADE_AMBIENT : 0;
     uint32_t e;
     int rc = -1;
     memset(r, 0, sizeof *r);
     if (!w) return -1;
     if (add_box(w, rho, emit, 0) < 0) goto out;
     if (rad_shoot(&w->s, rho > 0 ? 100000 : 1, RAD_REAL(1e-4)) < 0) goto out;
-    if (rho > 0) {
-        rad_ambient(&w->s, &amb);
-        ap = &amb;
-    }
     r->lo = 1e30;
     r->hi = -1e30;
     for (e = 0; e < w->s.n_elements; e++) {
         rad_rgb_t b;
-        rad_element_radiosity(&w->s, e, ap ? RAD_SHADE_AMBIENT : 0, &b);
+        rad_element_radiosity(&w->s, e, flags, &b);
         if (RAD_TO_DOUBLE(b.r) < r->lo) r->lo = RAD_TO_DOUBLE(b.r);
         if (RAD_TO_DOUBLE(b.r) > r->hi) r->hi = RAD_TO_DOUBLE(b.r);
     }
     p = vec(pt[0], pt[1], pt[2]);
     n = vec(nrm[0], nrm[1], nrm[2]);
-    if (hemi(w, &p, &n, RAD_INDEX_NONE, ap, r) < 0 || probe(w, &p, RAD_INDEX_NONE, ap, r) < 0)
+    if (hemi(w, &p, &n, RAD_INDEX_NONE, flags, r) < 0 || probe(w, &p, RAD_INDEX_NONE, flags, r) < 0)
         goto out;
     rc = 0;
 out:
@@ -234,10 +230,10 @@ int TW(scene_emitter)(const sc_poly *em, double emit, int res, gres *r)
     if (rad_add_polygon(&w->s, v, (unsigned)em->n, &black, &e) != 0) goto out;
     if (rad_add_polygon(&w->s, fl, 4, &black, NULL) != 1) goto out;
     if (rad_shoot(&w->s, 1, 0) != 1) goto out;
-    if (hemi(w, &o, &up, 1, NULL, r) < 0 || probe(w, &o, 1, NULL, r) < 0) goto out;
+    if (hemi(w, &o, &up, 1, 0, r) < 0 || probe(w, &o, 1, 0, r) < 0) goto out;
     memcpy(r->tilted, r->e, sizeof r->e);
     up = vec(TILT_X, TILT_Y, TILT_Z);
-    if (hemi(w, &o, &up, 1, NULL, r) < 0) goto out;
+    if (hemi(w, &o, &up, 1, 0, r) < 0) goto out;
     for (k = 0; k < 3; k++) {
         double t = r->e[k];
         r->e[k] = r->tilted[k];
@@ -252,15 +248,17 @@ out:
 /* The box, its top alone emitting, reflectance 0.5, 40 shots; patch PATCH's row from
  * rad_form_factors weighting the shown radiosities (with the ambient term), against
  * the gather at the patch's centre on its surface's normal, its surface skipped, with
- * the patch's turn. In the fixed build the row's sum is taken exactly, as the gather's. */
+ * the patch's turn; both in the core's scale. In the fixed build the row's sum is
+ * taken exactly, as the gather's. */
 int TW(scene_patch_row)(int res, int patch, gres *r)
 {
+    const int flags = RAD_SHADE_AMBIENT | RAD_SHADE_SCALED;
     world_t *w = world_new(res, 8, 4);
     static rad_ff_t ff[NE];
-    rad_rgb_t amb;
     const rad_patch_t *pt;
+    rad_vec3_t c;
     uint32_t e;
-    int k, rc = -1;
+    int rc = -1;
 #if RAD_FLOAT
     double sum = 0;
 #else
@@ -270,11 +268,10 @@ int TW(scene_patch_row)(int res, int patch, gres *r)
     if (!w) return -1;
     if (add_box(w, 0.5, 8, 1) < 0 || rad_shoot(&w->s, 40, 0) != 40) goto out;
     if ((uint32_t)patch >= w->s.n_patches) goto out;
-    rad_ambient(&w->s, &amb);
     if (rad_form_factors(&w->s, (uint32_t)patch, ff) < 0) goto out;
     for (e = 0; e < w->s.n_elements; e++) {
         rad_rgb_t b;
-        rad_element_radiosity(&w->s, e, RAD_SHADE_AMBIENT, &b);
+        rad_element_radiosity(&w->s, e, flags, &b);
 #if RAD_FLOAT
         sum += (double)ff[e] * b.r;
 #else
@@ -286,10 +283,13 @@ int TW(scene_patch_row)(int res, int patch, gres *r)
 #else
     r->row = (double)((sum + (1u << 29)) >> 30) / 65536.0;
 #endif
+    /* the patch's centre in the caller's units (exact: it sits on a coarse grid) */
     pt = &w->s.pools.patches[patch];
+    c = vec(ldexp(RAD_TO_DOUBLE(pt->center.x), -w->s.length_shift),
+            ldexp(RAD_TO_DOUBLE(pt->center.y), -w->s.length_shift),
+            ldexp(RAD_TO_DOUBLE(pt->center.z), -w->s.length_shift));
     w->g.turn = (uint32_t)patch;
-    k = hemi(w, &pt->center, &w->s.pools.surfaces[pt->surface].normal, pt->surface, &amb, r);
-    if (k == 0) rc = 0;
+    if (hemi(w, &c, &w->s.pools.surfaces[pt->surface].normal, pt->surface, flags, r) == 0) rc = 0;
 out:
     free(w);
     return rc;
@@ -594,7 +594,6 @@ static void test_patch_row(void **st)
 /* Gathers only read the scene: threads with a gatherer each get the serial bits. */
 typedef struct {
     const rad_scene_t *s;
-    const rad_rgb_t *amb;
     unsigned first;
     rad_rgb_t out[16];
     int rc;
@@ -611,7 +610,7 @@ static void *gather_job(void *arg)
         unsigned i = j->first + k;
         rad_vec3_t p = vec(-15 + 0.9 * i, -15.5 + 0.95 * i, 14 - 0.9 * i), n = vec(1, 0.5 * i, -2);
         g.turn = i;
-        j->rc = rad_gather(j->s, &g, &p, &n, RAD_INDEX_NONE, j->amb, &j->out[k]);
+        j->rc = rad_gather(j->s, &g, &p, &n, RAD_INDEX_NONE, RAD_SHADE_AMBIENT, &j->out[k]);
     }
     free(buf);
     return NULL;
@@ -620,7 +619,6 @@ static void *gather_job(void *arg)
 static void test_threads(void **st)
 {
     world_t *w = world_new(32, 8, 4);
-    rad_rgb_t amb;
     job_t serial[2], par[2];
     pthread_t t[2];
     int k, i;
@@ -628,10 +626,8 @@ static void test_threads(void **st)
     assert_non_null(w);
     CHECK_INT_EQ(add_box(w, 0.5, 8, 1), 0, "the box");
     CHECK_INT_EQ(rad_shoot(&w->s, 40, 0), 40, "shots");
-    rad_ambient(&w->s, &amb);
     for (k = 0; k < 2; k++) {
         serial[k].s = par[k].s = &w->s;
-        serial[k].amb = par[k].amb = &amb;
         serial[k].first = par[k].first = 16u * (unsigned)k;
         gather_job(&serial[k]);
         CHECK_INT_EQ(serial[k].rc, 0, "serial gathers %d", k);
@@ -665,12 +661,12 @@ static void test_saturation(void **st)
     CHECK_INT_GT(rad_shoot(&w->s, 2000, 0), 0, "shots");
     CHECK_INT_GT(w->s.stats.saturations, 0, "the solve's saturations");
     CHECK_INT_EQ(rad_gather_init(&w->g, 16, 0, w->gwork, sizeof w->gwork), RAD_OK, "init");
-    CHECK_INT_EQ(rad_gather(&w->s, &w->g, &o, &n, RAD_INDEX_NONE, NULL, &e), RAD_OK, "gather");
+    CHECK_INT_EQ(rad_gather(&w->s, &w->g, &o, &n, RAD_INDEX_NONE, 0, &e), RAD_OK, "gather");
     CHECK_INT_EQ(w->g.stats.saturations, 0, "the gather's saturations");
     CHECK_INT_GT(e.r, RAD_REAL(30000), "the gather in the saturated box");
     CHECK_INT_EQ(rad_gather_init(&w->p, 16, RAD_GATHER_SH, w->gwork, sizeof w->gwork), RAD_OK,
                  "init");
-    CHECK_INT_EQ(rad_gather_sh(&w->s, &w->p, &o, RAD_INDEX_NONE, NULL, sh), RAD_OK, "probe");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &w->p, &o, RAD_INDEX_NONE, 0, sh), RAD_OK, "probe");
     CHECK_INT_EQ(sh[0].r, INT32_MAX, "the probe's clamped SH0");
     CHECK_INT_GE(w->p.stats.saturations, 1, "the probe's saturations");
     free(w);
@@ -684,40 +680,44 @@ static void test_errors(void **st)
     size_t need = RAD_GATHER_BYTES(16), k;
     rad_gather_t g;
     rad_vec3_t o = vec(0, 0, 0), n = vec(0, 1, 0), zero = vec(0, 0, 0), far = vec(0, 64.5, 0);
+    rad_vec3_t out_core = vec(0, 40, 0); /* inside +-64, outside it at the core's scale (x2) */
     rad_rgb_t out = {7, 7, 7}, sh[9];
+    const uint32_t none = RAD_INDEX_NONE;
     (void)st;
     assert_non_null(w);
     buf = malloc(need + 64);
     assert_non_null(buf);
     memset(buf + need, 0xA5, 64);
-    CHECK_INT_EQ(rad_gather_init(NULL, 16, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(NULL, 16, 0, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, NULL, need), RAD_ERR_ARG, "rad_gather_init(&g, 16, 0, NULL, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 15, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 15, 0, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 6, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 6, 0, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 16, 2, buf, need), RAD_ERR_ARG, "rad_gather_init(&g, 16, 2, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need - 17), RAD_ERR_WORK, "rad_gather_init(&g, 16, 0, buf, need - 17)");
-    CHECK_INT_EQ(rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need), RAD_ERR_WORK, "rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need)");
-    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need), RAD_OK, "rad_gather_init(&g, 16, 0, buf, need)");
+    CHECK_INT_EQ(rad_gather_init(NULL, 16, 0, buf, need), RAD_ERR_ARG, "init: no gatherer");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, NULL, need), RAD_ERR_ARG, "init: no buffer");
+    CHECK_INT_EQ(rad_gather_init(&g, 15, 0, buf, need), RAD_ERR_ARG, "init: odd res");
+    CHECK_INT_EQ(rad_gather_init(&g, 6, 0, buf, need), RAD_ERR_ARG, "init: res 6");
+    CHECK_INT_EQ(rad_gather_init(&g, RAD_MAX_RES + 2, 0, buf, need), RAD_ERR_ARG, "init: res");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 2, buf, need), RAD_ERR_ARG, "init: unknown flag");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need - 17), RAD_ERR_WORK, "init: short buffer");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, RAD_GATHER_SH, buf, need), RAD_ERR_WORK,
+                 "init: a sphere in a hemisphere's buffer");
+    CHECK_INT_EQ(rad_gather_init(&g, 16, 0, buf, need), RAD_OK, "init");
     CHECK_INT_EQ(add_box(w, 0, 1, 0), 0, "the box");
-    /* geometry not frozen yet */
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_STATE, "rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_shoot(&w->s, 1, 0), 1, "rad_shoot(&w->s, 1, 0)");
-    CHECK_INT_EQ(rad_gather(NULL, &g, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(NULL, &g, &o, &n, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, NULL, &o, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, NULL, &o, &n, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, NULL, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, NULL, &n, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, NULL, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, NULL, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, NULL), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, &n, RAD_INDEX_NONE, NULL, NULL)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &zero, RAD_INDEX_NONE, NULL, &out), RAD_ERR_ARG, "rad_gather(&w->s, &g, &o, &zero, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &far, &n, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &far, &n, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &far, RAD_INDEX_NONE, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &o, &far, RAD_INDEX_NONE, NULL, &out)");
-    CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, RAD_INDEX_NONE, NULL, sh), RAD_ERR_ARG, "rad_gather_sh(&w->s, &g, &o, RAD_INDEX_NONE, NULL, sh)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 0, &out), RAD_ERR_STATE, "before the freeze");
+    CHECK_INT_EQ(rad_shoot(&w->s, 1, 0), 1, "the first shot");
+    CHECK_INT_EQ(rad_gather(NULL, &g, &o, &n, none, 0, &out), RAD_ERR_ARG, "no scene");
+    CHECK_INT_EQ(rad_gather(&w->s, NULL, &o, &n, none, 0, &out), RAD_ERR_ARG, "no gatherer");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, NULL, &n, none, 0, &out), RAD_ERR_ARG, "no point");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, NULL, none, 0, &out), RAD_ERR_ARG, "no normal");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 0, NULL), RAD_ERR_ARG, "no output");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 4, &out), RAD_ERR_ARG, "unknown flag");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &zero, none, 0, &out), RAD_ERR_ARG, "zero normal");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &far, &n, none, 0, &out), RAD_ERR_RANGE, "point at 64.5");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &out_core, &n, none, 0, &out), RAD_ERR_RANGE,
+                 "point at 40, 80 at the core's scale");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &far, none, 0, &out), RAD_ERR_RANGE, "normal of 64.5");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, none, 0, sh), RAD_ERR_ARG, "a probe, hemisphere");
     CHECK_THAT(out.r == 7 && out.g == 7 && out.b == 7, "out written by a failed gather: %d %d %d",
                (int)out.r, (int)out.g, (int)out.b);
-    /* a huge normal is only a direction; a skipped surface past the last skips none */
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &far, 77, NULL, &out), RAD_ERR_RANGE, "rad_gather(&w->s, &g, &o, &far, 77, NULL, &out)");
+    /* a long normal is only a direction; a skipped surface past the last skips none */
     n = vec(0, 63, 0);
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, 77, NULL, &out), RAD_OK, "rad_gather(&w->s, &g, &o, &n, 77, NULL, &out)");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, 77, 0, &out), RAD_OK, "gather");
     CHECK_INT_EQ(out.r, RAD_REAL(1), "gather in the box glowing 1, nothing skipped");
     for (k = 0; k < 64; k++) CHECK_INT_EQ(buf[need + k], 0xA5, "guard byte %d", (int)k);
     free(buf);
