@@ -518,8 +518,9 @@ static int emitter(int k, sc_poly *p)
  * (measured 5.4% at worst, the smaller emitter).
  * The twin renders float geometry, whose outline's pixels may differ at the edges:
  * within two pixels' weight of the fixed build (the largest, at a top face's centre,
- * 4 / (pi res^2) of the hemisphere's F, or (2 / res)^2 sr of the probe's), plus 1e-5
- * of float sums; measured within 7e-6, no pixel differing. */
+ * 4 / (pi res^2) of the hemisphere's F, or (2 / res)^2 sr times |Y_k| <= 1.1 of a
+ * probe's coefficient), plus 1e-5 of float sums; measured within 4e-6 (of the gather,
+ * or of the largest coefficient), no pixel differing. */
 static void test_under_emitter(void **st)
 {
     const double y00 = 0.5 / sqrt(PI), y1 = sqrt(3) / (2 * sqrt(PI));
@@ -564,13 +565,17 @@ static void test_under_emitter(void **st)
         CHECK_LE(fabs(esh / fx.tilted[0] - 1), 0.06,
                  "emitter %d: L2 irradiance / gather - 1 on the tilted normal", k);
         /* the twin */
-        w_twin = fmax(w_twin, fmax(fabs(fl.e[0] / fx.e[0] - 1), fabs(fl.sh[0][0] / fx.sh[0][0] - 1)));
+        w_twin = fmax(w_twin, fabs(fl.e[0] / fx.e[0] - 1));
         CHECK_NEAR(fl.e[0], fx.e[0], pix * emit + 1e-5 * fx.e[0], "emitter %d: float gather", k);
-        CHECK_NEAR(fl.sh[0][0], fx.sh[0][0], psr * y00 * emit + 1e-5 * fx.sh[0][0],
-                   "emitter %d: float SH0", k);
+        for (i = 0; i < 9; i++) {
+            w_twin = fmax(w_twin, fabs(fl.sh[i][0] - fx.sh[i][0]) / (big * emit));
+            /* |Y_k| <= sqrt 15 / (2 sqrt pi) = 1.09 */
+            CHECK_NEAR(fl.sh[i][0], fx.sh[i][0], psr * 1.1 * emit + 1e-5 * big * emit,
+                       "emitter %d: float SH%d", k, i);
+        }
     }
     print_message("under emitters, res 64: gather / (F E) within %.2f%%, SH within %.2f%% of the "
-                  "largest coefficient, L2 irradiance within %.1f%%, float / fixed within %.1e\n",
+                  "largest coefficient, L2 irradiance within %.1f%%, float against fixed within %.1e\n",
                   100 * w_ff, 100 * w_sh, 100 * w_l2, w_twin);
 }
 
