@@ -148,6 +148,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
+    if (s->emitted == 0) return 0; /* nothing to shoot: the scene stays open */
     s->solving = 1;
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
@@ -204,6 +205,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     uint32_t p;
     if (!s || !patch) return RAD_ERR_ARG;
     if (s->band_rows != 0) return RAD_ERR_STATE;
+    if (s->emitted == 0) return 0;
     s->solving = 1;
     shot_ambient(s, amb, &s->stats.saturations);
     p = select_shooter(s, amb, &total);
