@@ -507,7 +507,7 @@ const char *rad_strerror(int err)
     case RAD_ERR_WORK: return "work buffer too small (RAD_WORK_BYTES)";
     case RAD_ERR_ALIGN: return "pool not aligned for its type";
     case RAD_ERR_ABI:
-        return "program compiled with another rad.h (RAD_INDEX_BITS, RAD_FLOAT or version)";
+        return "program compiled with another rad.h layout (RAD_INDEX_BITS or RAD_FLOAT)";
     default: return err > 0 ? "success" : "unknown error";
     }
 }
