@@ -5,11 +5,13 @@
 # compiled with another RAD_INDEX_BITS is refused by rad_init with an error, that
 # DESTDIR stages the same files, and that make uninstall removes every file.
 # Run by tests/run_tests.sh as `sh tests/pkgconfig_check.sh BUILDDIR` (cwd: the tree);
-# prints a CMocka-style line per check. MAKE: the make to call (default make).
+# prints a CMocka-style line per check. MAKE: the make to call (default make); CC and
+# RAD_CFLAGS_EXTRA: the compiler and extra flags the library was built with (a
+# sanitizer build's outside program needs the sanitizer's flags to link).
 set -u
 builddir=$1
 make=${MAKE:-make}
-cc=${CC:-cc}
+cc="${CC:-cc} ${RAD_CFLAGS_EXTRA:-}"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/rad_pkgconfig.XXXXXX") || exit 1
 trap 'rm -rf "$tmp"' EXIT INT TERM
 prefix=$tmp/usr
