@@ -98,14 +98,13 @@ bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
 
 # Every test links both builds of the core (through the host glue) and the host tools,
-# and the objects TEST_OBJS_<name> lists for it.
+# and the objects under $(BUILDDIR)/tests/ that a line below adds to its prerequisites.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TEST_OBJS_$*) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
 
 # test_adopt's caller compiled with the other index width than the library's (16 <-> 32).
-TEST_OBJS_test_adopt := $(BUILDDIR)/tests/adopt_other_abi.o
-$(BUILDDIR)/tests/test_adopt: $(TEST_OBJS_test_adopt)
+$(BUILDDIR)/tests/test_adopt: $(BUILDDIR)/tests/adopt_other_abi.o
 $(BUILDDIR)/tests/adopt_other_abi.o: tests/adopt_other_abi.c tests/adopt_other_abi.h $(RAD_BUILD_H) $(LIB_HDRS)
 	@mkdir -p $(@D)
 	bits=$$(awk '$$1 == "#define" && $$2 == "RAD_INDEX_BITS" { print $$3 }' $(RAD_BUILD_H)); \

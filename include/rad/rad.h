@@ -253,8 +253,8 @@ typedef struct {
  * (n = max(elements, vertices)) before rad_init. Counts saturate at UINT32_MAX. Returns
  * RAD_OK, or the error rad_add_polygon would return for it (RAD_ERR_ARG, RAD_ERR_RANGE,
  * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR) with the counts unchanged and PLAN->problem
- * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after rad_add_polygon
- * fails, the same call tells which value was out of range. */
+ * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after
+ * rad_add_polygon fails, the same call tells which value was out of range. */
 int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
                      const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan);
 
