@@ -224,6 +224,7 @@ static void test_plan_problems(void **st)
     expect_problem(dart, 4, &grey, NULL, RAD_ERR_NONPLANAR, "convex");
     expect_problem(ok, 5, &grey, NULL, RAD_ERR_ARG, "3 or 4");
     assert_int_equal(rad_plan_polygon(&bad, ok, 4, &grey, NULL, &pl), RAD_ERR_ARG);
+    print_message("res 9: \"%s\"\n", pl.problem);
     assert_non_null(strstr(pl.problem, "res"));
     assert_int_equal(rad_plan_polygon(NULL, ok, 4, &grey, NULL, NULL), RAD_ERR_ARG);
     /* rad_add_polygon refuses the same polygons with the same codes. */
@@ -344,7 +345,8 @@ static void test_strerror_texts(void **st)
     (void)st;
     for (k = RAD_OK; k >= RAD_ERR_ABI; k--) {
         assert_non_null(rad_strerror(k));
-        assert_true(strlen(rad_strerror(k)) > 6);
+        print_message("%d: %s\n", k, rad_strerror(k));
+        assert_in_range(strlen(rad_strerror(k)), 7, 100);
         for (j = RAD_OK; j > k; j--) assert_string_not_equal(rad_strerror(k), rad_strerror(j));
     }
     assert_non_null(strstr(rad_strerror(RAD_ERR_RANGE), "rad_plan_polygon"));
