@@ -67,7 +67,7 @@ abi_refused() {
     bits=$(awk '$1 == "#define" && $2 == "RAD_INDEX_BITS" { print $3 }' "$prefix/include/rad/rad_build.h")
     other=$((48 - bits))
     flags=$(PKG_CONFIG_PATH=$prefix/lib/pkgconfig pkg-config --cflags --libs rad) || return 1
-    $cc -std=c99 -Wall -Wextra -pedantic -Werror -DRAD_INDEX_BITS=$other "$src" $flags \
+    $cc -std=c99 -Wall -Wextra -pedantic -Werror -URAD_INDEX_BITS -DRAD_INDEX_BITS=$other "$src" $flags \
         -o "$tmp/outside_other" || return 1
     "$tmp/outside_other" >"$tmp/out" 2>&1
     rc=$?
