@@ -47,6 +47,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_polys.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
+TEST_HDRS  := $(wildcard tests/*.h)
 
 FIXED_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/fixed/%.o)
 FLOAT_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/float/%.o)
@@ -99,7 +100,7 @@ bench: $(BUILDDIR)/rad_bench
 
 # Every test links both builds of the core (through the host glue) and the host tools,
 # and the objects under $(BUILDDIR)/tests/ that a line below adds to its prerequisites.
-$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
+$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
 

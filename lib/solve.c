@@ -101,7 +101,7 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
 /* Element E receives power F * U (per channel) from a shooter. The channels are worked
  * out before anything is stored, and saturations counted locally: a store to the
  * element or to the counter could otherwise alias the next channel's inputs, which kept
- * the channels from overlapping (2% to 4% of a shot on the 23,384-element hall). */
+ * the channels from overlapping. */
 void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 {
     rad_element_t *el = &s->pools.elements[e];

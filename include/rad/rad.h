@@ -195,9 +195,8 @@ typedef struct {
  * the power it will receive back, estimated from the ambient term (Feda & Purgathofer,
  * "Accelerating radiosity by overshooting", 1992). The estimate is left owing, as
  * negative unshot power, and paid back as the real power arrives; the solution is the
- * same, reached in fewer shots (CornellBox-Original at 5,038 elements to an unshot
- * fraction of 0.01: 562 against 929). RAD_NO_OVERSHOOT shoots the unshot power alone,
- * as Cohen et al. 1988: then the unshot total never grows. */
+ * same, reached in fewer shots (`make bench` counts them). RAD_NO_OVERSHOOT shoots the
+ * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
