@@ -498,13 +498,13 @@ const char *rad_strerror(int err)
     switch (err) {
     case RAD_OK: return "success";
     case RAD_ERR_ARG: return "invalid argument";
-    case RAD_ERR_FULL: return "pool full (rad_plan_polygon gives the sizes a scene needs)";
+    case RAD_ERR_FULL: return "pool full";
     case RAD_ERR_RANGE:
         return "coordinate, reflectance or emission out of range (rad_plan_polygon names which)";
-    case RAD_ERR_DEGENERATE: return "degenerate polygon: repeated vertices, or area below 1/4096";
-    case RAD_ERR_NONPLANAR: return "quad not planar or not convex: split it into triangles";
-    case RAD_ERR_STATE: return "call out of order (e.g. adding after shooting)";
-    case RAD_ERR_WORK: return "work buffer too small (RAD_WORK_BYTES)";
+    case RAD_ERR_DEGENERATE: return "degenerate polygon";
+    case RAD_ERR_NONPLANAR: return "quad not planar or not convex";
+    case RAD_ERR_STATE: return "call out of order";
+    case RAD_ERR_WORK: return "work buffer too small";
     case RAD_ERR_ALIGN: return "pool not aligned for its type";
     case RAD_ERR_ABI:
         return "program compiled with another rad.h layout (RAD_INDEX_BITS or RAD_FLOAT)";
