@@ -171,7 +171,7 @@ port-test: $(PORT_TEST_OUTS) port-guide
 	@$(PORT_SH) test-report $(PORT_OUT) $(PORT_TEST_RUNS)
 
 port-guide:
-	@QEMU_ARM="$(QEMU_ARM)" sh ports/common/guide_check.sh $(PORT_OUT)/guide $(ARM_PREFIX)
+	@QEMU_ARM="$(QEMU_ARM)" sh ports/common/guide_check.sh $(PORT_OUT)/guide $(ARM_PREFIX) "$(PORT_CM_PLAT)"
 
 port-bench: $(PORT_BENCH_OUTS)
 	@$(PORT_SH) bench-report $(PORT_OUT) $(PORT_BENCH_RUNS)

@@ -7,10 +7,11 @@
 # ("solves to 2% unshot in N shots": the fixed build's shots are the same on every CPU).
 # Run by `make port-test`.
 #
-#   guide_check.sh OUTDIR [ARM_PREFIX]
+#   guide_check.sh OUTDIR ARM_PREFIX "PLATFORM SOURCES"   (ports.mk's PORT_CM_PLAT)
 set -u
 out=$1
-prefix=${2:-arm-none-eabi-}
+prefix=$2
+plat=$3
 rad=$(pwd)
 guide=$rad/ports/README.md
 ports_sh="sh $rad/ports/common/ports.sh"
@@ -47,14 +48,17 @@ for ex in m0 m3; do
         why="no 'sh guide-$ex' block"
     else
         # The board side the guide leaves to the reader: ports/' startup and a main.
-        for f in cortex_m semihost port_libc guide_main; do
+        objs=""
+        for src in $plat ports/common/guide_main.c; do
+            o=$(basename "$src" .c).o
+            objs="$objs $o"
             "${prefix}gcc" -std=c99 -Os $cpu -ffreestanding -Wall -Wextra -Werror \
                 -DPORT_TARGET_NAME=$target -DPORT_CPU_HZ=$hz -I"$rad/ports/common" \
-                -c "$rad/ports/common/$f.c" -o "$d/$f.o" || why="startup $f.c did not build"
+                -c "$rad/$src" -o "$d/$o" || why="startup $src did not build"
         done
         echo "  GUIDE $ex: the guide's commands (log: $d/build.log)"
         [ -n "$why" ] || (cd "$d" && env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL RAD="$rad" \
-            STARTUP="guide_main.o cortex_m.o semihost.o port_libc.o" \
+            STARTUP="$objs" \
             LDFLAGS="-L$rad/ports/common -T$rad/ports/$target/link.ld" \
             sh -ex build.sh) >"$d/build.log" 2>&1 || why="the guide's commands failed"
     fi
