@@ -113,6 +113,14 @@ $(BUILDDIR)/tests/adopt_other_abi.o: tests/adopt_other_abi.c tests/adopt_other_a
 	bits=$$(awk '$$1 == "#define" && $$2 == "RAD_INDEX_BITS" { print $$3 }' $(RAD_BUILD_H)); \
 	$(CC) $(ALLCFLAGS) -Itests -URAD_INDEX_BITS -DRAD_INDEX_BITS=$$((48 - bits)) -c $< -o $@
 
+# tests/test_scale.c drives the core directly in both builds: its float pass is an
+# object of its own (RAD_FLOAT=1), as tests/fuzz/fuzz_core.c's is.
+$(BUILDDIR)/tests/test_scale_float.o: tests/test_scale.c $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(ALLCFLAGS) -DRAD_FLOAT=1 -c $< -o $@
+$(BUILDDIR)/tests/test_scale: tests/test_scale.c $(BUILDDIR)/tests/test_scale_float.o $(LIBRAD) $(LIBRADF) $(LIB_HDRS)
+	$(CC) $(ALLCFLAGS) $< $(BUILDDIR)/tests/test_scale_float.o $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) -lm -o $@
+
 # The core's promise, proven from the objects: nothing from outside but compiler helpers.
 nm-check: $(LIBRAD)
 	@sh tests/nm_check.sh $(LIBRAD)
