@@ -214,7 +214,7 @@ static int is_err(int rc)
 {
     return rc == RAD_ERR_ARG || rc == RAD_ERR_FULL || rc == RAD_ERR_RANGE ||
            rc == RAD_ERR_DEGENERATE || rc == RAD_ERR_NONPLANAR || rc == RAD_ERR_STATE ||
-           rc == RAD_ERR_WORK;
+           rc == RAD_ERR_WORK || rc == RAD_ERR_ALIGN || rc == RAD_ERR_ABI;
 }
 
 /* ---- invariants -------------------------------------------------------------------- */
