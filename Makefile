@@ -28,6 +28,8 @@ TOOLFLAGS := -D_POSIX_C_SOURCE=200809L -Itools
 
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
+# stb_image (Debian libstb-dev) for textures: the system's library, see tools/formats/texture.c.
+STB_LIBS   := $(shell pkg-config --libs stb 2>/dev/null || echo -lstb)
 CMOCKA_LIBS := -lcmocka
 
 LIB_SRCS   := $(wildcard lib/*.c)
@@ -74,13 +76,13 @@ $(LIBTOOLS): $(TOOL_OBJS)
 
 # rad_cli is one source built twice: rad_cli (fixed) and rad_cli_float (the twin).
 $(BUILDDIR)/rad_cli: $(BUILDDIR)/tools/cli/rad_cli.o $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 $(BUILDDIR)/rad_cli_float: $(BUILDDIR)/tools/float/cli/rad_cli.o $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
 # The benchmark: both builds of the core side by side (see tools/bench/rad_bench.c).
 $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
 bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
@@ -88,7 +90,7 @@ bench: $(BUILDDIR)/rad_bench
 # Every test links both builds of the core (through the host glue) and the host tools.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
 # The core's promise, proven from the objects: nothing from outside but compiler helpers.
 nm-check: $(LIBRAD)
