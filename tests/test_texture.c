@@ -16,6 +16,8 @@
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
+#include "host/obj_polys.h"
+#include "scenes.h"
 #include "tmpdir.h"
 
 TMPDIR_GROUP("texture")
@@ -242,7 +244,7 @@ static double piece_integral(double u0, double u1, double f0, double f1)
 static void test_triangle_mean(void **state)
 {
     static const unsigned char bytes[8] = { 0, 255, 40, 200, 90, 10, 160, 120 };
-    const double tri[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } }, tri2[3][2] = { { 1, 1 }, { 0, 1 }, { 1, 0 } };
+    const obj_vec2 tri[3] = { { 0, 0 }, { 1, 0 }, { 0, 1 } }, tri2[3] = { { 1, 1 }, { 0, 1 }, { 1, 0 } };
     unsigned char rgb[8 * 3];
     double f[8], want = 0, got[3], got2[3], texel_mean = 0, err1, err2;
     tex_image t;
@@ -282,7 +284,7 @@ static void test_triangle_mean(void **state)
 static void test_uniform_mean(void **state)
 {
     unsigned char rgb[16 * 8 * 3];
-    const double feet[3][3][2] = { { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+    const obj_vec2 feet[3][3] = { { { 0, 0 }, { 1, 0 }, { 0, 1 } },
                                    { { -3.2, 7.1 }, { 40.5, 7.3 }, { 12, -19 } },
                                    { { 0.1, 0.1 }, { 0.1000001, 0.1 }, { 0.1, 0.1000001 } } };
     double want[3], got[3];
@@ -514,6 +516,198 @@ static void test_mtl_map_kd(void **state)
     obj_free(&sc);
 }
 
+/* ---- tests: reflectance of textured faces and the solution --------------------- */
+
+/* A room (walls), a block in it and a lamp under the ceiling, every face with texture
+   coordinates 0 0, 1 0, 1 1, 0 1 at its corners, written as NAME with mtllib MTL. */
+static void write_room(const char *name, const char *mtl)
+{
+    static const char *const mats[3] = { "walls", "block", "lamp" };
+    sc_poly p[13];
+    char text[8192];
+    size_t used;
+    int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, k, v = 0;
+    n += box(p + n, -0.5, -1, -0.4, 0.1, -0.3, 0.3, 0);
+    p[n++] = quad(-0.3, 0.98, -0.3, 0.3, 0.98, -0.3, 0.3, 0.98, 0.3, -0.3, 0.98, 0.3);
+    used = (size_t)snprintf(text, sizeof text, "mtllib %s\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", mtl);
+    for (i = 0; i < n; i++) {
+        used += (size_t)snprintf(text + used, sizeof text - used, "usemtl %s\n",
+                                 mats[i < 6 ? 0 : i < 12 ? 1 : 2]);
+        for (k = 0; k < 4; k++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %.17g\n",
+                                     p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "f %d/1 %d/2 %d/3 %d/4\n", v + 1, v + 2, v + 3, v + 4);
+        v += 4;
+    }
+    assert_true(used < sizeof text);
+    write_text(name, text);
+}
+
+typedef struct {
+    obj_scene sc;
+    tex_image maps[8];
+    sc_poly *p;
+    int n;
+} textured;
+
+static void load_textured(const char *name, textured *t)
+{
+    char err[512];
+    assert_int_equal(obj_load(tmp_path(name), &t->sc, NULL, NULL, err, sizeof err), 0);
+    assert_true(t->sc.nmaterials <= 8);
+    tex_load_materials(&t->sc, t->maps, NULL, NULL);
+    t->p = obj_to_polys_tex(&t->sc, t->maps, &t->n, NULL, NULL);
+    assert_non_null(t->p);
+}
+
+static void free_textured(textured *t)
+{
+    int i;
+    for (i = 0; i < t->sc.nmaterials; i++)
+        tex_free(&t->maps[i]);
+    free(t->p);
+    obj_free(&t->sc);
+}
+
+/* Largest relative difference, per element above 1% of the brightest, between two
+   solutions of the same mesh (fixed build, or the float twin if FLOAT). */
+static double solution_difference(const textured *a, const textured *b, int use_float)
+{
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    char err[512];
+    double worst = 0, peak = 0, ra[3], rb[3];
+    int e, k, ne, pass;
+    sc_stats sa, sb;
+    for (pass = 0; pass < 2; pass++) {
+        void *x = use_float ? (void *)scf_create(a->p, a->n, &o, NULL, NULL, err, sizeof err)
+                            : (void *)sc_create(a->p, a->n, &o, NULL, NULL, err, sizeof err);
+        void *y = use_float ? (void *)scf_create(b->p, b->n, &o, NULL, NULL, err, sizeof err)
+                            : (void *)sc_create(b->p, b->n, &o, NULL, NULL, err, sizeof err);
+        assert_non_null(x);
+        assert_non_null(y);
+        if (use_float) {
+            scf_solve(x, 100000, 1e-4, NULL, NULL);
+            scf_solve(y, 100000, 1e-4, NULL, NULL);
+            scf_get_stats(x, &sa);
+            scf_get_stats(y, &sb);
+        } else {
+            sc_solve(x, 100000, 1e-4, NULL, NULL);
+            sc_solve(y, 100000, 1e-4, NULL, NULL);
+            sc_get_stats(x, &sa);
+            sc_get_stats(y, &sb);
+        }
+        assert_int_equal(sa.elements, sb.elements);
+        ne = sa.elements;
+        for (e = 0; e < ne; e++) {
+            if (use_float) {
+                scf_element_rgb(x, e, 1, ra);
+                scf_element_rgb(y, e, 1, rb);
+            } else {
+                sc_element_rgb(x, e, 1, ra);
+                sc_element_rgb(y, e, 1, rb);
+            }
+            for (k = 0; k < 3; k++)
+                if (pass == 0)
+                    peak = fmax(peak, rb[k]);
+                else if (rb[k] > 0.01 * peak)
+                    worst = fmax(worst, fabs(ra[k] / rb[k] - 1));
+        }
+        if (use_float) {
+            scf_destroy(x);
+            scf_destroy(y);
+        } else {
+            sc_destroy(x);
+            sc_destroy(y);
+        }
+    }
+    return worst;
+}
+
+/* A uniformly coloured texture gives the solution of the same colour in Kd: walls by
+   the texture alone (Kd 0), the block by texture times Kd. */
+static void test_uniform_texture_solution(void **state)
+{
+    unsigned char walls[4 * 4 * 3], block[2 * 2 * 3];
+    double lw[3], lb[3], kd_block[3] = { 0.5, 0.8, 1.0 }, rho[3];
+    char mtl[1024];
+    textured a, b;
+    int i, k;
+    (void)state;
+    for (i = 0; i < 16; i++) {
+        walls[3 * i] = 200;
+        walls[3 * i + 1] = 150;
+        walls[3 * i + 2] = 90;
+    }
+    for (i = 0; i < 4; i++) {
+        block[3 * i] = 60;
+        block[3 * i + 1] = 230;
+        block[3 * i + 2] = 120;
+    }
+    assert_int_equal(img_write(tmp_path("walls.png"), walls, 4, 4, NULL, 0), 0);
+    assert_int_equal(img_write(tmp_path("block.png"), block, 2, 2, NULL, 0), 0);
+    write_text("tex.mtl", "newmtl walls\nKd 0 0 0\nmap_Kd walls.png\n"
+                          "newmtl block\nKd 0.5 0.8 1\nmap_Kd block.png\n"
+                          "newmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+    for (k = 0; k < 3; k++) {
+        lw[k] = srgb_reference(walls[k] / 255.0);
+        lb[k] = srgb_reference(block[k] / 255.0) * kd_block[k];
+    }
+    snprintf(mtl, sizeof mtl, "newmtl walls\nKd %.17g %.17g %.17g\nnewmtl block\nKd %.17g %.17g "
+             "%.17g\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n", lw[0], lw[1], lw[2], lb[0], lb[1], lb[2]);
+    write_text("kd.mtl", mtl);
+    write_room("room_tex.obj", "tex.mtl");
+    write_room("room_kd.obj", "kd.mtl");
+    load_textured("room_tex.obj", &a);
+    load_textured("room_kd.obj", &b);
+    assert_int_equal(a.n, b.n);
+    for (i = 0; i < a.n; i++)
+        for (k = 0; k < 3; k++) {
+            rho[k] = b.p[i].rho[k];
+            assert_near(a.p[i].rho[k], rho[k], 1e-12); /* 4096 equal terms summed */
+        }
+    {
+        double fixed = solution_difference(&a, &b, 0), flt = solution_difference(&a, &b, 1);
+        print_message("uniform texture against Kd, per element: fixed %.3g%%, float %.3g%%\n",
+                      100 * fixed, 100 * flt);
+        assert_true(fixed <= 0.001); /* the goal: 0.1% */
+        assert_true(flt <= 0.001);
+    }
+    free_textured(&a);
+    free_textured(&b);
+}
+
+/* A face's reflectance is the mean of its footprint: half black, half white in linear
+   light gives 0.5 (a period: exact but for the midpoint rule's 1/n^2 at the kinks);
+   a face of the material without texture coordinates keeps Kd. */
+static void test_face_reflectance(void **state)
+{
+    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    textured t;
+    int i;
+    (void)state;
+    assert_int_equal(img_write(tmp_path("bw.png"), bw, 2, 1, NULL, 0), 0);
+    write_text("bw.mtl", "newmtl bw\nKd 0 0 0\nmap_Kd bw.png\n"
+                         "newmtl tinted\nKd 0.2 0.4 0.6\nmap_Kd bw.png\n");
+    write_text("bw.obj", "mtllib bw.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.25 0\nvt 0.75 1\n"
+                         "usemtl bw\nf 1/1 2/2 3/3 4/4\nf 1 2 3\n"
+                         "usemtl tinted\nf 1/1 2/2 3/3 4/4\n"
+                         "usemtl bw\nf 1/5 2/5 3/6\n");
+    load_textured("bw.obj", &t);
+    assert_int_equal(t.n, 4);
+    for (i = 0; i < 3; i++)
+        print_message("face %d: rho %.9f %.9f %.9f\n", i, t.p[i].rho[0], t.p[i].rho[1], t.p[i].rho[2]);
+    /* Bound: the midpoint rule at 4 a texel (test_triangle_mean); here the two halves'
+       samples mirror each other about u = 0.5, and 0.5 comes out to 1e-9. */
+    assert_near(t.p[0].rho[0], 0.5, 2e-4);
+    assert_near(t.p[0].rho[2], t.p[0].rho[0], 0);
+    assert_near(t.p[1].rho[1], 0.5, 1e-15); /* no vt: the image's mean, 0.5 */
+    assert_near(t.p[2].rho[1], 0.4 * t.p[0].rho[1], 1e-15);
+    assert_true(t.p[3].rho[0] < t.p[0].rho[0]); /* u 0.25 to 0.75 leans on the black texel */
+    free_textured(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -521,7 +715,8 @@ int main(void)
         cmocka_unit_test(test_sample_bilinear),   cmocka_unit_test(test_triangle_mean),
         cmocka_unit_test(test_uniform_mean),      cmocka_unit_test(test_reflectance_rule),
         cmocka_unit_test(test_hostile_images),    cmocka_unit_test(test_obj_uv_groups),
-        cmocka_unit_test(test_mtl_map_kd),
+        cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
+        cmocka_unit_test(test_face_reflectance),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -78,7 +78,7 @@ static void check_in_unit(const double *v)
 
 static void check_map(const obj_material *m, const tex_image *t)
 {
-    static const double tri[3][2] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+    static const obj_vec2 tri[3] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
     double v[3];
     if (!t->rgb) {
         CHECK(t->w == 0 && t->h == 0);

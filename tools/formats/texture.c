@@ -261,13 +261,13 @@ void tex_sample(const tex_image *t, double u, double v, double rgb[3])
    rule is exact where the bilinear texture is linear and errs at its kinks (texel
    centres), by O(1/n^2): test_triangle_mean measured 0.069%, 0.018% and 0.0047% of
    the mean at 2, 4 and 8 a texel. */
-static int divisions(const tex_image *t, const double uv[3][2])
+static int divisions(const tex_image *t, const obj_vec2 uv[3])
 {
     double longest = 0;
     int i;
     for (i = 0; i < 3; i++) {
-        const double *a = uv[i], *b = uv[(i + 1) % 3];
-        double du = (b[0] - a[0]) * t->scale[0] * t->w, dv = (b[1] - a[1]) * t->scale[1] * t->h;
+        const obj_vec2 *a = &uv[i], *b = &uv[(i + 1) % 3];
+        double du = (b->u - a->u) * t->scale[0] * t->w, dv = (b->v - a->v) * t->scale[1] * t->h;
         double len = sqrt(du * du + dv * dv);
         longest = len > longest ? len : longest;
     }
@@ -279,7 +279,7 @@ static int divisions(const tex_image *t, const double uv[3][2])
    pointing like it, with centroids at barycentric ((i + 1/3) / n, (j + 1/3) / n), and
    n(n-1)/2 pointing the other way, centroids at ((i + 2/3) / n, (j + 2/3) / n). Equal
    areas make the mean of their centroid samples the midpoint rule. */
-void tex_triangle_mean(const tex_image *t, const double uv[3][2], double rgb[3])
+void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
 {
     int n = divisions(t, uv), i, j, k, up;
     double sum[3] = { 0, 0, 0 };
@@ -288,13 +288,27 @@ void tex_triangle_mean(const tex_image *t, const double uv[3][2], double rgb[3])
             for (j = 0; j + i < n - up; j++) {
                 double a = (i + (up ? 2.0 : 1.0) / 3) / n, b = (j + (up ? 2.0 : 1.0) / 3) / n;
                 double s[3];
-                tex_sample(t, uv[0][0] + a * (uv[1][0] - uv[0][0]) + b * (uv[2][0] - uv[0][0]),
-                           uv[0][1] + a * (uv[1][1] - uv[0][1]) + b * (uv[2][1] - uv[0][1]), s);
+                tex_sample(t, uv[0].u + a * (uv[1].u - uv[0].u) + b * (uv[2].u - uv[0].u),
+                           uv[0].v + a * (uv[1].v - uv[0].v) + b * (uv[2].v - uv[0].v), s);
                 for (k = 0; k < 3; k++)
                     sum[k] += s[k];
             }
     for (k = 0; k < 3; k++)
         rgb[k] = sum[k] / ((double)n * n);
+}
+
+void tex_image_mean(const tex_image *t, double rgb[3])
+{
+    double sum[3] = { 0, 0, 0 }, c[3];
+    int x, y, k;
+    for (y = 0; y < t->h; y++)
+        for (x = 0; x < t->w; x++) {
+            tex_texel(t, x, y, c);
+            for (k = 0; k < 3; k++)
+                sum[k] += c[k];
+        }
+    for (k = 0; k < 3; k++)
+        rgb[k] = sum[k] / ((double)t->w * t->h);
 }
 
 void tex_reflectance(const double kd[3], const double texel[3], double rho[3])

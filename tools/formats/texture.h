@@ -73,7 +73,10 @@ void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
  * at most TEX_MEAN_MAX_DIV (exact for a texture linear over the triangle; beyond the
  * cap, a footprint more than 16 texels across is sampled less than four times a texel,
  * and one more than 64 across less than once). */
-void tex_triangle_mean(const tex_image *t, const double uv[3][2], double rgb[3]);
+void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
+/* The mean of the texels, linear: the bilinear texture's mean over a period (each
+ * texel's tent integrates to one texel) when wrapped. */
+void tex_image_mean(const tex_image *t, double rgb[3]);
 /* The reflectance rule above: TEXEL (linear) times KD, or TEXEL alone if KD is 0. */
 void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
 
