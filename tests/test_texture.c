@@ -382,7 +382,7 @@ static void test_hostile_images(void **state)
     write_bytes(tmp_path("text.png"), "newmtl x\nKd 1 1 1\n", 18);
     expect_refused(tmp_path("text.png"), "not an image");
     expect_refused(tmp_path("missing.png"), "No such file");
-    expect_refused(tmpdir, "not a regular file");
+    expect_refused(tmpdir, "is a directory");
 }
 
 /* ---- tests: OBJ and MTL -------------------------------------------------------- */
@@ -508,7 +508,7 @@ static void test_mtl_map_kd(void **state)
     assert_near(maps[0].scale[1], 3, 0);
     assert_null(maps[1].rgb);
     assert_int_equal(w.n, 1);
-    snprintf(want, sizeof want, "%s:6: map_Kd: %s: No such file or directory; using Kd 0.5 0.5 0.5",
+    snprintf(want, sizeof want, "%s:6: map_Kd: %s: cannot open: No such file or directory; using Kd 0.5 0.5 0.5",
              tmp_path("mats/m.mtl"), tmp_path("mats/tex/missing.png"));
     assert_string_equal(w.msg[0], want);
     assert_near(sc.materials[1].kd[1], OBJ_FALLBACK_KD, 0);

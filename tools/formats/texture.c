@@ -5,17 +5,15 @@
  * distribution's security fixes, and none of its 7,000 lines under our -Werror, lint and
  * static analysis. What we need from a private copy (a pixel limit, no stdio) we do
  * ourselves: the size is read with stbi_info_from_memory and checked before decoding,
- * and the file is read by us. */
+ * and the file is read through file_io. */
 #include "formats/texture.h"
 
 #include "formats/file_io.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include <stb/stb_image.h>
 
@@ -76,45 +74,15 @@ int tex_decode(const unsigned char *data, size_t size, const char *name, tex_ima
     return 0;
 }
 
-/* The whole of PATH, at most FIO_LIMIT_IMAGE bytes, checked on the open file. */
-static int read_file(const char *path, unsigned char **data, size_t *size, char *err,
-                     size_t errlen)
-{
-    FILE *f = fopen(path, "rb");
-    struct stat st;
-    int ok;
-    *data = NULL;
-    if (!f) {
-        put_err(err, errlen, path, strerror(errno));
-        return -1;
-    }
-    if (fstat(fileno(f), &st) || !S_ISREG(st.st_mode) || st.st_size > FIO_LIMIT_IMAGE) {
-        put_err(err, errlen, path, "not a regular file of at most 256 MiB");
-        fclose(f);
-        return -1;
-    }
-    *size = (size_t)st.st_size;
-    *data = malloc(*size ? *size : 1);
-    ok = *data && fread(*data, 1, *size, f) == *size;
-    fclose(f);
-    if (!ok) {
-        put_err(err, errlen, path, *data ? "cannot read" : "out of memory");
-        free(*data);
-        *data = NULL;
-        return -1;
-    }
-    return 0;
-}
-
 int tex_load(const char *path, tex_image *out, char *err, size_t errlen)
 {
-    unsigned char *data;
+    char *data;
     size_t size;
     int rc;
     empty(out);
-    if (read_file(path, &data, &size, err, errlen))
+    if (fio_read_all(path, FIO_LIMIT_IMAGE, &data, &size, err, errlen))
         return -1;
-    rc = tex_decode(data, size, path, out, err, errlen);
+    rc = tex_decode((const unsigned char *)data, size, path, out, err, errlen);
     free(data);
     return rc;
 }

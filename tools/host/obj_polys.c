@@ -5,6 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define STR_(x) #x
+#define STR(x) STR_(x) /* a macro's value as a string */
+
 /* The texture coordinates of vertex VERT in face FC (its first corner of that vertex). */
 static const obj_vec2 *corner_uv(const obj_scene *sc, const obj_face *fc, int vert)
 {
@@ -132,7 +135,10 @@ sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
         }
         nt = obj_triangulate(sc, fc, tri);
         if (nt < 0) {
-            if (warn) warn(ctx, fc->line, "skipped a degenerate polygon");
+            if (warn)
+                warn(ctx, fc->line, nt == OBJ_TOO_MANY_VERTICES
+                                        ? "skipped a face of more than " STR(OBJ_MAX_FACE_VERTICES) " vertices (split it)"
+                                        : "skipped a degenerate polygon");
             continue;
         }
         for (t = 0; t < nt; t++)
