@@ -17,6 +17,7 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/obj_polys.h"
+#include "host/tex_render.h"
 #include "scenes.h"
 #include "tmpdir.h"
 
@@ -708,6 +709,116 @@ static void test_face_reflectance(void **state)
     free_textured(&t);
 }
 
+/* ---- tests: rendered views with the texture's detail --------------------------- */
+
+typedef struct {
+    textured t;
+    sc_solver *s;
+} solved;
+
+static void solve_textured(const char *name, solved *x)
+{
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    char err[512];
+    load_textured(name, &x->t);
+    x->s = sc_create(x->t.p, x->t.n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(x->s);
+    sc_solve(x->s, 100000, 1e-4, NULL, NULL);
+}
+
+static void free_solved(solved *x)
+{
+    sc_destroy(x->s);
+    free_textured(&x->t);
+}
+
+#define RW 96
+#define RH 96
+static const sc_camera room_view = { { 0, 0, 0.9 }, { 0, 0, -1 }, { 0, 1, 0 }, 60 };
+
+/* The room of test_uniform_texture_solution (its files) seen with texture detail
+   against the same colours in Kd seen plainly: per pixel, rho(texel) / rho(surface) is
+   1 up to the surface's Q16.16 reflectance, 2^-17 / rho: the smallest reflectance here
+   is the block's red, 0.5 x sRGB(60) = 0.0226, so 3.4e-4 (measured 2.3e-4). */
+static void test_render_uniform(void **state)
+{
+    static float a[RW * RH * 3], b[RW * RH * 3];
+    solved x, y;
+    char err[512];
+    double worst = 0, peak = 0;
+    int i;
+    (void)state;
+    solve_textured("room_tex.obj", &x);
+    solve_textured("room_kd.obj", &y);
+    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
+                                        sizeof err),
+                     0);
+    assert_int_equal(sc_render(y.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
+    for (i = 0; i < RW * RH * 3; i++)
+        peak = fmax(peak, b[i]);
+    for (i = 0; i < RW * RH * 3; i++)
+        if (b[i] > 0.01 * peak)
+            worst = fmax(worst, fabs(a[i] / b[i] - 1));
+    print_message("uniform texture rendered with detail against Kd: worst pixel %.3g\n", worst);
+    assert_true(worst <= 1.0 / 131072 / (0.5 * srgb_reference(60 / 255.0)) + 1e-6);
+    free_solved(&x);
+    free_solved(&y);
+}
+
+/* The back wall (u along +x) textured black | white: the black texel's centre (u =
+   0.25) renders dark and the white one's (u = 0.75) bright, in that order (a flip of u
+   swaps them); without detail both are the wall's mean. */
+static void test_render_detail(void **state)
+{
+    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    static float a[RW * RH * 3], b[RW * RH * 3];
+    solved x;
+    char err[512];
+    /* u = 0.25 and 0.75 on the wall z = -1, 1.9 away, seen at 60 degrees: x = -+0.5
+       over a half-width of 1.9 tan 30 = 1.097. */
+    int row = RH / 2, dark = (int)((1 - 0.5 / 1.097) / 2 * RW), bright = RW - 1 - dark;
+    (void)state;
+    assert_int_equal(img_write(tmp_path("bw2.png"), bw, 2, 1, NULL, 0), 0);
+    write_text("bw2.mtl", "newmtl walls\nKd 0.6 0.6 0.6\nnewmtl back\nKd 0 0 0\nmap_Kd bw2.png\n"
+                          "newmtl block\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+    {
+        /* room.obj of write_room, with the back wall (the box's -z face) in "back" */
+        char text[8192];
+        FILE *f;
+        size_t n;
+        write_room("bw2_base.obj", "bw2.mtl");
+        f = fopen(tmp_path("bw2_base.obj"), "rb");
+        assert_non_null(f);
+        n = fread(text, 1, sizeof text - 1, f);
+        fclose(f);
+        text[n] = '\0';
+        {
+            char *m = strstr(text, "usemtl walls"), out[8300];
+            int k;
+            for (k = 0; k < 4 && m; k++) /* box(): face 4 is -z */
+                m = strstr(m + 1, "usemtl walls");
+            assert_non_null(m);
+            snprintf(out, sizeof out, "%.*susemtl back %s", (int)(m - text), text, m + 12);
+            write_text("bw2.obj", out);
+        }
+    }
+    solve_textured("bw2.obj", &x);
+    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
+                                        sizeof err),
+                     0);
+    assert_int_equal(sc_render(x.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
+    print_message("back wall: u = 0.25 %.4f, u = 0.75 %.4f (plain %.4f, %.4f)\n",
+                  a[3 * (row * RW + dark)], a[3 * (row * RW + bright)], b[3 * (row * RW + dark)],
+                  b[3 * (row * RW + bright)]);
+    /* Texture detail: the dark texel's pixel reads within a pixel of u = 0.25, where the
+       bilinear texture rises 2 a unit of u: a pixel is 1/44 of u here, so below 5% of the
+       bright one. The bright one is about twice the plain mean (texel 1 over mean 0.5). */
+    assert_true(a[3 * (row * RW + dark)] < 0.05 * a[3 * (row * RW + bright)]);
+    assert_true(a[3 * (row * RW + bright)] > 1.8 * b[3 * (row * RW + bright)]);
+    assert_true(fabs(b[3 * (row * RW + dark)] / b[3 * (row * RW + bright)] - 1) < 0.05);
+    free_solved(&x);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -716,7 +827,8 @@ int main(void)
         cmocka_unit_test(test_uniform_mean),      cmocka_unit_test(test_reflectance_rule),
         cmocka_unit_test(test_hostile_images),    cmocka_unit_test(test_obj_uv_groups),
         cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
-        cmocka_unit_test(test_face_reflectance),
+        cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
+        cmocka_unit_test(test_render_detail),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
