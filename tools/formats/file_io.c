@@ -183,51 +183,62 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen)
 
 /* ---- outputs ------------------------------------------------------------------- */
 
+/* The name a regular file ST at PATH is replaced under: PATH itself, or the file a
+ * symbolic link PATH leads to. malloc'd, or NULL with err. */
+static char *replaced_name(const char *path, const struct stat *st, char *err, size_t errlen)
+{
+    struct stat lst, rst;
+    char *target;
+    if (lstat(path, &lst) != 0 || !S_ISLNK(lst.st_mode))
+        target = strdup(path);
+    else if (!(target = realpath(path, NULL))) {
+        fio_err(err, errlen, path, "cannot follow the symbolic link: %s", strerror(errno));
+        return NULL;
+    } else if (stat(target, &rst) != 0 || rst.st_dev != st->st_dev || rst.st_ino != st->st_ino) {
+        /* e.g. /dev/stdout onto a deleted file: there is no name to replace */
+        fio_err(err, errlen, path, "cannot write: the link's target has no name to replace");
+        free(target);
+        return NULL;
+    }
+    if (!target)
+        fio_err(err, errlen, path, "out of memory");
+    return target;
+}
+
 /* How PATH is written: by a temporary file renamed over TARGET (*TARGET malloc'd, the
  * link resolved, *MODE its permission bits) or in place (*TARGET NULL, *MODE the
  * st_mode). 0, or -1 with err. Writes nothing. */
 static int plan_out(const char *path, char **target, mode_t *mode, char *err, size_t errlen)
 {
-    struct stat st, lst, rst;
+    struct stat st, lst;
     mode_t um;
+    int e;
     *target = NULL;
     if (!path || !*path) {
         fio_err(err, errlen, path, "no path given");
         return -1;
     }
-    if (stat(path, &st) != 0) {
-        int e = errno; /* else a new file: mkstemp names what is wrong with its folder */
-        if (lstat(path, &lst) == 0) {
-            fio_err(err, errlen, path, "cannot write: %s",
-                    e == ENOENT ? "a symbolic link to a missing file" : strerror(e));
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            fio_err(err, errlen, path, "is a directory");
             return -1;
         }
-        um = umask(022); /* umask is read by setting it: restored at once */
-        umask(um);
-        *mode = 0666 & ~um;
-        *target = strdup(path);
-    } else if (S_ISDIR(st.st_mode)) {
-        fio_err(err, errlen, path, "is a directory");
-        return -1;
-    } else if (!S_ISREG(st.st_mode)) {
-        *mode = st.st_mode; /* a device, FIFO or socket: in place (the kind for messages) */
-        return 0;
-    } else {
-        *mode = st.st_mode & 0777;
-        if (lstat(path, &lst) != 0 || !S_ISLNK(lst.st_mode)) {
-            *target = strdup(path);
-        } else if (!(*target = realpath(path, NULL))) {
-            fio_err(err, errlen, path, "cannot follow the symbolic link: %s", strerror(errno));
-            return -1;
-        } else if (stat(*target, &rst) != 0 || rst.st_dev != st.st_dev || rst.st_ino != st.st_ino) {
-            /* e.g. /dev/stdout onto a deleted file: there is no name to replace */
-            fio_err(err, errlen, path, "cannot write: the link's target has no name to replace");
-            free(*target);
-            *target = NULL;
-            return -1;
-        }
+        *mode = S_ISREG(st.st_mode) ? st.st_mode & 0777 : st.st_mode;
+        if (!S_ISREG(st.st_mode))
+            return 0; /* a device, FIFO or socket: in place (the kind for messages) */
+        return (*target = replaced_name(path, &st, err, errlen)) ? 0 : -1;
     }
-    if (!*target) {
+    e = errno;
+    if (lstat(path, &lst) == 0) { /* a link stat cannot follow */
+        fio_err(err, errlen, path, "cannot write: %s",
+                e == ENOENT ? "a symbolic link to a missing file" : strerror(e));
+        return -1;
+    }
+    /* A new file (mkstemp names what is wrong with its folder, if anything). */
+    um = umask(022); /* umask is read by setting it: restored at once */
+    umask(um);
+    *mode = 0666 & ~um;
+    if (!(*target = strdup(path))) {
         fio_err(err, errlen, path, "out of memory");
         return -1;
     }
@@ -279,11 +290,53 @@ static int check_target(const char *path, const char *target, char *err, size_t 
     return rc;
 }
 
+/* The descriptor PATH names, if it names one of this process's: /dev/stdout,
+ * /dev/stderr, /dev/fd/N or /proc/self/fd/N; else -1. Such an output is written through
+ * a copy of the descriptor, so that it goes where the shell sent it, with the shell's
+ * offset and flags (">>" appends; a rename would have replaced the file). */
+static int named_fd(const char *path)
+{
+    static const char *const dirs[] = { "/dev/fd/", "/proc/self/fd/" };
+    const char *d = NULL;
+    char *end;
+    long n;
+    size_t i;
+    if (!strcmp(path, "/dev/stdout"))
+        return 1;
+    if (!strcmp(path, "/dev/stderr"))
+        return 2;
+    for (i = 0; i < 2 && !d; i++)
+        if (!strncmp(path, dirs[i], strlen(dirs[i])))
+            d = path + strlen(dirs[i]);
+    if (!d || *d < '0' || *d > '9')
+        return -1;
+    errno = 0;
+    n = strtol(d, &end, 10);
+    return *end || errno || n > INT_MAX ? -1 : (int)n;
+}
+
+/* FD, open for writing: 0, or -1 with err. */
+static int fd_writable(const char *path, int fd, char *err, size_t errlen)
+{
+    int fl = fcntl(fd, F_GETFL);
+    if (fl < 0) {
+        fio_err(err, errlen, path, "cannot write: %s", strerror(errno));
+        return -1;
+    }
+    if ((fl & O_ACCMODE) == O_RDONLY) {
+        fio_err(err, errlen, path, "cannot write: descriptor %d is open for reading only", fd);
+        return -1;
+    }
+    return 0;
+}
+
 int fio_check_out(const char *path, char *err, size_t errlen)
 {
     char *target;
     mode_t mode;
     int rc;
+    if (path && named_fd(path) >= 0)
+        return fd_writable(path, named_fd(path), err, errlen);
     if (plan_out(path, &target, &mode, err, errlen) != 0)
         return -1;
     if (!target) {
@@ -323,6 +376,21 @@ static int open_in_place(fio_out *o, char *err, size_t errlen)
     return 0;
 }
 
+/* Through a copy of descriptor FD (named_fd). */
+static int open_dup(fio_out *o, int fd, char *err, size_t errlen)
+{
+    int d;
+    if (fd_writable(o->path, fd, err, errlen) != 0)
+        return -1;
+    if ((d = dup(fd)) < 0 || !(o->fp = fdopen(d, "wb"))) {
+        fio_err(err, errlen, o->path, "cannot write: %s", strerror(errno));
+        if (d >= 0)
+            close(d);
+        return -1;
+    }
+    return 0;
+}
+
 /* mkstemp's own error names what is wrong with the folder (missing, not a folder, not
  * writable, a name too long), so nothing is checked before it. */
 static int open_tmp(fio_out *o, char *err, size_t errlen)
@@ -356,7 +424,9 @@ fio_out *fio_out_open(const char *path, char *err, size_t errlen)
         free(o);
         return NULL;
     }
-    if (plan_out(path, &o->target, &o->mode, err, errlen) != 0)
+    if (named_fd(path) >= 0)
+        rc = open_dup(o, named_fd(path), err, errlen);
+    else if (plan_out(path, &o->target, &o->mode, err, errlen) != 0)
         rc = -1;
     else
         rc = o->target ? open_tmp(o, err, errlen) : open_in_place(o, err, errlen);

@@ -16,7 +16,10 @@
  *     fails; the new file keeps the old one's permission bits (else 0666 & ~umask);
  *   - a symbolic link: followed (realpath); the file it points to is replaced as above,
  *     the link itself is kept;
- *   - a device, FIFO or socket (/dev/null, /dev/stdout, a pipe): written in place,
+ *   - a name of one of the process's descriptors (/dev/stdout, /dev/stderr, /dev/fd/N,
+ *     /proc/self/fd/N): written through a copy of that descriptor, wherever the shell
+ *     sent it, with its offset and flags (">> log" appends; nothing is renamed);
+ *   - a device, FIFO or socket (/dev/null, a pipe): written in place,
  *     never replaced, never renamed; the open does not wait: a FIFO with no reader is
  *     an error ("cannot open: a FIFO with no reader");
  *   - a directory ("PATH: is a directory") or a dangling link: an error before anything

@@ -150,3 +150,8 @@ sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
     return p;
 }
 
+int obj_match_material(void *ctx, int tag)
+{
+    const obj_material_match *m = ctx;
+    return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
+}
