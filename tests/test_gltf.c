@@ -582,12 +582,72 @@ static void test_errors(void **state)
     obj_free(&sc);
 }
 
+/* rad_cli: --export-gltf writes a .glb the checks above accept; textures colour the
+   view by default and --no-textures switches them off (a different image, and a
+   Kd 0 textured material shown grey, not black). Run from the repository root. */
+static double mean_of(const char *png)
+{
+    img_t im;
+    char err[600];
+    double sum = 0;
+    size_t i, n;
+    assert_int_equal(img_read(png, &im, err, sizeof err), 0);
+    n = (size_t)im.w * im.h * 3;
+    for (i = 0; i < n; i++)
+        sum += im.rgb[i];
+    img_free(&im);
+    return sum / n;
+}
+
+static void test_cli(void **state)
+{
+    static const unsigned char check[4 * 4 * 3] = {
+        250, 30, 30, 250, 250, 250, 250, 30, 30, 250, 250, 250, 250, 250, 250, 250, 30, 30,
+        250, 250, 250, 250, 30, 30, 250, 30, 30, 250, 250, 250, 250, 30, 30, 250, 250, 250,
+        250, 250, 250, 250, 30, 30, 250, 250, 250, 250, 30, 30 };
+    char cmd[2048];
+    glb g;
+    int rc;
+    (void)state;
+    assert_int_equal(img_write(tmp_path("c.png"), check, 4, 4, NULL, 0), 0);
+    write_text("c.mtl", "newmtl walls\nKd 0 0 0\nmap_Kd c.png\nnewmtl lamp\nKd 0 0 0\nKe 9 9 9\n");
+    write_text("c.obj", "mtllib c.mtl\n"
+                        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                        "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                        "v -0.3 0.99 -0.3\nv 0.3 0.99 -0.3\nv 0.3 0.99 0.3\nv -0.3 0.99 0.3\n"
+                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                        "usemtl walls\nf 1/1 2/2 3/3 4/4\nf 6/1 7/2 3/3 2/4\nf 8/1 5/2 1/3 4/4\n"
+                        "f 7/1 8/2 4/3 3/4\nf 5/1 6/2 2/3 1/4\n"
+                        "usemtl lamp\nf 12 11 10 9\n");
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
+             "--height 64 --export-gltf '%s' --quiet", tmp_path("c.obj"), tmp_path("c_tex.png"),
+             tmp_path("c.glb"));
+    rc = system(cmd);
+    assert_int_equal(rc, 0);
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
+             "--height 64 --no-textures --quiet", tmp_path("c.obj"), tmp_path("c_plain.png"));
+    rc = system(cmd);
+    assert_int_equal(rc, 0);
+    read_glb(tmp_path("c.glb"), &g);
+    assert_int_equal(check_structure(&g), 12);
+    assert_int_equal(j_count(&g.j, j_get(&g.j, g.root, "images")), 1);
+    free_glb(&g);
+    assimp_reads(tmp_path("c.glb"));
+    {
+        double t = mean_of(tmp_path("c_tex.png")), p = mean_of(tmp_path("c_plain.png"));
+        print_message("mean pixel: textured %.1f, --no-textures %.1f\n", t, p);
+        assert_true(p > 20); /* Kd 0 beside map_Kd: 0.5 grey, not black */
+        assert_true(fabs(t - p) > 1);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_structure),
         cmocka_unit_test(test_solution_colours),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_cli),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
