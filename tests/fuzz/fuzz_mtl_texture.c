@@ -11,7 +11,10 @@
  * never crashes, each warning is one line, a loaded texture is 1..TEX_MAX_PIXELS texels
  * with pixels, a material whose map_Kd failed keeps a Kd that is not all zero, and the
  * mean of every loaded texture over a triangle, and a sample, are finite values in
- * [0, 1]. tex_decode on the raw bytes agrees with the file load.
+ * [0, 1]. tex_decode on the raw bytes agrees with the file load. gltf_write exports the
+ * scene with the loaded textures (material names from the MTL, escaped; images
+ * embedded or left out with a warning): it succeeds, and the file starts with the GLB
+ * header and its declared length is the file's.
  */
 #include <math.h>
 #include <stddef.h>
@@ -21,6 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
 
@@ -94,6 +98,41 @@ static void check_map(const obj_material *m, const tex_image *t)
     check_in_unit(v);
 }
 
+static uint32_t le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static void check_export(const obj_scene *sc, const tex_image *maps, long *warnings)
+{
+    const char **tex = calloc((size_t)sc->nmaterials + 1, sizeof *tex);
+    char path[128], err[256];
+    unsigned char head[12];
+    gltf_input in;
+    FILE *f;
+    long len;
+    int i;
+    CHECK(tex != NULL);
+    for (i = 0; i < sc->nmaterials; i++)
+        tex[i] = maps[i].rgb ? sc->materials[i].map_kd.path : NULL;
+    memset(&in, 0, sizeof in);
+    in.sc = sc;
+    in.texture = tex;
+    in.warn = on_warning;
+    in.ctx = warnings;
+    snprintf(path, sizeof path, "%s/out.glb", dir);
+    CHECK(gltf_write(path, &in, err, sizeof err) == 0);
+    f = fopen(path, "rb");
+    CHECK(f != NULL);
+    CHECK(fread(head, 1, 12, f) == 12);
+    fseek(f, 0, SEEK_END);
+    len = ftell(f);
+    fclose(f);
+    CHECK(le32(head) == 0x46546C67u && le32(head + 4) == 2 && (long)le32(head + 8) == len);
+    CHECK(len % 4 == 0);
+    free((void *)tex);
+}
+
 /* The texture bytes decoded straight from memory: accepted exactly when the file was. */
 static void check_decode(const uint8_t *tex, size_t n, int loaded_ok)
 {
@@ -143,6 +182,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     CHECK(maps != NULL);
     tex_load_materials(&sc, maps, on_warning, &warnings);
     CHECK(sc.nwarnings == warnings);
+    check_export(&sc, maps, &warnings);
     for (i = 0; i < sc.nmaterials; i++) {
         const obj_material *m = &sc.materials[i];
         char want[128];
