@@ -59,7 +59,7 @@ typedef struct {
     int *normal_indices;             /* nindices entries: into normals, -1 where no vn */
     obj_vec2 *uvs; int nuvs;         /* vt u v (a w is read and dropped) */
     obj_vec3 *normals; int nnormals; /* vn as given (not normalised) */
-    char **names; int nnames;        /* object and group names, each once */
+    char **names; int nnames;        /* o and g names: an entry per statement that changes one */
     obj_face *faces; int nfaces;
     obj_material *materials; int nmaterials;
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
