@@ -42,6 +42,7 @@ TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_p
               tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
+TEST_HDRS  := $(wildcard tests/*.h)
 
 FIXED_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/fixed/%.o)
 FLOAT_OBJS := $(LIB_SRCS:lib/%.c=$(BUILDDIR)/lib/float/%.o)
@@ -91,9 +92,17 @@ bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
 
 # Every test links both builds of the core (through the host glue) and the host tools.
-$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS)
+$(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
+
+# tests/test_scale.c drives the core directly in both builds: its float pass is an
+# object of its own (RAD_FLOAT=1), as tests/fuzz/fuzz_core.c's is.
+$(BUILDDIR)/tests/test_scale_float.o: tests/test_scale.c $(LIB_HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(ALLCFLAGS) -DRAD_FLOAT=1 -c $< -o $@
+$(BUILDDIR)/tests/test_scale: tests/test_scale.c $(BUILDDIR)/tests/test_scale_float.o $(LIBRAD) $(LIBRADF) $(LIB_HDRS)
+	$(CC) $(ALLCFLAGS) $< $(BUILDDIR)/tests/test_scale_float.o $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) -lm -o $@
 
 # The core's promise, proven from the objects: nothing from outside but compiler helpers.
 nm-check: $(LIBRAD)

@@ -25,6 +25,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "check.h"
 #include "formats/file_io.h"
 #include "formats/image.h"
 #include "tmpdir.h"
@@ -101,7 +102,7 @@ static void run(result_t *r, long fsize, const char *const *args)
     snprintf(outp, sizeof outp, "%s", tmp_path("run.out"));
     snprintf(errp, sizeof errp, "%s", tmp_path("run.err"));
     pid = fork();
-    assert_true(pid >= 0);
+    CHECK_INT_GE(pid, 0, "fork");
     if (pid == 0) child(outp, errp, fsize, argv);
     assert_int_equal(waitpid(pid, &st, 0), pid);
     r->status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
@@ -175,7 +176,7 @@ static void test_views_not_a_file(void **state)
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", fifo); /* no writer: must not block */
     expect(&r, 1, line_of("rad_cli: %s: nothing to read (a FIFO with no writer, or an empty pipe)\n", fifo, NULL));
     done(&r);
-    assert_false(exists(tmp_path("v.png")));
+    CHECK_THAT(!exists(tmp_path("v.png")), "no image after the failed runs");
 }
 
 /* The old reader took a line in 4,095-byte pieces: a longer '#' comment ran its tail as
@@ -195,8 +196,8 @@ static void test_views_long_comment(void **state)
     free(text);
     RUN(&r, CORNELL, SMALL, "--views", path);
     expect(&r, 0, "");
-    assert_true(exists(tmp_path("real.png")));
-    assert_false(exists(tmp_path("tail.png")));
+    CHECK_THAT(exists(tmp_path("real.png")), "the real view is written");
+    CHECK_THAT(!exists(tmp_path("tail.png")), "the comment's tail is not a view");
     done(&r);
     text = malloc(64);
     assert_non_null(text);
@@ -263,7 +264,7 @@ static void test_long_names_refused_before_solve(void **state)
                           long_name(249, "_0000.png"), NULL));
     assert_string_equal(r.out, "");
     done(&r);
-    assert_false(exists(ok));
+    CHECK_THAT(!exists(ok), "%s is not written", ok);
 }
 
 /* A camera the core refuses (an eye 1 km away) fails before the solve, and an existing
@@ -376,7 +377,7 @@ static void test_exit_saturated(void **state)
         tmp_path("bright.png"), "--quiet");
     expect_line(&r, 3, line_of("rad_cli: %s: ", box, NULL),
                 "values saturated at the core's range, so some radiosities are clipped");
-    assert_true(exists(tmp_path("bright.png")));
+    CHECK_THAT(exists(tmp_path("bright.png")), "the saturated run still writes its image");
     done(&r);
 }
 
@@ -395,7 +396,7 @@ static void test_emission_limit(void **state)
     expect(&r, 1, "rad_cli: " CORNELL ": material 'light': emission 1e+31 is above the limit of 1e+30 (the image "
                   "would overflow); scale every emission down: radiosity is linear in it\n");
     done(&r);
-    assert_false(exists(tmp_path("e.png")));
+    CHECK_THAT(!exists(tmp_path("e.png")), "no image from a refused emission");
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e30,1e30,1e30");
     expect(&r, 0, "");
     done(&r);
@@ -512,7 +513,7 @@ static void test_outward_room_warns(void **state)
                           "counter-clockwise seen from their lit side)\n", out, NULL));
     share = stat_value(r.out, "emitted light reaching front faces ");
     /* Every wall faces away from the lamp: no front face is seen, whatever the rounding. */
-    assert_true(share == 0.0);
+    CHECK_EQ(share, 0.0, "share of the light landing in the outward room");
     done(&r);
     in = box_scene("inward.obj", "0.7", 1);
     RUN(&r, in, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o", tmp_path("i.png"),
@@ -521,7 +522,7 @@ static void test_outward_room_warns(void **state)
     share = stat_value(r.out, "emitted light reaching front faces ");
     /* A closed box: each row sums to one (the delta form factor table sums to exactly 1);
      * the printed 0.1% rounding is the bound. */
-    if (!(share >= 99.9)) fail_msg("closed box: %.1f%% of the emitted light lands, want >= 99.9%%", share);
+    CHECK_GE(share, 99.9, "percent of the emitted light landing in the closed box");
     done(&r);
 }
 

@@ -137,9 +137,9 @@ static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_
 
 /* Two variants (a build and options each) solved side by side RUNS times, shot by shot
  * (one shot of the first, one of the second, ...): each shot's time is its variant's
- * own, and both see the same machine, whose speed on a shared host drifts by 20% and
- * more within seconds (whole runs in turn measured fixed/float anywhere from 0.8 to
- * 1.2). Each keeps its median run (by total time) in OUT, with its times to each
+ * own, and both see the same machine, whose speed on a shared host drifts within
+ * seconds by more than the two builds differ (whole runs in turn could put either
+ * ahead). Each keeps its median run (by total time) in OUT, with its times to each
  * fraction the medians over the runs; the others are freed. */
 static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs, brun *out)
 {
@@ -513,7 +513,7 @@ static int load_scenes(const char *shared, bscene *scenes)
 {
     /* The bundled box is 0.56 m across: element edges for 535, 1,796 and 8,360
      * elements (meshing is by whole divisions of each face: the nearest to the
-     * issue's 500, 2,000 and 8,000). */
+     * benchmark's targets of 500, 2,000 and 8,000). */
     static const double me[3] = {0.065, 0.035, 0.0165};
     static const char *nm[3] = {"Cornell box (bundled), coarse", "Cornell box (bundled), medium",
                                 "Cornell box (bundled), fine"};
