@@ -511,7 +511,8 @@ static void test_solution_colours(void **state)
     }
     write_text("room.mtl", "newmtl walls\nKd 0 0 0\nmap_Kd w.png\n"
                            "newmtl floor\nKd 0 0 0\nmap_Kd floor.tga\n"
-                           "newmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+                           "newmtl lamp\nKd 0 0 0\nKe 5 5 5\n"
+                           "newmtl tinted\nKd 0.5 0.9 0.9\nmap_Kd -clamp on w.png\n");
     write_text("room.obj", "mtllib room.mtl\n"
                            "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
                            "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
@@ -519,11 +520,15 @@ static void test_solution_colours(void **state)
                            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                            "o room\nusemtl walls\n"
                            "f 1/1 2/2 3/3 4/4\nf 8/1 7/2 6/3 5/4\nf 6/1 7/2 3/3 2/4\n"
-                           "f 7/1 8/2 4/3 3/4\nf 8/1 5/2 1/3 4/4\n"
+                           "f 7/1 8/2 4/3 3/4\nusemtl tinted\nf 8/1 5/2 1/3 4/4\n"
                            "usemtl floor\nf 5/1 6/2 2/3 1/4\n"
                            "o lamp\nusemtl lamp\nf 9 10 11 12\n");
     assert_int_equal(obj_load(tmp_path("room.obj"), &sc, NULL, NULL, err, sizeof err), 0);
-    assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL), 2);
+    assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL), 3);
+    assert_int_equal(maps[3].borrowed, 1); /* w.png decoded once for two materials */
+    assert_ptr_equal(maps[3].rgb, maps[0].rgb);
+    assert_int_equal(maps[3].clamp, 1); /* with its own options */
+    assert_int_equal(maps[0].clamp, 0);
     polys = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
@@ -539,7 +544,9 @@ static void test_solution_colours(void **state)
         int imgs = j_get(p, g.root, "images"), mats = j_get(p, g.root, "materials");
         int pbr0 = j_get(p, j_at(p, mats, 0), "pbrMetallicRoughness");
         int pbr1 = j_get(p, j_at(p, mats, 1), "pbrMetallicRoughness");
-        assert_int_equal(j_count(p, imgs), 1);
+        assert_int_equal(j_count(p, imgs), 1); /* embedded once for two materials */
+        assert_int_equal(j_count(p, j_get(p, g.root, "textures")), 2);
+        assert_int_equal(j_num(p, j_at(p, j_get(p, g.root, "samplers"), 1), "wrapS", 0), 33071);
         assert_true(j_str_is(p, j_get(p, j_at(p, imgs, 0), "mimeType"), "image/png"));
         assert_true(j_get(p, pbr0, "baseColorTexture") >= 0);
         assert_int_equal(j_get(p, pbr1, "baseColorTexture"), -1);

@@ -312,7 +312,8 @@ typedef struct {
     buf bin, views, accessors, meshes, nodes;
     int nviews, naccessors, nmeshes;
     const gltf_input *in;
-    int *image_of; /* per material: image index, -1 */
+    int *image_of;   /* per material: image index, -1 */
+    int *texture_of; /* per material: texture index, when image_of >= 0 */
 } writer;
 
 /* A bufferView of the last LEN bytes of bin (already padded) and an accessor over it. */
@@ -603,24 +604,40 @@ static int embed_image(writer *w, int m, const char **mime)
     return -1;
 }
 
-/* Materials, textures, images and samplers (one each per embedded image). */
+/* An earlier material's image of the same texture file, or -1. */
+static int image_before(const writer *w, int m)
+{
+    int i;
+    for (i = 0; i < m; i++)
+        if (w->image_of[i] >= 0 && !strcmp(w->in->texture[i], w->in->texture[m]))
+            return w->image_of[i];
+    return -1;
+}
+
+/* Materials, textures and samplers (one each per textured material), images (one per
+   file, embedded once). */
 static void write_materials(writer *w, buf *j)
 {
     const obj_scene *sc = w->in->sc;
     buf tex = { 0 }, img = { 0 }, smp = { 0 };
-    int m, k, n = 0;
+    int m, k, n = 0, nimg = 0;
     for (m = 0; m < sc->nmaterials; m++) {
         const char *mime = NULL;
-        int view = w->in->texture && w->in->texture[m] ? embed_image(w, m, &mime) : -1;
+        int has = w->in->texture && w->in->texture[m], image = has ? image_before(w, m) : -1;
+        int view = has && image < 0 ? embed_image(w, m, &mime) : -1;
         w->image_of[m] = -1;
-        if (view < 0)
+        if (image < 0 && view < 0)
             continue;
-        putf(&img, "%s{\"bufferView\":%d,\"mimeType\":\"%s\"}", n ? "," : "", view, mime);
+        if (image < 0) {
+            putf(&img, "%s{\"bufferView\":%d,\"mimeType\":\"%s\"}", nimg ? "," : "", view, mime);
+            image = nimg++;
+        }
+        w->image_of[m] = image;
         putf(&smp, "%s{\"wrapS\":%d,\"wrapT\":%d}", n ? "," : "",
              sc->materials[m].map_kd.clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT,
              sc->materials[m].map_kd.clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT);
-        putf(&tex, "%s{\"sampler\":%d,\"source\":%d}", n ? "," : "", n, n);
-        w->image_of[m] = n++;
+        putf(&tex, "%s{\"sampler\":%d,\"source\":%d}", n ? "," : "", n, image);
+        w->texture_of[m] = n++;
     }
     put_text(j, ",\"materials\":[");
     for (m = 0; m < sc->nmaterials; m++) {
@@ -632,7 +649,7 @@ static void write_materials(writer *w, buf *j)
             putf(j, "%.9g,", isfinite(c[k]) && c[k] > 0 ? (c[k] < 1 ? c[k] : 1.0) : 0.0);
         put_text(j, "1]");
         if (w->image_of[m] >= 0)
-            putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->image_of[m]);
+            putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
         put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1},"
                "\"extensions\":{\"KHR_materials_unlit\":{}}}");
     }
@@ -662,6 +679,7 @@ static void free_writer(writer *w)
     free(w->meshes.p);
     free(w->nodes.p);
     free(w->image_of);
+    free(w->texture_of);
 }
 
 /* The JSON chunk's text. */
@@ -756,7 +774,8 @@ int gltf_write(const char *path, const gltf_input *in, char *err, size_t errlen)
     memset(&w, 0, sizeof w);
     w.in = in;
     w.image_of = malloc(((size_t)in->sc->nmaterials + 1) * sizeof *w.image_of);
-    if (w.image_of && gather(&w) == 0) {
+    w.texture_of = malloc(((size_t)in->sc->nmaterials + 1) * sizeof *w.texture_of);
+    if (w.image_of && w.texture_of && gather(&w) == 0) {
         write_json(&w, &json);
         if (json.failed || w.bin.failed)
             ;

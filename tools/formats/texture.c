@@ -91,7 +91,8 @@ void tex_free(tex_image *t)
 {
     if (!t)
         return;
-    stbi_image_free(t->rgb);
+    if (!t->borrowed)
+        stbi_image_free(t->rgb);
     empty(t);
 }
 
@@ -301,16 +302,30 @@ static void warn_map(obj_material *m, const char *why, tex_warn_fn warn, void *c
     warn(ctx, msg);
 }
 
+/* An earlier material's image of the same file, or -1. */
+static int loaded_before(const obj_scene *sc, const tex_image *maps, int i)
+{
+    int j;
+    for (j = 0; j < i; j++)
+        if (maps[j].rgb && !maps[j].borrowed &&
+            !strcmp(sc->materials[j].map_kd.path, sc->materials[i].map_kd.path))
+            return j;
+    return -1;
+}
+
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx)
 {
-    int i, loaded = 0;
+    int i, j, loaded = 0;
     for (i = 0; i < sc->nmaterials; i++) {
         obj_material *m = &sc->materials[i];
         char err[768];
         empty(&maps[i]);
         if (!m->map_kd.path)
             continue;
-        if (tex_load(m->map_kd.path, &maps[i], err, sizeof err)) {
+        if ((j = loaded_before(sc, maps, i)) >= 0) {
+            maps[i] = maps[j];
+            maps[i].borrowed = 1;
+        } else if (tex_load(m->map_kd.path, &maps[i], err, sizeof err)) {
             sc->nwarnings++;
             warn_map(m, err, warn, ctx);
             continue;

@@ -47,6 +47,7 @@ typedef struct {
     unsigned char *rgb; /* w * h * 3 bytes of sRGB, row 0 at the top; NULL: no image */
     int clamp;          /* 1: coordinates clamped to the edge texels; 0: wrapped */
     double offset[2], scale[2]; /* (u, v) used = (u, v) * scale + offset (map -o, -s) */
+    int borrowed;       /* 1: rgb belongs to another map (the same file): not freed here */
 } tex_image;
 
 typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
@@ -58,7 +59,7 @@ int tex_decode(const unsigned char *data, size_t size, const char *name, tex_ima
                char *err, size_t errlen);
 /* Reads PATH (file_io, at most FIO_LIMIT_IMAGE bytes) and decodes it as above. */
 int tex_load(const char *path, tex_image *out, char *err, size_t errlen);
-/* Frees the pixels and empties *t. NULL-safe and idempotent. */
+/* Frees the pixels (unless borrowed) and empties *t. NULL-safe and idempotent. */
 void tex_free(tex_image *t);
 
 /* The sRGB transfer function's inverse (IEC 61966-2-1) for s in [0, 1]. */
@@ -81,8 +82,9 @@ void tex_image_mean(const tex_image *t, double rgb[3]);
 void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
 
 /* Loads every material's map_Kd into maps[0 .. sc->nmaterials - 1] (maps[i].rgb NULL
- * when material i has none or it fails). A failure is one warning "MTL:LINE: map_Kd
- * FILE: reason; using Kd R G B" (counted in sc->nwarnings) and obj_map_fallback on the
+ * when material i has none or it fails). Materials naming the same file share one
+ * decoded image (the first one's; the others borrow it: free them all together, in any
+ * order). A failure is one warning "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings) and obj_map_fallback on the
  * material. Returns the number of textures loaded. */
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx);
 
