@@ -190,8 +190,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         snprintf(want, sizeof want, "%s/t.png", dir);
         if (m->map_kd.path && !strcmp(m->map_kd.path, want))
             direct = maps[i].rgb != NULL;
-        tex_free(&maps[i]);
     }
+    for (i = 0; i < sc.nmaterials; i++) /* after every use: maps may borrow earlier ones */
+        tex_free(&maps[i]);
     check_decode(tex ? tex : (const uint8_t *)"", texlen, direct);
     free(maps);
     obj_free(&sc);

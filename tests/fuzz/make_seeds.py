@@ -424,6 +424,7 @@ def mtl_texture_seeds():
     seed("bomb.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n", png(10000, 10000, rows=b"\x00" * 10))
     seed("ppm.bin", b"newmtl a\nmap_Kd t.png\n", b"P6\n3 2\n255\n" + bytes(range(18)))
     seed("empty.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n")
+    seed("shared.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\nnewmtl b\nKd 0.5 0.5 0.5\nmap_Kd -clamp on t.png\n", png(3, 3))
     seed("missing_and_bad.bin", b"newmtl a\nKd 0 0 0\nmap_Kd no such.png\nnewmtl b\nmap_Kd -s\n"
          b"newmtl c\nmap_Kd -clamp maybe t.png\nnewmtl d\nmap_Kd\n", png(1, 1))
 
