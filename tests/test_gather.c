@@ -410,25 +410,6 @@ static double solid_angle(const sc_poly *p)
     return om;
 }
 
-/* Lambert's vector: the integral of the direction w over polygon P seen from the
- * origin, (1/2) sum theta_i unit(R_i x R_i+1), its z component pi F (ref_point_ff). */
-static void vector_ff(const sc_poly *p, double *phi)
-{
-    int i, k;
-    phi[0] = phi[1] = phi[2] = 0;
-    for (i = 0; i < p->n; i++) {
-        const double *a = p->v[i], *b = p->v[(i + 1) % p->n];
-        double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-        double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-        double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-        double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        double th = acos((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb));
-        for (k = 0; k < 3; k++) phi[k] += 0.5 * th * c[k] / lc;
-    }
-    if (phi[2] < 0)
-        for (k = 0; k < 3; k++) phi[k] = -phi[k];
-}
-
 /* The nine basis functions (rad.h's order) at the unit direction (x, y, z). */
 static void sh_basis(double x, double y, double z, double *y9)
 {
@@ -541,7 +522,7 @@ static void test_under_emitter(void **st)
         CHECK_LE(fabs(fx.e[1] / (f * emit / 2) - 1), 0.01, "fixed: emitter %d's green", k);
         CHECK_LE(fabs(fl.e[0] / (f * emit) - 1), 0.01, "float: emitter %d's gather / (F E) - 1", k);
         /* the probe against the solid angle, Lambert's vector and the integrals */
-        vector_ff(&em, phi);
+        ref_point_vector(&em, phi);
         sh_reference(&em, ref);
         for (i = 0; i < 9; i++) big = fmax(big, fabs(ref[i]));
         CHECK_LE(fabs(fx.sh[0][0] / (y00 * emit * om) - 1), 0.01, "emitter %d's SH0 / (Y00 E om)", k);
