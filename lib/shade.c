@@ -102,7 +102,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     rad_vec3_t ax[3]; /* right, up, forward */
     rad__frustum_t f;
     rad__target_t t;
-    rad_stats_t st = {0, 0, 0, 0};
+    rad_stats_t st = {0};
     rad_real_t kx, ky;
     uint32_t e, i, sat = 0;
 

@@ -181,7 +181,11 @@ typedef struct {
  * negative unshot power, and paid back as the real power arrives; the solution is the
  * same, reached in fewer shots (CornellBox-Original at 5,038 elements to an unshot
  * fraction of 0.01: 562 against 929). RAD_NO_OVERSHOOT shoots the unshot power alone,
- * as Cohen et al. 1988: then the unshot total never grows. */
+ * as Cohen et al. 1988: then the unshot total never grows. The estimate assumes that
+ * every reflection stays in the scene; where it proves too high (light escaping a
+ * bright open scene: the unshot total stops falling, or a value saturates), the
+ * overshoot is halved, each time counted in rad_stats_t.backoffs, down to plain
+ * shooting after 16 halvings. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
@@ -189,6 +193,8 @@ typedef struct {
     uint32_t saturations;   /* values clamped to their format's range */
     uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels; /* pixels covered (before the depth test) */
+    uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
+                               of the power coming back proved too high */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -207,6 +213,11 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    /* overshooting's back-off (lib/solve.c), reset when a solve starts */
+    rad_energy_t over_low;  /* lowest unshot total since the last back-off */
+    uint32_t over_wait;     /* shooter selections since over_low was lowered */
+    uint32_t over_sat;      /* stats.saturations at the last selection */
+    uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
