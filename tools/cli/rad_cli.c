@@ -412,6 +412,27 @@ static void poly_warning(void *ctx, int line, const char *msg)
     fprintf(stderr, PROG ": warning: %s:%d: %s\n", o->scene, line, msg);
 }
 
+/* The glue's warnings name a polygon by its tag, the OBJ face index: shown as its line. */
+typedef struct { const opts_t *o; const obj_scene *sc; } glue_ctx_t;
+static void glue_warning(void *ctx, int tag, const char *msg)
+{
+    const glue_ctx_t *g = ctx;
+    fprintf(stderr, PROG ": warning: %s:%d: %s\n", g->o->scene,
+            tag >= 0 && tag < g->sc->nfaces ? g->sc->faces[tag].line : 0, msg);
+}
+
+/* A solve that stopped short of its tolerance, or clipped values, says so. */
+static void solve_warnings(const opts_t *o, const sc_stats *st)
+{
+    if (o->quiet) return;
+    if (st->solved && !st->converged)
+        fprintf(stderr, PROG ": warning: %s: not converged: unshot fraction %.3g after %d shots, tolerance %g "
+                        "(raise --max-shots, or --no-overshoot)\n", o->scene, st->unshot, st->shots, st->tol);
+    if (st->saturations)
+        fprintf(stderr, PROG ": warning: %s: %lu values saturated (beyond the core's range): the result is clipped\n",
+                o->scene, st->saturations);
+}
+
 static void apply_emit(const opts_t *o, obj_scene *sc)
 {
     int i;
@@ -837,6 +858,7 @@ int main(int argc, char **argv)
 {
     static opts_t o;
     obj_scene sc;
+    glue_ctx_t gctx;
     sc_poly *polys;
     sc_opts so;
     sc_stats st;
@@ -891,7 +913,9 @@ int main(int argc, char **argv)
     so.max_element = o.max_element;
     so.res = o.res ? o.res : 128; /* 64 aliases visibly on elements a few pixels wide */
     so.no_overshoot = o.no_overshoot;
-    s = sc_create(polys, npolys, &so, NULL, NULL, err, sizeof err);
+    gctx.o = &o;
+    gctx.sc = &sc;
+    s = sc_create(polys, npolys, &so, o.quiet ? NULL : glue_warning, &gctx, err, sizeof err);
     free(polys);
     if (!s) {
         fprintf(stderr, PROG ": %s: %s\n", o.scene, err);
@@ -911,8 +935,9 @@ int main(int argc, char **argv)
             sc_solve(s, o.max_shots, o.tol, pg.tty ? progress : NULL, &pg);
     } else {
         /* Visibility once: every patch's row, loaded or rendered (then saved). */
-        if (o.load_ff ? sc_rows_load(s, o.load_ff, err, sizeof err) < 0
-                      : sc_rows_compute(s, pg.tty ? rows_progress : NULL, &pg, err, sizeof err) < 0) {
+        if ((o.gauss_seidel && sc_gauss_seidel_check(s, err, sizeof err) < 0) ||
+            (o.load_ff ? sc_rows_load(s, o.load_ff, err, sizeof err) < 0
+                       : sc_rows_compute(s, pg.tty ? rows_progress : NULL, &pg, err, sizeof err) < 0)) {
             if (pg.tty) fprintf(stderr, "\r%70s\r", "");
             fprintf(stderr, PROG ": %s%s%s\n", o.load_ff ? "" : o.scene, o.load_ff ? "" : ": ", err);
             sc_destroy(s);
@@ -963,6 +988,7 @@ int main(int argc, char **argv)
     if (pg.tty) fprintf(stderr, "\r%70s\r", "");
     t_solve = now();
     sc_get_stats(s, &st);
+    solve_warnings(&o, &st);
 
     memset(&ot, 0, sizeof ot);
     ot.img = malloc((size_t)o.width * o.height * 3 * sizeof *ot.img);
@@ -1006,6 +1032,7 @@ int main(int argc, char **argv)
         else if (o.gauss_seidel) printf("shots 0  gauss-seidel sweeps %d  saturations %lu\n", work, st.saturations);
         else printf("shots %d  unshot fraction %.6f  saturations %lu\n", work, st.unshot, st.saturations);
         printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", so.res, st.raster_calls, st.raster_pixels);
+        printf("overshoot back-offs %lu, %s\n", st.backoffs, st.converged ? "converged" : "not converged");
         if (rows_mode) {
             sc_get_rows_stats(s, &rst);
             printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n", rst.rows,
