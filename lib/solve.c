@@ -74,11 +74,15 @@ static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const
     return amb[c] < 0 ? -over : over;
 }
 
-/* The ambient radiosity to overshoot by: 0 when shooting plainly. */
-static void shot_ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+/* The ambient radiosity to overshoot by: 0 when shooting plainly. Returns how often
+ * the estimate was clamped: not counted in stats.saturations, since the solution is
+ * unharmed (the debt is what was shot), but a sign that the estimate is too high. */
+static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb)
 {
+    uint32_t sat = 0;
     amb[0] = amb[1] = amb[2] = 0;
-    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, sat);
+    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, &sat);
+    return sat;
 }
 
 /* The patch whose shot moves the most power (its unshot power plus the overshoot, in
@@ -105,23 +109,43 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     return best;
 }
 
+/* The net unshot power: each channel's signed sum over the patches, in magnitude,
+ * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
+ * rho F the part of the shot that the scene reflects back, so plainly shot it falls
+ * from the emitted power towards 0; overshot by an estimate the scene does return, it
+ * still stays within the emitted power (measured at most 0.991 of it, closed boxes of
+ * reflectance 0.5 to 0.9999 and the bundled scenes). */
+static rad_energy_t net_unshot(const rad_scene_t *s)
+{
+    rad_energy_t net[3] = {0, 0, 0};
+    uint32_t p, c;
+    for (p = 0; p < s->n_patches; p++)
+        for (c = 0; c < 3; c++) net[c] = rad__esum(net[c], s->pools.patches[p].unshot[c]);
+    return rad__esum(rad__esum(rad__eabs(net[0]), rad__eabs(net[1])), rad__eabs(net[2]));
+}
+
 /* Overshooting's estimate of the power coming back, the ambient term, assumes that
- * every reflection stays in the scene. Where light escapes (an open box), or where the
- * ambient term's rounding (a step of 2^-16 / (1 - mean reflectance)) is larger than
- * what is left, the estimate owes more than will ever arrive, the debts are shot back
- * as negative power, overshot again, and the unshot total grows or circles instead of
- * falling. Watched at every selection: when the total has not fallen below its lowest
- * value for a window of 4 shots a patch (+ 64), or when anything saturated since the
- * last selection, the overshoot is halved (stats.backoffs) and the watch starts again
- * from the present total; after OVER_STOP halvings shots are plain, whose total never
- * grows. The window is twice the longest wait measured where overshooting works (a
- * closed box of reflectance 0.995: 289 selections at 144 patches), so on such scenes
- * it never triggers and the bits are those of the unwatched solve. Returns 1 when it
- * backed off. */
-static int back_off(rad_scene_t *s, rad_energy_t total)
+ * every reflection stays in the scene. Where light escapes (a bright open box), the
+ * estimate owes far more than will arrive, the debts are shot back as negative power,
+ * overshot again, and the unshot power swings ever wider; where the ambient term's
+ * rounding (a step of 2^-16 / (1 - mean reflectance)) is larger than what is left, two
+ * shots undo each other for ever. Watched at every selection, the overshoot is halved
+ * (stats.backoffs, and the watch starts again from here) when
+ *   - the net unshot power exceeds twice the emitted power, or twice its value at the
+ *     last back-off (the swing; a working estimate stays within 1x, see net_unshot),
+ *   - anything saturated since the last selection, CLAMPED included (the ambient term
+ *     clamped, not counted in stats: the estimate beyond any radiosity),
+ * and overshooting stops at once (OVER_STOP) when the unshot total has not fallen
+ * below its lowest value for 4 selections a patch + 64 (the circle: twice the longest
+ * wait measured where overshooting works, a closed box of reflectance 0.995, 289
+ * selections at 144 patches). Plain shots never make the total grow. None of these
+ * triggers on the bundled scenes or on closed boxes up to 0.999, whose bits are those
+ * of the unwatched solve. Returns 1 when it backed off. */
+static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
 {
     uint32_t window = s->n_patches < (1u << 28) ? 4u * s->n_patches + 64u : UINT32_MAX;
-    int saturated = s->stats.saturations != s->over_sat;
+    int saturated = clamped || s->stats.saturations != s->over_sat, grown;
+    rad_energy_t net;
     s->over_sat = s->stats.saturations;
     if ((s->cfg.flags & RAD_NO_OVERSHOOT) || s->over_halvings >= OVER_STOP) return 0;
     if (total < s->over_low) {
@@ -130,22 +154,27 @@ static int back_off(rad_scene_t *s, rad_energy_t total)
     } else if (s->over_wait < UINT32_MAX) {
         s->over_wait++;
     }
-    if (!saturated && s->over_wait < window) return 0;
-    s->over_halvings++;
+    net = net_unshot(s);
+    grown = net > rad__esum(s->over_net, s->over_net);
+    if (!saturated && !grown && s->over_wait < window) return 0;
+    s->over_halvings = grown || saturated ? s->over_halvings + 1u : OVER_STOP;
     s->stats.backoffs++;
     s->over_low = total;
     s->over_wait = 0;
+    if (net > s->over_net) s->over_net = net;
     return 1;
 }
 
-/* Starts the watch when a solve starts (after rad_init or rad_restart). */
+/* Starts the watch before the first shot (rad_init and rad_restart zero the count;
+ * computing rows sets s->solving but shoots nothing). */
 static void start_solving(rad_scene_t *s)
 {
-    if (!s->solving) {
+    if (s->stats.shots == 0) {
         s->over_low = RAD__ESUM;
         s->over_wait = 0;
         s->over_sat = s->stats.saturations;
         s->over_halvings = 0;
+        s->over_net = s->emitted;
     }
     s->solving = 1;
 }
@@ -155,9 +184,9 @@ static void start_solving(rad_scene_t *s)
 static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p;
-    shot_ambient(s, amb, &s->stats.saturations);
+    int clamped = shot_ambient(s, amb) != 0;
     p = select_shooter(s, amb, total);
-    if (p != RAD_INDEX_NONE && back_off(s, *total)) p = select_shooter(s, amb, total);
+    if (p != RAD_INDEX_NONE && back_off(s, *total, clamped)) p = select_shooter(s, amb, total);
     return p;
 }
 
@@ -290,7 +319,7 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
     for (k = 0; k < nparts; k++)
         if (!bufs[k]) return RAD_ERR_ARG;
     rad__cube_merge(s, bufs, nparts);
-    shot_ambient(s, amb, &s->stats.saturations);
+    shot_ambient(s, amb);
     shoot_patch(s, patch, amb, 0, 0);
     return 1;
 }

@@ -183,9 +183,10 @@ typedef struct {
  * fraction of 0.01: 562 against 929). RAD_NO_OVERSHOOT shoots the unshot power alone,
  * as Cohen et al. 1988: then the unshot total never grows. The estimate assumes that
  * every reflection stays in the scene; where it proves too high (light escaping a
- * bright open scene: the unshot total stops falling, or a value saturates), the
- * overshoot is halved, each time counted in rad_stats_t.backoffs, down to plain
- * shooting after 16 halvings. */
+ * bright open scene: the net unshot power swings beyond twice the emitted, or a value
+ * saturates), the overshoot is halved, down to plain shooting after 16 halvings, and
+ * where the unshot total stops falling (4 shots a patch + 64 without a new lowest),
+ * shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
@@ -213,8 +214,9 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
-    /* overshooting's back-off (lib/solve.c), reset when a solve starts */
+    /* overshooting's back-off (lib/solve.c), reset before the first shot */
     rad_energy_t over_low;  /* lowest unshot total since the last back-off */
+    rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
     uint32_t over_wait;     /* shooter selections since over_low was lowered */
     uint32_t over_sat;      /* stats.saturations at the last selection */
     uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */

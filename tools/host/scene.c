@@ -26,6 +26,7 @@ struct sc_solver {
     double scale, off[3], escale;
     double escale0;             /* escale of the scene as built */
     double epeak;               /* the brightest emission escale maps to the core's peak */
+    double core_peak;           /* that peak (emit_peak) */
     int skipped, split, clamped;
     /* stored form factors */
     rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
@@ -104,11 +105,20 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
 }
 
+/* The core's peak emission for a scene whose brightest reflectance is RHO: radiosity
+ * reaches E / (1 - rho) in a closed scene, kept below 8192 of the core's 32768 by
+ * lowering the peak when rho > 0.96875 (below that, CORE_EMIT_PEAK). */
+static double emit_peak(double rho)
+{
+    double room = 8192.0 * (1.0 - (rho < RHO_MAX ? rho : RHO_MAX));
+    return room < CORE_EMIT_PEAK ? room : CORE_EMIT_PEAK;
+}
+
 static rad_real_t emit_ch(struct sc_solver *h, double e)
 {
     /* Emissions so small that 256 / peak overflows still scale by their ratio to the
      * peak (results in caller units then underflow to 0). */
-    double v = isfinite(h->escale) ? e * h->escale : e / h->epeak * CORE_EMIT_PEAK;
+    double v = isfinite(h->escale) ? e * h->escale : e / h->epeak * h->core_peak;
     return RAD_REAL(v > 4096.0 ? 4096.0 : v);
 }
 
@@ -160,7 +170,7 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
 static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *err, size_t errlen)
 {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    double half = 0.0, emax = 0.0;
+    double half = 0.0, emax = 0.0, rmax = 0.0;
     int i, k, a;
     for (i = 0; i < n; i++) {
         if (polys[i].n != 3 && polys[i].n != 4) {
@@ -184,6 +194,7 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
                 return -1;
             }
             if (e > emax) emax = e;
+            if (r > rmax) rmax = r;
         }
     }
     for (a = 0; a < 3; a++) {
@@ -200,7 +211,8 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
         return -1;
     }
     h->epeak = emax;
-    h->escale = h->escale0 = emax > 0.0 ? CORE_EMIT_PEAK / emax : 1.0;
+    h->core_peak = emit_peak(rmax);
+    h->escale = h->escale0 = emax > 0.0 ? h->core_peak / emax : 1.0;
     return 0;
 }
 
@@ -842,13 +854,18 @@ int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double
  * however dim it is. Results map back through the same scale. */
 void sc_restart(sc_solver *h)
 {
-    double peak = 0;
+    double peak = 0, rmax = 0;
     uint32_t i;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
+    for (i = 0; i < h->s.n_surfaces; i++) {
+        const rad_rgb_t *r = &h->s.pools.surfaces[i].reflectance;
+        rmax = fmax(rmax, fmax(RAD_TO_DOUBLE(r->r), fmax(RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b))));
+    }
+    h->core_peak = emit_peak(rmax);
     if (peak > 0) {
         h->epeak = peak;
-        h->escale = CORE_EMIT_PEAK / peak;
+        h->escale = h->core_peak / peak;
     }
     for (i = 0; i < h->s.n_surfaces; i++) {
         rad_rgb_t e;
