@@ -84,6 +84,40 @@ static double mean_radiosity(void *s, int twin)
     return sum / area;
 }
 
+/* POLYS solved in both builds to TOL with a cap of 20,000 shots, and their stats. */
+static void solve_twins(const sc_poly *polys, int n, const sc_opts *o, double tol, sc_solver **s, scf_solver **f,
+                        sc_stats *a, sc_stats *b)
+{
+    char err[256];
+    *s = sc_create(polys, n, o, NULL, NULL, err, sizeof err);
+    *f = scf_create(polys, n, o, NULL, NULL, err, sizeof err);
+    assert_non_null(*s);
+    assert_non_null(*f);
+    sc_solve(*s, 20000, tol, NULL, NULL);
+    scf_solve(*f, 20000, tol, NULL, NULL);
+    sc_get_stats(*s, a);
+    scf_get_stats(*f, b);
+}
+
+/* The bundled Cornell box as polygons (free them), tagged by index, of reflectance
+ * RHO everywhere (0: as it is). */
+static sc_poly *bundled_box(int *n, double rho)
+{
+    obj_scene sc;
+    char err[256];
+    sc_poly *p;
+    int i;
+    assert_int_equal(obj_load("examples/cornell_box.obj", &sc, NULL, NULL, err, sizeof err), 0);
+    p = obj_to_polys(&sc, n, NULL, NULL);
+    obj_free(&sc);
+    assert_non_null(p);
+    for (i = 0; i < *n; i++) {
+        if (rho > 0) p[i].rho[0] = p[i].rho[1] = p[i].rho[2] = rho;
+        p[i].tag = i;
+    }
+    return p;
+}
+
 /* Solves POLYS in both builds to 0.001 with a cap of 20,000 shots; each must end
  * converged within MAX_SHOTS, without a saturation, and the fixed solution must meet
  * the energy balance within BOUND; both means within 1% of plain shooting's (which
@@ -93,23 +127,18 @@ static void check_bright(const char *name, const sc_poly *polys, int n, const sc
 {
     char err[256];
     sc_opts plain_o = *o;
-    sc_solver *s = sc_create(polys, n, o, NULL, NULL, err, sizeof err), *plain;
-    scf_solver *f = scf_create(polys, n, o, NULL, NULL, err, sizeof err);
+    sc_solver *s, *plain;
+    scf_solver *f;
     sc_stats a, b;
     double off, absorbed, escaped, m[3];
     int plain_shots;
-    assert_non_null(s);
-    assert_non_null(f);
+    solve_twins(polys, n, o, 0.001, &s, &f, &a, &b);
     plain_o.no_overshoot = 1;
     plain = sc_create(polys, n, &plain_o, NULL, NULL, err, sizeof err);
     assert_non_null(plain);
     plain_shots = sc_solve(plain, 1000000, 1e-4, NULL, NULL);
     m[2] = mean_radiosity(plain, 0);
     sc_destroy(plain);
-    sc_solve(s, 20000, 0.001, NULL, NULL);
-    scf_solve(f, 20000, 0.001, NULL, NULL);
-    sc_get_stats(s, &a);
-    scf_get_stats(f, &b);
     off = balance(s, polys, &absorbed, &escaped);
     m[0] = mean_radiosity(s, 0);
     m[1] = mean_radiosity(f, 1);
@@ -153,48 +182,26 @@ static void test_open_box(void **st)
  * Measured at res 64: 2748 / 1723 shots, balance off by 0.001%; bounds as above. */
 static void test_cornell_998(void **st)
 {
-    obj_scene sc;
-    char err[256];
-    sc_poly *p;
     sc_opts o = {0, 0, 64, 0, 0, 0};
-    int n, i;
+    int n;
+    sc_poly *p = bundled_box(&n, 0.998);
     (void)st;
-    assert_int_equal(obj_load("examples/cornell_box.obj", &sc, NULL, NULL, err, sizeof err), 0);
-    p = obj_to_polys(&sc, &n, NULL, NULL);
-    assert_non_null(p);
-    for (i = 0; i < n; i++) {
-        p[i].rho[0] = p[i].rho[1] = p[i].rho[2] = 0.998;
-        p[i].tag = i;
-    }
     check_bright("bundled Cornell box, every Kd 0.998", p, n, &o, 6000, 0.002);
     free(p);
-    obj_free(&sc);
 }
 
 /* Where overshooting works the watch never triggers (so the bits are those of the
  * solve without it): the bundled Cornell box as it is, both builds. */
 static void test_no_backoff(void **st)
 {
-    obj_scene sc;
-    char err[256];
-    sc_poly *p;
     sc_opts o = {0, 0, 64, 0, 0, 0};
     sc_stats a, b;
     sc_solver *s;
     scf_solver *f;
     int n;
+    sc_poly *p = bundled_box(&n, 0);
     (void)st;
-    assert_int_equal(obj_load("examples/cornell_box.obj", &sc, NULL, NULL, err, sizeof err), 0);
-    p = obj_to_polys(&sc, &n, NULL, NULL);
-    assert_non_null(p);
-    s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
-    f = scf_create(p, n, &o, NULL, NULL, err, sizeof err);
-    assert_non_null(s);
-    assert_non_null(f);
-    sc_solve(s, 100000, 1e-4, NULL, NULL);
-    scf_solve(f, 100000, 1e-4, NULL, NULL);
-    sc_get_stats(s, &a);
-    scf_get_stats(f, &b);
+    solve_twins(p, n, &o, 1e-4, &s, &f, &a, &b);
     print_message("bundled Cornell box to 1e-4: %d / %d shots, back-offs %lu / %lu\n", a.shots, b.shots, a.backoffs,
                   b.backoffs);
     assert_int_equal(a.converged, 1);
@@ -204,7 +211,6 @@ static void test_no_backoff(void **st)
     sc_destroy(s);
     scf_destroy(f);
     free(p);
-    obj_free(&sc);
 }
 
 /* Capped short of its tolerance, a solve says that it did not converge. */
