@@ -105,12 +105,23 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
 }
 
-/* The core's peak emission for a scene whose brightest reflectance is RHO: radiosity
- * reaches E / (1 - rho) in a closed scene, kept below 8192 of the core's 32768 by
- * lowering the peak when rho > 0.96875 (below that, CORE_EMIT_PEAK). */
-static double emit_peak(double rho)
+/* The core's peak emission for the scene as meshed: radiosity reaches about
+ * E / (1 - rho) in a closed scene of area-weighted mean reflectance rho (each patch's
+ * brightest channel), kept below 8192 of the core's 32768 by lowering the peak when
+ * rho > 0.96875 (below that, CORE_EMIT_PEAK: a dark scene with one bright face keeps
+ * its precision). */
+static double emit_peak(const struct sc_solver *h)
 {
-    double room = 8192.0 * (1.0 - (rho < RHO_MAX ? rho : RHO_MAX));
+    double area = 0, sum = 0, room;
+    uint32_t p;
+    for (p = 0; p < h->s.n_patches; p++) {
+        const rad_patch_t *pt = &h->s.pools.patches[p];
+        const rad_rgb_t *r = &h->s.pools.surfaces[pt->surface].reflectance;
+        double a = RAD_TO_DOUBLE(pt->area);
+        area += a;
+        sum += a * fmax(RAD_TO_DOUBLE(r->r), fmax(RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b)));
+    }
+    room = area > 0 ? 8192.0 * (1.0 - sum / area) : CORE_EMIT_PEAK;
     return room < CORE_EMIT_PEAK ? room : CORE_EMIT_PEAK;
 }
 
@@ -170,7 +181,7 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
 static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *err, size_t errlen)
 {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    double half = 0.0, emax = 0.0, rmax = 0.0;
+    double half = 0.0, emax = 0.0;
     int i, k, a;
     for (i = 0; i < n; i++) {
         if (polys[i].n != 3 && polys[i].n != 4) {
@@ -194,7 +205,6 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
                 return -1;
             }
             if (e > emax) emax = e;
-            if (r > rmax) rmax = r;
         }
     }
     for (a = 0; a < 3; a++) {
@@ -211,7 +221,7 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
         return -1;
     }
     h->epeak = emax;
-    h->core_peak = emit_peak(rmax);
+    h->core_peak = CORE_EMIT_PEAK; /* lowered once meshed, if the scene is bright */
     h->escale = h->escale0 = emax > 0.0 ? h->core_peak / emax : 1.0;
     return 0;
 }
@@ -335,6 +345,10 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             if (h->s.n_elements == 0) {
                 if (!outlier(polys, n, err, errlen)) snprintf(err, errlen, "no polygon could be meshed");
                 break;
+            }
+            if (emit_peak(h) < h->core_peak) { /* a bright scene: its emissions lowered */
+                sc_restart(h);
+                h->escale0 = h->escale;
             }
             return h;
         }
@@ -854,15 +868,11 @@ int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double
  * however dim it is. Results map back through the same scale. */
 void sc_restart(sc_solver *h)
 {
-    double peak = 0, rmax = 0;
+    double peak = 0;
     uint32_t i;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
-    for (i = 0; i < h->s.n_surfaces; i++) {
-        const rad_rgb_t *r = &h->s.pools.surfaces[i].reflectance;
-        rmax = fmax(rmax, fmax(RAD_TO_DOUBLE(r->r), fmax(RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b))));
-    }
-    h->core_peak = emit_peak(rmax);
+    h->core_peak = emit_peak(h);
     if (peak > 0) {
         h->epeak = peak;
         h->escale = h->core_peak / peak;
