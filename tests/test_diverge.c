@@ -15,6 +15,9 @@
 #include "formats/obj.h"
 #include "host/obj_polys.h"
 #include "balance.h"
+#include "tmpdir.h"
+
+TMPDIR_GROUP("diverge")
 
 /* The open box of issue 19: five inward faces of [-1,1]^3 (+z missing), the floor
  * emitting 1, every face of reflectance RHO. Tags are the polygon indices. */
@@ -323,6 +326,72 @@ static void test_gauss_seidel_limit(void **st)
     sc_destroy(s);
 }
 
+/* Runs rad_cli with ARGS (shell words), its stderr into ERR; returns its exit status. */
+static int cli(const char *args, char *err, size_t n)
+{
+    char cmd[1024];
+    FILE *f;
+    size_t got;
+    snprintf(cmd, sizeof cmd, "build/rad_cli %s -o %s --width 32 --height 32 2>&1 >/dev/null", args,
+             tmp_path("out.png"));
+    f = popen(cmd, "r");
+    assert_non_null(f);
+    got = fread(err, 1, n - 1, f);
+    err[got] = 0;
+    return WEXITSTATUS(pclose(f));
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+/* rad_cli says what went wrong: the lost lamp by FILE:LINE, a capped solve not
+ * converged, the outlier vertex (exit 1). */
+static void test_cli_reports(void **st)
+{
+    char err[4096], args[512], want[400];
+    int rc;
+    (void)st;
+    if (access("build/rad_cli", X_OK) != 0) skip();
+    write_file(tmp_path("lamp.mtl"), "newmtl white\nKd 0.5 0.5 0.5\nnewmtl light\nKe 100 100 100\n");
+    write_file(tmp_path("lamp.obj"), "mtllib lamp.mtl\nusemtl white\n"
+                                     "v -1000 0 -1000\nv -1000 0 1000\nv 1000 0 1000\nv 1000 0 -1000\nf 1 2 3 4\n"
+                                     "usemtl light\nv 0 10 0\nv 0.001 10 0\nv 0.001 10 0.001\nv 0 10 0.001\n"
+                                     "f 8 7 6 5\n");
+    snprintf(args, sizeof args, "%s --res 16", tmp_path("lamp.obj"));
+    rc = cli(args, err, sizeof err);
+    print_message("lamp: exit %d, stderr:\n%s", rc, err);
+    snprintf(want, sizeof want, "rad_cli: warning: %s:13: skipped", tmp_path("lamp.obj"));
+    assert_int_equal(rc, 0);
+    assert_non_null(strstr(err, want));
+    assert_non_null(strstr(err, "emits light (100 100 100): its light is lost"));
+
+    write_file(tmp_path("bright.mtl"), "newmtl white\nKd 0.998 0.998 0.998\nnewmtl light\nKd 0.5 0.5 0.5\nKe 5 5 5\n");
+    write_file(tmp_path("bright.obj"), "mtllib bright.mtl\nusemtl white\n"
+                                       "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n"
+                                       "v 0 1 0\nv 0 1 -1\nv 1 1 -1\nv 1 1 0\nf 5 6 7 8\n"
+                                       "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nf 9 10 11 12\n"
+                                       "usemtl light\nv 0.4 0.99 -0.4\nv 0.4 0.99 -0.6\nv 0.6 0.99 -0.6\n"
+                                       "v 0.6 0.99 -0.4\nf 13 14 15 16\n");
+    snprintf(args, sizeof args, "%s --res 16 --max-shots 20", tmp_path("bright.obj"));
+    rc = cli(args, err, sizeof err);
+    print_message("capped: exit %d, stderr:\n%s", rc, err);
+    assert_int_equal(rc, 0);
+    assert_non_null(strstr(err, ": not converged: unshot fraction"));
+    assert_non_null(strstr(err, "after 20 shots, tolerance 0.001"));
+
+    write_file(tmp_path("far.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nv 0 0 1\nv 1 0 1\n"
+                                    "v 1e30 1 1\nf 5 6 7\n");
+    rc = cli(tmp_path("far.obj"), err, sizeof err);
+    print_message("outlier: exit %d, stderr:\n%s", rc, err);
+    assert_int_equal(rc, 1);
+    assert_non_null(strstr(err, "the scene spans 2e+30 units"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -334,6 +403,7 @@ int main(void)
         cmocka_unit_test(test_outlier_vertex),
         cmocka_unit_test(test_rows_memory),
         cmocka_unit_test(test_gauss_seidel_limit),
+        cmocka_unit_test(test_cli_reports),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
