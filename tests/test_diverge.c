@@ -326,19 +326,23 @@ static void test_gauss_seidel_limit(void **st)
     sc_destroy(s);
 }
 
-/* Runs rad_cli with ARGS (shell words), its stderr into ERR; returns its exit status. */
-static int cli(const char *args, char *err, size_t n)
+/* Runs rad_cli on the temporary file NAME with OPTS (shell words), its stderr into
+ * ERR (shown); asserts that it exits with STATUS. */
+static void cli(const char *name, const char *opts, int status, char *err, size_t n)
 {
     char cmd[1024];
     FILE *f;
     size_t got;
-    snprintf(cmd, sizeof cmd, "build/rad_cli %s -o %s --width 32 --height 32 2>&1 >/dev/null", args,
-             tmp_path("out.png"));
+    int rc;
+    snprintf(cmd, sizeof cmd, "build/rad_cli %s %s -o %s --width 32 --height 32 2>&1 >/dev/null", tmp_path(name),
+             opts, tmp_path("out.png"));
     f = popen(cmd, "r");
     assert_non_null(f);
     got = fread(err, 1, n - 1, f);
     err[got] = 0;
-    return WEXITSTATUS(pclose(f));
+    rc = WEXITSTATUS(pclose(f));
+    print_message("%s %s: exit %d, stderr:\n%s", name, opts, rc, err);
+    assert_int_equal(rc, status);
 }
 
 static void write_file(const char *path, const char *text)
@@ -353,8 +357,7 @@ static void write_file(const char *path, const char *text)
  * converged, the outlier vertex (exit 1). */
 static void test_cli_reports(void **st)
 {
-    char err[4096], args[512], want[400];
-    int rc;
+    char err[4096], want[400];
     (void)st;
     if (access("build/rad_cli", X_OK) != 0) skip();
     write_file(tmp_path("lamp.mtl"), "newmtl white\nKd 0.5 0.5 0.5\nnewmtl light\nKe 100 100 100\n");
@@ -362,11 +365,8 @@ static void test_cli_reports(void **st)
                                      "v -1000 0 -1000\nv -1000 0 1000\nv 1000 0 1000\nv 1000 0 -1000\nf 1 2 3 4\n"
                                      "usemtl light\nv 0 10 0\nv 0.001 10 0\nv 0.001 10 0.001\nv 0 10 0.001\n"
                                      "f 8 7 6 5\n");
-    snprintf(args, sizeof args, "%s --res 16", tmp_path("lamp.obj"));
-    rc = cli(args, err, sizeof err);
-    print_message("lamp: exit %d, stderr:\n%s", rc, err);
+    cli("lamp.obj", "--res 16", 0, err, sizeof err);
     snprintf(want, sizeof want, "rad_cli: warning: %s:13: skipped", tmp_path("lamp.obj"));
-    assert_int_equal(rc, 0);
     assert_non_null(strstr(err, want));
     assert_non_null(strstr(err, "emits light (100 100 100): its light is lost"));
 
@@ -377,18 +377,13 @@ static void test_cli_reports(void **st)
                                        "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nf 9 10 11 12\n"
                                        "usemtl light\nv 0.4 0.99 -0.4\nv 0.4 0.99 -0.6\nv 0.6 0.99 -0.6\n"
                                        "v 0.6 0.99 -0.4\nf 13 14 15 16\n");
-    snprintf(args, sizeof args, "%s --res 16 --max-shots 20", tmp_path("bright.obj"));
-    rc = cli(args, err, sizeof err);
-    print_message("capped: exit %d, stderr:\n%s", rc, err);
-    assert_int_equal(rc, 0);
+    cli("bright.obj", "--res 16 --max-shots 20", 0, err, sizeof err);
     assert_non_null(strstr(err, ": not converged: unshot fraction"));
     assert_non_null(strstr(err, "after 20 shots, tolerance 0.001"));
 
     write_file(tmp_path("far.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nv 0 0 1\nv 1 0 1\n"
                                     "v 1e30 1 1\nf 5 6 7\n");
-    rc = cli(tmp_path("far.obj"), err, sizeof err);
-    print_message("outlier: exit %d, stderr:\n%s", rc, err);
-    assert_int_equal(rc, 1);
+    cli("far.obj", "", 1, err, sizeof err);
     assert_non_null(strstr(err, "the scene spans 2e+30 units"));
 }
 
