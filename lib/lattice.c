@@ -171,9 +171,9 @@ static int32_t search(const int64_t *e, uint32_t n)
     return lo;
 }
 
-/* search(E, N), found by walking from cell H, the previous span's (-1: none): on
- * CornellBox-Original 81% of spans start in the previous row's cell, 17% one cell
- * away, 1.4% more than two away. The walk gives the bisection's answer when E_k does not
+/* search(E, N), found by walking from cell H, the previous span's (-1: none): most
+ * spans start in the previous row's cell or the next, few more than two away. The
+ * walk gives the bisection's answer when E_k does not
  * increase with k over [0, N - 1]: then {k : E_k >= 0} is a prefix, and both find its
  * last k (or 0). E_k's step to k + 1, e1 + (2 k + 1) e2, is linear in k, so two ends
  * check that. Otherwise, and past two cells, the bisection: the result never depends
@@ -298,7 +298,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
  * numbers them (up patches, then down patches; in each, rows of up and down elements).
  * l - x - y is 0 or 1 inside the lattice; at pixels the outline covers but the
  * quantised lattice misses (a tenth of a pixel wide) it is down to minus the elements
- * that fit across that strip: -30 measured with elements of 1/300 pixel. Past -128
+ * that fit across that strip: -30 with elements of 1/300 pixel. Past -128
  * (elements under 1/1000 pixel) it wraps, which only moves such a pixel to the other
  * element of its cell. */
 static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)

@@ -112,9 +112,10 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
 /* The net unshot power: each channel's signed sum over the patches, in magnitude,
  * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
  * rho F the part of the shot that the scene reflects back, so plainly shot it falls
- * from the emitted power towards 0; overshot by an estimate the scene does return, it
- * still stays within the emitted power (measured at most 0.991 of it, closed boxes of
- * reflectance 0.5 to 0.9999 and the bundled scenes). */
+ * from the emitted power towards 0. Overshot, u carries the debt too; when the scene
+ * returns what the estimate says, the sum still only shrinks, but an estimate far
+ * above the return (1 - rho F near 1 on a debt that rho F never repays) throws it
+ * past 0 to the other side, further each time. */
 static rad_energy_t net_unshot(const rad_scene_t *s)
 {
     rad_energy_t net[3] = {0, 0, 0};
@@ -136,11 +137,11 @@ static rad_energy_t net_unshot(const rad_scene_t *s)
  *   - anything saturated since the last selection, CLAMPED included (the ambient term
  *     clamped, not counted in stats: the estimate beyond any radiosity),
  * and overshooting stops at once (OVER_STOP) when the unshot total has not fallen
- * below its lowest value for 4 selections a patch + 64 (the circle: twice the longest
- * wait measured where overshooting works, a closed box of reflectance 0.995, 289
- * selections at 144 patches). Plain shots never make the total grow. None of these
- * triggers on the bundled scenes or on closed boxes up to 0.999, whose bits are those
- * of the unwatched solve. Returns 1 when it backed off. */
+ * below its lowest value for 4 selections a patch + 64 (the circle; twice the longest
+ * wait of a bright closed box, whose first shots raise the total before it falls).
+ * Plain shots never make the total grow. Where overshooting works none of these
+ * triggers, so the bits are those of the solve without the watch. Returns 1 when it
+ * backed off. */
 static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
 {
     uint32_t window = s->n_patches < (1u << 28) ? 4u * s->n_patches + 64u : UINT32_MAX;
@@ -193,7 +194,7 @@ static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *tota
 /* Element E receives power F * U (per channel) from a shooter. The channels are worked
  * out before anything is stored, and saturations counted locally: a store to the
  * element or to the counter could otherwise alias the next channel's inputs, which kept
- * the channels from overlapping (2% to 4% of a shot on the 23,384-element hall). */
+ * the channels from overlapping. */
 void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 {
     rad_element_t *el = &s->pools.elements[e];

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "rad/rad.h"
 
 #define GUARD 64
@@ -95,7 +96,7 @@ static void add_cube_with(rad_scene_t *s, const rad_rgb_t *rho, const rad_rgb_t 
 
 static void add_cube(rad_scene_t *s) { add_cube_with(s, &grey, &light); }
 
-static const rad_config_t cfg = {RAD_REAL(4.0), RAD_REAL(2.0), 32, 0, 0};
+static const rad_config_t cfg = {.max_patch = RAD_REAL(4.0), .max_element = RAD_REAL(2.0), .res = 32};
 
 static void test_init_errors(void **st)
 {
@@ -143,7 +144,9 @@ static void test_init_errors(void **st)
     assert_int_equal(s.cfg.res, 64);
     assert_int_equal(s.cfg.max_element, Q(4.0));
     assert_int_equal(s.cfg.max_patch, Q(16.0));
-    assert_true(s.band_rows > 0); /* the work buffer was sized for 32: it bands */
+    /* the work buffer was sized for 32: it bands */
+    CHECK_INT_GT(s.band_rows, 0,
+                 "rows per band at the default res 64 in a work buffer sized for 32");
     pools_check(&g);
     pools_free(&g);
 }
@@ -192,7 +195,8 @@ static void test_add_errors(void **st)
     memcpy(v, ok, sizeof v); v[2] = V(0.3, 0.3, 0);
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
     v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
-    assert_true(rad_add_polygon(&s, v, 4, NULL, NULL) < 0);
+    CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0,
+                 "rad_add_polygon of a bow-tie quad: an error");
     /* Nothing was added by any of these, except the in-range triangle above. */
     assert_int_equal(s.n_surfaces, 1);
     /* A slightly bent quad (1/200 of its side) is accepted as planar. */
@@ -225,9 +229,11 @@ static void test_full_pools(void **st)
         assert_int_equal(rc, RAD_ERR_FULL);
         assert_int_equal(s.n_surfaces, ns); assert_int_equal(s.n_patches, np);
         assert_int_equal(s.n_elements, ne); assert_int_equal(s.n_vertices, nv);
-        if (k != 0) assert_true(rad_add_polygon(&s, small, 3, &grey, NULL) >= 0);
+        if (k != 0)
+            CHECK_INT_GE(rad_add_polygon(&s, small, 3, &grey, NULL), 0,
+                         "pool %d full: a smaller polygon still goes in", k);
         /* The scene still solves. */
-        assert_true(rad_shoot(&s, 5, 0) >= 0);
+        CHECK_INT_GE(rad_shoot(&s, 5, 0), 0, "pool %d full: the scene still solves", k);
         pools_check(&g);
         pools_free(&g);
     }
@@ -240,7 +246,8 @@ static void test_calls_and_guards(void **st)
     rad_rgb_t amb, out, *vrgb, *fb;
     rad_ff_t *ff;
     uint32_t *zb, e;
-    rad_camera_t cam = {{0, 0, Q(3.9)}, {0, 0, 0}, {0, Q(1), 0}, Q(1.0)};
+    rad_camera_t cam = {.eye = {0, 0, Q(3.9)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
+                        .tan_half_fov = Q(1.0)};
     rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
     unsigned char *vb, *fbb, *zbb, *ffb;
     (void)st;
@@ -251,19 +258,22 @@ static void test_calls_and_guards(void **st)
     assert_int_equal(rad_shoot(&s, 0, 0), 0);
     assert_int_equal(rad_shoot(&s, 30, 0), 30);
     assert_int_equal(rad_add_polygon(&s, tri, 3, NULL, NULL), RAD_ERR_STATE);
-    assert_true(rad_unshot_fraction(&s) > 0 && rad_unshot_fraction(&s) < Q(1.0));
+    CHECK_INT_GT(rad_unshot_fraction(&s), 0, "unshot fraction (Q16.16) after 30 shots");
+    CHECK_INT_LT(rad_unshot_fraction(&s), Q(1.0), "unshot fraction (Q16.16) after 30 shots");
     assert_int_equal(rad_unshot_fraction(NULL), 0);
     assert_int_equal(rad_ambient(NULL, &amb), RAD_ERR_ARG);
     assert_int_equal(rad_ambient(&s, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_ambient(&s, &amb), RAD_OK);
-    assert_true(amb.r > 0);
+    CHECK_INT_GT(amb.r, 0, "ambient term (red, Q16.16) of a lit grey cube");
     assert_int_equal(rad_element_radiosity(&s, s.n_elements, 0, &out), RAD_ERR_ARG);
     assert_int_equal(rad_element_radiosity(&s, 0, 0, NULL), RAD_ERR_ARG);
     for (e = 0; e < s.n_elements; e++) {
         rad_rgb_t a;
         assert_int_equal(rad_element_radiosity(&s, e, 0, &out), RAD_OK);
         assert_int_equal(rad_element_radiosity(&s, e, RAD_SHADE_AMBIENT, &a), RAD_OK);
-        assert_true(a.r >= out.r); /* the ambient term only adds */
+        CHECK_INT_GE(a.r, out.r,
+                     "element %u: red with the ambient term against without (it only adds)",
+                     (unsigned)e);
     }
     vb = galloc(s.n_vertices * sizeof *vrgb);
     vrgb = (rad_rgb_t *)vb;
@@ -286,7 +296,8 @@ static void test_calls_and_guards(void **st)
         c2 = cam; c2.tan_half_fov = 0;
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
     }
-    assert_true(rad_render(&s, vrgb, &cam, fb, zb, 40, 30) > 0);
+    CHECK_INT_GT(rad_render(&s, vrgb, &cam, fb, zb, 40, 30), 0,
+                 "triangles drawn from inside the cube");
     gcheck(fbb, 40 * 30 * sizeof *fb);
     gcheck(zbb, 40 * 30 * sizeof *zb);
     ffb = galloc(s.n_elements * sizeof *ff);
@@ -340,10 +351,10 @@ static void test_restart_relight(void **st)
     rad_restart(&t);
     assert_int_equal(rad_shoot(&s, 60, 0), 60);
     assert_int_equal(rad_shoot(&t, 60, 0), 60);
-    assert_true(checksum(&s) == checksum(&t));
+    assert_int_equal(checksum(&s), checksum(&t));
     /* Blue light only: no red or green anywhere. */
     assert_int_equal(s.pools.elements[0].radiosity.r, 0);
-    assert_true(s.pools.elements[0].radiosity.b > 0);
+    CHECK_INT_GT(s.pools.elements[0].radiosity.b, 0, "element 0's blue under the blue light");
     pools_check(&a);
     pools_free(&a);
     pools_free(&b);
@@ -361,7 +372,7 @@ static void test_saturation_counted(void **st)
      * 4096 / (1 - 65535/65536), far past the Q16.16 limit of 32768: clamped, counted. */
     add_cube_with(&s, &white, &hot);
     rad_shoot(&s, 2000, 0);
-    assert_true(s.stats.saturations > 0);
+    CHECK_INT_GT(s.stats.saturations, 0, "saturations counted past the Q16.16 limit");
     assert_int_equal(s.pools.elements[0].radiosity.r, INT32_MAX);
     pools_check(&g);
     pools_free(&g);
@@ -388,17 +399,22 @@ static void test_overshoot_debt(void **st)
         assert_int_equal(rad_shoot(&s, 1, 0), 1);
         for (ch = 0; ch < 3; ch++) {
             rad_energy_t u = s.pools.patches[shooter].unshot[ch];
-            if (k) assert_true(u == 0);
-            else assert_true(u < 0); /* a closed grey cube: the ambient term is > 0 */
+            if (k) CHECK_INT_EQ(u, 0, "the plain shooter's unshot power, channel %d", ch);
+            else /* a closed grey cube: the ambient term is > 0 */
+                CHECK_INT_LT(u, 0, "the overshooting shooter's unshot power (owed), channel %d",
+                             ch);
         }
         for (p = 0; p < s.n_patches; p++)
             for (ch = 0; ch < 3; ch++) sum += fabs((double)s.pools.patches[p].unshot[ch]);
-        assert_true(fabs(sum / (double)s.emitted * 65536.0 - rad_unshot_fraction(&s)) <= 1.0);
+        CHECK_NEAR(sum / (double)s.emitted * 65536.0, rad_unshot_fraction(&s), 1.0,
+                   "unshot fraction (Q16.16) against the sum of |unshot| over the emitted power");
         /* Whatever is owed, nothing is displayed below black. */
         for (e = 0; e < s.n_elements; e++) {
             rad_rgb_t b;
             assert_int_equal(rad_element_radiosity(&s, e, RAD_SHADE_AMBIENT, &b), RAD_OK);
-            assert_true(b.r >= 0 && b.g >= 0 && b.b >= 0);
+            CHECK_INT_GE(b.r, 0, "element %u: displayed red", (unsigned)e);
+            CHECK_INT_GE(b.g, 0, "element %u: displayed green", (unsigned)e);
+            CHECK_INT_GE(b.b, 0, "element %u: displayed blue", (unsigned)e);
         }
         pools_check(&g);
         pools_free(&g);
@@ -434,14 +450,17 @@ static void test_dirty_buffers(void **st)
                 assert_int_equal(rad_shot_begin(&s, 0, &p), 1);
                 for (part = 0; part < PARTS; part++) {
                     memset(bufs[part], 0xA5, bytes);
-                    assert_true(rad_shot_part(&s, p, part, PARTS, bufs[part], bytes) >= 0);
+                    CHECK_INT_GE(rad_shot_part(&s, p, part, PARTS, bufs[part], bytes), 0,
+                                 "rad_shot_part %u of %d", part, PARTS);
                 }
                 assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), 1);
             }
             for (part = 0; part < PARTS; part++) free(bufs[part]);
         }
         n = s.n_elements;
-        assert_true(n > 6 && n <= NE); /* a lattice on every face, not one element each */
+        /* a lattice on every face, not one element each */
+        CHECK_INT_GT(n, 6, "elements of the cube");
+        CHECK_INT_LE(n, NE, "elements of the cube");
         for (e = 0; e < n; e++) {
             const rad_rgb_t *b = &s.pools.elements[e].radiosity;
             if (k == 0) want[e] = *b;

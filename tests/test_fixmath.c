@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "scalar.h" /* the fixed build's shim (RAD_FLOAT is 0 here) */
 
 /* The exact reference for 64x32-bit products (GCC and Clang on 64-bit hosts). */
@@ -36,8 +37,9 @@ static void test_isqrt(void **st)
         uint64_t v = i < sizeof t / sizeof t[0] ? t[i] : rnd() >> (rnd() % 64);
         uint64_t r = rad__isqrt64(v);
         /* floor(sqrt(v)) exactly: r^2 <= v < (r+1)^2, in 128 bits. */
-        assert_true((u128)r * r <= v);
-        assert_true((u128)(r + 1) * (r + 1) > v);
+        CHECK_THAT((u128)r * r <= v && (u128)(r + 1) * (r + 1) > v,
+                   "rad__isqrt64(%llu) = %llu: not floor(sqrt(v))", (unsigned long long)v,
+                   (unsigned long long)r);
     }
 }
 
@@ -50,10 +52,12 @@ static void test_shr_and_div_round(void **st)
             int64_t a = (int64_t)edges[i] * 4096 + edges[j];
             double want = a / 65536.0;
             /* Round half away from zero: within half a unit of the exact quotient. */
-            assert_true(fabs((double)rad__shr_round(a, 16) - want) <= 0.5);
+            CHECK_NEAR((double)rad__shr_round(a, 16), want, 0.5, "rad__shr_round(%lld, 16)",
+                       (long long)a);
             if (edges[j] != 0) {
                 double wq = (double)a / edges[j];
-                assert_true(fabs((double)rad__div_round(a, edges[j]) - wq) <= 0.5 + 1e-9);
+                CHECK_NEAR((double)rad__div_round(a, edges[j]), wq, 0.5 + 1e-9,
+                           "rad__div_round(%lld, %ld)", (long long)a, (long)edges[j]);
             }
         }
 }
@@ -69,9 +73,12 @@ static void test_dot_cross_mul(void **st)
             rad_vec3_t b = {edges[j], -edges[(i * 3) % NEDGES], edges[i]};
             double d = q(a.x) * q(b.x) + q(a.y) * q(b.y) + q(a.z) * q(b.z);
             /* One rounding of the exact int64 sum: within half an LSB. */
-            assert_true(fabs(q(rad__dot(a, b)) - d) <= 0.5 / 65536.0 + 1e-12);
+            CHECK_NEAR(q(rad__dot(a, b)), d, 0.5 / 65536.0 + 1e-12, "rad__dot, edge values %u, %u",
+                       (unsigned)i, (unsigned)j);
             if (fabs(q(edges[i]) * q(edges[j])) < 32767.0) {
-                assert_true(fabs(q(rad__mul(edges[i], edges[j], &sat)) - q(edges[i]) * q(edges[j])) <= 0.5 / 65536.0 + 1e-12);
+                CHECK_NEAR(q(rad__mul(edges[i], edges[j], &sat)), q(edges[i]) * q(edges[j]),
+                           0.5 / 65536.0 + 1e-12, "rad__mul(%ld, %ld)", (long)edges[i],
+                           (long)edges[j]);
             }
         }
     assert_int_equal(sat, 0);
@@ -100,17 +107,17 @@ static void test_unit_and_length(void **st)
         if (!v.x && !v.y && !v.z) continue;
         dx = v.x; dy = v.y; dz = v.z;
         l = sqrt(dx * dx + dy * dy + dz * dz);
-        assert_true(rad__normalize(v, &u));
+        CHECK_INT_NE(rad__normalize(v, &u), 0, "rad__normalize of a non-zero vector");
         /* The unit vector is a correctly rounded Q16.16 of v / |v| (error < 1 LSB). */
-        assert_true(fabs(q(u.x) - dx / l) <= 1.0 / 65536.0);
-        assert_true(fabs(q(u.y) - dy / l) <= 1.0 / 65536.0);
-        assert_true(fabs(q(u.z) - dz / l) <= 1.0 / 65536.0);
+        CHECK_NEAR(q(u.x), dx / l, 1.0 / 65536.0, "unit vector x, within 1 LSB");
+        CHECK_NEAR(q(u.y), dy / l, 1.0 / 65536.0, "unit vector y, within 1 LSB");
+        CHECK_NEAR(q(u.z), dz / l, 1.0 / 65536.0, "unit vector z, within 1 LSB");
         /* The length, in the input's units, within one unit (30-bit intermediate). */
-        assert_true(fabs((double)rad__length(v) - l) <= 1.0 + l * 1e-8);
+        CHECK_NEAR((double)rad__length(v), l, 1.0 + l * 1e-8, "rad__length, within one unit");
     }
     {
         rad_vec3_t zero = {0, 0, 0}, u;
-        assert_false(rad__normalize(zero, &u));
+        CHECK_INT_EQ(rad__normalize(zero, &u), 0, "rad__normalize of the zero vector");
         assert_int_equal(rad__length(zero), 0);
     }
 }
@@ -135,9 +142,10 @@ static void test_area_normal(void **st)
         if (l < 1e-3) continue;
         /* Half the cross product's length, rounded once to Q16.16 (+ one unit of
          * the 30-bit square root). */
-        assert_true(fabs(q(rad__area_normal(a, b, &n)) - 0.5 * l) <= 1.0 / 65536.0 + l * 1e-8);
-        assert_true(fabs(q(n.x) - cx / l) <= 1.0 / 65536.0);
-        assert_true(fabs(q(n.y) - cy / l) <= 1.0 / 65536.0);
+        CHECK_NEAR(q(rad__area_normal(a, b, &n)), 0.5 * l, 1.0 / 65536.0 + l * 1e-8,
+                   "rad__area_normal's area: half the cross product, rounded once");
+        CHECK_NEAR(q(n.x), cx / l, 1.0 / 65536.0, "rad__area_normal's unit normal x, within 1 LSB");
+        CHECK_NEAR(q(n.y), cy / l, 1.0 / 65536.0, "rad__area_normal's unit normal y, within 1 LSB");
     }
 }
 
@@ -153,13 +161,16 @@ static void test_energy_ops(void **st)
         int32_t area = (int32_t)(rnd() % 0x7FFFFFFFu) + 1;
         u128 exact = ((u128)u * f + (1u << 29)) >> 30;
         /* Exactly the rounded 94-bit product, without 128-bit arithmetic. */
-        assert_true((uint64_t)rad__energy_ff((rad_energy_t)u, f) == (uint64_t)exact);
-        assert_true((uint64_t)rad__energy_refl((rad_energy_t)u, rho) == ((u * (uint64_t)rho + 32768u) >> 16));
+        assert_int_equal((uint64_t)rad__energy_ff((rad_energy_t)u, f), (uint64_t)exact);
+        assert_int_equal((uint64_t)rad__energy_refl((rad_energy_t)u, rho),
+                         (u * (uint64_t)rho + 32768u) >> 16);
         {
             double want = ldexp((double)u, 16) / area;
             rad_real_t b = rad__energy_to_rad((rad_energy_t)(u >> 2), area, &sat);
             want = ldexp((double)(u >> 2), 16) / area;
-            if (want < 2147483647.0) assert_true(fabs((double)b - want) <= 0.5 + want * 1e-15);
+            if (want < 2147483647.0)
+                CHECK_NEAR((double)b, want, 0.5 + want * 1e-15, "rad__energy_to_rad, area %ld",
+                           (long)area);
             else assert_int_equal(b, INT32_MAX);
         }
     }
@@ -187,16 +198,21 @@ static void test_projection_and_depth(void **st)
             /* A screen position in subpixels across a 2048-pixel raster, through the
              * rounded reciprocal 2^46 / d: half a subpixel of rounding plus at most
              * 0.5 num scale / 2^46 <= 2^-6 from the reciprocal. */
-            assert_true(fabs((double)rad__proj(num, rad__recip(d), 2048 * 8) - (double)num * 2048 * 8 / d) <= 0.5 + 1.0 / 64);
+            CHECK_NEAR((double)rad__proj(num, rad__recip(d), 2048 * 8), (double)num * 2048 * 8 / d,
+                       0.5 + 1.0 / 64, "rad__proj(%ld) at depth %ld, in subpixels", (long)num,
+                       (long)d);
             /* Depth w = 2^30 NEAR / d, at most 2^30 at the near plane. */
-            assert_true(fabs((double)rad__depth(rad__recip(d)) - 1073741824.0 * (256.0 / d)) <= 0.5 + 1.0 / 256);
-            assert_true(rad__depth(rad__recip(d)) <= RAD__DEPTH_ONE);
+            CHECK_NEAR((double)rad__depth(rad__recip(d)), 1073741824.0 * (256.0 / d),
+                       0.5 + 1.0 / 256, "rad__depth at depth %ld", (long)d);
+            CHECK_INT_LE(rad__depth(rad__recip(d)), RAD__DEPTH_ONE,
+                         "rad__depth at depth %ld: at most 2^30", (long)d);
         }
     for (i = 0; i < 2000; i++) {
         int32_t a = (int32_t)(rnd() % (1u << 26)) - (1 << 25), b = (int32_t)(rnd() % (1u << 26)) - (1 << 25);
         int32_t da = (int32_t)(rnd() % (1u << 25)) + 1, db = -(int32_t)(rnd() % (1u << 25));
         double want = a + (double)(b - (double)a) * da / ((double)da - db);
-        assert_true(fabs((double)rad__clip_lerp(a, b, da, db) - want) <= 0.5 + 1e-6);
+        CHECK_NEAR((double)rad__clip_lerp(a, b, da, db), want, 0.5 + 1e-6,
+                   "rad__clip_lerp(%ld, %ld, %ld, %ld)", (long)a, (long)b, (long)da, (long)db);
     }
 }
 

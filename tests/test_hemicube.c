@@ -10,6 +10,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "rad/rad.h"
 #include "reference/reference.h"
 #include "scenes.h"
@@ -28,8 +29,10 @@ static void test_table_sums_to_one(void **st)
         static rad_vec3_t vx[1];
         size_t bytes = RAD_WORK_BYTES(res[i], RAD_PIXELS_ALL(res[i]), 1);
         void *work = malloc(bytes);
-        rad_pools_t p = {sf, 1, pt, 1, el, 1, vx, 1, work, bytes};
-        rad_config_t c = {0, 0, res[i], 0, 0};
+        rad_pools_t p = {.surfaces = sf, .max_surfaces = 1, .patches = pt, .max_patches = 1,
+                         .elements = el, .max_elements = 1, .vertices = vx, .max_vertices = 1,
+                         .work = work, .work_bytes = bytes};
+        rad_config_t c = {.res = res[i]};
         rad_scene_t s;
         uint64_t sum = 0;
         uint32_t q = res[i] / 2u, k;
@@ -39,7 +42,7 @@ static void test_table_sums_to_one(void **st)
         assert_int_equal(s.band_rows, 0);
         for (k = 0; k < q * q; k++) sum += 4u * (uint64_t)s.dff_top[k] + 8u * (uint64_t)s.dff_side[k];
         /* Exactly one in Q2.30. */
-        assert_true(sum == (uint64_t)1 << 30);
+        assert_int_equal(sum, (uint64_t)1 << 30);
         /* Each entry follows the paper's formula, normalised over the discrete cube. */
         {
             double tot = 0, x, y, z;
@@ -59,8 +62,12 @@ static void test_table_sums_to_one(void **st)
                     sd = ldexp(1, 30) * z / pow(x * x + z * z + 1, 2) / tot;
                     /* Within 2 units: the floor, one unit of deficit, and the 32-bit
                      * pre-scaling of the raw values. */
-                    assert_true(fabs(s.dff_top[b * q + a] - t) <= 2.0);
-                    assert_true(fabs(s.dff_side[b * q + a] - sd) <= 2.0);
+                    CHECK_NEAR(s.dff_top[b * q + a], t, 2.0,
+                               "res %u: top face entry %u, %u (Q2.30)",
+                               res[i], (unsigned)a, (unsigned)b);
+                    CHECK_NEAR(s.dff_side[b * q + a], sd, 2.0,
+                               "res %u: side face entry %u, %u (Q2.30)",
+                               res[i], (unsigned)a, (unsigned)b);
                     if (fabs(s.dff_top[b * q + a] - t) / t > maxrel) maxrel = fabs(s.dff_top[b * q + a] - t) / t;
                 }
         }
@@ -80,11 +87,14 @@ static void test_point_to_polygon(void **st)
             double want, f64 = ref_hemicube_ff(k, 64, twin, &want), f256 = ref_hemicube_ff(k, 256, twin, &want);
             print_message("%s receiver %d: analytic %.5f  res64 %.5f (%+.3f%%)  res256 %.5f (%+.3f%%)\n",
                           twin ? "float" : "fixed", k, want, f64, 100 * (f64 / want - 1), f256, 100 * (f256 / want - 1));
-            /* The issue's bounds: 2% at 64, 0.5% at 256 (pixel aliasing along the edges
-             * shrinks as 1/res). */
+            /* 2% at 64, 0.5% at 256: pixel aliasing along the edges shrinks as 1/res. */
             if (getenv("RAD_TEST_NOASSERT")) continue;
-            assert_true(fabs(f64 / want - 1) <= 0.02);
-            assert_true(fabs(f256 / want - 1) <= 0.005);
+            CHECK_LE(fabs(f64 / want - 1), 0.02,
+                     "%s receiver %d at res 64: relative error against Lambert's contour formula",
+                     twin ? "float" : "fixed", k);
+            CHECK_LE(fabs(f256 / want - 1), 0.005,
+                     "%s receiver %d at res 256: relative error against Lambert's contour formula",
+                     twin ? "float" : "fixed", k);
         }
 }
 
@@ -94,7 +104,7 @@ static void test_point_to_polygon(void **st)
  * factor is the area-weighted mean of each patch's sum over the receiver's elements. */
 static double area_ff(const sc_poly *p, int res)
 {
-    sc_opts o = {1.0 / 16, 1.0 / 16, res, 0, 0, 0};
+    sc_opts o = {.max_patch = 1.0 / 16, .max_element = 1.0 / 16, .res = res};
     char err[256];
     sc_solver *s = sc_create(p, 2, &o, NULL, NULL, err, sizeof err);
     sc_stats stt;
@@ -129,14 +139,16 @@ static void test_catalog(void **st)
     p[1].tag = 1;
     f = area_ff(p, 128);
     print_message("opposed squares: %.5f (catalog 0.19982, %+.2f%%)\n", f, 100 * (f / 0.19982 - 1));
-    assert_true(fabs(f / 0.19982 - 1) <= 0.02);
+    CHECK_LE(fabs(f / 0.19982 - 1), 0.02,
+             "opposed unit squares: relative error against the catalog");
     /* Perpendicular unit squares sharing an edge: 0.20004. */
     p[0] = quad(0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0);
     p[1] = quad(0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0);
     p[1].tag = 1;
     f = area_ff(p, 128);
     print_message("perpendicular squares: %.5f (catalog 0.20004, %+.2f%%)\n", f, 100 * (f / 0.20004 - 1));
-    assert_true(fabs(f / 0.20004 - 1) <= 0.02);
+    CHECK_LE(fabs(f / 0.20004 - 1), 0.02,
+             "perpendicular unit squares: relative error against the catalog");
 }
 
 /* ---- closed scenes, banding, occlusion -------------------------------------------- */
@@ -144,7 +156,7 @@ static void test_catalog(void **st)
 static void test_closed_box_rows(void **st)
 {
     sc_poly p[12];
-    sc_opts o = {0.5, 0.25, 64, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 64};
     char err[256];
     int n = box(p, -1, -1, -1, 1, 1, 1, 1), pt, e, twin;
     (void)st;
@@ -164,8 +176,10 @@ static void test_closed_box_rows(void **st)
             for (e = 0; e < stt.elements; e++) sum += ff[e];
             /* Every pixel sees some element, so the row is the table's sum: 1 within
              * float rounding (exactly 1 in fixed point). */
-            assert_true(fabs(sum - 1) <= 1e-4);
-            if (!twin) assert_true(sum == 1.0);
+            CHECK_NEAR(sum, 1, 1e-4, "%s: patch %d's row sum in a closed box",
+                       twin ? "float" : "fixed",
+                       pt);
+            if (!twin) CHECK_EQ(sum, 1.0, "fixed: patch %d's row sum in a closed box", pt);
         }
         free(ff);
         if (twin) scf_destroy(s); else sc_destroy(s);
@@ -184,13 +198,13 @@ static void test_bands_bit_exact(void **st)
     for (i = 0; i < n; i++) set_mat(&p[i], 0.6, 0.5, 0.4, 0, 0, 0);
     set_mat(&p[1], 0.5, 0.5, 0.5, 1, 1, 1);
     for (b = 0; b < 5; b++) {
-        sc_opts o = {0.5, 0.25, 32, bands[b], 0, 0};
+        sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32, .band_rows = bands[b]};
         sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
         assert_non_null(s);
-        assert_true(sc_solve(s, 100, 0, NULL, NULL) == 100);
+        CHECK_INT_EQ(sc_solve(s, 100, 0, NULL, NULL), 100, "shots with %d band rows", bands[b]);
         /* Rendering one band of rows at a time changes nothing: same bits. */
         if (b == 0) ref = sc_checksum(s);
-        else assert_true(sc_checksum(s) == ref);
+        else assert_int_equal(sc_checksum(s), ref);
         sc_destroy(s);
     }
 }
@@ -212,7 +226,7 @@ static void test_blocker_no_leak(void **st)
     p[n] = quad(0, 0, 1, 0, 3, 1, 3, 3, 1, 3, 0, 1); p[n++].tag = 1;
     p[n] = quad(-1, -1, 2, -1, 1, 2, 1, 1, 2, 1, -1, 2); set_mat(&p[n], 0.8, 0.8, 0.8, 0, 0, 0); p[n++].tag = 2;
     for (twin = 0; twin < 2; twin++) {
-        sc_opts o = {0.25, 0.125, 128, 0, 0, 0};
+        sc_opts o = {.max_patch = 0.25, .max_element = 0.125, .res = 128};
         sc_stats stt;
         double rgb[3], lit = 0;
         void *s = twin ? (void *)scf_create(p, n, &o, NULL, NULL, err, sizeof err)
@@ -223,12 +237,20 @@ static void test_blocker_no_leak(void **st)
         for (e = 0; e < stt.elements; e++) {
             int tag = twin ? scf_element_tag(s, e) : sc_element_tag(s, e);
             if (twin) scf_element_rgb(s, e, 0, rgb); else sc_element_rgb(s, e, 0, rgb);
-            if (tag == 2) { assert_true(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0); }
+            if (tag == 2) {
+                CHECK_EQ(rgb[0], 0, "%s: receiver element %d's red behind the blocker",
+                         twin ? "float" : "fixed", e);
+                CHECK_EQ(rgb[1], 0, "%s: receiver element %d's green behind the blocker",
+                         twin ? "float" : "fixed", e);
+                CHECK_EQ(rgb[2], 0, "%s: receiver element %d's blue behind the blocker",
+                         twin ? "float" : "fixed", e);
+            }
             if (tag == 1) lit += rgb[0];
         }
         /* The blocker is black: it reflects nothing although it is hit. */
-        assert_true(lit == 0);
-        assert_true(stt.raster_pixels > 0);
+        CHECK_EQ(lit, 0, "%s: red reflected by the black blocker", twin ? "float" : "fixed");
+        CHECK_INT_GT(stt.raster_pixels, 0, "%s: hemi-cube pixels covered",
+                     twin ? "float" : "fixed");
         if (twin) scf_destroy(s); else sc_destroy(s);
     }
 }
@@ -260,8 +282,10 @@ static void test_element_lattice(void **st)
     assert_non_null(work);
     assert_non_null(ff);
     for (k = 0; k < 3; k++) {
-        rad_pools_t p = {sf, 2, pt, NE, el, NE, vx, 2 * NE, NULL, 0};
-        rad_config_t cfg = {0, 0, RES, 0, 0};
+        rad_pools_t p = {.surfaces = sf, .max_surfaces = 2, .patches = pt, .max_patches = NE,
+                         .elements = el, .max_elements = NE, .vertices = vx,
+                         .max_vertices = 2 * NE};
+        rad_config_t cfg = {.res = RES};
         rad_scene_t s;
         rad_vec3_t v[4], shooter[4];
         rad_rgb_t one = {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)};
@@ -281,7 +305,8 @@ static void test_element_lattice(void **st)
         }
         assert_int_equal(rad_add_polygon(&s, shooter, 4, NULL, &one), 0);
         assert_int_equal(rad_add_polygon(&s, v, n, NULL, NULL), 1);
-        assert_true(sf[1].pu > 1 && sf[1].ku == 3);
+        CHECK_INT_GT(sf[1].pu, 1, "receiver %d: patches along its first side", k);
+        CHECK_INT_EQ(sf[1].ku, 3, "receiver %d: elements per patch along its first side", k);
         assert_int_equal(rad_form_factors(&s, 0, ff), (int)s.n_elements);
         for (e = sf[1].first_element; e < s.n_elements; e++) {
             sc_poly q;
@@ -306,11 +331,14 @@ static void test_element_lattice(void **st)
          * 6%, rms 2%: at 512 an element is 20 to 60 pixels across, and an edge
          * parallel to the pixel grid (the wall's vertical lines on the side faces,
          * which no turn of the cube about its normal tilts) is off by up to half a
-         * pixel all along: up to 1/20 for two such edges (measured 4.9% and 1.4%;
-         * drawing every element as its own polygon measured 2.3% and 1.1%). */
-        assert_true(fabs(sum / want - 1) <= 0.001);
-        assert_true(worst <= 0.06);
-        assert_true(sqrt(s2 / sf[1].n_elements) <= 0.02);
+         * pixel all along: up to 1/20 for two such edges. */
+        CHECK_LE(fabs(sum / want - 1), 0.001,
+                 "receiver %d: the whole's relative error against Lambert's contour formula", k);
+        CHECK_LE(worst, 0.06,
+                 "receiver %d: the worst element's relative error against Lambert's formula",
+                 k);
+        CHECK_LE(sqrt(s2 / sf[1].n_elements), 0.02,
+                 "receiver %d: rms relative error of the elements against Lambert's formula", k);
     }
     free(ff);
     free(work);

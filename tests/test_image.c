@@ -16,6 +16,7 @@
 
 #include <cmocka.h>
 
+#include "check.h"
 #include "formats/image.h"
 #include "bench/plot.h"
 
@@ -108,7 +109,7 @@ static unsigned char *slurp(const char *path, long *n)
     unsigned char *buf;
     assert_non_null(fp);
     *n = file_size(path);
-    assert_true(*n > 0);
+    CHECK_INT_GT(*n, 0, "size of %s", path);
     buf = malloc((size_t)*n);
     assert_non_null(buf);
     assert_int_equal(fread(buf, 1, (size_t)*n, fp), (size_t)*n);
@@ -181,7 +182,8 @@ static void test_png_roundtrip(void **state)
     unsigned char *f;
     roundtrip(t, "a.png");
     f = slurp(in_dir(t, "a.png"), &n);
-    assert_true(n > 8 && memcmp(f, "\x89PNG\r\n\x1a\n", 8) == 0);
+    CHECK_INT_GT(n, 8, "bytes of a.png");
+    assert_memory_equal(f, "\x89PNG\r\n\x1a\n", 8);
     free(f);
 }
 
@@ -245,7 +247,7 @@ static void test_invalid_sizes(void **state)
     for (i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         err[0] = '\0';
         assert_int_equal(img_write(in_dir(t, "s.png"), rgb, sizes[i][0], sizes[i][1], err, sizeof err), -1);
-        assert_non_null(strstr(err, "invalid image size"));
+        CHECK_CONTAINS(err, "invalid image size", "the error message");
         assert_int_equal(img_write(in_dir(t, "s.ppm"), rgb, sizes[i][0], sizes[i][1], NULL, 0), -1);
     }
     assert_int_equal(img_write(in_dir(t, "s.png"), NULL, 1, 1, err, sizeof err), -1);
@@ -273,17 +275,18 @@ static void test_unwritable_path(void **state)
     make_image(rgb);
     snprintf(p, sizeof p, "%s/missing/x.png", t->dir);
     assert_int_equal(img_write(p, rgb, W, H, err, sizeof err), -1);
-    assert_true(strncmp(err, p, strlen(p)) == 0 && strchr(err, '\n') == NULL);
-    assert_non_null(strstr(err, "No such file"));
+    CHECK_THAT(strncmp(err, p, strlen(p)) == 0, "the error \"%s\" starts with the path %s", err, p);
+    CHECK_THAT(strchr(err, '\n') == NULL, "the error \"%s\" is one line", err);
+    CHECK_CONTAINS(err, "No such file", "the error message");
     assert_int_equal(count_entries(t->dir), 0);
 
     /* A directory in the way fails only at the rename: the temporary must be gone. */
     assert_int_equal(mkdir(in_dir(t, "d.ppm"), 0700), 0);
     err[0] = '\0';
     assert_int_equal(img_write(in_dir(t, "d.ppm"), rgb, W, H, err, sizeof err), -1);
-    assert_true(err[0] != '\0');
+    CHECK_INT_NE(err[0], '\0', "the error message's first character");
     assert_int_equal(count_entries(t->dir), 1);
-    assert_false(has_tmp_file(t->dir));
+    CHECK_THAT(!has_tmp_file(t->dir), "no temporary file left in %s", t->dir);
     assert_int_equal(count_entries(in_dir(t, "d.ppm")), 0);
 
     if (geteuid() != 0) {   /* root ignores directory permissions */
@@ -311,7 +314,7 @@ static void test_overwrite_atomic(void **state)
     assert_int_equal(stat(p, &st1), 0);
     assert_int_equal(img_write(p, b, 3, 2, err, sizeof err), 0);
     assert_int_equal(stat(p, &st2), 0);
-    assert_true(st1.st_ino != st2.st_ino);        /* replaced by rename, not rewritten in place */
+    assert_int_not_equal(st1.st_ino, st2.st_ino); /* replaced by rename, not rewritten in place */
     assert_int_equal(st2.st_mode & 0777, 0640);   /* the replaced file's mode is kept */
     assert_int_equal(count_entries(t->dir), 1);
     assert_int_equal(img_read(p, &im, err, sizeof err), 0);
@@ -323,7 +326,8 @@ static void test_overwrite_atomic(void **state)
     /* A failed write leaves the existing file exactly as it was. */
     assert_int_equal(img_write(p, b, 0, 2, err, sizeof err), -1);
     assert_int_equal(stat(p, &st1), 0);
-    assert_true(st1.st_ino == st2.st_ino && st1.st_size == st2.st_size);
+    assert_int_equal(st1.st_ino, st2.st_ino);
+    assert_int_equal(st1.st_size, st2.st_size);
     assert_int_equal(count_entries(t->dir), 1);
 }
 
@@ -357,7 +361,11 @@ static void truncations(tmpdir *t, const char *name)
         assert_int_equal(img_read(in_dir(t, "cut"), &im, err, sizeof err), -1);
         assert_null(im.rgb);
         assert_int_equal(im.w, 0);
-        assert_true(strncmp(err, t->path, strlen(t->path)) == 0 && strlen(err) > strlen(t->path) + 2);
+        CHECK_THAT(strncmp(err, t->path, strlen(t->path)) == 0,
+                   "%s cut at %ld bytes: the error \"%s\" starts with the path", name, k, err);
+        CHECK_INT_GT(strlen(err), strlen(t->path) + 2,
+                     "%s cut at %ld bytes: length of the error \"%s\"",
+                     name, k, err);
     }
     spit(in_dir(t, "cut"), full, (size_t)n);     /* and the whole file still reads */
     assert_int_equal(img_read(in_dir(t, "cut"), &im, err, sizeof err), 0);
@@ -384,10 +392,10 @@ static void test_ppm_header(void **state)
 
     spit(in_dir(t, "d.ppm"), "P6\n1 1\n65535\n\0\0\0\0\0\0", 19);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "maxval"));
+    CHECK_CONTAINS(err, "maxval", "the error message");
     spit(in_dir(t, "e.ppm"), "P3\n1 1\n255\n0 0 0\n", 17);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "not a PNG or binary PPM"));
+    CHECK_CONTAINS(err, "not a PNG or binary PPM", "the error message");
     spit(in_dir(t, "f.ppm"), "P6\n0 1\n255\n", 11);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
     spit(in_dir(t, "g.ppm"), "P6\n99999999999 1\n255\n", 21);
@@ -395,7 +403,7 @@ static void test_ppm_header(void **state)
     spit(in_dir(t, "h.ppm"), "P6\n-1 1\n255\n", 12);
     assert_int_equal(img_read(t->path, &im, err, sizeof err), -1);
     assert_int_equal(img_read(in_dir(t, "absent.png"), &im, err, sizeof err), -1);
-    assert_non_null(strstr(err, "No such file"));
+    CHECK_CONTAINS(err, "No such file", "the error message");
     assert_null(im.rgb);
 }
 
@@ -412,7 +420,7 @@ static void raw_png(const char *path, int w, int h, int depth, int ctype, int in
     int y;
     assert_non_null(fp);
     assert_non_null(info);
-    assert_true(h <= 8);
+    CHECK_INT_LE(h, 8, "rows of the test PNG");
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_write_struct(&png, &info);
         fclose(fp);
@@ -507,17 +515,19 @@ static void test_srgb_encode(void **state)
     static const double pts[] = {0.0, 0.0031308, 0.5, 1.0, 0.001, 0.0031309, 0.18, 0.999};
     size_t i;
     (void)state;
-    assert_true(srgb_encode(0.0) == 0.0);
-    assert_true(srgb_encode(1.0) == 1.0);
-    assert_true(fabs(srgb_encode(0.0031308) - 0.040449936) < 1e-12);
-    assert_true(fabs(srgb_encode(0.5) - 0.7353569830524495) < 1e-12);
+    CHECK_EQ(srgb_encode(0.0), 0.0, "srgb_encode(0)");
+    CHECK_EQ(srgb_encode(1.0), 1.0, "srgb_encode(1)");
+    CHECK_LT(fabs(srgb_encode(0.0031308) - 0.040449936), 1e-12, "srgb_encode(0.0031308): error");
+    CHECK_LT(fabs(srgb_encode(0.5) - 0.7353569830524495), 1e-12, "srgb_encode(0.5): error");
     for (i = 0; i < sizeof pts / sizeof pts[0]; i++)
-        assert_true(fabs(srgb_encode(pts[i]) - srgb_ref(pts[i])) < 1e-12);
+        CHECK_LT(fabs(srgb_encode(pts[i]) - srgb_ref(pts[i])), 1e-12,
+                 "srgb_encode(%g): error against the standard curve", pts[i]);
     /* Both branches meet at the threshold (continuity of the standard curve). */
-    assert_true(fabs(srgb_encode(0.0031308) - (1.055 * pow(0.0031308, 1 / 2.4) - 0.055)) < 1e-6);
-    assert_true(srgb_encode(-0.5) == 0.0);
-    assert_true(srgb_encode(7.0) == 1.0);
-    assert_true(srgb_encode(NAN) == 0.0);
+    CHECK_LT(fabs(srgb_encode(0.0031308) - (1.055 * pow(0.0031308, 1 / 2.4) - 0.055)), 1e-6,
+             "srgb_encode(0.0031308): error against the power branch");
+    CHECK_EQ(srgb_encode(-0.5), 0.0, "srgb_encode(-0.5)");
+    CHECK_EQ(srgb_encode(7.0), 1.0, "srgb_encode(7)");
+    CHECK_EQ(srgb_encode(NAN), 0.0, "srgb_encode(NaN)");
 }
 
 static void test_tonemap(void **state)
@@ -564,21 +574,25 @@ static void test_auto_exposure(void **state)
     }
     for (i = 100; i < 200; i++)
         lin[i * 3] = i % 2 ? -5.0f : 0.0f;
-    assert_true(fabs(tonemap_auto_exposure(lin, 200) - 1.0 / 97.0) < 1e-12);
-    assert_true(fabs(tonemap_auto_exposure(lin, 100) - 1.0 / 97.0) < 1e-12);
-    assert_true(tonemap_auto_exposure(lin + 300, 100) == 1.0);   /* nothing lit */
-    assert_true(tonemap_auto_exposure(lin, 0) == 1.0);
+    CHECK_LT(fabs(tonemap_auto_exposure(lin, 200) - 1.0 / 97.0), 1e-12,
+             "exposure of 200 pixels: error against 1/97 (the 97th percentile maps to white)");
+    CHECK_LT(fabs(tonemap_auto_exposure(lin, 100) - 1.0 / 97.0), 1e-12,
+             "exposure of 100 pixels: error against 1/97 (the 97th percentile maps to white)");
+    CHECK_EQ(tonemap_auto_exposure(lin + 300, 100), 1.0, "exposure with nothing lit");
+    CHECK_EQ(tonemap_auto_exposure(lin, 0), 1.0, "exposure of no pixels");
     lin[0] = 0.0f, lin[1] = 4.0f, lin[2] = 1.0f;
-    assert_true(tonemap_auto_exposure(lin, 1) == 0.25);
+    CHECK_EQ(tonemap_auto_exposure(lin, 1), 0.25, "exposure of one pixel of max 4");
     /* 3% bright lights clip, the rest (0.5) maps to 1.0. */
     big = malloc(1000 * 3 * sizeof *big);
     assert_non_null(big);
     for (i = 0; i < 3000; i++)
         big[i] = (i / 3) < 970 ? 0.5f : 100.0f;
-    assert_true(tonemap_auto_exposure(big, 1000) == 2.0);
+    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
+             "exposure with 3%% of lights at 100, the rest 0.5");
     big[970 * 3] = NAN;               /* non-finite values are not "lit" */
     big[971 * 3] = INFINITY;
-    assert_true(tonemap_auto_exposure(big, 1000) == 2.0);
+    CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
+             "exposure with a NaN and an infinity among the lights");
     free(big);
 }
 
@@ -636,7 +650,7 @@ static void test_plot_lines(void **state)
 {
     double x[11], up[11], down[11];
     plot_series s[2] = {{NULL, x, up, 11, {255, 0, 0}}, {NULL, x, down, 11, {0, 0, 255}}};
-    plot_opts o = {"Title", "iteration", "residual", 0, 0, 0};
+    plot_opts o = {.title = "Title", .xlabel = "iteration", .ylabel = "residual"};
     unsigned char *rgb = malloc(PW * PH * 3);
     int i, x0, y1, top, bot, t2, b2;
     (void)state;
@@ -646,24 +660,33 @@ static void test_plot_lines(void **state)
     memset(rgb, 0x55, PW * PH * 3);
     assert_int_equal(plot_render(rgb, PW, PH, s, 2, &o), 0);
     for (i = 0; i < PW * PH * 3; i++)
-        assert_true(rgb[i] != 0x55);   /* the whole canvas is painted */
+        CHECK_INT_NE(rgb[i], 0x55, "canvas byte %d (the whole canvas is painted)", i);
     find_frame(rgb, &x0, &y1);
-    assert_true(x0 > 10 && x0 < PW / 3);   /* room for tick labels and the y label */
-    assert_true(y1 > PH * 2 / 3 && y1 < PH - 10);
-    assert_true(is_col(rgb, x0 - 2, y1, (const unsigned char *)"\0\0\0"));   /* tick mark at 0,0 */
+    /* room for tick labels and the y label */
+    CHECK_INT_GT(x0, 10, "the frame's left column");
+    CHECK_INT_LT(x0, PW / 3, "the frame's left column");
+    CHECK_INT_GT(y1, PH * 2 / 3, "the frame's bottom row");
+    CHECK_INT_LT(y1, PH - 10, "the frame's bottom row");
+    CHECK_THAT(is_col(rgb, x0 - 2, y1, (const unsigned char *)"\0\0\0"),
+               "pixel %d, %d: the black tick mark at 0,0", x0 - 2, y1);
     /* The rising red line is low at the left and high at the right; blue the reverse. */
     col_span(rgb, x0 + 3, RED, &top, &bot);
     col_span(rgb, x0 + 3, BLUE, &t2, &b2);
-    assert_true(top > 0 && bot >= y1 - 8 && bot < y1);
-    assert_true(t2 > 0 && t2 < PH / 4);
+    CHECK_INT_GT(top, 0, "left: the red line's top row");
+    CHECK_INT_GE(bot, y1 - 8, "left: the red line's bottom row (near the frame's bottom)");
+    CHECK_INT_LT(bot, y1, "left: the red line's bottom row (above the frame's bottom)");
+    CHECK_INT_GT(t2, 0, "left: the blue line's top row");
+    CHECK_INT_LT(t2, PH / 4, "left: the blue line's top row");
     col_span(rgb, PW - 30, RED, &top, &bot);
     col_span(rgb, PW - 30, BLUE, &t2, &b2);
-    assert_true(top > 0 && top < PH / 3);
-    assert_true(b2 > PH / 2 && b2 < y1);
+    CHECK_INT_GT(top, 0, "right: the red line's top row");
+    CHECK_INT_LT(top, PH / 3, "right: the red line's top row");
+    CHECK_INT_GT(b2, PH / 2, "right: the blue line's bottom row");
+    CHECK_INT_LT(b2, y1, "right: the blue line's bottom row");
     /* Black text above the frame (title) and below it (tick labels, x label). */
     for (i = 0, top = 0; i < PW * 20; i++)
         top += memcmp(rgb + i * 3, "\0\0\0", 3) == 0;
-    assert_true(top > 20);
+    CHECK_INT_GT(top, 20, "black pixels of the title above the frame");
     free(rgb);
 }
 
@@ -679,8 +702,10 @@ static void test_plot_legend_and_flat(void **state)
     find_frame(rgb, &x0, &y1);
     /* All-equal y: one horizontal line in the middle of the plot, 2 px thick. */
     col_span(rgb, x0 + 5, RED, &top, &bot);
-    assert_true(top > 0 && bot - top == 1);
-    assert_true(top > PH / 4 && top < PH * 3 / 4);
+    CHECK_INT_GT(top, 0, "the flat line's top row");
+    CHECK_INT_EQ(bot - top, 1, "the flat line's thickness less one");
+    CHECK_INT_GT(top, PH / 4, "the flat line's top row (in the middle)");
+    CHECK_INT_LT(top, PH * 3 / 4, "the flat line's top row (in the middle)");
     col_span(rgb, (x0 + PW) / 2, RED, &t2, &b2);
     assert_int_equal(t2, top);
     /* The legend sample is a red run of >= 16 px on a row other than the line's. */
@@ -692,7 +717,7 @@ static void test_plot_legend_and_flat(void **state)
             best = run > best ? run : best;
         }
     }
-    assert_true(best >= 16);
+    CHECK_INT_GE(best, 16, "the longest red run off the line (the legend sample)");
     free(rgb);
 }
 
@@ -700,7 +725,7 @@ static void test_plot_degenerate(void **state)
 {
     double y[6] = {1, 0, -5, 10, 100, NAN}, neg[3] = {0, -1, -2}, one = 42;
     plot_series s[3] = {{"a", NULL, y, 6, {255, 0, 0}}, {NULL, NULL, neg, 3, {0, 0, 255}}, {"", NULL, &one, 0, {0, 0, 255}}};
-    plot_opts o = {NULL, NULL, NULL, 1, 0, 0};
+    plot_opts o = {.log_y = 1};
     unsigned char *rgb = malloc(PW * PH * 3), tiny[10 * 10 * 3 + 64];
     int x0, y1, i, tw, th;
     (void)state;
@@ -708,7 +733,7 @@ static void test_plot_degenerate(void **state)
     /* Log axis: nonpositive and NaN points are skipped; the all-nonpositive series and
      * the empty one (both without legend entries) draw nothing. */
     assert_int_equal(plot_render(rgb, PW, PH, s, 3, &o), 0);
-    assert_true(count_col(rgb, RED) > 40);
+    CHECK_INT_GT(count_col(rgb, RED), 40, "red pixels of the log plot");
     assert_int_equal(count_col(rgb, BLUE), 0);
     s[0].n = 0;
     s[0].label = s[1].label = s[2].label = NULL;
@@ -716,12 +741,13 @@ static void test_plot_degenerate(void **state)
     assert_int_equal(count_col(rgb, RED), 0);
     assert_int_equal(count_col(rgb, BLUE), 0);
     find_frame(rgb, &x0, &y1);
-    assert_true(x0 > 0 && y1 > 0);
+    CHECK_INT_GT(x0, 0, "the frame's left column");
+    CHECK_INT_GT(y1, 0, "the frame's bottom row");
     assert_int_equal(plot_render(rgb, PW, PH, NULL, 0, NULL), 0);   /* no series at all */
     s[2].n = 1;                                                     /* one point: a dot */
     o.log_y = 0;
     assert_int_equal(plot_render(rgb, PW, PH, &s[2], 1, &o), 0);
-    assert_true(count_col(rgb, BLUE) >= 4);
+    CHECK_INT_GE(count_col(rgb, BLUE), 4, "blue pixels of the one-point dot");
     /* Canvases too small for the layout: still nothing written outside them. */
     for (tw = 1; tw <= 10; tw += 3)
         for (th = 1; th <= 10; th += 3) {
@@ -772,7 +798,7 @@ static void test_plot_write(void **state)
     tmpdir *t = *state;
     double y[3] = {3, 1, 2};
     plot_series s = {"s", NULL, y, 3, {0, 128, 0}};
-    plot_opts o = {"t", "x", "y", 0, 400, 300};
+    plot_opts o = {.title = "t", .xlabel = "x", .ylabel = "y", .width = 400, .height = 300};
     char err[256] = "";
     img_t im;
     assert_int_equal(plot_write(in_dir(t, "p.png"), &s, 1, &o, err, sizeof err), 0);
@@ -782,7 +808,7 @@ static void test_plot_write(void **state)
     assert_px(&im, 0, 0, 255, 255, 255);
     img_free(&im);
     assert_int_equal(plot_write(in_dir(t, "p.gif"), &s, 1, &o, err, sizeof err), -1);
-    assert_non_null(strstr(err, "unknown image extension"));
+    CHECK_CONTAINS(err, "unknown image extension", "the error message");
     s.n = -1;
     assert_int_equal(plot_write(in_dir(t, "q.png"), &s, 1, NULL, err, sizeof err), -1);
     assert_int_equal(count_entries(t->dir), 1);

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "formats/obj.h"
 
 #define DATA "tests/data/obj/"
@@ -175,18 +176,22 @@ static void check_triangulation(const obj_scene *sc, int face)
         for (k = 0; k < 3; k++) { /* a vertex of this polygon */
             for (j = 0; j < f->count && face_indices(sc, face)[j] != tri[k]; j++)
                 ;
-            assert_true(j < f->count);
+            CHECK_INT_LT(j, f->count,
+                         "face %d, triangle %d: corner %d's vertex %d among the face's",
+                         face, t, k, tri[k]);
         }
         a = sc->verts[tri[0]];
         b = sc->verts[tri[1]];
         c = sc->verts[tri[2]];
         tn = cross(sub(b, a), sub(c, a));
-        assert_true(dot(tn, n) > 0);
+        CHECK_GT(dot(tn, n), 0, "face %d, triangle %d: its normal along the face's", face, t);
         total += 0.5 * sqrt(dot(tn, tn));
         centroid.x = (a.x + b.x + c.x) / 3;
         centroid.y = (a.y + b.y + c.y) / 3;
         centroid.z = (a.z + b.z + c.z) / 3;
-        assert_true(inside(sc, f, centroid, n));
+        CHECK_THAT(inside(sc, f, centroid, n),
+                   "face %d, triangle %d: centroid %g %g %g inside the face",
+                   face, t, centroid.x, centroid.y, centroid.z);
     }
     assert_near(total, obj_face_area(sc, f), 1e-9);
     free(out);
@@ -471,7 +476,7 @@ static void test_materials(void **state)
     assert_rgb(m->ke, 0, 0, 0);
     assert_int_equal(m->nfaces, 1);
     assert_near(m->area, 3, 1e-12);
-    assert_true(m->defined);
+    CHECK_INT_NE(m->defined, 0, "material red defined by newmtl");
     assert_int_equal(m->use_line, 12);
     m = &sc.materials[plain]; /* no Kd, no Ke: defaults */
     assert_rgb(m->kd, 0.8, 0.8, 0.8);
@@ -492,13 +497,13 @@ static void test_materials(void **state)
     assert_rgb(m->kd, 0.8, 0.8, 0.8);
     assert_int_equal(m->nfaces, 1);
     assert_near(m->area, 6, 1e-12);
-    assert_false(m->defined);
+    CHECK_INT_EQ(m->defined, 0, "material %s: not defined by newmtl", m->name);
     m = &sc.materials[ghost];
     assert_rgb(m->kd, 0.8, 0.8, 0.8);
     assert_rgb(m->ke, 0, 0, 0);
     assert_int_equal(m->nfaces, 1);
     assert_near(m->area, 3, 1e-12);
-    assert_false(m->defined);
+    CHECK_INT_EQ(m->defined, 0, "material %s: not defined by newmtl", m->name);
 
     assert_int_equal(sc.nfaces, 6);
     assert_int_equal(sc.faces[0].material, def);
@@ -560,7 +565,7 @@ static void test_missing_mtl(void **state)
     /* a library that cannot be read (a directory) is a warning too */
     assert_int_equal(parse("\nmtllib .\n", &sc), 0);
     assert_int_equal(seen.n, 1);
-    assert_string_equal(seen.msg[0], "mem.obj:2: cannot read material library '.': Is a directory");
+    assert_string_equal(seen.msg[0], "mem.obj:2: cannot read material library '.': is a directory");
     obj_free(&sc);
 }
 

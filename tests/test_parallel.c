@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
 #include "scenes.h"
@@ -28,7 +29,7 @@ static sc_poly *cornell(int *n)
     static void bit_exact_##P(const sc_poly *p, int n)                                    \
     {                                                                                     \
         int threads;                                                                      \
-        sc_opts o = {0, 0.04, 64, 0, 0, 0};                                                  \
+        sc_opts o = {.max_element = 0.04, .res = 64};                                     \
         char err[256];                                                                    \
         P##_solver *ref = P##_create(p, n, &o, NULL, NULL, err, sizeof err);              \
         uint64_t want;                                                                    \
@@ -43,11 +44,12 @@ static sc_poly *cornell(int *n)
             assert_non_null(s);                                                           \
             assert_int_equal(P##_solve_parallel(s, threads, 300, 0, NULL, NULL), 300);    \
             P##_get_stats(s, &b);                                                         \
-            assert_true(P##_checksum(s) == want);                                         \
+            assert_int_equal(P##_checksum(s), want);                                      \
             /* Parts split the cube's rows: each pixel is drawn by one part, but a      \
              * polygon crossing a cut is set up once in each part it touches. */         \
-            assert_true(b.raster_pixels == a.raster_pixels);                              \
-            assert_true(b.raster_calls >= a.raster_calls);                                \
+            assert_int_equal(b.raster_pixels, a.raster_pixels);                           \
+            CHECK_INT_GE(b.raster_calls, a.raster_calls, "polygons set up on %d threads "    \
+                         "against 1", threads);                                           \
             if (threads == 1) assert_int_equal(b.raster_calls, a.raster_calls);           \
             P##_destroy(s);                                                               \
         }                                                                                 \
@@ -66,7 +68,7 @@ static void test_bit_exact(void **st)
     bit_exact_scf(p, n);
     /* A banded core cannot split a shot: a clear refusal, not a wrong answer. */
     {
-        sc_opts ob = {0, 0.04, 64, 8, 0, 0};
+        sc_opts ob = {.max_element = 0.04, .res = 64, .band_rows = 8};
         sc_solver *s = sc_create(p, n, &ob, NULL, NULL, err, sizeof err);
         assert_non_null(s);
         assert_int_equal(sc_solve_parallel(s, 2, 10, 0, NULL, NULL), -1);

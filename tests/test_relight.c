@@ -33,10 +33,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "check.h"
 #include "formats/ff_file.h"
 #include "formats/image.h"
 #include "tmpdir.h"
 #include "formats/obj.h"
+#include "host/clock.h"
 #include "host/obj_polys.h"
 #include "reference/reference.h"
 #include "host/scene.h"
@@ -52,21 +54,14 @@ extern char **environ;
 #define GCOARSE "--max-element", "0.3", "--res", "32"  /* the 6 m gallery */
 
 /* Relit or mixed from rows against a fresh solve: the code's 0.05% and what two solves
- * to a tolerance of 1e-4 differ by (measured below 0.1%, see the printed figures). */
+ * to a tolerance of 1e-4 differ by (the printed figures show the margin). */
 #define REL_BOUND 0.002
-/* Gauss-Seidel against shooting: the bound. */
+/* Gauss-Seidel against shooting, the same equations solved two ways: 0.5% per element. */
 #define GS_BOUND 0.005
 
 /* ---- temporary directory ---------------------------------------------------------- */
 
 TMPDIR_GROUP("relight")
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static unsigned char *slurp(const char *path, size_t *len)
 {
@@ -116,7 +111,7 @@ static void scene_free(scene_t *s)
 static int material_of(const scene_t *s, const char *name)
 {
     int m = obj_find_material(&s->sc, name);
-    assert_true(m >= 0);
+    CHECK_INT_GE(m, 0, "material %s in the scene", name);
     return m;
 }
 
@@ -131,25 +126,14 @@ static void polys_set(scene_t *s, int m, const double *rho, const double *emit)
         }
 }
 
-typedef struct {
-    const scene_t *s;
-    int m;
-} match_t;
-
-static int match_mat(void *ctx, int tag)
-{
-    const match_t *mt = ctx;
-    return mt->s->sc.faces[tag].material == mt->m;
-}
-
 /* Relights material M of a solver built from S through the glue. */
 static void relight(sc_solver *h, const scene_t *s, int m, const double *rho, const double *emit)
 {
     char err[256];
-    match_t mt;
-    mt.s = s;
-    mt.m = m;
-    if (sc_set_surfaces(h, match_mat, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
+    obj_material_match mt;
+    mt.sc = &s->sc;
+    mt.material = m;
+    if (sc_set_surfaces(h, obj_match_material, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
 }
 
 static sc_solver *make(const scene_t *s, double max_element, int res)
@@ -253,9 +237,9 @@ static void test_save_load_glue(void **state)
     assert_int_equal(ra.bytes, rb.bytes);
     assert_int_equal(stat(path, &st), 0);
     assert_int_equal((size_t)st.st_size, 48 + 4 * ((size_t)ra.rows + 1) + 6 * (size_t)ra.entries);
-    assert_true(sc_rows_solve(a, 1000000, 0.001, NULL, NULL) > 0);
-    assert_true(sc_rows_solve(b, 1000000, 0.001, NULL, NULL) > 0);
-    assert_true(sc_checksum(a) == sc_checksum(b)); /* the same rows, the same bits */
+    CHECK_INT_GT(sc_rows_solve(a, 1000000, 0.001, NULL, NULL), 0, "shots from the rows");
+    CHECK_INT_GT(sc_rows_solve(b, 1000000, 0.001, NULL, NULL), 0, "shots from the rows");
+    assert_int_equal(sc_checksum(a), sc_checksum(b)); /* the same rows, the same bits */
     assert_int_equal(raster_calls(b), 0);
 
     /* The float twin's rows load in the float twin, and not in the fixed build. */
@@ -265,7 +249,7 @@ static void test_save_load_glue(void **state)
     assert_int_equal(scf_rows_load(f, fpath, err, sizeof err), 0);
     expect_load_error(b, fpath, "made by the float build, this is the fixed build");
     assert_int_equal(scf_rows_load(f, path, err, sizeof err), -1);
-    assert_non_null(strstr(err, "made by the fixed build"));
+    CHECK_CONTAINS(err, "made by the fixed build", "the error message");
     scf_destroy(f);
     sc_destroy(a);
     sc_destroy(b);
@@ -384,7 +368,7 @@ static void test_corrupt_files(void **state)
     assert_int_equal(sc_rows_load(a, path, err, sizeof err), 0);
     /* Saving is atomic: into a folder that does not exist fails, nothing is left. */
     assert_int_equal(sc_rows_save(a, tmp_path("nodir/x.ff"), err, sizeof err), -1);
-    assert_non_null(strstr(err, "nodir/x.ff"));
+    CHECK_CONTAINS(err, "nodir/x.ff", "the error message");
     free(c);
     free(d);
     sc_destroy(a);
@@ -409,22 +393,22 @@ static void test_relight_cornell(void **state)
     light = material_of(&cb, "light");
     red = material_of(&cb, "red");
     h = make(&cb, 0, 64);
-    t0 = now();
+    t0 = host_now();
     rows(h);
-    t_rows = now() - t0;
+    t_rows = host_now() - t0;
     sc_get_rows_stats(h, &rs);
     ne = n_elements(h);
     print_message("Cornell box (default mesh, res 64): %d rows, %lu entries, %zu bytes (%.0f per patch), %.3f s\n",
                   rs.rows, rs.entries, rs.bytes, (double)rs.bytes / rs.rows, t_rows);
-    assert_true(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
 
     /* New light colour and new wall colour: no hemi-cube. */
     calls = raster_calls(h);
-    t0 = now();
+    t0 = host_now();
     relight(h, &cb, light, NULL, blue_light);
     relight(h, &cb, red, teal, NULL);
-    assert_true(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL) > 0);
-    t_relight = now() - t0;
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
+    t_relight = host_now() - t0;
     assert_int_equal(raster_calls(h), calls);
     a = values(h);
 
@@ -432,21 +416,22 @@ static void test_relight_cornell(void **state)
     polys_set(&fresh, light, NULL, blue_light);
     polys_set(&fresh, red, teal, NULL);
     f = make(&fresh, 0, 64);
-    t0 = now();
-    assert_true(sc_solve(f, 1000000, 1e-4, NULL, NULL) > 0);
-    t_fresh = now() - t0;
+    t0 = host_now();
+    CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
+    t_fresh = host_now() - t0;
     b = values(f);
     d = max_rel(a, b, ne, &rms);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%%, rms %.4f%% per element; "
                   "relight %.3f s vs fresh solve %.3f s\n", 100 * d, 100 * rms, t_relight, t_fresh);
-    assert_true(d <= REL_BOUND);
+    CHECK_LE(d, REL_BOUND,
+             "relit from rows against a fresh hemi-cube solve: max relative difference per element");
 
     /* Against a fresh solve from fresh rows: the same bits (relighting is exact). */
     r = make(&fresh, 0, 64);
     rows(r);
-    assert_true(sc_rows_solve(r, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(r, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
     c = values(r);
-    assert_true(sc_checksum(r) == sc_checksum(h));
+    assert_int_equal(sc_checksum(r), sc_checksum(h));
     assert_memory_equal(a, c, (size_t)ne * 3 * sizeof *a);
     free(a); free(b); free(c);
     sc_destroy(h); sc_destroy(f); sc_destroy(r);
@@ -467,7 +452,7 @@ static void gs_vs_shoot(const char *path, const char *name, double max_element)
     rows(h);
     ne = n_elements(h);
     calls = raster_calls(h);
-    assert_true(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL), 0, "shots from the rows");
     a = values(h);
     sweeps = sc_rows_gauss_seidel(h, 1000, 1e-5, err, sizeof err);
     if (sweeps < 0) fail_msg("%s", err);
@@ -477,11 +462,13 @@ static void gs_vs_shoot(const char *path, const char *name, double max_element)
     d = max_rel(b, a, ne, &rms);
     print_message("%s: Gauss-Seidel (%d sweeps, %d patches, matrix %zu bytes) vs shooting: max %.4f%%, rms %.4f%% "
                   "per element\n", name, sweeps, rs.rows, rs.matrix_bytes, 100 * d, 100 * rms);
-    assert_true(sweeps > 1 && sweeps < 1000);
-    assert_true(d <= GS_BOUND);
+    CHECK_INT_GT(sweeps, 1, "%s: Gauss-Seidel sweeps", name);
+    CHECK_INT_LT(sweeps, 1000, "%s: Gauss-Seidel sweeps", name);
+    CHECK_LE(d, GS_BOUND,
+             "%s: Gauss-Seidel against shooting, max relative difference per element", name);
     /* Solving again after Gauss-Seidel (which leaves nothing unshot) starts afresh. */
     sc_restart(h);
-    assert_true(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL), 0, "shots from the rows");
     free(b);
     b = values(h);
     assert_memory_equal(a, b, (size_t)ne * 3 * sizeof *a);
@@ -521,11 +508,11 @@ static void test_mix_groups_glue(void **state)
     calls = raster_calls(h);
     /* Group 0: amber alone; group 1: the panel alone. */
     relight(h, &s, panel, NULL, dark);
-    assert_true(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
     g[0] = sc_keep(h, 1);
     relight(h, &s, panel, NULL, s.sc.materials[panel].ke);
     relight(h, &s, amber, NULL, dark);
-    assert_true(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
     g[1] = sc_keep(h, 1);
     assert_non_null(g[0]);
     assert_non_null(g[1]);
@@ -535,12 +522,13 @@ static void test_mix_groups_glue(void **state)
     a = values(h); /* the mix: its ambient term is inside */
 
     f = make(&sum, 0, 64);
-    assert_true(sc_solve(f, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
     b = values(f);
     d = max_rel(a, b, ne, &rms);
     print_message("gallery: mix of 2 light groups vs both lights in one hemi-cube solve: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    assert_true(d <= REL_BOUND);
+    CHECK_LE(d, REL_BOUND,
+             "gallery, two groups mixed against both lights solved at once: max relative difference");
     free(a); free(b);
     sc_destroy(f);
 
@@ -556,12 +544,13 @@ static void test_mix_groups_glue(void **state)
     polys_set(&sum, amber, NULL, scaled[0]);
     polys_set(&sum, panel, NULL, scaled[1]);
     f = make(&sum, 0, 64);
-    assert_true(sc_solve(f, 1000000, 1e-4, NULL, NULL) > 0);
+    CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
     b = values(f);
     d = max_rel(a, b, ne, &rms);
     print_message("gallery: mix at intensities (0.5,1,1.75), (2,0.25,1) vs those emissions solved: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    assert_true(d <= REL_BOUND);
+    CHECK_LE(d, REL_BOUND, "gallery, groups mixed at other intensities against those emissions "
+             "solved: max relative difference");
     /* Errors: a negative intensity; solving after a mix starts from the emission. */
     k[0][1] = -1;
     assert_int_equal(sc_mix(h, g, (const double(*)[3])k, 2, err, sizeof err), -1);
@@ -579,18 +568,18 @@ static void test_set_surfaces_errors(void **state)
     scene_t s;
     sc_solver *h;
     char err[256];
-    match_t mt;
+    obj_material_match mt;
     const double inf[3] = {HUGE_VAL, 1, 1}, neg[3] = {-1, 0, 0};
     (void)state;
     scene_load(&s, CORNELL);
     h = make(&s, 0.1, 32);
-    mt.s = &s;
-    mt.m = material_of(&s, "light");
-    assert_int_equal(sc_set_surfaces(h, match_mat, &mt, NULL, inf, err, sizeof err), -1);
-    assert_non_null(strstr(err, "finite"));
-    assert_int_equal(sc_set_surfaces(h, match_mat, &mt, neg, NULL, err, sizeof err), -1);
+    mt.sc = &s.sc;
+    mt.material = material_of(&s, "light");
+    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, NULL, inf, err, sizeof err), -1);
+    CHECK_CONTAINS(err, "finite", "the error message");
+    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, neg, NULL, err, sizeof err), -1);
     assert_int_equal(sc_rows_gauss_seidel(h, 10, 0.001, err, sizeof err), -1); /* no rows yet */
-    assert_non_null(strstr(err, "rows"));
+    CHECK_CONTAINS(err, "rows", "the error message");
     assert_int_equal(sc_rows_save(h, tmp_path("none.ff"), err, sizeof err), -1);
     sc_destroy(h);
     scene_free(&s);
@@ -618,13 +607,13 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
     pid_t pid;
     int n = 0, st = 0, rc;
     size_t len;
-    double t0 = now();
+    double t0 = host_now();
     snprintf(outp, sizeof outp, "%s/run%03d.out", tmpdir, seq);
     snprintf(errp, sizeof errp, "%s/run%03d.err", tmpdir, seq);
     seq++;
     argv[n++] = (char *)bin;
     while (args[n - 1]) {
-        assert_true(n < 70);
+        CHECK_INT_LT(n, 70, "rad_cli arguments");
         argv[n] = (char *)args[n - 1];
         n++;
     }
@@ -640,7 +629,7 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
         struct timespec nap = {0, 5000000};
         pid_t w = waitpid(pid, &st, WNOHANG);
         if (w == pid) break;
-        if (now() - t0 > 120) {
+        if (host_now() - t0 > 120) {
             kill(pid, SIGKILL);
             waitpid(pid, &st, 0);
             fail_msg("%s timed out", bin);
@@ -732,22 +721,23 @@ static void test_cli_save_load(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "96", "--height", "96", COARSE, "--load-ff", ff, "-o", b, CORNELL);
     expect_status(&r, 0);
     /* No hemi-cube at all: the counters of the whole run are zero. */
-    assert_non_null(strstr(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels"));
-    assert_non_null(strstr(r.out, "0 hemi-cube polygons rendered during the solve"));
-    assert_non_null(strstr(r.out, "loaded from"));
+    CHECK_CONTAINS(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "loaded from", "rad_cli's stdout");
     run_free(&r);
     /* Rows computed in memory only (a light group of the one light): the same image. */
     RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--light-group", "lamp=light", "-o", c, CORNELL);
     expect_status(&r, 0);
     run_free(&r);
-    assert_true(same_image(a, b));
-    assert_true(same_image(a, c));
+    CHECK_THAT(same_image(a, b), "%s and %s: the same pixels", a, b);
+    CHECK_THAT(same_image(a, c), "%s and %s: the same pixels", a, c);
     /* The plain hemi-cube solve: within the code's 0.05%, a step of sRGB at most. */
     RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "-o", p, CORNELL);
     expect_status(&r, 0);
     run_free(&r);
     print_message("rad_cli: rows vs hemi-cube image: max %d/255 per channel\n", max_pixel_diff(a, p));
-    assert_true(max_pixel_diff(a, p) <= 2);
+    CHECK_INT_LE(max_pixel_diff(a, p), 2,
+                 "rows against hemi-cube image: max difference per channel (/255)");
 
     /* Mismatches: another scene, another mesh, another resolution, another build. */
     RUN(&r, FIXED, "--quiet", GCOARSE, "--load-ff", ff, "-o", tmp_path("x.png"), GALLERY);
@@ -762,7 +752,8 @@ static void test_cli_save_load(void **state)
     if (need(FLOAT)) {
         RUN(&r, FLOAT, "--quiet", COARSE, "--load-ff", ff, "-o", tmp_path("x.png"), CORNELL);
         expect_status(&r, 1);
-        assert_non_null(strstr(r.err, "made by the fixed build, this is the float build"));
+        CHECK_CONTAINS(r.err, "made by the fixed build, this is the float build",
+                       "rad_cli's stderr");
         run_free(&r);
         RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--save-ff", ff2, "-o", tmp_path("f1.png"), CORNELL);
         expect_status(&r, 0);
@@ -770,7 +761,8 @@ static void test_cli_save_load(void **state)
         RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--load-ff", ff2, "-o", tmp_path("f2.png"), CORNELL);
         expect_status(&r, 0);
         run_free(&r);
-        assert_true(same_image(tmp_path("f1.png"), tmp_path("f2.png")));
+        CHECK_THAT(same_image(tmp_path("f1.png"), tmp_path("f2.png")),
+                   "%s and %s: the same pixels", tmp_path("f1.png"), tmp_path("f2.png"));
     }
 }
 
@@ -791,7 +783,7 @@ static void test_cli_corrupt(void **state)
     spit(bad, d, n);
     RUN(&r, FIXED, "--quiet", COARSE, "--load-ff", bad, "-o", tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "checksum mismatch");
-    assert_non_null(strstr(r.err, bad));
+    CHECK_CONTAINS(r.err, bad, "rad_cli's stderr");
     run_free(&r);
     d[n / 2] ^= 0x40;
     spit(bad, d, n / 3);
@@ -848,8 +840,8 @@ static void test_cli_groups(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", "--res", "64", "--tol", "0.0001", "--load-ff",
         tmp_path("g.ff"), "--light-group", "warm=amber", "--dump-radiosity", mix, "-o", tmp_path("mix.png"), GALLERY);
     expect_status(&r, 0);
-    assert_non_null(strstr(r.out, "light groups 2: warm (1,1,1) other (1,1,1)"));
-    assert_non_null(strstr(r.out, "hemi-cube: resolution 64, 0 polygons"));
+    CHECK_CONTAINS(r.out, "light groups 2: warm (1,1,1) other (1,1,1)", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "hemi-cube: resolution 64, 0 polygons", "rad_cli's stdout");
     run_free(&r);
     a = read_csv(mix, &na);
     b = read_csv(sum, &nb);
@@ -857,7 +849,8 @@ static void test_cli_groups(void **state)
     d = max_rel(a, b, na, &rms);
     print_message("rad_cli gallery: --light-group mix vs one solve, from the same rows: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    assert_true(d <= REL_BOUND);
+    CHECK_LE(d, REL_BOUND, "rad_cli gallery, --light-group mix against one solve: max relative "
+             "difference");
     free(a); free(b);
 
     /* --each-group: one file per group, named after it; the base name is not written. */
@@ -870,9 +863,12 @@ static void test_cli_groups(void **state)
     while ((de = readdir(dir)) != NULL) files += strncmp(de->d_name, "eg.", 3) == 0;
     closedir(dir);
     assert_int_equal(files, 2);
-    assert_true(access(tmp_path("eg.warm.png"), R_OK) == 0);
-    assert_true(access(tmp_path("eg.cool.png"), R_OK) == 0);
-    assert_false(same_image(tmp_path("eg.warm.png"), tmp_path("eg.cool.png")));
+    CHECK_INT_EQ(access(tmp_path("eg.warm.png"), R_OK), 0,
+                 "access(%s): the file was written", tmp_path("eg.warm.png"));
+    CHECK_INT_EQ(access(tmp_path("eg.cool.png"), R_OK), 0,
+                 "access(%s): the file was written", tmp_path("eg.cool.png"));
+    CHECK_THAT(!same_image(tmp_path("eg.warm.png"), tmp_path("eg.cool.png")), "%s and %s differ",
+               tmp_path("eg.warm.png"), tmp_path("eg.cool.png"));
 
     /* Errors. */
     RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber,brass", "-o", out, GALLERY);
@@ -913,7 +909,7 @@ static void test_cli_gauss_seidel(void **state)
     RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--solver", "gauss-seidel", "--tol",
         "0.00001", "--dump-radiosity", gs, "-o", tmp_path("gs.png"), CORNELL);
     expect_status(&r, 0);
-    assert_non_null(strstr(r.out, "gauss-seidel sweeps"));
+    CHECK_CONTAINS(r.out, "gauss-seidel sweeps", "rad_cli's stdout");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.00001", "--dump-radiosity", sh, "-o",
         tmp_path("sh.png"), CORNELL);
@@ -925,7 +921,8 @@ static void test_cli_gauss_seidel(void **state)
     d = max_rel(a, b, na, &rms);
     print_message("rad_cli Cornell (coarse): --solver gauss-seidel vs hemi-cube shooting: max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    assert_true(d <= GS_BOUND);
+    CHECK_LE(d, GS_BOUND,
+             "rad_cli Cornell box: --solver gauss-seidel against shooting, max relative difference");
     free(a); free(b);
 }
 
@@ -940,21 +937,29 @@ static void test_cli_animate(void **state)
         "--animate", DATA "frames.txt", "-o", tmp_path("fr.png"), GALLERY);
     expect_status(&r, 0);
     /* One visibility computation for every frame. */
-    assert_non_null(strstr(r.out, "0 hemi-cube polygons rendered during the solve"));
+    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
     run_free(&r);
     for (i = 0; i < 5; i++) {
         snprintf(name, sizeof name, "fr_%04d.png", i);
-        assert_true(access(tmp_path(name), R_OK) == 0);
+        CHECK_INT_EQ(access(tmp_path(name), R_OK), 0,
+                     "access(%s): the file was written", tmp_path(name));
     }
-    assert_true(access(tmp_path("fr_0005.png"), R_OK) != 0);
-    assert_true(access(tmp_path("fr.png"), R_OK) != 0);
+    CHECK_INT_NE(access(tmp_path("fr_0005.png"), R_OK), 0,
+                 "access(%s): no such file is written", tmp_path("fr_0005.png"));
+    CHECK_INT_NE(access(tmp_path("fr.png"), R_OK), 0,
+                 "access(%s): no such file is written", tmp_path("fr.png"));
     /* Frames 0 and 4 are the same camera and intensities; 1 and 2 change the lights,
      * 3 the camera. */
-    assert_true(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0004.png")));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0001.png")));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0002.png")));
-    assert_false(same_image(tmp_path("fr_0001.png"), tmp_path("fr_0002.png")));
-    assert_false(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0003.png")));
+    CHECK_THAT(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0004.png")),
+               "%s and %s: the same pixels", tmp_path("fr_0000.png"), tmp_path("fr_0004.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0001.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0001.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0002.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0002.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0001.png"), tmp_path("fr_0002.png")), "%s and %s differ",
+               tmp_path("fr_0001.png"), tmp_path("fr_0002.png"));
+    CHECK_THAT(!same_image(tmp_path("fr_0000.png"), tmp_path("fr_0003.png")), "%s and %s differ",
+               tmp_path("fr_0000.png"), tmp_path("fr_0003.png"));
     /* Without --light-group every emitter is in "other". */
     {
         const char *f = tmp_path("frames2.txt");
@@ -965,7 +970,8 @@ static void test_cli_animate(void **state)
         RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", GCOARSE, "--animate", f, "-o", tmp_path("o.ppm"), GALLERY);
         expect_status(&r, 0);
         run_free(&r);
-        assert_false(same_image(tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm")));
+        CHECK_THAT(!same_image(tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm")), "%s and %s differ",
+                   tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm"));
         fp = fopen(f, "w");
         assert_non_null(fp);
         fputs("0 2 6 0 1.2 0\n0 2 6 nope 1.2 0\n", fp);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "rad/rad.h"
 
 #define W 64
@@ -30,12 +31,15 @@ static rad_vec3_t V(double x, double y, double z)
 
 static void setup(rad_scene_t *s)
 {
-    rad_pools_t p = {sf, 8, pt, 512, el, 512, vx, 1024, work, sizeof work};
-    rad_config_t c = {RAD_REAL(2.0), RAD_REAL(1.0), 16, 0, 0};
+    rad_pools_t p = {.surfaces = sf, .max_surfaces = 8, .patches = pt, .max_patches = 512,
+                     .elements = el, .max_elements = 512, .vertices = vx, .max_vertices = 1024,
+                     .work = work, .work_bytes = sizeof work};
+    rad_config_t c = {.max_patch = RAD_REAL(2.0), .max_element = RAD_REAL(1.0), .res = 16};
     assert_int_equal(rad_init(s, &p, &c), RAD_OK);
 }
 
-static const rad_camera_t cam = {{0, 0, RAD_REAL(10)}, {0, 0, 0}, {0, RAD_REAL(1), 0}, RAD_REAL(0.5)};
+static const rad_camera_t cam = {.eye = {0, 0, RAD_REAL(10)}, .target = {0, 0, 0},
+                                 .up = {0, RAD_REAL(1), 0}, .tan_half_fov = RAD_REAL(0.5)};
 
 static double px(int x, int y, int ch)
 {
@@ -60,7 +64,7 @@ static void test_gouraud_orientation(void **st)
         vrgb[v].b = RAD_REAL(0.25);
     }
     n = rad_render(&s, vrgb, &cam, fb, zb, W, H);
-    assert_true(n >= 2);
+    CHECK_INT_GE(n, 2, "triangles drawn of the quad");
     /* The quad spans x, y in [-3, 3] at distance 10; tan(half fov) = 0.5 vertically:
      * 3 / 5 of the half height, the same in pixels horizontally. */
     for (y = 0; y < H; y++)
@@ -70,11 +74,16 @@ static void test_gouraud_orientation(void **st)
             if (fabs(sx) < 2.9 && fabs(sy) < 2.9) {
                 /* Linear colours interpolate exactly up to the Q16.15 attribute format
                  * and the 1/16-pixel snapping of vertices (1/16 px = 0.006 units). */
-                assert_true(fabs(px(x, y, 0) - (sx + 3) / 6) < 2e-3);
-                assert_true(fabs(px(x, y, 1) - (sy + 3) / 6) < 2e-3);
-                assert_true(fabs(px(x, y, 2) - 0.25) < 1e-4);
+                CHECK_LT(fabs(px(x, y, 0) - (sx + 3) / 6), 2e-3,
+                         "pixel %d, %d: red's error against (x + 3) / 6", x, y);
+                CHECK_LT(fabs(px(x, y, 1) - (sy + 3) / 6), 2e-3,
+                         "pixel %d, %d: green's error against (y + 3) / 6", x, y);
+                CHECK_LT(fabs(px(x, y, 2) - 0.25), 1e-4, "pixel %d, %d: blue's error against 0.25",
+                         x, y);
             } else if (fabs(sx) > 3.1 || fabs(sy) > 3.1) {
-                assert_true(px(x, y, 0) == 0 && px(x, y, 1) == 0 && px(x, y, 2) == 0);
+                CHECK_EQ(px(x, y, 0), 0, "pixel %d, %d outside the quad: red", x, y);
+                CHECK_EQ(px(x, y, 1), 0, "pixel %d, %d outside the quad: green", x, y);
+                CHECK_EQ(px(x, y, 2), 0, "pixel %d, %d outside the quad: blue", x, y);
                 assert_int_equal(zb[y * W + x], 0);
             }
         }
@@ -106,9 +115,11 @@ static void test_depth_order(void **st)
         assert_int_equal(vrgb[v].r, on_near ? 0 : RAD_REAL(1));
         assert_int_equal(vrgb[v].g, on_near ? RAD_REAL(1) : 0);
     }
-    assert_true(rad_render(&s, vrgb, &cam, fb, zb, W, H) > 0);
-    assert_true(px(W / 2, H / 2, 1) > 0.99 && px(W / 2, H / 2, 0) == 0);   /* near: green */
-    assert_true(px(W / 2 + 12, H / 2, 0) > 0.99 && px(W / 2 + 12, H / 2, 1) == 0); /* far: red */
+    CHECK_INT_GT(rad_render(&s, vrgb, &cam, fb, zb, W, H), 0, "triangles drawn");
+    CHECK_GT(px(W / 2, H / 2, 1), 0.99, "the centre (the near quad): green");
+    CHECK_EQ(px(W / 2, H / 2, 0), 0, "the centre (the near quad): red");
+    CHECK_GT(px(W / 2 + 12, H / 2, 0), 0.99, "beside the near quad (the far one): red");
+    CHECK_EQ(px(W / 2 + 12, H / 2, 1), 0, "beside the near quad (the far one): green");
 }
 
 int main(void)

@@ -1,4 +1,4 @@
-/* Stored form factors (issue: the 1985 paper's promises): the 16-bit code, rows against
+/* Stored form factors (the 1985 paper's promises): the 16-bit code, rows against
  * the hemi-cube, relighting without rendering, Gauss-Seidel against progressive
  * refinement, and light groups (fixed build). */
 #include <math.h>
@@ -10,6 +10,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "check.h"
 #include "rad/rad.h"
 
 #define NS 32
@@ -48,7 +49,7 @@ static world_t *room(const rad_rgb_t *l1, const rad_rgb_t *l2, const rad_rgb_t *
 {
     world_t *w = calloc(1, sizeof *w);
     rad_pools_t p;
-    rad_config_t c = {RAD_REAL(16), RAD_REAL(8), 64, 0, 0};
+    rad_config_t c = {.max_patch = RAD_REAL(16), .max_element = RAD_REAL(8), .res = 64};
     const rad_rgb_t white = C(0.7, 0.7, 0.7), green = C(0.15, 0.5, 0.1);
     rad_vec3_t f[9][4] = {
         {V(-32, -32, -32), V(-32, -32, 32), V(32, -32, 32), V(32, -32, -32)},   /* floor */
@@ -133,7 +134,9 @@ static void test_code(void **st)
     uint32_t q;
     (void)st;
     /* Exact below 2^11; within 2^-11 relative (half an 11-bit step) above. */
-    for (q = 0; q < 4096; q++) assert_true(q >= 2048 || rad_ff_from_code((uint16_t)(q < 2048 ? q : 0)) == q);
+    for (q = 0; q < 4096; q++)
+        if (q < 2048) CHECK_INT_EQ(rad_ff_from_code((uint16_t)q), q, "code %u (exact below 2^11)",
+                                   (unsigned)q);
     for (q = 1; q < (1u << 30); q = q * 3 / 2 + 7) {
         uint16_t c = 0;
         uint32_t e = 0, m;
@@ -141,7 +144,8 @@ static void test_code(void **st)
         m = e ? (q + (1u << (e - 1))) >> e : q;
         if (m == 2048u) { m = 1024u; e++; }
         c = (uint16_t)(e << 11 | m);
-        assert_true(fabs((double)rad_ff_from_code(c) - q) <= q / 2048.0 + 0.5);
+        CHECK_NEAR((double)rad_ff_from_code(c), q, q / 2048.0 + 0.5,
+                   "form factor %u (Q2.30) through its code: within 2^-11 relative", (unsigned)q);
     }
 }
 
@@ -157,7 +161,9 @@ static void test_rows_match_hemicube(void **st)
         assert_int_equal(rad_form_factors(&w->s, p, ff), (int)w->s.n_elements);
         for (i = r->start[p]; i < r->start[p + 1]; i++) {
             double want = ff[r->ids[i]], got = rad_ff_from_code(r->ffs[i]);
-            assert_true(fabs(got - want) <= want / 2048.0 + 0.5); /* the code's bound */
+            CHECK_NEAR(got, want, want / 2048.0 + 0.5,
+                       "patch %u, element %u: stored form factor (Q2.30) within the code's 2^-11",
+                       (unsigned)p, (unsigned)r->ids[i]);
             ff[r->ids[i]] = 0;
         }
         for (i = 0; i < w->s.n_elements; i++) assert_int_equal(ff[i], 0); /* nothing left out */
@@ -197,19 +203,21 @@ static void test_relight_without_rendering(void **st)
     uint32_t calls;
     double d;
     (void)st;
-    assert_true(rad_rows_shoot(&w->s, &r->r, 100000, RAD_REAL(0.0002)) > 0);
+    CHECK_INT_GT(rad_rows_shoot(&w->s, &r->r, 100000, RAD_REAL(0.0002)), 0, "shots from the rows");
     /* A new colour for light 1 and for the left wall: restart and shoot from the rows. */
     assert_int_equal(rad_set_surface(&w->s, 7, NULL, &blue), RAD_OK);
     assert_int_equal(rad_set_surface(&w->s, 2, &yellow, NULL), RAD_OK);
     assert_int_equal(rad_restart(&w->s), RAD_OK);
     calls = w->s.stats.raster_calls;
-    assert_true(rad_rows_shoot(&w->s, &r->r, 100000, RAD_REAL(0.0002)) > 0);
+    CHECK_INT_GT(rad_rows_shoot(&w->s, &r->r, 100000, RAD_REAL(0.0002)), 0,
+                 "shots from the rows, relit");
     assert_int_equal(w->s.stats.raster_calls, calls); /* no hemi-cube was rendered */
-    assert_true(rad_shoot(&fresh->s, 100000, RAD_REAL(0.0002)) > 0);
+    CHECK_INT_GT(rad_shoot(&fresh->s, 100000, RAD_REAL(0.0002)), 0, "shots of the fresh solve");
     d = max_rel(w, fresh);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%% per element\n", 100 * d);
     /* The code's 2^-11 per form factor, plus the last 0.02% unshot in each. */
-    assert_true(d <= 0.002);
+    CHECK_LE(d, 0.002, "relit from rows against a fresh hemi-cube solve: max relative difference "
+                       "per element above 1%% of the brightest");
     free(r); free(w); free(fresh);
 }
 
@@ -224,16 +232,20 @@ static void test_gauss_seidel_vs_shooting(void **st)
     int it;
     double d;
     (void)st;
-    assert_true(rad_rows_shoot(&a->s, &ra->r, 100000, RAD_REAL(0.0001)) > 0);
+    CHECK_INT_GT(rad_rows_shoot(&a->s, &ra->r, 100000, RAD_REAL(0.0001)), 0, "shots from the rows");
     bake_ambient(a);
     assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n - 1, 100, RAD_REAL(0.0001)), RAD_ERR_ARG);
     it = rad_rows_gauss_seidel(&b->s, &rb->r, m, n, 100, RAD_REAL(0.0001));
-    assert_true(it > 1 && it < 100);
+    CHECK_INT_GT(it, 1, "Gauss-Seidel sweeps to a change of 0.01%%");
+    CHECK_INT_LT(it, 100, "Gauss-Seidel sweeps to a change of 0.01%%");
     assert_int_equal(b->s.stats.raster_calls, calls);
     d = max_rel(b, a);
     print_message("Gauss-Seidel (%d sweeps) vs progressive refinement: max %.4f%% per element\n", it, 100 * d);
-    assert_true(d <= 0.005); /* the issue's bound */
-    assert_true(rad_unshot_fraction(&b->s) == 0);
+    /* The same equations solved two ways, each to 0.0001: the README's bound for
+     * Gauss-Seidel against shooting, 0.5% per element. */
+    CHECK_LE(d, 0.005, "Gauss-Seidel against progressive refinement: max relative difference "
+                       "per element above 1%% of the brightest");
+    CHECK_INT_EQ(rad_unshot_fraction(&b->s), 0, "unshot fraction after Gauss-Seidel");
     /* The largest tolerance: value * tol saturates, and the test against it must not
      * overflow (found by fuzz_core under UBSan); nothing moves by more, so one sweep. */
     assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n, 100, INT32_MAX), 1);
@@ -271,13 +283,15 @@ static void test_light_groups(void **st)
     print_message("mix of two groups vs both lights solved at once: max %.4f%%\n", 100 * d);
     /* The code's 2^-11 per form factor, and rounding: each solve adds one rounding of
      * half an LSB per shot to every element it reaches. */
-    assert_true(d <= 0.002);
+    CHECK_LE(d, 0.002, "a mix of two groups against both lights solved at once: max relative "
+                       "difference per element above 1%% of the brightest");
     /* Dimming: half of group 2 is half of its contribution, exactly up to rounding. */
     k[1] = C(0.5, 0.5, 0.5);
     rad_mix(&w->s, groups, k, 2, mix);
     for (e = 0; e < w->s.n_elements; e++) {
         double want = RAD_TO_DOUBLE(g1[e].b) + 0.5 * RAD_TO_DOUBLE(g2[e].b);
-        assert_true(fabs(RAD_TO_DOUBLE(mix[e].b) - want) <= 2.0 / 65536);
+        CHECK_NEAR(RAD_TO_DOUBLE(mix[e].b), want, 2.0 / 65536,
+                   "element %u: blue of group 1 + half group 2, within 2 LSB", (unsigned)e);
     }
     assert_int_equal(rad_mix(&w->s, NULL, k, 2, mix), RAD_ERR_ARG);
     free(g1); free(g2); free(mix); free(r); free(w); free(sum);

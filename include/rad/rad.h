@@ -179,14 +179,13 @@ typedef struct {
  * the power it will receive back, estimated from the ambient term (Feda & Purgathofer,
  * "Accelerating radiosity by overshooting", 1992). The estimate is left owing, as
  * negative unshot power, and paid back as the real power arrives; the solution is the
- * same, reached in fewer shots (CornellBox-Original at 5,038 elements to an unshot
- * fraction of 0.01: 562 against 929). RAD_NO_OVERSHOOT shoots the unshot power alone,
- * as Cohen et al. 1988: then the unshot total never grows. The estimate assumes that
- * every reflection stays in the scene; where it proves too high (light escaping a
- * bright open scene: the net unshot power swings beyond twice the emitted, or a value
- * saturates), the overshoot is halved, down to plain shooting after 16 halvings, and
- * where the unshot total stops falling (4 shots a patch + 64 without a new lowest),
- * shots are plain from then on; each counted in rad_stats_t.backoffs. */
+ * same, reached in fewer shots (`make bench` counts them). RAD_NO_OVERSHOOT shoots the
+ * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. The
+ * estimate assumes that every reflection stays in the scene; where it proves too high
+ * (light escaping a bright open scene: the net unshot power swings beyond twice the
+ * emitted, or a value saturates), the overshoot is halved, down to plain shooting after
+ * 16 halvings, and where the unshot total stops falling (4 shots a patch + 64 without a
+ * new lowest), shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
