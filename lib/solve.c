@@ -166,18 +166,17 @@ static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
     return 1;
 }
 
-/* Starts the watch before the first shot (rad_init and rad_restart zero the count;
- * computing rows sets s->solving but shoots nothing). */
+/* Starts the watch before the first shot, after rad__freeze has set the emitted power
+ * at the core's scale (rad_init and rad_restart zero the count; computing rows
+ * freezes the scene but shoots nothing). */
 static void start_solving(rad_scene_t *s)
 {
-    if (s->stats.shots == 0) {
-        s->over_low = RAD__ESUM;
-        s->over_wait = 0;
-        s->over_sat = s->stats.saturations;
-        s->over_halvings = 0;
-        s->over_net = s->emitted;
-    }
-    s->solving = 1;
+    if (s->stats.shots != 0) return;
+    s->over_low = RAD__ESUM;
+    s->over_wait = 0;
+    s->over_sat = s->stats.saturations;
+    s->over_halvings = 0;
+    s->over_net = s->emitted;
 }
 
 /* The shooter for the next shot (RAD_INDEX_NONE: none), after the ambient term AMB and
@@ -222,9 +221,15 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
     uint32_t e, c;
 
     for (c = 0; c < 3; c++) {
-        /* The power coming back to this patch is shot now and owed until it comes. */
-        rad_energy_t over = overshoot(s, pt, amb, c);
-        u[c] = rad__eclamp(pt->unshot[c] + over, &s->stats.saturations);
+        /* The power coming back to this patch is shot now and owed until it comes. Any
+         * overshoot gives the same solution as long as the debt is what was shot, so
+         * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
+         * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
+         * sum fits. */
+        rad_energy_t over = overshoot(s, pt, amb, c), sum = pt->unshot[c] + over;
+        if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
+        if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
+        u[c] = pt->unshot[c] + over;
         pt->unshot[c] = -over;
     }
     if (rows) {
@@ -241,6 +246,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
+    rad__freeze(s);
     start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
@@ -268,14 +274,21 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
     return rad__energy_ratio(total, s->emitted);
 }
 
+void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+{
+    ambient(s, amb, sat);
+}
+
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 {
     rad_real_t amb[3];
+    rad_rgb_t a;
     if (!s || !out) return RAD_ERR_ARG;
     ambient(s, amb, &s->stats.saturations);
-    out->r = amb[0];
-    out->g = amb[1];
-    out->b = amb[2];
+    a.r = amb[0];
+    a.g = amb[1];
+    a.b = amb[2];
+    *out = rad__scale2_rgb(a, -s->power_shift, &s->stats.saturations); /* the caller's scale */
     return RAD_OK;
 }
 
@@ -283,6 +296,7 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
 {
     uint32_t e;
     if (!s || !out || p >= s->n_patches) return RAD_ERR_ARG;
+    if (!s->solving) rad__scale_geometry(s); /* the row the solver will use */
     rad__hemicube(s, p);
     for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
     return (int)s->n_elements;
@@ -295,6 +309,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     uint32_t p;
     if (!s || !patch) return RAD_ERR_ARG;
     if (s->band_rows != 0) return RAD_ERR_STATE;
+    rad__freeze(s);
     start_solving(s);
     p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;

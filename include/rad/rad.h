@@ -11,9 +11,7 @@
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
  *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits. Precision is
- *                 2^-16 units, so keep scenes between about 4 and 64 units across
- *                 (rad_cli scales every scene to 64 units; radiosity is scale-free).
+ *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
@@ -25,6 +23,18 @@
  *                 hemi-cube sums to exactly 2^30.
  * Rounding is to nearest everywhere; no operation relies on signed overflow or on
  * right shifts of negative numbers.
+ *
+ * Scale: results do not depend on the caller's units or emission scale. When the
+ * geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
+ * re-meshes it with coordinates times 2^length_shift (the largest into (16, 32]), and
+ * when a solve starts it scales radiosity and power by 2^power_shift (a brightest
+ * emission channel below 128 into (128, 256]): powers of two, so coordinates scale
+ * exactly. Radiosity does not depend on geometry scale and is linear in emission, so
+ * outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
+ * caller's units, and rad_render takes its camera in them; RAD_SHADE_SCALED keeps the
+ * core's scale (a dim scene's solution with all 16 fraction bits). The pools' geometry
+ * (vertices, patch centres, areas) and rad_element_t.radiosity are in the core's scale.
+ * stats.small_elements counts the elements whose area stays small even so.
  *
  * Every function returns int: 0 or a non-negative count on success, a negative
  * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
@@ -139,7 +149,8 @@ typedef struct {
     rad_index_t v[4]; /* v[3] == RAD_INDEX_NONE for a triangle */
     rad_index_t surface, patch;
     rad_real_t area;
-    rad_rgb_t radiosity; /* the solution so far (without the ambient term) */
+    rad_rgb_t radiosity; /* the solution so far (without the ambient term), in the
+                          * core's scale: the caller's radiosity times 2^power_shift */
 } rad_element_t;
 
 typedef struct {
@@ -193,6 +204,11 @@ typedef struct {
     uint32_t saturations;   /* values clamped to their format's range */
     uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels; /* pixels covered (before the depth test) */
+    /* Precision at risk: elements whose area at the core's scale is below 1/64 (2^10
+     * LSB, a rounding of 2^-11 = 0.05% of it), counted when the geometry freezes. The
+     * core scales every scene to one size, so these are elements small against their
+     * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
+    uint32_t small_elements;
     uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
                                of the power coming back proved too high */
 } rad_stats_t;
@@ -204,6 +220,10 @@ typedef struct {
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
     rad_energy_t emitted; /* total emitted power, all channels */
+    /* The core's scale (see the top of this file): coordinates are the caller's times
+     * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
+     * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
+    int8_t length_shift, power_shift;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -275,21 +295,23 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
 rad_real_t rad_unshot_fraction(const rad_scene_t *s);
 
 /* The ambient term of Cohen et al. 1988: unshot power spread over the scene, times the
- * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT; returns
- * RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can outweigh the power
- * held: then the term is negative, and displayed radiosities (rad_element_radiosity,
- * rad_shade_vertices) are clamped at zero. */
+ * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT, in the
+ * caller's units; returns RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can
+ * outweigh the power held: then the term is negative, and displayed radiosities
+ * (rad_element_radiosity, rad_shade_vertices) are clamped at zero. */
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
+#define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
 
-/* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
+/* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
+ * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
 
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
- * elements of its surface that share it. OUT holds N >= n_vertices entries. Uses the
- * work buffer's accumulators as scratch. Returns the number of vertices written, or
- * RAD_ERR_ARG. */
+ * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
+ * OUT holds N >= n_vertices entries. Uses the work buffer's accumulators as scratch.
+ * Returns the number of vertices written, or RAD_ERR_ARG. */
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
 
 /* ---- viewing ------------------------------------------------------------------- */
@@ -298,18 +320,20 @@ typedef struct {
     rad_real_t tan_half_fov; /* tangent of half the vertical field of view, 1/16..16 */
 } rad_camera_t;
 
-/* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
- * FB (W*H linear radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer,
- * through the same rasterizer as the hemi-cube. Pixels no surface covers are black.
- * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
- * a degenerate camera, an eye or target beyond 4 * RAD_COORD_LIMIT, tan_half_fov or
+/* Renders the scene from CAM (in the caller's units) with vertex colours VRGB (from
+ * rad_shade_vertices, in either scale: FB gets the same) into FB (W*H linear
+ * radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer, through the same
+ * rasterizer as the hemi-cube. Pixels no surface covers are black. Returns the number
+ * of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER, a degenerate camera,
+ * an eye or target beyond 4 * RAD_COORD_LIMIT in the core's scale, tan_half_fov or
  * tan_half_fov * W / H outside 1/16..16). */
 int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, rad_rgb_t *fb,
                uint32_t *zbuf, unsigned w, unsigned h);
 
 /* Form factors from the centre of patch P to every element, written to OUT (one per
  * element, summing to 1 in a closed scene): the hemi-cube row the solver uses when P
- * shoots (the cube's turn about the normal depends on P alone).
+ * shoots (the cube's turn about the normal depends on P alone; the geometry takes the
+ * core's scale first, which restarts a scene not yet solving).
  * Returns the number of elements, or RAD_ERR_ARG. */
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
@@ -355,6 +379,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
 /* Light groups: radiosity is linear in emission, so solve once per group of lights
  * (the others dark) and keep each solution's element radiosities; then any mix is
  * OUT[e] = sum_g INTENSITY[g] * GROUPS[g][e] per channel, for n_elements elements.
+ * OUT is in the groups' unit: keep them in the caller's (rad_element_radiosity without
+ * RAD_SHADE_SCALED), since each solve has the power shift of its own lights.
  * Saturations are counted in s->stats. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity,
             uint32_t n_groups, rad_rgb_t *out);

@@ -26,7 +26,6 @@ struct sc_solver {
     double scale, off[3], escale;
     double escale0;             /* escale of the scene as built */
     double epeak;               /* the brightest emission escale maps to the core's peak */
-    double core_peak;           /* that peak (emit_peak) */
     int skipped, split, clamped;
     /* stored form factors */
     rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
@@ -105,31 +104,11 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
 }
 
-/* The core's peak emission for the scene as meshed: radiosity reaches about
- * E / (1 - rho) in a closed scene of area-weighted mean reflectance rho (each patch's
- * brightest channel), kept below 8192 of the core's 32768 by lowering the peak when
- * rho > 0.96875 (below that, CORE_EMIT_PEAK: a dark scene with one bright face keeps
- * its precision). */
-static double emit_peak(const struct sc_solver *h)
-{
-    double area = 0, sum = 0, room;
-    uint32_t p;
-    for (p = 0; p < h->s.n_patches; p++) {
-        const rad_patch_t *pt = &h->s.pools.patches[p];
-        const rad_rgb_t *r = &h->s.pools.surfaces[pt->surface].reflectance;
-        double a = RAD_TO_DOUBLE(pt->area);
-        area += a;
-        sum += a * fmax(RAD_TO_DOUBLE(r->r), fmax(RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b)));
-    }
-    room = area > 0 ? 8192.0 * (1.0 - sum / area) : CORE_EMIT_PEAK;
-    return room < CORE_EMIT_PEAK ? room : CORE_EMIT_PEAK;
-}
-
 static rad_real_t emit_ch(struct sc_solver *h, double e)
 {
     /* Emissions so small that 256 / peak overflows still scale by their ratio to the
      * peak (results in caller units then underflow to 0). */
-    double v = isfinite(h->escale) ? e * h->escale : e / h->epeak * h->core_peak;
+    double v = isfinite(h->escale) ? e * h->escale : e / h->epeak * CORE_EMIT_PEAK;
     return RAD_REAL(v > 4096.0 ? 4096.0 : v);
 }
 
@@ -221,8 +200,7 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
         return -1;
     }
     h->epeak = emax;
-    h->core_peak = CORE_EMIT_PEAK; /* lowered once meshed, if the scene is bright */
-    h->escale = h->escale0 = emax > 0.0 ? h->core_peak / emax : 1.0;
+    h->escale = h->escale0 = emax > 0.0 ? CORE_EMIT_PEAK / emax : 1.0;
     return 0;
 }
 
@@ -345,10 +323,6 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             if (h->s.n_elements == 0) {
                 if (!outlier(polys, n, err, errlen)) snprintf(err, errlen, "no polygon could be meshed");
                 break;
-            }
-            if (emit_peak(h) < h->core_peak) { /* a bright scene: its emissions lowered */
-                sc_restart(h);
-                h->escale0 = h->escale;
             }
             return h;
         }
@@ -872,10 +846,9 @@ void sc_restart(sc_solver *h)
     uint32_t i;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
-    h->core_peak = emit_peak(h);
     if (peak > 0) {
         h->epeak = peak;
-        h->escale = h->core_peak / peak;
+        h->escale = CORE_EMIT_PEAK / peak;
     }
     for (i = 0; i < h->s.n_surfaces; i++) {
         rad_rgb_t e;
