@@ -342,7 +342,15 @@ static void cli(const char *name, const char *opts, int status, char *err, size_
     got = fread(err, 1, n - 1, f);
     err[got] = 0;
     rc = WEXITSTATUS(pclose(f));
-    print_message("%s %s: exit %d, stderr:\n%s", name, opts, rc, err);
+    print_message("%s %s: exit %d, stderr:\n", name, opts, rc);
+    {
+        const char *line = err;
+        while (*line) { /* indented: not taken for this run's own warnings */
+            size_t len = strcspn(line, "\n");
+            print_message("  | %.*s\n", (int)len, line);
+            line += len + (line[len] == '\n');
+        }
+    }
     assert_int_equal(rc, status);
 }
 
