@@ -54,24 +54,35 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     }
 }
 
+/* Halvings after which overshooting stops (2^-16 of the estimate is below a Q16.16
+ * power's rounding for any power under 2^16 units): the shots are then plain. */
+#define OVER_STOP 16u
+
 /* The power patch PT will get back in channel C, from the ambient radiosity AMB:
- * what overshooting adds to its shot (0 for every patch when AMB is 0). */
+ * what overshooting adds to its shot (0 for every patch when AMB is 0), halved once
+ * per back-off. */
 static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb,
                               unsigned c)
 {
     rad_energy_t over;
-    if (amb[c] == 0) return 0; /* shooting plainly */
+    uint32_t k;
+    if (amb[c] == 0 || s->over_halvings >= OVER_STOP) return 0; /* shooting plainly */
     over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area),
                             rad__channel(&s->pools.surfaces[pt->surface].reflectance, c));
+    for (k = 0; k < s->over_halvings; k++) over = rad__energy_refl(over, RAD_REAL(0.5));
     if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
 }
 
-/* The ambient radiosity to overshoot by: 0 when shooting plainly. */
-static void shot_ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+/* The ambient radiosity to overshoot by: 0 when shooting plainly. Returns how often
+ * the estimate was clamped: not counted in stats.saturations, since the solution is
+ * unharmed (the debt is what was shot), but a sign that the estimate is too high. */
+static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb)
 {
+    uint32_t sat = 0;
     amb[0] = amb[1] = amb[2] = 0;
-    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, sat);
+    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, &sat);
+    return sat;
 }
 
 /* The patch whose shot moves the most power (its unshot power plus the overshoot, in
@@ -96,6 +107,87 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     }
     *total = sum;
     return best;
+}
+
+/* The net unshot power: each channel's signed sum over the patches, in magnitude,
+ * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
+ * rho F the part of the shot that the scene reflects back, so plainly shot it falls
+ * from the emitted power towards 0. Overshot, u carries the debt too; when the scene
+ * returns what the estimate says, the sum still only shrinks, but an estimate far
+ * above the return (1 - rho F near 1 on a debt that rho F never repays) throws it
+ * past 0 to the other side, further each time. */
+static rad_energy_t net_unshot(const rad_scene_t *s)
+{
+    rad_energy_t net[3] = {0, 0, 0};
+    uint32_t p, c;
+    for (p = 0; p < s->n_patches; p++)
+        for (c = 0; c < 3; c++) net[c] = rad__esum(net[c], s->pools.patches[p].unshot[c]);
+    return rad__esum(rad__esum(rad__eabs(net[0]), rad__eabs(net[1])), rad__eabs(net[2]));
+}
+
+/* Overshooting's estimate of the power coming back, the ambient term, assumes that
+ * every reflection stays in the scene. Where light escapes (a bright open box), the
+ * estimate owes far more than will arrive, the debts are shot back as negative power,
+ * overshot again, and the unshot power swings ever wider; where the ambient term's
+ * rounding (a step of 2^-16 / (1 - mean reflectance)) is larger than what is left, two
+ * shots undo each other for ever. Watched at every selection, the overshoot is halved
+ * (stats.backoffs, and the watch starts again from here) when
+ *   - the net unshot power exceeds twice the emitted power, or twice its value at the
+ *     last back-off (the swing; a working estimate stays within 1x, see net_unshot),
+ *   - anything saturated since the last selection, CLAMPED included (the ambient term
+ *     clamped, not counted in stats: the estimate beyond any radiosity),
+ * and overshooting stops at once (OVER_STOP) when the unshot total has not fallen
+ * below its lowest value for 4 selections a patch + 64 (the circle; twice the longest
+ * wait of a bright closed box, whose first shots raise the total before it falls).
+ * Plain shots never make the total grow. Where overshooting works none of these
+ * triggers, so the bits are those of the solve without the watch. Returns 1 when it
+ * backed off. */
+static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
+{
+    uint32_t window = s->n_patches < (1u << 28) ? 4u * s->n_patches + 64u : UINT32_MAX;
+    int saturated = clamped || s->stats.saturations != s->over_sat, grown;
+    rad_energy_t net;
+    s->over_sat = s->stats.saturations;
+    if ((s->cfg.flags & RAD_NO_OVERSHOOT) || s->over_halvings >= OVER_STOP) return 0;
+    if (total < s->over_low) {
+        s->over_low = total;
+        s->over_wait = 0;
+    } else if (s->over_wait < UINT32_MAX) {
+        s->over_wait++;
+    }
+    net = net_unshot(s);
+    grown = net > rad__esum(s->over_net, s->over_net);
+    if (!saturated && !grown && s->over_wait < window) return 0;
+    s->over_halvings = grown || saturated ? s->over_halvings + 1u : OVER_STOP;
+    s->stats.backoffs++;
+    s->over_low = total;
+    s->over_wait = 0;
+    if (net > s->over_net) s->over_net = net;
+    return 1;
+}
+
+/* Starts the watch before the first shot, after rad__freeze has set the emitted power
+ * at the core's scale (rad_init and rad_restart zero the count; computing rows
+ * freezes the scene but shoots nothing). */
+static void start_solving(rad_scene_t *s)
+{
+    if (s->stats.shots != 0) return;
+    s->over_low = RAD__ESUM;
+    s->over_wait = 0;
+    s->over_sat = s->stats.saturations;
+    s->over_halvings = 0;
+    s->over_net = s->emitted;
+}
+
+/* The shooter for the next shot (RAD_INDEX_NONE: none), after the ambient term AMB and
+ * the back-off's watch; TOTAL gets the magnitude of all unshot power. */
+static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
+{
+    uint32_t p;
+    int clamped = shot_ambient(s, amb) != 0;
+    p = select_shooter(s, amb, total);
+    if (p != RAD_INDEX_NONE && back_off(s, *total, clamped)) p = select_shooter(s, amb, total);
+    return p;
 }
 
 /* Element E receives power F * U (per channel) from a shooter. The channels are worked
@@ -129,9 +221,15 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
     uint32_t e, c;
 
     for (c = 0; c < 3; c++) {
-        /* The power coming back to this patch is shot now and owed until it comes. */
-        rad_energy_t over = overshoot(s, pt, amb, c);
-        u[c] = rad__eclamp(pt->unshot[c] + over, &s->stats.saturations);
+        /* The power coming back to this patch is shot now and owed until it comes. Any
+         * overshoot gives the same solution as long as the debt is what was shot, so
+         * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
+         * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
+         * sum fits. */
+        rad_energy_t over = overshoot(s, pt, amb, c), sum = pt->unshot[c] + over;
+        if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
+        if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
+        u[c] = pt->unshot[c] + over;
         pt->unshot[c] = -over;
     }
     if (rows) {
@@ -149,12 +247,11 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 {
     uint32_t done = 0;
     rad__freeze(s);
+    start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
         rad_real_t amb[3];
-        uint32_t p;
-        shot_ambient(s, amb, &s->stats.saturations);
-        p = select_shooter(s, amb, &total);
+        uint32_t p = next_shooter(s, amb, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
         shoot_patch(s, p, amb, rows, 1);
         done++;
@@ -215,8 +312,8 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     if (s->emitted == 0) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
-    shot_ambient(s, amb, &s->stats.saturations);
-    p = select_shooter(s, amb, &total);
+    start_solving(s);
+    p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
     *patch = p;
     return 1;
@@ -240,7 +337,7 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
     for (k = 0; k < nparts; k++)
         if (!bufs[k]) return RAD_ERR_ARG;
     rad__cube_merge(s, bufs, nparts);
-    shot_ambient(s, amb, &s->stats.saturations);
+    shot_ambient(s, amb);
     shoot_patch(s, patch, amb, 0, 0);
     return 1;
 }

@@ -207,7 +207,12 @@ typedef struct {
  * "Accelerating radiosity by overshooting", 1992). The estimate is left owing, as
  * negative unshot power, and paid back as the real power arrives; the solution is the
  * same, reached in fewer shots (`make bench` counts them). RAD_NO_OVERSHOOT shoots the
- * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. */
+ * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. The
+ * estimate assumes that every reflection stays in the scene; where it proves too high
+ * (light escaping a bright open scene: the net unshot power swings beyond twice the
+ * emitted, or a value saturates), the overshoot is halved, down to plain shooting after
+ * 16 halvings, and where the unshot total stops falling (4 shots a patch + 64 without a
+ * new lowest), shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
@@ -220,6 +225,8 @@ typedef struct {
      * core scales every scene to one size, so these are elements small against their
      * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
     uint32_t small_elements;
+    uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
+                               of the power coming back proved too high */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -242,6 +249,12 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    /* overshooting's back-off (lib/solve.c), reset before the first shot */
+    rad_energy_t over_low;  /* lowest unshot total since the last back-off */
+    rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
+    uint32_t over_wait;     /* shooter selections since over_low was lowered */
+    uint32_t over_sat;      /* stats.saturations at the last selection */
+    uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */

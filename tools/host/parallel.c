@@ -71,6 +71,7 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
     if (threads < 1) threads = 1;
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     if (s->band_rows != 0) return -1;
+    sc_solve_started(h, tol);
     c.s = s;
     c.patch = 0;
     c.nparts = (unsigned)threads;
