@@ -1,19 +1,28 @@
 /* rad_bench — speed, memory and accuracy of the fixed core beside its float twin, on
  * the bundled Cornell box at three densities, the original Cornell box (when
- * ../shared/scenes is there) and a generated scene of 20,000+ elements. Prints a
- * Markdown report, writes it to docs/bench.md, replaces the README's section between
- * the bench markers, and draws the convergence plots with the project's PNG writer.
+ * ../shared/scenes is there) and a generated scene of 20,000+ elements, and rad_cli
+ * against a peer (RenderPark's rpkCpp, built outside the repository) as whole
+ * processes. Prints a Markdown report, writes it to docs/bench.md, replaces the
+ * README's section between the bench markers, and draws the convergence plots with
+ * the project's PNG writer.
  *
  * Times are wall-clock medians of several runs in this one process, two variants
  * solved shot by shot in turn; compare the ratios measured here, not absolute times
  * across machines.
  */
+/* wait4 (each child's own peak memory) is a BSD and Linux call, beyond POSIX. */
+#define _DEFAULT_SOURCE
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "formats/obj.h"
 #include "host/clock.h"
@@ -593,12 +602,154 @@ static void report_hemicube(report_t *rp)
     }
 }
 
-static void report_peers(report_t *rp, const brun *fx)
+/* ---- the peer: whole processes, alternating ------------------------------------- */
+
+#define PEER_RUNS 9
+
+/* Runs ARGV (stdout and stderr to /dev/null) and waits for it: its wall time in SECS,
+ * and from wait4's rusage its processor time (user + system) in CPU and its own peak
+ * resident memory in KB. Returns 0 when it ran and exited with status 0. */
+static int run_child(char *const argv[], double *secs, double *cpu, long *kb)
 {
-    out(rp, "\nPeers on CornellBox-Original, as the issue measured them on this kind of machine: RenderPark's "
-        "hierarchical Galerkin radiosity 0.20 s and 16 MB at about 4,000 elements; its progressive shooting "
-        "with ray-cast form factors 169 s and 871 MB at 4,608 patches. rad (fixed, res 128, %d elements): "
-        "%.3f s to an unshot fraction of 0.01 and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
+    struct rusage ru;
+    double t0 = host_now();
+    int st;
+    pid_t pid = fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        execv(argv[0], argv);
+        _exit(127);
+    }
+    if (wait4(pid, &st, 0, &ru) != pid) return -1;
+    *secs = host_now() - t0;
+    *cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    *kb = ru.ru_maxrss;
+    return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0 : -1;
+}
+
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* PATH's folder (up to its last '/', or "." ) into OUT. */
+static void dir_of(const char *path, char *out, size_t n)
+{
+    const char *sl = strrchr(path, '/');
+    if (!sl) snprintf(out, n, ".");
+    else snprintf(out, n, "%.*s", (int)(sl - path), path);
+}
+
+typedef struct {
+    char why[3072];        /* empty when measured; else why not */
+    double t[3], ratio[2]; /* medians: rad to 0.01, to 0.001, rpkCpp; rad/rpkCpp per round */
+    double cpu[3], cpu_ratio[2]; /* the same in processor time */
+    long kb[3];          /* peaks over the runs */
+} peer_t;
+
+/* The peer's scene beside it: converted from the OBJ SCENE with the shared converter
+ * (SCENE's folder/../peers/obj2mgf.py) when it is missing. */
+static int peer_scene(const char *scene, const char *mgf, peer_t *pr)
+{
+    char dir[512], conv[1024];
+    double t, cpu;
+    long kb;
+    char *argv[] = {"/usr/bin/env", "python3", conv, "-o", (char *)mgf, "--channel", "rgb", (char *)scene, NULL};
+    if (is_file(mgf)) return 0;
+    dir_of(scene, dir, sizeof dir);
+    snprintf(conv, sizeof conv, "%s/../peers/obj2mgf.py", dir);
+    fprintf(stderr, "rad_bench: converting %s to %s ...\n", scene, mgf);
+    if (!is_file(conv) || run_child(argv, &t, &cpu, &kb) < 0 || !is_file(mgf)) {
+        snprintf(pr->why, sizeof pr->why, "the scene could not be converted to %s (with %s)", mgf, conv);
+        return -1;
+    }
+    return 0;
+}
+
+/* rad_cli (beside this program) to 0.01 and 0.001 against rpkCpp's Galerkin solve,
+ * whole processes in turn, PEER_RUNS rounds. The peer is in $RAD_PEER_RPK, or
+ * ../peer-rpk: its build/rpk and cbo.mgf. */
+static void peer_bench(const char *self, const char *scene, peer_t *pr)
+{
+    const char *root = getenv("RAD_PEER_RPK");
+    char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
+    char *cmd[3][16] = {
+        {cli, (char *)scene, "--tol", "0.01", "--width", "64", "--height", "64", "-o", png, NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--width", "64", "--height", "64", "-o", png, NULL},
+        {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none", "-iterations", "30",
+         mgf, NULL}};
+    double t[3][PEER_RUNS], c[3][PEER_RUNS], r[2][PEER_RUNS], rc[2][PEER_RUNS];
+    int i, k;
+    memset(pr, 0, sizeof *pr);
+    if (!root || !*root) root = "../peer-rpk";
+    snprintf(rpk, sizeof rpk, "%s/build/rpk", root);
+    snprintf(mgf, sizeof mgf, "%s/cbo.mgf", root);
+    dir_of(self, dir, sizeof dir);
+    snprintf(cli, sizeof cli, "%s/rad_cli", dir);
+    snprintf(png, sizeof png, "%s/bench_peer.ppm", dir);
+    if (!is_file(rpk) || access(rpk, X_OK) != 0) {
+        snprintf(pr->why, sizeof pr->why, "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
+        return;
+    }
+    if (!is_file(cli)) { snprintf(pr->why, sizeof pr->why, "no %s", cli); return; }
+    if (peer_scene(scene, mgf, pr) < 0) return;
+    fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
+    for (i = 0; i < PEER_RUNS; i++)
+        for (k = 0; k < 3; k++) {
+            long kb;
+            if (run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
+                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k < 2 ? scene : mgf);
+                return;
+            }
+            if (kb > pr->kb[k]) pr->kb[k] = kb;
+        }
+    remove(png);
+    for (i = 0; i < PEER_RUNS; i++)
+        for (k = 0; k < 2; k++) {
+            r[k][i] = t[k][i] / t[2][i];
+            rc[k][i] = c[k][i] / c[2][i];
+        }
+    for (k = 0; k < 3; k++) {
+        pr->t[k] = median(t[k], PEER_RUNS);
+        pr->cpu[k] = median(c[k], PEER_RUNS);
+    }
+    for (k = 0; k < 2; k++) {
+        pr->ratio[k] = median(r[k], PEER_RUNS);
+        pr->cpu_ratio[k] = median(rc[k], PEER_RUNS);
+    }
+}
+
+static void report_peers(report_t *rp, const char *self, const char *scene, const brun *fx)
+{
+    peer_t pr;
+    peer_bench(self, scene, &pr);
+    out(rp, "\nAgainst a peer on CornellBox-Original: RenderPark's hierarchical Galerkin radiosity (rpkCpp, "
+        "`rpk -force-onesided -radiance-method Galerkin -raytracing-method none -iterations 30`, one core, about "
+        "4,000 elements) beside `rad_cli --tol 0.01` (and 0.001) `--width 64 --height 64` (fixed build, default "
+        "mesh), whole processes in turn, %d rounds: medians of wall and processor (user + system) "
+        "time, the median of each round's ratio, and each program's peak resident memory over the rounds (wait4). ",
+        PEER_RUNS);
+    if (pr.why[0]) {
+        out(rp, "Not measured: %s.\n", pr.why);
+    } else {
+        static const char *nm[3] = {"rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin"};
+        int k;
+        out(rp, "\n\n| program | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB |\n"
+            "| --- | ---: | ---: | ---: | ---: | ---: |\n");
+        for (k = 0; k < 3; k++) {
+            char a[32] = "", b[32] = "";
+            if (k < 2) {
+                snprintf(a, sizeof a, "%.2f", pr.ratio[k]);
+                snprintf(b, sizeof b, "%.2f", pr.cpu_ratio[k]);
+            }
+            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], pr.t[k], a, pr.cpu[k], b, pr.kb[k] / 1024.0);
+        }
+    }
+    out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 and "
+        "%.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
         fx->elements, fx->t[1], fx->total, fx->bytes / 1048576.0);
 }
 
@@ -783,7 +934,9 @@ int main(int argc, char **argv)
     double amax[8], arms[8];
     int ns, i, orig;
 
-    ns = load_scenes(argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj", scenes);
+    const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
+
+    ns = load_scenes(shared, scenes);
     if (!ns) return 1;
     for (i = 0; i < ns; i++) {
         fprintf(stderr, "rad_bench: %s ...\n", scenes[i].name);
@@ -797,7 +950,7 @@ int main(int argc, char **argv)
     report_speed(&rp, scenes, ns, fx, fl);
     report_twin(&rp, scenes, ns, amax, arms);
     report_hemicube(&rp);
-    if (orig >= 0) report_peers(&rp, &fx[orig]);
+    if (orig >= 0) report_peers(&rp, argv[0], shared, &fx[orig]);
     if (orig >= 0) report_patches(&rp, &scenes[orig]);
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
