@@ -144,6 +144,16 @@ static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_
     return s;
 }
 
+/* The solver's counts into R, whose total time is set. */
+static void run_stats(brun *r, const sc_stats *st)
+{
+    r->elements = st->elements;
+    r->patches = st->patches;
+    r->all_shots = st->shots;
+    r->pix_per_s = (double)st->raster_pixels / r->total;
+    r->bytes = st->pool_bytes + st->work_bytes;
+}
+
 /* Two variants (a build and options each) solved side by side RUNS times, shot by shot
  * (one shot of the first, one of the second, ...): each shot's time is its variant's
  * own, and both see the same machine, whose speed on a shared host drifts within
@@ -185,11 +195,7 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
             brun *x = &r[k][i];
             b[k]->stats(s[k], &st);
             x->total = pg[k].spent;
-            x->elements = st.elements;
-            x->patches = st.patches;
-            x->all_shots = st.shots;
-            x->pix_per_s = (double)st.raster_pixels / x->total;
-            x->bytes = st.pool_bytes + st.work_bytes;
+            run_stats(x, &st);
             b[k]->destroy(s[k]);
             tot[k][i] = x->total;
         }
@@ -204,6 +210,27 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
         out[k] = r[k][best];
         for (j = 0; j < 3; j++) out[k].t[j] = median(ti[j], runs);
     }
+}
+
+/* One fixed-build solve of SC to 0.001, once (for the largest scene), into R. */
+static void solo(const bscene *sc, brun *r)
+{
+    sc_opts o = scene_opts(sc);
+    prog_t pg;
+    sc_stats st;
+    double t0 = host_now();
+    sc_solver *s = fixed_solver(sc, sc->polys, &o);
+    run_alloc(r);
+    r->mesh = host_now() - t0;
+    pg.r = r;
+    pg.spent = 0;
+    pg.base = 0;
+    pg.t0 = host_now();
+    sc_solve(s, 1000000, 0.001, on_shot, &pg);
+    r->total = host_now() - pg.t0;
+    sc_get_stats(s, &st);
+    run_stats(r, &st);
+    sc_destroy(s);
 }
 
 /* Both builds at the scene's settings. */
@@ -829,6 +856,34 @@ static void report_relight(report_t *rp, const bscene *sc)
         rl.fresh_shots, rl.t_fresh / rl.t_relight);
 }
 
+/* The generated hall meshed to over 100,000 elements, solved once (fixed build). */
+static void report_large(report_t *rp)
+{
+    bscene sc;
+    brun r;
+    char sh[64];
+    memset(&sc, 0, sizeof sc);
+    sc.name = "generated hall, fine";
+    sc.polys = gen_hall(&sc.n);
+    if (!sc.polys) exit(1);
+    /* Element edge 0.078: 110,646 elements (the hall's 0.175 gives 23,384). */
+    sc.max_element = 0.078;
+    sc.res = 128;
+    fprintf(stderr, "rad_bench: %s ...\n", sc.name);
+    solo(&sc, &r);
+    if (r.elements < 100000)
+        fprintf(stderr, "rad_bench: warning: the fine hall has %d elements, fewer than 100,000\n", r.elements);
+    fmt_shots(sh, sizeof sh, &r);
+    out(rp, "\nA large scene: the generated hall meshed finer, solved once (fixed build, res 128, one core); "
+        "memory is the core's pools and work buffer, all it uses:\n\n| scene | elements | patches | meshing s | "
+        "shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot | memory MB |\n"
+        "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |\n");
+    out(rp, "| %s | %d | %d | %.3f | %s | %.2f | %.2f | %.3f | %.2f |\n", sc.name, r.elements, r.patches, r.mesh, sh,
+        r.t[1], r.total, 1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
+    run_free(&r);
+    free(sc.polys);
+}
+
 /* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
  * results differ in a bit. */
 static void parallel_times(const bscene *sc, double *m1, double *m2)
@@ -955,6 +1010,7 @@ int main(int argc, char **argv)
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
     report_parallel(&rp, scenes, ns, fx);
+    report_large(&rp);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);
