@@ -268,11 +268,11 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
 }
 
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
- * as the work buffer's) to its element's sum. */
-static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg)
+ * as the work buffer's) to its element's sum, for the elements [E0, E0 + N). */
+static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
+                       uint32_t n)
 {
     uint32_t res = s->cfg.res, q = res / 2u, i;
-    const uint32_t n = s->n_elements;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     for (r = reg->row0; r < reg->row1; r++) {
@@ -283,10 +283,11 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
                 s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
         else
             row = s->dff_side + (size_t)r * q;
+        /* ids[i] - e0 wraps past N below E0 (and RAD_INDEX_NONE is above every range) */
         for (i = 0; i < q; i++)
-            if (ids[i] < n) acc[ids[i]] += row[q - 1u - i];
+            if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[q - 1u - i];
         for (i = q; i < res; i++)
-            if (ids[i] < n) acc[ids[i]] += row[i - q];
+            if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[i - q];
     }
 }
 
@@ -365,22 +366,21 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
-        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements);
     }
 }
 
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
 
-/* A part's buffer: its counters, a row of id steps, then depth and ids laid out as
- * all five faces. */
-typedef struct {
-    uint32_t calls, pad;
-    uint64_t pixels;
-} part_head_t;
+/* A part's buffer: its head, a row of id steps, then depth and ids laid out as all
+ * five faces. RAD_PART_BYTES counts 48 bytes for the head. */
+typedef char
+    rad__part_head_fits[sizeof(rad__part_head_t) <= 48u && sizeof(rad__part_head_t) % 8u == 0 ? 1
+                                                                                              : -1];
 
 static uint32_t *part_steps(void *buf)
 {
-    return (uint32_t *)(void *)((part_head_t *)buf + 1);
+    return (uint32_t *)(void *)((unsigned char *)buf + 48);
 }
 static uint32_t *part_z(const rad_scene_t *s, void *buf)
 {
@@ -431,7 +431,7 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     region_t reg[5];
     rad_stats_t st = {0, 0, 0, 0};
     canvas_t cv = part_canvas(s, buf);
-    part_head_t *h = (part_head_t *)buf;
+    rad__part_head_t *h = (rad__part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
 
     cv.st = &st;
@@ -439,20 +439,18 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     if (nreg) render_scene(s, &cv, reg, nreg, p);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
+    h->state = RAD__PART_RENDERED;
     return (int)st.raster_calls;
 }
 
-void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
+void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_t e0, uint32_t e1)
 {
     region_t reg[5];
     uint32_t e;
     unsigned k, r, nreg;
-    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    for (e = e0; e < e1; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
-        const part_head_t *h = (const part_head_t *)bufs[k];
-        s->stats.raster_calls += h->calls;
-        s->stats.raster_pixels += h->pixels;
         nreg = part_regions(s, k, nparts, reg);
-        for (r = 0; r < nreg; r++) accumulate(s, part_ids(s, bufs[k]), &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0);
     }
 }

@@ -913,14 +913,18 @@ static void parallel_times(const bscene *sc, double *m1, double *m2)
 static void report_parallel(report_t *rp, const bscene *scenes, int ns, const brun *fx)
 {
     int i;
-    out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, summed in order: "
-        "bit-exact with the serial solve, checked by tests/test_parallel.c), fixed build, to 0.001, median of 3:\n\n"
-        "| scene | elements | 1 thread s | 2 threads s | speed-up |\n| --- | ---: | ---: | ---: | ---: |\n");
+    out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, then its receiving by "
+        "runs of whole patches' elements, each sum in the serial order: bit-exact with the serial solve, checked by "
+        "tests/test_parallel.c), fixed build, to 0.001, median of 3, with the machine's load average (1 minute) "
+        "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
+        "thread:\n\n| scene | elements | 1 thread s | 2 threads s | speed-up | load average |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
-        double m1, m2;
+        double m1, m2, load = -1;
         if (scenes[i].big) continue; /* too long to repeat */
         parallel_times(&scenes[i], &m1, &m2);
-        out(rp, "| %s | %d | %.3f | %.3f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2);
+        if (getloadavg(&load, 1) != 1) load = -1;
+        out(rp, "| %s | %d | %.3f | %.3f | %.2f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2, load);
     }
 }
 
