@@ -267,16 +267,26 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     }
 }
 
+/* Whether half row H (its first pixel / (res / 2), over the layout of all five faces)
+ * may hold an element of [E0, E0 + N): by its smallest and largest id in BOUNDS, or
+ * always (BOUNDS null). */
+static int half_row_has(const uint32_t *bounds, uint32_t h, uint32_t e0, uint32_t n)
+{
+    return !bounds || (bounds[2u * h + 1u] >= e0 && bounds[2u * h] < e0 + n);
+}
+
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
- * as the work buffer's) to its element's sum, for the elements [E0, E0 + N). */
+ * as the work buffer's) to its element's sum, for the elements [E0, E0 + N), skipping
+ * the half rows BOUNDS rules out (see half_row_has). */
 static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
-                       uint32_t n)
+                       uint32_t n, const uint32_t *bounds)
 {
     uint32_t res = s->cfg.res, q = res / 2u, i;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     for (r = reg->row0; r < reg->row1; r++) {
-        const rad_index_t *ids = ibuf + reg->offset + (size_t)(r - reg->row0) * res;
+        uint32_t px = reg->offset + (uint32_t)(r - reg->row0) * res;
+        const rad_index_t *ids = ibuf + px;
         const rad_ff_t *row;
         if (reg->face == 0)
             row =
@@ -284,10 +294,35 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
         else
             row = s->dff_side + (size_t)r * q;
         /* ids[i] - e0 wraps past N below E0 (and RAD_INDEX_NONE is above every range) */
-        for (i = 0; i < q; i++)
-            if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[q - 1u - i];
-        for (i = q; i < res; i++)
-            if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[i - q];
+        if (half_row_has(bounds, px / q, e0, n))
+            for (i = 0; i < q; i++)
+                if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[q - 1u - i];
+        if (half_row_has(bounds, px / q + 1u, e0, n))
+            for (i = q; i < res; i++)
+                if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[i - q];
+    }
+}
+
+/* The smallest and largest element id of each half row of region REG of the item
+ * buffer IDS into BOUNDS (two per half row, indexed as in half_row_has; an empty half
+ * row gets smallest > largest). Skipping the half rows without its elements, a merge
+ * of a run of elements reads little more than its own pixels. */
+static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const region_t *reg,
+                            uint32_t *bounds)
+{
+    uint32_t q = s->cfg.res / 2u, n = s->n_elements, px, i;
+    uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    for (px = reg->offset; px < end; px += q) {
+        uint32_t lo = 0xFFFFFFFFu, hi = 0;
+        for (i = px; i < px + q; i++) {
+            uint32_t id = ids[i];
+            if (id < n) {
+                lo = id < lo ? id : lo;
+                hi = id > hi ? id : hi;
+            }
+        }
+        bounds[2u * (px / q)] = lo;
+        bounds[2u * (px / q) + 1u] = hi;
     }
 }
 
@@ -366,7 +401,7 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
-        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements);
+        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements, 0);
     }
 }
 
@@ -437,6 +472,8 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     cv.st = &st;
     for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
     if (nreg) render_scene(s, &cv, reg, nreg, p);
+    /* The depth buffer is done with: it keeps the bounds (12 res words of 3 res^2). */
+    for (r = 0; r < nreg; r++) half_row_bounds(s, cv.ids, &reg[r], cv.z);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     h->state = RAD__PART_RENDERED;
@@ -451,6 +488,7 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_
     for (e = e0; e < e1; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
         nreg = part_regions(s, k, nparts, reg);
-        for (r = 0; r < nreg; r++) accumulate(s, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0);
+        for (r = 0; r < nreg; r++)
+            accumulate(s, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0, part_z(s, bufs[k]));
     }
 }
