@@ -464,7 +464,7 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
     region_t reg[5];
-    rad_stats_t st = {0, 0, 0, 0};
+    rad_stats_t st = {0};
     canvas_t cv = part_canvas(s, buf);
     rad__part_head_t *h = (rad__part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
