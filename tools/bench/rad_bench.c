@@ -724,6 +724,7 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
         return;
     }
     if (!is_file(cli)) { snprintf(pr->why, sizeof pr->why, "no %s", cli); return; }
+    if (!is_file(scene)) { snprintf(pr->why, sizeof pr->why, "no %s", scene); return; }
     if (peer_scene(scene, mgf, pr) < 0) return;
     fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
     for (i = 0; i < PEER_RUNS; i++)
@@ -751,18 +752,16 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
     }
 }
 
-static void report_peers(report_t *rp, const char *self, const char *scene, const brun *fx)
+static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
 {
-    peer_t pr;
-    peer_bench(self, scene, &pr);
     out(rp, "\nAgainst a peer on CornellBox-Original: RenderPark's hierarchical Galerkin radiosity (rpkCpp, "
         "`rpk -force-onesided -radiance-method Galerkin -raytracing-method none -iterations 30`, one core, about "
         "4,000 elements) beside `rad_cli --tol 0.01` (and 0.001) `--width 64 --height 64` (fixed build, default "
         "mesh), whole processes in turn, %d rounds: medians of wall and processor (user + system) "
         "time, the median of each round's ratio, and each program's peak resident memory over the rounds (wait4). ",
         PEER_RUNS);
-    if (pr.why[0]) {
-        out(rp, "Not measured: %s.\n", pr.why);
+    if (p->why[0]) {
+        out(rp, "Not measured: %s.\n", p->why);
     } else {
         static const char *nm[3] = {"rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin"};
         int k;
@@ -771,10 +770,10 @@ static void report_peers(report_t *rp, const char *self, const char *scene, cons
         for (k = 0; k < 3; k++) {
             char a[32] = "", b[32] = "";
             if (k < 2) {
-                snprintf(a, sizeof a, "%.2f", pr.ratio[k]);
-                snprintf(b, sizeof b, "%.2f", pr.cpu_ratio[k]);
+                snprintf(a, sizeof a, "%.2f", p->ratio[k]);
+                snprintf(b, sizeof b, "%.2f", p->cpu_ratio[k]);
             }
-            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], pr.t[k], a, pr.cpu[k], b, pr.kb[k] / 1024.0);
+            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], p->t[k], a, p->cpu[k], b, p->kb[k] / 1024.0);
         }
     }
     out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 and "
@@ -1048,11 +1047,15 @@ int main(int argc, char **argv)
     static bscene scenes[8];
     static brun fx[8], fl[8];
     static report_t rp;
+    static peer_t peer;
     double amax[8], arms[8];
     int ns, i, orig;
 
     const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
 
+    /* First, while this process is small: a child's peak memory starts at its parent's
+     * at fork (Linux keeps the high-water mark across exec). */
+    peer_bench(argv[0], shared, &peer);
     ns = load_scenes(shared, scenes);
     if (!ns) return 1;
     for (i = 0; i < ns; i++) {
@@ -1067,7 +1070,7 @@ int main(int argc, char **argv)
     report_speed(&rp, scenes, ns, fx, fl);
     report_twin(&rp, scenes, ns, amax, arms);
     report_hemicube(&rp);
-    if (orig >= 0) report_peers(&rp, argv[0], shared, &fx[orig]);
+    if (orig >= 0) report_peers(&rp, &peer, &fx[orig]);
     if (orig >= 0) report_patches(&rp, &scenes[orig]);
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
