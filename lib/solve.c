@@ -190,11 +190,13 @@ static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *tota
     return p;
 }
 
-/* Element E receives power F * U (per channel) from a shooter. The channels are worked
- * out before anything is stored, and saturations counted locally: a store to the
- * element or to the counter could otherwise alias the next channel's inputs, which kept
- * the channels from overlapping. */
-void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
+/* Element E receives power F * U (per channel) from a shooter, its saturations added
+ * to SAT. The channels are worked out before anything is stored, and saturations
+ * counted locally: a store to the element or to the counter could otherwise alias the
+ * next channel's inputs, which kept the channels from overlapping. Writes element E
+ * and its patch's unshot power only. */
+static void receive_element(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f,
+                            uint32_t *sat_out)
 {
     rad_element_t *el = &s->pools.elements[e];
     const rad_surface_t *sf = &s->pools.surfaces[el->surface];
@@ -207,19 +209,20 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
     el->radiosity.r = r;
     el->radiosity.g = g;
     el->radiosity.b = b;
-    s->stats.saturations += sat;
+    *sat_out += sat;
 }
 
-/* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
- * stored row, or through the form factors in s->acc, rendering its hemi-cube first
- * when CUBE is set. */
-static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows,
-                        int cube)
+void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
+{
+    receive_element(s, u, e, f, &s->stats.saturations);
+}
+
+/* Patch P's shot, overshooting by ambient radiosity AMB: its power into U, and the
+ * power coming back to it owed until it comes. */
+static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t *u)
 {
     rad_patch_t *pt = &s->pools.patches[p];
-    rad_energy_t u[3];
-    uint32_t e, c;
-
+    uint32_t c;
     for (c = 0; c < 3; c++) {
         /* The power coming back to this patch is shot now and owed until it comes. Any
          * overshoot gives the same solution as long as the debt is what was shot, so
@@ -232,6 +235,19 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
         u[c] = pt->unshot[c] + over;
         pt->unshot[c] = -over;
     }
+    s->stats.shots++;
+}
+
+/* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
+ * stored row, or through the form factors in s->acc, rendering its hemi-cube first
+ * when CUBE is set. */
+static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows,
+                        int cube)
+{
+    rad_energy_t u[3];
+    uint32_t e;
+
+    aim(s, p, amb, u);
     if (rows) {
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
@@ -240,7 +256,6 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
         for (e = 0; e < s->n_elements; e++)
             if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
-    s->stats.shots++;
 }
 
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
@@ -328,16 +343,122 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     return rad__cube_part(s, patch, part, nparts, buf);
 }
 
-int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+/* The part buffers' heads. */
+static rad__part_head_t *head(void *const *bufs, unsigned k)
 {
-    rad_real_t amb[3];
+    return (rad__part_head_t *)bufs[k];
+}
+
+/* The checks of rad_shot_aim, _receive_part and _end. */
+static int shot_args(const rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
     unsigned k;
     if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0)
         return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++)
         if (!bufs[k]) return RAD_ERR_ARG;
-    rad__cube_merge(s, bufs, nparts);
+    return RAD_OK;
+}
+
+/* Whether every part's head is in state STATE. */
+static int parts_in(void *const *bufs, unsigned nparts, uint32_t state)
+{
+    unsigned k;
+    for (k = 0; k < nparts; k++)
+        if (head(bufs, k)->state != state) return 0;
+    return 1;
+}
+
+/* Part PART of NPARTS of the elements, [E0, E1): cut at equal counts, each cut moved
+ * down to the first element of its patch. mesh.c appends each patch's elements as one
+ * block, so a patch (whose unshot power its elements add to) lies in one part. */
+static void receive_range(const rad_scene_t *s, unsigned part, unsigned nparts, uint32_t *e0,
+                          uint32_t *e1)
+{
+    uint32_t c[2], k, n = s->n_elements;
+    for (k = 0; k < 2; k++) {
+        uint32_t e = (uint32_t)((uint64_t)n * (part + k) / nparts);
+        c[k] = e < n ? s->pools.patches[s->pools.elements[e].patch].first_element : n;
+    }
+    *e0 = c[0];
+    *e1 = c[1];
+}
+
+static void aim_parts(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    rad_real_t amb[3];
+    rad_energy_t u[3];
+    unsigned k;
+    for (k = 0; k < nparts; k++) {
+        s->stats.raster_calls += head(bufs, k)->calls;
+        s->stats.raster_pixels += head(bufs, k)->pixels;
+    }
     shot_ambient(s, amb);
-    shoot_patch(s, patch, amb, 0, 0);
+    aim(s, patch, amb, u);
+    for (k = 0; k < nparts; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        h->u[0] = u[0];
+        h->u[1] = u[1];
+        h->u[2] = u[2];
+        h->saturations = 0;
+        h->state = RAD__PART_AIMED;
+    }
+}
+
+int rad_shot_aim(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (!parts_in(bufs, nparts, RAD__PART_RENDERED)) return RAD_ERR_STATE;
+    aim_parts(s, patch, bufs, nparts);
+    return 1;
+}
+
+static int receive_part(rad_scene_t *s, void *const *bufs, unsigned nparts, unsigned part)
+{
+    rad__part_head_t *h = head(bufs, part);
+    uint32_t e, e0, e1, sat = 0;
+    int n = 0;
+    receive_range(s, part, nparts, &e0, &e1);
+    rad__cube_merge(s, bufs, nparts, e0, e1);
+    for (e = e0; e < e1; e++)
+        if (s->acc[e] > 0) {
+            receive_element(s, h->u, e, s->acc[e], &sat);
+            n++;
+        }
+    h->saturations = sat;
+    h->state = RAD__PART_RECEIVED;
+    return n;
+}
+
+int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts,
+                          unsigned part)
+{
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (part >= nparts) return RAD_ERR_ARG;
+    if (head(bufs, part)->state != RAD__PART_AIMED) return RAD_ERR_STATE;
+    return receive_part(s, bufs, nparts, part);
+}
+
+int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    unsigned k;
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (parts_in(bufs, nparts, RAD__PART_RENDERED)) {
+        aim_parts(s, patch, bufs, nparts);
+    } else {
+        for (k = 0; k < nparts; k++) {
+            uint32_t st = head(bufs, k)->state;
+            if (st != RAD__PART_AIMED && st != RAD__PART_RECEIVED) return RAD_ERR_STATE;
+        }
+    }
+    for (k = 0; k < nparts; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        if (h->state == RAD__PART_AIMED) receive_part(s, bufs, nparts, k);
+        s->stats.saturations += h->saturations;
+        h->state = RAD__PART_SHOT;
+    }
     return 1;
 }

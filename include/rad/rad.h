@@ -326,12 +326,24 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
  * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
 #define RAD_PART_BYTES(res)                   \
-    (16u + (size_t)(res) * sizeof(uint32_t) + \
+    (48u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
                   size_t bytes);
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
+/* rad_shot_end in parts, for the same threads: rad_shot_aim (one thread, after every
+ * rad_shot_part) counts the parts, takes the shooter's power and writes it to every
+ * buffer; then rad_shot_receive_part, PART of NPARTS at once on any threads, sums the
+ * pixels of every buffer for its own run of whole patches' elements and has them
+ * receive (returns how many did); rad_shot_end, after all of them, counts the parts'
+ * saturations. rad_shot_end does whatever was not done, so calling it alone is the
+ * serial shot. The result is bit for bit the same: each element's sum takes its
+ * pixels in order, and each patch's unshot power its elements in order. A call out of
+ * that order returns RAD_ERR_STATE. */
+int rad_shot_aim(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
+int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts,
+                          unsigned part);
 
 /* Unshot power as a fraction of the emitted power (0 when nothing emits): the sum of
  * every patch's channels in magnitude, so power owed counts as much as power held. */
