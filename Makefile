@@ -87,9 +87,15 @@ bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
 
 # Every test links both builds of the core (through the host glue) and the host tools.
+# A test that drives the core's API in both builds is compiled twice: its float half
+# (-DRAD_FLOAT=1, tests/float/*.o, a prerequisite below) is linked into the fixed one.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/float/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+$(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
+	@mkdir -p $(@D)
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib -DRAD_FLOAT=1 -c $< -o $@
+$(BUILDDIR)/tests/test_gather: $(BUILDDIR)/tests/float/test_gather.o
 
 # The core's promise, proven from the objects: nothing from outside but compiler helpers.
 nm-check: $(LIBRAD)

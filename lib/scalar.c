@@ -1,8 +1,7 @@
 /* rad — the arithmetic behind the scalar shim that is too long to inline. */
 #include "scalar.h"
 
-#if !RAD_FLOAT
-
+/* In both builds: tables built in integers (gather.c) take square roots too. */
 uint64_t rad__isqrt64(uint64_t v)
 {
     /* Bit by bit, two result bits per step: 32 iterations, no division. */
@@ -18,6 +17,8 @@ uint64_t rad__isqrt64(uint64_t v)
     }
     return r;
 }
+
+#if !RAD_FLOAT
 
 static unsigned bitlen(uint64_t v)
 {

@@ -2,23 +2,10 @@
  * by the same rasterizer as the hemi-cube (raster.c) with colours instead of ids. */
 #include "internal.h"
 
-/* Element radiosity, plus reflectance times AMB when AMB is given, at least 0 (while
- * overshooting, power owed can make either negative for a while). */
+/* Element E as shown (rad__shown), its saturations counted in the scene. */
 static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
 {
-    const rad_element_t *el = &s->pools.elements[e];
-    rad_rgb_t b = el->radiosity;
-    if (amb) {
-        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
-        uint32_t *sat = &s->stats.saturations;
-        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
-        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
-        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
-    }
-    if (b.r < 0) b.r = 0;
-    if (b.g < 0) b.g = 0;
-    if (b.b < 0) b.b = 0;
-    return b;
+    return rad__shown(s, e, amb, &s->stats.saturations);
 }
 
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)

@@ -63,6 +63,9 @@ extern "C" {
 #define rad_shot_begin        radf_shot_begin
 #define rad_shot_part         radf_shot_part
 #define rad_shot_end          radf_shot_end
+#define rad_gather_init       radf_gather_init
+#define rad_gather            radf_gather
+#define rad_gather_sh         radf_gather_sh
 #endif
 
 /* ---- scalar types -------------------------------------------------------------- */
@@ -354,6 +357,68 @@ rad_real_t rad_real_from_q16(int32_t q);
 
 /* A short English description of an RAD_ERR_* code. */
 const char *rad_strerror(int err);
+
+/* ---- gathering: the light arriving at any point --------------------------------- */
+/* A gather renders a cube of its own resolution at any point over the current
+ * solution, through the same rasterizer and element lattice as the shots, and sums
+ * what its pixels see: the way to take the solution to a lightmap's texels, a mesh's
+ * own vertices, or light probes (a gather is one call: bake a few a frame).
+ * A gatherer (rad_gather_t) is the caller's work buffer laid out by rad_gather_init:
+ * its delta form factor (or solid angle) tables and one face's buffers, as big as
+ * RAD_GATHER_BYTES(res) for hemispheres or RAD_GATHER_SH_BYTES(res) for spheres. A
+ * gather only reads the scene, so each thread may gather with a gatherer of its own.
+ * Needs frozen geometry: after the first shot (or rad_rows_compute). */
+#define RAD_GATHER__BUFS(res)           \
+    ((size_t)(res) * sizeof(uint32_t) + \
+     (size_t)(res) * (res) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
+#define RAD_GATHER_BYTES(res) \
+    (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) + RAD_GATHER__BUFS(res))
+#define RAD_GATHER_SH_BYTES(res) \
+    (6u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) + RAD_GATHER__BUFS(res))
+#define RAD_GATHER_SH 1u /* rad_gather_init: a sphere gatherer (rad_gather_sh) */
+
+typedef struct {
+    uint16_t res;      /* cube resolution, even, 8..RAD_MAX_RES */
+    uint16_t sh;       /* 1: a sphere gatherer (six whole faces), 0: a hemisphere's */
+    uint32_t turn;     /* the hemi-cube's turn about the normal, set by the caller (0
+                        * after init): patch P's own cube has turn P */
+    rad_ff_t *table;   /* quadrant tables (see gather.c) */
+    uint32_t *steps;   /* res: a row's element id steps */
+    uint32_t *zbuf;    /* res^2: one face */
+    rad_index_t *ibuf; /* res^2 */
+    rad_stats_t stats; /* this gatherer's raster calls, pixels and saturations */
+} rad_gather_t;
+
+/* Lays a gatherer of resolution RES out in WORK (BYTES long; FLAGS 0 or RAD_GATHER_SH)
+ * and builds its tables. Returns RAD_OK, RAD_ERR_ARG (NULL, RES odd or outside
+ * 8..RAD_MAX_RES, unknown flags) or RAD_ERR_WORK (BYTES below the macro's size). */
+int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, size_t bytes);
+
+/* The radiosity arriving at POINT on a surface of normal NORMAL (any length; the side
+ * it points to is gathered), E = sum over the cube's pixels of F * B: the delta form
+ * factor F of each pixel (summing to exactly 1 over the cube) times the radiosity B of
+ * the element it sees (rad_element_radiosity's value: with reflectance times AMBIENT
+ * added when AMBIENT is given, from rad_ambient(), at least 0), with no element seen
+ * counting as black. An element of reflectance rho at POINT would have radiosity
+ * rho E + its emission: E is irradiance over pi, in radiosity units (Q16.16 in the
+ * fixed build, rounded once from an exact sum). Surface SKIP is not drawn (the one
+ * POINT lies on; RAD_INDEX_NONE: none). Writes OUT; returns RAD_OK, RAD_ERR_ARG (NULL,
+ * a zero normal, a sphere gatherer), RAD_ERR_RANGE (POINT or NORMAL beyond
+ * +-RAD_COORD_LIMIT), RAD_ERR_STATE (geometry not frozen). */
+int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
+               const rad_vec3_t *normal, uint32_t skip, const rad_rgb_t *ambient, rad_rgb_t *out);
+
+/* A light probe: the radiosity seen from POINT in every direction w, B(w) (as
+ * rad_gather's B), projected onto the nine real spherical harmonics of bands 0..2,
+ * SH[k] = integral of B(w) Y_k(w) dw over the sphere (w on the scene's own axes), in
+ * the order Y00; Y1-1 (y), Y10 (z), Y11 (x); Y2-2 (xy), Y2-1 (yz), Y20 (3z^2 - 1),
+ * Y21 (xz), Y22 (x^2 - y^2). A uniform environment B gives SH[0] = B sqrt(4 pi) and
+ * zeros. The radiosity arriving on a normal n is then sum_k A_l SH[k] Y_k(n) / pi
+ * with A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Ramamoorthi & Hanrahan 2001). Values
+ * past 32767.99 saturate (counted). Returns as rad_gather (RAD_ERR_ARG for a
+ * hemisphere gatherer). */
+int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
+                  const rad_rgb_t *ambient, rad_rgb_t *sh);
 
 #ifdef __cplusplus
 }
