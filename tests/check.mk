@@ -178,10 +178,10 @@ $(FUZZDIR)/lib/float/%.o: lib/%.c $(LIB_HDRS)
 $(FUZZDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) -c $< -o $@
-$(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/formats/obj.o $(TOOL_HDRS)
-	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/formats/obj.o -lm -o $@
-$(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/formats/image.o $(TOOL_HDRS)
-	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/formats/image.o $(PNG_LIBS) -lm -o $@
+$(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/formats/obj.o $(FUZZDIR)/tools/formats/file_io.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/formats/obj.o $(FUZZDIR)/tools/formats/file_io.o -lm -o $@
+$(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/formats/image.o $(FUZZDIR)/tools/formats/file_io.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/formats/image.o $(FUZZDIR)/tools/formats/file_io.o $(PNG_LIBS) -lm -o $@
 $(FUZZDIR)/fuzz_core_float.o: tests/fuzz/fuzz_core.c $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -DRAD_FLOAT=1 -c $< -o $@

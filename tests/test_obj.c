@@ -565,7 +565,7 @@ static void test_missing_mtl(void **state)
     /* a library that cannot be read (a directory) is a warning too */
     assert_int_equal(parse("\nmtllib .\n", &sc), 0);
     assert_int_equal(seen.n, 1);
-    assert_string_equal(seen.msg[0], "mem.obj:2: cannot read material library '.': Is a directory");
+    assert_string_equal(seen.msg[0], "mem.obj:2: cannot read material library '.': is a directory");
     obj_free(&sc);
 }
 

@@ -1,14 +1,13 @@
 /* ff_file — stored form factors on disk (see ff_file.h for the format). */
 #include "formats/ff_file.h"
 
+#include "formats/file_io.h"
+
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/types.h>
-#include <unistd.h>
 
 #define HEADER_BYTES 40u
 #define TRAILER_BYTES 8u
@@ -36,17 +35,6 @@ uint64_t ff_file_fnv_u32(uint64_t h, uint32_t v)
 const char *ff_file_kind_name(unsigned kind)
 {
     return kind == FF_FILE_KIND_FIXED ? "fixed" : kind == FF_FILE_KIND_FLOAT ? "float" : "unknown";
-}
-
-static void set_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
-{
-    char msg[512];
-    va_list ap;
-    if (!err || !errlen) return;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    snprintf(err, errlen, "%s: %s", path, msg);
 }
 
 /* ---- little-endian fields ------------------------------------------------------ */
@@ -77,12 +65,12 @@ typedef struct {
     uint64_t hash;
     unsigned char buf[65536];
     size_t n;
-    int failed;
+    int failed; /* errno of the first failed write, 0 while none */
 } writer_t;
 
 static void w_flush(writer_t *w)
 {
-    if (w->n && !w->failed && fwrite(w->buf, 1, w->n, w->fp) != w->n) w->failed = 1;
+    if (w->n && !w->failed && fwrite(w->buf, 1, w->n, w->fp) != w->n) w->failed = errno ? errno : EIO;
     w->n = 0;
 }
 
@@ -100,46 +88,21 @@ static void w_bytes(writer_t *w, const unsigned char *p, size_t n)
 static void w_u32(writer_t *w, uint32_t v) { unsigned char b[4]; put32(b, v); w_bytes(w, b, 4); }
 static void w_u16(writer_t *w, uint32_t v) { unsigned char b[2]; put16(b, v); w_bytes(w, b, 2); }
 
-/* Mode for the new file: that of the file it replaces, else 0666 & ~umask. */
-static mode_t target_mode(const char *path)
-{
-    struct stat st;
-    mode_t um;
-    if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) return st.st_mode & 0777;
-    um = umask(022);
-    umask(um);
-    return 0666 & ~um;
-}
-
 int ff_file_save(const char *path, const ff_file_info *info, const uint32_t *start, const void *ids,
               unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen)
 {
     static writer_t w; /* 64 KB: not on the stack */
     unsigned char head[HEADER_BYTES], tail[TRAILER_BYTES];
-    char *tmp;
-    int fd, ok;
+    fio_out *o;
     uint32_t i;
     if (!info || !start || (info->entries && (!ids || !codes)) || (id_bytes != 2 && id_bytes != 4) ||
         info->res > 0xFFFFu || info->kind > 0xFFFFu || start[info->patches] != info->entries) {
-        set_err(err, errlen, path, "invalid rows to save");
+        fio_err(err, errlen, path, "invalid rows to save");
         return -1;
     }
-    tmp = malloc(strlen(path) + 12);
-    if (!tmp) { set_err(err, errlen, path, "out of memory"); return -1; }
-    strcpy(tmp, path);
-    strcat(tmp, ".tmpXXXXXX");
-    if ((fd = mkstemp(tmp)) < 0) {
-        set_err(err, errlen, path, "cannot create a temporary file: %s", strerror(errno));
-        free(tmp);
-        return -1;
-    }
+    if (!(o = fio_out_open(path, err, errlen))) return -1;
     memset(&w, 0, sizeof w);
-    w.fp = fdopen(fd, "wb");
-    if (!w.fp) {
-        set_err(err, errlen, path, "cannot write: %s", strerror(errno));
-        close(fd); unlink(tmp); free(tmp);
-        return -1;
-    }
+    w.fp = fio_out_stream(o);
     w.hash = FF_FILE_FNV_START;
     memset(head, 0, sizeof head);
     memcpy(head, MAGIC, sizeof MAGIC);
@@ -158,53 +121,90 @@ int ff_file_save(const char *path, const ff_file_info *info, const uint32_t *sta
     put64(tail, w.hash);
     w_bytes(&w, tail, sizeof tail);
     w_flush(&w);
-    /* The data must be on disk before the rename makes it visible under PATH. */
-    ok = !w.failed && fflush(w.fp) == 0 && fsync(fileno(w.fp)) == 0 && fchmod(fileno(w.fp), target_mode(path)) == 0;
-    if (!ok) set_err(err, errlen, path, "write error: %s", strerror(errno ? errno : EIO));
-    if (fclose(w.fp) != 0 && ok) { set_err(err, errlen, path, "write error: %s", strerror(errno)); ok = 0; }
-    if (ok && rename(tmp, path) != 0) {
-        set_err(err, errlen, path, "cannot rename the temporary file into place: %s", strerror(errno));
-        ok = 0;
+    if (w.failed) {
+        fio_out_abort(o);
+        fio_err(err, errlen, path, "write error: %s", strerror(w.failed));
+        return -1;
     }
-    if (!ok) unlink(tmp);
-    free(tmp);
-    return ok ? 0 : -1;
+    return fio_out_commit(o, err, errlen);
 }
 
 /* ---- reading ------------------------------------------------------------------- */
 
-static unsigned char *slurp(const char *path, size_t *size, char *err, size_t errlen)
+/* Bytes past the end its header gives that a file may have and still be read whole, so
+ * that a botched copy or append is named by the checksum; a file longer than that is
+ * not one of ours and is refused from its size, unread (a sparse 20 GB file costs an
+ * fstat). */
+#define EXTRA_BYTES 4096u
+
+/* The checks the header alone allows, in the order of ff_file.h: magic, version, and a
+ * file shorter than the header (GOT bytes of it came: the whole file when short). */
+static int check_head(const char *path, const unsigned char *h, size_t got, char *err, size_t errlen)
 {
-    FILE *fp = fopen(path, "rb");
-    struct stat st;
+    if (memcmp(h, MAGIC, got < sizeof MAGIC ? got : sizeof MAGIC) != 0) {
+        fio_err(err, errlen, path, "not a rad form factor file (bad magic: it should start with \"RADFF\")");
+        return -1;
+    }
+    if (got >= 8 && get16(h + 6) != FF_FILE_VERSION) {
+        fio_err(err, errlen, path, "unsupported format version %u (this program reads version %u)", get16(h + 6),
+                FF_FILE_VERSION);
+        return -1;
+    }
+    if (got < HEADER_BYTES) {
+        fio_err(err, errlen, path, "truncated: %zu bytes, shorter than the %u-byte header", got, HEADER_BYTES);
+        return -1;
+    }
+    return 0;
+}
+
+/* Reads the rest of the file after HEAD (a regular file of SIZE bytes, or a stream when
+ * SIZE is -1) into a buffer that starts with HEAD; at most WANT + EXTRA_BYTES in all. */
+static unsigned char *read_rest(FILE *fp, const char *path, const unsigned char *head, long long size,
+                                size_t *total, char *err, size_t errlen)
+{
+    uint64_t want = file_bytes(get32(head + 12), get32(head + 24)), most = want + EXTRA_BYTES;
+    uint64_t cap = size >= 0 ? (uint64_t)size : most + 1;
     unsigned char *buf;
-    size_t got;
-    if (!fp) { set_err(err, errlen, path, "cannot open: %s", strerror(errno)); return NULL; }
-    if (fstat(fileno(fp), &st) != 0 || !S_ISREG(st.st_mode)) {
-        set_err(err, errlen, path, "not a regular file");
-        fclose(fp);
+    if (size >= 0 && (uint64_t)size > most) {
+        fio_err(err, errlen, path, "corrupt: %lld bytes, its header (%u rows, %u entries) says %llu: not read", size,
+                get32(head + 12), get32(head + 24), (unsigned long long)want);
         return NULL;
     }
-    if ((uint64_t)st.st_size > (uint64_t)SIZE_MAX - 1u || (uint64_t)st.st_size > file_bytes(0xFFFFFFFFu, 0xFFFFFFFFu)) {
-        set_err(err, errlen, path, "too large (%lld bytes) to be a form factor file", (long long)st.st_size);
-        fclose(fp);
+    if (cap > (uint64_t)SIZE_MAX - 1u || !(buf = malloc((size_t)cap))) {
+        fio_err(err, errlen, path, "out of memory for %llu bytes", (unsigned long long)cap);
         return NULL;
     }
-    buf = malloc((size_t)st.st_size + 1u);
-    if (!buf) {
-        set_err(err, errlen, path, "out of memory for %lld bytes", (long long)st.st_size);
-        fclose(fp);
-        return NULL;
-    }
-    got = fread(buf, 1, (size_t)st.st_size, fp);
-    if (got != (size_t)st.st_size || ferror(fp)) {
-        set_err(err, errlen, path, "read error: %s", ferror(fp) ? strerror(errno) : "the file changed while read");
+    memcpy(buf, head, HEADER_BYTES);
+    *total = HEADER_BYTES + fread(buf + HEADER_BYTES, 1, (size_t)cap - HEADER_BYTES, fp);
+    if (ferror(fp) || (size >= 0 && *total != (uint64_t)size) || (size < 0 && *total > most)) {
+        if (ferror(fp))
+            fio_err(err, errlen, path, "read error: %s", strerror(errno));
+        else if (size >= 0)
+            fio_err(err, errlen, path, "read error: the file changed while read");
+        else
+            fio_err(err, errlen, path, "corrupt: more bytes than its header (%u rows, %u entries) says (%llu)",
+                    get32(head + 12), get32(head + 24), (unsigned long long)want);
         free(buf);
-        fclose(fp);
         return NULL;
     }
+    return buf;
+}
+
+/* Reads PATH through fio_open_read: the header first and checked, then the rest. */
+static unsigned char *read_ff(const char *path, size_t *size, char *err, size_t errlen)
+{
+    unsigned char head[HEADER_BYTES], *buf = NULL;
+    struct stat st;
+    size_t got;
+    FILE *fp = fio_open_read(path, err, errlen);
+    if (!fp) return NULL;
+    got = fread(head, 1, sizeof head, fp);
+    if (ferror(fp))
+        fio_err(err, errlen, path, "read error: %s", strerror(errno));
+    else if (check_head(path, head, got, err, errlen) == 0)
+        buf = read_rest(fp, path, head, fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode) ? (long long)st.st_size : -1,
+                        size, err, errlen);
     fclose(fp);
-    *size = got;
     return buf;
 }
 
@@ -223,26 +223,9 @@ int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen)
     uint64_t want;
     ff_file_info *in;
     const unsigned char *st, *id, *cd;
-    uint32_t p, i, version;
+    uint32_t p, i;
     memset(f, 0, sizeof *f);
-    if (!(d = slurp(path, &size, err, errlen))) return -1;
-    if (memcmp(d, MAGIC, size < sizeof MAGIC ? size : sizeof MAGIC) != 0) {
-        set_err(err, errlen, path, "not a rad form factor file (bad magic: it should start with \"RADFF\")");
-        goto fail;
-    }
-    if (size < 8) {
-        set_err(err, errlen, path, "truncated: %zu bytes, shorter than the %u-byte header", size, HEADER_BYTES);
-        goto fail;
-    }
-    version = get16(d + 6);
-    if (version != FF_FILE_VERSION) {
-        set_err(err, errlen, path, "unsupported format version %u (this program reads version %u)", version, FF_FILE_VERSION);
-        goto fail;
-    }
-    if (size < HEADER_BYTES) {
-        set_err(err, errlen, path, "truncated: %zu bytes, shorter than the %u-byte header", size, HEADER_BYTES);
-        goto fail;
-    }
+    if (!(d = read_ff(path, &size, err, errlen))) return -1;
     in = &f->info;
     in->kind = get16(d + 8);
     in->res = get16(d + 10);
@@ -254,21 +237,21 @@ int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen)
     want = file_bytes(in->patches, in->entries);
     /* A bad checksum is reported as truncation when the size explains it. */
     if ((uint64_t)size < want) {
-        set_err(err, errlen, path, "truncated: %zu bytes, its header (%u rows, %u entries) needs %llu",
+        fio_err(err, errlen, path, "truncated: %zu bytes, its header (%u rows, %u entries) needs %llu",
                 size, in->patches, in->entries, (unsigned long long)want);
         goto fail;
     }
     if (get64(d + size - TRAILER_BYTES) != ff_file_fnv(FF_FILE_FNV_START, d, size - TRAILER_BYTES)) {
-        set_err(err, errlen, path, "checksum mismatch: the file is corrupt%s",
+        fio_err(err, errlen, path, "checksum mismatch: the file is corrupt%s",
                 (uint64_t)size > want ? " (or has bytes past its end)" : "");
         goto fail;
     }
     if ((uint64_t)size != want) {
-        set_err(err, errlen, path, "corrupt: %zu bytes, its header says %llu", size, (unsigned long long)want);
+        fio_err(err, errlen, path, "corrupt: %zu bytes, its header says %llu", size, (unsigned long long)want);
         goto fail;
     }
     if (get32(d + 28) != 0 || (in->kind != FF_FILE_KIND_FIXED && in->kind != FF_FILE_KIND_FLOAT)) {
-        set_err(err, errlen, path, "corrupt header (build kind %u)", in->kind);
+        fio_err(err, errlen, path, "corrupt header (build kind %u)", in->kind);
         goto fail;
     }
     /* The structure, so that nothing in a file with a valid checksum can index out of
@@ -277,23 +260,23 @@ int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen)
     id = st + 4u * ((size_t)in->patches + 1u);
     cd = id + 4u * (size_t)in->entries;
     if (get32(st) != 0 || get32(st + 4u * (size_t)in->patches) != in->entries) {
-        set_err(err, errlen, path, "corrupt row table (the rows do not cover the %u entries)", in->entries);
+        fio_err(err, errlen, path, "corrupt row table (the rows do not cover the %u entries)", in->entries);
         goto fail;
     }
     for (p = 0; p < in->patches; p++) {
         uint32_t a = get32(st + 4u * (size_t)p), b = get32(st + 4u * ((size_t)p + 1u));
         if (b < a || b > in->entries) {
-            set_err(err, errlen, path, "corrupt row table at row %u", p);
+            fio_err(err, errlen, path, "corrupt row table at row %u", p);
             goto fail;
         }
         for (i = a; i < b; i++) {
             uint32_t e = get32(id + 4u * (size_t)i);
             if (e >= in->elements || (i > a && e <= get32(id + 4u * ((size_t)i - 1u)))) {
-                set_err(err, errlen, path, "corrupt entry %u of row %u (element %u of %u)", i - a, p, e, in->elements);
+                fio_err(err, errlen, path, "corrupt entry %u of row %u (element %u of %u)", i - a, p, e, in->elements);
                 goto fail;
             }
             if (!code_ok(get16(cd + 2u * (size_t)i))) {
-                set_err(err, errlen, path, "corrupt form factor code 0x%04x in row %u", get16(cd + 2u * (size_t)i), p);
+                fio_err(err, errlen, path, "corrupt form factor code 0x%04x in row %u", get16(cd + 2u * (size_t)i), p);
                 goto fail;
             }
         }
@@ -311,26 +294,26 @@ int ff_file_match(const ff_file_t *f, const ff_file_info *want, const char *path
 {
     const ff_file_info *in = &f->info;
     if (in->kind != want->kind) {
-        set_err(err, errlen, path, "made by the %s build, this is the %s build (stored form factors do not cross builds)",
+        fio_err(err, errlen, path, "made by the %s build, this is the %s build (stored form factors do not cross builds)",
                 ff_file_kind_name(in->kind), ff_file_kind_name(want->kind));
         return -1;
     }
     if (in->patches != want->patches || in->elements != want->elements || in->vertices != want->vertices) {
-        set_err(err, errlen, path,
+        fio_err(err, errlen, path,
                 "scene mismatch: made for %u patches, %u elements, %u vertices; this scene has %u, %u, %u "
                 "(another scene, or other --max-element / --max-patch)",
                 in->patches, in->elements, in->vertices, want->patches, want->elements, want->vertices);
         return -1;
     }
     if (in->fingerprint != want->fingerprint) {
-        set_err(err, errlen, path,
+        fio_err(err, errlen, path,
                 "scene mismatch: the geometry fingerprint differs (%016llx, this scene %016llx): another scene "
                 "or mesh with the same counts",
                 (unsigned long long)in->fingerprint, (unsigned long long)want->fingerprint);
         return -1;
     }
     if (in->res != want->res) {
-        set_err(err, errlen, path, "computed at hemi-cube resolution %u, this run uses %u (--res)", in->res, want->res);
+        fio_err(err, errlen, path, "computed at hemi-cube resolution %u, this run uses %u (--res)", in->res, want->res);
         return -1;
     }
     return 0;

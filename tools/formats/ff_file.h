@@ -32,11 +32,13 @@
  * wrote it: a mismatch is an error naming both (by design, not by limitation of the
  * format: the two builds are kept apart so that comparing them means something).
  *
- * Writing is atomic (PATH.tmpXXXXXX in the same folder, then rename). Reading checks,
- * in this order: the magic, the version, the size against the header's counts
- * (truncated, or bytes past the end), the checksum, then the rows' structure; the
- * caller then compares the header with its scene (ff_file_match). Every error is one line
- * "PATH: what is wrong".
+ * Written and read through file_io: a regular file is replaced atomically (a temporary
+ * file beside it, then rename), a link's target is replaced, a device or FIFO written
+ * in place. Reading takes the 40-byte header first and checks, in this order: the
+ * magic, the version, the file's size against the header's counts before reading the
+ * rest (a file more than 4096 bytes longer is refused unread), then truncation or bytes
+ * past the end, the checksum, then the rows' structure; the caller then compares the
+ * header with its scene (ff_file_match). Every error is one line "PATH: what is wrong".
  */
 #ifndef RAD_TOOLS_FF_FILE_H
 #define RAD_TOOLS_FF_FILE_H

@@ -5,7 +5,9 @@
  * open), then fstat'ed: a regular file is read whole if it is at most the caller's LIMIT
  * bytes (checked against st_size before anything is read, so a sparse 20 GB file costs
  * nothing); a FIFO, pipe or character device is read with O_NONBLOCK cleared, stopping
- * with an error past LIMIT bytes; a directory or any other kind is refused.
+ * with an error past LIMIT bytes; a directory or any other kind is refused. A FIFO that
+ * gives no byte at all (no writer: its end comes at once) is an error for fio_read_all,
+ * "nothing to read"; an empty regular file is not.
  *
  * Outputs: fio_out_open picks how, from what PATH is now:
  *   - a regular file or nothing yet: a temporary file beside the target (in the target's
@@ -14,11 +16,18 @@
  *     fails; the new file keeps the old one's permission bits (else 0666 & ~umask);
  *   - a symbolic link: followed (realpath); the file it points to is replaced as above,
  *     the link itself is kept;
- *   - a device, FIFO or socket (/dev/null, /dev/stdout, a pipe): written in place,
- *     never replaced, never renamed;
- *   - a directory, or a folder that does not exist: an error before anything is written.
+ *   - a name of one of the process's descriptors (/dev/stdout, /dev/stderr, /dev/fd/N,
+ *     /proc/self/fd/N): written through a copy of that descriptor, wherever the shell
+ *     sent it, with its offset and flags (">> log" appends; nothing is renamed);
+ *   - a device, FIFO or socket (/dev/null, a pipe): written in place,
+ *     never replaced, never renamed; the open does not wait: a FIFO with no reader is
+ *     an error ("cannot open: a FIFO with no reader");
+ *   - a directory ("PATH: is a directory") or a dangling link: an error before anything
+ *     is written; a folder that does not exist or cannot be written: mkstemp's error
+ *     ("cannot create temporary file: No such file or directory").
  * Every write's error (ENOSPC included) is kept: fio_out_commit checks ferror, fflush,
- * fsync (regular files) and fclose, and fails without touching the target.
+ * fsync (regular files) and fclose, and fails without touching the target, saying why
+ * ("PATH: write error: No space left on device").
  *
  * Errors are one line, "PATH: what is wrong", copied into a caller buffer (which may be
  * NULL or of length 0).
@@ -39,10 +48,19 @@ extern "C" {
 #define FIO_LIMIT_TEXT  (16u * 1024u * 1024u)   /* --views, --animate: 16 MiB */
 #define FIO_LIMIT_IMAGE (256u * 1024u * 1024u)  /* an image or texture file: 256 MiB */
 
+/* "PATH: message" into err (NULL or errlen 0: nothing); the one form of every message
+ * of the file format readers and writers. */
+void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
 /* Reads the whole of PATH (at most LIMIT bytes) into a malloc'd buffer with a NUL
  * after the last byte (*DATA, *SIZE bytes without the NUL). Returns 0, or -1 with err
- * ("PATH: cannot open: No such file", "PATH: is a directory", "PATH: larger than the
- * limit of N bytes", ...); nothing to free on error. */
+ * ("PATH: cannot open: No such file or directory", "PATH: is a directory", "PATH: larger
+ * than the limit of 64 MiB (67108864 bytes)", with ": N bytes" after it for a regular
+ * file); *DATA is NULL and nothing is to free on error. */
 int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char *err,
                  size_t errlen);
 

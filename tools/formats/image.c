@@ -1,33 +1,17 @@
 /* image — PNG/PPM reading and writing, tone mapping. See image.h. */
 #include "formats/image.h"
 
+#include "formats/file_io.h"
+
 #include <errno.h>
 #include <math.h>
 #include <png.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 enum { FMT_NONE, FMT_PNG, FMT_PPM };
-
-/* "PATH: message" into err; err may be NULL/0 when the caller does not want the text. */
-static void set_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
-{
-    va_list ap;
-    int n;
-    if (!err || errlen == 0)
-        return;
-    n = snprintf(err, errlen, "%s: ", path ? path : "(null)");
-    if (n < 0 || (size_t)n >= errlen)
-        return;
-    va_start(ap, fmt);
-    vsnprintf(err + n, errlen - (size_t)n, fmt, ap);
-    va_end(ap);
-}
 
 static int lower(int c) { return (c >= 'A' && c <= 'Z') ? c - 'A' + 'a' : c; }
 
@@ -70,6 +54,19 @@ static void png_on_warning(png_structp png, png_const_charp m)
     (void)m;
 }
 
+/* libpng's own writer says only "Write Error": this one says what failed. */
+static void png_write_cb(png_structp png, png_bytep data, png_size_t n)
+{
+    char m[160];
+    if (fwrite(data, 1, n, (FILE *)png_get_io_ptr(png)) != n) {
+        snprintf(m, sizeof m, "write error: %s", strerror(errno));
+        png_error(png, m);
+    }
+}
+
+/* fio_out_commit flushes (and checks) once, at the end. */
+static void png_flush_cb(png_structp png) { (void)png; }
+
 /* Only png and info exist across setjmp and neither changes after it, so no volatile
  * is needed; the row loop counter is not read after a longjmp. */
 static int png_write_fp(FILE *fp, const unsigned char *rgb, int w, int h, png_msg *pm)
@@ -86,7 +83,7 @@ static int png_write_fp(FILE *fp, const unsigned char *rgb, int w, int h, png_ms
         png_destroy_write_struct(&png, &info);
         return -1;
     }
-    png_init_io(png, fp);
+    png_set_write_fn(png, fp, png_write_cb, png_flush_cb);
     png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
@@ -107,81 +104,33 @@ static int ppm_write_fp(FILE *fp, const unsigned char *rgb, int w, int h, png_ms
     return 0;
 }
 
-/* Mode for the new file: that of the file being replaced, else 0666 & ~umask (mkstemp
- * itself creates 0600). umask can only be read by setting it, so it is restored at once. */
-static mode_t target_mode(const char *path)
-{
-    struct stat st;
-    mode_t um;
-    if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
-        return st.st_mode & 0777;
-    um = umask(022);
-    umask(um);
-    return 0666 & ~um;
-}
-
-/* Writes the image into the open temporary file and closes it (always). */
-static int write_tmp(int fd, const char *path, int fmt, const unsigned char *rgb, int w, int h,
-                     png_msg *pm)
-{
-    FILE *fp = fdopen(fd, "wb");
-    int r;
-    if (!fp) {
-        snprintf(pm->msg, sizeof pm->msg, "cannot open temporary file: %s", strerror(errno));
-        close(fd);
-        return -1;
-    }
-    r = fmt == FMT_PNG ? png_write_fp(fp, rgb, w, h, pm) : ppm_write_fp(fp, rgb, w, h, pm);
-    /* Data must be on disk before the rename makes it visible under PATH. */
-    if (r == 0 && (fflush(fp) != 0 || fsync(fileno(fp)) != 0 || fchmod(fileno(fp), target_mode(path)) != 0)) {
-        snprintf(pm->msg, sizeof pm->msg, "write error: %s", strerror(errno));
-        r = -1;
-    }
-    if (fclose(fp) != 0 && r == 0) {
-        snprintf(pm->msg, sizeof pm->msg, "write error: %s", strerror(errno));
-        r = -1;
-    }
-    return r;
-}
-
 int img_write(const char *path, const unsigned char *rgb, int w, int h, char *err, size_t errlen)
 {
     png_msg pm = { "" };
-    char *tmp;
-    int fmt, fd;
+    fio_out *o;
+    FILE *fp;
+    int fmt;
     if (!path || !rgb) {
-        set_err(err, errlen, path, "no %s given", path ? "pixels" : "path");
+        fio_err(err, errlen, path, "no %s given", path ? "pixels" : "path");
         return -1;
     }
     if ((fmt = format_of(path)) == FMT_NONE) {
-        set_err(err, errlen, path, "unknown image extension (use .png or .ppm)");
+        fio_err(err, errlen, path, "unknown image extension (use .png or .ppm)");
         return -1;
     }
     if (!size_ok(w, h)) {
-        set_err(err, errlen, path, "invalid image size %dx%d (each must be 1..%d)", w, h, IMG_MAX_DIM);
+        fio_err(err, errlen, path, "invalid image size %dx%d (each must be 1..%d)", w, h, IMG_MAX_DIM);
         return -1;
     }
-    if (!(tmp = malloc(strlen(path) + sizeof ".tmpXXXXXX"))) {
-        set_err(err, errlen, path, "out of memory");
+    if (!(o = fio_out_open(path, err, errlen)))
+        return -1;
+    fp = fio_out_stream(o);
+    if ((fmt == FMT_PNG ? png_write_fp(fp, rgb, w, h, &pm) : ppm_write_fp(fp, rgb, w, h, &pm)) != 0) {
+        fio_out_abort(o);
+        fio_err(err, errlen, path, "%s", pm.msg);
         return -1;
     }
-    strcpy(tmp, path);
-    strcat(tmp, ".tmpXXXXXX");
-    if ((fd = mkstemp(tmp)) < 0) {
-        set_err(err, errlen, path, "cannot create temporary file: %s", strerror(errno));
-        free(tmp);
-        return -1;
-    }
-    if (write_tmp(fd, path, fmt, rgb, w, h, &pm) != 0 || rename(tmp, path) != 0) {
-        if (!pm.msg[0])
-            snprintf(pm.msg, sizeof pm.msg, "cannot rename temporary file: %s", strerror(errno));
-        unlink(tmp);
-        free(tmp);
-        set_err(err, errlen, path, "%s", pm.msg);
-        return -1;
-    }
-    free(tmp);
-    return 0;
+    return fio_out_commit(o, err, errlen);
 }
 
 /* ---- reading ---- */
@@ -338,21 +287,26 @@ int img_read(const char *path, img_t *out, char *err, size_t errlen)
 {
     png_msg pm = { "" };
     FILE *fp;
+    char *data;
+    size_t n;
     int rc;
     if (!out) {
-        set_err(err, errlen, path, "no output image given");
+        fio_err(err, errlen, path, "no output image given");
         return -1;
     }
     out->w = out->h = 0;
     out->rgb = NULL;
-    if (!path || !(fp = fopen(path, "rb"))) {
-        set_err(err, errlen, path, "%s", path ? strerror(errno) : "no path given");
+    if (fio_read_all(path, FIO_LIMIT_IMAGE, &data, &n, err, errlen) != 0)
         return -1;
-    }
-    rc = img_read_fp(fp, out, &pm);
-    fclose(fp);
+    /* fmemopen needs at least one byte; an empty file is no image either way. */
+    if (!(fp = n ? fmemopen(data, n, "rb") : NULL))
+        snprintf(pm.msg, sizeof pm.msg, "%s", n ? strerror(errno) : "not a PNG or binary PPM (P6) file");
+    rc = fp ? img_read_fp(fp, out, &pm) : -1;
+    if (fp)
+        fclose(fp);
+    free(data);
     if (rc != 0)
-        set_err(err, errlen, path, "%s", pm.msg);
+        fio_err(err, errlen, path, "%s", pm.msg);
     return rc;
 }
 

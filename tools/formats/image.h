@@ -20,15 +20,17 @@ typedef struct { int w, h; unsigned char *rgb; } img_t;   /* 8-bit RGB, row 0 at
 
 /* Writes rgb (w*h*3) to PATH as PNG (libpng) or binary PPM P6, chosen by extension
  * (.png/.ppm, case-insensitive; anything else is an error).
- * Atomic: writes PATH.tmpXXXXXX in the same directory (mkstemp) and renames it over PATH
- * on success; on any failure the temporary file is removed and PATH is left untouched.
- * The new file keeps the permissions of the file it replaces, or gets 0666 & ~umask.
+ * Written through file_io (fio_out_open): a regular file is replaced atomically (a
+ * temporary file beside it, renamed over it; on any failure PATH is left untouched and
+ * no temporary file stays), keeping its permissions (else 0666 & ~umask); a symbolic
+ * link is kept and its target replaced; a device or FIFO is written in place.
  * Sizes must be 1..IMG_MAX_DIM each. Returns 0, or -1 with a message in err. */
 int img_write(const char *path, const unsigned char *rgb, int w, int h, char *err, size_t errlen);
 
 /* Reads a PNG (any colour type/bit depth: 16-bit is stripped to 8, palette and grey are
  * expanded, alpha and tRNS are dropped) or a binary P6 PPM (maxval 255, header comments
- * allowed). The format is chosen by the file's magic bytes, not its name. On success
+ * allowed). The format is chosen by the file's magic bytes, not its name. The file is
+ * read whole through fio_read_all, at most FIO_LIMIT_IMAGE bytes. On success
  * *out owns a malloc'd buffer (release with img_free); on failure *out is {0, 0, NULL}.
  * Returns 0 or -1 with a message in err. */
 int img_read(const char *path, img_t *out, char *err, size_t errlen);

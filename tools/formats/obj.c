@@ -1,6 +1,8 @@
 /* obj — Wavefront OBJ + MTL loader for the host tools. See obj.h. */
 #include "formats/obj.h"
 
+#include "formats/file_io.h"
+
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -9,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define MAX_VALUE 1e30   /* coordinates beyond this are broken geometry, not a scene */
 #define DEFAULT_KD 0.8
@@ -162,6 +165,49 @@ static void material_defaults(obj_material *m)
     }
 }
 
+/* ---- material names: FNV-1a hashed, open addressing ------------------------------ */
+
+static uint32_t name_hash(const char *s)
+{
+    uint32_t h = 2166136261u;
+    for (; *s; s++) {
+        h ^= (unsigned char)*s;
+        h *= 16777619u;
+    }
+    return h;
+}
+
+/* The slot of NAME in the table: where it is, or the empty slot where it would go. The
+ * table is at most half full (rehash below), so the probe ends. */
+static size_t name_slot(const obj_scene *sc, const char *name)
+{
+    size_t mask = sc->mat_slots - 1, i = name_hash(name) & mask;
+    while (sc->mat_index[i] >= 0 && strcmp(sc->materials[sc->mat_index[i]].name, name))
+        i = (i + 1) & mask;
+    return i;
+}
+
+/* Makes room for one more material in the table (doubling it past half full). */
+static int grow_names(obj_scene *sc)
+{
+    size_t n = sc->mat_slots ? sc->mat_slots : 64, i;
+    int *t;
+    if ((size_t)sc->nmaterials + 1 <= n / 2 && sc->mat_index)
+        return 0;
+    while ((size_t)sc->nmaterials + 1 > n / 2)
+        n *= 2;
+    if (!(t = malloc(n * sizeof *t)))
+        return -1;
+    for (i = 0; i < n; i++)
+        t[i] = -1;
+    free(sc->mat_index);
+    sc->mat_index = t;
+    sc->mat_slots = n;
+    for (i = 0; i < (size_t)sc->nmaterials; i++)
+        t[name_slot(sc, sc->materials[i].name)] = (int)i;
+    return 0;
+}
+
 /* Index of the material called name, created with default values if new; -1 on error. */
 static int intern_material(parser *p, const char *name)
 {
@@ -177,7 +223,9 @@ static int intern_material(parser *p, const char *name)
     q = reserve(sc->materials, &p->cap_mats, (size_t)sc->nmaterials + 1, sizeof *q);
     if (!q)
         return fail(p, "out of memory");
-    sc->materials = q;
+    sc->materials = q; /* before grow_names, which reads the names */
+    if (grow_names(sc) != 0)
+        return fail(p, "out of memory");
     copy = malloc(len + 1);
     if (!copy)
         return fail(p, "out of memory");
@@ -186,6 +234,7 @@ static int intern_material(parser *p, const char *name)
     memset(q, 0, sizeof *q);
     q->name = copy;
     material_defaults(q);
+    sc->mat_index[name_slot(sc, name)] = sc->nmaterials;
     return sc->nmaterials++;
 }
 
@@ -314,17 +363,33 @@ static int run_statement(parser *p, char *line, statement_fn fn)
     return kw ? fn(p, kw, line) : 0;
 }
 
+/* Length of the line at S (REM bytes left) up to its end: LF, CR or CRLF, all three
+   being in use; *EOL gets the length of the line end (0 at the end of the text). */
+static size_t line_length(const char *s, size_t rem, size_t *eol)
+{
+    size_t n = 0;
+    while (n < rem && s[n] != '\n' && s[n] != '\r')
+        n++;
+    *eol = n == rem ? 0 : (s[n] == '\r' && n + 1 < rem && s[n + 1] == '\n') ? 2 : 1;
+    return n;
+}
+
+/* A UTF-8 byte order mark some editors put first: not part of the first statement. */
+static size_t bom_length(const char *text, size_t len)
+{
+    return len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3) ? 3 : 0;
+}
+
 static int each_statement(parser *p, const char *text, size_t len, statement_fn fn)
 {
     char *buf = NULL, *q;
-    size_t cap = 0, used = 0, pos = 0;
+    size_t cap = 0, used = 0, pos = bom_length(text, len);
     long lineno = 0;
     int joining = 0, rc = 0;
     while (pos < len && rc == 0) {
         const char *s = text + pos;
-        const char *nl = memchr(s, '\n', len - pos);
-        size_t n = nl ? (size_t)(nl - s) : len - pos;
-        pos += n + (nl != NULL);
+        size_t eol, n = line_length(s, len - pos, &eol);
+        pos += n + eol;
         if (!joining) {
             p->line = lineno + 1;
             used = 0;
@@ -428,32 +493,6 @@ static int mtl_statement(parser *p, const char *kw, char *rest)
     return 0;
 }
 
-/* Reads a whole stream; returns 0 or an errno value. */
-static int read_all(FILE *f, char **out, size_t *outlen)
-{
-    char *buf = NULL, *q;
-    size_t cap = 0, len = 0, got;
-    do {
-        q = reserve(buf, &cap, len + 65536, 1);
-        if (!q) {
-            free(buf);
-            return ENOMEM;
-        }
-        buf = q;
-        errno = 0;
-        got = fread(buf + len, 1, cap - len, f);
-        len += got;
-    } while (got > 0);
-    if (ferror(f)) {
-        int e = errno ? errno : EIO;
-        free(buf);
-        return e;
-    }
-    *out = buf;
-    *outlen = len;
-    return 0;
-}
-
 static char *join_path(const char *dir, const char *name)
 {
     size_t dl = name[0] == '/' ? 0 : strlen(dir), nl = strlen(name);
@@ -468,53 +507,57 @@ static char *join_path(const char *dir, const char *name)
     return s;
 }
 
-/* Opens name relative to the OBJ's directory; NULL with errno set (path too, if made). */
-static FILE *open_mtl(const parser *p, const char *name, char **path)
+/* Reads the library NAME (at PATH) whole: 0, or 1 after a warning (a library that
+   cannot be read is like a missing one: its materials stay undefined). */
+static int read_mtl_text(parser *p, const char *name, const char *path, char **text, size_t *len)
 {
-    *path = join_path(p->basedir, name);
-    if (!*path) {
-        errno = ENOMEM;
-        return NULL;
-    }
-    return fopen(*path, "rb");
+    char msg[600];
+    const char *why = msg;
+    size_t pl = strlen(path);
+    if (fio_read_all(path, FIO_LIMIT_MTL, text, len, msg, sizeof msg) == 0)
+        return 0;
+    if (!strncmp(msg, path, pl) && !strncmp(msg + pl, ": ", 2))
+        why = msg + pl + 2; /* fio's "PATH: " prefix: the warning names the library */
+    if (!strncmp(why, "cannot open: ", 13))
+        warn(p, "cannot open material library '%.200s': %s", name, why + 13);
+    else
+        warn(p, "cannot read material library '%.200s': %s", name, why);
+    return 1;
 }
 
-/* Parses an opened MTL file (closing it); messages name it by path. */
-static int read_mtl(parser *p, FILE *f, const char *name, const char *path)
+/* Parses the library NAME, relative to the OBJ's folder; messages name it by path. */
+static int load_mtl(parser *p, const char *name)
 {
     const char *file = p->file;
     long line = p->line;
     int cur = p->cur, rc;
-    char *text;
+    char *text, *path = join_path(p->basedir, name);
     size_t len;
-    int e = read_all(f, &text, &len);
-    fclose(f);
-    if (e) { /* like a missing library: the faces keep default materials */
-        warn(p, "cannot read material library '%.200s': %s", name, strerror(e));
+    if (!path)
+        return fail(p, "out of memory");
+    if (read_mtl_text(p, name, path, &text, &len)) {
+        free(path);
         return 0;
     }
     p->file = path;
     p->cur = -1;
     rc = each_statement(p, text, len, mtl_statement);
     free(text);
+    free(path);
     p->file = file;
     p->line = line;
     p->cur = cur;
     return rc;
 }
 
-/* A missing library is only a warning: its materials become undefined ones. */
-static int load_mtl(parser *p, const char *name)
+/* Is there a file (of any kind) called NAME in the OBJ's folder? */
+static int mtl_exists(const parser *p, const char *name)
 {
-    char *path;
-    FILE *f = open_mtl(p, name, &path);
-    int rc = 0;
-    if (f)
-        rc = read_mtl(p, f, name, path);
-    else
-        warn(p, "cannot open material library '%.200s': %s", name, strerror(errno));
+    struct stat st;
+    char *path = join_path(p->basedir, name);
+    int yes = path && stat(path, &st) == 0;
     free(path);
-    return rc;
+    return yes;
 }
 
 /* ---- OBJ ----------------------------------------------------------------------- */
@@ -607,20 +650,15 @@ static int parse_usemtl(parser *p, char *rest)
 /* Several names, unless the whole rest of the line names one file (with spaces). */
 static int parse_mtllib(parser *p, char *rest)
 {
-    char *names = trim(rest), *tok, *path;
+    char *names = trim(rest), *tok;
     if (!*names)
         return fail(p, "mtllib without a file name");
     if (!p->basedir) {
         warn(p, "mtllib '%.200s' ignored: no directory to look in", names);
         return 0;
     }
-    if (strpbrk(names, " \t\v\f\r")) {
-        FILE *f = open_mtl(p, names, &path);
-        int rc = f ? read_mtl(p, f, names, path) : 0;
-        free(path);
-        if (f)
-            return rc;
-    }
+    if (strpbrk(names, " \t\v\f\r") && mtl_exists(p, names))
+        return load_mtl(p, names);
     while ((tok = next_token(&names)) != NULL)
         if (load_mtl(p, tok))
             return -1;
@@ -704,22 +742,12 @@ static char *dir_of(const char *path)
 int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
              size_t errlen)
 {
-    FILE *f;
     char *text, *dir;
     size_t len;
     int rc;
     memset(sc, 0, sizeof *sc);
-    f = fopen(path, "rb");
-    if (!f) {
-        put_msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    if (fio_read_all(path, FIO_LIMIT_OBJ, &text, &len, err, errlen) != 0)
         return -1;
-    }
-    rc = read_all(f, &text, &len);
-    fclose(f);
-    if (rc) {
-        put_msg(err, errlen, "%s: cannot read: %s", path, strerror(rc));
-        return -1;
-    }
     dir = dir_of(path);
     if (!dir) {
         free(text);
@@ -740,6 +768,7 @@ void obj_free(obj_scene *sc)
     for (i = 0; i < sc->nmaterials; i++)
         free(sc->materials[i].name);
     free(sc->materials);
+    free(sc->mat_index);
     free(sc->verts);
     free(sc->indices);
     free(sc->faces);
@@ -749,7 +778,9 @@ void obj_free(obj_scene *sc)
 int obj_find_material(const obj_scene *sc, const char *name)
 {
     int i;
-    for (i = 0; i < sc->nmaterials; i++)
+    if (sc->mat_index)
+        return sc->mat_index[name_slot(sc, name)];
+    for (i = 0; i < sc->nmaterials; i++) /* a scene made by hand, without the table */
         if (!strcmp(sc->materials[i].name, name))
             return i;
     return -1;
@@ -888,6 +919,8 @@ int obj_triangulate(const obj_scene *sc, const obj_face *f, int *out)
     int n = f->count, tris = 0, remaining, cur = 0, i, *next, *prev;
     obj_vec3 normal;
     double *xy, eps;
+    if (n > OBJ_MAX_FACE_VERTICES)
+        return OBJ_TOO_MANY_VERTICES;
     if (n < 3)
         return -1;
     normal = obj_face_normal(sc, f);

@@ -41,14 +41,27 @@ typedef struct {
     obj_material *materials; int nmaterials;
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
+    int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
+                                         slot -> index or -1; NULL in a scene made by hand */
 } obj_scene;
 
 typedef void (*obj_warn_fn)(void *ctx, const char *msg); /* msg is "FILE:LINE: text" */
 
+/* Most vertices of a face obj_triangulate clips (the parser loads any count). Ear
+   clipping costs up to O(n^2) per clipped ear on a self-intersecting polygon (no ear:
+   every vertex is tried against every other), O(n^3) in all, so a longer face is
+   refused (OBJ_TOO_MANY_VERTICES) rather than left to run for minutes; at 1024 the worst
+   case is about 10^9 steps, and 1024 is far above what modelling tools write. */
+#define OBJ_MAX_FACE_VERTICES 1024
+#define OBJ_TOO_MANY_VERTICES (-2)
+
 /* Name of the material given to faces that come before any usemtl. */
 #define OBJ_DEFAULT_MATERIAL "(default)"
 
-/* Loads PATH; mtllib paths are relative to the OBJ's directory. Returns 0, or -1 with a
+/* Loads PATH; mtllib paths are relative to the OBJ's directory. Files are read whole
+   through fio_read_all (file_io.h): an OBJ of at most FIO_LIMIT_OBJ bytes, a library of
+   at most FIO_LIMIT_MTL (larger, or unreadable: a warning, like a missing one). Lines
+   end in LF, CRLF or CR; a leading UTF-8 byte order mark is skipped. Returns 0, or -1 with a
    one-line message "FILE:LINE: what is wrong" (no trailing newline) in err. On error the
    scene is left empty (nothing to free, but obj_free is safe). warn may be NULL. */
 int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
@@ -61,10 +74,12 @@ void obj_free(obj_scene *sc);
 /* Triangulates face f (convex or concave, planar-ish polygon, any vertex count >= 3) by ear
    clipping in the polygon's best-fit plane (Newell normal). Writes 3*(count-2) vertex indices
    (into verts) to out, each triangle wound like the polygon, and returns the number of
-   triangles (count-2), or -1 if the polygon is degenerate (zero Newell normal) or memory
-   runs out. */
+   triangles (count-2), OBJ_TOO_MANY_VERTICES past OBJ_MAX_FACE_VERTICES, or -1 if the
+   polygon is degenerate (zero Newell normal) or memory runs out. */
 int obj_triangulate(const obj_scene *sc, const obj_face *f, int *out);
-int obj_find_material(const obj_scene *sc, const char *name); /* index or -1 */
+/* Index of the material called NAME, or -1: a hash lookup in a parsed scene (200,000
+   materials parse in linear time), a linear search in one made by hand. */
+int obj_find_material(const obj_scene *sc, const char *name);
 /* Polygon area (Newell) of face f. */
 double obj_face_area(const obj_scene *sc, const obj_face *f);
 /* Newell normal of face f: its length is twice the polygon's area. */

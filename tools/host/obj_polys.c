@@ -4,6 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define STR_(x) #x
+#define STR(x) STR_(x) /* a macro's value as a string */
+
 static void poly_material(sc_poly *p, const obj_material *m, int tag)
 {
     memcpy(p->rho, m->kd, sizeof p->rho);
@@ -39,7 +42,10 @@ sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *
         }
         nt = obj_triangulate(sc, fc, tri);
         if (nt < 0) {
-            if (warn) warn(ctx, fc->line, "skipped a degenerate polygon");
+            if (warn)
+                warn(ctx, fc->line, nt == OBJ_TOO_MANY_VERTICES
+                                        ? "skipped a face of more than " STR(OBJ_MAX_FACE_VERTICES) " vertices (split it)"
+                                        : "skipped a degenerate polygon");
             continue;
         }
         for (t = 0; t < nt; t++) {
