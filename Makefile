@@ -35,7 +35,7 @@ LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
 TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
 # Host helpers built once.
-TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_polys.c tools/bench/plot.c
+TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)

@@ -14,7 +14,10 @@
 
 #include "check.h"
 #include "tmpdir.h"
+#include "bake/lightmap.h"
 #include "formats/hdr.h"
+#include "host/scene.h"
+#include "reference/reference.h"
 
 /* stb_image's own HDR reader, an independent decoder of what hdr_write writes (static:
  * its unused functions are reported at the end of the file, so that warning stays off). */
@@ -164,12 +167,340 @@ static void test_hdr_bad_input(void **state)
     CHECK_CONTAINS(err, "not a Radiance HDR", "the message");
 }
 
+
+/* ---- lightmaps ---------------------------------------------------------------------- */
+
+/* A quad A B C D (counter-clockwise seen from its lit side) of reflectance RHO and
+ * emission EMIT (grey). */
+static sc_poly quad(const double *a, const double *b, const double *c, const double *d, double rho, double emit)
+{
+    sc_poly q;
+    int k;
+    memset(&q, 0, sizeof q);
+    q.n = 4;
+    memcpy(q.v[0], a, sizeof q.v[0]);
+    memcpy(q.v[1], b, sizeof q.v[1]);
+    memcpy(q.v[2], c, sizeof q.v[2]);
+    memcpy(q.v[3], d, sizeof q.v[3]);
+    for (k = 0; k < 3; k++) {
+        q.rho[k] = rho;
+        q.emit[k] = emit;
+    }
+    return q;
+}
+
+/* A horizontal quad at height Y over [X0, X1] x [Z0, Z1], lit side up (UP 1) or down. */
+static sc_poly flat(double x0, double x1, double z0, double z1, double y, int up, double rho, double emit)
+{
+    double a[3] = {x0, y, z0}, b[3] = {x0, y, z1}, c[3] = {x1, y, z1}, d[3] = {x1, y, z0};
+    return up ? quad(a, b, c, d, rho, emit) : quad(d, c, b, a, rho, emit);
+}
+
+typedef struct {
+    sc_solver *s;
+    sc_gatherer *g;
+    int calls;
+} baker;
+
+static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    baker *b = ctx;
+    b->calls++;
+    return sc_gather(b->g, p, n, 1, rgb);
+}
+
+/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES). */
+static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
+{
+    sc_opts o = {0, 0, 64, 0, 0, 0};
+    lm_opts lo = {size, 0.0, 0};
+    char err[256] = "";
+    baker b = {NULL, NULL, 0};
+    b.s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(b.s);
+    sc_solve(b.s, 100000, 1e-4, NULL, NULL);
+    b.g = sc_gatherer_new(b.s, res, 0);
+    assert_non_null(b.g);
+    CHECK_INT_EQ(lm_build(a, polys, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_EQ(lm_bake(a, gather_cb, &b), 0, "lm_bake");
+    CHECK_INT_EQ(sc_gatherer_saturations(b.g), 0, "values saturated in the gathers");
+    sc_gatherer_free(b.g);
+    sc_destroy(b.s);
+}
+
+/* Lambert's point-to-polygon form factor from P (normal +y) to polygon Q: Q in the
+ * frame of ref_point_ff (P at the origin, the normal along +z). */
+static double ff_up(const double *p, const sc_poly *q)
+{
+    sc_poly t = *q;
+    int k;
+    for (k = 0; k < q->n; k++) {
+        t.v[k][0] = q->v[k][0] - p[0];
+        t.v[k][1] = q->v[k][2] - p[2];
+        t.v[k][2] = q->v[k][1] - p[1];
+    }
+    return ref_point_ff(&t);
+}
+
+/* A floor of reflectance 0 under a square emitter of emission 1 (reflectance 0): the
+ * light arriving at each floor texel is the point's form factor to the emitter, which
+ * the gather at resolution 64 finds within 1% (the brief's bound; tests/test_gather.c
+ * bounds one point so). The error is the cube's aliasing of the emitter's outline, so
+ * it grows as the emitter shrinks on the cube: the floor is 4 x 4 under a 2 x 2 emitter
+ * at height 1 (its far corners at 3 units; on an 8 x 8 floor under one at height 2,
+ * the corners' texels err by 3.9%). */
+static void test_lightmap_lambert(void **state)
+{
+    sc_poly polys[2];
+    lm_atlas a;
+    double worst = 0.0;
+    int x, y, n = 0;
+    (void)state;
+    polys[0] = flat(-2, 2, -2, 2, 0, 1, 0.0, 0.0);
+    polys[1] = flat(-1, 1, -1, 1, 1, 0, 0.0, 1.0);
+    bake_scene(polys, 2, 64, 64, &a);
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3], want, rel;
+            size_t at = (size_t)y * a.size + x;
+            if (!lm_texel_point(&a, x, y, p) || a.owner[at] != a.poly_chart[0]) continue;
+            want = ff_up(p, &polys[1]);
+            rel = fabs(a.rgb[3 * at + 1] - want) / want;
+            CHECK_LE(rel, 0.01, "texel %d,%d at (%.3f, %.3f, %.3f): E %.6f against F %.6f", x, y, p[0], p[1], p[2],
+                     a.rgb[3 * at + 1], want);
+            if (rel > worst) worst = rel;
+            n++;
+        }
+    printf("lightmap under a square emitter: %d texels, worst %.4f%% from Lambert's form factor (bound 1%%)\n", n,
+           100.0 * worst);
+    CHECK_INT_GE(n, (int)pow(floor(4.0 / a.texel), 2), "floor texels compared (the floor is 4 / %g texels wide)", a.texel);
+    lm_free(&a);
+}
+
+/* A terrain of TN x TN cells over [-4, 4]^2, two triangles a cell, heights of gentle
+ * slopes (up to 0.05 / 1.1 = 2.6 degrees), under a 16 x 16 emitter at height 3: every
+ * triangle its own chart. POLYS holds 2 TN^2 + 1. Returns the count. */
+#define TN 8
+static int terrain(sc_poly *polys)
+{
+    double h[TN + 1][TN + 1][3];
+    int i, j, n = 0, k;
+    for (i = 0; i <= TN; i++)
+        for (j = 0; j <= TN; j++) {
+            double x = -4.0 + 8.0 * i / TN, z = -4.0 + 8.0 * j / TN;
+            h[i][j][0] = x;
+            h[i][j][1] = 0.05 * sin(0.9 * x) * cos(0.7 * z);
+            h[i][j][2] = z;
+        }
+    for (i = 0; i < TN; i++)
+        for (j = 0; j < TN; j++) {
+            const double *a = h[i][j], *b = h[i][j + 1], *c = h[i + 1][j + 1], *d = h[i + 1][j];
+            sc_poly t[2];
+            memset(t, 0, sizeof t);
+            t[0].n = t[1].n = 3;
+            memcpy(t[0].v[0], a, sizeof t[0].v[0]);
+            memcpy(t[0].v[1], b, sizeof t[0].v[0]);
+            memcpy(t[0].v[2], c, sizeof t[0].v[0]);
+            memcpy(t[1].v[0], a, sizeof t[0].v[0]);
+            memcpy(t[1].v[1], c, sizeof t[0].v[0]);
+            memcpy(t[1].v[2], d, sizeof t[0].v[0]);
+            for (k = 0; k < 3; k++) t[0].rho[k] = t[1].rho[k] = 0.5;
+            polys[n++] = t[0];
+            polys[n++] = t[1];
+        }
+    polys[n++] = flat(-8, 8, -8, 8, 3, 0, 0.0, 1.0);
+    return n;
+}
+
+/* Edge K of polygon P is edge L of polygon Q (the same two vertices). */
+static int shared_edge(const sc_poly *p, int k, const sc_poly *q, int *l)
+{
+    const double *a = p->v[k], *b = p->v[(k + 1) % p->n];
+    for (*l = 0; *l < q->n; (*l)++) {
+        const double *c = q->v[*l], *d = q->v[(*l + 1) % q->n];
+        if (!memcmp(a, d, sizeof p->v[0]) && !memcmp(b, c, sizeof p->v[0])) return 1;
+    }
+    return 0;
+}
+
+/* No seams: along every edge two charts share, bilinear lookups from both sides (at
+ * nine points of the edge) agree within 2% (the brief's bound). The light arriving is
+ * continuous across a fold of a few degrees, so a difference is the atlas's: a texel
+ * of padding or of another chart read, a wrong UV, or the interpolation of the light's
+ * gradient across the texel at the edge, which each side takes from its own inside:
+ * the terrain's texels span 0.80..0.90, and under a smaller emitter
+ * (12 x 12), where it falls 19% a unit near the edge, the 0.4-unit texels of a 128
+ * atlas differ by 2.9% (by 4.2% when only the texels that the chart touches are
+ * gathered and their ring is dilated). A gather resolution of 32 is enough here: 64
+ * changes the worst by 0.05 points. */
+static void test_lightmap_no_seams(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_atlas a;
+    int n = terrain(polys), p, q, k, l, t, edges = 0;
+    double worst = 0.0, lo = HUGE_VAL, hi = 0.0;
+    (void)state;
+    bake_scene(polys, n, 128, 32, &a);
+    CHECK_INT_EQ(a.ncharts, n, "charts of the terrain: every triangle");
+    for (p = 0; p < n; p++)
+        for (q = 0; q < n; q++)
+            for (k = 0; k < polys[p].n; k++) {
+                if (p == q || a.poly_chart[p] == a.poly_chart[q] || !shared_edge(&polys[p], k, &polys[q], &l)) continue;
+                edges++;
+                for (t = 1; t <= 9; t++) {
+                    double w = t / 10.0, x[3], uvp[2], uvq[2], cp[3], cq[3], rel;
+                    int c;
+                    for (c = 0; c < 3; c++) x[c] = polys[p].v[k][c] + w * (polys[p].v[(k + 1) % polys[p].n][c] - polys[p].v[k][c]);
+                    lm_uv(&a, p, x, uvp);
+                    lm_uv(&a, q, x, uvq);
+                    lm_lookup(&a, uvp, cp);
+                    lm_lookup(&a, uvq, cq);
+                    rel = fabs(cp[1] - cq[1]) / fmax(cp[1], cq[1]);
+                    CHECK_LE(rel, 0.02, "polygons %d and %d at (%.3f, %.3f, %.3f): %.6f against %.6f", p, q, x[0], x[1],
+                             x[2], cp[1], cq[1]);
+                    if (rel > worst) worst = rel;
+                }
+            }
+    for (p = 0; p < a.size * a.size; p++)
+        if (!isnan(a.sample[2 * p]) && a.owner[p] < n - 1) {
+            lo = fmin(lo, a.rgb[3 * p + 1]);
+            hi = fmax(hi, a.rgb[3 * p + 1]);
+        }
+    printf("lightmap seams: terrain texels %.4f..%.4f; %d shared edges (each seen from both sides) of %d charts, worst %.3f%% (bound 2%%)\n",
+           lo, hi, edges, a.ncharts, 100.0 * worst);
+    CHECK_INT_EQ(edges, 2 * (3 * TN * TN - 2 * TN), "shared edges found, from both sides");
+    lm_free(&a);
+}
+
+/* The texel of the atlas holding world point X of polygon P. */
+static size_t texel_at(const lm_atlas *a, int p, const double *x)
+{
+    double uv[2];
+    lm_uv(a, p, x, uv);
+    return (size_t)floor(uv[1]) * a->size + (size_t)floor(uv[0]);
+}
+
+/* No leaks: a room's floor meets a wall at x = 0, and behind the wall a bright emitter
+ * (10, against 1 of the room's light) faces it. The floor's light at the wall (a
+ * bilinear lookup, which reads the texels there and their ring) is not brighter than
+ * one texel further in, beyond the gathers' aliasing (up to 0.84% in the Lambert test
+ * above, either side: 2%): the samples stay inside the room, off the wall's plane. A
+ * sample on it sees the wall edge-on and past it the bright emitter: with the samples
+ * at the nearest point of the floor, not moved in, the wall's texels measured 9 times
+ * the next ones in. The room's light is over its middle, so the light falls off
+ * towards the wall (but for the gathers' aliasing: 1.6% brighter at one point). */
+static void test_lightmap_no_leaks(void **state)
+{
+    double w0[3] = {0, 0, 0}, w1[3] = {0, 0, 4}, w2[3] = {0, 3, 4}, w3[3] = {0, 3, 0};
+    double e0[3] = {-2, 0, 0}, e1[3] = {-2, 0, 4}, e2[3] = {-2, 3, 4}, e3[3] = {-2, 3, 0};
+    sc_poly polys[4];
+    lm_atlas a;
+    int i, n = 0;
+    double worst = -HUGE_VAL;
+    (void)state;
+    polys[0] = flat(0, 4, 0, 4, 0, 1, 0.5, 0.0);
+    polys[1] = quad(w0, w3, w2, w1, 0.5, 0.0); /* faces +x, into the room */
+    polys[2] = quad(e0, e3, e2, e1, 0.0, 10.0); /* faces +x, at the wall's back */
+    polys[3] = flat(1, 3, 1, 3, 3, 0, 0.0, 1.0);
+    bake_scene(polys, 4, 128, 64, &a);
+    for (i = 0; i < 40; i++) {
+        double z = 0.05 + 3.9 * i / 39.0, x0[3] = {1e-3 * a.texel, 0, z}, x1[3] = {1.001 * a.texel, 0, z};
+        double uv0[2], uv1[2], c0[3], c1[3];
+        lm_uv(&a, 0, x0, uv0);
+        lm_uv(&a, 0, x1, uv1);
+        lm_lookup(&a, uv0, c0);
+        lm_lookup(&a, uv1, c1);
+        CHECK_LE(c0[1], 1.02 * c1[1], "floor at the wall, z = %.3f (bilinear), against 1.02 x one texel further in", z);
+        if (c0[1] / c1[1] > worst) worst = c0[1] / c1[1];
+        n++;
+    }
+    printf("lightmap leaks: %d floor points at the wall, at most %.4f of the next one in (bound 1.02)\n", n, worst);
+    lm_free(&a);
+}
+
+/* Packing: the charts' rectangles lie inside the atlas and PADDING apart; every
+ * polygon's vertices inside its rectangle's ring; every point of a polygon (a lattice
+ * of 55 points inside each triangle) in a covered texel of its own chart. */
+static void test_lightmap_packing(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_opts o = {96, 0.0, 0};
+    lm_atlas a;
+    char err[256] = "";
+    int n = terrain(polys), i, j, k, points = 0;
+    (void)state;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    for (i = 0; i < a.ncharts; i++) {
+        const lm_chart *c = &a.charts[i];
+        CHECK_THAT(c->x >= 0 && c->y >= 0 && c->x + c->w <= a.size && c->y + c->h <= a.size,
+                   "chart %d's rectangle %d,%d %dx%d inside the atlas of %d", i, c->x, c->y, c->w, c->h, a.size);
+        for (j = 0; j < i; j++) {
+            const lm_chart *d = &a.charts[j];
+            int apart = c->x >= d->x + d->w + a.padding || d->x >= c->x + c->w + a.padding ||
+                        c->y >= d->y + d->h + a.padding || d->y >= c->y + c->h + a.padding;
+            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d at least %d apart", i, j, c->x,
+                       c->y, c->w, c->h, d->x, d->y, d->w, d->h, a.padding);
+        }
+    }
+    for (i = 0; i < n; i++) {
+        const lm_chart *c = &a.charts[a.poly_chart[i]];
+        for (k = 0; k < polys[i].n; k++) {
+            double uv[2];
+            lm_uv(&a, i, polys[i].v[k], uv);
+            CHECK_THAT(uv[0] >= c->x + 1 - 1e-9 && uv[0] <= c->x + c->w - 1 + 1e-9 && uv[1] >= c->y + 1 - 1e-9 &&
+                           uv[1] <= c->y + c->h - 1 + 1e-9,
+                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring (to 1e-9)", i, k, uv[0], uv[1]);
+        }
+        for (j = 0; j < 10; j++)
+            for (k = 0; k < 10 - j; k++) {
+                double x[3], w1 = (j + 1) / 12.0, w2 = (k + 1) / 12.0;
+                size_t t;
+                int c3;
+                for (c3 = 0; c3 < 3; c3++)
+                    x[c3] = polys[i].v[0][c3] + w1 * (polys[i].v[1][c3] - polys[i].v[0][c3]) +
+                            w2 * (polys[i].v[2][c3] - polys[i].v[0][c3]);
+                t = texel_at(&a, i, x);
+                CHECK_THAT(!isnan(a.sample[2 * t]) && a.owner[t] == a.poly_chart[i],
+                           "polygon %d point %d,%d: its texel covered and of its chart", i, j, k);
+                points++;
+            }
+    }
+    printf("lightmap packing: %d charts in %dx%d at a texel of %.4f, %d polygon points in covered texels\n",
+           a.ncharts, a.size, a.size, a.texel, points);
+    lm_free(&a);
+}
+
+/* Bad sizes: a clear one-line error, nothing built. */
+static void test_lightmap_bad_sizes(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_atlas a;
+    char err[256] = "";
+    int n = terrain(polys);
+    lm_opts zero = {0, 0.0, 0}, big = {8193, 0.0, 0}, small = {8, 0.0, 0}, fine = {64, 0.001, 0};
+    (void)state;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
+    CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &big, err, sizeof err), -1, "a size of 8193 refused");
+    CHECK_CONTAINS(err, "a lightmap size of 8193 is outside 1..8192", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &small, err, sizeof err), -1, "129 charts in 8 x 8 texels refused");
+    CHECK_CONTAINS(err, "cannot fit 129 charts", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1, "a texel of 0.001 in 64 x 64 refused");
+    CHECK_CONTAINS(err, "cannot fit 129 charts at a texel of 0.001", "the message");
+    assert_null(a.rgb);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hdr_round_trip),
         cmocka_unit_test(test_hdr_rle_smaller),
         cmocka_unit_test(test_hdr_bad_input),
+        cmocka_unit_test(test_lightmap_lambert),
+        cmocka_unit_test(test_lightmap_no_seams),
+        cmocka_unit_test(test_lightmap_no_leaks),
+        cmocka_unit_test(test_lightmap_packing),
+        cmocka_unit_test(test_lightmap_bad_sizes),
     };
     return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);
 }
