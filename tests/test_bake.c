@@ -15,6 +15,8 @@
 #include "check.h"
 #include "tmpdir.h"
 #include "bake/lightmap.h"
+#include "bake/probes.h"
+#include "formats/file_io.h"
 #include "formats/hdr.h"
 #include "host/scene.h"
 #include "reference/reference.h"
@@ -490,6 +492,135 @@ static void test_lightmap_bad_sizes(void **state)
     assert_null(a.rgb);
 }
 
+/* ---- probes ------------------------------------------------------------------------- */
+
+/* An axis-aligned box [LO, HI]^3 as six quads, lit side in (INWARD 1) or out. */
+static int cube(sc_poly *q, double lo, double hi, int inward, double emit)
+{
+    int f, k, n = 0;
+    for (f = 0; f < 6; f++) {
+        int a = f / 2, b = (a + 1) % 3, c = (a + 2) % 3, plus = (f & 1) ^ (inward != 0);
+        double v[4][3], side = f & 1 ? hi : lo;
+        double us[4] = {lo, hi, hi, lo}, vs[4] = {lo, lo, hi, hi};
+        for (k = 0; k < 4; k++) {
+            v[k][a] = side;
+            v[k][b] = us[k];
+            v[k][c] = vs[k];
+        }
+        /* (b, c) counter-clockwise seen from +a: the normal +a (the hi side out, the lo in). */
+        q[n] = plus ? quad(v[0], v[1], v[2], v[3], 0.0, emit) : quad(v[3], v[2], v[1], v[0], 0.0, emit);
+        n++;
+    }
+    return n;
+}
+
+typedef struct {
+    sc_gatherer *g;
+} sh_baker;
+
+static int sh_cb(void *ctx, const double p[3], double sh[9][3])
+{
+    return sc_gather_sh(((sh_baker *)ctx)->g, p, 1, sh);
+}
+
+static int count_of(const char *text, const char *part)
+{
+    int n = 0;
+    for (; (text = strstr(text, part)) != NULL; text++) n++;
+    return n;
+}
+
+/* A room of emission 1 (every wall, reflectance 0) with a closed box of emission 1
+ * inside: every probe outside the box sees radiosity 1 in every direction, so its SH is
+ * sqrt(4 pi) and zeros (rad.h: the gather's tables make a uniform environment's
+ * exact; measured 0, bound 1% of SH[0] for the fixed core's rounding). The grid's 4 x 4 x 4
+ * probes sit at the cells' centres; the one at (0.5, 0.5, 0.5) is inside the box: all
+ * its rays meet back faces, the others' none. The JSON holds every probe. */
+static void test_probes_grid(void **state)
+{
+    sc_poly polys[12];
+    sc_opts o = {0, 0, 64, 0, 0, 0};
+    int dims[3], n = cube(polys, -2, 2, 1, 1.0), i, k, inside = 0;
+    char err[256] = "", *json;
+    size_t len;
+    double *pts, worst = 0.0;
+    pr_probe pr[64];
+    sh_baker b;
+    sc_solver *s;
+    (void)state;
+    n += cube(polys + n, 0.2, 0.8, 0, 1.0);
+    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 100000, 1e-4, NULL, NULL);
+    b.g = sc_gatherer_new(s, 32, 1);
+    assert_non_null(b.g);
+    CHECK_INT_EQ(pr_parse_grid("4,4,4", dims, err, sizeof err), 0, "grid 4,4,4 (%s)", err);
+    pts = pr_grid_points(polys, n, dims);
+    assert_non_null(pts);
+    CHECK_INT_EQ(pr_bake(polys, n, pts, 64, sh_cb, &b, pr, err, sizeof err), 0, "pr_bake (%s)", err);
+    for (i = 0; i < 64; i++) {
+        int in = fabs(pr[i].p[0] - 0.5) < 1e-12 && fabs(pr[i].p[1] - 0.5) < 1e-12 && fabs(pr[i].p[2] - 0.5) < 1e-12;
+        CHECK_NEAR(pr[i].p[0], -1.5 + (i % 4), 1e-12, "probe %d's x", i);
+        CHECK_NEAR(pr[i].p[2], -1.5 + i / 16, 1e-12, "probe %d's z", i);
+        CHECK_INT_EQ(pr[i].inside, in, "probe %d at (%g, %g, %g) flagged inside", i, pr[i].p[0], pr[i].p[1], pr[i].p[2]);
+        CHECK_NEAR(pr[i].back, in ? 1.0 : 0.0, 1e-12, "probe %d's rays meeting back faces", i);
+        inside += pr[i].inside;
+        if (in) continue;
+        for (k = 0; k < 9; k++) {
+            double want = k ? 0.0 : sqrt(16.0 * atan(1.0)), d = fabs(pr[i].sh[k][1] - want) / sqrt(16.0 * atan(1.0));
+            CHECK_LE(d, 0.01, "probe %d SH[%d] %.6f against %.6f", i, k, pr[i].sh[k][1], want);
+            if (d > worst) worst = d;
+        }
+    }
+    printf("probes: 64 in a glowing room, %d inside the box; SH within %.4f%% of sqrt(4 pi) and zeros (bound 1%%)\n",
+           inside, 100.0 * worst);
+    CHECK_INT_EQ(pr_write_json(tmp_path("probes.json"), pr, 64, dims, err, sizeof err), 0, "pr_write_json (%s)", err);
+    CHECK_INT_EQ(fio_read_all(tmp_path("probes.json"), 1u << 20, &json, &len, err, sizeof err), 0, "read back (%s)", err);
+    CHECK_INT_EQ(count_of(json, "{\"p\": ["), 64, "probes in the JSON");
+    CHECK_INT_EQ(count_of(json, "\"inside\": true"), 1, "probes flagged inside in the JSON");
+    CHECK_CONTAINS(json, "\"grid\": [4, 4, 4]", "the grid in the JSON");
+    free(json);
+    free(pts);
+    sc_gatherer_free(b.g);
+    sc_destroy(s);
+}
+
+/* Points files and grids: what is read, and one-line errors naming the file and line. */
+static void test_probes_input(void **state)
+{
+    const char *path = tmp_path("points.txt");
+    char err[256] = "";
+    int n = -1, dims[3];
+    double *p;
+    FILE *fp = fopen(path, "w");
+    (void)state;
+    assert_non_null(fp);
+    fputs("# probes\n1 2 3\n\n  -0.5\t4e-1 7 \r\n", fp);
+    fclose(fp);
+    p = pr_read_points(path, &n, err, sizeof err);
+    assert_non_null(p);
+    CHECK_INT_EQ(n, 2, "points read");
+    CHECK_EQ(p[3], -0.5, "the second point's x");
+    CHECK_EQ(p[4], 0.4, "the second point's y");
+    free(p);
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("1 2 3\n1 2\n", fp);
+    fclose(fp);
+    assert_null(pr_read_points(path, &n, err, sizeof err));
+    CHECK_CONTAINS(err, "points.txt:2: a probe is three numbers", "the message");
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("# nothing\n", fp);
+    fclose(fp);
+    assert_null(pr_read_points(path, &n, err, sizeof err));
+    CHECK_CONTAINS(err, "no probes in the file", "the message");
+    CHECK_INT_EQ(pr_parse_grid("0,2,2", dims, err, sizeof err), -1, "a grid of 0 refused");
+    CHECK_CONTAINS(err, "a grid of 0 along an axis is outside 1..256", "the message");
+    CHECK_INT_EQ(pr_parse_grid("4,4", dims, err, sizeof err), -1, "two numbers refused");
+    CHECK_CONTAINS(err, "is not NX,NY,NZ", "the message");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -501,6 +632,8 @@ int main(void)
         cmocka_unit_test(test_lightmap_no_leaks),
         cmocka_unit_test(test_lightmap_packing),
         cmocka_unit_test(test_lightmap_bad_sizes),
+        cmocka_unit_test(test_probes_grid),
+        cmocka_unit_test(test_probes_input),
     };
     return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);
 }
