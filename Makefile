@@ -35,7 +35,8 @@ LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
 TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
 # Host helpers built once.
-TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c tools/bench/plot.c
+TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
+              tools/host/clock.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
@@ -73,10 +74,11 @@ $(BUILDDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 $(LIBTOOLS): $(TOOL_OBJS)
 	@rm -f $@; $(AR) rcs $@ $^
 
-# rad_cli is one source built twice: rad_cli (fixed) and rad_cli_float (the twin).
-$(BUILDDIR)/rad_cli: $(BUILDDIR)/tools/cli/rad_cli.o $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
+# rad_cli is one source set built twice: rad_cli (fixed) and rad_cli_float (the twin).
+CLI_SRCS   := $(wildcard tools/cli/*.c)
+$(BUILDDIR)/rad_cli: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/%.o) $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
-$(BUILDDIR)/rad_cli_float: $(BUILDDIR)/tools/float/cli/rad_cli.o $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
+$(BUILDDIR)/rad_cli_float: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/float/%.o) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
 
 # The benchmark: both builds of the core side by side (see tools/bench/rad_bench.c).

@@ -32,7 +32,7 @@ PORT_OUT := $(BUILDDIR)/ports
 PORT_SH := sh ports/common/ports.sh
 PORT_LIB_SRCS := $(wildcard lib/*.c)
 PORT_LIB_HDRS := $(wildcard lib/*.h include/rad/*.h)
-PORT_HDRS := $(PORT_LIB_HDRS) ports/common/port.h ports/common/semihost.h
+PORT_HDRS := $(PORT_LIB_HDRS) ports/common/port.h ports/common/probes.h ports/common/semihost.h
 PORT_TEST_SRC := ports/common/port_test.c
 
 # The project's warnings, as errors: the core, the port test and the platform files alike
@@ -49,7 +49,7 @@ PORT_OWN_WARN := -Wshadow -Wundef -Wmissing-prototypes
 # Per target: compiler, CPU flags, defines, platform sources, linker script, the
 # profiles its port test runs, and extra flags for the test and the benchmark.
 PORT_TARGETS := cortex-m0 cortex-m3 rv32
-PORT_CM_PLAT := ports/common/cortex_m.c ports/common/semihost.c ports/common/port_libc.c
+PORT_CM_PLAT := ports/common/cortex_m.c ports/common/probes.c ports/common/semihost.c ports/common/port_libc.c
 
 PORT_cortex-m0_PREFIX := $(ARM_PREFIX)
 PORT_cortex-m0_CPU := -mcpu=cortex-m0 -mthumb -mfloat-abi=soft
@@ -75,7 +75,8 @@ PORT_cortex-m3_BENCH := -Wl,--defsym=__ram_budget=0x100000
 PORT_rv32_PREFIX := $(RV_PREFIX)
 PORT_rv32_CPU := -march=rv32imac -mabi=ilp32 -misa-spec=2.2 -mcmodel=medany
 PORT_rv32_DEFS :=
-PORT_rv32_PLAT := ports/rv32/start.S ports/rv32/rv32.c ports/common/semihost.c ports/common/port_libc.c
+PORT_rv32_PLAT := ports/rv32/start.S ports/rv32/rv32.c ports/common/probes.c ports/common/semihost.c \
+                  ports/common/port_libc.c
 PORT_rv32_LD := -Tports/rv32/link.ld
 PORT_rv32_PROFILES := small medium
 PORT_rv32_TEST :=

@@ -974,7 +974,7 @@ static void test_cli_many_faces(void **st)
         return;
     }
 #endif
-    expect_cli(&r, 0, NULL);
+    expect_cli(&r, 3, NULL); /* one shot: outputs written, not converged (exit 3) */
     CHECK_CONTAINS(r.out, "shots 1 ", "rad_cli's stdout");
     i = 0;
     sscanf(strstr(r.out, "elements ") + 9, "%ld", &i);
@@ -994,11 +994,11 @@ static void test_cli_unwritable_output(void **st)
     need_cli();
     before = listing(tmpdir);
     RUN(&r, CORNELL, "-o", tmp_path("nodir/x.png"));
-    snprintf(want, sizeof want, "rad_cli: %s: cannot write into '%s': No such file or directory\n",
+    snprintf(want, sizeof want, "rad_cli: %s: cannot write in folder %s: No such file or directory\n",
              tmp_path("nodir/x.png"), tmp_path("nodir"));
     expect_cli(&r, 1, want);
     run_free(&r);
-    /* The output is a directory: found only when writing, after the solve; the
+    /* The output is a directory: refused before the solve (fio_check_out); the
      * directory is untouched and no temporary file stays. */
     assert_int_equal(mkdir(tmp_path("d.png"), 0755), 0);
     free(before);

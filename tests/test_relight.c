@@ -38,6 +38,7 @@
 #include "formats/image.h"
 #include "tmpdir.h"
 #include "formats/obj.h"
+#include "host/clock.h"
 #include "host/obj_polys.h"
 #include "reference/reference.h"
 #include "host/scene.h"
@@ -61,13 +62,6 @@ extern char **environ;
 /* ---- temporary directory ---------------------------------------------------------- */
 
 TMPDIR_GROUP("relight")
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static unsigned char *slurp(const char *path, size_t *len)
 {
@@ -132,25 +126,14 @@ static void polys_set(scene_t *s, int m, const double *rho, const double *emit)
         }
 }
 
-typedef struct {
-    const scene_t *s;
-    int m;
-} match_t;
-
-static int match_mat(void *ctx, int tag)
-{
-    const match_t *mt = ctx;
-    return mt->s->sc.faces[tag].material == mt->m;
-}
-
 /* Relights material M of a solver built from S through the glue. */
 static void relight(sc_solver *h, const scene_t *s, int m, const double *rho, const double *emit)
 {
     char err[256];
-    match_t mt;
-    mt.s = s;
-    mt.m = m;
-    if (sc_set_surfaces(h, match_mat, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
+    obj_material_match mt;
+    mt.sc = &s->sc;
+    mt.material = m;
+    if (sc_set_surfaces(h, obj_match_material, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
 }
 
 static sc_solver *make(const scene_t *s, double max_element, int res)
@@ -410,9 +393,9 @@ static void test_relight_cornell(void **state)
     light = material_of(&cb, "light");
     red = material_of(&cb, "red");
     h = make(&cb, 0, 64);
-    t0 = now();
+    t0 = host_now();
     rows(h);
-    t_rows = now() - t0;
+    t_rows = host_now() - t0;
     sc_get_rows_stats(h, &rs);
     ne = n_elements(h);
     print_message("Cornell box (default mesh, res 64): %d rows, %lu entries, %zu bytes (%.0f per patch), %.3f s\n",
@@ -421,11 +404,11 @@ static void test_relight_cornell(void **state)
 
     /* New light colour and new wall colour: no hemi-cube. */
     calls = raster_calls(h);
-    t0 = now();
+    t0 = host_now();
     relight(h, &cb, light, NULL, blue_light);
     relight(h, &cb, red, teal, NULL);
     CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
-    t_relight = now() - t0;
+    t_relight = host_now() - t0;
     assert_int_equal(raster_calls(h), calls);
     a = values(h);
 
@@ -433,9 +416,9 @@ static void test_relight_cornell(void **state)
     polys_set(&fresh, light, NULL, blue_light);
     polys_set(&fresh, red, teal, NULL);
     f = make(&fresh, 0, 64);
-    t0 = now();
+    t0 = host_now();
     CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
-    t_fresh = now() - t0;
+    t_fresh = host_now() - t0;
     b = values(f);
     d = max_rel(a, b, ne, &rms);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%%, rms %.4f%% per element; "
@@ -585,16 +568,16 @@ static void test_set_surfaces_errors(void **state)
     scene_t s;
     sc_solver *h;
     char err[256];
-    match_t mt;
+    obj_material_match mt;
     const double inf[3] = {HUGE_VAL, 1, 1}, neg[3] = {-1, 0, 0};
     (void)state;
     scene_load(&s, CORNELL);
     h = make(&s, 0.1, 32);
-    mt.s = &s;
-    mt.m = material_of(&s, "light");
-    assert_int_equal(sc_set_surfaces(h, match_mat, &mt, NULL, inf, err, sizeof err), -1);
+    mt.sc = &s.sc;
+    mt.material = material_of(&s, "light");
+    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, NULL, inf, err, sizeof err), -1);
     CHECK_CONTAINS(err, "finite", "the error message");
-    assert_int_equal(sc_set_surfaces(h, match_mat, &mt, neg, NULL, err, sizeof err), -1);
+    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, neg, NULL, err, sizeof err), -1);
     assert_int_equal(sc_rows_gauss_seidel(h, 10, 0.001, err, sizeof err), -1); /* no rows yet */
     CHECK_CONTAINS(err, "rows", "the error message");
     assert_int_equal(sc_rows_save(h, tmp_path("none.ff"), err, sizeof err), -1);
@@ -624,7 +607,7 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
     pid_t pid;
     int n = 0, st = 0, rc;
     size_t len;
-    double t0 = now();
+    double t0 = host_now();
     snprintf(outp, sizeof outp, "%s/run%03d.out", tmpdir, seq);
     snprintf(errp, sizeof errp, "%s/run%03d.err", tmpdir, seq);
     seq++;
@@ -646,7 +629,7 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
         struct timespec nap = {0, 5000000};
         pid_t w = waitpid(pid, &st, WNOHANG);
         if (w == pid) break;
-        if (now() - t0 > 120) {
+        if (host_now() - t0 > 120) {
             kill(pid, SIGKILL);
             waitpid(pid, &st, 0);
             fail_msg("%s timed out", bin);

@@ -11,6 +11,7 @@
  * The 24-bit counter wraps every 2^24 ticks; its interrupt counts the wraps.
  */
 #include "port.h"
+#include "probes.h"
 #include "semihost.h"
 
 #ifndef PORT_TARGET_NAME
@@ -24,7 +25,7 @@ int main(void);
 
 /* Linker script symbols. */
 extern uint32_t __data_load[], __data_start[], __data_end[], __bss_start[], __bss_end[];
-extern uint32_t __stack_limit[], __stack_top[];
+extern uint32_t __stack_top[];
 
 #define REG(a) (*(volatile uint32_t *)(a))
 #define SYST_CSR REG(0xE000E010u)
@@ -41,8 +42,6 @@ extern uint32_t __stack_limit[], __stack_top[];
 #if 2000000000u % PORT_CPU_HZ != 0
 #error "PORT_CPU_HZ must divide 2 GHz (one tick = a whole number of half nanoseconds)"
 #endif
-
-#define STACK_PAINT 0x5AC3A55Cu
 
 static volatile uint32_t systick_wraps;
 
@@ -106,7 +105,7 @@ void port_reset(void)
     for (p = __bss_start; p < __bss_end;) *p++ = 0;
     /* Paint the free stack below this frame; port_stack_used() finds the high-water mark. */
     __asm__ volatile("mov %0, sp" : "=r"(sp));
-    for (p = __stack_limit; p < sp - 16;) *p++ = STACK_PAINT;
+    port_paint_stack(sp);
 
     SYST_RVR = SYST_PERIOD - 1u;
     SYST_CVR = 0;
@@ -136,20 +135,6 @@ int port_instructions(uint64_t *n)
     /* Half-instructions per tick times ticks, halved: no division, whose length would
      * depend on the value and blur the measurement it is part of. */
     *n = ticks * HALF_NS_PER_TICK >> 1;
-    return 1;
-}
-
-int port_stack_used(uint32_t *n)
-{
-    const uint32_t *p = __stack_limit;
-    while (p < __stack_top && *p == STACK_PAINT) p++;
-    *n = (uint32_t)((uintptr_t)__stack_top - (uintptr_t)p);
-    return p == __stack_limit ? -1 : 1;
-}
-
-int port_static_bytes(uint32_t *n)
-{
-    *n = (uint32_t)((uintptr_t)__bss_end - (uintptr_t)__data_start);
     return 1;
 }
 

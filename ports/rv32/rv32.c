@@ -5,16 +5,14 @@
  * QEMU's -icount it is the exact number of instructions retired.
  */
 #include "port.h"
+#include "probes.h"
 #include "semihost.h"
 
 int main(void);
 void port_boot(void) __attribute__((noreturn));
 void port_trap(uint32_t cause, uint32_t epc) __attribute__((noreturn));
 
-extern uint32_t __bss_start[], __bss_end[], __data_start[];
-extern uint32_t __stack_limit[], __stack_top[];
-
-#define STACK_PAINT 0x5AC3A55Cu
+extern uint32_t __bss_start[], __bss_end[];
 
 /* The semihosting trap: ebreak between two marker instructions, uncompressed and
  * inside one 16-byte block so the debugger-side check can read all three. */
@@ -48,7 +46,7 @@ void port_boot(void)
     /* .data is loaded in place by QEMU (code and data share RAM): only .bss to clear. */
     for (p = __bss_start; p < __bss_end;) *p++ = 0;
     __asm__ volatile("mv %0, sp" : "=r"(sp));
-    for (p = __stack_limit; p < sp - 16;) *p++ = STACK_PAINT;
+    port_paint_stack(sp);
     main();
     port_exit(0);
 }
@@ -62,20 +60,6 @@ int port_instructions(uint64_t *n)
         __asm__ volatile("csrr %0, minstreth" : "=r"(hi2));
     } while (hi != hi2);
     *n = ((uint64_t)hi << 32) | lo;
-    return 1;
-}
-
-int port_stack_used(uint32_t *n)
-{
-    const uint32_t *p = __stack_limit;
-    while (p < __stack_top && *p == STACK_PAINT) p++;
-    *n = (uint32_t)((uintptr_t)__stack_top - (uintptr_t)p);
-    return p == __stack_limit ? -1 : 1;
-}
-
-int port_static_bytes(uint32_t *n)
-{
-    *n = (uint32_t)((uintptr_t)__bss_end - (uintptr_t)__data_start);
     return 1;
 }
 

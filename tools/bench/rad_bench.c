@@ -10,12 +10,13 @@
  */
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "formats/obj.h"
+#include "host/clock.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
 #include "bench/plot.h"
@@ -23,13 +24,6 @@
 #include "host/scene.h"
 
 #define MAXPTS 200000
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + (double)t.tv_nsec * 1e-9;
-}
 
 typedef struct {
     const char *name;
@@ -40,6 +34,7 @@ typedef struct {
     int res;
     int runs;
     int big;              /* one of the two largest: not in the overshooting and parallel tables */
+    const obj_scene *obj; /* the OBJ scene of POLYS, or NULL (generated) */
 } bscene;
 
 /* One solve's record. */
@@ -65,7 +60,7 @@ static int on_shot(void *ctx, int shots, double unshot)
 {
     prog_t *p = ctx;
     brun *r = p->r;
-    double t = p->spent + now() - p->t0;
+    double t = p->spent + host_now() - p->t0;
     int k;
     static const double lim[3] = {0.1, 0.01, 0.001};
     shots += p->base;
@@ -157,11 +152,11 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
         int live = 3;
         for (k = 0; k < 2; k++) {
             char err[256];
-            double t0 = now();
+            double t0 = host_now();
             run_alloc(&r[k][i]);
             s[k] = b[k]->create(sc->polys, sc->n, &o[k], err, sizeof err);
             if (!s[k]) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
-            r[k][i].mesh = now() - t0;
+            r[k][i].mesh = host_now() - t0;
             pg[k].r = &r[k][i];
             pg[k].spent = 0;
             pg[k].base = 0;
@@ -170,9 +165,9 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
             for (k = 0; k < 2; k++) {
                 int shot;
                 if (!(live & (1 << k))) continue;
-                pg[k].t0 = now();
+                pg[k].t0 = host_now();
                 shot = b[k]->solve(s[k], 1, 0.001, on_shot, &pg[k]);
-                pg[k].spent += now() - pg[k].t0;
+                pg[k].spent += host_now() - pg[k].t0;
                 pg[k].base += shot;
                 if (!shot || pg[k].base >= 1000000) live &= ~(1 << k);
             }
@@ -302,9 +297,9 @@ static sc_solver *solve_patches(const bscene *sc, double max_patch, tradeoff_t *
     double t0;
     o.max_patch = max_patch;
     s = fixed_solver(sc, sc->polys, &o);
-    t0 = now();
+    t0 = host_now();
     t->shots = sc_solve(s, 1000000, 0.01, NULL, NULL);
-    t->secs = now() - t0;
+    t->secs = host_now() - t0;
     sc_solve(s, 1000000, 0.001, NULL, NULL);
     sc_get_stats(s, &st);
     t->max_patch = max_patch;
@@ -315,18 +310,22 @@ static sc_solver *solve_patches(const bscene *sc, double max_patch, tradeoff_t *
 
 /* ---- stored form factors: relighting against a fresh solve ------------------------- */
 
-typedef struct {
-    const sc_poly *p;
-    int n;
-} emitters_t;
-
-static int is_emitter(void *ctx, int tag)
+/* Every emitting material of the scene's OBJ gets emission EMIT. */
+static void set_emitters(const bscene *sc, sc_solver *s, const double *emit)
 {
-    const emitters_t *em = ctx;
-    int i;
-    for (i = 0; i < em->n; i++)
-        if (em->p[i].tag == tag) return poly_emits(&em->p[i]);
-    return 0;
+    char err[256];
+    int m;
+    for (m = 0; m < sc->obj->nmaterials; m++) {
+        const double *ke = sc->obj->materials[m].ke;
+        obj_material_match mm;
+        if (!(ke[0] + ke[1] + ke[2] > 0)) continue;
+        mm.sc = sc->obj;
+        mm.material = m;
+        if (sc_set_surfaces(s, obj_match_material, &mm, NULL, emit, err, sizeof err) < 0) {
+            fprintf(stderr, "rad_bench: %s\n", err);
+            exit(1);
+        }
+    }
 }
 
 typedef struct {
@@ -345,28 +344,26 @@ static void relight_bench(const bscene *sc, relight_t *r)
     sc_rows_stats rs;
     sc_stats st;
     sc_poly *q;
-    emitters_t em;
     double t0;
     int i;
-    t0 = now();
+    t0 = host_now();
     if (sc_rows_compute(s, NULL, NULL, err, sizeof err) < 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
-    r->t_rows = now() - t0;
+    r->t_rows = host_now() - t0;
     sc_get_rows_stats(s, &rs);
     r->rows = rs.rows; r->entries = rs.entries; r->bytes = rs.bytes;
-    t0 = now();
+    t0 = host_now();
     sc_rows_solve(s, 1000000, 0.001, NULL, NULL);
-    r->t_rows_shoot = now() - t0;
-    t0 = now();
+    r->t_rows_shoot = host_now() - t0;
+    t0 = host_now();
     r->sweeps = sc_rows_gauss_seidel(s, 1000, 0.001, err, sizeof err);
-    r->t_gs = now() - t0;
+    r->t_gs = host_now() - t0;
     sc_get_rows_stats(s, &rs);
     r->matrix_bytes = rs.matrix_bytes;
     /* A new light colour: emissions changed, visibility kept. */
-    em.p = sc->polys; em.n = sc->n;
-    t0 = now();
-    if (sc_set_surfaces(s, is_emitter, &em, NULL, blue, err, sizeof err) < 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    t0 = host_now();
+    set_emitters(sc, s, blue);
     r->relight_shots = sc_rows_solve(s, 1000000, 0.001, NULL, NULL);
-    r->t_relight = now() - t0;
+    r->t_relight = host_now() - t0;
     sc_get_stats(s, &st);
     r->patches = st.patches; r->elements = st.elements;
     /* The same new light from scratch: meshing and a hemi-cube per shot. */
@@ -375,10 +372,10 @@ static void relight_bench(const bscene *sc, relight_t *r)
     memcpy(q, sc->polys, (size_t)sc->n * sizeof *q);
     for (i = 0; i < sc->n; i++)
         if (poly_emits(&q[i])) memcpy(q[i].emit, blue, sizeof blue);
-    t0 = now();
+    t0 = host_now();
     f = fixed_solver(sc, q, &o);
     r->fresh_shots = sc_solve(f, 1000000, 0.001, NULL, NULL);
-    r->t_fresh = now() - t0;
+    r->t_fresh = host_now() - t0;
     sc_destroy(f);
     sc_destroy(s);
     free(q);
@@ -386,14 +383,16 @@ static void relight_bench(const bscene *sc, relight_t *r)
 
 /* ---- scenes -------------------------------------------------------------------- */
 
-static sc_poly *load_obj(const char *path, int *n)
+/* The polygons of the OBJ file PATH, its scene kept in KEEP (or freed: NULL). */
+static sc_poly *load_obj(const char *path, int *n, obj_scene *keep)
 {
     obj_scene sc;
     char err[512];
     sc_poly *p;
     if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) return NULL;
     p = obj_to_polys(&sc, n, NULL, NULL);
-    obj_free(&sc);
+    if (keep) *keep = sc;
+    else obj_free(&sc);
     return p;
 }
 
@@ -493,147 +492,156 @@ static void fmt_shots(char *b, size_t n, const brun *r)
     snprintf(b, n, "%d / %d / %d", r->shots[0], r->shots[1], r->shots[2]);
 }
 
-int main(int argc, char **argv)
-{
-    const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
-    static bscene scenes[8];
-    static brun fx[8], fl[8];
-    double amax[8], arms[8];
-    int ns = 0, i, k;
-    char md[65536];
-    size_t len = 0;
-    FILE *f;
-    sc_poly *cb;
-    int ncb;
+/* ---- the report, section by section ------------------------------------------------ */
 
-    cb = load_obj("examples/cornell_box.obj", &ncb);
-    if (!cb) { fprintf(stderr, "rad_bench: run from the repository root (examples/cornell_box.obj)\n"); return 1; }
-    {
-        /* The bundled box is 0.56 m across: element edges for 535, 1,796 and 8,360
-         * elements (meshing is by whole divisions of each face: the nearest to the
-         * benchmark's targets of 500, 2,000 and 8,000). */
-        static const double me[3] = {0.065, 0.035, 0.0165};
-        static const char *nm[3] = {"Cornell box (bundled), coarse", "Cornell box (bundled), medium",
-                                    "Cornell box (bundled), fine"};
-        for (k = 0; k < 3; k++) {
-            scenes[ns].name = nm[k]; scenes[ns].polys = cb; scenes[ns].n = ncb;
-            scenes[ns].max_element = me[k]; scenes[ns].res = 128; scenes[ns].runs = 3;
-            scenes[ns].big = k == 2;
-            ns++;
-        }
-    }
-    {
-        int n;
-        sc_poly *p = load_obj(shared, &n);
-        if (p) {
-            /* Element edge 0.08 (of about 2 across): over the 4,000 elements of the peers. */
-            scenes[ns].name = "CornellBox-Original (shared)"; scenes[ns].polys = p; scenes[ns].n = n;
-            scenes[ns].max_element = 0.08; scenes[ns].res = 128; scenes[ns].runs = 5;
-            ns++;
-        } else {
-            fprintf(stderr, "rad_bench: %s not found: the peer comparison is skipped\n", shared);
-        }
-    }
-    {
-        int n;
-        sc_poly *p = gen_hall(&n);
-        if (!p) return 1;
-        scenes[ns].name = "generated hall (12 pieces of furniture, 6 lights)"; scenes[ns].polys = p;
-        scenes[ns].n = n; scenes[ns].max_element = 0.175; scenes[ns].res = 128; scenes[ns].runs = 3;
-        scenes[ns].big = 1;
+typedef struct {
+    char md[65536];
+    size_t len;
+} report_t;
+
+static void out(report_t *rp, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    rp->len += (size_t)vsnprintf(rp->md + rp->len, sizeof rp->md - rp->len, fmt, ap);
+    va_end(ap);
+}
+
+/* The scenes: the bundled box at three densities, the shared CornellBox-Original if it
+ * is there, the generated hall. Returns how many, or 0 (not run from the root). */
+static int load_scenes(const char *shared, bscene *scenes)
+{
+    /* The bundled box is 0.56 m across: element edges for 535, 1,796 and 8,360
+     * elements (meshing is by whole divisions of each face: the nearest to the
+     * benchmark's targets of 500, 2,000 and 8,000). */
+    static const double me[3] = {0.065, 0.035, 0.0165};
+    static const char *nm[3] = {"Cornell box (bundled), coarse", "Cornell box (bundled), medium",
+                                "Cornell box (bundled), fine"};
+    static obj_scene box;
+    int ns = 0, k, ncb, n;
+    sc_poly *cb = load_obj("examples/cornell_box.obj", &ncb, &box), *p;
+    if (!cb) { fprintf(stderr, "rad_bench: run from the repository root (examples/cornell_box.obj)\n"); return 0; }
+    for (k = 0; k < 3; k++) {
+        scenes[ns].name = nm[k]; scenes[ns].polys = cb; scenes[ns].n = ncb; scenes[ns].obj = &box;
+        scenes[ns].max_element = me[k]; scenes[ns].res = 128; scenes[ns].runs = 3;
+        scenes[ns].big = k == 2;
         ns++;
     }
-
-    for (i = 0; i < ns; i++) {
-        fprintf(stderr, "rad_bench: %s ...\n", scenes[i].name);
-        bench_pair(&scenes[i], &fx[i], &fl[i]);
-        twin_accuracy(&scenes[i], &amax[i], &arms[i]);
+    p = load_obj(shared, &n, NULL);
+    if (p) {
+        /* Element edge 0.08 (of about 2 across): over the 4,000 elements of the peers. */
+        scenes[ns].name = "CornellBox-Original (shared)"; scenes[ns].polys = p; scenes[ns].n = n;
+        scenes[ns].max_element = 0.08; scenes[ns].res = 128; scenes[ns].runs = 5;
+        ns++;
+    } else {
+        fprintf(stderr, "rad_bench: %s not found: the peer comparison is skipped\n", shared);
     }
-    if (fx[ns - 1].elements < 20000)
-        fprintf(stderr, "rad_bench: warning: the generated scene has %d elements, fewer than the 20,000 asked for\n",
-                fx[ns - 1].elements);
+    p = gen_hall(&n);
+    if (!p) return 0;
+    scenes[ns].name = "generated hall (12 pieces of furniture, 6 lights)"; scenes[ns].polys = p;
+    scenes[ns].n = n; scenes[ns].max_element = 0.175; scenes[ns].res = 128; scenes[ns].runs = 3;
+    scenes[ns].big = 1;
+    return ns + 1;
+}
 
-#define OUT(...) (len += (size_t)snprintf(md + len, sizeof md - len, __VA_ARGS__))
-    OUT("Solve to an unshot fraction of 0.001 at hemi-cube resolution 128, one core; times are medians of "
+static void report_speed(report_t *rp, const bscene *scenes, int ns, const brun *fx, const brun *fl)
+{
+    int i, k;
+    out(rp, "Solve to an unshot fraction of 0.001 at hemi-cube resolution 128, one core; times are medians of "
         "3 runs (5 for CornellBox-Original) in one process, the two builds solved side by side, one shot of each "
         "in turn, so that both see the same machine. fixed/float is the ratio of the two builds' times: below 1 "
         "the fixed build is faster.\n\n");
-    OUT("| scene | elements | patches | build | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot "
+    out(rp, "| scene | elements | patches | build | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot "
         "| Mpixel/s | memory KB |\n| --- | ---: | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         for (k = 0; k < 2; k++) {
             const brun *r = k ? &fl[i] : &fx[i];
             char sh[64];
             fmt_shots(sh, sizeof sh, r);
-            OUT("| %s | %d | %d | %s | %s | %.3f | %.3f | %.3f | %.1f | %zu |\n", k ? "" : scenes[i].name,
+            out(rp, "| %s | %d | %d | %s | %s | %.3f | %.3f | %.3f | %.1f | %zu |\n", k ? "" : scenes[i].name,
                 r->elements, r->patches, k ? "float" : "fixed", sh, r->t[1], r->total,
                 1000 * r->total / (r->all_shots ? r->all_shots : 1), r->pix_per_s / 1e6, r->bytes / 1024);
         }
-        OUT("| | | | fixed/float | | %.2f | %.2f | | | |\n", fx[i].t[1] / fl[i].t[1], fx[i].total / fl[i].total);
+        out(rp, "| | | | fixed/float | | %.2f | %.2f | | | |\n", fx[i].t[1] / fl[i].t[1], fx[i].total / fl[i].total);
     }
-    OUT("\nFixed against the float twin, per element (with the ambient term), over elements above 1%% of the "
-        "brightest:\n\n| scene | max relative difference | rms |\n| --- | ---: | ---: |\n");
-    for (i = 0; i < ns; i++) OUT("| %s | %.3f%% | %.3f%% |\n", scenes[i].name, 100 * amax[i], 100 * arms[i]);
+}
 
-    OUT("\nHemi-cube form factors against Lambert's contour formula (7 unoccluded receivers: parallel, offset, "
+static void report_twin(report_t *rp, const bscene *scenes, int ns, const double *amax, const double *arms)
+{
+    int i;
+    out(rp, "\nFixed against the float twin, per element (with the ambient term), over elements above 1%% of the "
+        "brightest:\n\n| scene | max relative difference | rms |\n| --- | ---: | ---: |\n");
+    for (i = 0; i < ns; i++) out(rp, "| %s | %.3f%% | %.3f%% |\n", scenes[i].name, 100 * amax[i], 100 * arms[i]);
+}
+
+static void report_hemicube(report_t *rp)
+{
+    static const int res[4] = {32, 64, 128, 256};
+    int k;
+    out(rp, "\nHemi-cube form factors against Lambert's contour formula (7 unoccluded receivers: parallel, offset, "
         "perpendicular, tilted, large, grazing, triangle), fixed build:\n\n| resolution | mean error | max "
         "error |\n| ---: | ---: | ---: |\n");
-    {
-        static const int res[4] = {32, 64, 128, 256};
-        for (k = 0; k < 4; k++) {
-            double sum = 0, mx = 0;
-            int r;
-            for (r = 0; r < REF_RECEIVERS; r++) {
-                double want, got = ref_hemicube_ff(r, res[k], 0, &want), e = fabs(got / want - 1);
-                sum += e;
-                if (e > mx) mx = e;
-            }
-            OUT("| %d | %.3f%% | %.3f%% |\n", res[k], 100 * sum / REF_RECEIVERS, 100 * mx);
+    for (k = 0; k < 4; k++) {
+        double sum = 0, mx = 0;
+        int r;
+        for (r = 0; r < REF_RECEIVERS; r++) {
+            double want, got = ref_hemicube_ff(r, res[k], 0, &want), e = fabs(got / want - 1);
+            sum += e;
+            if (e > mx) mx = e;
         }
+        out(rp, "| %d | %.3f%% | %.3f%% |\n", res[k], 100 * sum / REF_RECEIVERS, 100 * mx);
     }
-    for (i = 0; i < ns; i++)
-        if (strstr(scenes[i].name, "Original")) {
-            OUT("\nPeers on CornellBox-Original, as the issue measured them on this kind of machine: RenderPark's "
-                "hierarchical Galerkin radiosity 0.20 s and 16 MB at about 4,000 elements; its progressive shooting "
-                "with ray-cast form factors 169 s and 871 MB at 4,608 patches. rad (fixed, res 128, %d elements): "
-                "%.3f s to an unshot fraction of 0.01 and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
-                fx[i].elements, fx[i].t[1], fx[i].total, fx[i].bytes / 1048576.0);
+}
+
+static void report_peers(report_t *rp, const brun *fx)
+{
+    out(rp, "\nPeers on CornellBox-Original, as the issue measured them on this kind of machine: RenderPark's "
+        "hierarchical Galerkin radiosity 0.20 s and 16 MB at about 4,000 elements; its progressive shooting "
+        "with ray-cast form factors 169 s and 871 MB at 4,608 patches. rad (fixed, res 128, %d elements): "
+        "%.3f s to an unshot fraction of 0.01 and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
+        fx->elements, fx->t[1], fx->total, fx->bytes / 1048576.0);
+}
+
+/* Patch size on the original Cornell box: fewer, larger shooters against accuracy. */
+static void report_patches(report_t *rp, const bscene *sc)
+{
+    static const double mp[5] = {0.08, 0.16, 0.25, 0, 0.5}; /* 0: the default, 1/8 of the extent */
+    tradeoff_t t[5];
+    sc_solver *ref;
+    int k;
+    fprintf(stderr, "rad_bench: patch sizes ...\n");
+    ref = solve_patches(sc, mp[0], &t[0]);
+    t[0].worst = t[0].rms = 0;
+    for (k = 1; k < 5; k++) {
+        sc_solver *b = solve_patches(sc, mp[k], &t[k]);
+        face_diff(sc, ref, b, &t[k].worst, &t[k].rms);
+        sc_destroy(b);
+    }
+    sc_destroy(ref);
+    out(rp, "\nPatch size on CornellBox-Original (element edge 0.08, res 128, fixed build): shooters larger than "
+        "the elements they group (Cohen et al. 1986) cut the shots, at a price in accuracy: a patch shoots "
+        "from its centre, so surfaces close to a large patch (the blocks on the floor) get the light of one "
+        "point. Solved to 0.001 and compared with every element shooting for itself (first row); the meshes "
+        "differ, so the comparison is of each non-emitting OBJ face's mean radiosity:\n\n| patch edge | "
+        "patches | elements | shots to 0.01 | s to 0.01 | max face difference | rms face difference |\n"
+        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (k = 0; k < 5; k++) {
+        char w[32] = "reference", r[32] = "reference", e[32] = "default (1/8 of the extent)";
+        if (k) {
+            snprintf(w, sizeof w, "%.2f%%", 100 * t[k].worst);
+            snprintf(r, sizeof r, "%.2f%%", 100 * t[k].rms);
         }
-    /* Patch size on the original Cornell box: fewer, larger shooters against accuracy. */
-    for (i = 0; i < ns; i++)
-        if (strcmp(scenes[i].name, "CornellBox-Original (shared)") == 0) {
-            static const double mp[5] = {0.08, 0.16, 0.25, 0, 0.5}; /* 0: the default, 1/8 of the extent */
-            tradeoff_t t[5];
-            sc_solver *ref;
-            fprintf(stderr, "rad_bench: patch sizes ...\n");
-            ref = solve_patches(&scenes[i], mp[0], &t[0]);
-            t[0].worst = t[0].rms = 0;
-            for (k = 1; k < 5; k++) {
-                sc_solver *b = solve_patches(&scenes[i], mp[k], &t[k]);
-                face_diff(&scenes[i], ref, b, &t[k].worst, &t[k].rms);
-                sc_destroy(b);
-            }
-            sc_destroy(ref);
-            OUT("\nPatch size on CornellBox-Original (element edge 0.08, res 128, fixed build): shooters larger than "
-                "the elements they group (Cohen et al. 1986) cut the shots, at a price in accuracy: a patch shoots "
-                "from its centre, so surfaces close to a large patch (the blocks on the floor) get the light of one "
-                "point. Solved to 0.001 and compared with every element shooting for itself (first row); the meshes "
-                "differ, so the comparison is of each non-emitting OBJ face's mean radiosity:\n\n| patch edge | "
-                "patches | elements | shots to 0.01 | s to 0.01 | max face difference | rms face difference |\n"
-                "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-            for (k = 0; k < 5; k++) {
-                char w[32] = "reference", r[32] = "reference", e[32] = "default (1/8 of the extent)";
-                if (k) {
-                    snprintf(w, sizeof w, "%.2f%%", 100 * t[k].worst);
-                    snprintf(r, sizeof r, "%.2f%%", 100 * t[k].rms);
-                }
-                if (t[k].max_patch > 0) snprintf(e, sizeof e, "%.2f", t[k].max_patch);
-                OUT("| %s | %d | %d | %d | %.3f | %s | %s |\n", e, t[k].patches, t[k].elements, t[k].shots,
-                    t[k].secs, w, r);
-            }
-        }
-    /* Overshooting against plain progressive refinement. */
-    OUT("\nOvershooting (the default; Feda & Purgathofer 1992) against plain progressive refinement (Cohen et al. "
+        if (t[k].max_patch > 0) snprintf(e, sizeof e, "%.2f", t[k].max_patch);
+        out(rp, "| %s | %d | %d | %d | %.3f | %s | %s |\n", e, t[k].patches, t[k].elements, t[k].shots,
+            t[k].secs, w, r);
+    }
+}
+
+/* Overshooting against plain progressive refinement. */
+static void report_overshoot(report_t *rp, const bscene *scenes, int ns)
+{
+    int i, k;
+    out(rp, "\nOvershooting (the default; Feda & Purgathofer 1992) against plain progressive refinement (Cohen et al. "
         "1988, `--no-overshoot`), fixed build, res 128, median of 3 runs, the two shot by shot; the last two columns are the "
         "solution at 0.01 (with the ambient term) against one converged to 1e-5, per element above 1%% of the "
         "brightest:\n\n| scene | elements | shooting | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | "
@@ -646,96 +654,156 @@ int main(int argc, char **argv)
         for (k = 0; k < 2; k++) {
             char sh[64];
             fmt_shots(sh, sizeof sh, &c.run[k]);
-            OUT("| %s | %d | %s | %s | %.3f | %.3f | %.2f%% | %.2f%% |\n", k ? "" : scenes[i].name,
+            out(rp, "| %s | %d | %s | %s | %.3f | %.3f | %.2f%% | %.2f%% |\n", k ? "" : scenes[i].name,
                 c.run[k].elements, k ? "overshooting" : "plain", sh, c.run[k].t[1], c.run[k].total,
                 100 * c.worst[k], 100 * c.rms[k]);
             run_free(&c.run[k]);
         }
     }
-    /* Stored form factors (the 1985 paper's relighting) on the bundled box. */
-    {
-        relight_t rl;
-        fprintf(stderr, "rad_bench: stored form factors ...\n");
-        relight_bench(&scenes[1], &rl);
-        OUT("\nStored form factors on %s (%d elements, %d patches, res 128, fixed build): every patch's row "
-            "rendered once in %.3f s, %lu entries in %zu bytes (%.1f KB per patch). From the rows, no hemi-cube: "
-            "progressive shooting to 0.001 %.3f s; the 1985 full-matrix Gauss-Seidel solve %d sweeps to 0.001 in "
-            "%.3f s (matrix %zu KB). A new light colour, re-solved from the rows in %.3f s (%d shots) against "
-            "%.3f s (%d shots) for a fresh mesh and hemi-cube solve: %.0f times faster.\n",
-            scenes[1].name, rl.elements, rl.patches, rl.t_rows, rl.entries, rl.bytes, rl.bytes / 1024.0 / rl.rows,
-            rl.t_rows_shoot, rl.sweeps, rl.t_gs, rl.matrix_bytes / 1024, rl.t_relight, rl.relight_shots, rl.t_fresh,
-            rl.fresh_shots, rl.t_fresh / rl.t_relight);
+}
+
+/* Stored form factors (the 1985 paper's relighting) on the bundled box. */
+static void report_relight(report_t *rp, const bscene *sc)
+{
+    relight_t rl;
+    fprintf(stderr, "rad_bench: stored form factors ...\n");
+    relight_bench(sc, &rl);
+    out(rp, "\nStored form factors on %s (%d elements, %d patches, res 128, fixed build): every patch's row "
+        "rendered once in %.3f s, %lu entries in %zu bytes (%.1f KB per patch). From the rows, no hemi-cube: "
+        "progressive shooting to 0.001 %.3f s; the 1985 full-matrix Gauss-Seidel solve %d sweeps to 0.001 in "
+        "%.3f s (matrix %zu KB). A new light colour, re-solved from the rows in %.3f s (%d shots) against "
+        "%.3f s (%d shots) for a fresh mesh and hemi-cube solve: %.0f times faster.\n",
+        sc->name, rl.elements, rl.patches, rl.t_rows, rl.entries, rl.bytes, rl.bytes / 1024.0 / rl.rows,
+        rl.t_rows_shoot, rl.sweeps, rl.t_gs, rl.matrix_bytes / 1024, rl.t_relight, rl.relight_shots, rl.t_fresh,
+        rl.fresh_shots, rl.t_fresh / rl.t_relight);
+}
+
+/* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
+ * results differ in a bit. */
+static void parallel_times(const bscene *sc, double *m1, double *m2)
+{
+    double t1[3], t2[3];
+    int rep;
+    for (rep = 0; rep < 3; rep++) {
+        sc_opts o = scene_opts(sc);
+        sc_solver *a = fixed_solver(sc, sc->polys, &o);
+        sc_solver *b = fixed_solver(sc, sc->polys, &o);
+        double t0;
+        t0 = host_now();
+        sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
+        t1[rep] = host_now() - t0;
+        t0 = host_now();
+        sc_solve_parallel(b, 2, 1000000, 0.001, NULL, NULL);
+        t2[rep] = host_now() - t0;
+        if (sc_checksum(a) != sc_checksum(b)) { fprintf(stderr, "rad_bench: parallel result differs!\n"); exit(1); }
+        sc_destroy(a);
+        sc_destroy(b);
     }
-    /* The parallel solve: the same shots, each shot's hemi-cube split over threads. */
-    OUT("\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, summed in order: "
+    *m1 = median(t1, 3);
+    *m2 = median(t2, 3);
+}
+
+/* The parallel solve: the same shots, each shot's hemi-cube split over threads. */
+static void report_parallel(report_t *rp, const bscene *scenes, int ns, const brun *fx)
+{
+    int i;
+    out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, summed in order: "
         "bit-exact with the serial solve, checked by tests/test_parallel.c), fixed build, to 0.001, median of 3:\n\n"
         "| scene | elements | 1 thread s | 2 threads s | speed-up |\n| --- | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
-        double t1[3], t2[3];
-        int rep;
+        double m1, m2;
         if (scenes[i].big) continue; /* too long to repeat */
-        for (rep = 0; rep < 3; rep++) {
-            sc_opts o = scene_opts(&scenes[i]);
-            sc_solver *a = fixed_solver(&scenes[i], scenes[i].polys, &o);
-            sc_solver *b = fixed_solver(&scenes[i], scenes[i].polys, &o);
-            double t0;
-            t0 = now();
-            sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
-            t1[rep] = now() - t0;
-            t0 = now();
-            sc_solve_parallel(b, 2, 1000000, 0.001, NULL, NULL);
-            t2[rep] = now() - t0;
-            if (sc_checksum(a) != sc_checksum(b)) { fprintf(stderr, "rad_bench: parallel result differs!\n"); return 1; }
-            sc_destroy(a);
-            sc_destroy(b);
-        }
-        {
-            double m1 = median(t1, 3), m2 = median(t2, 3);
-            OUT("| %s | %d | %.3f | %.3f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2);
-        }
+        parallel_times(&scenes[i], &m1, &m2);
+        out(rp, "| %s | %d | %.3f | %.3f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2);
     }
-    fputs(md, stdout);
+}
 
-    f = fopen("docs/bench.md", "w");
-    if (f) { fputs(md, f); fclose(f); }
-    /* The README's section between the markers, regenerated. */
-    {
-        FILE *r = fopen("README.md", "r");
-        static char buf[1 << 20];
-        size_t n = r ? fread(buf, 1, sizeof buf - 1, r) : 0;
-        char *a, *b;
-        if (r) fclose(r);
-        buf[n] = '\0';
-        a = strstr(buf, "<!-- bench:begin -->");
-        b = strstr(buf, "<!-- bench:end -->");
-        if (a && b && b > a) {
-            FILE *w = fopen("README.md.tmp", "w");
-            if (w) {
-                fwrite(buf, 1, (size_t)(a - buf) + strlen("<!-- bench:begin -->\n"), w);
-                fputs(md, w);
-                fputs(b, w);
-                if (fclose(w) == 0) rename("README.md.tmp", "README.md");
-            }
+/* docs/bench.md, and the README's section between the bench markers, regenerated. */
+static void write_docs(const report_t *rp)
+{
+    static char buf[1 << 20];
+    FILE *f = fopen("docs/bench.md", "w"), *r;
+    size_t n;
+    char *a, *b;
+    if (f) { fputs(rp->md, f); fclose(f); }
+    r = fopen("README.md", "r");
+    n = r ? fread(buf, 1, sizeof buf - 1, r) : 0;
+    if (r) fclose(r);
+    buf[n] = '\0';
+    a = strstr(buf, "<!-- bench:begin -->");
+    b = strstr(buf, "<!-- bench:end -->");
+    if (a && b && b > a) {
+        FILE *w = fopen("README.md.tmp", "w");
+        if (w) {
+            fwrite(buf, 1, (size_t)(a - buf) + strlen("<!-- bench:begin -->\n"), w);
+            fputs(rp->md, w);
+            fputs(b, w);
+            if (fclose(w) == 0) rename("README.md.tmp", "README.md");
         }
     }
-    {
-        static const unsigned char col[6][3] = {{200, 30, 30}, {30, 120, 200}, {30, 160, 60}, {150, 60, 170},
-                                                 {220, 140, 0}, {90, 90, 90}};
-        plot_series ser[8];
-        plot_opts po;
-        char err[256];
-        for (i = 0; i < ns; i++) {
-            ser[i].label = scenes[i].name;
-            ser[i].x = fx[i].xs; ser[i].y = fx[i].y; ser[i].n = fx[i].npts;
-            memcpy(ser[i].rgb, col[i % 6], 3);
-        }
-        memset(&po, 0, sizeof po);
-        po.title = "Progressive refinement, fixed build, res 128";
-        po.xlabel = "shots"; po.ylabel = "unshot fraction"; po.log_y = 1; po.width = 800; po.height = 500;
-        if (plot_write("docs/convergence_shots.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
-        for (i = 0; i < ns; i++) ser[i].x = fx[i].xt;
-        po.xlabel = "seconds";
-        if (plot_write("docs/convergence_time.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
+}
+
+/* The convergence plots, against shots and against seconds. */
+static void draw_plots(const bscene *scenes, int ns, const brun *fx)
+{
+    static const unsigned char col[6][3] = {{200, 30, 30}, {30, 120, 200}, {30, 160, 60}, {150, 60, 170},
+                                             {220, 140, 0}, {90, 90, 90}};
+    plot_series ser[8];
+    plot_opts po;
+    char err[256];
+    int i;
+    for (i = 0; i < ns; i++) {
+        ser[i].label = scenes[i].name;
+        ser[i].x = fx[i].xs; ser[i].y = fx[i].y; ser[i].n = fx[i].npts;
+        memcpy(ser[i].rgb, col[i % 6], 3);
     }
+    memset(&po, 0, sizeof po);
+    po.title = "Progressive refinement, fixed build, res 128";
+    po.xlabel = "shots"; po.ylabel = "unshot fraction"; po.log_y = 1; po.width = 800; po.height = 500;
+    if (plot_write("docs/convergence_shots.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
+    for (i = 0; i < ns; i++) ser[i].x = fx[i].xt;
+    po.xlabel = "seconds";
+    if (plot_write("docs/convergence_time.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
+}
+
+/* Index of the scene named NAME, or -1. */
+static int scene_named(const bscene *scenes, int ns, const char *name)
+{
+    int i;
+    for (i = 0; i < ns; i++)
+        if (strcmp(scenes[i].name, name) == 0) return i;
+    return -1;
+}
+
+int main(int argc, char **argv)
+{
+    static bscene scenes[8];
+    static brun fx[8], fl[8];
+    static report_t rp;
+    double amax[8], arms[8];
+    int ns, i, orig;
+
+    ns = load_scenes(argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj", scenes);
+    if (!ns) return 1;
+    for (i = 0; i < ns; i++) {
+        fprintf(stderr, "rad_bench: %s ...\n", scenes[i].name);
+        bench_pair(&scenes[i], &fx[i], &fl[i]);
+        twin_accuracy(&scenes[i], &amax[i], &arms[i]);
+    }
+    if (fx[ns - 1].elements < 20000)
+        fprintf(stderr, "rad_bench: warning: the generated scene has %d elements, fewer than the 20,000 asked for\n",
+                fx[ns - 1].elements);
+    orig = scene_named(scenes, ns, "CornellBox-Original (shared)");
+    report_speed(&rp, scenes, ns, fx, fl);
+    report_twin(&rp, scenes, ns, amax, arms);
+    report_hemicube(&rp);
+    if (orig >= 0) report_peers(&rp, &fx[orig]);
+    if (orig >= 0) report_patches(&rp, &scenes[orig]);
+    report_overshoot(&rp, scenes, ns);
+    report_relight(&rp, &scenes[1]);
+    report_parallel(&rp, scenes, ns, fx);
+    fputs(rp.md, stdout);
+    write_docs(&rp);
+    draw_plots(scenes, ns, fx);
     return 0;
 }

@@ -62,3 +62,9 @@ sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *
     return p;
 }
 
+
+int obj_match_material(void *ctx, int tag)
+{
+    const obj_material_match *m = ctx;
+    return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
+}

@@ -14,4 +14,14 @@ typedef void (*obj_poly_warn_fn)(void *ctx, int line, const char *msg);
  * polygons are skipped with a warning naming their OBJ line. */
 sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *ctx);
 
+/* The polygons of one material, for sc_set_surfaces: a tag (an OBJ face index, as
+ * obj_to_polys sets it) matches when its face has material MATERIAL. */
+typedef struct {
+    const obj_scene *sc;
+    int material;
+} obj_material_match;
+
+/* An sc_tag_match_fn over CTX, an obj_material_match: nonzero for the material's tags. */
+int obj_match_material(void *ctx, int tag);
+
 #endif

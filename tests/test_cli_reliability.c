@@ -1,0 +1,591 @@
+/* rad_cli never destroys, never hangs, never diverges in silence: each case runs
+ * build/rad_cli on one hostile input or condition and asserts the exact exit status,
+ * the message, and what is (or is not) left on disk.
+ *
+ * The runs are children of fork: stdout and stderr go to files, and an alarm set in the
+ * child before exec kills a run that hangs (status 128 + SIGALRM), so a regression
+ * fails its test instead of stopping the suite. A full disk is RLIMIT_FSIZE in the child
+ * with SIGXFSZ ignored: every write past the limit fails with EFBIG, as on a full disk.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <fcntl.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "formats/file_io.h"
+#include "formats/image.h"
+#include "tmpdir.h"
+
+#define CLI "build/rad_cli"
+#define CORNELL "examples/cornell_box.obj"
+/* Small and quick: every feature these cases look at survives it. */
+#define SMALL "--max-element", "0.1", "--res", "32", "--width", "32", "--height", "32"
+#define HANG_S 120 /* a run still going after this is hung (a whole solve here takes < 1 s) */
+#define MAX_ARGS 48
+
+TMPDIR_GROUP("cli_reliability")
+
+typedef struct {
+    int status;      /* exit status, or 128 + the signal that ended the run */
+    char *out, *err; /* what it printed */
+} result_t;
+
+static char *read_whole(const char *path)
+{
+    char *data, e[512];
+    size_t n;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &data, &n, e, sizeof e) < 0) fail_msg("%s", e);
+    return data;
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fputs(text, f) >= 0, 1);
+    assert_int_equal(fclose(f), 0);
+}
+
+static int exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* The child: its outputs into files, a hang bounded, the disk "full" past FSIZE bytes. */
+static void child(const char *outp, const char *errp, long fsize, char **argv)
+{
+    int in = open("/dev/null", O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
+        err = open(errp, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (in < 0 || out < 0 || err < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(126);
+    if (fsize > 0) {
+        struct rlimit rl;
+        rl.rlim_cur = rl.rlim_max = (rlim_t)fsize;
+        signal(SIGXFSZ, SIG_IGN);
+        if (setrlimit(RLIMIT_FSIZE, &rl) != 0) _exit(126);
+    }
+    alarm(HANG_S);
+    execv(argv[0], argv);
+    _exit(127);
+}
+
+/* Runs rad_cli with ARGS (NULL-terminated); FSIZE > 0 fills the disk at that size. */
+static void run(result_t *r, long fsize, const char *const *args)
+{
+    char outp[320], errp[320], *argv[MAX_ARGS + 2];
+    int n = 0, st = 0;
+    pid_t pid;
+    if (access(CLI, X_OK) != 0) {
+        print_message("%s is missing (make all): skipped\n", CLI);
+        skip();
+    }
+    argv[n++] = (char *)CLI;
+    for (; args[n - 1]; n++) {
+        assert_in_range(n, 1, MAX_ARGS);
+        argv[n] = (char *)args[n - 1];
+    }
+    argv[n] = NULL;
+    snprintf(outp, sizeof outp, "%s", tmp_path("run.out"));
+    snprintf(errp, sizeof errp, "%s", tmp_path("run.err"));
+    pid = fork();
+    CHECK_INT_GE(pid, 0, "fork");
+    if (pid == 0) child(outp, errp, fsize, argv);
+    assert_int_equal(waitpid(pid, &st, 0), pid);
+    r->status = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    r->out = read_whole(outp);
+    r->err = read_whole(errp);
+}
+
+#define RUN(r, ...) run((r), 0, (const char *const[]){__VA_ARGS__, NULL})
+#define RUN_FULL(r, fsize, ...) run((r), (fsize), (const char *const[]){__VA_ARGS__, NULL})
+
+static void done(result_t *r)
+{
+    free(r->out);
+    free(r->err);
+}
+
+/* Exit STATUS and, when LINE is given, exactly that one line on stderr. */
+static void expect(const result_t *r, int status, const char *line)
+{
+    if (r->status == status && (!line || strcmp(r->err, line) == 0)) return;
+    fail_msg("exit %d, expected %d\nstderr:   %swanted:   %s\nstdout: %s", r->status, status, r->err,
+             line ? line : "(any)\n", r->out);
+}
+
+/* Exit STATUS and one line on stderr starting with PREFIX and holding WORDS. */
+static void expect_line(const result_t *r, int status, const char *prefix, const char *words)
+{
+    const char *nl = strchr(r->err, '\n');
+    if (r->status == status && strncmp(r->err, prefix, strlen(prefix)) == 0 && nl && nl[1] == '\0' &&
+        (!words || strstr(r->err, words)))
+        return;
+    fail_msg("exit %d, expected %d\nstderr: %swanted one line: %s...%s...\n", r->status, status, r->err, prefix,
+             words ? words : "");
+}
+
+/* No file in the temporary folder starts with PREFIX (a temporary file left behind). */
+static void none_starting(const char *prefix)
+{
+    DIR *d = opendir(tmpdir);
+    struct dirent *de;
+    assert_non_null(d);
+    while ((de = readdir(d)) != NULL)
+        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0) fail_msg("left behind: %s", de->d_name);
+    closedir(d);
+}
+
+static char *line_of(const char *fmt, const char *a, const char *b)
+{
+    static char buf[2048];
+    snprintf(buf, sizeof buf, fmt, a, b);
+    return buf;
+}
+
+/* ---- --views and --animate: bounded, never hung, comments to their end ----------- */
+
+static void test_views_not_a_file(void **state)
+{
+    result_t r;
+    const char *fifo = tmp_path("views.fifo");
+    (void)state;
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", tmpdir);
+    expect(&r, 1, line_of("rad_cli: %s: is a directory\n", tmpdir, NULL)); /* it exited 0 */
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--animate", tmpdir);
+    expect(&r, 1, line_of("rad_cli: %s: is a directory\n", tmpdir, NULL));
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", "/dev/zero");
+    expect(&r, 1, "rad_cli: /dev/zero: larger than the limit of 16 MiB (16777216 bytes)\n");
+    done(&r);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", fifo); /* no writer: must not block */
+    expect(&r, 1, line_of("rad_cli: %s: nothing to read (a FIFO with no writer, or an empty pipe)\n", fifo, NULL));
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("v.png")), "no image after the failed runs");
+}
+
+/* The old reader took a line in 4,095-byte pieces: a longer '#' comment ran its tail as
+ * a view. Now the comment ends at its newline, and only the real view is written. */
+static void test_views_long_comment(void **state)
+{
+    result_t r;
+    char *text = malloc(8192);
+    const char *path = tmp_path("long.views");
+    (void)state;
+    assert_non_null(text);
+    memset(text, 'x', 4095);
+    text[0] = '#';
+    snprintf(text + 4095, 8192 - 4095, " 0 0.27 1.2 0 0.27 0 %s\n0 0.27 1.2 0 0.27 0 %s\n", tmp_path("tail.png"),
+             tmp_path("real.png"));
+    write_file(path, text);
+    free(text);
+    RUN(&r, CORNELL, SMALL, "--views", path);
+    expect(&r, 0, "");
+    CHECK_THAT(exists(tmp_path("real.png")), "the real view is written");
+    CHECK_THAT(!exists(tmp_path("tail.png")), "the comment's tail is not a view");
+    done(&r);
+    text = malloc(64);
+    assert_non_null(text);
+    memcpy(text, "0 0.27 1.2 0 0.27 0 a.png\n", 26);
+    text[26] = '\0';
+    {
+        FILE *f = fopen(path, "wb"); /* a NUL byte after the first line */
+        assert_non_null(f);
+        assert_int_equal(fwrite(text, 1, 27, f), 27);
+        assert_int_equal(fclose(f), 0);
+    }
+    free(text);
+    RUN(&r, CORNELL, SMALL, "--views", path);
+    expect(&r, 1, line_of("rad_cli: %s: not a text file (it holds a NUL byte)\n", path, NULL));
+    done(&r);
+}
+
+/* ---- outputs checked before the solve ------------------------------------------ */
+
+/* A name of LEN bytes in the temporary folder ending in EXT. */
+static const char *long_name(size_t len, const char *ext)
+{
+    static char ring[16][600];
+    static int k;
+    char *p = ring[k++ % 16], base[300];
+    size_t n = len - strlen(ext);
+    memset(base, 'n', n);
+    base[n] = '\0';
+    snprintf(p, 600, "%s/%s%s", tmpdir, base, ext);
+    return p;
+}
+
+/* Names of 246..255 bytes fit NAME_MAX but not with the temporary file's suffix: they
+ * used to fail only after the solve. --stats prints after a solve: its silence on
+ * stdout shows that none ran. */
+static void test_long_names_refused_before_solve(void **state)
+{
+    const char *img = long_name(250, ".png"), *ok = long_name(244, ".png");
+    const char *const cases[][4] = {
+        {"-o", img, NULL, NULL},
+        {"--export-ply", long_name(250, ".ply"), "-o", ok},
+        {"--dump-radiosity", long_name(250, ".csv"), "-o", ok},
+        {"--save-ff", long_name(250, ".ff"), "-o", ok},
+    };
+    size_t i;
+    result_t r;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        RUN(&r, CORNELL, SMALL, "--stats", cases[i][0], cases[i][1], cases[i][2] ? cases[i][2] : "--quiet",
+            cases[i][3] ? cases[i][3] : "--quiet");
+        expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n", cases[i][1], NULL));
+        assert_string_equal(r.out, "");
+        done(&r);
+    }
+    /* Names made from -o: the group's name or the frame number makes them too long. */
+    RUN(&r, CORNELL, SMALL, "--stats", "-o", ok, "--light-group", "lamp=light", "--each-group");
+    expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
+                          long_name(249, ".lamp.png"), NULL));
+    assert_string_equal(r.out, "");
+    done(&r);
+    write_file(tmp_path("frames.txt"), "0 0.27 1.2 0 0.27 0\n");
+    RUN(&r, CORNELL, SMALL, "--stats", "-o", ok, "--animate", tmp_path("frames.txt"));
+    expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
+                          long_name(249, "_0000.png"), NULL));
+    assert_string_equal(r.out, "");
+    done(&r);
+    CHECK_THAT(!exists(ok), "%s is not written", ok);
+}
+
+/* A camera the core refuses (an eye 1 km away) fails before the solve, and an existing
+ * output stays as it was. */
+static void test_camera_refused_before_solve(void **state)
+{
+    result_t r;
+    char *after;
+    const char *keep = tmp_path("keep.png");
+    (void)state;
+    write_file(keep, "not replaced\n");
+    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "1000,0.27,1.2,0,0.27,0", "-o", keep);
+    expect_line(&r, 1, line_of("rad_cli: %s: cannot render this view", keep, NULL), NULL);
+    assert_string_equal(r.out, "");
+    after = read_whole(keep);
+    assert_string_equal(after, "not replaced\n");
+    free(after);
+    done(&r);
+}
+
+/* ---- outputs written whole or not at all ---------------------------------------- */
+
+/* A full disk while writing the CSV or the PLY: exit 1, the file named, the previous
+ * file intact byte for byte, no temporary file left. */
+static void test_full_disk_keeps_old_file(void **state)
+{
+    static const char *const opt[2] = {"--dump-radiosity", "--export-ply"}, *const ext[2] = {"old.csv", "old.ply"};
+    int k;
+    (void)state;
+    for (k = 0; k < 2; k++) {
+        result_t r;
+        char *after;
+        const char *path = tmp_path(ext[k]);
+        write_file(path, "the previous file\n");
+        /* 4 KiB: room for the 32 x 32 PNG (about 1.5 KB), not for the CSV (27 KB) or PLY (14 KB) */
+        RUN_FULL(&r, 4096, CORNELL, SMALL, "-o", tmp_path("full.png"), opt[k], path);
+        expect(&r, 1, line_of("rad_cli: %s: write error: File too large\n", path, NULL));
+        after = read_whole(path);
+        assert_string_equal(after, "the previous file\n");
+        free(after);
+        {
+            char prefix[64];
+            snprintf(prefix, sizeof prefix, "%s.tmp", ext[k]);
+            none_starting(prefix);
+        }
+        done(&r);
+    }
+    {
+        result_t r;
+        RUN(&r, CORNELL, SMALL, "-o", tmp_path("full.png"), "--dump-radiosity", "/dev/full");
+        expect(&r, 1, "rad_cli: /dev/full: write error: No space left on device\n");
+        done(&r);
+    }
+}
+
+/* ---- exit statuses: converged, not converged, saturated --------------------------- */
+
+/* A closed unit box lit by its x = 0 face, walls of reflectance RHO; INWARD 0 turns every
+ * wall to face outwards (the lamp still faces in). */
+static const char *box_scene(const char *name, const char *rho, int inward)
+{
+    static char path[320];
+    char text[1024], mtl[64];
+    static const char *const in[5] = {"1 2 3 4", "5 8 7 6", "1 5 6 2", "2 6 7 3", "4 3 7 8"};
+    static const char *const out[5] = {"4 3 2 1", "6 7 8 5", "2 6 5 1", "3 7 6 2", "8 7 3 4"};
+    int i;
+    size_t n;
+    snprintf(mtl, sizeof mtl, "%s.mtl", name);
+    n = (size_t)snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n"
+                                            "v 1 1 1\nv 0 1 1\nusemtl wall\n", mtl);
+    for (i = 0; i < 5; i++) n += (size_t)snprintf(text + n, sizeof text - n, "f %s\n", inward ? in[i] : out[i]);
+    snprintf(text + n, sizeof text - n, "usemtl lamp\nf 1 4 8 5\n");
+    snprintf(path, sizeof path, "%s", tmp_path(name));
+    write_file(path, text);
+    snprintf(text, sizeof text, "newmtl wall\nKd %s %s %s\nnewmtl lamp\nKd %s %s %s\nKe 1 1 1\n", rho, rho, rho, rho,
+             rho, rho);
+    write_file(tmp_path(mtl), text);
+    return path;
+}
+
+static void test_exit_not_converged(void **state)
+{
+    result_t r;
+    img_t im;
+    char e[256];
+    (void)state;
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"), "--max-shots", "2");
+    expect_line(&r, 3, "rad_cli: " CORNELL ": not converged: the unshot fraction is ",
+                "above --tol 0.001, at --max-shots 2; the outputs show that partial solution (raise --max-shots or --tol)");
+    assert_int_equal(img_read(tmp_path("short.png"), &im, e, sizeof e), 0); /* written all the same */
+    assert_int_equal(im.w, 32);
+    img_free(&im);
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"), "--max-shots", "2", "--light-group", "l=light");
+    expect_line(&r, 3, "rad_cli: " CORNELL ": not converged: ", "(in a light group)");
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"));
+    expect(&r, 0, "");
+    done(&r);
+}
+
+/* Reflectance 0.999 everywhere in a closed box: radiosity near 1000 times the emission,
+ * past the 128 times the fixed core holds. */
+static void test_exit_saturated(void **state)
+{
+    result_t r;
+    const char *box = box_scene("bright.obj", "0.999", 1);
+    (void)state;
+    RUN(&r, box, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o",
+        tmp_path("bright.png"), "--quiet");
+    expect_line(&r, 3, line_of("rad_cli: %s: ", box, NULL),
+                "values saturated at the core's range, so some radiosities are clipped");
+    CHECK_THAT(exists(tmp_path("bright.png")), "the saturated run still writes its image");
+    done(&r);
+}
+
+/* ---- emissions the image can hold --------------------------------------------------- */
+
+static void test_emission_limit(void **state)
+{
+    result_t r;
+    (void)state;
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e100,1,1");
+    expect(&r, 1, "rad_cli: " CORNELL ": material 'light': emission 1e+100 is above the limit of 1e+30 (the image "
+                  "would overflow); scale every emission down: radiosity is linear in it\n");
+    done(&r);
+    /* It used to say 'must be finite and >= 0' there, and leak. */
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e31,1,1", "--light-group", "l=light");
+    expect(&r, 1, "rad_cli: " CORNELL ": material 'light': emission 1e+31 is above the limit of 1e+30 (the image "
+                  "would overflow); scale every emission down: radiosity is linear in it\n");
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("e.png")), "no image from a refused emission");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e30,1e30,1e30");
+    expect(&r, 0, "");
+    done(&r);
+}
+
+/* ---- the default camera and the exposure ---------------------------------------------- */
+
+/* The two images are the same, pixel for pixel. */
+static void same_image(const char *pa, const char *pb)
+{
+    img_t a, b;
+    char e[512];
+    if (img_read(pa, &a, e, sizeof e) < 0) fail_msg("%s", e);
+    if (img_read(pb, &b, e, sizeof e) < 0) fail_msg("%s", e);
+    assert_int_equal(a.w, b.w);
+    assert_int_equal(a.h, b.h);
+    assert_memory_equal(a.rgb, b.rgb, (size_t)a.w * a.h * 3);
+    img_free(&a);
+    img_free(&b);
+}
+
+/* A polygon that is skipped (zero area) far from the box must not be framed: the default
+ * image equals the one through the camera the README describes for the box alone. The
+ * skipped polygon is named by its line. */
+static void test_default_camera_frames_meshed(void **state)
+{
+    result_t r;
+    char *obj = read_whole(CORNELL), *text, cam[512], line[512];
+    const char *scene = tmp_path("far.obj");
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, v[3], c[3], h[3], fit;
+    double t = tan(22.5 * 3.14159265358979323846 / 180.0);
+    const char *p;
+    int k, lines = 0;
+    (void)state;
+    for (p = obj; *p; p++) lines += *p == '\n';
+    for (p = obj; (p = strstr(p, "\nv ")) != NULL; p++) {
+        assert_int_equal(sscanf(p + 3, "%lf %lf %lf", &v[0], &v[1], &v[2]), 3);
+        for (k = 0; k < 3; k++) {
+            lo[k] = v[k] < lo[k] ? v[k] : lo[k];
+            hi[k] = v[k] > hi[k] ? v[k] : hi[k];
+        }
+    }
+    text = malloc(strlen(obj) + 128);
+    assert_non_null(text);
+    sprintf(text, "%s\nv 30 0 0\nv 40 0 0\nv 50 0 0\nf -3 -2 -1\n", obj);
+    write_file(scene, text);
+    free(text);
+    free(obj);
+    text = read_whole("examples/cornell_box.mtl");
+    write_file(tmp_path("cornell_box.mtl"), text);
+    free(text);
+    for (k = 0; k < 3; k++) {
+        h[k] = 0.5 * (hi[k] - lo[k]);
+        c[k] = 0.5 * (hi[k] + lo[k]);
+    }
+    /* The README's default camera for a square image: along -Z, backed off until the
+     * box's front face fills the frame with a 5% margin. */
+    fit = h[1] > h[0] ? h[1] : h[0];
+    snprintf(cam, sizeof cam, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c[0], c[1], c[2] + h[2] + 1.05 * fit / t, c[0],
+             c[1], c[2]);
+    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "-o", tmp_path("far_default.png"));
+    snprintf(line, sizeof line, "rad_cli: warning: %s:%d: skipped a degenerate polygon (degenerate polygon)\n", scene,
+             lines + 5); /* the face after a blank line and three vertices */
+    expect(&r, 0, line);
+    done(&r);
+    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "--camera", cam, "-o", tmp_path("far_cam.png"),
+        "--quiet");
+    expect(&r, 0, "");
+    done(&r);
+    same_image(tmp_path("far_default.png"), tmp_path("far_cam.png"));
+}
+
+static double stat_value(const char *out, const char *key)
+{
+    const char *p = strstr(out, key);
+    if (!p) fail_msg("no '%s' in --stats:\n%s", key, out);
+    return strtod(p + strlen(key), NULL);
+}
+
+/* Views of one run share one exposure (the first view's), which --stats prints: the
+ * second view rendered alone at that exposure is the same image. */
+static void test_exposure_shared_and_printed(void **state)
+{
+    result_t r;
+    char x[64];
+    double exposure;
+    (void)state;
+    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0,0.27,1.2,0,0.27,0", "-o", tmp_path("x1.png"), "--camera",
+        "0.2,0.1,0.5,0,0.4,0,60", "-o", tmp_path("x2.png"));
+    expect(&r, 0, "");
+    exposure = stat_value(r.out, "\nexposure ");
+    assert_non_null(strstr(r.out, " (automatic, from the first view)\n"));
+    done(&r);
+    snprintf(x, sizeof x, "%.17g", exposure);
+    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0.2,0.1,0.5,0,0.4,0,60", "-o", tmp_path("x3.png"), "--exposure", x);
+    expect(&r, 0, "");
+    assert_non_null(strstr(r.out, " (--exposure)\n"));
+    done(&r);
+    same_image(tmp_path("x2.png"), tmp_path("x3.png"));
+}
+
+/* ---- light that leaves the scene: the room whose walls face outwards --------------- */
+
+static void test_outward_room_warns(void **state)
+{
+    result_t r;
+    const char *out = box_scene("outward.obj", "0.7", 0), *in;
+    double share;
+    (void)state;
+    RUN(&r, out, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o", tmp_path("o.png"),
+        "--stats");
+    expect(&r, 0, line_of("rad_cli: warning: %s: only 0%% of the emitted light reaches a face from its front: the "
+                          "rest leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
+                          "counter-clockwise seen from their lit side)\n", out, NULL));
+    share = stat_value(r.out, "emitted light reaching front faces ");
+    /* Every wall faces away from the lamp: no front face is seen, whatever the rounding. */
+    CHECK_EQ(share, 0.0, "share of the light landing in the outward room");
+    done(&r);
+    in = box_scene("inward.obj", "0.7", 1);
+    RUN(&r, in, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o", tmp_path("i.png"),
+        "--stats");
+    expect(&r, 0, "");
+    share = stat_value(r.out, "emitted light reaching front faces ");
+    /* A closed box: each row sums to one (the delta form factor table sums to exactly 1);
+     * the printed 0.1% rounding is the bound. */
+    CHECK_GE(share, 99.9, "percent of the emitted light landing in the closed box");
+    done(&r);
+}
+
+/* ---- the documentation: --help and the README's table ------------------------------ */
+
+/* The README's rad_cli table and --help name the same options, and --help states the
+ * exit statuses and the default camera. */
+static void test_help_matches_readme(void **state)
+{
+    result_t r;
+    char *readme = read_whole("README.md"), *p;
+    int n = 0;
+    (void)state;
+    RUN(&r, "--help");
+    expect(&r, 0, "");
+    assert_non_null(strstr(r.out, "Exit status: 0 success; 1 runtime or input error; 2 usage error; 3 outputs"));
+    assert_non_null(strstr(r.out, "the default camera looks along -Z at the centre of"));
+    for (p = readme; (p = strstr(p, "\n| `-")) != NULL; p++) {
+        const char *end = strchr(p + 3, '|'), *q; /* the row's first column */
+        for (q = p + 3; q && q < end; q = strchr(q + 1, '`')) {
+            char opt[64];
+            size_t len = strcspn(q + 1, " `,=");
+            if (q[1] != '-') continue;
+            if (len >= sizeof opt) fail_msg("README row: %.60s", p);
+            memcpy(opt, q + 1, len);
+            opt[len] = '\0';
+            if (!strstr(r.out, opt)) fail_msg("the README's option %s is not in --help", opt);
+            n++;
+            q = strchr(q + 1, '`'); /* past the closing backtick */
+            if (!q) break;
+        }
+    }
+    print_message("%d README options found in --help\n", n);
+    assert_in_range(n, 25, 100);
+    /* and the other way: every option --help lists has its row (its alias aside) */
+    for (p = r.out; (p = strstr(p, "\n  -")) != NULL; p++) {
+        char opt[64];
+        size_t len = strcspn(p + 3, " ,\n");
+        if (len >= sizeof opt - 1) fail_msg("--help line: %.60s", p);
+        opt[0] = '`';
+        memcpy(opt + 1, p + 3, len);
+        opt[len + 1] = '\0';
+        if (!strstr(readme, opt)) fail_msg("--help's option %s has no row in the README's table", opt + 1);
+    }
+    free(readme);
+    done(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_views_not_a_file),
+        cmocka_unit_test(test_views_long_comment),
+        cmocka_unit_test(test_long_names_refused_before_solve),
+        cmocka_unit_test(test_camera_refused_before_solve),
+        cmocka_unit_test(test_full_disk_keeps_old_file),
+        cmocka_unit_test(test_exit_not_converged),
+        cmocka_unit_test(test_exit_saturated),
+        cmocka_unit_test(test_emission_limit),
+        cmocka_unit_test(test_default_camera_frames_meshed),
+        cmocka_unit_test(test_exposure_shared_and_printed),
+        cmocka_unit_test(test_outward_room_warns),
+        cmocka_unit_test(test_help_matches_readme),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}

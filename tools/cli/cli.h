@@ -1,0 +1,179 @@
+/* rad_cli — what its files share: the options, the views and light groups, the steps.
+ *
+ * Every file of tools/cli/ is built twice: rad_cli (the fixed-point core) and
+ * rad_cli_float (the float twin, -DRAD_FLOAT=1). This header comes first in each, so
+ * that the float build calls the twin's glue (host/float_names.h) under the sc_ names.
+ *
+ * Files: options.c (the option table, --help from it), views.c (the --views and
+ * --animate parsers, on a buffer), rad_cli.c (main: load, build, solve, outputs),
+ * solve.c (the solves and their progress), outputs.c (images, PLY, CSV, output and
+ * camera checks), balance.c (where the emitted light goes).
+ */
+#ifndef RAD_CLI_H
+#define RAD_CLI_H
+
+#if defined(RAD_FLOAT) && RAD_FLOAT
+#include "host/float_names.h"
+#define PROG "rad_cli_float"
+#else
+#define PROG "rad_cli"
+#endif
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "formats/obj.h"
+#include "host/scene.h"
+
+/* Exit statuses (the README's and --help's list). */
+#define CLI_EXIT_OK 0       /* success */
+#define CLI_EXIT_ERROR 1    /* runtime or input error: one line on stderr */
+#define CLI_EXIT_USAGE 2    /* usage error */
+#define CLI_EXIT_WARNED 3   /* outputs written, but not converged or saturated */
+
+#define MAX_VIEWS 4096
+/* The largest emission channel accepted: the OBJ loader's limit on any number, now also
+ * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
+ * below 32768 with that emission at 256; past it values saturate, and are reported),
+ * and a group's intensity is below 2^15, so an image value stays below
+ * 2^22 * 1e30 = 4.2e36 per light group: inside float's 3.4e38 for up to 80 groups at
+ * full intensity, and no infinity reaches the auto exposure. */
+#define CLI_EMIT_LIMIT 1e30
+#define MAX_GROUP_NAME 64
+#define OTHER_GROUP "other"
+
+typedef struct {
+    int has_cam;
+    sc_camera cam;
+    const char *out;
+} view_t;
+
+/* A light group: emitting materials solved together, mixed with an intensity. */
+typedef struct {
+    char name[MAX_GROUP_NAME];
+    const char *mats;               /* "MAT1,MAT2,..." as given */
+    double k[3];                    /* --group-intensity (1,1,1) */
+} group_t;
+
+typedef struct {
+    sc_camera cam;
+    double (*k)[3];                 /* intensity of every group in this frame */
+} frame_t;
+
+typedef struct {
+    const char *scene;
+    view_t views[MAX_VIEWS];
+    int nviews, pending_cam;        /* pending_cam: a --camera still waiting for its -o */
+    sc_camera pending;
+    int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
+    double tol, exposure, max_patch, max_element;
+    const char *ply, *csv, *views_file;
+    char **emit;
+    int nemit;
+    /* stored form factors and relighting */
+    const char *save_ff, *load_ff, *animate;
+    int gauss_seidel, each_group, ncams;
+    group_t *groups;                /* --light-group, then "other" once the scene is known */
+    int ngroups, nuser_groups;
+    char **gint;                    /* --group-intensity as given */
+    int ngint;
+    frame_t *frames;
+    int nframes;
+    char *views_text, *frames_text; /* the files' contents: views' names point into them */
+    char *default_out;              /* scene name + .png, when no -o */
+} opts_t;
+
+typedef struct {
+    float *img;
+    unsigned char *rgb8;
+    double exposure; /* 0 until the first view fixes it */
+    double t_render, t_write;
+} out_t;
+
+/* One run's state, from step to step (rad_cli.c's main). */
+typedef struct {
+    opts_t *o;
+    obj_scene sc;
+    int have_scene;
+    sc_solver *s;
+    sc_opts so;
+    sc_stats st;
+    sc_solution **sol;              /* groups: each group's solution, for mixing */
+    double (*ks)[3];                /* groups: the run's intensities */
+    int *group_of;                  /* material -> group, or -1 */
+    int rows_mode, groups_mode, ambient;
+    int work;                       /* shots (or Gauss-Seidel sweeps) of the solve */
+    int unconverged;                /* solves that stopped at the limit above --tol */
+    unsigned long raster_before_solve;
+    double t0, t_load, t_mesh, t_rows, t_solve;
+    double landing;                 /* share of the emitted light reaching front faces, or -1 */
+    out_t ot;
+} run_t;
+
+/* ---- options.c ---- */
+/* Reads the command line into O; prints usage and exits 2 on a usage error. */
+void parse_args(int argc, char **argv, opts_t *o);
+void die_usage(const char *msg, const char *arg);
+void add_view(opts_t *o, const sc_camera *cam, const char *out);
+void free_opts(opts_t *o);
+
+/* ---- views.c: parsers that take a buffer (the fuzz harness calls them) ---- */
+/* N comma-separated finite numbers, or N-1 when OPT_LAST is set; anything else (junk,
+ * a trailing comma, more values) fails. Returns the count or -1. */
+int parse_list(const char *s, double *v, int n, int opt_last);
+/* A camera from EX,EY,EZ,LX,LY,LZ[,FOV] (K values): up is +y, or -z when looking straight
+ * up or down. Returns 0 for a zero view direction or a field of view outside 8..170. */
+int set_camera(sc_camera *c, const double *v, int k);
+group_t *find_group(group_t *g, int n, const char *name, size_t len);
+/* Called for each view line: the camera and the output name (a string inside TEXT).
+ * Nonzero stops the parse with that value. */
+typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out);
+/* --views: TEXT (LEN bytes, NUL after them, modified in place: output names point into
+ * it) one view a line "EX EY EZ LX LY LZ [FOV] OUTPUT", '#' lines are comments to their
+ * end. Returns the views, or -1 with "NAME:LINE: what" in err. */
+int views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen);
+/* --animate: TEXT as above, a frame a line "EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]",
+ * intensities starting from the groups' own. *FRAMES is malloc'd (frames_free). Returns
+ * the frames (at least one), or -1 with err and nothing to free. */
+int frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
+                 char *err, size_t errlen);
+void frames_free(frame_t *frames, int n);
+
+/* ---- outputs.c ---- */
+
+const char *ext_of(const char *path);
+/* PATH with SEP + MID inserted before its extension: out.png -> out.MID.png (malloc'd;
+ * exits on out of memory). */
+char *insert_name(const char *path, const char *sep, const char *mid);
+/* --animate's frame I: -o's name + _0000, _0001, ... (malloc'd). */
+char *frame_name(const opts_t *o, int i);
+char *default_output(const char *scene);
+/* Every output of the run checked before the solve; exits 1 on the first that cannot be
+ * written. */
+void check_outputs(const opts_t *o);
+/* The names made from them: --animate's frames and --each-group's images (once the
+ * frames and groups are known, still before the solve). */
+void check_group_outputs(const opts_t *o);
+/* Renders CAM and writes PATH (NULL: only render, to fix the exposure). One exposure
+ * for every output, from the first view rendered (or --exposure), so views match. */
+int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot);
+/* Renders every view and frame once, small, before the solve: a camera the core refuses
+ * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
+int check_cameras(sc_solver *s, const opts_t *o);
+int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
+int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st);
+
+/* ---- balance.c ---- */
+/* The power-weighted share of the emitters' light that their hemi-cubes land on front
+ * faces of elements (1 in a closed scene), from up to 64 hemi-cubes at res 128; -1 when
+ * nothing emits. Renders hemi-cubes: call it after the solve's statistics are kept. */
+double emitted_share_landing(run_t *r);
+
+/* ---- solve.c ---- */
+/* The solve, by shooting or from the rows (computed, loaded or saved), each light group
+ * alone then mixed. 0, or -1 after one line on stderr. */
+int solve_step(run_t *r);
+/* Sets the mix of the groups with intensities K (one RGB per group); 0 or -1. */
+int mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n);
+
+#endif

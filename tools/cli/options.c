@@ -1,0 +1,367 @@
+/* rad_cli's options: one table (name, argument, help, handler); --help is made from it.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef void (*opt_fn)(opts_t *o, const char *opt, const char *val);
+
+typedef struct {
+    const char *name, *alt; /* alt: another spelling (-h) or NULL */
+    const char *arg;        /* the value's name, or NULL for a flag */
+    const char *help;       /* lines after the first start with '\n' */
+    opt_fn fn;
+} option_t;
+
+static void usage(FILE *f);
+
+void die_usage(const char *msg, const char *arg)
+{
+    fprintf(stderr, PROG ": %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
+    usage(stderr);
+    exit(CLI_EXIT_USAGE);
+}
+
+static long parse_int(const char *opt, const char *s, long lo, long hi)
+{
+    char *end;
+    long v;
+    errno = 0;
+    v = strtol(s, &end, 10);
+    if (end == s || *end || errno || v < lo || v > hi) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s wants a whole number from %ld to %ld", opt, lo, hi);
+        die_usage(msg, s);
+    }
+    return v;
+}
+
+static double parse_pos(const char *opt, const char *s)
+{
+    double v;
+    if (parse_list(s, &v, 1, 0) != 1 || !(v > 0)) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s wants a positive number", opt);
+        die_usage(msg, s);
+    }
+    return v;
+}
+
+void add_view(opts_t *o, const sc_camera *cam, const char *out)
+{
+    if (o->nviews >= MAX_VIEWS) die_usage("too many views", NULL);
+    o->views[o->nviews].has_cam = cam != NULL;
+    if (cam) o->views[o->nviews].cam = *cam;
+    o->views[o->nviews].out = out;
+    o->nviews++;
+}
+
+/* A group name: letters, digits, '_' and '-' (it goes into file names). */
+static int good_group_name(const char *s, size_t len)
+{
+    size_t i;
+    if (len == 0 || len >= MAX_GROUP_NAME) return 0;
+    for (i = 0; i < len; i++)
+        if (!((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= 'A' && s[i] <= 'Z') || (s[i] >= '0' && s[i] <= '9') ||
+              s[i] == '_' || s[i] == '-'))
+            return 0;
+    return 1;
+}
+
+/* ---- handlers ------------------------------------------------------------------ */
+
+static void opt_help(opts_t *o, const char *opt, const char *val)
+{
+    (void)o, (void)opt, (void)val;
+    usage(stdout);
+    exit(CLI_EXIT_OK);
+}
+
+static void opt_output(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    add_view(o, o->pending_cam ? &o->pending : NULL, val);
+    o->pending_cam = 0;
+}
+
+static void opt_camera(opts_t *o, const char *opt, const char *val)
+{
+    double v[7];
+    int k = parse_list(val, v, 7, 1);
+    (void)opt;
+    if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (k < 0 || !set_camera(&o->pending, v, k))
+        die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, FOV 8..170", val);
+    o->pending_cam = 1;
+    o->ncams++;
+}
+
+static void opt_views(opts_t *o, const char *opt, const char *val) { (void)opt, o->views_file = val; }
+static void opt_width(opts_t *o, const char *opt, const char *val) { o->width = (int)parse_int(opt, val, 1, 2048); }
+static void opt_height(opts_t *o, const char *opt, const char *val) { o->height = (int)parse_int(opt, val, 1, 2048); }
+static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->exposure = parse_pos(opt, val); }
+static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
+static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
+static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
+
+static void opt_res(opts_t *o, const char *opt, const char *val)
+{
+    o->res = (int)parse_int(opt, val, 8, 1024);
+    if (o->res % 2) die_usage("--res must be even", val);
+}
+
+static void opt_max_patch(opts_t *o, const char *opt, const char *val) { o->max_patch = parse_pos(opt, val); }
+static void opt_max_element(opts_t *o, const char *opt, const char *val) { o->max_element = parse_pos(opt, val); }
+
+static void opt_tol(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (parse_list(val, &o->tol, 1, 0) != 1 || !(o->tol >= 0 && o->tol < 1)) die_usage("--tol wants a number in [0, 1)", val);
+}
+
+static void opt_max_shots(opts_t *o, const char *opt, const char *val) { o->max_shots = (int)parse_int(opt, val, 0, 1000000000); }
+static void opt_threads(opts_t *o, const char *opt, const char *val) { o->threads = (int)parse_int(opt, val, 1, 64); }
+static void opt_no_overshoot(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_overshoot = 1; }
+
+static void opt_emit(opts_t *o, const char *opt, const char *val)
+{
+    const char *eq = strrchr(val, '=');
+    double v[3];
+    (void)opt;
+    if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || v[0] < 0 || v[1] < 0 || v[2] < 0)
+        die_usage("--emit wants NAME=R,G,B with R, G, B >= 0", val);
+    o->emit[o->nemit++] = (char *)val;
+}
+
+static void opt_save_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->save_ff = val; }
+static void opt_load_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->load_ff = val; }
+
+static void opt_solver(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (strcmp(val, "shoot") == 0) o->gauss_seidel = 0;
+    else if (strcmp(val, "gauss-seidel") == 0) o->gauss_seidel = 1;
+    else die_usage("--solver wants shoot or gauss-seidel", val);
+}
+
+/* --light-group NAME=MAT1,MAT2,...: checked here, materials resolved with the scene. */
+static void opt_light_group(opts_t *o, const char *opt, const char *val)
+{
+    const char *eq = strchr(val, '='), *p;
+    group_t *g;
+    size_t len;
+    (void)opt;
+    if (!eq || !good_group_name(val, (size_t)(eq - val)))
+        die_usage("--light-group wants NAME=MAT1,MAT2,... with NAME of letters, digits, '_', '-' (up to 63)", val);
+    len = (size_t)(eq - val);
+    if (len == strlen(OTHER_GROUP) && strncmp(val, OTHER_GROUP, len) == 0)
+        die_usage("--light-group: 'other' is the group of the emitters in no group; choose another name", val);
+    if (find_group(o->groups, o->ngroups, val, len)) die_usage("--light-group: a group name given twice", val);
+    for (p = eq + 1;; p++) /* no empty material names: "a,,b", ",a", "a," */
+        if ((*p == ',' || *p == '\0') && (p == eq + 1 || p[-1] == ','))
+            die_usage("--light-group: an empty material name", val);
+        else if (*p == '\0') break;
+    g = &o->groups[o->ngroups++];
+    memcpy(g->name, val, len);
+    g->name[len] = '\0';
+    g->mats = eq + 1;
+    g->k[0] = g->k[1] = g->k[2] = 1.0;
+    o->nuser_groups = o->ngroups;
+}
+
+static void opt_group_intensity(opts_t *o, const char *opt, const char *val)
+{
+    const char *eq = strrchr(val, '=');
+    double v[3];
+    (void)opt;
+    if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) ||
+        v[0] >= 32768 || v[1] >= 32768 || v[2] >= 32768)
+        die_usage("--group-intensity wants NAME=R,G,B with R, G, B in [0, 32768)", val);
+    o->gint[o->ngint++] = (char *)val;
+}
+
+static void opt_each_group(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->each_group = 1; }
+static void opt_animate(opts_t *o, const char *opt, const char *val) { (void)opt, o->animate = val; }
+static void opt_list(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->list = 1; }
+static void opt_stats(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->stats = 1; }
+static void opt_quiet(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->quiet = 1; }
+
+/* ---- the table ------------------------------------------------------------------ */
+
+#define SECTION(title) {NULL, NULL, NULL, title, NULL}
+
+static const option_t options[] = {
+    SECTION("output:"),
+    {"-o", NULL, "FILE", "image to write (.png or .ppm); default: scene name + .png", opt_output},
+    {"--camera", NULL, "EX,EY,EZ,LX,LY,LZ[,FOV]",
+     "eye, look-at point, vertical field of view (degrees, 45);\n"
+     "repeat '--camera ... -o FILE' to render many views of one solve", opt_camera},
+    {"--views", NULL, "FILE", "one view a line: EX EY EZ LX LY LZ [FOV] OUTPUT", opt_views},
+    {"--width", NULL, "N", "image width (512), up to 2048", opt_width},
+    {"--height", NULL, "N", "image height (512), up to 2048", opt_height},
+    {"--exposure", NULL, "X",
+     "linear scale before sRGB (default: automatic, from the first view:\n"
+     "its 97th percentile maps to white; one exposure for every view)", opt_exposure},
+    {"--no-ambient", NULL, NULL, "show the partial solution without the ambient term", opt_no_ambient},
+    {"--export-ply", NULL, "FILE", "the meshed scene with vertex colours (PLY)", opt_ply},
+    {"--dump-radiosity", NULL, "FILE",
+     "one CSV row per element:\nelement,surface,material,area,cx,cy,cz,r,g,b", opt_csv},
+    SECTION("solver:"),
+    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
+    {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},
+    {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
+    {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
+    {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1)", opt_threads},
+    {"--no-overshoot", NULL, NULL,
+     "shoot only the unshot power (Cohen et al. 1988); by default\n"
+     "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
+    {"--emit", NULL, "NAME=R,G,B", "set the emission of material NAME (repeatable)", opt_emit},
+    SECTION("stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
+            "no hemi-cube):"),
+    {"--save-ff", NULL, "FILE", "compute all rows, save them to FILE, solve from them", opt_save_ff},
+    {"--load-ff", NULL, "FILE",
+     "load rows saved for this scene and settings (same build,\n"
+     "--max-element, --max-patch, --res), solve from them", opt_load_ff},
+    {"--solver", NULL, "shoot|gauss-seidel",
+     "progressive refinement (default) or the full-matrix\n"
+     "Gauss-Seidel solve (needs rows: computed if not loaded;\n"
+     "--tol: stop when no patch changes by more than F of itself)", opt_solver},
+    {"--light-group", NULL, "NAME=MAT1,MAT2,...",
+     "a group of emitting materials (repeatable); emitters in no\n"
+     "group form the group 'other'; each group is solved once\n"
+     "from the rows and the image mixes them", opt_light_group},
+    {"--group-intensity", NULL, "NAME=R,G,B", "a group's intensity in the mix (1,1,1)", opt_group_intensity},
+    {"--each-group", NULL, NULL,
+     "one image per group (group name before the extension:\n"
+     "out.png -> out.NAME.png), at the exposure of the whole mix", opt_each_group},
+    {"--animate", NULL, "FILE",
+     "frames from one visibility computation: each line\n"
+     "'EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]' is a frame,\n"
+     "written as -o's name + _0000, _0001, ... (PNG or PPM)", opt_animate},
+    SECTION("information:"),
+    {"--list-materials", NULL, NULL, "print materials with Kd, Ke and area, then exit", opt_list},
+    {"--stats", NULL, NULL, "print counts, times, memory and the exposure used", opt_stats},
+    {"--quiet", NULL, NULL, "no progress or warnings", opt_quiet},
+    {"--help", "-h", NULL, "this text", opt_help},
+};
+
+#define NOPTIONS (sizeof options / sizeof options[0])
+#define HELP_COLUMN 26
+
+static void usage(FILE *f)
+{
+    size_t i;
+    fprintf(f, "usage: " PROG " [options] scene.obj\n"
+               "Solves the diffuse global illumination of an OBJ/MTL scene (hemi-cube radiosity,\n"
+               "progressive refinement) and renders it. Kd is reflectance, Ke emission.\n\n");
+    for (i = 0; i < NOPTIONS; i++) {
+        const option_t *p = &options[i];
+        const char *h = p->help;
+        int w;
+        if (!p->name) { fprintf(f, "%s\n", h); continue; }
+        w = fprintf(f, "  %s%s%s%s%s", p->name, p->alt ? ", " : "", p->alt ? p->alt : "", p->arg ? " " : "",
+                    p->arg ? p->arg : "");
+        if (w >= HELP_COLUMN) w = fprintf(f, "\n") - 1; /* a long name: its help on the next line */
+        for (;;) {
+            const char *nl = strchr(h, '\n');
+            int len = nl ? (int)(nl - h) : (int)strlen(h);
+            fprintf(f, "%*s%.*s\n", HELP_COLUMN - w, "", len, h);
+            if (!nl) break;
+            h = nl + 1;
+            w = 0;
+        }
+    }
+    fprintf(f, "\nWithout --camera or --views, the default camera looks along -Z at the centre of\n"
+               "the meshed scene's bounding box, from in front of it (+Z), with +Y up, a 45 degree\n"
+               "field of view and the box's front face filling the frame with a 5%% margin.\n"
+               "Exit status: 0 success; 1 runtime or input error; 2 usage error; 3 outputs\n"
+               "written, but the solve did not converge (unshot fraction above --tol at\n"
+               "--max-shots) or values saturated (one line on stderr says which).\n");
+}
+
+static const option_t *find_option(const char *a)
+{
+    size_t i;
+    for (i = 0; i < NOPTIONS; i++)
+        if (options[i].name && (strcmp(a, options[i].name) == 0 || (options[i].alt && strcmp(a, options[i].alt) == 0)))
+            return &options[i];
+    return NULL;
+}
+
+/* --group-intensity for the groups given; "other" waits for the scene. */
+static void resolve_intensities(opts_t *o)
+{
+    int i, j;
+    for (i = 0; i < o->ngint; i++) {
+        const char *eq = strrchr(o->gint[i], '=');
+        size_t len = (size_t)(eq - o->gint[i]);
+        group_t *g = find_group(o->groups, o->ngroups, o->gint[i], len);
+        for (j = 0; j < i; j++)
+            if (strncmp(o->gint[j], o->gint[i], len + 1) == 0) die_usage("--group-intensity: a group given twice", o->gint[i]);
+        if (!g && !(len == strlen(OTHER_GROUP) && strncmp(o->gint[i], OTHER_GROUP, len) == 0))
+            die_usage("--group-intensity: no --light-group of that name (or 'other')", o->gint[i]);
+        if (g) parse_list(eq + 1, g->k, 3, 0);
+    }
+}
+
+/* The combinations that cannot work, refused before anything is read. */
+static void check_combinations(opts_t *o)
+{
+    if (!o->scene) die_usage("no scene given", NULL);
+    if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
+    if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
+    if (o->animate) {
+        if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
+        if (o->nviews > 1) die_usage("--animate writes frames from one -o name", NULL);
+        if (o->each_group) die_usage("--animate and --each-group exclude each other", NULL);
+    }
+}
+
+static void set_defaults(opts_t *o, int argc)
+{
+    memset(o, 0, sizeof *o);
+    o->width = o->height = 512;
+    o->tol = 0.001;
+    o->max_shots = 1000000;
+    o->threads = 1;
+    o->emit = calloc((size_t)argc, sizeof *o->emit);
+    o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
+    o->gint = calloc((size_t)argc, sizeof *o->gint);
+    if (!o->emit || !o->groups || !o->gint) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(CLI_EXIT_ERROR);
+    }
+}
+
+void parse_args(int argc, char **argv, opts_t *o)
+{
+    int i;
+    set_defaults(o, argc);
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const option_t *p = a[0] == '-' && a[1] ? find_option(a) : NULL;
+        if (p) {
+            if (p->arg && i + 1 >= argc) die_usage("option needs a value", a);
+            p->fn(o, a, p->arg ? argv[++i] : NULL);
+        } else if (a[0] == '-' && a[1]) die_usage("unknown option", a);
+        else if (o->scene) die_usage("more than one scene given", a);
+        else o->scene = a;
+    }
+    check_combinations(o);
+    resolve_intensities(o);
+}
+
+void free_opts(opts_t *o)
+{
+    frames_free(o->frames, o->nframes);
+    free(o->views_text);
+    free(o->default_out);
+    free(o->frames_text);
+    free(o->emit);
+    free(o->groups);
+    free(o->gint);
+}

@@ -1,0 +1,252 @@
+/* rad_cli's outputs: images of the views, the PLY mesh, the CSV of elements; every
+ * output name checked before the solve.
+ */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "formats/file_io.h"
+#include "formats/image.h"
+#include "host/clock.h"
+
+const char *ext_of(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) ? dot : "";
+}
+
+char *insert_name(const char *path, const char *sep, const char *mid)
+{
+    const char *ext = ext_of(path);
+    size_t base = (size_t)(ext - path);
+    char *out = malloc(strlen(path) + strlen(sep) + strlen(mid) + 1);
+    if (!out) {
+        fprintf(stderr, PROG ": out of memory\n");
+        exit(CLI_EXIT_ERROR);
+    }
+    memcpy(out, path, base);
+    strcpy(out + base, sep);
+    strcat(out, mid);
+    strcat(out, ext);
+    return out;
+}
+
+char *frame_name(const opts_t *o, int i)
+{
+    char num[32];
+    snprintf(num, sizeof num, "%04d", i);
+    return insert_name(o->views[0].out, "_", num);
+}
+
+char *default_output(const char *scene)
+{
+    const char *base = strrchr(scene, '/');
+    const char *dot;
+    char *out;
+    size_t len;
+    base = base ? base + 1 : scene;
+    dot = strrchr(base, '.');
+    len = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    out = malloc(len + 5);
+    if (!out) return NULL;
+    memcpy(out, base, len);
+    memcpy(out + len, ".png", 5);
+    return out;
+}
+
+/* Fails early (exit 1) when PATH could not be written after a long solve (fio_check_out:
+ * a folder that does not exist or is not writable, a directory, a name too long for its
+ * temporary file) or, for images, has an unknown extension. */
+static void check_output(const char *path, int image)
+{
+    char err[1024];
+    if (image && strcasecmp(ext_of(path), ".png") != 0 && strcasecmp(ext_of(path), ".ppm") != 0) {
+        fprintf(stderr, PROG ": %s: unknown image extension (use .png or .ppm)\n", path);
+        exit(CLI_EXIT_ERROR);
+    }
+    if (fio_check_out(path, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        exit(CLI_EXIT_ERROR);
+    }
+}
+
+void check_outputs(const opts_t *o)
+{
+    int i;
+    for (i = 0; i < o->nviews; i++) check_output(o->views[i].out, 1);
+    if (o->ply) check_output(o->ply, 0);
+    if (o->csv) check_output(o->csv, 0);
+    if (o->save_ff) check_output(o->save_ff, 0);
+}
+
+void check_group_outputs(const opts_t *o)
+{
+    int i, g;
+    for (i = 0; o->animate && i < o->nframes; i++) {
+        char *path = frame_name(o, i);
+        check_output(path, 1);
+        free(path);
+    }
+    for (g = 0; o->each_group && g < o->ngroups; g++)
+        for (i = 0; i < o->nviews; i++) {
+            char *path = insert_name(o->views[i].out, ".", o->groups[g].name);
+            check_output(path, 1);
+            free(path);
+        }
+}
+
+static int gcd(int a, int b)
+{
+    while (b) {
+        int t = a % b;
+        a = b;
+        b = t;
+    }
+    return a;
+}
+
+/* CAM at the shape of the run's images (their sides divided by their gcd, or at full
+ * size when that is still large: the core's checks depend on the aspect). */
+static int try_camera(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *name, float *buf)
+{
+    char err[1024];
+    int g = gcd(o->width, o->height), w = o->width / g, h = o->height / g;
+    if ((long)w * h > 256L * 256L) {
+        w = o->width;
+        h = o->height;
+    }
+    if (sc_render(s, cam, 0, w, h, buf, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", name, err);
+        return -1;
+    }
+    return 0;
+}
+
+int check_cameras(sc_solver *s, const opts_t *o)
+{
+    float *buf = malloc((size_t)o->width * o->height * 3 * sizeof *buf);
+    int i, rc = buf ? 0 : -1;
+    if (!buf) fprintf(stderr, PROG ": out of memory\n");
+    for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++) rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
+    for (i = 0; rc == 0 && o->animate && i < o->nframes; i++) {
+        char *path = frame_name(o, i);
+        rc = try_camera(s, o, &o->frames[i].cam, path, buf);
+        free(path);
+    }
+    free(buf);
+    return rc;
+}
+
+int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot)
+{
+    char err[1024];
+    double t1 = host_now();
+    size_t npix = (size_t)o->width * o->height;
+    if (sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
+        return -1;
+    }
+    if (ot->exposure <= 0) ot->exposure = o->exposure > 0 ? o->exposure : tonemap_auto_exposure(ot->img, npix);
+    tonemap(ot->img, npix, ot->exposure, ot->rgb8);
+    ot->t_render += host_now() - t1;
+    t1 = host_now();
+    if (path && img_write(path, ot->rgb8, o->width, o->height, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return -1;
+    }
+    ot->t_write += host_now() - t1;
+    return 0;
+}
+
+static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+{
+    int e;
+    fprintf(f, "element,surface,material,area,cx,cy,cz,r,g,b\n");
+    for (e = 0; e < st->elements; e++) {
+        double c[3], rgb[3];
+        int tag = sc_element_tag(s, e);
+        const char *name = sc->materials[sc->faces[tag].material].name, *q;
+        sc_element_centroid(s, e, c);
+        sc_element_rgb(s, e, ambient, rgb);
+        fprintf(f, "%d,%d,\"", e, tag);
+        for (q = name; *q; q++) fprintf(f, *q == '"' ? "\"\"" : "%c", *q);
+        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1], c[2], rgb[0], rgb[1],
+                rgb[2]);
+    }
+}
+
+/* PATH through fio_out: written to a temporary file, committed (checked, synced,
+ * renamed) only if every write succeeded; on error the old file is intact. */
+static FILE *out_open(const char *path, fio_out **fo)
+{
+    char err[1024];
+    *fo = fio_out_open(path, err, sizeof err);
+    if (!*fo) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return NULL;
+    }
+    return fio_out_stream(*fo);
+}
+
+static int out_commit(fio_out *fo)
+{
+    char err[1024];
+    if (fio_out_commit(fo, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+{
+    fio_out *fo;
+    FILE *f = out_open(path, &fo);
+    if (!f) return -1;
+    csv_rows(f, s, sc, ambient, st);
+    return out_commit(fo);
+}
+
+static void ply_body(FILE *f, sc_solver *s, const double *rgb, double exposure, const sc_stats *st)
+{
+    int v, e;
+    fprintf(f, "ply\nformat ascii 1.0\ncomment rad radiosity, sRGB vertex colours at exposure %g\n", exposure);
+    fprintf(f, "element vertex %d\nproperty float x\nproperty float y\nproperty float z\n", st->vertices);
+    fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n");
+    fprintf(f, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", st->elements);
+    for (v = 0; v < st->vertices; v++) {
+        double p[3];
+        float lin[3];
+        unsigned char c[3];
+        sc_vertex_pos(s, v, p);
+        lin[0] = (float)rgb[3 * v];
+        lin[1] = (float)rgb[3 * v + 1];
+        lin[2] = (float)rgb[3 * v + 2];
+        tonemap(lin, 1, exposure, c);
+        fprintf(f, "%.7g %.7g %.7g %u %u %u\n", p[0], p[1], p[2], c[0], c[1], c[2]);
+    }
+    for (e = 0; e < st->elements; e++) {
+        int vi[4], k, n = sc_element_vertices(s, e, vi);
+        fprintf(f, "%d", n);
+        for (k = 0; k < n; k++) fprintf(f, " %d", vi[k]);
+        fprintf(f, "\n");
+    }
+}
+
+int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st)
+{
+    fio_out *fo;
+    FILE *f;
+    double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
+    if (!rgb || sc_shade(s, ambient, rgb) < 0) {
+        free(rgb);
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    f = out_open(path, &fo);
+    if (f) ply_body(f, s, rgb, exposure, st);
+    free(rgb);
+    return f ? out_commit(fo) : -1;
+}

@@ -1,0 +1,204 @@
+/* rad_cli's solves: shooting, or visibility once (the rows) and then shooting or
+ * Gauss-Seidel from the rows, each light group alone; progress bars on a terminal.
+ */
+#include "cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "host/clock.h"
+#include "host/obj_polys.h"
+#include "host/parallel.h"
+
+#define GS_MAX_SWEEPS 1000
+
+/* The core compares the unshot fraction with --tol rounded to its own format: in the
+ * fixed build Q16.16, to the nearest 2^-16, so a fraction up to half a step above F may
+ * be the core's F; in the float build to the nearest float, half an ulp (2^-24 of F). */
+#if defined(RAD_FLOAT) && RAD_FLOAT
+#define TOL_SLACK(f) ((f) / 16777216.0)
+#else
+#define TOL_SLACK(f) (0.5 / 65536.0)
+#endif
+
+typedef struct {
+    double start, last, tol;
+    int tty;
+} progress_t;
+
+static int progress(void *ctx, int shots, double unshot)
+{
+    progress_t *p = ctx;
+    double t = host_now();
+    if (p->tty && t - p->last >= 0.1) {
+        /* Progress on a log scale: from 1 (nothing shot) down to the tolerance. */
+        double frac = unshot > 0 && p->tol > 0 ? log(unshot) / log(p->tol) : 1.0;
+        int bar = frac < 0 ? 0 : frac > 1 ? 30 : (int)(30.0 * frac);
+        fprintf(stderr, "\rsolving [%.*s%*s] shots %d  unshot %.5f  %.1fs ", bar, "##############################",
+                30 - bar, "", shots, unshot, t - p->start);
+        p->last = t;
+    }
+    return 0;
+}
+
+static int rows_progress(void *ctx, int rows, int total)
+{
+    progress_t *p = ctx;
+    double t = host_now();
+    if (p->tty && (t - p->last >= 0.1 || rows == total)) {
+        int bar = total ? (int)(30.0 * rows / total) : 30;
+        fprintf(stderr, "\rform factors [%.*s%*s] rows %d/%d  %.1fs ", bar, "##############################",
+                30 - bar, "", rows, total, t - p->start);
+        p->last = t;
+    }
+    return 0;
+}
+
+static void progress_start(progress_t *pg, const opts_t *o)
+{
+    pg->start = pg->last = host_now();
+    pg->last -= 1.0;
+    pg->tty = !o->quiet && isatty(2);
+    pg->tol = o->tol;
+}
+
+static void progress_clear(const progress_t *pg)
+{
+    if (pg->tty) fprintf(stderr, "\r%70s\r", "");
+}
+
+/* A progressive solve of SHOTS shots that stopped at --max-shots above --tol. */
+static void check_converged(run_t *r, int shots)
+{
+    sc_stats st;
+    sc_get_stats(r->s, &st);
+    if (shots >= r->o->max_shots && st.unshot > r->o->tol + TOL_SLACK(r->o->tol)) r->unconverged++;
+}
+
+/* Shooting with hemi-cubes; threads split each shot's cube by rows: the same bits. */
+static void solve_shoot(run_t *r, progress_t *pg)
+{
+    const opts_t *o = r->o;
+    sc_progress_fn fn = pg->tty ? progress : NULL;
+    int shots = -1;
+    if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, fn, pg);
+    if (shots < 0) shots = sc_solve(r->s, o->max_shots, o->tol, fn, pg);
+    r->work = shots;
+    check_converged(r, shots);
+}
+
+/* Solves from the rows with the chosen solver; returns shots or sweeps, or -1. */
+static int solve_rows(run_t *r, progress_t *pg)
+{
+    const opts_t *o = r->o;
+    char err[512];
+    int n;
+    if (!o->gauss_seidel) {
+        n = sc_rows_solve(r->s, o->max_shots, o->tol, pg->tty ? progress : NULL, pg);
+        check_converged(r, n);
+        return n;
+    }
+    n = sc_rows_gauss_seidel(r->s, GS_MAX_SWEEPS, o->tol, err, sizeof err);
+    if (n < 0) fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
+    if (n >= GS_MAX_SWEEPS) r->unconverged++;
+    return n;
+}
+
+/* Visibility once: every patch's row, loaded or rendered (then saved). */
+static int rows_step(run_t *r, progress_t *pg)
+{
+    const opts_t *o = r->o;
+    char err[1024];
+    int rc = o->load_ff ? sc_rows_load(r->s, o->load_ff, err, sizeof err)
+                        : sc_rows_compute(r->s, pg->tty ? rows_progress : NULL, pg, err, sizeof err);
+    progress_clear(pg);
+    if (rc < 0) {
+        fprintf(stderr, PROG ": %s%s%s\n", o->load_ff ? "" : o->scene, o->load_ff ? "" : ": ", err);
+        return -1;
+    }
+    if (o->save_ff && sc_rows_save(r->s, o->save_ff, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+int mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n)
+{
+    char err[256];
+    if (sc_mix(r->s, sol, k, n, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
+/* Group G's emitters lit, every other emitter dark. */
+static int light_group(run_t *r, int g)
+{
+    static const double dark[3] = {0, 0, 0};
+    const obj_scene *sc = &r->sc;
+    char err[512];
+    int m;
+    for (m = 0; m < sc->nmaterials; m++) {
+        obj_material_match mm;
+        if (r->group_of[m] < 0) continue;
+        mm.sc = sc;
+        mm.material = m;
+        if (sc_set_surfaces(r->s, obj_match_material, &mm, NULL, r->group_of[m] == g ? sc->materials[m].ke : dark, err,
+                            sizeof err) < 0) {
+            fprintf(stderr, PROG ": %s: %s: %s\n", r->o->scene, sc->materials[m].name, err);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Each group alone (the other emitters dark), kept aside, then the run's mix. */
+static int solve_groups(run_t *r, progress_t *pg)
+{
+    const opts_t *o = r->o;
+    int g, n = o->ngroups ? o->ngroups : 1;
+    r->sol = calloc((size_t)n, sizeof *r->sol);
+    r->ks = calloc((size_t)n, sizeof *r->ks);
+    if (!r->sol || !r->ks) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    for (g = 0; g < o->ngroups; g++) {
+        int k;
+        if (light_group(r, g) < 0 || (k = solve_rows(r, pg)) < 0) return -1;
+        r->work += k;
+        r->sol[g] = sc_keep(r->s, r->ambient);
+        if (!r->sol[g]) {
+            fprintf(stderr, PROG ": out of memory\n");
+            return -1;
+        }
+        memcpy(r->ks[g], o->groups[g].k, sizeof r->ks[g]);
+    }
+    return mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups);
+}
+
+int solve_step(run_t *r)
+{
+    progress_t pg;
+    int rc = 0;
+    progress_start(&pg, r->o);
+    if (!r->rows_mode) {
+        solve_shoot(r, &pg);
+    } else {
+        if (rows_step(r, &pg) < 0) return -1;
+        sc_get_stats(r->s, &r->st);
+        r->raster_before_solve = r->st.raster_calls;
+        r->t_rows = host_now() - r->t_mesh;
+        progress_start(&pg, r->o);
+        if (!r->groups_mode) rc = (r->work = solve_rows(r, &pg)) < 0 ? -1 : 0;
+        else rc = solve_groups(r, &pg);
+    }
+    progress_clear(&pg);
+    r->t_solve = host_now();
+    sc_get_stats(r->s, &r->st);
+    return rc;
+}
