@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include <cmocka.h>
 
@@ -621,6 +622,54 @@ static void test_probes_input(void **state)
     CHECK_CONTAINS(err, "is not NX,NY,NZ", "the message");
 }
 
+/* ---- rad_cli ------------------------------------------------------------------------ */
+
+/* Runs build/rad_cli with ARGS on the bundled Cornell box (quick settings), stderr into
+ * the temporary directory; returns the exit status, *ERR the text (malloc'd). */
+static int cli(const char *args, char **err)
+{
+    char cmd[2048];
+    size_t len;
+    int st;
+    snprintf(cmd, sizeof cmd, "build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --quiet -o %s %s 2> %s",
+             tmp_path("cli.png"), args, tmp_path("cli.err"));
+    st = system(cmd);
+    if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* The options: a lightmap and probes written; a size of 0 a usage error, an atlas too
+ * small for the charts an error naming them, and then no lightmap file. */
+static void test_cli_bake(void **state)
+{
+    char args[1024], *err = NULL, *json = NULL;
+    const char *lm = tmp_path("lm.hdr"), *pj = tmp_path("p.json");
+    hdr_image im;
+    size_t len, i;
+    double peak = 0.0;
+    struct stat st;
+    (void)state;
+    CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-size wants a whole number from 1 to 8192", "the message");
+    free(err);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
+    CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "cannot fit", "the message");
+    CHECK_INT_EQ(stat(lm, &st), -1, "no lightmap file after the error");
+    free(err);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --probes 2,2,2 --probes-out %s", lm, pj);
+    CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake (%s)", err ? err : "");
+    free(err);
+    CHECK_INT_EQ(hdr_read(lm, &im, NULL, 0), 0, "the lightmap read back");
+    CHECK_INT_EQ(im.w * 1000 + im.h, 64064, "its size (w * 1000 + h)");
+    for (i = 0; i < (size_t)im.w * im.h * 3; i++) peak = fmax(peak, im.rgb[i]);
+    CHECK_GT(peak, 0.0, "the brightest texel");
+    hdr_free(&im);
+    CHECK_INT_EQ(fio_read_all(pj, 1u << 20, &json, &len, NULL, 0), 0, "the probes read back");
+    CHECK_INT_EQ(count_of(json, "{\"p\": ["), 8, "probes in the JSON");
+    free(json);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -634,6 +683,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_bad_sizes),
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
+        cmocka_unit_test(test_cli_bake),
     };
     return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);
 }

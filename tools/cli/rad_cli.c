@@ -514,6 +514,10 @@ static int views_step(opts_t *o)
         }
         add_view(o, NULL, o->default_out);
     }
+    if ((o->probes || o->probe_file) && !o->probes_out && !(o->probes_out = o->probes_default = probes_output(o->scene))) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
     if (!o->list) check_outputs(o);
     return 0;
 }
@@ -541,6 +545,7 @@ int main(int argc, char **argv)
     if (rc == 0) rc = solve_step(&r);
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
+    if (rc == 0) rc = bake_step(&r);
     if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
     if (rc == 0) rc = verdict(&r);

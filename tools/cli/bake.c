@@ -1,0 +1,109 @@
+/* rad_cli's bake step: --lightmap (tools/bake/lightmap.h) and --probes / --probe-file
+ * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
+#include "cli.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "bake/lightmap.h"
+#include "bake/probes.h"
+#include "host/clock.h"
+#include "host/obj_polys.h"
+
+#define GATHER_RES 32 /* --gather-res's default: 0.84% from Lambert at 64 (tests/test_bake.c) */
+
+typedef struct {
+    sc_gatherer *g;
+    int ambient;
+    long gathers;
+} gather_ctx;
+
+static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    gather_ctx *c = ctx;
+    c->gathers++;
+    return sc_gather(c->g, p, n, c->ambient, rgb);
+}
+
+static int pr_gather(void *ctx, const double p[3], double sh[9][3])
+{
+    gather_ctx *c = ctx;
+    c->gathers++;
+    return sc_gather_sh(c->g, p, c->ambient, sh);
+}
+
+char *probes_output(const char *scene)
+{
+    char *png = default_output(scene), *out = png ? malloc(strlen(png) + 9) : NULL;
+    if (out) {
+        memcpy(out, png, strlen(png) - 4);
+        strcpy(out + strlen(png) - 4, ".probes.json");
+    }
+    free(png);
+    return out;
+}
+
+static int bake_lightmap(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
+{
+    const opts_t *o = r->o;
+    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0};
+    lm_atlas a;
+    char err[1024];
+    double t0 = host_now();
+    int rc;
+    if (lm_build(&a, polys, n, &lo, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
+        return -1;
+    }
+    rc = lm_bake(&a, lm_gather, c);
+    if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered", o->lightmap);
+    else rc = lm_write(&a, o->lightmap, o->exposure, err, sizeof err);
+    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
+    else if (o->stats)
+        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d, %.2f s\n", a.size, a.size,
+               a.ncharts, a.texel, c->gathers, o->gather_res ? o->gather_res : GATHER_RES, host_now() - t0);
+    lm_free(&a);
+    return rc;
+}
+
+static int bake_probes(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
+{
+    const opts_t *o = r->o;
+    char err[1024] = "";
+    int np = o->probes ? o->probe_dims[0] * o->probe_dims[1] * o->probe_dims[2] : 0, rc = -1;
+    double *pts = o->probes ? pr_grid_points(polys, n, o->probe_dims) : pr_read_points(o->probe_file, &np, err, sizeof err);
+    pr_probe *pr = pts ? malloc((size_t)np * sizeof *pr) : NULL;
+    if (pr && pr_bake(polys, n, pts, np, pr_gather, c, pr, err, sizeof err) == 0)
+        rc = pr_write_json(o->probes_out, pr, np, o->probes ? o->probe_dims : NULL, err, sizeof err);
+    if (rc < 0) fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
+    free(pts);
+    free(pr);
+    return rc;
+}
+
+int bake_step(run_t *r)
+{
+    const opts_t *o = r->o;
+    int n = 0, rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
+    gather_ctx c = {NULL, r->ambient, 0};
+    sc_poly *polys;
+    if (!o->lightmap && !o->probes && !o->probe_file) return 0;
+    polys = obj_to_polys(&r->sc, &n, NULL, NULL); /* warned of when built */
+    if (!polys) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    if (o->lightmap) {
+        c.g = sc_gatherer_new(r->s, res, 0);
+        rc = c.g ? bake_lightmap(r, polys, n, &c) : -1;
+        sc_gatherer_free(c.g);
+    }
+    if (rc == 0 && (o->probes || o->probe_file)) {
+        c.g = sc_gatherer_new(r->s, res, 1);
+        rc = c.g ? bake_probes(r, polys, n, &c) : -1;
+        sc_gatherer_free(c.g);
+    }
+    if (rc < 0 && !c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
+    free(polys);
+    return rc;
+}
