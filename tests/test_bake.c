@@ -480,7 +480,7 @@ static void test_lightmap_bad_sizes(void **state)
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys);
-    lm_opts zero = {0, 0.0, 0}, big = {8193, 0.0, 0}, small = {8, 0.0, 0}, fine = {64, 0.001, 0};
+    lm_opts zero = {0, 0.0, 0}, big = {8193, 0.0, 0}, small = {8, 0.0, 0}, fine = {64, 0.001, 0}, o64 = {64, 0.0, 0};
     (void)state;
     CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
     CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
@@ -491,6 +491,10 @@ static void test_lightmap_bad_sizes(void **state)
     CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1, "a texel of 0.001 in 64 x 64 refused");
     CHECK_CONTAINS(err, "cannot fit 129 charts at a texel of 0.001", "the message");
     assert_null(a.rgb);
+    memset(polys, 0, sizeof polys[0]);
+    polys[0].n = 3; /* three vertices at the origin */
+    CHECK_INT_EQ(lm_build(&a, polys, 1, &o64, err, sizeof err), -1, "polygons of no extent refused");
+    CHECK_CONTAINS(err, "the polygons have no extent", "the message");
 }
 
 /* ---- probes ------------------------------------------------------------------------- */
@@ -618,6 +622,8 @@ static void test_probes_input(void **state)
     CHECK_CONTAINS(err, "no probes in the file", "the message");
     CHECK_INT_EQ(pr_parse_grid("0,2,2", dims, err, sizeof err), -1, "a grid of 0 refused");
     CHECK_CONTAINS(err, "a grid of 0 along an axis is outside 1..256", "the message");
+    CHECK_INT_EQ(pr_parse_grid("101,100,100", dims, err, sizeof err), -1, "1,010,000 probes refused");
+    CHECK_CONTAINS(err, "a grid of 1010000 probes is above 1000000", "the message");
     CHECK_INT_EQ(pr_parse_grid("4,4", dims, err, sizeof err), -1, "two numbers refused");
     CHECK_CONTAINS(err, "is not NX,NY,NZ", "the message");
 }

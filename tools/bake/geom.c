@@ -198,6 +198,7 @@ void *geom_grid_new(const sc_poly *p, const geom_poly *g, int n)
         }
     }
     for (a = 0; a < 3; a++) gr->eps = fmax(gr->eps, hi[a] - gr->lo[a]);
+    if (!(gr->eps > 0.0) || !isfinite(gr->eps)) gr->eps = 1.0; /* no extent: one cell holds all */
     for (a = 0; a < 3; a++) gr->cell[a] = fmax(hi[a] - gr->lo[a], gr->eps * 1e-6) / gr->g * (1.0 + 1e-9);
     gr->eps *= 1e-12;
     gr->planes = malloc(((size_t)n + 1) * sizeof *gr->planes);

@@ -493,10 +493,14 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     a->polys = polys;
     g = geom_polys(polys, n, &a->extent);
     interior = calloc(4 * (size_t)n, 1);
-    if (g && interior && alloc_atlas(a, n) == 0 && make_charts(a, g, interior) == 0 &&
-        (a->grid = geom_grid_new(polys, g, n)) != NULL)
+    if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
+        snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
+        rc = -2;
+    } else if (g && interior && alloc_atlas(a, n) == 0 && make_charts(a, g, interior) == 0 &&
+               (a->grid = geom_grid_new(polys, g, n)) != NULL) {
         rc = 0;
-    if (rc != 0) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
+    }
+    if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
     if (rc == 0) rc = layout(a, g, interior, o->texel, err, errlen);
     if (rc == 0 && place_samples(a, interior) != 0) {
         snprintf(err, errlen, "out of memory for a %dx%d lightmap", o->size, o->size);
@@ -505,7 +509,7 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     free(g);
     free(interior);
     if (rc != 0) lm_free(a);
-    return rc;
+    return rc < 0 ? -1 : 0;
 }
 
 /* ---- baking and dilation ---- */

@@ -25,6 +25,10 @@ int pr_parse_grid(const char *text, int dims[3], char *err, size_t errlen)
             snprintf(err, errlen, "probes: a grid of %d along an axis is outside 1..%d", dims[k], PR_MAX_GRID);
             return -1;
         }
+    if ((long)dims[0] * dims[1] * dims[2] > PR_MAX_PROBES) {
+        snprintf(err, errlen, "probes: a grid of %ld probes is above %d", (long)dims[0] * dims[1] * dims[2], PR_MAX_PROBES);
+        return -1;
+    }
     return 0;
 }
 

@@ -33,7 +33,8 @@ typedef struct {
     int inside;  /* back > 0.5 */
 } pr_probe;
 
-/* Parses "NX,NY,NZ" (each 1..PR_MAX_GRID). 0, or -1 with err. */
+/* Parses "NX,NY,NZ" (each 1..PR_MAX_GRID, at most PR_MAX_PROBES in all). 0, or -1 with
+ * err. */
 int pr_parse_grid(const char *text, int dims[3], char *err, size_t errlen);
 /* The points of a grid of DIMS over the box around POLYS: the centres of its cells
  * (so no probe lies on the box's walls). A malloc'd array of 3 DIMS products. */
