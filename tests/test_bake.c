@@ -645,13 +645,14 @@ static int cli(const char *args, char **err)
 }
 
 /* The options: a lightmap and probes written; a size of 0 a usage error, an atlas too
- * small for the charts an error naming them, and then no lightmap file. */
+ * small for the charts an error naming them, and then no lightmap file; the lightmap
+ * baked on 3 threads is the same file as on one. */
 static void test_cli_bake(void **state)
 {
-    char args[1024], *err = NULL, *json = NULL;
+    char args[1024], *err = NULL, *json = NULL, *one = NULL, *three = NULL;
     const char *lm = tmp_path("lm.hdr"), *pj = tmp_path("p.json");
     hdr_image im;
-    size_t len, i;
+    size_t len, len3 = 0, i;
     double peak = 0.0;
     struct stat st;
     (void)state;
@@ -674,6 +675,16 @@ static void test_cli_bake(void **state)
     CHECK_INT_EQ(fio_read_all(pj, 1u << 20, &json, &len, NULL, 0), 0, "the probes read back");
     CHECK_INT_EQ(count_of(json, "{\"p\": ["), 8, "probes in the JSON");
     free(json);
+    /* On 3 threads, the same file to the bit. */
+    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &one, &len, NULL, 0), 0, "the lightmap's bytes");
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --threads 3", lm);
+    CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 3 threads (%s)", err ? err : "");
+    free(err);
+    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0, "the 3 threads' lightmap's bytes");
+    CHECK_INT_EQ(len3, len, "bytes of the lightmap on 3 threads");
+    assert_memory_equal(one, three, len);
+    free(one);
+    free(three);
 }
 
 int main(void)

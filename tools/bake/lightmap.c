@@ -562,23 +562,35 @@ static int dilate(lm_atlas *a, unsigned char *filled, int pad)
     return 0;
 }
 
-int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx)
+int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
+{
+    int x, y, k;
+    for (y = first; y < a->size; y += step)
+        for (x = 0; x < a->size; x++) {
+            size_t i = (size_t)y * a->size + (size_t)x;
+            double p[3], rgb[3];
+            if (!lm_texel_point(a, x, y, p)) continue;
+            if (fn(ctx, p, a->charts[a->owner[i]].n, rgb) != 0) return -1;
+            for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
+        }
+    return 0;
+}
+
+int lm_dilate(lm_atlas *a)
 {
     size_t t = (size_t)a->size * a->size, i;
-    unsigned char *filled = calloc(t, 1);
+    unsigned char *filled = malloc(t);
     int rc = filled ? 0 : -1;
-    for (i = 0; rc == 0 && i < t; i++) {
-        double p[3], rgb[3];
-        int k;
-        if (!lm_texel_point(a, (int)(i % (size_t)a->size), (int)(i / (size_t)a->size), p)) continue;
-        if (fn(ctx, p, a->charts[a->owner[i]].n, rgb) != 0) rc = -1;
-        for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
-        filled[i] = 1;
-    }
+    for (i = 0; filled && i < t; i++) filled[i] = !isnan(a->sample[2 * i]);
     if (rc == 0) rc = dilate(a, filled, 0);
     if (rc == 0 && a->padding > 0) rc = dilate(a, filled, 1);
     free(filled);
     return rc;
+}
+
+int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx)
+{
+    return lm_gather_rows(a, 0, 1, fn, ctx) == 0 ? lm_dilate(a) : -1;
 }
 
 /* ---- lookups and output ---- */

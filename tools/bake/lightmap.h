@@ -79,6 +79,12 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
 /* Gathers every covered texel through FN, then dilates. Returns 0, or -1 when FN
  * stopped it (the atlas then holds what was gathered, undilated). */
 int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx);
+/* lm_bake in parts: the covered texels of the rows Y with Y % STEP == FIRST (threads
+ * may gather such sets at once, each through a context of its own: a texel's value
+ * does not depend on which thread gathers it), then, once every row is gathered, the
+ * dilation. Each returns 0, or -1 (FN stopped it; no memory for the dilation). */
+int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
+int lm_dilate(lm_atlas *a);
 
 /* Covered texel (X, Y)'s sample point into P; 1 if covered, 0 if not. */
 int lm_texel_point(const lm_atlas *a, int x, int y, double p[3]);

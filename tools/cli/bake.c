@@ -2,6 +2,7 @@
  * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
 #include "cli.h"
 
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,6 +17,8 @@ typedef struct {
     sc_gatherer *g;
     int ambient;
     long gathers;
+    lm_atlas *a; /* a lightmap worker's: its rows, Y % STEP == FIRST */
+    int first, step, rc;
 } gather_ctx;
 
 static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
@@ -43,25 +46,63 @@ char *probes_output(const char *scene)
     return out;
 }
 
-static int bake_lightmap(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
+static void *lm_worker(void *arg)
+{
+    gather_ctx *c = arg;
+    c->rc = lm_gather_rows(c->a, c->first, c->step, lm_gather, c);
+    return NULL;
+}
+
+/* The texels on N threads (--threads), each with a gatherer of its own, by rows: the
+ * same bits as one. 0, or -1 (a gather failed, no memory, no thread). */
+static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
+{
+    gather_ctx *c = calloc((size_t)n, sizeof *c);
+    pthread_t *th = calloc((size_t)n, sizeof *th);
+    int i, started = 0, rc = c && th ? 0 : -1;
+    for (i = 0; rc == 0 && i < n; i++) {
+        c[i].g = sc_gatherer_new(r->s, res, 0);
+        c[i].ambient = r->ambient;
+        c[i].a = a;
+        c[i].first = i;
+        c[i].step = n;
+        if (!c[i].g) rc = -1;
+    }
+    for (i = 1; rc == 0 && i < n; i++, started++)
+        if (pthread_create(&th[i], NULL, lm_worker, &c[i]) != 0) rc = -1;
+    if (rc == 0) lm_worker(&c[0]);
+    for (i = 1; i <= started; i++) pthread_join(th[i], NULL);
+    for (i = 0; c && i < n; i++) {
+        if (c[i].rc < 0) rc = -1;
+        *gathers += c[i].gathers;
+        sc_gatherer_free(c[i].g);
+    }
+    free(c);
+    free(th);
+    return rc;
+}
+
+static int bake_lightmap(run_t *r, const sc_poly *polys, int n, int res)
 {
     const opts_t *o = r->o;
     lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0};
     lm_atlas a;
     char err[1024];
     double t0 = host_now();
+    long gathers = 0;
     int rc;
     if (lm_build(&a, polys, n, &lo, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
         return -1;
     }
-    rc = lm_bake(&a, lm_gather, c);
-    if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered", o->lightmap);
+    rc = gather_texels(r, &a, o->threads > 1 ? o->threads : 1, res, &gathers);
+    if (rc == 0) rc = lm_dilate(&a);
+    if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
     else rc = lm_write(&a, o->lightmap, o->exposure, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     else if (o->stats)
-        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d, %.2f s\n", a.size, a.size,
-               a.ncharts, a.texel, c->gathers, o->gather_res ? o->gather_res : GATHER_RES, host_now() - t0);
+        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d on %d threads, %.2f s\n", a.size,
+               a.size, a.ncharts, a.texel, gathers, res, o->threads > 1 ? o->threads : 1, host_now() - t0);
     lm_free(&a);
     return rc;
 }
@@ -85,7 +126,7 @@ int bake_step(run_t *r)
 {
     const opts_t *o = r->o;
     int n = 0, rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0};
+    gather_ctx c = {NULL, r->ambient, 0, NULL, 0, 1, 0};
     sc_poly *polys;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;
     polys = obj_to_polys(&r->sc, &n, NULL, NULL); /* warned of when built */
@@ -93,17 +134,13 @@ int bake_step(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    if (o->lightmap) {
-        c.g = sc_gatherer_new(r->s, res, 0);
-        rc = c.g ? bake_lightmap(r, polys, n, &c) : -1;
-        sc_gatherer_free(c.g);
-    }
+    if (o->lightmap) rc = bake_lightmap(r, polys, n, res);
     if (rc == 0 && (o->probes || o->probe_file)) {
         c.g = sc_gatherer_new(r->s, res, 1);
         rc = c.g ? bake_probes(r, polys, n, &c) : -1;
+        if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
-    if (rc < 0 && !c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
     free(polys);
     return rc;
 }

@@ -244,7 +244,7 @@ static const option_t options[] = {
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1)", opt_threads},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels too", opt_threads},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
@@ -273,7 +273,7 @@ static const option_t options[] = {
      "written as -o's name + _0000, _0001, ... (PNG or PPM)", opt_animate},
     SECTION("information:"),
     SECTION("baking (tools/bake):"),
-    {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas (.png, .ppm or .hdr)",
+    {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
     {"--gather-res", NULL, "N", "a texel's or probe's gather cube resolution, even, 8..1024 (32)", opt_gather_res},
