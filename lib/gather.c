@@ -7,11 +7,10 @@
  * radiosity is >= 0, so the fixed sum sum F B is exact in 64 bits (< 2^61) and is
  * rounded once: in a closed scene whose elements all show B, the gather is B.
  *
- * A probe renders a whole cube (six whole faces) and projects the
- * radiosity seen onto the spherical harmonics of bands 0..2 through the moments of the
- * direction w = (a, b, 1) / r of each pixel (r^2 = a^2 + b^2 + 1, a and b the pixel
- * centre's odd lattice numbers over the resolution): its solid angle dw ~ 1 / r^3 and
- * dw w, dw w w^T. Each face's moments need six quadrant tables, by the face's
+ * A probe renders a whole cube (six whole faces) and projects the radiosity seen onto
+ * the spherical harmonics of bands 0..2 through the moments of the direction
+ * w = (a, b, 1) / r of each pixel (r^2 = a^2 + b^2 + 1, a and b the pixel centre's odd
+ * lattice numbers over the resolution): its solid angle dw ~ 1 / r^3, dw w, dw w w^T. Each face's moments need six quadrant tables, by the face's
  * symmetries in a and b (c = 1 / r):
  *     T0 = c^3 (dw)    TA = c^4 a (dw w_a)    TD = c^4 (dw w_d)
  *     TAA = c^5 a^2 (dw w_a^2)    TAB = c^5 a b (dw w_a w_b)    TAD = c^5 a (dw w_a w_d)
@@ -22,9 +21,8 @@
  * symmetry, and equal diagonal moments by the cube's: bands 1 and 2 vanish exactly.
  * The cube is turned by the rotation with rows (1, 2, 2) / 3, (2, 1, -2) / 3 and
  * (-2, 2, -1) / 3: no scene axis lies along a face's pixel rows or columns, where the
- * outlines of walls along the axes alias by half a pixel over their whole length (2%
- * of a square emitter's solid angle at res 64, measured on the scene's own axes). The
- * moments turn back to the scene's axes exactly (numerators in integers, then one
+ * outlines of walls along the axes would alias by half a pixel over their whole length.
+ * The moments turn back to the scene's axes exactly (numerators in integers, then one
  * division by 3 or 9), so a uniform environment's stay as they were.
  */
 #include "internal.h"
@@ -88,6 +86,7 @@ static void sphere_tables(uint32_t res, rad_ff_t *table)
 
 int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, size_t bytes)
 {
+    static const rad_stats_t zero = {0};
     uintptr_t base = (uintptr_t)work, start = (base + 7u) & ~(uintptr_t)7u;
     size_t q = res / 2u, tables = (flags & RAD_GATHER_SH) ? 6u * q * q : 2u * q * q;
     size_t need;
@@ -103,8 +102,7 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
     g->steps = (uint32_t *)(void *)(g->table + tables);
     g->zbuf = g->steps + res;
     g->ibuf = (rad_index_t *)(void *)(g->zbuf + (size_t)res * res);
-    g->stats.shots = g->stats.saturations = g->stats.raster_calls = 0;
-    g->stats.raster_pixels = 0;
+    g->stats = zero;
     for (k = 0; k < res; k++) g->steps[k] = 0; /* once: every span leaves it zero */
     if (g->sh)
         sphere_tables(res, g->table);
@@ -120,14 +118,17 @@ static int in_range(const rad_vec3_t *v)
     return v->x >= -m && v->x <= m && v->y >= -m && v->y <= m && v->z >= -m && v->z <= m;
 }
 
-/* The checks shared by both gathers, and the cube's fixed fields. */
+/* The checks shared by both gathers, and the cube's fixed fields: POINT in the core's
+ * scale (the caller's times 2^length_shift, exact). */
 static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
-                     int sh, rad__eye_t *e)
+                     int sh, int flags, rad__eye_t *e)
 {
-    if (!s || !g || !point || (int)g->sh != sh) return RAD_ERR_ARG;
-    if (!in_range(point)) return RAD_ERR_RANGE;
+    uint32_t sat = 0;
+    if (!s || !g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
+        return RAD_ERR_ARG;
     if (!s->solving) return RAD_ERR_STATE;
-    e->c = *point;
+    e->c = rad__scale2_vec(*point, s->length_shift, &sat);
+    if (sat || !in_range(&e->c)) return RAD_ERR_RANGE;
     e->res = g->res;
     e->skip = skip;
     e->full = sh;
@@ -136,6 +137,27 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     e->ids = g->ibuf;
     e->st = &g->stats;
     return RAD_OK;
+}
+
+/* The ambient term in the core's scale into AMB when FLAGS ask for it (a pass over the
+ * patches), else null. */
+static const rad_rgb_t *gather_ambient(const rad_scene_t *s, rad_gather_t *g, int flags,
+                                       rad_rgb_t *amb)
+{
+    rad_real_t a[3];
+    if (!(flags & RAD_SHADE_AMBIENT)) return 0;
+    rad__ambient(s, a, &g->stats.saturations);
+    amb->r = a[0];
+    amb->g = a[1];
+    amb->b = a[2];
+    return amb;
+}
+
+/* V from the core's scale to the caller's, unless FLAGS keep the core's. */
+static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, rad_rgb_t v)
+{
+    if (flags & RAD_SHADE_SCALED) return v;
+    return rad__scale2_rgb(v, -s->power_shift, &g->stats.saturations);
 }
 
 /* ---- a hemisphere --------------------------------------------------------------- */
@@ -185,24 +207,28 @@ static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb
 }
 
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
-               const rad_vec3_t *normal, uint32_t skip, const rad_rgb_t *ambient, rad_rgb_t *out)
+               const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out)
 {
     rad__eye_t e;
     rad_vec3_t n;
+    rad_rgb_t amb, v;
+    const rad_rgb_t *ap;
     rad__wsum_t sum[3] = {0, 0, 0};
     unsigned f;
-    int rc = normal && out ? eye_setup(s, g, point, skip, 0, &e) : RAD_ERR_ARG;
+    int rc = normal && out ? eye_setup(s, g, point, skip, 0, flags, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
     if (!in_range(normal)) return RAD_ERR_RANGE;
     if (!rad__normalize(*normal, &n)) return RAD_ERR_ARG;
     rad__cube_frame(n, g->turn, e.frame);
+    ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 5; f++) {
         rad__eye_face(s, &e, f);
-        face_sum(s, g, ambient, f, sum);
+        face_sum(s, g, ap, f, sum);
     }
-    out->r = rad__wvalue(sum[0], &g->stats.saturations);
-    out->g = rad__wvalue(sum[1], &g->stats.saturations);
-    out->b = rad__wvalue(sum[2], &g->stats.saturations);
+    v.r = rad__wvalue(sum[0], &g->stats.saturations);
+    v.g = rad__wvalue(sum[1], &g->stats.saturations);
+    v.b = rad__wvalue(sum[2], &g->stats.saturations);
+    *out = gather_out(s, g, flags, v);
     return RAD_OK;
 }
 
@@ -227,9 +253,8 @@ static void row_moments(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *
     uint32_t id = RAD_INDEX_NONE;
     const rad_index_t *ids = g->ibuf + (size_t)r * res;
     const rad_ff_t *t = g->table;
-    rad__wsum_t half[2][NMOM][3];
+    rad__wsum_t half[2][NMOM][3] = {{{0, 0, 0}}};
     rad_ff_t w[NMOM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    for (x = 0; x < 2u * NMOM * 3u; x++) (&half[0][0][0])[x] = 0;
     for (x = 0; x < res; x++) {
         uint32_t i = x < q ? q - 1u - x : x - q, ij = j * q + i, ji = i * q + j;
         if (ids[x] != id || x == q) {
@@ -303,14 +328,15 @@ static void to_scene(const sphere_t *cube, sphere_t *sp)
         sp->m[0][c] = cube->m[0][c];
         for (i = 0; i < 3; i++) {
             rad__msum_t v = 0;
-            for (k = 0; k < 3; k++) v += turn3[k][i] * cube->m[1 + k][c];
+            for (k = 0; k < 3; k++) v += (rad__msum_t)turn3[k][i] * cube->m[1 + k][c];
             sp->m[1 + i][c] = rad__msum_div(v, 3);
         }
         for (i = 0; i < 6; i++) {
             rad__msum_t v = 0;
             for (k = 0; k < 3; k++)
                 for (l = 0; l < 3; l++)
-                    v += turn3[k][ii[i]] * turn3[l][jj[i]] * cube->m[second[k][l]][c];
+                    v +=
+                        (rad__msum_t)(turn3[k][ii[i]] * turn3[l][jj[i]]) * cube->m[second[k][l]][c];
             sp->m[4 + i][c] = rad__msum_div(v, 9);
         }
     }
@@ -327,22 +353,23 @@ static const uint32_t sh_k[5] = {634385944u, 1098788686u, 2456966195u, 709265047
 #endif
 
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
-                  const rad_rgb_t *ambient, rad_rgb_t *sh)
+                  int flags, rad_rgb_t *sh)
 {
     rad__eye_t e;
-    sphere_t cube, sp;
+    sphere_t cube = {{{0, 0, 0}}}, sp;
+    rad_rgb_t amb;
+    const rad_rgb_t *ap;
     uint32_t *sat;
     unsigned f, r, c, k;
-    int rc = sh ? eye_setup(s, g, point, skip, 1, &e) : RAD_ERR_ARG;
+    int rc = sh ? eye_setup(s, g, point, skip, 1, flags, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
     sat = &g->stats.saturations;
     probe_frame(e.frame);
-    for (k = 0; k < 30u; k++) (&cube.m[0][0])[k] = 0;
+    ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 6; f++) {
-        rad__msum_t fs[NMOM][3];
-        for (k = 0; k < NMOM * 3u; k++) (&fs[0][0])[k] = 0;
+        rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
         rad__eye_face(s, &e, f);
-        for (r = 0; r < g->res; r++) row_moments(s, g, ambient, r, fs);
+        for (r = 0; r < g->res; r++) row_moments(s, g, ap, r, fs);
         add_face(f, fs, &cube);
     }
     to_scene(&cube, &sp);
@@ -363,5 +390,6 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
             if (c == 2) sh[k].b = v[k];
         }
     }
+    for (k = 0; k < 9; k++) sh[k] = gather_out(s, g, flags, sh[k]);
     return RAD_OK;
 }

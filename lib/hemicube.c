@@ -155,8 +155,8 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 }
 
 /* The faces look along +z, +x, -x, +y, -y (and a full cube's sixth, -z): their axes a
- * (across), b (up) and d (depth) are the cube's axes x, y, z (0, 1, 2) of FACE_AXIS,
- * times FACE_SIGN. */
+ * (across), b (up) and d (depth) are the cube's axes x, y, z (0, 1, 2) of
+ * rad__face_axis, times rad__face_sign. */
 const unsigned char rad__face_axis[6][3] = {{0, 1, 2}, {1, 2, 0}, {1, 2, 0},
                                             {0, 2, 1}, {0, 2, 1}, {0, 1, 2}};
 const signed char rad__face_sign[6][3] = {{1, 1, 1}, {1, 1, 1},  {1, 1, -1},
@@ -489,7 +489,7 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
     region_t reg[5];
-    rad_stats_t st = {0, 0, 0, 0};
+    rad_stats_t st = {0};
     canvas_t cv = part_canvas(s, buf);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);

@@ -19,6 +19,11 @@
 #define rad__eye_face        radf__eye_face
 #define rad__face_axis       radf__face_axis
 #define rad__face_sign       radf__face_sign
+#define rad__emission        radf__emission
+#define rad__scale_geometry  radf__scale_geometry
+#define rad__freeze          radf__freeze
+#define rad__scale_power     radf__scale_power
+#define rad__ambient         radf__ambient
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -179,6 +184,20 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
 /* The 3 or 4 corners of surface SF's vertex lattice (mesh.c): every vertex of the
  * surface is a rounded convex combination of them. Returns how many, indices in K. */
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k);
+
+/* The core's scale (mesh.c; rad.h has the rules). rad__scale_geometry re-meshes the
+ * scene at the length shift its extent calls for (a no-op once it is there) and counts
+ * small elements; rad__scale_power picks the power shift for the emissions as they
+ * stand; rad__freeze, before a solve, does both and sets s->solving (a no-op while
+ * solving). Each restarts the solution when a shift changes: call them only before a
+ * solve, or (Gauss-Seidel) where the solution is replaced anyway. */
+void rad__scale_geometry(rad_scene_t *s);
+void rad__scale_power(rad_scene_t *s);
+void rad__freeze(rad_scene_t *s);
+/* Surface SF's emission in the core's scale (saturations counted). */
+rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf);
+/* The ambient radiosity per channel in the core's scale (solve.c). */
+void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat);
 
 /* Channel K (0 r, 1 g, 2 b) of C. */
 static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)

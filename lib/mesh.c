@@ -292,20 +292,164 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
 #undef T
 }
 
+static void mesh_surface(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, unsigned n,
+                         const plan_t *p)
+{
+    if (n == 4)
+        mesh_quad(s, surf, c, p);
+    else
+        mesh_tri(s, surf, c, p);
+}
+
+rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf)
+{
+    return rad__scale2_rgb(sf->emission, s->power_shift, &s->stats.saturations);
+}
+
 /* Emission as the solution's starting point: radiosity E, unshot power E * area. */
 static void start_surface(rad_scene_t *s, uint32_t surf)
 {
     const rad_surface_t *sf = &s->pools.surfaces[surf];
+    rad_rgb_t em = rad__emission(s, sf);
     uint32_t i;
-    for (i = 0; i < sf->n_elements; i++)
-        s->pools.elements[sf->first_element + i].radiosity = sf->emission;
+    for (i = 0; i < sf->n_elements; i++) s->pools.elements[sf->first_element + i].radiosity = em;
     for (i = 0; i < sf->n_patches; i++) {
         rad_patch_t *pt = &s->pools.patches[sf->first_patch + i];
-        pt->unshot[0] = rad__energy(sf->emission.r, pt->area);
-        pt->unshot[1] = rad__energy(sf->emission.g, pt->area);
-        pt->unshot[2] = rad__energy(sf->emission.b, pt->area);
+        pt->unshot[0] = rad__energy(em.r, pt->area);
+        pt->unshot[1] = rad__energy(em.g, pt->area);
+        pt->unshot[2] = rad__energy(em.b, pt->area);
         s->emitted = rad__esum(s->emitted, pt->unshot[0] + pt->unshot[1] + pt->unshot[2]);
     }
+}
+
+static void start_all(rad_scene_t *s)
+{
+    uint32_t i;
+    s->emitted = 0;
+    for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
+}
+
+/* ---- the core's scale (rad.h) ---------------------------------------------------- */
+
+#define SCALE_HALF       RAD__Q(RAD_COORD_LIMIT / 2.0) /* the largest coordinate into (16, 32] */
+#define SCALE_PEAK       RAD__Q(256.0)                 /* the brightest emission into (128, 256] */
+#define SMALL_AREA       RAD__Q(1.0 / 64.0)            /* 2^10 LSB: rounding 2^-11 of the area */
+#define MAX_LENGTH_SHIFT 15 /* for a scene within 2^-10: smaller than any polygon accepted */
+/* Emission scales up only: outputs come back in the caller's Q16.16, whose range a
+ * smaller scale would not widen, while it would round away the low bits of emissions. */
+#define MIN_POWER_SHIFT  0
+#define MAX_POWER_SHIFT  24 /* 2^-16 to 256 */
+
+/* The N in LO..HI that takes V > 0 into (TARGET / 2, TARGET] times 2^N, or the bound
+ * nearest it (0 for V = 0). */
+static int pick_shift(rad_real_t v, rad_real_t target, int lo, int hi)
+{
+    int n = 0;
+    if (!(v > 0)) return 0;
+    while (n > lo && rad__scale2(v, n, 0) > target) n--;
+    while (n < hi && rad__scale2(v, n + 1, 0) <= target) n++;
+    return n;
+}
+
+static rad_real_t larger_abs(rad_real_t m, rad_real_t v)
+{
+    if (v < 0) v = -v;
+    return v > m ? v : m;
+}
+
+/* The largest coordinate magnitude, in the caller's units: every vertex is a convex
+ * combination of its surface's corners, which are the caller's own vertices times
+ * 2^length_shift exactly (the lattice's weights at a corner are den, 0, 0...). */
+static rad_real_t extent(const rad_scene_t *s)
+{
+    rad_real_t m = 0;
+    uint32_t i, k[4];
+    unsigned j, n;
+    for (i = 0; i < s->n_surfaces; i++) {
+        n = rad__surface_corners(s, &s->pools.surfaces[i], k);
+        for (j = 0; j < n; j++) {
+            const rad_vec3_t *v = &s->pools.vertices[k[j]];
+            m = larger_abs(larger_abs(larger_abs(m, v->x), v->y), v->z);
+        }
+    }
+    return rad__scale2(m, -s->length_shift, 0); /* exact: a multiple of 2^length_shift */
+}
+
+/* The brightest emission channel of any surface, in the caller's units. */
+static rad_real_t peak(const rad_scene_t *s)
+{
+    rad_real_t m = 0;
+    uint32_t i;
+    for (i = 0; i < s->n_surfaces; i++) {
+        const rad_rgb_t *e = &s->pools.surfaces[i].emission;
+        m = larger_abs(larger_abs(larger_abs(m, e->r), e->g), e->b);
+    }
+    return m;
+}
+
+/* Meshes every surface again, in place, from its corners at length shift G: the same
+ * lattice (the plan is kept in the surface), vertices, centres and areas rounded at the
+ * new scale as if the caller had given the scaled polygons. The corners scale exactly
+ * (up by 2^(G - length_shift), or back down: they are multiples of 2^length_shift). */
+static void remesh(rad_scene_t *s, int g)
+{
+    uint32_t np = s->n_patches, ne = s->n_elements, nv = s->n_vertices, i, k[4];
+    int d = g - s->length_shift;
+    for (i = 0; i < s->n_surfaces; i++) {
+        const rad_surface_t *sf = &s->pools.surfaces[i];
+        plan_t p = {0, 0, 0, 0, 0, 0, 0};
+        rad_vec3_t c[4];
+        unsigned j, n = rad__surface_corners(s, sf, k);
+        for (j = 0; j < n; j++) c[j] = rad__scale2_vec(s->pools.vertices[k[j]], d, 0);
+        p.pu = sf->pu;
+        p.pv = sf->pv;
+        p.ku = sf->ku;
+        p.kv = sf->kv;
+        s->n_patches = sf->first_patch;
+        s->n_elements = sf->first_element;
+        s->n_vertices = sf->first_vertex;
+        mesh_surface(s, i, c, n, &p);
+    }
+    s->n_patches = np;
+    s->n_elements = ne;
+    s->n_vertices = nv;
+    s->length_shift = (int8_t)g;
+}
+
+/* The core's scale at length shift G and power shift P, and the start state at it;
+ * nothing changes when both stand (only ever called before a solve). */
+static void set_scale(rad_scene_t *s, int g, int p)
+{
+    if (g == s->length_shift && p == s->power_shift) return;
+    if (g != s->length_shift) remesh(s, g);
+    s->power_shift = (int8_t)p;
+    start_all(s);
+}
+
+static int pick_power_shift(const rad_scene_t *s)
+{
+    return pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT);
+}
+
+void rad__scale_geometry(rad_scene_t *s)
+{
+    uint32_t e, small = 0;
+    set_scale(s, pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT), s->power_shift);
+    for (e = 0; e < s->n_elements; e++) small += s->pools.elements[e].area < SMALL_AREA;
+    s->stats.small_elements = small;
+}
+
+void rad__scale_power(rad_scene_t *s)
+{
+    set_scale(s, s->length_shift, pick_power_shift(s));
+}
+
+void rad__freeze(rad_scene_t *s)
+{
+    if (s->solving) return;
+    rad__scale_geometry(s);
+    rad__scale_power(s);
+    s->solving = 1;
 }
 
 int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
@@ -331,6 +475,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
         !fits(s->n_vertices, plan.vertices, s->pools.max_vertices))
         return RAD_ERR_FULL;
 
+    set_scale(s, 0, 0); /* new polygons come in the caller's units (after a restart) */
     sf = &s->pools.surfaces[s->n_surfaces];
     sf->normal = normal;
     sf->reflectance = reflectance ? *reflectance : black;
@@ -342,10 +487,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     sf->pv = (rad_index_t)plan.pv;
     sf->ku = (rad_index_t)plan.ku;
     sf->kv = (rad_index_t)plan.kv;
-    if (n == 4)
-        mesh_quad(s, s->n_surfaces, v, &plan);
-    else
-        mesh_tri(s, s->n_surfaces, v, &plan);
+    mesh_surface(s, s->n_surfaces, v, n, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
@@ -366,10 +508,9 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
 
 int rad_restart(rad_scene_t *s)
 {
-    uint32_t i;
     if (!s) return RAD_ERR_ARG;
-    s->emitted = 0;
-    for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
+    s->power_shift = (int8_t)pick_power_shift(s); /* new emissions may need another */
+    start_all(s);
     s->solving = 0;
     s->stats.shots = 0;
     return RAD_OK;

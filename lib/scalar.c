@@ -81,3 +81,19 @@ float rad__fsqrt(float x)
 }
 
 #endif
+
+rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat)
+{
+    v.x = rad__scale2(v.x, n, sat);
+    v.y = rad__scale2(v.y, n, sat);
+    v.z = rad__scale2(v.z, n, sat);
+    return v;
+}
+
+rad_rgb_t rad__scale2_rgb(rad_rgb_t c, int n, uint32_t *sat)
+{
+    c.r = rad__scale2(c.r, n, sat);
+    c.g = rad__scale2(c.g, n, sat);
+    c.b = rad__scale2(c.b, n, sat);
+    return c;
+}

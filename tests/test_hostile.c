@@ -994,7 +994,7 @@ static void test_cli_unwritable_output(void **st)
     need_cli();
     before = listing(tmpdir);
     RUN(&r, CORNELL, "-o", tmp_path("nodir/x.png"));
-    snprintf(want, sizeof want, "rad_cli: %s: cannot write in folder %s: No such file or directory\n",
+    snprintf(want, sizeof want, "rad_cli: %s: cannot write into '%s': No such file or directory\n",
              tmp_path("nodir/x.png"), tmp_path("nodir"));
     expect_cli(&r, 1, want);
     run_free(&r);

@@ -11,9 +11,7 @@
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
  *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits. Precision is
- *                 2^-16 units, so keep scenes between about 4 and 64 units across
- *                 (rad_cli scales every scene to 64 units; radiosity is scale-free).
+ *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
@@ -25,6 +23,18 @@
  *                 hemi-cube sums to exactly 2^30.
  * Rounding is to nearest everywhere; no operation relies on signed overflow or on
  * right shifts of negative numbers.
+ *
+ * Scale: results do not depend on the caller's units or emission scale. When the
+ * geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
+ * re-meshes it with coordinates times 2^length_shift (the largest into (16, 32]), and
+ * when a solve starts it scales radiosity and power by 2^power_shift (a brightest
+ * emission channel below 128 into (128, 256]): powers of two, so coordinates scale
+ * exactly. Radiosity does not depend on geometry scale and is linear in emission, so
+ * outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
+ * caller's units, and rad_render takes its camera in them; RAD_SHADE_SCALED keeps the
+ * core's scale (a dim scene's solution with all 16 fraction bits). The pools' geometry
+ * (vertices, patch centres, areas) and rad_element_t.radiosity are in the core's scale.
+ * stats.small_elements counts the elements whose area stays small even so.
  *
  * Every function returns int: 0 or a non-negative count on success, a negative
  * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
@@ -142,7 +152,8 @@ typedef struct {
     rad_index_t v[4]; /* v[3] == RAD_INDEX_NONE for a triangle */
     rad_index_t surface, patch;
     rad_real_t area;
-    rad_rgb_t radiosity; /* the solution so far (without the ambient term) */
+    rad_rgb_t radiosity; /* the solution so far (without the ambient term), in the
+                          * core's scale: the caller's radiosity times 2^power_shift */
 } rad_element_t;
 
 typedef struct {
@@ -191,6 +202,11 @@ typedef struct {
     uint32_t saturations;   /* values clamped to their format's range */
     uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels; /* pixels covered (before the depth test) */
+    /* Precision at risk: elements whose area at the core's scale is below 1/64 (2^10
+     * LSB, a rounding of 2^-11 = 0.05% of it), counted when the geometry freezes. The
+     * core scales every scene to one size, so these are elements small against their
+     * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
+    uint32_t small_elements;
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -200,6 +216,10 @@ typedef struct {
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
     rad_energy_t emitted; /* total emitted power, all channels */
+    /* The core's scale (see the top of this file): coordinates are the caller's times
+     * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
+     * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
+    int8_t length_shift, power_shift;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -265,21 +285,23 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
 rad_real_t rad_unshot_fraction(const rad_scene_t *s);
 
 /* The ambient term of Cohen et al. 1988: unshot power spread over the scene, times the
- * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT; returns
- * RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can outweigh the power
- * held: then the term is negative, and displayed radiosities (rad_element_radiosity,
- * rad_shade_vertices) are clamped at zero. */
+ * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT, in the
+ * caller's units; returns RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can
+ * outweigh the power held: then the term is negative, and displayed radiosities
+ * (rad_element_radiosity, rad_shade_vertices) are clamped at zero. */
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
+#define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
 
-/* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
+/* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
+ * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
 
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
- * elements of its surface that share it. OUT holds N >= n_vertices entries. Uses the
- * work buffer's accumulators as scratch. Returns the number of vertices written, or
- * RAD_ERR_ARG. */
+ * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
+ * OUT holds N >= n_vertices entries. Uses the work buffer's accumulators as scratch.
+ * Returns the number of vertices written, or RAD_ERR_ARG. */
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
 
 /* ---- viewing ------------------------------------------------------------------- */
@@ -288,18 +310,20 @@ typedef struct {
     rad_real_t tan_half_fov; /* tangent of half the vertical field of view, 1/16..16 */
 } rad_camera_t;
 
-/* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
- * FB (W*H linear radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer,
- * through the same rasterizer as the hemi-cube. Pixels no surface covers are black.
- * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
- * a degenerate camera, an eye or target beyond 4 * RAD_COORD_LIMIT, tan_half_fov or
+/* Renders the scene from CAM (in the caller's units) with vertex colours VRGB (from
+ * rad_shade_vertices, in either scale: FB gets the same) into FB (W*H linear
+ * radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer, through the same
+ * rasterizer as the hemi-cube. Pixels no surface covers are black. Returns the number
+ * of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER, a degenerate camera,
+ * an eye or target beyond 4 * RAD_COORD_LIMIT in the core's scale, tan_half_fov or
  * tan_half_fov * W / H outside 1/16..16). */
 int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, rad_rgb_t *fb,
                uint32_t *zbuf, unsigned w, unsigned h);
 
 /* Form factors from the centre of patch P to every element, written to OUT (one per
  * element, summing to 1 in a closed scene): the hemi-cube row the solver uses when P
- * shoots (the cube's turn about the normal depends on P alone).
+ * shoots (the cube's turn about the normal depends on P alone; the geometry takes the
+ * core's scale first, which restarts a scene not yet solving).
  * Returns the number of elements, or RAD_ERR_ARG. */
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
@@ -345,6 +369,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
 /* Light groups: radiosity is linear in emission, so solve once per group of lights
  * (the others dark) and keep each solution's element radiosities; then any mix is
  * OUT[e] = sum_g INTENSITY[g] * GROUPS[g][e] per channel, for n_elements elements.
+ * OUT is in the groups' unit: keep them in the caller's (rad_element_radiosity without
+ * RAD_SHADE_SCALED), since each solve has the power shift of its own lights.
  * Saturations are counted in s->stats. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity,
             uint32_t n_groups, rad_rgb_t *out);
@@ -367,7 +393,7 @@ const char *rad_strerror(int err);
  * its delta form factor (or solid angle) tables and one face's buffers, as big as
  * RAD_GATHER_BYTES(res) for hemispheres or RAD_GATHER_SH_BYTES(res) for spheres. A
  * gather only reads the scene, so each thread may gather with a gatherer of its own.
- * Needs frozen geometry: after the first shot (or rad_rows_compute). */
+ * Needs frozen geometry: after the first shot, rad_rows_compute or rad_form_factors. */
 #define RAD_GATHER__BUFS(res)           \
     ((size_t)(res) * sizeof(uint32_t) + \
      (size_t)(res) * (res) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
@@ -397,28 +423,30 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
 /* The radiosity arriving at POINT on a surface of normal NORMAL (any length; the side
  * it points to is gathered), E = sum over the cube's pixels of F * B: the delta form
  * factor F of each pixel (summing to exactly 1 over the cube) times the radiosity B of
- * the element it sees (rad_element_radiosity's value: with reflectance times AMBIENT
- * added when AMBIENT is given, from rad_ambient(), at least 0), with no element seen
- * counting as black. An element of reflectance rho at POINT would have radiosity
- * rho E + its emission: E is irradiance over pi, in radiosity units (Q16.16 in the
- * fixed build, rounded once from an exact sum). Surface SKIP is not drawn (the one
- * POINT lies on; RAD_INDEX_NONE: none). Writes OUT; returns RAD_OK, RAD_ERR_ARG (NULL,
- * a zero normal, a sphere gatherer), RAD_ERR_RANGE (POINT or NORMAL beyond
- * +-RAD_COORD_LIMIT), RAD_ERR_STATE (geometry not frozen). */
+ * the element it sees (rad_element_radiosity's value with FLAGS: RAD_SHADE_AMBIENT
+ * adds reflectance times the ambient term, worked out on each call, a pass over the
+ * patches; at least 0), with no element seen counting as black. An element of
+ * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
+ * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
+ * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the
+ * caller's units. Surface SKIP is not drawn (the one POINT lies on; RAD_INDEX_NONE:
+ * none). Writes OUT; returns RAD_OK, RAD_ERR_ARG (NULL, a zero normal, a sphere
+ * gatherer, unknown flags), RAD_ERR_RANGE (POINT beyond +-RAD_COORD_LIMIT in the
+ * core's scale, NORMAL beyond it), RAD_ERR_STATE (geometry not frozen). */
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
-               const rad_vec3_t *normal, uint32_t skip, const rad_rgb_t *ambient, rad_rgb_t *out);
+               const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out);
 
 /* A light probe: the radiosity seen from POINT in every direction w, B(w) (as
- * rad_gather's B), projected onto the nine real spherical harmonics of bands 0..2,
- * SH[k] = integral of B(w) Y_k(w) dw over the sphere (w on the scene's own axes), in
- * the order Y00; Y1-1 (y), Y10 (z), Y11 (x); Y2-2 (xy), Y2-1 (yz), Y20 (3z^2 - 1),
- * Y21 (xz), Y22 (x^2 - y^2). A uniform environment B gives SH[0] = B sqrt(4 pi) and
- * zeros. The radiosity arriving on a normal n is then sum_k A_l SH[k] Y_k(n) / pi
- * with A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Ramamoorthi & Hanrahan 2001). Values
- * past 32767.99 saturate (counted). Returns as rad_gather (RAD_ERR_ARG for a
- * hemisphere gatherer). */
+ * rad_gather's B, with FLAGS), projected onto the nine real spherical harmonics of
+ * bands 0..2, SH[k] = integral of B(w) Y_k(w) dw over the sphere (w on the scene's own
+ * axes), in the order Y00; Y1-1 (y), Y10 (z), Y11 (x); Y2-2 (xy), Y2-1 (yz),
+ * Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2). A uniform environment B gives
+ * SH[0] = B sqrt(4 pi) and zeros. The radiosity arriving on a normal n is then
+ * sum_k A_l SH[k] Y_k(n) / pi with A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Ramamoorthi
+ * & Hanrahan 2001). Values past 32767.99 in the core's scale saturate (counted).
+ * Returns as rad_gather (RAD_ERR_ARG for a hemisphere gatherer). */
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
-                  const rad_rgb_t *ambient, rad_rgb_t *sh);
+                  int flags, rad_rgb_t *sh);
 
 #ifdef __cplusplus
 }

@@ -278,12 +278,12 @@ static int check_target(const char *path, const char *target, char *err, size_t 
     }
     if (!(dir = folder_of(target)))
         fio_err(err, errlen, path, "out of memory");
-    else if (stat(dir, &st) != 0)
-        fio_err(err, errlen, path, "cannot write in folder %s: %s", dir, strerror(errno));
+    else if (stat(dir, &st) != 0) /* the words of rad_cli's own check before file_io */
+        fio_err(err, errlen, path, "cannot write into '%s': %s", dir, strerror(errno));
     else if (!S_ISDIR(st.st_mode))
-        fio_err(err, errlen, path, "cannot write in %s: not a folder", dir);
+        fio_err(err, errlen, path, "cannot write into '%s': %s", dir, strerror(ENOTDIR));
     else if (access(dir, W_OK | X_OK) != 0)
-        fio_err(err, errlen, path, "cannot write in folder %s: %s", dir, strerror(errno));
+        fio_err(err, errlen, path, "cannot write into '%s': %s", dir, strerror(errno));
     else
         rc = 0;
     free(dir);

@@ -15,18 +15,24 @@ enum { FMT_NONE, FMT_PNG, FMT_PPM };
 
 static int lower(int c) { return (c >= 'A' && c <= 'Z') ? c - 'A' + 'a' : c; }
 
+/* Format named by NAME ("png" or "ppm"), case-insensitive. */
+static int format_named(const char *name)
+{
+    char ext[4];
+    int i;
+    if (strlen(name) != 3)
+        return FMT_NONE;
+    for (i = 0; i < 3; i++)
+        ext[i] = (char)lower((unsigned char)name[i]);
+    ext[3] = '\0';
+    return strcmp(ext, "png") == 0 ? FMT_PNG : strcmp(ext, "ppm") == 0 ? FMT_PPM : FMT_NONE;
+}
+
 /* Format from the extension of the last path component, case-insensitive. */
 static int format_of(const char *path)
 {
     const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
-    char ext[4];
-    int i;
-    if (!dot || (slash && dot < slash) || strlen(dot + 1) != 3)
-        return FMT_NONE;
-    for (i = 0; i < 3; i++)
-        ext[i] = (char)lower((unsigned char)dot[1 + i]);
-    ext[3] = '\0';
-    return strcmp(ext, "png") == 0 ? FMT_PNG : strcmp(ext, "ppm") == 0 ? FMT_PPM : FMT_NONE;
+    return !dot || (slash && dot < slash) ? FMT_NONE : format_named(dot + 1);
 }
 
 static int size_ok(int w, int h)
@@ -106,6 +112,12 @@ static int ppm_write_fp(FILE *fp, const unsigned char *rgb, int w, int h, png_ms
 
 int img_write(const char *path, const unsigned char *rgb, int w, int h, char *err, size_t errlen)
 {
+    return img_write_as(path, NULL, rgb, w, h, err, errlen);
+}
+
+int img_write_as(const char *path, const char *format, const unsigned char *rgb, int w, int h, char *err,
+                 size_t errlen)
+{
     png_msg pm = { "" };
     fio_out *o;
     FILE *fp;
@@ -114,7 +126,11 @@ int img_write(const char *path, const unsigned char *rgb, int w, int h, char *er
         fio_err(err, errlen, path, "no %s given", path ? "pixels" : "path");
         return -1;
     }
-    if ((fmt = format_of(path)) == FMT_NONE) {
+    if (format && (fmt = format_named(format)) == FMT_NONE) {
+        fio_err(err, errlen, path, "unknown image format '%.20s' (use png or ppm)", format);
+        return -1;
+    }
+    if (!format && (fmt = format_of(path)) == FMT_NONE) {
         fio_err(err, errlen, path, "unknown image extension (use .png or .ppm)");
         return -1;
     }

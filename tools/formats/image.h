@@ -27,6 +27,11 @@ typedef struct { int w, h; unsigned char *rgb; } img_t;   /* 8-bit RGB, row 0 at
  * Sizes must be 1..IMG_MAX_DIM each. Returns 0, or -1 with a message in err. */
 int img_write(const char *path, const unsigned char *rgb, int w, int h, char *err, size_t errlen);
 
+/* As img_write, in FORMAT ("png" or "ppm", any case) whatever PATH is called: for an
+ * output with no extension, such as /dev/stdout. FORMAT NULL: by the extension. */
+int img_write_as(const char *path, const char *format, const unsigned char *rgb, int w, int h, char *err,
+                 size_t errlen);
+
 /* Reads a PNG (any colour type/bit depth: 16-bit is stripped to 8, palette and grey are
  * expanded, alpha and tRNS are dropped) or a binary P6 PPM (maxval 255, header comments
  * allowed). The format is chosen by the file's magic bytes, not its name. The file is
