@@ -24,31 +24,83 @@ static int rgb_ok(const rad_rgb_t *c, rad_real_t hi, int open_top)
     return in_range(c->r, 0, hi) && in_range(c->g, 0, hi) && in_range(c->b, 0, hi);
 }
 
-int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
+/* Defaults filled in and every setting checked, as rad_init and rad_plan_polygon use
+ * them. Returns RAD_OK or RAD_ERR_ARG with *WHY naming the setting. */
+static int resolve_config(rad_config_t *c, const char **why)
+{
+    if (c->res == 0) c->res = 64;
+    if (c->max_element == 0) c->max_element = RAD__Q(4.0);
+    *why = "res not even within 8..RAD_MAX_RES";
+    if (c->res < 8 || c->res > RAD_MAX_RES || (c->res & 1u)) return RAD_ERR_ARG;
+    *why = "unknown flag, or band_rows with RAD_NO_BANDS";
+    if (c->flags & ~(RAD_NO_OVERSHOOT | RAD_NO_BANDS)) return RAD_ERR_ARG;
+    if ((c->flags & RAD_NO_BANDS) && c->band_rows) return RAD_ERR_ARG;
+    /* Checked before the default patch size is derived from it: 4 * max_element of an
+     * out-of-range value would overflow. */
+    *why = "max_element outside 1/16..2 RAD_COORD_LIMIT";
+    if (!in_range(c->max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    if (c->max_patch == 0) c->max_patch = 4 * c->max_element;
+    *why = "max_patch outside max_element..4 RAD_COORD_LIMIT";
+    if (!in_range(c->max_patch, c->max_element, RAD__Q(4 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    return RAD_OK;
+}
+
+/* C99 has no alignof: a type's alignment is its offset after a char in a struct. */
+typedef struct {
+    char c;
+    rad_surface_t t;
+} align_surface_t;
+typedef struct {
+    char c;
+    rad_patch_t t;
+} align_patch_t;
+typedef struct {
+    char c;
+    rad_element_t t;
+} align_element_t;
+typedef struct {
+    char c;
+    rad_vec3_t t;
+} align_vec3_t;
+
+static int aligned(const void *p, size_t a)
+{
+    return (uintptr_t)p % a == 0;
+}
+
+static int pools_aligned(const rad_pools_t *p)
+{
+    return aligned(p->surfaces, offsetof(align_surface_t, t)) &&
+           aligned(p->patches, offsetof(align_patch_t, t)) &&
+           aligned(p->elements, offsetof(align_element_t, t)) &&
+           aligned(p->vertices, offsetof(align_vec3_t, t));
+}
+
+/* The caller's sizes and kind against the library's: a program compiled with another
+ * RAD_INDEX_BITS would index the pools with other strides. Checked before S is used. */
+int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
+                 size_t scene_bytes, unsigned index_bytes, int is_float)
 {
     const uint32_t lim = RAD_INDEX_NONE - 1u;
+    const char *why;
     rad_scene_t z = {0};
+    if (scene_bytes != sizeof(rad_scene_t) || index_bytes != sizeof(rad_index_t) ||
+        is_float != RAD_FLOAT)
+        return RAD_ERR_ABI;
     if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
         !pools->vertices || !pools->work)
         return RAD_ERR_ARG;
     if (pools->max_surfaces > lim || pools->max_patches > lim || pools->max_elements > lim ||
         pools->max_vertices > lim)
         return RAD_ERR_ARG;
+    if (!pools_aligned(pools)) return RAD_ERR_ALIGN;
     z.pools = *pools;
     if (cfg) z.cfg = *cfg;
-    if (z.cfg.res == 0) z.cfg.res = 64;
-    if (z.cfg.max_element == 0) z.cfg.max_element = RAD__Q(4.0);
-    if (z.cfg.res < 8 || z.cfg.res > RAD_MAX_RES || (z.cfg.res & 1u)) return RAD_ERR_ARG;
-    if (z.cfg.flags & ~RAD_NO_OVERSHOOT) return RAD_ERR_ARG;
-    /* Checked before the default patch size is derived from it: 4 * max_element of an
-     * out-of-range value would overflow. */
-    if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
-    if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
-    if (!in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT)))
-        return RAD_ERR_ARG;
+    if (resolve_config(&z.cfg, &why) < 0) return RAD_ERR_ARG;
     {
         int rc = rad__hemicube_init(&z);
         if (rc < 0) return rc;
+        if ((z.cfg.flags & RAD_NO_BANDS) && z.band_rows) return RAD_ERR_WORK;
     }
     *s = z;
     return RAD_OK;
@@ -61,21 +113,25 @@ static int vec_eq(rad_vec3_t a, rad_vec3_t b)
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
 
-/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_*. */
-static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area)
+/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_* with *WHY. */
+static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area,
+                         const char **why)
 {
     const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
     unsigned i;
     for (i = 0; i < n; i++) {
+        *why = "coordinate beyond +-RAD_COORD_LIMIT";
         if (!in_range(v[i].x, -lim, lim) || !in_range(v[i].y, -lim, lim) ||
             !in_range(v[i].z, -lim, lim))
             return RAD_ERR_RANGE;
+        *why = "two consecutive vertices equal";
         if (vec_eq(v[i], v[(i + 1) % n])) return RAD_ERR_DEGENERATE;
     }
     if (n == 3)
         *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
     else
         *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
+    *why = "area below 1/4096 (or vertices in a line)";
     if (!(*area >= MIN_AREA)) return RAD_ERR_DEGENERATE;
     if (n == 4) {
         uint32_t sat = 0;
@@ -83,15 +139,19 @@ static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, ra
             rad_vec3_t nk;
             /* Planar: every corner within sqrt(area) / 64 of the plane through v0. */
             rad_real_t h = rad__dot(rad__sub(v[i], v[0]), *normal);
+            *why = "quad corner farther than sqrt(area) / 64 from its plane";
             if (rad__mul(rad__mul(h, h, &sat), RAD__Q(4096.0), &sat) > *area)
                 return RAD_ERR_NONPLANAR;
             /* Convex: every corner turns the same way as the whole. */
+            *why = "quad with three corners in a line";
             if (rad__area_normal(rad__sub(v[(i + 1) % 4], v[i]),
                                  rad__sub(v[(i + 2) % 4], v[(i + 1) % 4]), &nk) <= 0)
                 return RAD_ERR_DEGENERATE;
+            *why = "quad not convex";
             if (rad__dot(nk, *normal) <= 0) return RAD_ERR_NONPLANAR;
         }
     }
+    *why = "";
     return RAD_OK;
 }
 
@@ -112,10 +172,11 @@ static rad_real_t max2(rad_real_t a, rad_real_t b)
 /* Emitters shoot from every element: direct light is the largest and most visible
  * term, and shooting it from many points (each hemi-cube turned differently) averages
  * the aliasing of any one cube, which a single shot from a big light leaves as blotches. */
-static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int emits, plan_t *p)
+static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, int emits,
+                      plan_t *p)
 {
     static const plan_t zero = {0, 0, 0, 0, 0, 0, 0};
-    rad_real_t me = s->cfg.max_element, mp = emits ? me : s->cfg.max_patch;
+    rad_real_t me = cfg->max_element, mp = emits ? me : cfg->max_patch;
     *p = zero;
     if (n == 4) {
         rad_real_t lu = max2(rad__length(rad__sub(v[1], v[0])), rad__length(rad__sub(v[2], v[3])));
@@ -139,6 +200,56 @@ static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int
         p->elements = m * m;
         p->vertices = (m + 1u) * (m + 2u) / 2u;
     }
+}
+
+static int args_ok(const rad_vec3_t *v, unsigned n)
+{
+    return v && (n == 3 || n == 4);
+}
+
+/* Everything rad_add_polygon decides before it writes, in its order: colours, then
+ * the polygon, then the mesh's plan. Returns RAD_OK or the error with *WHY. */
+static int plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                        const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_vec3_t *normal,
+                        rad_real_t *area, plan_t *plan, const char **why)
+{
+    int rc;
+    *why = "reflectance outside [0, 1)";
+    if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
+    *why = "emission outside [0, RAD_EMISSION_LIMIT]";
+    if (!rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0)) return RAD_ERR_RANGE;
+    rc = check_polygon(v, n, normal, area, why);
+    if (rc < 0) return rc;
+    plan_mesh(cfg, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), plan);
+    return RAD_OK;
+}
+
+static uint32_t add_sat(uint32_t a, uint32_t b)
+{
+    return b > UINT32_MAX - a ? UINT32_MAX : a + b;
+}
+
+int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan)
+{
+    rad_config_t c = {0};
+    rad_vec3_t normal;
+    rad_real_t area;
+    plan_t p;
+    int rc;
+    if (!plan) return RAD_ERR_ARG;
+    plan->problem = "NULL vertices, or not 3 or 4 of them";
+    if (!args_ok(v, n)) return RAD_ERR_ARG;
+    if (cfg) c = *cfg;
+    rc = resolve_config(&c, &plan->problem);
+    if (rc == RAD_OK)
+        rc = plan_polygon(&c, v, n, reflectance, emission, &normal, &area, &p, &plan->problem);
+    if (rc < 0) return rc;
+    plan->surfaces = add_sat(plan->surfaces, 1);
+    plan->patches = add_sat(plan->patches, p.patches);
+    plan->elements = add_sat(plan->elements, p.elements);
+    plan->vertices = add_sat(plan->vertices, p.vertices);
+    return RAD_OK;
 }
 
 static int fits(uint32_t used, uint32_t want, uint32_t max)
@@ -460,15 +571,13 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     rad_vec3_t normal;
     rad_real_t area;
     plan_t plan;
+    const char *why;
     int rc;
 
-    if (!s || !v || (n != 3 && n != 4)) return RAD_ERR_ARG;
+    if (!s || !args_ok(v, n)) return RAD_ERR_ARG;
     if (s->solving) return RAD_ERR_STATE;
-    if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
-        return RAD_ERR_RANGE;
-    rc = check_polygon(v, n, &normal, &area);
+    rc = plan_polygon(&s->cfg, v, n, reflectance, emission, &normal, &area, &plan, &why);
     if (rc < 0) return rc;
-    plan_mesh(s, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), &plan);
     if (!fits(s->n_surfaces, 1, s->pools.max_surfaces) ||
         !fits(s->n_patches, plan.patches, s->pools.max_patches) ||
         !fits(s->n_elements, plan.elements, s->pools.max_elements) ||
@@ -531,11 +640,15 @@ const char *rad_strerror(int err)
     case RAD_OK: return "success";
     case RAD_ERR_ARG: return "invalid argument";
     case RAD_ERR_FULL: return "pool full";
-    case RAD_ERR_RANGE: return "value out of range";
+    case RAD_ERR_RANGE:
+        return "coordinate, reflectance or emission out of range (rad_plan_polygon names which)";
     case RAD_ERR_DEGENERATE: return "degenerate polygon";
     case RAD_ERR_NONPLANAR: return "quad not planar or not convex";
     case RAD_ERR_STATE: return "call out of order";
     case RAD_ERR_WORK: return "work buffer too small";
+    case RAD_ERR_ALIGN: return "pool not aligned for its type";
+    case RAD_ERR_ABI:
+        return "program compiled with another rad.h layout (RAD_INDEX_BITS or RAD_FLOAT)";
     default: return err > 0 ? "success" : "unknown error";
     }
 }

@@ -165,6 +165,7 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     if (!s) return RAD_ERR_ARG;
+    if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
     return rad__shoot(s, 0, max_shots, tol);
 }
 
@@ -211,6 +212,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     rad_real_t amb[3];
     uint32_t p;
     if (!s || !patch) return RAD_ERR_ARG;
+    if (s->emitted == 0) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
     shot_ambient(s, amb, &s->stats.saturations);

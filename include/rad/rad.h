@@ -50,48 +50,46 @@
 extern "C" {
 #endif
 
-/* The float twin links beside the fixed library, so its symbols carry another prefix. */
+/* The float twin's functions are named radf_ (it links beside the fixed library). */
 #if RAD_FLOAT
-#define rad_init              radf_init
-#define rad_add_polygon       radf_add_polygon
-#define rad_shoot             radf_shoot
-#define rad_unshot_fraction   radf_unshot_fraction
-#define rad_ambient           radf_ambient
-#define rad_element_radiosity radf_element_radiosity
-#define rad_shade_vertices    radf_shade_vertices
-#define rad_render            radf_render
-#define rad_restart           radf_restart
-#define rad_set_surface       radf_set_surface
-#define rad_form_factors      radf_form_factors
-#define rad_strerror          radf_strerror
-#define rad_real_from_q16     radf_real_from_q16
-#define rad_rows_compute      radf_rows_compute
-#define rad_rows_shoot        radf_rows_shoot
-#define rad_rows_gauss_seidel radf_rows_gauss_seidel
-#define rad_mix               radf_mix
-#define rad_ff_from_code      radf_ff_from_code
-#define rad_shot_begin        radf_shot_begin
-#define rad_shot_part         radf_shot_part
-#define rad_shot_end          radf_shot_end
-#define rad_gather_init       radf_gather_init
-#define rad_gather            radf_gather
-#define rad_gather_sh         radf_gather_sh
+#include "rad_float_names.h"
 #endif
+
+/* ---- version ------------------------------------------------------------------- */
+#define RAD_VERSION_MAJOR 0
+#define RAD_VERSION_MINOR 9
+#define RAD_VERSION_PATCH 0
+#define RAD__STR_(x)      #x
+#define RAD__STR(x)       RAD__STR_(x)
+#define RAD_VERSION \
+    RAD__STR(RAD_VERSION_MAJOR) "." RAD__STR(RAD_VERSION_MINOR) "." RAD__STR(RAD_VERSION_PATCH)
+/* One number for #if tests: 10000 major + 100 minor + patch. */
+#define RAD_VERSION_NUMBER (RAD_VERSION_MAJOR * 10000 + RAD_VERSION_MINOR * 100 + RAD_VERSION_PATCH)
 
 /* ---- scalar types -------------------------------------------------------------- */
 #if RAD_FLOAT
 typedef float rad_real_t;
 typedef float rad_energy_t;
 typedef float rad_ff_t;
-#define RAD_REAL(x)         ((rad_real_t)(x))
-#define RAD_TO_DOUBLE(r)    ((double)(r))
-#define RAD_FF_TO_DOUBLE(f) ((double)(f))
+#define RAD_REAL(x)              ((rad_real_t)(x))
+#define RAD_REAL_RATIO(num, den) ((rad_real_t)(num) / (rad_real_t)(den))
+#define RAD_TO_DOUBLE(r)         ((double)(r))
+#define RAD_FF_TO_DOUBLE(f)      ((double)(f))
 #else
 typedef int32_t rad_real_t;
 typedef int64_t rad_energy_t;
 typedef uint32_t rad_ff_t;
 /* For host code only: converts a double constant or variable, rounding to nearest. */
-#define RAD_REAL(x)         ((rad_real_t)((x)*65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+#define RAD_REAL(x) ((rad_real_t)((x)*65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+/* NUM / DEN for integers (DEN > 0, |NUM| < 2^46, |NUM / DEN| < 32768) in integer
+ * arithmetic only, so firmware without an FPU or soft float can use it (a constant
+ * expression: static initialisers fold it at compile time). Rounds half away from zero,
+ * as RAD_REAL does, and equals RAD_REAL((double)NUM / DEN) for DEN < 2^20: a tie is a
+ * multiple of 2^-17, which a double holds exactly, and any other value lies at least
+ * 1 / (2 DEN) ulp from a tie, more than a double's rounding (2^-21 ulp below 32768). */
+#define RAD_REAL_RATIO(num, den)                                                             \
+    ((rad_real_t)(((int64_t)(num)*131072 + ((num) < 0 ? -(int64_t)(den) : (int64_t)(den))) / \
+                  (2 * (int64_t)(den))))
 #define RAD_TO_DOUBLE(r)    ((double)(r) / 65536.0)
 #define RAD_FF_TO_DOUBLE(f) ((double)(f) / 1073741824.0)
 #endif
@@ -123,6 +121,8 @@ typedef struct {
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
 #define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting) */
 #define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
+#define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
+#define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
 
 /* ---- pools --------------------------------------------------------------------- */
 /* A polygon as given (3 or 4 vertices), meshed into a grid of patches and elements. */
@@ -156,6 +156,12 @@ typedef struct {
                           * core's scale: the caller's radiosity times 2^power_shift */
 } rad_element_t;
 
+/* The caller's memory. Each pool is an array of its type, aligned as the compiler
+ * aligns that type (any array, static or from malloc, is): rad_init refuses another
+ * address with RAD_ERR_ALIGN. The work buffer may start at any address: the core
+ * starts its tables at the next multiple of 8, and RAD_WORK_BYTES counts the bytes
+ * that may cost. Bytes per entry: sizeof(rad_surface_t) etc., which depend on
+ * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets). */
 typedef struct {
     rad_surface_t *surfaces;
     uint32_t max_surfaces;
@@ -186,8 +192,15 @@ typedef struct {
     rad_real_t max_element; /* longest element edge; default 4.0 units */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
-    uint16_t flags;         /* RAD_NO_OVERSHOOT, or 0 */
+    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, or 0 */
 } rad_config_t;
+
+/* A work buffer too small for all five faces renders the cube in bands of rows (the
+ * same bits, more passes); rad_scene_t.band_rows tells which was chosen (0: all faces
+ * at once). RAD_NO_BANDS refuses bands instead: rad_init returns RAD_ERR_WORK unless
+ * the buffer holds all five faces (a buffer sized for fewer accumulators than the
+ * pools need does not then slow every shot down unnoticed). */
+#define RAD_NO_BANDS 8u
 
 /* Shooting (see rad_shoot) overshoots by default: a patch shoots its unshot power plus
  * the power it will receive back, estimated from the ambient term (Feda & Purgathofer,
@@ -235,9 +248,34 @@ typedef struct {
 
 /* Prepares S over the caller's pools with configuration CFG (NULL: defaults), and builds
  * the delta form factor table in the work buffer. Returns RAD_OK, RAD_ERR_ARG for NULL
- * or invalid settings, RAD_ERR_WORK when the work buffer cannot hold the table, the
- * accumulators and at least one row of a face. */
-int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg);
+ * or invalid settings, RAD_ERR_ALIGN for a misaligned pool, RAD_ERR_WORK when the work
+ * buffer cannot hold the table, the accumulators and at least one row of a face (or all
+ * five faces, with RAD_NO_BANDS), RAD_ERR_ABI when the caller was compiled with another
+ * layout than the library: another RAD_INDEX_BITS or RAD_FLOAT, or a rad.h whose
+ * rad_scene_t differs (the macro passes what the caller's compiler saw, so a program
+ * that would index its pools with the wrong strides gets an error code, not a crash).
+ * On any error S is not written. */
+#define rad_init(s, pools, cfg) \
+    rad_init_abi((s), (pools), (cfg), sizeof(rad_scene_t), (unsigned)sizeof(rad_index_t), RAD_FLOAT)
+int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
+                 size_t scene_bytes, unsigned index_bytes, int is_float);
+
+/* Sizing before adding: what a polygon will take of each pool. */
+typedef struct {
+    uint32_t surfaces, patches, elements, vertices; /* summed over the planned polygons */
+    const char *problem; /* after an error: what is wrong, in a few words */
+} rad_plan_t;
+
+/* Adds to PLAN the surfaces, patches, elements and vertices rad_add_polygon would take
+ * for this polygon under configuration CFG (NULL: defaults), through the same code that
+ * meshes, so a caller can sum a scene's polygons and size the pools and RAD_WORK_BYTES
+ * (n = max(elements, vertices)) before rad_init. Counts saturate at UINT32_MAX. Returns
+ * RAD_OK, or the error rad_add_polygon would return for it (RAD_ERR_ARG, RAD_ERR_RANGE,
+ * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR) with the counts unchanged and PLAN->problem
+ * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after
+ * rad_add_polygon fails, the same call tells which value was out of range. */
+int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan);
 
 /* Adds a convex planar polygon of N = 3 or 4 vertices V (counter-clockwise seen from
  * the lit side) with REFLECTANCE and EMISSION (NULL: black), meshed at once into
@@ -260,8 +298,10 @@ int rad_restart(rad_scene_t *s);
 
 /* Shoots up to MAX_SHOTS patches, each time the one whose shot moves the most power
  * (its unshot power, plus the overshoot unless RAD_NO_OVERSHOOT; in magnitude, summed
- * over channels), and stops early once the unshot fraction is at most TOL. Returns
- * the number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
+ * over channels), and stops early once the unshot fraction is at most TOL. A call while
+ * something emits freezes the geometry (rad_add_polygon then returns RAD_ERR_STATE);
+ * while nothing emits no shot is possible, and the scene stays open. Returns the
+ * number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
@@ -381,7 +421,7 @@ rad_ff_t rad_ff_from_code(uint16_t code);
 /* Converts a Q16.16 value (as int32) to rad_real_t: identity in the fixed build. */
 rad_real_t rad_real_from_q16(int32_t q);
 
-/* A short English description of an RAD_ERR_* code. */
+/* A short English description of an RAD_ERR_* code, naming what to check. */
 const char *rad_strerror(int err);
 
 /* ---- gathering: the light arriving at any point --------------------------------- */

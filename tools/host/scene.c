@@ -797,8 +797,6 @@ struct sc_gatherer {
     struct sc_solver *h;
     rad_gather_t g;
     void *work;
-    rad_rgb_t amb; /* the ambient term when made: a sum over every patch, once */
-    int has_amb;
 };
 
 sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
@@ -811,7 +809,6 @@ sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
     }
     bytes = sphere ? RAD_GATHER_SH_BYTES(res) : RAD_GATHER_BYTES(res);
     q->h = h;
-    q->has_amb = !h->mixed && rad_ambient(&h->s, &q->amb) >= 0;
     q->work = malloc(bytes);
     if (!q->work || rad_gather_init(&q->g, (unsigned)res, sphere ? RAD_GATHER_SH : 0u, q->work, bytes) < 0) {
         sc_gatherer_free(q);
@@ -826,8 +823,8 @@ void sc_gatherer_free(sc_gatherer *q)
     free(q);
 }
 
-/* P in the core's frame; -1 outside it, else 1 when the ambient term is to be passed
- * (none once mixed: baked in). */
+/* P in the core's frame; -1 outside it, else the flags: the ambient term unless mixed
+ * (then it is baked in). */
 static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3_t *c)
 {
     struct sc_solver *h = q->h;
@@ -835,7 +832,7 @@ static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3
     for (a = 0; a < 3; a++)
         if (!fits_core((p[a] - h->off[a]) * h->scale)) return -1;
     to_core(h, p, c);
-    return ambient && q->has_amb && !h->mixed;
+    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
 }
 
 int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
@@ -843,10 +840,10 @@ int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient,
     rad_vec3_t c, nc;
     rad_rgb_t out;
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    int use = gather_frame(q, p, ambient, &c);
-    if (use < 0 || !(len > 0.0) || !isfinite(len)) return -1;
+    int flags = gather_frame(q, p, ambient, &c);
+    if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
     nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, RAD_INDEX_NONE, use ? &q->amb : NULL, &out) < 0) return -1;
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, RAD_INDEX_NONE, flags, &out) < 0) return -1;
     rgb_out(q->h, &out, rgb);
     return 0;
 }
@@ -855,8 +852,8 @@ int sc_gather_sh(sc_gatherer *q, const double p[3], int ambient, double sh[9][3]
 {
     rad_vec3_t c;
     rad_rgb_t out[9];
-    int k, use = gather_frame(q, p, ambient, &c);
-    if (use < 0 || rad_gather_sh(&q->h->s, &q->g, &c, RAD_INDEX_NONE, use ? &q->amb : NULL, out) < 0) return -1;
+    int k, flags = gather_frame(q, p, ambient, &c);
+    if (flags < 0 || rad_gather_sh(&q->h->s, &q->g, &c, RAD_INDEX_NONE, flags, out) < 0) return -1;
     for (k = 0; k < 9; k++) rgb_out(q->h, &out[k], sh[k]);
     return 0;
 }

@@ -130,8 +130,7 @@ int sc_mix(sc_solver *s, sc_solution *const *groups, const double (*intensity)[3
 typedef struct sc_gatherer sc_gatherer;
 /* A gatherer of cube resolution RES (even, 8..RAD_MAX_RES) over S's solution, for
  * hemispheres (SPHERE 0: sc_gather) or spheres (1: sc_gather_sh); one per thread (they
- * only read S). It keeps S's ambient term as it is now: make a new one after solving
- * further. NULL on a bad RES or out of memory. S must have been solved. */
+ * only read S). NULL on a bad RES or out of memory. S must have been solved. */
 sc_gatherer *sc_gatherer_new(sc_solver *s, int res, int sphere);
 void sc_gatherer_free(sc_gatherer *g);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
