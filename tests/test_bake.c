@@ -645,7 +645,7 @@ static int cli(const char *args, char **err)
 }
 
 /* The options: a lightmap and probes written; a size of 0 a usage error, an atlas too
- * small for the charts an error naming them, and then no lightmap file; the lightmap
+ * small for the charts an error naming them before the solve, and then no file; the lightmap
  * baked on 3 threads is the same file as on one. */
 static void test_cli_bake(void **state)
 {
@@ -663,6 +663,7 @@ static void test_cli_bake(void **state)
     CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
     CHECK_CONTAINS(err, "cannot fit", "the message");
     CHECK_INT_EQ(stat(lm, &st), -1, "no lightmap file after the error");
+    CHECK_INT_EQ(stat(tmp_path("cli.png"), &st), -1, "no image either: the atlas is laid out before the solve");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --probes 2,2,2 --probes-out %s", lm, pj);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake (%s)", err ? err : "");

@@ -35,6 +35,13 @@ static int pr_gather(void *ctx, const double p[3], double sh[9][3])
     return sc_gather_sh(c->g, p, c->ambient, sh);
 }
 
+struct bake_state {
+    sc_poly *polys;
+    int n;
+    lm_atlas atlas;
+    int has_atlas;
+};
+
 char *probes_output(const char *scene)
 {
     char *png = default_output(scene), *out = png ? malloc(strlen(png) + 9) : NULL;
@@ -82,28 +89,20 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
     return rc;
 }
 
-static int bake_lightmap(run_t *r, const sc_poly *polys, int n, int res)
+static int bake_lightmap(run_t *r, lm_atlas *a, int res)
 {
     const opts_t *o = r->o;
-    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0};
-    lm_atlas a;
     char err[1024];
     double t0 = host_now();
     long gathers = 0;
-    int rc;
-    if (lm_build(&a, polys, n, &lo, err, sizeof err) < 0) {
-        fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
-        return -1;
-    }
-    rc = gather_texels(r, &a, o->threads > 1 ? o->threads : 1, res, &gathers);
-    if (rc == 0) rc = lm_dilate(&a);
+    int rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
+    if (rc == 0) rc = lm_dilate(a);
     if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
-    else rc = lm_write(&a, o->lightmap, o->exposure, err, sizeof err);
+    else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     else if (o->stats)
-        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d on %d threads, %.2f s\n", a.size,
-               a.size, a.ncharts, a.texel, gathers, res, o->threads > 1 ? o->threads : 1, host_now() - t0);
-    lm_free(&a);
+        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d on %d threads, %.2f s\n", a->size,
+               a->size, a->ncharts, a->texel, gathers, res, o->threads > 1 ? o->threads : 1, host_now() - t0);
     return rc;
 }
 
@@ -122,25 +121,49 @@ static int bake_probes(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
     return rc;
 }
 
-int bake_step(run_t *r)
+int bake_prepare(run_t *r)
 {
     const opts_t *o = r->o;
-    int n = 0, rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0, NULL, 0, 1, 0};
-    sc_poly *polys;
+    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0};
+    char err[1024];
+    struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;
-    polys = obj_to_polys(&r->sc, &n, NULL, NULL); /* warned of when built */
-    if (!polys) {
+    b = r->bake = calloc(1, sizeof *b);
+    if (b) b->polys = obj_to_polys(&r->sc, &b->n, NULL, NULL); /* warned of when built */
+    if (!b || !b->polys) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    if (o->lightmap) rc = bake_lightmap(r, polys, n, res);
+    if (o->lightmap && lm_build(&b->atlas, b->polys, b->n, &lo, err, sizeof err) < 0) {
+        fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
+        return -1;
+    }
+    b->has_atlas = o->lightmap != NULL;
+    return 0;
+}
+
+int bake_step(run_t *r)
+{
+    const opts_t *o = r->o;
+    struct bake_state *b = r->bake;
+    int rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
+    gather_ctx c = {NULL, r->ambient, 0, NULL, 0, 1, 0};
+    if (!b) return 0;
+    if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);
     if (rc == 0 && (o->probes || o->probe_file)) {
         c.g = sc_gatherer_new(r->s, res, 1);
-        rc = c.g ? bake_probes(r, polys, n, &c) : -1;
+        rc = c.g ? bake_probes(r, b->polys, b->n, &c) : -1;
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
-    free(polys);
     return rc;
+}
+
+void bake_free(run_t *r)
+{
+    if (!r->bake) return;
+    if (r->bake->has_atlas) lm_free(&r->bake->atlas);
+    free(r->bake->polys);
+    free(r->bake);
+    r->bake = NULL;
 }

@@ -113,6 +113,7 @@ typedef struct {
     double t0, t_load, t_mesh, t_rows, t_solve;
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
+    struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */
 } run_t;
 
 /* ---- options.c ---- */
@@ -175,9 +176,13 @@ int write_ply(const char *path, sc_solver *s, int ambient, double exposure, cons
 double emitted_share_landing(run_t *r);
 
 /* ---- bake.c ---- */
+/* Before the solve: the lightmap's atlas laid out (an atlas that cannot fit fails
+ * now, not after the solve). 0, or -1 after one line on stderr. Nothing asked: 0. */
+int bake_prepare(run_t *r);
 /* --lightmap and --probes / --probe-file: baked from the solution (after the views);
  * 0, or -1 after one line on stderr. Nothing asked: 0. */
 int bake_step(run_t *r);
+void bake_free(run_t *r);
 /* The scene's name + .probes.json (malloc'd), as default_output. */
 char *probes_output(const char *scene);
 

@@ -497,6 +497,7 @@ static void free_run(run_t *r)
     free(r->group_of);
     free(r->ot.img);
     free(r->ot.rgb8);
+    bake_free(r);
     if (r->s) sc_destroy(r->s);
     if (r->have_scene) obj_free(&r->sc);
     free_opts(r->o);
@@ -542,6 +543,7 @@ int main(int argc, char **argv)
     }
     if (rc == 0) check_group_outputs(&o);
     if (rc == 0) rc = build_step(&r);
+    if (rc == 0) rc = bake_prepare(&r);
     if (rc == 0) rc = solve_step(&r);
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
