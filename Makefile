@@ -37,12 +37,15 @@ TOOLFLAGS := -D_POSIX_C_SOURCE=200809L -Itools
 
 PNG_CFLAGS := $(shell pkg-config --cflags libpng 2>/dev/null)
 PNG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
+# stb_image (Debian libstb-dev) for textures: the system's library, see tools/formats/texture.c.
+STB_LIBS   := $(shell pkg-config --libs stb 2>/dev/null || echo -lstb)
 CMOCKA_LIBS := -lcmocka
 
 LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
-TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c
+TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c \
+              tools/host/tex_render.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
               tools/host/clock.c tools/bench/plot.c
@@ -89,13 +92,13 @@ $(LIBTOOLS): $(TOOL_OBJS)
 # rad_cli is one source set built twice: rad_cli (fixed) and rad_cli_float (the twin).
 CLI_SRCS   := $(wildcard tools/cli/*.c)
 $(BUILDDIR)/rad_cli: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/%.o) $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 $(BUILDDIR)/rad_cli_float: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/float/%.o) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
 # The benchmark: both builds of the core side by side (see tools/bench/rad_bench.c).
 $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
 bench: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
@@ -106,7 +109,7 @@ bench: $(BUILDDIR)/rad_bench
 # (-DRAD_FLOAT=1, tests/float/*.o) is linked into the fixed one.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 $(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib -DRAD_FLOAT=1 -c $< -o $@
