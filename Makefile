@@ -47,8 +47,8 @@ LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c \
               tools/host/tex_render.c
 # Host helpers built once.
-TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) tools/host/obj_polys.c tools/host/clock.c \
-              tools/bench/plot.c
+TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
+              tools/host/clock.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)

@@ -7,7 +7,8 @@
  * Files: options.c (the option table, --help from it), views.c (the --views and
  * --animate parsers, on a buffer), rad_cli.c (main: load, build, solve, outputs),
  * solve.c (the solves and their progress), outputs.c (images, PLY, CSV, output and
- * camera checks), balance.c (where the emitted light goes).
+ * camera checks), balance.c (where the emitted light goes), bake.c (lightmaps and
+ * probes from the solution, tools/bake/).
  */
 #ifndef RAD_CLI_H
 #define RAD_CLI_H
@@ -84,6 +85,10 @@ typedef struct {
     int nframes;
     char *views_text, *frames_text; /* the files' contents: views' names point into them */
     char *default_out;              /* scene name + .png, when no -o */
+    /* bake.c: lightmap and probes */
+    const char *lightmap, *probe_file, *probes_out;
+    char *probes_default;           /* scene name + .probes.json, when no --probes-out */
+    int lightmap_size, gather_res, probe_dims[3], probes;
 } opts_t;
 
 typedef struct {
@@ -116,6 +121,7 @@ typedef struct {
     double t0, t_load, t_mesh, t_rows, t_solve;
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
+    struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */
 } run_t;
 
 /* ---- options.c ---- */
@@ -176,6 +182,17 @@ int write_ply(const char *path, sc_solver *s, int ambient, double exposure, cons
  * faces of elements (1 in a closed scene), from up to 64 hemi-cubes at res 128; -1 when
  * nothing emits. Renders hemi-cubes: call it after the solve's statistics are kept. */
 double emitted_share_landing(run_t *r);
+
+/* ---- bake.c ---- */
+/* Before the solve: the lightmap's atlas laid out (an atlas that cannot fit fails
+ * now, not after the solve). 0, or -1 after one line on stderr. Nothing asked: 0. */
+int bake_prepare(run_t *r);
+/* --lightmap and --probes / --probe-file: baked from the solution (after the views);
+ * 0, or -1 after one line on stderr. Nothing asked: 0. */
+int bake_step(run_t *r);
+void bake_free(run_t *r);
+/* The scene's name + .probes.json (malloc'd), as default_output. */
+char *probes_output(const char *scene);
 
 /* ---- solve.c ---- */
 /* The solve, by shooting or from the rows (computed, loaded or saved), each light group

@@ -2,9 +2,12 @@
  */
 #include "cli.h"
 
+#include "bake/probes.h"
+
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 typedef void (*opt_fn)(opts_t *o, const char *opt, const char *val);
 
@@ -190,6 +193,33 @@ static void opt_list(opts_t *o, const char *opt, const char *val) { (void)opt, (
 static void opt_stats(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->stats = 1; }
 static void opt_quiet(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->quiet = 1; }
 
+static void opt_lightmap(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (strcasecmp(ext_of(val), ".png") && strcasecmp(ext_of(val), ".ppm") && strcasecmp(ext_of(val), ".hdr"))
+        die_usage("--lightmap wants a .png, .ppm or .hdr file", val);
+    o->lightmap = val;
+}
+
+static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
+
+static void opt_gather_res(opts_t *o, const char *opt, const char *val)
+{
+    o->gather_res = (int)parse_int(opt, val, 8, 1024);
+    if (o->gather_res % 2) die_usage("--gather-res must be even", val);
+}
+
+static void opt_probes(opts_t *o, const char *opt, const char *val)
+{
+    char err[160];
+    (void)opt;
+    if (pr_parse_grid(val, o->probe_dims, err, sizeof err) < 0) die_usage(err, NULL);
+    o->probes = 1;
+}
+
+static void opt_probe_file(opts_t *o, const char *opt, const char *val) { (void)opt, o->probe_file = val; }
+static void opt_probes_out(opts_t *o, const char *opt, const char *val) { (void)opt, o->probes_out = val; }
+
 /* ---- the table ------------------------------------------------------------------ */
 
 #define SECTION(title) {NULL, NULL, NULL, title, NULL}
@@ -220,7 +250,7 @@ static const option_t options[] = {
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1)", opt_threads},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels too", opt_threads},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
@@ -248,6 +278,14 @@ static const option_t options[] = {
      "'EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]' is a frame,\n"
      "written as -o's name + _0000, _0001, ... (PNG or PPM)", opt_animate},
     SECTION("information:"),
+    SECTION("baking (tools/bake):"),
+    {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
+     opt_lightmap},
+    {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
+    {"--gather-res", NULL, "N", "a texel's or probe's gather cube resolution, even, 8..1024 (32)", opt_gather_res},
+    {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
+    {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
+    {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
     {"--list-materials", NULL, NULL, "print materials with Kd, Ke and area, then exit", opt_list},
     {"--stats", NULL, NULL, "print counts, times, memory and the exposure used", opt_stats},
     {"--quiet", NULL, NULL, "no progress or warnings", opt_quiet},
@@ -366,6 +404,7 @@ void free_opts(opts_t *o)
     frames_free(o->frames, o->nframes);
     free(o->views_text);
     free(o->default_out);
+    free(o->probes_default);
     free(o->frames_text);
     free(o->emit);
     free(o->groups);

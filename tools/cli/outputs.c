@@ -81,6 +81,8 @@ void check_outputs(const opts_t *o)
     if (o->csv) check_output(o->csv, 0);
     if (o->gltf) check_output(o->gltf, 0);
     if (o->save_ff) check_output(o->save_ff, 0);
+    if (o->lightmap) check_output(o->lightmap, 0);
+    if (o->probes_out) check_output(o->probes_out, 0);
 }
 
 void check_group_outputs(const opts_t *o)

@@ -524,6 +524,7 @@ static void free_run(run_t *r)
     free(r->group_of);
     free(r->ot.img);
     free(r->ot.rgb8);
+    bake_free(r);
     if (r->s) sc_destroy(r->s);
     free(r->polys);
     for (g = 0; r->maps && g < r->sc.nmaterials; g++) tex_free(&r->maps[g]);
@@ -543,6 +544,10 @@ static int views_step(opts_t *o)
             return -1;
         }
         add_view(o, NULL, o->default_out);
+    }
+    if ((o->probes || o->probe_file) && !o->probes_out && !(o->probes_out = o->probes_default = probes_output(o->scene))) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
     }
     if (!o->list) check_outputs(o);
     return 0;
@@ -568,9 +573,11 @@ int main(int argc, char **argv)
     }
     if (rc == 0) check_group_outputs(&o);
     if (rc == 0) rc = build_step(&r);
+    if (rc == 0) rc = bake_prepare(&r);
     if (rc == 0) rc = solve_step(&r);
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
+    if (rc == 0) rc = bake_step(&r);
     if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
     if (rc == 0) rc = verdict(&r);

@@ -40,6 +40,12 @@
 #define sc_solution_free scf_solution_free
 #define sc_mix scf_mix
 #define sc_solve_parallel scf_solve_parallel
+#define sc_gatherer scf_gatherer
+#define sc_gatherer_new scf_gatherer_new
+#define sc_gatherer_free scf_gatherer_free
+#define sc_gather scf_gather
+#define sc_gather_sh scf_gather_sh
+#define sc_gatherer_saturations scf_gatherer_saturations
 #define sc_corner_light scf_corner_light
 #define sc_export_gltf scf_export_gltf
 #define sc_render_textured scf_render_textured

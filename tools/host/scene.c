@@ -962,3 +962,72 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
     free(out);
     return 0;
 }
+
+/* ---- gathering (rad_gather, rad_gather_sh): lightmap texels and probes ------------- */
+
+struct sc_gatherer {
+    struct sc_solver *h;
+    rad_gather_t g;
+    void *work;
+};
+
+sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
+{
+    struct sc_gatherer *q = calloc(1, sizeof *q);
+    size_t bytes;
+    if (!q || res < 8 || res > RAD_MAX_RES || (res & 1)) {
+        free(q);
+        return NULL;
+    }
+    bytes = sphere ? RAD_GATHER_SH_BYTES(res) : RAD_GATHER_BYTES(res);
+    q->h = h;
+    q->work = malloc(bytes);
+    if (!q->work || rad_gather_init(&q->g, (unsigned)res, sphere ? RAD_GATHER_SH : 0u, q->work, bytes) < 0) {
+        sc_gatherer_free(q);
+        return NULL;
+    }
+    return q;
+}
+
+void sc_gatherer_free(sc_gatherer *q)
+{
+    if (q) free(q->work);
+    free(q);
+}
+
+/* P in the core's frame; -1 outside it, else the flags: the ambient term unless mixed
+ * (then it is baked in). */
+static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3_t *c)
+{
+    struct sc_solver *h = q->h;
+    int a;
+    for (a = 0; a < 3; a++)
+        if (!fits_core((p[a] - h->off[a]) * h->scale)) return -1;
+    to_core(h, p, c);
+    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
+}
+
+int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
+{
+    rad_vec3_t c, nc;
+    rad_rgb_t out;
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    int flags = gather_frame(q, p, ambient, &c);
+    if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
+    nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, RAD_INDEX_NONE, flags, &out) < 0) return -1;
+    rgb_out(q->h, &out, rgb);
+    return 0;
+}
+
+int sc_gather_sh(sc_gatherer *q, const double p[3], int ambient, double sh[9][3])
+{
+    rad_vec3_t c;
+    rad_rgb_t out[9];
+    int k, flags = gather_frame(q, p, ambient, &c);
+    if (flags < 0 || rad_gather_sh(&q->h->s, &q->g, &c, RAD_INDEX_NONE, flags, out) < 0) return -1;
+    for (k = 0; k < 9; k++) rgb_out(q->h, &out[k], sh[k]);
+    return 0;
+}
+
+unsigned long sc_gatherer_saturations(sc_gatherer *q) { return q->g.stats.saturations; }

@@ -151,6 +151,24 @@ void sc_solution_free(sc_solution *k);
 int sc_mix(sc_solver *s, sc_solution *const *groups, const double (*intensity)[3], int n,
             char *err, size_t errlen);
 
+/* ---- gathering: the light arriving at any point (rad_gather, rad_gather_sh) ---- */
+typedef struct sc_gatherer sc_gatherer;
+/* A gatherer of cube resolution RES (even, 8..RAD_MAX_RES) over S's solution, for
+ * hemispheres (SPHERE 0: sc_gather) or spheres (1: sc_gather_sh); one per thread (they
+ * only read S). NULL on a bad RES or out of memory. S must have been solved. */
+sc_gatherer *sc_gatherer_new(sc_solver *s, int res, int sphere);
+void sc_gatherer_free(sc_gatherer *g);
+/* The radiosity arriving at P (caller units) on a surface of normal N (any length),
+ * with the ambient term if AMBIENT, in caller units: what an element of reflectance
+ * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the
+ * surface. 0, or -1 (P outside the scene's frame, N zero, a sphere gatherer). */
+int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+/* The radiosity seen from P in every direction, projected on the nine real SH of bands
+ * 0..2 (rad_gather_sh's order and scale), caller units. 0 or -1 as sc_gather. */
+int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]);
+/* Values past the core's range met by this gatherer (saturated, counted). */
+unsigned long sc_gatherer_saturations(sc_gatherer *g);
+
 #include "host/scene_float.h"
 
 #endif

@@ -9,6 +9,12 @@
 #ifndef RAD_HOST_FLOAT_NAMES
 typedef struct scf_solver scf_solver;
 typedef struct scf_solution scf_solution;
+typedef struct scf_gatherer scf_gatherer;scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
+void scf_gatherer_free(scf_gatherer *g);
+int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+int scf_gather_sh(scf_gatherer *g, const double p[3], int ambient, double sh[9][3]);
+unsigned long scf_gatherer_saturations(scf_gatherer *g);
+
 int scf_solve_parallel(scf_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress,
     void *ctx);
 
@@ -50,6 +56,11 @@ scf_solution *scf_keep(scf_solver *s, int ambient);
 void scf_solution_free(scf_solution *k);
 int scf_mix(scf_solver *s, scf_solution *const *groups, const double (*intensity)[3], int n,
     char *err, size_t errlen);
+scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
+void scf_gatherer_free(scf_gatherer *g);
+int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+int scf_gather_sh(scf_gatherer *g, const double p[3], int ambient, double sh[9][3]);
+unsigned long scf_gatherer_saturations(scf_gatherer *g);
 
 int scf_solve_parallel(scf_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress,
     void *ctx);

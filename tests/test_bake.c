@@ -1,0 +1,707 @@
+/* Tests for what game tools bake: tools/formats/hdr.c (Radiance RGBE images),
+ * tools/bake/lightmap.c (charts, atlas, texels, dilation) and tools/bake/probes.c. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <cmocka.h>
+
+#include "check.h"
+#include "tmpdir.h"
+#include "bake/lightmap.h"
+#include "bake/probes.h"
+#include "formats/file_io.h"
+#include "formats/hdr.h"
+#include "host/scene.h"
+#include "reference/reference.h"
+
+/* stb_image's own HDR reader, an independent decoder of what hdr_write writes (static:
+ * its unused functions are reported at the end of the file, so that warning stays off). */
+#if defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wmissing-prototypes"
+#pragma GCC diagnostic ignored "-Wundef"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#endif
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_HDR
+#include <stb/stb_image.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+TMPDIR_GROUP("bake")
+
+/* ---- hdr ---------------------------------------------------------------------------- */
+
+/* A known image: channels m 2^e over e in -40..40 (a pixel's channels apart by up to
+ * 2^12, so the small ones test the shared exponent), zeros, runs of one value (the
+ * RLE's runs), and largest channels just below a power of two (m 256 rounding to 256). */
+static float *hdr_known(int w, int h)
+{
+    float *p = malloc((size_t)w * h * 3 * sizeof *p);
+    uint32_t x = 12345u;
+    int i, k;
+    for (i = 0; p && i < w * h; i++) {
+        for (k = 0; k < 3; k++) {
+            x = x * 1664525u + 1013904223u;
+            p[3 * i + k] = (float)ldexp(0.5 + (x >> 8) / 33554432.0, (int)((x >> 4) % 81) - 40 - 6 * k);
+        }
+        if (i % 7 == 0) p[3 * i + 1] = 0.0f;
+        if (i % 11 == 0) p[3 * i] = p[3 * i + 1] = p[3 * i + 2] = 0.0f;
+        if (i % 13 == 0) p[3 * i] = (float)ldexp(1.0 - 1.0 / 1024.0, i % 9);
+        if (i / w == 1) p[3 * i] = p[3 * i + 1] = p[3 * i + 2] = 0.25f; /* a run */
+    }
+    return p;
+}
+
+/* Every channel of every pixel within 2^-8 of the pixel's largest channel as read
+ * back (hdr.h derives it: half a step of 2^(e-8), the largest at least 128 steps). */
+static double hdr_check_close(const float *want, const float *got, int w, int h)
+{
+    double worst = 0.0;
+    int i, k;
+    for (i = 0; i < w * h; i++) {
+        double m = fmax(got[3 * i], fmax(got[3 * i + 1], got[3 * i + 2]));
+        for (k = 0; k < 3; k++) {
+            double d = fabs((double)got[3 * i + k] - want[3 * i + k]);
+            CHECK_LE(d, ldexp(m, -8), "pixel %d channel %d: |read - written| against 2^-8 of the largest channel", i, k);
+            if (m > 0.0 && d / m > worst) worst = d / m;
+        }
+    }
+    return worst;
+}
+
+static void hdr_round_trip(int w, int h)
+{
+    const char *path = tmp_path("rt.hdr");
+    char err[256] = "";
+    float *img = hdr_known(w, h), *stb;
+    hdr_image back;
+    int sw = 0, sh = 0, sn = 0;
+    assert_non_null(img);
+    CHECK_INT_EQ(hdr_write(path, img, w, h, err, sizeof err), 0, "hdr_write %dx%d (%s)", w, h, err);
+    CHECK_INT_EQ(hdr_read(path, &back, err, sizeof err), 0, "hdr_read %dx%d (%s)", w, h, err);
+    CHECK_INT_EQ(back.w, w, "width read back");
+    CHECK_INT_EQ(back.h, h, "height read back");
+    printf("hdr %dx%d: worst error %.6f of the pixel's largest channel (bound 2^-8 = %.6f)\n", w, h,
+           hdr_check_close(img, back.rgb, w, h), ldexp(1.0, -8));
+    /* stb_image decodes the same file to the same floats: the format is Radiance's. */
+    stb = stbi_loadf(path, &sw, &sh, &sn, 3);
+    assert_non_null(stb);
+    CHECK_INT_EQ(sw * 100000 + sh, w * 100000 + h, "stb_image's size (w * 100000 + h)");
+    assert_memory_equal(stb, back.rgb, (size_t)w * h * 3 * sizeof *stb);
+    stbi_image_free(stb);
+    hdr_free(&back);
+    free(img);
+}
+
+/* Widths 8..32767 are run-length encoded, others flat: both, and one of a single pixel. */
+static void test_hdr_round_trip(void **state)
+{
+    (void)state;
+    hdr_round_trip(37, 23);
+    hdr_round_trip(300, 4);
+    hdr_round_trip(5, 9);
+    hdr_round_trip(1, 1);
+}
+
+static void test_hdr_rle_smaller(void **state)
+{
+    const char *path = tmp_path("flat.hdr");
+    char err[256] = "";
+    float *img = calloc(512 * 64 * 3, sizeof *img);
+    struct stat st;
+    (void)state;
+    assert_non_null(img);
+    img[3 * 700] = 3.0f;
+    CHECK_INT_EQ(hdr_write(path, img, 512, 64, err, sizeof err), 0, "hdr_write (%s)", err);
+    CHECK_INT_EQ(stat(path, &st), 0, "stat of the written file");
+    /* A black row is 4 channels of 4 runs of 127/128 bytes: 2 bytes each, 4 bytes of
+     * row header: 36 bytes a row against 2048 flat. */
+    CHECK_INT_LE(st.st_size, 64 * 48 + 200, "bytes of a 512 x 64 black image with one lit pixel");
+    free(img);
+}
+
+static void test_hdr_bad_input(void **state)
+{
+    const char *path = tmp_path("bad.hdr"), *junk = tmp_path("junk.hdr");
+    char err[256] = "";
+    float img[3 * 12] = {0};
+    hdr_image back;
+    FILE *fp;
+    (void)state;
+    CHECK_INT_EQ(hdr_write(path, img, 4, 3, err, sizeof err), 0, "a black image (%s)", err);
+    img[3 * 6 + 1] = -1.0f;
+    CHECK_INT_EQ(hdr_write(path, img, 4, 3, err, sizeof err), -1, "a negative value refused");
+    CHECK_CONTAINS(err, "pixel 2,1", "the message names the pixel");
+    img[3 * 6 + 1] = NAN;
+    CHECK_INT_EQ(hdr_write(path, img, 4, 3, err, sizeof err), -1, "NaN refused");
+    img[3 * 6 + 1] = INFINITY;
+    CHECK_INT_EQ(hdr_write(path, img, 4, 3, err, sizeof err), -1, "infinity refused");
+    CHECK_INT_EQ(hdr_write(path, img, 0, 3, err, sizeof err), -1, "a width of 0 refused");
+    CHECK_CONTAINS(err, "invalid image size", "the size named");
+    /* The first, good file is still there, whole. */
+    CHECK_INT_EQ(hdr_read(path, &back, err, sizeof err), 0, "the earlier file read (%s)", err);
+    CHECK_INT_EQ(back.w * 10 + back.h, 43, "its size (w * 10 + h)");
+    hdr_free(&back);
+    fp = fopen(junk, "wb");
+    assert_non_null(fp);
+    fputs("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 40\n\2\2\0\50\1", fp);
+    fclose(fp);
+    CHECK_INT_EQ(hdr_read(junk, &back, err, sizeof err), -1, "a truncated file refused");
+    CHECK_CONTAINS(err, "truncated or corrupt", "the message");
+    assert_null(back.rgb);
+    fp = fopen(junk, "wb");
+    assert_non_null(fp);
+    fputs("P6\n1 1\n255\nabc", fp);
+    fclose(fp);
+    CHECK_INT_EQ(hdr_read(junk, &back, err, sizeof err), -1, "a PPM is not an HDR file");
+    CHECK_CONTAINS(err, "not a Radiance HDR", "the message");
+}
+
+
+/* ---- lightmaps ---------------------------------------------------------------------- */
+
+/* A quad A B C D (counter-clockwise seen from its lit side) of reflectance RHO and
+ * emission EMIT (grey). */
+static sc_poly quad(const double *a, const double *b, const double *c, const double *d, double rho, double emit)
+{
+    sc_poly q;
+    int k;
+    memset(&q, 0, sizeof q);
+    q.n = 4;
+    memcpy(q.v[0], a, sizeof q.v[0]);
+    memcpy(q.v[1], b, sizeof q.v[1]);
+    memcpy(q.v[2], c, sizeof q.v[2]);
+    memcpy(q.v[3], d, sizeof q.v[3]);
+    for (k = 0; k < 3; k++) {
+        q.rho[k] = rho;
+        q.emit[k] = emit;
+    }
+    return q;
+}
+
+/* A horizontal quad at height Y over [X0, X1] x [Z0, Z1], lit side up (UP 1) or down. */
+static sc_poly flat(double x0, double x1, double z0, double z1, double y, int up, double rho, double emit)
+{
+    double a[3] = {x0, y, z0}, b[3] = {x0, y, z1}, c[3] = {x1, y, z1}, d[3] = {x1, y, z0};
+    return up ? quad(a, b, c, d, rho, emit) : quad(d, c, b, a, rho, emit);
+}
+
+typedef struct {
+    sc_solver *s;
+    sc_gatherer *g;
+    int calls;
+} baker;
+
+static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    baker *b = ctx;
+    b->calls++;
+    return sc_gather(b->g, p, n, 1, rgb);
+}
+
+/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES). */
+static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
+{
+    sc_opts o = {0, 0, 64, 0, 0, 0};
+    lm_opts lo = {size, 0.0, 0};
+    char err[256] = "";
+    baker b = {NULL, NULL, 0};
+    b.s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(b.s);
+    sc_solve(b.s, 100000, 1e-4, NULL, NULL);
+    b.g = sc_gatherer_new(b.s, res, 0);
+    assert_non_null(b.g);
+    CHECK_INT_EQ(lm_build(a, polys, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_EQ(lm_bake(a, gather_cb, &b), 0, "lm_bake");
+    CHECK_INT_EQ(sc_gatherer_saturations(b.g), 0, "values saturated in the gathers");
+    sc_gatherer_free(b.g);
+    sc_destroy(b.s);
+}
+
+/* Lambert's point-to-polygon form factor from P (normal +y) to polygon Q: Q in the
+ * frame of ref_point_ff (P at the origin, the normal along +z). */
+static double ff_up(const double *p, const sc_poly *q)
+{
+    sc_poly t = *q;
+    int k;
+    for (k = 0; k < q->n; k++) {
+        t.v[k][0] = q->v[k][0] - p[0];
+        t.v[k][1] = q->v[k][2] - p[2];
+        t.v[k][2] = q->v[k][1] - p[1];
+    }
+    return ref_point_ff(&t);
+}
+
+/* A floor of reflectance 0 under a square emitter of emission 1 (reflectance 0): the
+ * light arriving at each floor texel is the point's form factor to the emitter, which
+ * the gather at resolution 64 finds within 1% (the brief's bound; tests/test_gather.c
+ * bounds one point so). The error is the cube's aliasing of the emitter's outline, so
+ * it grows as the emitter shrinks on the cube: the floor is 4 x 4 under a 2 x 2 emitter
+ * at height 1 (its far corners at 3 units; on an 8 x 8 floor under one at height 2,
+ * the corners' texels err by 3.9%). */
+static void test_lightmap_lambert(void **state)
+{
+    sc_poly polys[2];
+    lm_atlas a;
+    double worst = 0.0;
+    int x, y, n = 0;
+    (void)state;
+    polys[0] = flat(-2, 2, -2, 2, 0, 1, 0.0, 0.0);
+    polys[1] = flat(-1, 1, -1, 1, 1, 0, 0.0, 1.0);
+    bake_scene(polys, 2, 64, 64, &a);
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3], want, rel;
+            size_t at = (size_t)y * a.size + x;
+            if (!lm_texel_point(&a, x, y, p) || a.owner[at] != a.poly_chart[0]) continue;
+            want = ff_up(p, &polys[1]);
+            rel = fabs(a.rgb[3 * at + 1] - want) / want;
+            CHECK_LE(rel, 0.01, "texel %d,%d at (%.3f, %.3f, %.3f): E %.6f against F %.6f", x, y, p[0], p[1], p[2],
+                     a.rgb[3 * at + 1], want);
+            if (rel > worst) worst = rel;
+            n++;
+        }
+    printf("lightmap under a square emitter: %d texels, worst %.4f%% from Lambert's form factor (bound 1%%)\n", n,
+           100.0 * worst);
+    CHECK_INT_GE(n, (int)pow(floor(4.0 / a.texel), 2), "floor texels compared (the floor is 4 / %g texels wide)", a.texel);
+    lm_free(&a);
+}
+
+/* A terrain of TN x TN cells over [-4, 4]^2, two triangles a cell, heights of gentle
+ * slopes (up to 0.05 / 1.1 = 2.6 degrees), under a 16 x 16 emitter at height 3: every
+ * triangle its own chart. POLYS holds 2 TN^2 + 1. Returns the count. */
+#define TN 8
+static int terrain(sc_poly *polys)
+{
+    double h[TN + 1][TN + 1][3];
+    int i, j, n = 0, k;
+    for (i = 0; i <= TN; i++)
+        for (j = 0; j <= TN; j++) {
+            double x = -4.0 + 8.0 * i / TN, z = -4.0 + 8.0 * j / TN;
+            h[i][j][0] = x;
+            h[i][j][1] = 0.05 * sin(0.9 * x) * cos(0.7 * z);
+            h[i][j][2] = z;
+        }
+    for (i = 0; i < TN; i++)
+        for (j = 0; j < TN; j++) {
+            const double *a = h[i][j], *b = h[i][j + 1], *c = h[i + 1][j + 1], *d = h[i + 1][j];
+            sc_poly t[2];
+            memset(t, 0, sizeof t);
+            t[0].n = t[1].n = 3;
+            memcpy(t[0].v[0], a, sizeof t[0].v[0]);
+            memcpy(t[0].v[1], b, sizeof t[0].v[0]);
+            memcpy(t[0].v[2], c, sizeof t[0].v[0]);
+            memcpy(t[1].v[0], a, sizeof t[0].v[0]);
+            memcpy(t[1].v[1], c, sizeof t[0].v[0]);
+            memcpy(t[1].v[2], d, sizeof t[0].v[0]);
+            for (k = 0; k < 3; k++) t[0].rho[k] = t[1].rho[k] = 0.5;
+            polys[n++] = t[0];
+            polys[n++] = t[1];
+        }
+    polys[n++] = flat(-8, 8, -8, 8, 3, 0, 0.0, 1.0);
+    return n;
+}
+
+/* Edge K of polygon P is edge L of polygon Q (the same two vertices). */
+static int shared_edge(const sc_poly *p, int k, const sc_poly *q, int *l)
+{
+    const double *a = p->v[k], *b = p->v[(k + 1) % p->n];
+    for (*l = 0; *l < q->n; (*l)++) {
+        const double *c = q->v[*l], *d = q->v[(*l + 1) % q->n];
+        if (!memcmp(a, d, sizeof p->v[0]) && !memcmp(b, c, sizeof p->v[0])) return 1;
+    }
+    return 0;
+}
+
+/* No seams: along every edge two charts share, bilinear lookups from both sides (at
+ * nine points of the edge) agree within 2% (the brief's bound). The light arriving is
+ * continuous across a fold of a few degrees, so a difference is the atlas's: a texel
+ * of padding or of another chart read, a wrong UV, or the interpolation of the light's
+ * gradient across the texel at the edge, which each side takes from its own inside:
+ * the terrain's texels span 0.80..0.90, and under a smaller emitter
+ * (12 x 12), where it falls 19% a unit near the edge, the 0.4-unit texels of a 128
+ * atlas differ by 2.9% (by 4.2% when only the texels that the chart touches are
+ * gathered and their ring is dilated). A gather resolution of 32 is enough here: 64
+ * changes the worst by 0.05 points. */
+static void test_lightmap_no_seams(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_atlas a;
+    int n = terrain(polys), p, q, k, l, t, edges = 0;
+    double worst = 0.0, lo = HUGE_VAL, hi = 0.0;
+    (void)state;
+    bake_scene(polys, n, 128, 32, &a);
+    CHECK_INT_EQ(a.ncharts, n, "charts of the terrain: every triangle");
+    for (p = 0; p < n; p++)
+        for (q = 0; q < n; q++)
+            for (k = 0; k < polys[p].n; k++) {
+                if (p == q || a.poly_chart[p] == a.poly_chart[q] || !shared_edge(&polys[p], k, &polys[q], &l)) continue;
+                edges++;
+                for (t = 1; t <= 9; t++) {
+                    double w = t / 10.0, x[3], uvp[2], uvq[2], cp[3], cq[3], rel;
+                    int c;
+                    for (c = 0; c < 3; c++) x[c] = polys[p].v[k][c] + w * (polys[p].v[(k + 1) % polys[p].n][c] - polys[p].v[k][c]);
+                    lm_uv(&a, p, x, uvp);
+                    lm_uv(&a, q, x, uvq);
+                    lm_lookup(&a, uvp, cp);
+                    lm_lookup(&a, uvq, cq);
+                    rel = fabs(cp[1] - cq[1]) / fmax(cp[1], cq[1]);
+                    CHECK_LE(rel, 0.02, "polygons %d and %d at (%.3f, %.3f, %.3f): %.6f against %.6f", p, q, x[0], x[1],
+                             x[2], cp[1], cq[1]);
+                    if (rel > worst) worst = rel;
+                }
+            }
+    for (p = 0; p < a.size * a.size; p++)
+        if (!isnan(a.sample[2 * p]) && a.owner[p] < n - 1) {
+            lo = fmin(lo, a.rgb[3 * p + 1]);
+            hi = fmax(hi, a.rgb[3 * p + 1]);
+        }
+    printf("lightmap seams: terrain texels %.4f..%.4f; %d shared edges (each seen from both sides) of %d charts, worst %.3f%% (bound 2%%)\n",
+           lo, hi, edges, a.ncharts, 100.0 * worst);
+    CHECK_INT_EQ(edges, 2 * (3 * TN * TN - 2 * TN), "shared edges found, from both sides");
+    lm_free(&a);
+}
+
+/* The texel of the atlas holding world point X of polygon P. */
+static size_t texel_at(const lm_atlas *a, int p, const double *x)
+{
+    double uv[2];
+    lm_uv(a, p, x, uv);
+    return (size_t)floor(uv[1]) * a->size + (size_t)floor(uv[0]);
+}
+
+/* No leaks: a room's floor meets a wall at x = 0, and behind the wall a bright emitter
+ * (10, against 1 of the room's light) faces it. The floor's light at the wall (a
+ * bilinear lookup, which reads the texels there and their ring) is not brighter than
+ * one texel further in, beyond the gathers' aliasing (up to 0.84% in the Lambert test
+ * above, either side: 2%): the samples stay inside the room, off the wall's plane. A
+ * sample on it sees the wall edge-on and past it the bright emitter: with the samples
+ * at the nearest point of the floor, not moved in, the wall's texels measured 9 times
+ * the next ones in. The room's light is over its middle, so the light falls off
+ * towards the wall (but for the gathers' aliasing: 1.6% brighter at one point). */
+static void test_lightmap_no_leaks(void **state)
+{
+    double w0[3] = {0, 0, 0}, w1[3] = {0, 0, 4}, w2[3] = {0, 3, 4}, w3[3] = {0, 3, 0};
+    double e0[3] = {-2, 0, 0}, e1[3] = {-2, 0, 4}, e2[3] = {-2, 3, 4}, e3[3] = {-2, 3, 0};
+    sc_poly polys[4];
+    lm_atlas a;
+    int i, n = 0;
+    double worst = -HUGE_VAL;
+    (void)state;
+    polys[0] = flat(0, 4, 0, 4, 0, 1, 0.5, 0.0);
+    polys[1] = quad(w0, w3, w2, w1, 0.5, 0.0); /* faces +x, into the room */
+    polys[2] = quad(e0, e3, e2, e1, 0.0, 10.0); /* faces +x, at the wall's back */
+    polys[3] = flat(1, 3, 1, 3, 3, 0, 0.0, 1.0);
+    bake_scene(polys, 4, 128, 64, &a);
+    for (i = 0; i < 40; i++) {
+        double z = 0.05 + 3.9 * i / 39.0, x0[3] = {1e-3 * a.texel, 0, z}, x1[3] = {1.001 * a.texel, 0, z};
+        double uv0[2], uv1[2], c0[3], c1[3];
+        lm_uv(&a, 0, x0, uv0);
+        lm_uv(&a, 0, x1, uv1);
+        lm_lookup(&a, uv0, c0);
+        lm_lookup(&a, uv1, c1);
+        CHECK_LE(c0[1], 1.02 * c1[1], "floor at the wall, z = %.3f (bilinear), against 1.02 x one texel further in", z);
+        if (c0[1] / c1[1] > worst) worst = c0[1] / c1[1];
+        n++;
+    }
+    printf("lightmap leaks: %d floor points at the wall, at most %.4f of the next one in (bound 1.02)\n", n, worst);
+    lm_free(&a);
+}
+
+/* Packing: the charts' rectangles lie inside the atlas and PADDING apart; every
+ * polygon's vertices inside its rectangle's ring; every point of a polygon (a lattice
+ * of 55 points inside each triangle) in a covered texel of its own chart. */
+static void test_lightmap_packing(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_opts o = {96, 0.0, 0};
+    lm_atlas a;
+    char err[256] = "";
+    int n = terrain(polys), i, j, k, points = 0;
+    (void)state;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    for (i = 0; i < a.ncharts; i++) {
+        const lm_chart *c = &a.charts[i];
+        CHECK_THAT(c->x >= 0 && c->y >= 0 && c->x + c->w <= a.size && c->y + c->h <= a.size,
+                   "chart %d's rectangle %d,%d %dx%d inside the atlas of %d", i, c->x, c->y, c->w, c->h, a.size);
+        for (j = 0; j < i; j++) {
+            const lm_chart *d = &a.charts[j];
+            int apart = c->x >= d->x + d->w + a.padding || d->x >= c->x + c->w + a.padding ||
+                        c->y >= d->y + d->h + a.padding || d->y >= c->y + c->h + a.padding;
+            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d at least %d apart", i, j, c->x,
+                       c->y, c->w, c->h, d->x, d->y, d->w, d->h, a.padding);
+        }
+    }
+    for (i = 0; i < n; i++) {
+        const lm_chart *c = &a.charts[a.poly_chart[i]];
+        for (k = 0; k < polys[i].n; k++) {
+            double uv[2];
+            lm_uv(&a, i, polys[i].v[k], uv);
+            CHECK_THAT(uv[0] >= c->x + 1 - 1e-9 && uv[0] <= c->x + c->w - 1 + 1e-9 && uv[1] >= c->y + 1 - 1e-9 &&
+                           uv[1] <= c->y + c->h - 1 + 1e-9,
+                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring (to 1e-9)", i, k, uv[0], uv[1]);
+        }
+        for (j = 0; j < 10; j++)
+            for (k = 0; k < 10 - j; k++) {
+                double x[3], w1 = (j + 1) / 12.0, w2 = (k + 1) / 12.0;
+                size_t t;
+                int c3;
+                for (c3 = 0; c3 < 3; c3++)
+                    x[c3] = polys[i].v[0][c3] + w1 * (polys[i].v[1][c3] - polys[i].v[0][c3]) +
+                            w2 * (polys[i].v[2][c3] - polys[i].v[0][c3]);
+                t = texel_at(&a, i, x);
+                CHECK_THAT(!isnan(a.sample[2 * t]) && a.owner[t] == a.poly_chart[i],
+                           "polygon %d point %d,%d: its texel covered and of its chart", i, j, k);
+                points++;
+            }
+    }
+    printf("lightmap packing: %d charts in %dx%d at a texel of %.4f, %d polygon points in covered texels\n",
+           a.ncharts, a.size, a.size, a.texel, points);
+    lm_free(&a);
+}
+
+/* Bad sizes: a clear one-line error, nothing built. */
+static void test_lightmap_bad_sizes(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_atlas a;
+    char err[256] = "";
+    int n = terrain(polys);
+    lm_opts zero = {0, 0.0, 0}, big = {8193, 0.0, 0}, small = {8, 0.0, 0}, fine = {64, 0.001, 0}, o64 = {64, 0.0, 0};
+    (void)state;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
+    CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &big, err, sizeof err), -1, "a size of 8193 refused");
+    CHECK_CONTAINS(err, "a lightmap size of 8193 is outside 1..8192", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &small, err, sizeof err), -1, "129 charts in 8 x 8 texels refused");
+    CHECK_CONTAINS(err, "cannot fit 129 charts", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1, "a texel of 0.001 in 64 x 64 refused");
+    CHECK_CONTAINS(err, "cannot fit 129 charts at a texel of 0.001", "the message");
+    assert_null(a.rgb);
+    memset(polys, 0, sizeof polys[0]);
+    polys[0].n = 3; /* three vertices at the origin */
+    CHECK_INT_EQ(lm_build(&a, polys, 1, &o64, err, sizeof err), -1, "polygons of no extent refused");
+    CHECK_CONTAINS(err, "the polygons have no extent", "the message");
+}
+
+/* ---- probes ------------------------------------------------------------------------- */
+
+/* An axis-aligned box [LO, HI]^3 as six quads, lit side in (INWARD 1) or out. */
+static int cube(sc_poly *q, double lo, double hi, int inward, double emit)
+{
+    int f, k, n = 0;
+    for (f = 0; f < 6; f++) {
+        int a = f / 2, b = (a + 1) % 3, c = (a + 2) % 3, plus = (f & 1) ^ (inward != 0);
+        double v[4][3], side = f & 1 ? hi : lo;
+        double us[4] = {lo, hi, hi, lo}, vs[4] = {lo, lo, hi, hi};
+        for (k = 0; k < 4; k++) {
+            v[k][a] = side;
+            v[k][b] = us[k];
+            v[k][c] = vs[k];
+        }
+        /* (b, c) counter-clockwise seen from +a: the normal +a (the hi side out, the lo in). */
+        q[n] = plus ? quad(v[0], v[1], v[2], v[3], 0.0, emit) : quad(v[3], v[2], v[1], v[0], 0.0, emit);
+        n++;
+    }
+    return n;
+}
+
+typedef struct {
+    sc_gatherer *g;
+} sh_baker;
+
+static int sh_cb(void *ctx, const double p[3], double sh[9][3])
+{
+    return sc_gather_sh(((sh_baker *)ctx)->g, p, 1, sh);
+}
+
+static int count_of(const char *text, const char *part)
+{
+    int n = 0;
+    for (; (text = strstr(text, part)) != NULL; text++) n++;
+    return n;
+}
+
+/* A room of emission 1 (every wall, reflectance 0) with a closed box of emission 1
+ * inside: every probe outside the box sees radiosity 1 in every direction, so its SH is
+ * sqrt(4 pi) and zeros (rad.h: the gather's tables make a uniform environment's
+ * exact; measured 0, bound 1% of SH[0] for the fixed core's rounding). The grid's 4 x 4 x 4
+ * probes sit at the cells' centres; the one at (0.5, 0.5, 0.5) is inside the box: all
+ * its rays meet back faces, the others' none. The JSON holds every probe. */
+static void test_probes_grid(void **state)
+{
+    sc_poly polys[12];
+    sc_opts o = {0, 0, 64, 0, 0, 0};
+    int dims[3], n = cube(polys, -2, 2, 1, 1.0), i, k, inside = 0;
+    char err[256] = "", *json;
+    size_t len;
+    double *pts, worst = 0.0;
+    pr_probe pr[64];
+    sh_baker b;
+    sc_solver *s;
+    (void)state;
+    n += cube(polys + n, 0.2, 0.8, 0, 1.0);
+    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 100000, 1e-4, NULL, NULL);
+    b.g = sc_gatherer_new(s, 32, 1);
+    assert_non_null(b.g);
+    CHECK_INT_EQ(pr_parse_grid("4,4,4", dims, err, sizeof err), 0, "grid 4,4,4 (%s)", err);
+    pts = pr_grid_points(polys, n, dims);
+    assert_non_null(pts);
+    CHECK_INT_EQ(pr_bake(polys, n, pts, 64, sh_cb, &b, pr, err, sizeof err), 0, "pr_bake (%s)", err);
+    for (i = 0; i < 64; i++) {
+        int in = fabs(pr[i].p[0] - 0.5) < 1e-12 && fabs(pr[i].p[1] - 0.5) < 1e-12 && fabs(pr[i].p[2] - 0.5) < 1e-12;
+        CHECK_NEAR(pr[i].p[0], -1.5 + (i % 4), 1e-12, "probe %d's x", i);
+        CHECK_NEAR(pr[i].p[2], -1.5 + i / 16, 1e-12, "probe %d's z", i);
+        CHECK_INT_EQ(pr[i].inside, in, "probe %d at (%g, %g, %g) flagged inside", i, pr[i].p[0], pr[i].p[1], pr[i].p[2]);
+        CHECK_NEAR(pr[i].back, in ? 1.0 : 0.0, 1e-12, "probe %d's rays meeting back faces", i);
+        inside += pr[i].inside;
+        if (in) continue;
+        for (k = 0; k < 9; k++) {
+            double want = k ? 0.0 : sqrt(16.0 * atan(1.0)), d = fabs(pr[i].sh[k][1] - want) / sqrt(16.0 * atan(1.0));
+            CHECK_LE(d, 0.01, "probe %d SH[%d] %.6f against %.6f", i, k, pr[i].sh[k][1], want);
+            if (d > worst) worst = d;
+        }
+    }
+    printf("probes: 64 in a glowing room, %d inside the box; SH within %.4f%% of sqrt(4 pi) and zeros (bound 1%%)\n",
+           inside, 100.0 * worst);
+    CHECK_INT_EQ(pr_write_json(tmp_path("probes.json"), pr, 64, dims, err, sizeof err), 0, "pr_write_json (%s)", err);
+    CHECK_INT_EQ(fio_read_all(tmp_path("probes.json"), 1u << 20, &json, &len, err, sizeof err), 0, "read back (%s)", err);
+    CHECK_INT_EQ(count_of(json, "{\"p\": ["), 64, "probes in the JSON");
+    CHECK_INT_EQ(count_of(json, "\"inside\": true"), 1, "probes flagged inside in the JSON");
+    CHECK_CONTAINS(json, "\"grid\": [4, 4, 4]", "the grid in the JSON");
+    free(json);
+    free(pts);
+    sc_gatherer_free(b.g);
+    sc_destroy(s);
+}
+
+/* Points files and grids: what is read, and one-line errors naming the file and line. */
+static void test_probes_input(void **state)
+{
+    const char *path = tmp_path("points.txt");
+    char err[256] = "";
+    int n = -1, dims[3];
+    double *p;
+    FILE *fp = fopen(path, "w");
+    (void)state;
+    assert_non_null(fp);
+    fputs("# probes\n1 2 3\n\n  -0.5\t4e-1 7 \r\n", fp);
+    fclose(fp);
+    p = pr_read_points(path, &n, err, sizeof err);
+    assert_non_null(p);
+    CHECK_INT_EQ(n, 2, "points read");
+    CHECK_EQ(p[3], -0.5, "the second point's x");
+    CHECK_EQ(p[4], 0.4, "the second point's y");
+    free(p);
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("1 2 3\n1 2\n", fp);
+    fclose(fp);
+    assert_null(pr_read_points(path, &n, err, sizeof err));
+    CHECK_CONTAINS(err, "points.txt:2: a probe is three numbers", "the message");
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fputs("# nothing\n", fp);
+    fclose(fp);
+    assert_null(pr_read_points(path, &n, err, sizeof err));
+    CHECK_CONTAINS(err, "no probes in the file", "the message");
+    CHECK_INT_EQ(pr_parse_grid("0,2,2", dims, err, sizeof err), -1, "a grid of 0 refused");
+    CHECK_CONTAINS(err, "a grid of 0 along an axis is outside 1..256", "the message");
+    CHECK_INT_EQ(pr_parse_grid("101,100,100", dims, err, sizeof err), -1, "1,010,000 probes refused");
+    CHECK_CONTAINS(err, "a grid of 1010000 probes is above 1000000", "the message");
+    CHECK_INT_EQ(pr_parse_grid("4,4", dims, err, sizeof err), -1, "two numbers refused");
+    CHECK_CONTAINS(err, "is not NX,NY,NZ", "the message");
+}
+
+/* ---- rad_cli ------------------------------------------------------------------------ */
+
+/* Runs build/rad_cli with ARGS on the bundled Cornell box (quick settings), stderr into
+ * the temporary directory; returns the exit status, *ERR the text (malloc'd). */
+static int cli(const char *args, char **err)
+{
+    char cmd[2048];
+    size_t len;
+    int st;
+    snprintf(cmd, sizeof cmd, "build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --quiet -o %s %s 2> %s",
+             tmp_path("cli.png"), args, tmp_path("cli.err"));
+    st = system(cmd);
+    if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* The options: a lightmap and probes written; a size of 0 a usage error, an atlas too
+ * small for the charts an error naming them before the solve, and then no file; the lightmap
+ * baked on 3 threads is the same file as on one. */
+static void test_cli_bake(void **state)
+{
+    char args[1024], *err = NULL, *json = NULL, *one = NULL, *three = NULL;
+    const char *lm = tmp_path("lm.hdr"), *pj = tmp_path("p.json");
+    hdr_image im;
+    size_t len, len3 = 0, i;
+    double peak = 0.0;
+    struct stat st;
+    (void)state;
+    CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-size wants a whole number from 1 to 8192", "the message");
+    free(err);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
+    CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "cannot fit", "the message");
+    CHECK_INT_EQ(stat(lm, &st), -1, "no lightmap file after the error");
+    CHECK_INT_EQ(stat(tmp_path("cli.png"), &st), -1, "no image either: the atlas is laid out before the solve");
+    free(err);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --probes 2,2,2 --probes-out %s", lm, pj);
+    CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake (%s)", err ? err : "");
+    free(err);
+    CHECK_INT_EQ(hdr_read(lm, &im, NULL, 0), 0, "the lightmap read back");
+    CHECK_INT_EQ(im.w * 1000 + im.h, 64064, "its size (w * 1000 + h)");
+    for (i = 0; i < (size_t)im.w * im.h * 3; i++) peak = fmax(peak, im.rgb[i]);
+    CHECK_GT(peak, 0.0, "the brightest texel");
+    hdr_free(&im);
+    CHECK_INT_EQ(fio_read_all(pj, 1u << 20, &json, &len, NULL, 0), 0, "the probes read back");
+    CHECK_INT_EQ(count_of(json, "{\"p\": ["), 8, "probes in the JSON");
+    free(json);
+    /* On 3 threads, the same file to the bit. */
+    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &one, &len, NULL, 0), 0, "the lightmap's bytes");
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --threads 3", lm);
+    CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 3 threads (%s)", err ? err : "");
+    free(err);
+    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0, "the 3 threads' lightmap's bytes");
+    CHECK_INT_EQ(len3, len, "bytes of the lightmap on 3 threads");
+    assert_memory_equal(one, three, len);
+    free(one);
+    free(three);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hdr_round_trip),
+        cmocka_unit_test(test_hdr_rle_smaller),
+        cmocka_unit_test(test_hdr_bad_input),
+        cmocka_unit_test(test_lightmap_lambert),
+        cmocka_unit_test(test_lightmap_no_seams),
+        cmocka_unit_test(test_lightmap_no_leaks),
+        cmocka_unit_test(test_lightmap_packing),
+        cmocka_unit_test(test_lightmap_bad_sizes),
+        cmocka_unit_test(test_probes_grid),
+        cmocka_unit_test(test_probes_input),
+        cmocka_unit_test(test_cli_bake),
+    };
+    return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);
+}

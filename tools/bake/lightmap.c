@@ -1,0 +1,661 @@
+/* lightmap — charts, atlas packing, texel samples, gathering, dilation. See lightmap.h. */
+#include "bake/lightmap.h"
+
+#include "bake/geom.h"
+#include "formats/hdr.h"
+#include "formats/image.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define COS_PLANE 0.9999995 /* cos(10^-3 rad): normals of one plane */
+#define PLANE_TOL 1e-6      /* of the extent: a neighbour's centroid off the plane */
+#define RING 1              /* texels of dilation around a chart's texels */
+
+/* ---- charts: polygons joined across shared edges in one plane ---- */
+
+typedef struct {
+    double a[3], b[3]; /* endpoints, a before b (lexicographic) */
+    int poly, k;       /* polygon and its edge k (from vertex k to k + 1) */
+} edge_t;
+
+static int cmp3(const double *x, const double *y)
+{
+    int i;
+    for (i = 0; i < 3; i++)
+        if (x[i] != y[i]) return x[i] < y[i] ? -1 : 1;
+    return 0;
+}
+
+static int edge_cmp(const void *x, const void *y)
+{
+    const edge_t *p = x, *q = y;
+    int c = cmp3(p->a, q->a);
+    if (!c) c = cmp3(p->b, q->b);
+    return c ? c : p->poly - q->poly;
+}
+
+static int find(int *parent, int i)
+{
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+/* The polygons' edges sorted so that shared ones are consecutive; *NE of them. */
+static edge_t *sorted_edges(const sc_poly *p, int n, const geom_poly *g, int *ne)
+{
+    edge_t *e = malloc((size_t)(4 * n + 1) * sizeof *e);
+    int i, k, m = 0;
+    if (!e) return NULL;
+    for (i = 0; i < n; i++) {
+        if (g[i].area <= 0.0) continue;
+        for (k = 0; k < p[i].n; k++) {
+            const double *x = p[i].v[k], *y = p[i].v[(k + 1) % p[i].n];
+            int sw = cmp3(x, y) > 0;
+            memcpy(e[m].a, sw ? y : x, sizeof e[m].a);
+            memcpy(e[m].b, sw ? x : y, sizeof e[m].b);
+            e[m].poly = i;
+            e[m++].k = k;
+        }
+    }
+    qsort(e, (size_t)m, sizeof *e, edge_cmp);
+    *ne = m;
+    return e;
+}
+
+static int same_plane(const geom_poly *g, int p, int q, double tol)
+{
+    return geom_dot(g[p].n, g[q].n) >= COS_PLANE && fabs(geom_dot(g[p].n, g[q].c) - g[p].d) <= tol;
+}
+
+/* For each run of equal edges, J in [I, END): calls pairs by mode (0: union the
+ * coplanar, 1: mark edges shared within a chart interior). */
+static void shared_pairs(const edge_t *e, int ne, const geom_poly *g, double tol, int *parent,
+                         unsigned char *interior, int mode)
+{
+    int i = 0;
+    while (i < ne) {
+        int end = i + 1, j, k;
+        while (end < ne && !cmp3(e[end].a, e[i].a) && !cmp3(e[end].b, e[i].b)) end++;
+        for (j = i; j < end; j++)
+            for (k = j + 1; k < end; k++) {
+                int p = e[j].poly, q = e[k].poly;
+                if (mode == 0 && same_plane(g, p, q, tol)) parent[find(parent, p)] = find(parent, q);
+                if (mode == 1 && find(parent, p) == find(parent, q)) {
+                    interior[4 * p + e[j].k] = 1;
+                    interior[4 * q + e[k].k] = 1;
+                }
+            }
+        i = end;
+    }
+}
+
+/* Chart ids in order of each chart's first polygon, and the polygons by chart. */
+static int number_charts(lm_atlas *a, int *parent)
+{
+    int i, n = a->npolys, nc = 0, *count, *id = malloc((size_t)(n + 1) * sizeof *id);
+    if (!id) return -1;
+    for (i = 0; i < n; i++) id[i] = -1;
+    for (i = 0; i < n; i++) {
+        int r;
+        if (a->poly_chart[i] < 0) continue;
+        r = find(parent, i);
+        if (id[r] < 0) id[r] = nc++;
+        a->poly_chart[i] = id[r];
+    }
+    free(id);
+    a->ncharts = nc;
+    a->charts = calloc((size_t)(nc + 1), sizeof *a->charts);
+    count = calloc((size_t)(nc + 1), sizeof *count);
+    if (!a->charts || !count) {
+        free(count);
+        return -1;
+    }
+    for (i = 0; i < n; i++)
+        if (a->poly_chart[i] >= 0) a->charts[a->poly_chart[i]].count++;
+    for (i = 1; i < nc; i++) a->charts[i].first = a->charts[i - 1].first + a->charts[i - 1].count;
+    for (i = 0; i < n; i++)
+        if (a->poly_chart[i] >= 0) {
+            int c = a->poly_chart[i];
+            a->chart_polys[a->charts[c].first + count[c]++] = i;
+        }
+    free(count);
+    return 0;
+}
+
+/* ---- chart frames: the plane's axes, u along the longest boundary edge ---- */
+
+typedef struct {
+    double smin, tmin, w, h, d; /* extent on the axes (world units) and plane offset */
+} extent_t;
+
+static void chart_axes(const lm_atlas *a, const geom_poly *g, const unsigned char *interior, lm_chart *c)
+{
+    double best = -1.0, e[3];
+    int i, k;
+    memset(c->n, 0, sizeof c->n);
+    for (i = 0; i < c->count; i++) {
+        int p = a->chart_polys[c->first + i];
+        for (k = 0; k < 3; k++) c->n[k] += g[p].n[k] * g[p].area;
+    }
+    geom_normalize(c->n);
+    for (i = 0; i < c->count; i++) {
+        const sc_poly *q = &a->polys[a->chart_polys[c->first + i]];
+        int p = a->chart_polys[c->first + i];
+        for (k = 0; k < q->n; k++) {
+            double len;
+            geom_sub(q->v[(k + 1) % q->n], q->v[k], e);
+            len = geom_dot(e, e) * (interior[4 * p + k] ? 0.25 : 1.0); /* boundary edges first */
+            if (len > best) {
+                best = len;
+                geom_reject(e, c->n, c->u);
+            }
+        }
+    }
+    if (!geom_normalize(c->u)) geom_any_perp(c->n, c->u);
+    geom_cross(c->n, c->u, c->v);
+}
+
+static void chart_extent(const lm_atlas *a, const lm_chart *c, extent_t *x)
+{
+    double smax = -HUGE_VAL, tmax = -HUGE_VAL, dsum = 0.0;
+    int i, k, nv = 0;
+    x->smin = x->tmin = HUGE_VAL;
+    for (i = 0; i < c->count; i++) {
+        const sc_poly *q = &a->polys[a->chart_polys[c->first + i]];
+        for (k = 0; k < q->n; k++, nv++) {
+            double s = geom_dot(q->v[k], c->u), t = geom_dot(q->v[k], c->v);
+            x->smin = fmin(x->smin, s);
+            x->tmin = fmin(x->tmin, t);
+            smax = fmax(smax, s);
+            tmax = fmax(tmax, t);
+            dsum += geom_dot(q->v[k], c->n);
+        }
+    }
+    x->w = smax - x->smin;
+    x->h = tmax - x->tmin;
+    x->d = dsum / nv;
+}
+
+/* ---- packing: shelves of rectangles sorted by height ---- */
+
+typedef struct {
+    int w, h, id;
+} rect_t;
+
+static int rect_cmp(const void *x, const void *y)
+{
+    const rect_t *p = x, *q = y;
+    if (p->h != q->h) return q->h - p->h;
+    if (p->w != q->w) return q->w - p->w;
+    return p->id - q->id;
+}
+
+/* Texels of a rectangle along an extent of X world units at texel T: the chart's
+ * texels start at RING, so its far end lies in texel RING + floor(X / T), and a ring
+ * follows. 0 when it cannot fit an atlas of N. */
+static int rect_len(double x, double t, int n)
+{
+    double k = floor(x / t) + 2 * RING + 1;
+    return k <= n ? (int)k : 0;
+}
+
+/* Lays the rectangles at texel T into the atlas; 0, or -1 when they do not fit. */
+static int pack(lm_atlas *a, const extent_t *x, rect_t *r, double t)
+{
+    int i, n = a->size, cx = 0, cy = 0, shelf = 0, pad = a->padding;
+    for (i = 0; i < a->ncharts; i++) {
+        r[i].w = rect_len(x[i].w, t, n);
+        r[i].h = rect_len(x[i].h, t, n);
+        r[i].id = i;
+        if (!r[i].w || !r[i].h) return -1;
+    }
+    qsort(r, (size_t)a->ncharts, sizeof *r, rect_cmp);
+    for (i = 0; i < a->ncharts; i++) {
+        lm_chart *c = &a->charts[r[i].id];
+        if (cx + r[i].w > n) {
+            cx = 0;
+            cy += shelf + pad;
+            shelf = 0;
+        }
+        if (cy + r[i].h > n) return -1;
+        if (!shelf) shelf = r[i].h;
+        c->x = cx;
+        c->y = cy;
+        c->w = r[i].w;
+        c->h = r[i].h;
+        cx += r[i].w + pad;
+    }
+    return 0;
+}
+
+/* The texel size: given, or the smallest that packs (doubling from the area's bound,
+ * then halving the interval 20 times). 0, or -1 with err. */
+static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given, char *err, size_t errlen)
+{
+    double area = 0.0, lo, hi;
+    int i;
+    if (given > 0.0) {
+        a->texel = given;
+        if (pack(a, x, r, given) == 0) return 0;
+        snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts at a texel of %g (use a larger size or texel)",
+                 a->size, a->size, a->ncharts, given);
+        return -1;
+    }
+    for (i = 0; i < a->ncharts; i++) area += x[i].w * x[i].h;
+    lo = sqrt(area) / a->size;
+    if (!(lo > 0.0)) lo = a->extent / a->size;
+    for (hi = lo, i = 0; pack(a, x, r, hi) != 0; i++, hi *= 2.0) {
+        lo = hi;
+        if (i == 64) {
+            snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts (each needs at least %dx%d texels and %d of padding)",
+                     a->size, a->size, a->ncharts, 2 * RING + 1, 2 * RING + 1, a->padding);
+            return -1;
+        }
+    }
+    for (i = 0; i < 20; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (pack(a, x, r, mid) == 0) hi = mid;
+        else lo = mid;
+    }
+    a->texel = hi;
+    return pack(a, x, r, hi);
+}
+
+/* ---- texel samples ---- */
+
+typedef struct {
+    double p[3][2];    /* a triangle in the rectangle's texel coordinates */
+    unsigned char b[3]; /* edge k (p[k] to p[k + 1]) is on the chart's boundary */
+} tri_t;
+
+/* The point of T nearest C, moved M texels in from its boundary edges; its distance
+ * from C before the move into *DIST. */
+static void tri_sample(const tri_t *t, const double c[2], double m, double q[2], double *dist)
+{
+    int k, pass;
+    geom_tri2_closest(t->p, c, q);
+    *dist = hypot(q[0] - c[0], q[1] - c[1]);
+    for (pass = 0; pass < 2; pass++)
+        for (k = 0; k < 3; k++) {
+            const double *p0 = t->p[k], *p1 = t->p[(k + 1) % 3], *p2 = t->p[(k + 2) % 3];
+            double nx = p0[1] - p1[1], ny = p1[0] - p0[0], len = hypot(nx, ny), s;
+            if (!t->b[k] || !(len > 0.0)) continue;
+            nx /= len;
+            ny /= len;
+            if ((p2[0] - p0[0]) * nx + (p2[1] - p0[1]) * ny < 0.0) {
+                nx = -nx;
+                ny = -ny;
+            }
+            s = (q[0] - p0[0]) * nx + (q[1] - p0[1]) * ny;
+            if (s < m) {
+                q[0] += (m - s) * nx;
+                q[1] += (m - s) * ny;
+            }
+        }
+}
+
+/* Samples the texels of chart C within a texel of triangle T (those it touches, and
+ * their ring), keeping each texel's nearest sample; BEST (the rectangle's texels)
+ * holds the distances so far. */
+static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, double m, float *best)
+{
+    double lo[2], hi[2];
+    int i, j, k;
+    for (k = 0; k < 2; k++) {
+        lo[k] = fmin(t->p[0][k], fmin(t->p[1][k], t->p[2][k]));
+        hi[k] = fmax(t->p[0][k], fmax(t->p[1][k], t->p[2][k]));
+    }
+    for (j = (int)floor(lo[1]) - RING; j <= (int)floor(hi[1]) + RING; j++)
+        for (i = (int)floor(lo[0]) - RING; i <= (int)floor(hi[0]) + RING; i++) {
+            double ctr[2] = {i + 0.5, j + 0.5}, q[2], d;
+            size_t at;
+            if (i < 0 || j < 0 || i >= c->w || j >= c->h || !geom_tri2_touches_box(t->p, i - RING, j - RING, 1 + 2 * RING))
+                continue;
+            tri_sample(t, ctr, m, q, &d);
+            if (d >= best[j * c->w + i]) continue;
+            best[j * c->w + i] = (float)d;
+            at = (size_t)(c->y + j) * a->size + (size_t)(c->x + i);
+            a->sample[2 * at] = (float)q[0];
+            a->sample[2 * at + 1] = (float)q[1];
+        }
+}
+
+static void to_rect(const lm_chart *c, double t, const double *p, double *st)
+{
+    double r[3];
+    geom_sub(p, c->o, r);
+    st[0] = geom_dot(r, c->u) / t;
+    st[1] = geom_dot(r, c->v) / t;
+}
+
+/* Every polygon of chart C as triangles (a fan) rasterised into its rectangle. */
+static int raster_chart(lm_atlas *a, const lm_chart *c, const unsigned char *interior, double m)
+{
+    float *best = malloc((size_t)c->w * c->h * sizeof *best);
+    int i, k;
+    if (!best) return -1;
+    for (k = 0; k < c->w * c->h; k++) best[k] = HUGE_VALF;
+    for (i = 0; i < c->count; i++) {
+        int p = a->chart_polys[c->first + i];
+        const sc_poly *q = &a->polys[p];
+        for (k = 1; k + 1 < q->n; k++) {
+            tri_t t;
+            to_rect(c, a->texel, q->v[0], t.p[0]);
+            to_rect(c, a->texel, q->v[k], t.p[1]);
+            to_rect(c, a->texel, q->v[k + 1], t.p[2]);
+            t.b[0] = k == 1 && !interior[4 * p];
+            t.b[1] = !interior[4 * p + k];
+            t.b[2] = k + 2 == q->n && !interior[4 * p + q->n - 1];
+            raster_tri(a, c, &t, m, best);
+        }
+    }
+    free(best);
+    return 0;
+}
+
+/* World point of rectangle position ST of chart C (on the plane, lifted by LIFT). */
+static void rect_point(const lm_atlas *a, const lm_chart *c, const double *st, double lift, double *p)
+{
+    int k;
+    for (k = 0; k < 3; k++) p[k] = c->o[k] + a->texel * (st[0] * c->u[k] + st[1] * c->v[k]) + lift * c->n[k];
+}
+
+static double lift_of(const lm_atlas *a) { return ldexp(a->extent, -12); }
+static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a->extent, -12)); }
+
+/* A sample whose rays along the plane meet a back face first is inside geometry: it
+ * moves past the nearest such face by the margin. */
+static void push_out(lm_atlas *a, const lm_chart *c, float *st)
+{
+    double s[2] = {st[0], st[1]}, p[3], best = HUGE_VAL, dir[3], dirs[4][3];
+    int k, j, found = -1;
+    rect_point(a, c, s, lift_of(a), p);
+    for (k = 0; k < 3; k++) {
+        dirs[0][k] = c->u[k];
+        dirs[1][k] = -c->u[k];
+        dirs[2][k] = c->v[k];
+        dirs[3][k] = -c->v[k];
+    }
+    for (j = 0; j < 4; j++) {
+        int back = 0;
+        double t = geom_grid_ray(a->grid, a->polys, p, dirs[j], 0.75 * a->texel, &back);
+        if (back && t < best) {
+            best = t;
+            found = j;
+        }
+    }
+    if (found < 0) return;
+    memcpy(dir, dirs[found], sizeof dir);
+    best += margin_of(a);
+    st[0] = (float)(s[0] + best / a->texel * geom_dot(dir, c->u));
+    st[1] = (float)(s[1] + best / a->texel * geom_dot(dir, c->v));
+}
+
+static int place_samples(lm_atlas *a, const unsigned char *interior)
+{
+    int i, x, y;
+    double m = margin_of(a) / a->texel;
+    for (i = 0; i < a->ncharts; i++) {
+        lm_chart *c = &a->charts[i];
+        for (y = 0; y < c->h; y++)
+            for (x = 0; x < c->w; x++) a->owner[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = i;
+        if (raster_chart(a, c, interior, m) != 0) return -1;
+        for (y = 0; y < c->h; y++)
+            for (x = 0; x < c->w; x++) {
+                float *st = &a->sample[2 * ((size_t)(c->y + y) * a->size + (size_t)(c->x + x))];
+                if (!isnan(st[0])) push_out(a, c, st);
+            }
+    }
+    return 0;
+}
+
+/* ---- building ---- */
+
+static int alloc_atlas(lm_atlas *a, int n)
+{
+    size_t t = (size_t)a->size * a->size, i;
+    a->poly_chart = calloc((size_t)n + 1, sizeof *a->poly_chart);
+    a->chart_polys = calloc((size_t)n + 1, sizeof *a->chart_polys);
+    a->owner = malloc(t * sizeof *a->owner);
+    a->sample = malloc(2 * t * sizeof *a->sample);
+    a->rgb = calloc(3 * t, sizeof *a->rgb);
+    if (!a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb) return -1;
+    for (i = 0; i < t; i++) {
+        a->owner[i] = -1;
+        a->sample[2 * i] = a->sample[2 * i + 1] = NAN;
+    }
+    return 0;
+}
+
+/* Charts of the polygons: union-find over coplanar shared edges. */
+static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
+{
+    int ne = 0, i, rc = -1, *parent = malloc((size_t)(a->npolys + 1) * sizeof *parent);
+    edge_t *e = parent ? sorted_edges(a->polys, a->npolys, g, &ne) : NULL;
+    if (e) {
+        for (i = 0; i < a->npolys; i++) {
+            parent[i] = i;
+            a->poly_chart[i] = g[i].area > 0.0 ? 0 : -1;
+        }
+        shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 0);
+        shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 1);
+        rc = number_charts(a, parent);
+    }
+    free(e);
+    free(parent);
+    return rc;
+}
+
+static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior, double texel, char *err,
+                  size_t errlen)
+{
+    extent_t *x = malloc((size_t)(a->ncharts + 1) * sizeof *x);
+    rect_t *r = malloc((size_t)(a->ncharts + 1) * sizeof *r);
+    int i, k, rc = -1;
+    if (!x || !r) {
+        snprintf(err, errlen, "out of memory for %d charts", a->ncharts);
+    } else {
+        for (i = 0; i < a->ncharts; i++) {
+            chart_axes(a, g, interior, &a->charts[i]);
+            chart_extent(a, &a->charts[i], &x[i]);
+        }
+        rc = choose_texel(a, x, r, texel, err, errlen);
+        for (i = 0; rc == 0 && i < a->ncharts; i++)
+            for (k = 0; k < 3; k++)
+                a->charts[i].o[k] = (x[i].smin - RING * a->texel) * a->charts[i].u[k] +
+                                    (x[i].tmin - RING * a->texel) * a->charts[i].v[k] + x[i].d * a->charts[i].n[k];
+    }
+    free(x);
+    free(r);
+    return rc;
+}
+
+int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
+{
+    geom_poly *g = NULL;
+    unsigned char *interior = NULL;
+    int rc = -1;
+    memset(a, 0, sizeof *a);
+    if (o->size < 1 || o->size > LM_MAX_SIZE) {
+        snprintf(err, errlen, "a lightmap size of %d is outside 1..%d", o->size, LM_MAX_SIZE);
+        return -1;
+    }
+    if (n < 1 || !(o->texel >= 0.0) || !isfinite(o->texel)) {
+        snprintf(err, errlen, n < 1 ? "no polygons to bake" : "a texel size must be a positive number");
+        return -1;
+    }
+    a->size = o->size;
+    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : LM_PADDING;
+    a->npolys = n;
+    a->polys = polys;
+    g = geom_polys(polys, n, &a->extent);
+    interior = calloc(4 * (size_t)n, 1);
+    if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
+        snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
+        rc = -2;
+    } else if (g && interior && alloc_atlas(a, n) == 0 && make_charts(a, g, interior) == 0 &&
+               (a->grid = geom_grid_new(polys, g, n)) != NULL) {
+        rc = 0;
+    }
+    if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
+    if (rc == 0) rc = layout(a, g, interior, o->texel, err, errlen);
+    if (rc == 0 && place_samples(a, interior) != 0) {
+        snprintf(err, errlen, "out of memory for a %dx%d lightmap", o->size, o->size);
+        rc = -1;
+    }
+    free(g);
+    free(interior);
+    if (rc != 0) lm_free(a);
+    return rc < 0 ? -1 : 0;
+}
+
+/* ---- baking and dilation ---- */
+
+int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
+{
+    size_t at = (size_t)y * a->size + (size_t)x;
+    double st[2];
+    if (x < 0 || y < 0 || x >= a->size || y >= a->size || isnan(a->sample[2 * at])) return 0;
+    st[0] = a->sample[2 * at];
+    st[1] = a->sample[2 * at + 1];
+    rect_point(a, &a->charts[a->owner[at]], st, lift_of(a), p);
+    return 1;
+}
+
+/* The mean of texel AT's filled 8-neighbours that it may take from (its chart's, or
+ * any for padding) into the texel; 1 if there was one. */
+static int fill_from(lm_atlas *a, const unsigned char *filled, size_t at)
+{
+    int x = (int)(at % (size_t)a->size), y = (int)(at / (size_t)a->size), dx, dy, n = 0, k;
+    double sum[3] = {0, 0, 0};
+    for (dy = -1; dy <= 1; dy++)
+        for (dx = -1; dx <= 1; dx++) {
+            size_t b = (size_t)(y + dy) * a->size + (size_t)(x + dx);
+            if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size || !filled[b]) continue;
+            if (a->owner[at] >= 0 && a->owner[b] != a->owner[at]) continue;
+            for (k = 0; k < 3; k++) sum[k] += a->rgb[3 * b + k];
+            n++;
+        }
+    for (k = 0; n && k < 3; k++) a->rgb[3 * at + k] = (float)(sum[k] / n);
+    return n > 0;
+}
+
+/* Rings of dilation: texels of charts (PAD 0) until none is left, then padding texels
+ * (PAD 1) for a->padding rings. Each ring reads only the texels filled before it. */
+static int dilate(lm_atlas *a, unsigned char *filled, int pad)
+{
+    size_t t = (size_t)a->size * a->size, i, n;
+    size_t *ring = malloc(t * sizeof *ring);
+    int rounds = 0;
+    if (!ring) return -1;
+    do {
+        n = 0;
+        for (i = 0; i < t; i++)
+            if (!filled[i] && (a->owner[i] < 0) == pad && fill_from(a, filled, i)) ring[n++] = i;
+        for (i = 0; i < n; i++) filled[ring[i]] = 1;
+        rounds++;
+    } while (n && (!pad || rounds < a->padding));
+    free(ring);
+    return 0;
+}
+
+int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
+{
+    int x, y, k;
+    for (y = first; y < a->size; y += step)
+        for (x = 0; x < a->size; x++) {
+            size_t i = (size_t)y * a->size + (size_t)x;
+            double p[3], rgb[3];
+            if (!lm_texel_point(a, x, y, p)) continue;
+            if (fn(ctx, p, a->charts[a->owner[i]].n, rgb) != 0) return -1;
+            for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
+        }
+    return 0;
+}
+
+int lm_dilate(lm_atlas *a)
+{
+    size_t t = (size_t)a->size * a->size, i;
+    unsigned char *filled = malloc(t);
+    int rc = filled ? 0 : -1;
+    for (i = 0; filled && i < t; i++) filled[i] = !isnan(a->sample[2 * i]);
+    if (rc == 0) rc = dilate(a, filled, 0);
+    if (rc == 0 && a->padding > 0) rc = dilate(a, filled, 1);
+    free(filled);
+    return rc;
+}
+
+int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx)
+{
+    return lm_gather_rows(a, 0, 1, fn, ctx) == 0 ? lm_dilate(a) : -1;
+}
+
+/* ---- lookups and output ---- */
+
+int lm_uv(const lm_atlas *a, int poly, const double p[3], double xy[2])
+{
+    const lm_chart *c;
+    if (poly < 0 || poly >= a->npolys || a->poly_chart[poly] < 0) return -1;
+    c = &a->charts[a->poly_chart[poly]];
+    to_rect(c, a->texel, p, xy);
+    xy[0] += c->x;
+    xy[1] += c->y;
+    return 0;
+}
+
+void lm_lookup(const lm_atlas *a, const double xy[2], double rgb[3])
+{
+    double fx = xy[0] - 0.5, fy = xy[1] - 0.5, x0 = floor(fx), y0 = floor(fy), wx = fx - x0, wy = fy - y0;
+    int k, dx, dy;
+    memset(rgb, 0, 3 * sizeof *rgb);
+    for (dy = 0; dy < 2; dy++)
+        for (dx = 0; dx < 2; dx++) {
+            double w = (dx ? wx : 1.0 - wx) * (dy ? wy : 1.0 - wy);
+            int x = (int)fmin(fmax(x0 + dx, 0.0), a->size - 1), y = (int)fmin(fmax(y0 + dy, 0.0), a->size - 1);
+            for (k = 0; k < 3; k++) rgb[k] += w * a->rgb[3 * ((size_t)y * a->size + (size_t)x) + k];
+        }
+}
+
+static int has_ext(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext), i;
+    if (n < e) return 0;
+    for (i = 0; i < e; i++)
+        if ((path[n - e + i] | 0x20) != ext[i]) return 0;
+    return 1;
+}
+
+int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, size_t errlen)
+{
+    size_t t = (size_t)a->size * a->size;
+    unsigned char *px;
+    int rc;
+    if (has_ext(path, ".hdr")) return hdr_write(path, a->rgb, a->size, a->size, err, errlen);
+    if (!has_ext(path, ".png") && !has_ext(path, ".ppm")) {
+        snprintf(err, errlen, "%s: unknown lightmap extension (use .png, .ppm or .hdr)", path);
+        return -1;
+    }
+    if (!(px = malloc(3 * t))) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        return -1;
+    }
+    tonemap(a->rgb, t, exposure > 0.0 ? exposure : tonemap_auto_exposure(a->rgb, t), px);
+    rc = img_write(path, px, a->size, a->size, err, errlen);
+    free(px);
+    return rc;
+}
+
+void lm_free(lm_atlas *a)
+{
+    free(a->charts);
+    free(a->poly_chart);
+    free(a->chart_polys);
+    free(a->owner);
+    free(a->sample);
+    free(a->rgb);
+    geom_grid_free(a->grid);
+    memset(a, 0, sizeof *a);
+}

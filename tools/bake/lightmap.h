@@ -1,0 +1,106 @@
+/* lightmap — the light arriving on a mesh's surfaces, baked into an atlas of N x N
+ * texels (uses malloc, libm).
+ *
+ * Charts: polygons joined across shared edges (the same two vertex positions, exactly)
+ * when they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
+ * 10^-6 of the scene's extent of the plane). A chart is projected on its plane, its u
+ * axis along its longest boundary edge, at one texel size T (world units a texel) for
+ * the whole atlas: a texel shows the same area everywhere.
+ *
+ * Packing: each chart's rectangle holds its texels and a ring of one texel around them
+ * (so that a bilinear lookup anywhere on the chart reads texels of this chart only); rectangles are sorted by height (then width, then chart) and laid
+ * in shelves left to right, top to bottom, PADDING texels apart. Without a texel size,
+ * T is the smallest (to 2^-20 of itself) at which the shelves fit: no smaller than
+ * sqrt(area) / N, the size at which the texels would hold the area and nothing more.
+ *
+ * Texels: every texel that a polygon's projection touches is covered (the square and
+ * the triangle overlap: separating axes), and so is the ring of texels around them;
+ * each is gathered once at a sample point: the point of its chart nearest the texel's
+ * centre, moved 1/8 texel (at least 2^-12 of the scene's extent) in from the chart's
+ * boundary edges, lifted off the plane by 2^-12 of the extent. Then four short rays
+ * along the plane (3/4 texel) look for a back face: a sample that meets one first is
+ * inside geometry (a box on the floor, a thick wall through it) and moves out past it.
+ * Gathering the ring (rather than dilating into it) puts values of the surface's own
+ * edge under a bilinear lookup there, from either side of a seam. Texels of a
+ * rectangle left over (a concave chart's) get the mean of their filled neighbours,
+ * ring by ring, and the padding likewise from any chart, for LM_PADDING rings.
+ * A texel holds E, the radiosity arriving (sc_gather's units): a surface of
+ * reflectance rho there shows rho E plus its own emission.
+ *
+ * Memory: 24 bytes a texel (owner, sample, colour) and a few words a polygon.
+ */
+#ifndef RAD_TOOLS_LIGHTMAP_H
+#define RAD_TOOLS_LIGHTMAP_H
+
+#include <stddef.h>
+
+#include "host/scene.h"
+
+#define LM_MAX_SIZE 8192
+#define LM_PADDING 2 /* texels between rectangles, for mipmaps' first levels */
+
+/* The light arriving at world point P on a surface of unit normal N, into RGB.
+ * Returns 0, or nonzero to stop the bake. */
+typedef int (*lm_gather_fn)(void *ctx, const double p[3], const double n[3], double rgb[3]);
+
+typedef struct {
+    int size;      /* N: the atlas is N x N texels, 1..LM_MAX_SIZE */
+    double texel;  /* world units a texel; 0: the smallest that fits */
+    int padding;   /* texels between rectangles; 0: LM_PADDING, -1: none */
+} lm_opts;
+
+typedef struct {
+    double o[3], u[3], v[3], n[3]; /* world point = o + s T u + t T v at texel (s, t) of
+                                    * the rectangle; n = u x v, the lit side */
+    int x, y, w, h;                /* the rectangle in the atlas, ring included */
+    int first, count;              /* its polygons: chart_polys[first .. first + count) */
+} lm_chart;
+
+typedef struct {
+    int size, padding;
+    double texel, extent;
+    int npolys, ncharts;
+    lm_chart *charts;
+    int *poly_chart;  /* per polygon: its chart, -1 for a degenerate polygon */
+    int *chart_polys; /* polygons by chart */
+    int *owner;       /* size^2: the chart whose rectangle holds the texel, -1: padding */
+    float *sample;    /* size^2 * 2: a covered texel's sample (s, t) in its rectangle,
+                       * NaN when not covered */
+    float *rgb;       /* size^2 * 3: the baked light, row 0 at the top */
+    const sc_poly *polys;
+    void *grid;       /* the polygons by cell, for the sample's rays */
+} lm_atlas;
+
+/* Charts, packing and texel samples for POLYS (kept by pointer until lm_free). Returns
+ * 0, or -1 with one line in err: a size of 0 or above LM_MAX_SIZE, an atlas that cannot
+ * fit (at the given texel size, or at any with too many charts), out of memory. */
+int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen);
+
+/* Gathers every covered texel through FN, then dilates. Returns 0, or -1 when FN
+ * stopped it (the atlas then holds what was gathered, undilated). */
+int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx);
+/* lm_bake in parts: the covered texels of the rows Y with Y % STEP == FIRST (threads
+ * may gather such sets at once, each through a context of its own: a texel's value
+ * does not depend on which thread gathers it), then, once every row is gathered, the
+ * dilation. Each returns 0, or -1 (FN stopped it; no memory for the dilation). */
+int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
+int lm_dilate(lm_atlas *a);
+
+/* Covered texel (X, Y)'s sample point into P; 1 if covered, 0 if not. */
+int lm_texel_point(const lm_atlas *a, int x, int y, double p[3]);
+
+/* The atlas position (in texels, x right, y down; divide by size for UV) of world
+ * point P on polygon POLY, projected on its chart's plane. -1 for a degenerate polygon. */
+int lm_uv(const lm_atlas *a, int poly, const double p[3], double xy[2]);
+
+/* A bilinear lookup at atlas position XY (texel centres at half-integers), as a GPU
+ * filters with clamping at the atlas's border. */
+void lm_lookup(const lm_atlas *a, const double xy[2], double rgb[3]);
+
+/* Writes the atlas: .hdr (linear, tools/formats/hdr.h) or .png/.ppm (sRGB at EXPOSURE;
+ * 0: automatic over the covered texels). 0, or -1 with err; never a partial file. */
+int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, size_t errlen);
+
+void lm_free(lm_atlas *a);
+
+#endif
