@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # rad — one entry point: make, make test, make check, make port-test, make bench, make install
 #
 # Layout of the build (all under $(BUILDDIR)):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — gathering: the light arriving at any point, through a cube of its own.
  *
  * A gather is the shots' hemi-cube (hemicube.c: the same rasterizer, lattice and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — the hemi-cube: delta form factors, face passes, item-buffer accumulation.
  *
  * The hemi-cube has a top face of res x res pixels and four half side faces of

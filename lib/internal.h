@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — declarations shared by lib/ files (the rad__ names), never installed. */
 #ifndef RAD_INTERNAL_H
 #define RAD_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — which element of a surface a hemi-cube pixel sees.
  *
  * The hemi-cube draws each surface as one polygon (its outline, clipped and rasterized

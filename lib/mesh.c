@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — scene set-up: pools, validation, and meshing polygons into patches (shooters)
  * and elements (receivers) on a shared per-surface vertex grid (Cohen, Greenberg,
  * Immel & Brock 1986's patch/element substructuring).

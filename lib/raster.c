@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — the one rasterizer: clip, project, and fill triangles into an integer
  * z-buffer with an item buffer (hemi-cube faces) or interpolated colours (the camera).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — stored form factors: rows of the patch-to-element matrix kept in caller memory,
  * shooting from them, the full-matrix Gauss-Seidel solve, and light-group mixing.
  * None of this renders a hemi-cube once the rows are stored. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — the arithmetic behind the scalar shim that is too long to inline. */
 #include "scalar.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — the scalar shim: every operation whose fixed-point and float forms differ.
  *
  * The algorithm in lib/ sources is written once against these functions; RAD_FLOAT selects

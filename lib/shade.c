@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — shading output: element and vertex radiosity, and the viewer's camera, drawn
  * by the same rasterizer as the hemi-cube (raster.c) with colours instead of ids. */
 #include "internal.h"

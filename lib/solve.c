@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
  *
  * Each step shoots a patch's unshot power U through a hemi-cube at its centre: the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # rad ports — Cortex-M0, Cortex-M3 and RV32 under QEMU, bit-exact with the host.
 #
 # Included by the top Makefile (after its own rules: `include ports/ports.mk`).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A caller compiled with the other index width than the library's (the Makefile builds
  * this unit with RAD_INDEX_BITS 16 against a 32-bit library, or 32 against 16), linked
  * into test_adopt: its rad_scene_t and pools have the strides of the other width. */

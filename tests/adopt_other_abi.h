@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* What tests/adopt_other_abi.c (compiled with the other RAD_INDEX_BITS) reports. */
 #ifndef ADOPT_OTHER_ABI_H
 #define ADOPT_OTHER_ABI_H

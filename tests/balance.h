@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The energy balance of a solution, for tests/test_diverge.c and tests/soak/soak.c. */
 #ifndef RAD_TEST_BALANCE_H
 #define RAD_TEST_BALANCE_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Comparisons that say, when they fail, what the test measured and what it had to meet.
  *
  * CHECK_LE(measured, bound, what...) fails unless measured <= bound, and then prints

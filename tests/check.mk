@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # rad — `make check`: the reliability gates (sanitizers, valgrind, clang, static analysis,
 # configuration variants, fuzzing). Included from the top Makefile:
 #

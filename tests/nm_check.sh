@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The core's promise, proven from the built objects: lib/ calls nothing outside itself
 # but compiler runtime helpers, and the fixed build does no floating-point arithmetic.
 set -u

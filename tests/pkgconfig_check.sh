@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make install-lib as a user meets it: stage an install in a temporary prefix, build a
 # program from outside the tree (tests/pkgconfig/outside.c) with
 # `pkg-config --cflags --libs rad` (and rad_float), run it, check that a program

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Runs every CMocka test program given (cwd: the repository root), then prints one
 # closing line for the whole suite: "tests: N passed, N failed, N skipped".
 # RAD_TEST_WRAP (e.g. "valgrind -q --error-exitcode=99") runs each program under a tool.

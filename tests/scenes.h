@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Scenes built in C for the tests (no files): boxes, blockers, a Cornell-like room. */
 #ifndef RAD_TEST_SCENES_H
 #define RAD_TEST_SCENES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* What a user adopting the library meets first (fixed build): rad_init's ABI check
  * against a unit compiled with the other RAD_INDEX_BITS, sizing pools with
  * rad_plan_polygon against what rad_add_polygon really takes, pool alignment, the

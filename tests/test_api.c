@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Every public function's error paths, the state after errors, guard bytes after every
  * caller buffer, relighting by restart, and saturation counting (fixed build). */
 #include <math.h>

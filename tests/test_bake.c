@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for what game tools bake: tools/formats/hdr.c (Radiance RGBE images),
  * tools/bake/lightmap.c (charts, atlas, texels, dilation) and tools/bake/probes.c. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Black-box tests of the command-line program: build/rad_cli (fixed-point core) and
  * build/rad_cli_float (the float twin). Each test runs a binary with posix_spawn, with
  * stdout and stderr captured in files of a mkdtemp() directory under /tmp, and checks

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli never destroys, never hangs, never diverges in silence: each case runs
  * build/rad_cli on one hostile input or condition and asserts the exact exit status,
  * the message, and what is (or is not) left on disk.

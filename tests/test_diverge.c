@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Solves that used to go wrong without a word: overshooting in bright open scenes
  * (lib/solve.c's back-off), emitters lost to the core's precision, an outlier vertex,
  * the rows' memory and Gauss-Seidel's patch limit (tools/host/scene.c). */

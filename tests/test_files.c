@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for tools/formats/file_io.c and for the inputs and outputs of the readers and
  * writers that use it (OBJ/MTL, images, stored form factors): hostile files (FIFOs,
  * devices, directories, sparse giants, endless streams), outputs that are links,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Fixed-point primitives of the scalar shim against double (and exact 128-bit) maths,
  * over a table of edge values tested pairwise and a stream of pseudo-random values. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Gathering (lib/gather.c) in both builds: a closed box glowing uniformly gathers its
  * radiance exactly and its probe has band 0 alone; a point under a square emitter
  * against Lambert's point-to-polygon form factor; a gather at a patch's centre against

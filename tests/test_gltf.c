@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for the glTF export: tools/formats/gltf.c (the .glb writer) and
  * tools/host/gltf_export.c (the solution at the input's vertices). The files are read
  * back by a JSON reader written here and checked for structure, then by assimp

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The hemi-cube: its delta form factor table, form factors against analytic values
  * (Lambert's contour formula, catalog values), closed-scene row sums, banding, and
  * watertight occlusion. Both builds (fixed sc_*, float scf_*) are checked. */

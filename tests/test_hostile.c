@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Hostile input and limits: what the loader, the scene glue, the image writer and
  * rad_cli do with truncated and binary files, a megabyte line, millions of vertices,
  * indices out of range, emissions far outside the fixed-point range, scenes with no

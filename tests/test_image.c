@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for tools/formats/image.c (PNG/PPM I/O, tone mapping) and tools/bench/plot.c (line plots). */
 #include <dirent.h>
 #include <float.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for the OBJ + MTL loader (tools/formats/obj.c). Run from the repository root. */
 #include <stdarg.h>
 #include <stddef.h>

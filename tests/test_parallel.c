@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The parallel solve (threads in tools/, parts in the core) against the serial one. */
 #include <setjmp.h>
 #include <stdarg.h>

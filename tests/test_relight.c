@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Stored form factors through the host glue (tools/host/scene.c) and rad_cli: saving and
  * loading rows (tools/formats/ff_file.c), every way a file can be wrong, relighting a solved scene
  * without rendering a hemi-cube, Gauss-Seidel against progressive refinement, light

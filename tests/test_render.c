@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The camera through the shared rasterizer: orientation, Gouraud interpolation,
  * depth order, and vertex shading's area weights (fixed build and float twin). */
 #include <math.h>

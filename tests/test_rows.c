@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Stored form factors (the 1985 paper's promises): the 16-bit code, rows against
  * the hemi-cube, relighting without rendering, Gauss-Seidel against progressive
  * refinement, and light groups (fixed build). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The scale-safe core (issue 18): results that do not depend on the caller's units or
  * emission scale, through the public API alone, in both builds.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Progressive refinement against closed-form solutions, and the fixed build against
  * its float twin on a Cornell-like room. */
 #include <math.h>

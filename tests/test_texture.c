@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Tests for textures: tools/formats/texture.c (decoding, sRGB, sampling, means over a
  * UV triangle, hostile files) and the OBJ/MTL parts that feed it in tools/formats/obj.c
  * (vt, vn, o, g, map_Kd). Every image is generated here and written with img_write. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The temporary directory of a test program that writes files: made by tmpdir_make in
  * its group setup, removed with everything in it by tmpdir_remove in its teardown. */
 #ifndef RAD_TESTS_TMPDIR_H

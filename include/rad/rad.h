@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — hemi-cube radiosity in fixed point, with progressive refinement.
  *
  * Cohen & Greenberg, "The Hemi-Cube", SIGGRAPH 1985; Cohen, Chen, Wallace & Greenberg,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — how the library was built. In the source tree this file sets nothing: the
  * build's -D flags and rad_config.h's defaults decide. `make install-lib` installs in
  * its place one generated from the build ($(BUILDDIR)/include/rad/rad_build.h) that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — compile-time configuration.
  *
  * Every limit has an #ifndef default; override on the command line (-DRAD_...=N) or

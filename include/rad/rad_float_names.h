@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — the float twin's names. Included by rad.h when RAD_FLOAT is 1: the twin
  * (librad_float.a) links beside the fixed library, so its symbols carry the prefix
  * radf_. A program calls the rad_ names in either build; a new public function gets

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — Cortex-M boot and platform (ARMv6-M and ARMv7-M: the M0 and M3 ports).
  *
  * Vector table, reset (copy .data, zero .bss, paint the stack), SysTick as the

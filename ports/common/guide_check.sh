@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # rad ports — the firmware guide's worked examples, built and run from ports/README.md's
 # own text: the block "c firmware_rad.c" is the code, "sh guide-m0" and "sh guide-m3"
 # the commands, run as written (RAD, STARTUP and LDFLAGS set to this tree and ports/'s

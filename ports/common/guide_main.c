@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — the guide check's main (ports/common/guide_check.sh): runs the firmware
  * guide's example (ports/README.md, firmware_rad.c) on a port's startup code and prints
  * its results as `key value` lines; exits 0 when the solve shot at least once. */

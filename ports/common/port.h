@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — what a platform gives the port test: text out, exit, and (where the
  * target has one) an instruction counter and a stack high-water mark.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — memcpy and memset for the targets. GCC requires every freestanding
  * environment to provide them (with memmove and memcmp): at -Os on the Cortex-M0 and
  * RV32 it calls memcpy even for 12- and 24-byte struct copies, including in the core's

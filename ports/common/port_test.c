@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad port test — one program for the host and every target.
  *
  * Builds a Cornell box in C (no files): five inward-facing walls (red left, green

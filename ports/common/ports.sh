@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # rad ports — the shell side of ports/ports.mk: run a port test under QEMU, and print
 # (and write as Markdown) the port-test, port-bench and port-size tables; port-nm.
 #

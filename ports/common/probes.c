@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — stack painting, the stack high-water mark and the static size (see
  * probes.h and port.h), shared by the Cortex-M and RV32 platforms. */
 #include "port.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — the stack and size probes of the targets that boot from ports/common/
  * (Cortex-M and RV32): one copy, over the linker scripts' symbols __stack_limit,
  * __stack_top, __data_start and __bss_end. port_stack_used and port_static_bytes are

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — text out and exit status through semihosting, shared by the targets. */
 #include "port.h"
 #include "semihost.h"

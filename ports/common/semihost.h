@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — Arm semihosting (also the RISC-V semihosting ABI): the operations the
  * ports use. Each architecture supplies semihost_call(), its trap sequence. */
 #ifndef RAD_PORT_SEMIHOST_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad port test on the host: stdio out, exit(), no instruction counter. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — RV32 (rv32imac) platform on QEMU's virt machine.
  *
  * Boot (zero .bss, paint the stack), semihosting through the RISC-V trap sequence,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad ports — RV32 entry on QEMU's virt machine (-bios none: the reset stub jumps
  * here in M-mode). Sets the global and stack pointers and the trap vector, then
  * continues in C (port_boot in rv32.c). */

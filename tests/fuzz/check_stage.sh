@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # One stage of `make check` (tests/check.mk): runs COMMAND with its output in LOG,
 # records "PASS|FAIL SECONDS LOG" in STATUSDIR/NAME and prints one line (and, on
 # failure, the end of the log), so stages running in parallel do not interleave.

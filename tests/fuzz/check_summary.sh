@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The closing table of `make check`: one line per stage from STATUSDIR (written by
 # check_stage.sh), the fuzzers' executions and coverage from their logs, and the exit
 # status: 0 only when every expected stage passed.

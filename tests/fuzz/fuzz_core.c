@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer harness: the core's public API (lib/) driven by arbitrary bytes, in both
  * builds. This file is compiled twice, like tools/host/scene.c: with RAD_FLOAT=0 it
  * defines fuzz_core_fixed() and the libFuzzer entry point, with RAD_FLOAT=1

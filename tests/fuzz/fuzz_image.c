@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer harness: image writing, reading and tone mapping (tools/formats/image.c).
  *
  * Input: a small header, then payload bytes.

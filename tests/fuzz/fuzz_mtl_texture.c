@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer harness: the MTL map_Kd path and texture loading (tools/formats/obj.c's
  * map_Kd statement, tools/formats/texture.c) on arbitrary bytes.
  *

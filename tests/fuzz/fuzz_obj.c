@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer harness: the OBJ/MTL loader (tools/formats/obj.c) on arbitrary bytes.
  *
  * Input: OBJ text, optionally followed by a line "%%MTL" and MTL text. The MTL part is

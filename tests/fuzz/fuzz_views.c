@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* libFuzzer harness: rad_cli's --views and --animate parsers (tools/cli/views.c) on
  * arbitrary bytes.
  *

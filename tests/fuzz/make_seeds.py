@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes the seed corpora of the fuzz harnesses (tests/fuzz/corpus/{obj,core,image,mtl_texture}).
 
 The files are committed; run this again only to change them:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A program from outside the tree, as a user writes one: built by tests/pkgconfig_check.sh
  * with `pkg-config --cflags --libs rad` against a staged install, never with -Iinclude.
  * It sizes its pools with rad_plan_polygon, solves a closed box lit by its ceiling, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* soak — randomised scenes solved through the host glue (make check-soak).
  *
  *   build/tests/soak/soak [SEED [SCENES]]     (19 and 1000)

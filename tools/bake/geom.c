@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* geom — the bake's geometry in double. See geom.h. */
 #include "bake/geom.h"
 

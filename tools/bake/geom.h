@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* geom — the bake's geometry in double: vectors, polygons' planes, 2D triangles
  * against texel squares, and short rays through a uniform grid of polygons. */
 #ifndef RAD_TOOLS_GEOM_H

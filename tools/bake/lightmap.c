@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lightmap — charts, atlas packing, texel samples, gathering, dilation. See lightmap.h. */
 #include "bake/lightmap.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lightmap — the light arriving on a mesh's surfaces, baked into an atlas of N x N
  * texels (uses malloc, libm).
  *

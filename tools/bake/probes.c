@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* probes — light probes in spherical harmonics, as JSON. See probes.h. */
 #include "bake/probes.h"
 

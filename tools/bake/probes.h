@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* probes — light probes: the radiosity seen from points of a grid over the scene (or
  * read from a file) in L2 spherical harmonics, written as JSON (uses malloc, stdio).
  *

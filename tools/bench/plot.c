@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* plot — line plots onto an RGB canvas with a built-in 5x7 font. See plot.h. */
 #include "bench/plot.h"
 #include "formats/image.h"

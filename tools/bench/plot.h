@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* plot — a tiny line-plot renderer (host tool) used by the benchmark to draw convergence
  * curves: white canvas, framed axes with ticks, numeric labels and a light grid, a title,
  * axis labels and a legend, in a built-in 5x7 bitmap font. Written with img_write.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_bench — speed, memory and accuracy of the fixed core beside its float twin, on
  * the bundled Cornell box at three densities, the original Cornell box (when
  * ../shared/scenes is there) and a generated scene of 20,000+ elements, and rad_cli

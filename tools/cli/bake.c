@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's bake step: --lightmap (tools/bake/lightmap.h) and --probes / --probe-file
  * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
 #include "cli.h"

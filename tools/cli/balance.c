@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's check of where the emitted light goes: the share of the emitters' power
  * that their first shot lands on front faces of elements.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli — what its files share: the options, the views and light groups, the steps.
  *
  * Every file of tools/cli/ is built twice: rad_cli (the fixed-point core) and

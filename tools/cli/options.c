@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's options: one table (name, argument, help, handler); --help is made from it.
  */
 #include "cli.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's outputs: images of the views, the PLY mesh, the CSV of elements; every
  * output name checked before the solve.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli — load an OBJ/MTL scene, solve its radiosity, render views, write images.
  *
  * Built twice from the files of tools/cli/ (see cli.h): rad_cli (the fixed-point core)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's solves: shooting, or visibility once (the rows) and then shooting or
  * Gauss-Seidel from the rows, each light group alone; progress bars on a terminal.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad_cli's --views and --animate files, parsed from a buffer (tests/fuzz/fuzz_views.c
  * runs them on arbitrary bytes): no exit, no I/O, every error a line "NAME:LINE: what".
  */

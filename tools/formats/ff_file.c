@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ff_file — stored form factors on disk (see ff_file.h for the format). */
 #include "formats/ff_file.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ff_file — stored form factors on disk: the rows of rad_rows_t (rad.h) in a small,
  * versioned, checksummed binary file, so a scene's visibility (every patch's hemi-cube
  * row) is computed once and reused to relight it (host tools only: malloc, stdio).

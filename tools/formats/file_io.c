@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* file_io — how the host tools read inputs and write outputs. See file_io.h. */
 /* realpath is XSI: the tools otherwise ask for POSIX 2008 only. */
 #ifndef _XOPEN_SOURCE

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* file_io — how every host tool reads its inputs and writes its outputs, so that no
  * input can hang or exhaust memory and no output can destroy what is not ours.
  *

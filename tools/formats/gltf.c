@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gltf — glTF 2.0 binary export. See gltf.h.
  *
  * The scene is gathered in three passes: faces sorted into nodes (by canonical object

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gltf — glTF 2.0 binary (.glb) export of an OBJ scene's own meshes, for engines
  * (uses malloc and stdio).
  *

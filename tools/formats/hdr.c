@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hdr — Radiance RGBE images. See hdr.h. */
 #include "formats/hdr.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* hdr — Radiance RGBE (.hdr) images of linear float RGB: the lightmap's high dynamic
  * range output (uses malloc, stdio, libm).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image — PNG/PPM reading and writing, tone mapping. See image.h. */
 #include "formats/image.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image — 8-bit RGB image files (PNG via libpng, binary PPM P6) and tone mapping of
  * linear radiosity to display values, for the host tools (uses malloc, stdio, libm).
  *

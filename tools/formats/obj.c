@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* obj — Wavefront OBJ + MTL loader for the host tools. See obj.h. */
 #include "formats/obj.h"
 

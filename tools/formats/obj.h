@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* obj — Wavefront OBJ + MTL loader for the host tools (uses malloc and stdio).
  *
  * Only what a radiosity scene and its export need is kept: vertex positions, texture

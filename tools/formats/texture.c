@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* texture — diffuse textures for the host tools. See texture.h.
  *
  * stb_image comes from the system's libstb (Debian libstb-dev) rather than from a copy

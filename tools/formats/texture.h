@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* texture — diffuse textures (MTL map_Kd) for the host tools: decoded with stb_image
  * (Debian libstb-dev, linked as libstb), sampled in linear light.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host tools: the monotonic clock (see clock.h). */
 #include "host/clock.h"
 

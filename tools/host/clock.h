@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host tools: the one wall clock of the tools, the benchmark and the tests. */
 #ifndef RAD_TOOLS_CLOCK_H
 #define RAD_TOOLS_CLOCK_H

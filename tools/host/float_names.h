@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: compiled with RAD_FLOAT=1, a file that includes this before
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: the solution on the input's meshes, as glTF (see gltf_export.h). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"

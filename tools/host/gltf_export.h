@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: the solution on the input's own meshes, exported as glTF 2.0
  * (tools/formats/gltf.h). Built once per build of the core, like host/scene.c (float
  * twin: scf_corner_light, scf_export_gltf). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: OBJ faces to the core's polygons (see obj_polys.h). */
 #include "host/obj_polys.h"
 

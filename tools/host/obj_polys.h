@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: an OBJ scene as the core's polygons. Faces of 3 or 4 vertices go as
  * they are (the core splits non-planar quads); larger ones are ear-clipped into
  * triangles. Kd becomes reflectance, Ke emission; each polygon's tag is its OBJ face

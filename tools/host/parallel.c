@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: the parallel solve (see parallel.h). Each shot has two stages, run by
  * every thread on its own part: rendering a run of the hemi-cube's rows, then (after
  * the calling thread's rad_shot_aim) receiving for a run of the elements. Workers live

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: progressive refinement with each shot's hemi-cube rendered by several
  * threads (pthreads here; the core has none), each a run of its rows. The result is
  * bit for bit that of the serial solve. Built once per build of the core, like

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue (see scene.h): compiled once per build of the core. */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"

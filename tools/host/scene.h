@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: scenes of double-precision polygons solved through the core.
  *
  * tools/host/scene.c is compiled twice, once against the fixed library (names sc_*)

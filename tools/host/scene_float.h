@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue, the float twin: the functions of host/scene.h and host/parallel.h
  * built against librad_float (tools/host/scene.c compiled with RAD_FLOAT=1 and the
  * renames of host/float_names.h). Each does what its sc_ namesake in scene.h says; a

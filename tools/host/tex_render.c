@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: rendered views with the textures' detail (see tex_render.h). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad host glue: rendered views with the textures' detail. Built once per build of the
  * core, like host/scene.c (float twin: scf_render_textured). */
 #ifndef RAD_TOOLS_TEX_RENDER_H

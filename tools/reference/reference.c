@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — analytic references (see reference.h), written independently of the core. */
 #include "reference/reference.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* rad — analytic references for tests and benchmarks, computed in double and written
  * independently of the core: Lambert's contour formula for the form factor from a
  * point to a polygon, and a set of unoccluded receivers to check the hemi-cube on. */
