@@ -53,6 +53,61 @@ static inline int64_t rad__shr_round(int64_t v, unsigned n)
     return (int64_t)(biased >> n) - (int64_t)((uint64_t)1 << (62 - n));
 }
 
+/* Integer products, exact, in both builds. Targets without a 32 x 32 -> 64 bit
+ * multiply (ARMv6-M, ARMv8-M baseline: Cortex-M0, M0+, M23 have a 32-bit MULS only)
+ * build them inline from 32-bit products of 16-bit halves, instead of a call to
+ * libgcc's 64 x 64 bit multiply: the same integers, so the same bits everywhere.
+ * RAD__MUL_SPLIT=1 selects those forms on any target (the host tests both). */
+#ifndef RAD__MUL_SPLIT
+#if defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
+#define RAD__MUL_SPLIT 1
+#else
+#define RAD__MUL_SPLIT 0
+#endif
+#endif
+
+/* The int64 whose two's complement is U (a conversion C99 leaves to the compiler). */
+static inline int64_t rad__s64(uint64_t u)
+{
+    return u >> 63 ? -(int64_t)~u - 1 : (int64_t)u;
+}
+
+/* a * b for any two int32: |a b| <= 2^62. */
+static inline int64_t rad__mul32(int32_t a, int32_t b)
+{
+#if RAD__MUL_SPLIT
+    /* The unsigned product hi 2^32 + lo of ua, ub: partial products of 16-bit halves
+     * are below 2^32, and so is each with a carry of at most 2^16 - 1 added (mid, mid2:
+     * (2^16 - 1)^2 + 2^16 - 1 < 2^32). A negative a is ua - 2^32 (b alike), so the
+     * signed product is the unsigned one less ub 2^32 and ua 2^32, mod 2^64. */
+    uint32_t ua = (uint32_t)a, ub = (uint32_t)b;
+    uint32_t lo = (ua & 0xFFFFu) * (ub & 0xFFFFu);
+    uint32_t mid = (ua >> 16) * (ub & 0xFFFFu) + (lo >> 16);
+    uint32_t mid2 = (ua & 0xFFFFu) * (ub >> 16) + (mid & 0xFFFFu);
+    uint32_t hi = (ua >> 16) * (ub >> 16) + (mid >> 16) + (mid2 >> 16);
+    hi -= (a < 0 ? ub : 0u) + (b < 0 ? ua : 0u);
+    return rad__s64((uint64_t)hi << 32 | (mid2 << 16) | (lo & 0xFFFFu));
+#else
+    return (int64_t)a * b;
+#endif
+}
+
+/* x * m for |m| < 2^16, the product within int64 (the caller's range). */
+static inline int64_t rad__mul16(int64_t x, int32_t m)
+{
+#if RAD__MUL_SPLIT
+    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves) and the
+     * high word's, of which only the low 32 bits reach the sum; then the sign. */
+    uint64_t ux = (uint64_t)x, r;
+    uint32_t lo = (uint32_t)ux, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
+    r = (uint64_t)((lo & 0xFFFFu) * um) + ((uint64_t)((lo >> 16) * um) << 16) +
+        ((uint64_t)((uint32_t)(ux >> 32) * um) << 32);
+    return rad__s64(m < 0 ? 0u - r : r);
+#else
+    return x * m;
+#endif
+}
+
 /* num / den rounded half away from zero (C99 division truncates toward zero). */
 static inline int64_t rad__div_round(int64_t num, int64_t den)
 {
@@ -279,21 +334,21 @@ static inline rad_real_t rad__sat32(int64_t v, uint32_t *sat)
 /* Inputs: |a|, |b| < 2^25 (differences of in-range coordinates, or unit vectors). */
 static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b)
 {
-    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    int64_t s = rad__mul32(a.x, b.x) + rad__mul32(a.y, b.y) + rad__mul32(a.z, b.z);
     return (rad_real_t)rad__shr_round(s, 16);
 }
 /* Cross product of vectors of magnitude <= 2 (unit vectors), rounded to Q16.16. */
 static inline rad_vec3_t rad__cross(rad_vec3_t a, rad_vec3_t b)
 {
     rad_vec3_t r;
-    r.x = (rad_real_t)rad__shr_round((int64_t)a.y * b.z - (int64_t)a.z * b.y, 16);
-    r.y = (rad_real_t)rad__shr_round((int64_t)a.z * b.x - (int64_t)a.x * b.z, 16);
-    r.z = (rad_real_t)rad__shr_round((int64_t)a.x * b.y - (int64_t)a.y * b.x, 16);
+    r.x = (rad_real_t)rad__shr_round(rad__mul32(a.y, b.z) - rad__mul32(a.z, b.y), 16);
+    r.y = (rad_real_t)rad__shr_round(rad__mul32(a.z, b.x) - rad__mul32(a.x, b.z), 16);
+    r.z = (rad_real_t)rad__shr_round(rad__mul32(a.x, b.y) - rad__mul32(a.y, b.x), 16);
     return r;
 }
 static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat)
 {
-    return rad__sat32(rad__shr_round((int64_t)a * b, 16), sat);
+    return rad__sat32(rad__shr_round(rad__mul32(a, b), 16), sat);
 }
 static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat)
 {
@@ -312,9 +367,9 @@ static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
  * exact in Q32 (< 2^49); its length converts to an area in Q16.16 (< 2^31). */
 static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3_t *n)
 {
-    int64_t cx = (int64_t)d1.y * d2.z - (int64_t)d1.z * d2.y;
-    int64_t cy = (int64_t)d1.z * d2.x - (int64_t)d1.x * d2.z;
-    int64_t cz = (int64_t)d1.x * d2.y - (int64_t)d1.y * d2.x;
+    int64_t cx = rad__mul32(d1.y, d2.z) - rad__mul32(d1.z, d2.y);
+    int64_t cy = rad__mul32(d1.z, d2.x) - rad__mul32(d1.x, d2.z);
+    int64_t cz = rad__mul32(d1.x, d2.y) - rad__mul32(d1.y, d2.x);
     uint64_t len = rad__unit64(cx, cy, cz, n);     /* |c| in Q32 */
     return (rad_real_t)((len + (1u << 16)) >> 17); /* |c| / 2 in Q16.16, rounded */
 }
@@ -344,7 +399,7 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
 /* |a|, |b| < 2^26: the product fits int64 comfortably. */
 static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
 {
-    return a + (rad_real_t)rad__div_round(((int64_t)b - a) * da, (int64_t)da - db);
+    return a + (rad_real_t)rad__div_round(rad__mul32(b - a, da), (int64_t)da - db);
 }
 /* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
 typedef uint64_t rad__recip_t;
