@@ -96,16 +96,71 @@ static inline int64_t rad__mul32(int32_t a, int32_t b)
 static inline int64_t rad__mul16(int64_t x, int32_t m)
 {
 #if RAD__MUL_SPLIT
-    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves) and the
-     * high word's, of which only the low 32 bits reach the sum; then the sign. */
+    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves, p0 and
+     * p1) and the high word's, of which only the low 32 bits reach the sum; the low
+     * word's carry is rlo < p0. Then the sign. */
     uint64_t ux = (uint64_t)x, r;
     uint32_t lo = (uint32_t)ux, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
-    r = (uint64_t)((lo & 0xFFFFu) * um) + ((uint64_t)((lo >> 16) * um) << 16) +
-        ((uint64_t)((uint32_t)(ux >> 32) * um) << 32);
+    uint32_t p0 = (lo & 0xFFFFu) * um, p1 = (lo >> 16) * um, rlo = p0 + (p1 << 16);
+    uint32_t rhi = (uint32_t)(ux >> 32) * um + (p1 >> 16) + (rlo < p0);
+    r = (uint64_t)rhi << 32 | rlo;
     return rad__s64(m < 0 ? 0u - r : r);
 #else
     return x * m;
 #endif
+}
+
+/* The leading zero bits of d > 0, found in five halvings (16, 8, 4, 2, 1). */
+static inline unsigned rad__clz32(uint32_t d)
+{
+    unsigned s = 0;
+    if (d <= 0xFFFFu) {
+        s = 16;
+        d <<= 16;
+    }
+    if (d <= 0xFFFFFFu) {
+        s += 8;
+        d <<= 8;
+    }
+    if (d <= 0xFFFFFFFu) {
+        s += 4;
+        d <<= 4;
+    }
+    if (d <= 0x3FFFFFFFu) {
+        s += 2;
+        d <<= 2;
+    }
+    if (d <= 0x7FFFFFFFu) s += 1;
+    return s;
+}
+
+/* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
+ * normalised V (top bit set), estimated from V's top half, then corrected: the
+ * estimate is at most 2 too large (Knuth, TAOCP 4.3.1, Theorem B). Leaves the
+ * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16. */
+static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
+{
+    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu, q = *u / vn1, rhat = *u - q * vn1;
+    while (q > 0xFFFFu || q * vn0 > (rhat << 16) + lo16) {
+        q--;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) break;
+    }
+    *u = (*u << 16) + lo16 - q * v; /* the true remainder < v, mod 2^32 */
+    return q;
+}
+
+/* n / d for d > 0 and n / d < 2^32 (n >> 32 < d): long division by two 16-bit digits
+ * with 32-bit divisions (Hacker's Delight's divlu), for targets where a 64-bit division
+ * is a long library call. */
+static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
+{
+    unsigned s = rad__clz32(d);
+    uint32_t u1 = (uint32_t)(n >> 32), u0 = (uint32_t)n, q1;
+    uint32_t u = s ? u1 << s | u0 >> (32u - s) : u1, lo = u0 << s;
+    d <<= s;
+    q1 = rad__udigit(&u, lo >> 16, d);
+    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
 }
 
 /* num / den rounded half away from zero (C99 division truncates toward zero). */
@@ -114,7 +169,14 @@ static inline int64_t rad__div_round(int64_t num, int64_t den)
     int neg = (num < 0) != (den < 0);
     uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
     uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
-    uint64_t q = (n + d / 2u) / d;
+    uint64_t q;
+    n += d / 2u;
+#if RAD__MUL_SPLIT
+    if (d >> 32 == 0 && n >> 32 < d)
+        q = rad__udiv64_32(n, (uint32_t)d);
+    else
+#endif
+        q = n / d;
     return neg ? -(int64_t)q : (int64_t)q;
 }
 
