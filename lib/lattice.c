@@ -141,13 +141,28 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned c, f;
+    unsigned c, f, j;
+    const int32_t res = lt->res;
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
     }
-    /* no span yet on this face */
-    for (f = 0; f < lt->nfam; f++) lt->fam[f].hint[0] = lt->fam[f].hint[1] = -1;
+    for (f = 0; f < lt->nfam; f++) {
+        rad__family_t *fm = &lt->fam[f];
+        for (j = 0; j < 3; j++) {
+            /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d:
+             * within +-res <= 2^10 a component, so E at any pixel keeps the bound above,
+             * and each product is rad__mul16's. */
+            const int64_t *k = fm->c[j];
+            int64_t ca = negate_if(k[lt->axis[0]], lt->sign[0] < 0);
+            int64_t cb = negate_if(k[lt->axis[1]], lt->sign[1] < 0);
+            int64_t cd = negate_if(k[lt->axis[2]], lt->sign[2] < 0);
+            fm->o[j][0] = rad__mul16(ca, 1 - res) + rad__mul16(cb, res - 1) + rad__mul16(cd, res);
+            fm->o[j][1] = 2 * ca;
+            fm->o[j][2] = -2 * cb;
+        }
+        fm->hint[0] = fm->hint[1] = -1; /* no span yet on this face */
+    }
 }
 
 /* ---- spans --------------------------------------------------------------------- */
@@ -205,28 +220,19 @@ static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
 
 /* Sets W up for family F on row Y from pixel XS to XE - 1, searching from F's hints
  * and leaving this span's cells there. */
-static void walk_start(const rad__lattice_t *lt, rad__family_t *f, int32_t y, int32_t xs,
-                       int32_t xe, walk_t *w)
+static void walk_start(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk_t *w)
 {
-    int64_t e[3], de[3];
-    int32_t k, sg, res = lt->res, span = xe - 1 - xs;
+    int64_t e[3], de[3], last[3];
+    int32_t k, sg, span = xe - 1 - xs;
     unsigned j;
     for (j = 0; j < 3; j++) {
-        /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d: each
-         * component within +-res <= 2^10, so the products are rad__mul16's. */
-        const int64_t *c = f->c[j];
-        int64_t ca = negate_if(c[lt->axis[0]], lt->sign[0] < 0);
-        int64_t cb = negate_if(c[lt->axis[1]], lt->sign[1] < 0);
-        int64_t cd = negate_if(c[lt->axis[2]], lt->sign[2] < 0);
-        de[j] = 2 * ca;
-        e[j] = rad__mul16(ca, 2 * xs + 1 - res) + rad__mul16(cb, res - 2 * y - 1) +
-               rad__mul16(cd, res);
+        /* pixel (xs, y) and the last, (xe - 1, y): x, y, span < res <= 2^10 */
+        de[j] = f->o[j][1];
+        e[j] = f->o[j][0] + rad__mul16(de[j], xs) + rad__mul16(f->o[j][2], y);
+        last[j] = e[j] + rad__mul16(de[j], span);
     }
     w->i = f->hint[0] = search_from(e, f->n, f->hint[0]);
-    /* The last pixel's column, with E moved there and back (one array less of stack). */
-    for (j = 0; j < 3; j++) e[j] += rad__mul16(de[j], span);
-    w->end = f->hint[1] = search_from(e, f->n, f->hint[1]);
-    for (j = 0; j < 3; j++) e[j] -= rad__mul16(de[j], span);
+    w->end = f->hint[1] = search_from(last, f->n, f->hint[1]);
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
     if (!w->step) return;
     sg = w->step;
@@ -260,7 +266,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     uint32_t unit, wrap, first;
     int32_t i, fi;
     walk_t w;
-    walk_start(lt, fm, y, xs, xe, &w);
+    walk_start(fm, y, xs, xe, &w);
     if (lt->nfam == 3) {
         unit = wrap = tri_unit[f];
         first = (uint32_t)w.i * unit;
