@@ -296,7 +296,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
         } else {
             /* the first pixel with T >= 0, p or later (a negative quotient truncates to
              * at most 0) */
-            c = (-t + st - 1) / st;
+            c = rad__sdiv64(-t + st - 1, st);
             p = c > p ? c : p;
             if (p >= n) break;
         }

@@ -109,7 +109,7 @@ static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t p
 static int64_t udiv(int64_t a, int64_t b)
 {
     if (((uint64_t)a | (uint64_t)b) >> 32 == 0) return (int64_t)((uint32_t)a / (uint32_t)b);
-    return a / b;
+    return (int64_t)rad__udiv64((uint64_t)a, (uint64_t)b);
 }
 
 /* Narrows pixels LO..HI of a row (from the bounding box's first) to those where edge
@@ -148,8 +148,8 @@ static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, 
     int32_t d2 = (int32_t)v2->at[k] - (int32_t)v0->at[k];
     int32_t x1 = v1->x - v0->x, y1 = v1->y - v0->y;
     int32_t x2 = v2->x - v0->x, y2 = v2->y - v0->y;
-    int64_t gx = (rad__mul32(d1, y2) - rad__mul32(d2, y1)) * 65536 / ar;
-    int64_t gy = (rad__mul32(d2, x1) - rad__mul32(d1, x2)) * 65536 / ar;
+    int64_t gx = rad__sdiv64((rad__mul32(d1, y2) - rad__mul32(d2, y1)) * 65536, ar);
+    int64_t gy = rad__sdiv64((rad__mul32(d2, x1) - rad__mul32(d1, x2)) * 65536, ar);
     *val = ((uint64_t)v0->at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v0->x) +
            (uint64_t)gy * (uint64_t)((int64_t)py - v0->y);
     *sx = (uint64_t)gx * SUB;

@@ -163,20 +163,35 @@ static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
     return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
 }
 
+/* n / d for d > 0: by rad__udiv64_32 where it applies on RAD__MUL_SPLIT targets. */
+static inline uint64_t rad__udiv64(uint64_t n, uint64_t d)
+{
+#if RAD__MUL_SPLIT
+    if (d >> 32 == 0 && n >> 32 < d) return rad__udiv64_32(n, (uint32_t)d);
+#endif
+    return n / d;
+}
+
+/* num / den truncated toward zero, as C99's division, for den != 0 and num > INT64_MIN. */
+static inline int64_t rad__sdiv64(int64_t num, int64_t den)
+{
+#if RAD__MUL_SPLIT
+    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
+    int64_t q = (int64_t)rad__udiv64(n, d);
+    return (num < 0) != (den < 0) ? -q : q;
+#else
+    return num / den;
+#endif
+}
+
 /* num / den rounded half away from zero (C99 division truncates toward zero). */
 static inline int64_t rad__div_round(int64_t num, int64_t den)
 {
     int neg = (num < 0) != (den < 0);
     uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
     uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
-    uint64_t q;
-    n += d / 2u;
-#if RAD__MUL_SPLIT
-    if (d >> 32 == 0 && n >> 32 < d)
-        q = rad__udiv64_32(n, (uint32_t)d);
-    else
-#endif
-        q = n / d;
+    uint64_t q = rad__udiv64(n + d / 2u, d);
     return neg ? -(int64_t)q : (int64_t)q;
 }
 
@@ -467,7 +482,7 @@ static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t d
 typedef uint64_t rad__recip_t;
 static inline rad__recip_t rad__recip(rad_real_t d)
 {
-    return (((uint64_t)1 << 46) + ((uint64_t)d >> 1)) / (uint64_t)d;
+    return rad__udiv64(((uint64_t)1 << 46) + ((uint64_t)d >> 1), (uint64_t)d);
 }
 /* num * scale / d for num in [0, 2 d], scale <= 2^15: num * inv <= 2^47, times scale
  * <= 2^62. */
@@ -501,7 +516,7 @@ static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
 {
     uint64_t a = (uint64_t)(area > 0 ? area : 1);
-    uint64_t q = (((uint64_t)u << 16) + (a >> 1)) / a;
+    uint64_t q = rad__udiv64(((uint64_t)u << 16) + (a >> 1), a);
     if (q > (uint64_t)INT32_MAX) {
         if (sat) (*sat)++;
         return INT32_MAX;
@@ -517,7 +532,7 @@ static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
         d >>= 1;
     }
     if (d == 0) return n ? INT32_MAX : 0;
-    q = ((n << 16) + (d >> 1)) / d;
+    q = rad__udiv64((n << 16) + (d >> 1), d);
     return q > (uint64_t)INT32_MAX ? INT32_MAX : (rad_real_t)q;
 }
 static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
@@ -551,7 +566,8 @@ static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
 /* G = F * a / b in Q2.30, saturating at 4.0 (F <= 2^30, a < 2^31). */
 static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat)
 {
-    uint64_t v = ((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u) / (uint64_t)(b > 0 ? b : 1);
+    uint64_t v =
+        rad__udiv64((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u, (uint64_t)(b > 0 ? b : 1));
     if (v > 0xFFFFFFFFu) {
         if (sat) (*sat)++;
         return 0xFFFFFFFFu;
@@ -573,7 +589,7 @@ static inline rad_ff_t rad__vweight(rad_real_t area)
 }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 {
-    return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
+    return (rad_real_t)rad__udiv64((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u, wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i)
 {

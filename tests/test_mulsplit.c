@@ -55,8 +55,17 @@ static void test_mul32(void **st)
  * x over the whole int64 range. */
 static void test_mul16(void **st)
 {
-    static const int64_t xs[] = {0, 1, -1, 0xFFFF, 0x10000, 0xFFFFFFFF, 0x100000000, -0x100000000,
-                                 (int64_t)1 << 46, -((int64_t)1 << 46), ((int64_t)1 << 60) - 1};
+    static const int64_t xs[] = {0,
+                                 1,
+                                 -1,
+                                 0xFFFF,
+                                 0x10000,
+                                 0xFFFFFFFF,
+                                 0x100000000,
+                                 -0x100000000,
+                                 (int64_t)1 << 46,
+                                 -((int64_t)1 << 46),
+                                 ((int64_t)1 << 60) - 1};
     static const int32_t ms[] = {0, 1, -1, 2, -2, 1023, -1024, 0x7FFF, -0x8000, 0xFFFF, -0xFFFF};
     size_t i, j, n = 0;
     (void)st;
@@ -67,7 +76,7 @@ static void test_mul16(void **st)
                 CHECK_INT_EQ(rad__mul16(xs[i], ms[j]), xs[i] * ms[j], "rad__mul16(%lld, %ld)",
                              (long long)xs[i], (long)ms[j]);
     for (i = 0; i < 200000; i++) {
-        int64_t x = (int64_t)(rnd() >> (rnd() % 64u + 1u));
+        int64_t x = (int64_t)(rnd() >> (rnd() % 63u + 1u));
         int32_t m = (int32_t)(rnd() % 65536u);
         if (rnd() & 1) x = -x;
         if (rnd() & 1) m = -m;
@@ -86,7 +95,8 @@ static void test_udiv64_32(void **st)
     size_t i;
     (void)st;
     for (i = 0; i < 400000; i++) {
-        uint32_t d = (uint32_t)(rnd() >> (rnd() % 32u + 32u)), q = (uint32_t)(rnd() >> (rnd() % 33u));
+        uint32_t d = (uint32_t)(rnd() >> (rnd() % 32u + 32u)),
+                 q = (uint32_t)(rnd() >> (rnd() % 33u));
         uint64_t r, n;
         if (!d) d = 1;
         if (i % 5 == 0) q = 0xFFFFFFFFu;
@@ -98,6 +108,17 @@ static void test_udiv64_32(void **st)
     }
 }
 
+/* A numerator and a non-zero denominator of any sign, magnitudes below 2^62 of every
+ * length. */
+static void rnd_pair(int64_t *num, int64_t *den)
+{
+    *num = (int64_t)(rnd() >> (rnd() % 62u + 2u));
+    *den = (int64_t)(rnd() >> (rnd() % 62u + 2u));
+    if (!*den) *den = 1;
+    if (rnd() & 1) *num = -*num;
+    if (rnd() & 1) *den = -*den;
+}
+
 /* rad__div_round through the split path and past it (64-bit divisors, quotients of 2^32
  * and more) equals the native rounding. */
 static void test_div_round(void **st)
@@ -105,11 +126,9 @@ static void test_div_round(void **st)
     size_t i;
     (void)st;
     for (i = 0; i < 200000; i++) {
-        int64_t num = (int64_t)(rnd() >> (rnd() % 63u + 2u)), den = (int64_t)(rnd() >> (rnd() % 63u + 2u));
+        int64_t num, den;
         uint64_t n, d, want;
-        if (!den) den = 1;
-        if (rnd() & 1) num = -num;
-        if (rnd() & 1) den = -den;
+        rnd_pair(&num, &den);
         n = num < 0 ? (uint64_t)-num : (uint64_t)num;
         d = den < 0 ? (uint64_t)-den : (uint64_t)den;
         want = (n + d / 2u) / d;
@@ -119,13 +138,26 @@ static void test_div_round(void **st)
     }
 }
 
+/* rad__sdiv64 truncates toward zero as C99's division does, signs of both kinds, and
+ * rad__udiv64 (under it) past the 32-bit quotient and divisor. */
+static void test_sdiv64(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 200000; i++) {
+        int64_t num, den;
+        rnd_pair(&num, &den);
+        CHECK_INT_EQ(rad__sdiv64(num, den), num / den, "rad__sdiv64(%lld, %lld)", (long long)num,
+                     (long long)den);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mul32),
-        cmocka_unit_test(test_mul16),
-        cmocka_unit_test(test_udiv64_32),
-        cmocka_unit_test(test_div_round),
+        cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
+        cmocka_unit_test(test_udiv64_32), cmocka_unit_test(test_div_round),
+        cmocka_unit_test(test_sdiv64),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
