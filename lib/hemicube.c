@@ -9,6 +9,8 @@
  *
  * A cube draws every surface (but the shooter's own) once a face, and each pixel gets
  * the element of the surface under its centre from the surface's lattice (lattice.c).
+ * The same cube, at any point, frame and resolution, and with a sixth face and full
+ * side faces for a whole sphere, serves gathering (gather.c): rad__eye_face.
  */
 #include "internal.h"
 
@@ -18,9 +20,15 @@ typedef struct {
     uint32_t offset; /* first pixel in the work buffer's face buffers */
 } region_t;
 
+/* Rows of face F of a cube of resolution RES: a hemi-cube's sides are half faces, a full
+ * cube's (FULL) are whole. */
+static uint32_t rows_of(uint32_t res, int full, unsigned f)
+{
+    return f && !full ? res / 2u : res;
+}
 static uint32_t face_rows(const rad_scene_t *s, unsigned f)
 {
-    return f ? s->cfg.res / 2u : s->cfg.res;
+    return rows_of(s->cfg.res, 0, f);
 }
 /* First pixel of face F when all five faces are in the buffers: the top, then the sides. */
 static uint32_t face_offset(const rad_scene_t *s, unsigned f)
@@ -53,9 +61,9 @@ static unsigned bitlen64(uint64_t v)
     return b;
 }
 
-static void build_table(rad_scene_t *s)
+void rad__dff_table(uint32_t res, rad_ff_t *top, rad_ff_t *side)
 {
-    uint32_t res = s->cfg.res, q = res / 2u, n = q * q, k, extra_side, extra_top;
+    uint32_t q = res / 2u, n = q * q, k, extra_side, extra_top;
     unsigned sh, b = bitlen64(raw_dff(res, 0, 0, 0, 0));
     uint64_t sum = 0, fsum = 0, deficit;
 
@@ -75,8 +83,8 @@ static void build_table(rad_scene_t *s)
     for (k = 0; k < n; k++) {
         uint64_t t = (raw_dff(res, 0, k % q, k / q, sh) << 28) / sum + (k < extra_top);
         uint64_t d = (raw_dff(res, 1, k % q, k / q, sh) << 28) / sum + (k < extra_side);
-        s->dff_top[k] = rad__ff_from_q30((uint32_t)t);
-        s->dff_side[k] = rad__ff_from_q30((uint32_t)d);
+        top[k] = rad__ff_from_q30((uint32_t)t);
+        side[k] = rad__ff_from_q30((uint32_t)d);
     }
 }
 
@@ -109,7 +117,7 @@ int rad__hemicube_init(rad_scene_t *s)
     s->acc = s->dff_side + (size_t)q * q;
     s->zbuf = (uint32_t *)(s->acc + nacc);
     s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
-    build_table(s);
+    rad__dff_table(res, s->dff_top, s->dff_side);
     for (k = 0; k < res; k++) s->steps[k] = 0; /* once: every span leaves it zero */
     return RAD_OK;
 }
@@ -146,18 +154,19 @@ static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
     return 0;
 }
 
-/* The faces look along +z, +x, -x, +y, -y: their axes a (across), b (up) and d (depth)
- * are the cube's axes x, y, z (0, 1, 2) of FACE_AXIS, times FACE_SIGN. */
-static const unsigned char face_axis[5][3] = {
-    {0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {0, 2, 1}, {0, 2, 1}};
-static const signed char face_sign[5][3] = {
-    {1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {1, 1, 1}, {1, 1, -1}};
+/* The faces look along +z, +x, -x, +y, -y (and a full cube's sixth, -z): their axes a
+ * (across), b (up) and d (depth) are the cube's axes x, y, z (0, 1, 2) of
+ * rad__face_axis, times rad__face_sign. */
+const unsigned char rad__face_axis[6][3] = {{0, 1, 2}, {1, 2, 0}, {1, 2, 0},
+                                            {0, 2, 1}, {0, 2, 1}, {0, 1, 2}};
+const signed char rad__face_sign[6][3] = {{1, 1, 1}, {1, 1, 1},  {1, 1, -1},
+                                          {1, 1, 1}, {1, 1, -1}, {1, 1, -1}};
 
 static rad_real_t axis(rad_vec3_t l, unsigned face, unsigned k)
 {
-    unsigned a = face_axis[face][k];
+    unsigned a = rad__face_axis[face][k];
     rad_real_t v = a == 0 ? l.x : a == 1 ? l.y : l.z;
-    return face_sign[face][k] < 0 ? -v : v;
+    return rad__face_sign[face][k] < 0 ? -v : v;
 }
 
 /* A point in the cube's frame in the face's view space. */
@@ -190,35 +199,54 @@ static uint32_t cube_codes(rad_vec3_t l)
     return top | px << 5 | nx << 10 | py << 15 | ny << 20;
 }
 
-/* Where a pass draws: the face buffers (region offsets index into them). */
+/* The same for a full cube's six faces, bits 5 f + p, whose side faces are whole (plane
+ * 4 is -b > d on every face): each face's planes tested on its own axes. */
+static uint32_t full_codes(rad_vec3_t l)
+{
+    uint32_t codes = 0;
+    unsigned f;
+    for (f = 0; f < 6; f++) {
+        rad_real_t a = axis(l, f, 0), b = axis(l, f, 1), d = axis(l, f, 2);
+        uint32_t c = (uint32_t)(d < RAD__NEAR) | (uint32_t)(a > d) << 1 | (uint32_t)(-a > d) << 2 |
+                     (uint32_t)(b > d) << 3 | (uint32_t)(-b > d) << 4;
+        codes |= c << (5u * f);
+    }
+    return codes;
+}
+
+/* Where a pass draws: the face buffers (region offsets index into them) of a cube of
+ * resolution RES, a full cube (six whole faces) when FULL. */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     uint32_t *steps;
     rad_stats_t *st;
+    uint32_t res;
+    int full;
 } canvas_t;
 
-/* One pass of a cube: the shooter's centre C and frame, and the regions drawn. */
+/* One pass of a cube: its centre C and frame, the regions drawn, and the surface not
+ * drawn (the shooter's own; any value past the last surface: none). */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
     const region_t *reg;
     unsigned nreg;
+    uint32_t skip;
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
-static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t *r,
-                        rad__frustum_t *f, rad__target_t *t)
+static void region_view(const canvas_t *cv, const region_t *r, rad__frustum_t *f, rad__target_t *t)
 {
-    f->half = r->face != 0;
-    f->width = (int)s->cfg.res;
-    f->height = (int)face_rows(s, r->face);
+    f->half = r->face != 0 && !cv->full;
+    f->width = (int)cv->res;
+    f->height = (int)rows_of(cv->res, cv->full, r->face);
     t->z = cv->z + r->offset;
     t->ids = cv->ids + r->offset;
     t->rgb = 0;
     t->lat = 0;
     t->steps = cv->steps;
-    t->width = (int)s->cfg.res;
+    t->width = (int)cv->res;
     t->row0 = r->row0;
     t->row1 = r->row1;
 }
@@ -228,7 +256,7 @@ static void region_view(const rad_scene_t *s, const canvas_t *cv, const region_t
 static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps,
                            const rad_surface_t *sf)
 {
-    uint32_t k[4], all = 0x1FFFFFF, any = 0;
+    uint32_t k[4], all = cv->full ? 0x3FFFFFFFu : 0x1FFFFFFu, any = 0;
     rad_vec3_t loc[4];
     rad__cvert_t cvt[4];
     rad__lattice_t lat;
@@ -245,7 +273,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         loc[i].x = rad__dot(d, ps->frame[0]);
         loc[i].y = rad__dot(d, ps->frame[1]);
         loc[i].z = rad__dot(d, ps->frame[2]);
-        code = cube_codes(loc[i]);
+        code = cv->full ? full_codes(loc[i]) : cube_codes(loc[i]);
         all &= code;
         any |= code;
     }
@@ -254,12 +282,12 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         rad__frustum_t fr;
         rad__target_t t;
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
-        region_view(s, cv, &ps->reg[r], &fr, &t);
+        region_view(cv, &ps->reg[r], &fr, &t);
         if (grid) {
             /* set up on the first face that draws it */
-            if (grid == 1) rad__lattice_init(&lat, sf, loc, n, (int32_t)s->cfg.res);
+            if (grid == 1) rad__lattice_init(&lat, sf, loc, n, (int32_t)cv->res);
             grid = 2;
-            rad__lattice_face(&lat, face_axis[f], face_sign[f]);
+            rad__lattice_face(&lat, rad__face_axis[f], rad__face_sign[f]);
             t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
@@ -277,12 +305,7 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
     int r;
     for (r = reg->row0; r < reg->row1; r++) {
         const rad_index_t *ids = ibuf + reg->offset + (size_t)(r - reg->row0) * res;
-        const rad_ff_t *row;
-        if (reg->face == 0)
-            row =
-                s->dff_top + (size_t)((uint32_t)r < q ? q - 1u - (uint32_t)r : (uint32_t)r - q) * q;
-        else
-            row = s->dff_side + (size_t)r * q;
+        const rad_ff_t *row = rad__dff_row(s->dff_top, s->dff_side, res, reg->face, (uint32_t)r);
         for (i = 0; i < q; i++)
             if (ids[i] < n) acc[ids[i]] += row[q - 1u - i];
         for (i = q; i < res; i++)
@@ -290,9 +313,9 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
     }
 }
 
-static void clear_region(const rad_scene_t *s, const canvas_t *cv, const region_t *reg)
+static void clear_region(const canvas_t *cv, const region_t *reg)
 {
-    uint32_t i, n = (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    uint32_t i, n = (uint32_t)(reg->row1 - reg->row0) * cv->res;
     uint32_t *z = cv->z + reg->offset;
     rad_index_t *ids = cv->ids + reg->offset;
     /* Eight at a time, which compilers turn into wide stores. */
@@ -316,7 +339,7 @@ static void clear_region(const rad_scene_t *s, const canvas_t *cv, const region_
 static const uint8_t spins[8][3] = {{3, 4, 5},    {12, 5, 13},  {8, 15, 17}, {24, 7, 25},
                                     {20, 21, 29}, {35, 12, 37}, {9, 40, 41}, {45, 28, 53}};
 
-static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
+void rad__cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 {
     rad_vec3_t helper = {0, 0, 0}, u0, v0;
     const uint8_t *t = spins[spin % 8u];
@@ -332,6 +355,14 @@ static void cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
     frame[2] = n;
 }
 
+/* Every surface but PS's skipped one into PS's regions. */
+static void render_view(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps)
+{
+    uint32_t k;
+    for (k = 0; k < s->n_surfaces; k++)
+        if (k != ps->skip) render_surface(s, cv, ps, &s->pools.surfaces[k]);
+}
+
 /* Every surface but the shooter's own into the regions, seen from patch P's centre
  * through its cube's frame. */
 static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_t *reg,
@@ -340,30 +371,63 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     const rad_patch_t *pt = &s->pools.patches[p];
     rad_vec3_t frame[3];
     pass_t ps;
-    uint32_t k;
-    cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
+    rad__cube_frame(s->pools.surfaces[pt->surface].normal, p, frame);
     ps.c = pt->center;
     ps.frame = frame;
     ps.reg = reg;
     ps.nreg = nreg;
-    for (k = 0; k < s->n_surfaces; k++)
-        if (k != pt->surface) render_surface(s, cv, &ps, &s->pools.surfaces[k]);
+    ps.skip = pt->surface;
+    render_view(s, cv, &ps);
+}
+
+/* The scene's own cube's canvas over face buffers Z, IDS and a row of STEPS. */
+static canvas_t scene_canvas(const rad_scene_t *s, uint32_t *z, rad_index_t *ids, uint32_t *steps,
+                             rad_stats_t *st)
+{
+    canvas_t cv;
+    cv.z = z;
+    cv.ids = ids;
+    cv.steps = steps;
+    cv.st = st;
+    cv.res = s->cfg.res;
+    cv.full = 0;
+    return cv;
+}
+
+void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
+{
+    canvas_t cv;
+    region_t reg;
+    pass_t ps;
+    cv.z = e->z;
+    cv.ids = e->ids;
+    cv.steps = e->steps;
+    cv.st = e->st;
+    cv.res = e->res;
+    cv.full = e->full;
+    reg.face = face;
+    reg.row0 = 0;
+    reg.row1 = (int)rows_of(e->res, e->full, face);
+    reg.offset = 0;
+    ps.c = e->c;
+    ps.frame = e->frame;
+    ps.reg = &reg;
+    ps.nreg = 1;
+    ps.skip = e->skip;
+    clear_region(&cv, &reg);
+    render_view(s, &cv, &ps);
 }
 
 void rad__hemicube(rad_scene_t *s, uint32_t p)
 {
     region_t reg[5];
-    canvas_t cv;
+    canvas_t cv = scene_canvas(s, s->zbuf, s->ibuf, s->steps, &s->stats);
     unsigned k, nreg, r;
     uint32_t e;
 
-    cv.z = s->zbuf;
-    cv.ids = s->ibuf;
-    cv.steps = s->steps;
-    cv.st = &s->stats;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
-        for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
+        for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
         for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
     }
@@ -394,12 +458,8 @@ static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 /* The part's canvas in BUF, its steps zeroed. */
 static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 {
-    canvas_t cv;
+    canvas_t cv = scene_canvas(s, part_z(s, buf), part_ids(s, buf), part_steps(buf), 0);
     uint32_t i;
-    cv.z = part_z(s, buf);
-    cv.ids = part_ids(s, buf);
-    cv.steps = part_steps(buf);
-    cv.st = 0;
     for (i = 0; i < s->cfg.res; i++) cv.steps[i] = 0;
     return cv;
 }
@@ -429,13 +489,13 @@ static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned npart
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)
 {
     region_t reg[5];
-    rad_stats_t st = {0, 0, 0, 0};
+    rad_stats_t st = {0};
     canvas_t cv = part_canvas(s, buf);
     part_head_t *h = (part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
 
     cv.st = &st;
-    for (r = 0; r < nreg; r++) clear_region(s, &cv, &reg[r]);
+    for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
     if (nreg) render_scene(s, &cv, reg, nreg, p);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;

@@ -14,6 +14,16 @@
 #define rad__lattice_init    radf__lattice_init
 #define rad__lattice_face    radf__lattice_face
 #define rad__lattice_span    radf__lattice_span
+#define rad__dff_table       radf__dff_table
+#define rad__cube_frame      radf__cube_frame
+#define rad__eye_face        radf__eye_face
+#define rad__face_axis       radf__face_axis
+#define rad__face_sign       radf__face_sign
+#define rad__emission        radf__emission
+#define rad__scale_geometry  radf__scale_geometry
+#define rad__freeze          radf__freeze
+#define rad__scale_power     radf__scale_power
+#define rad__ambient         radf__ambient
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -103,6 +113,41 @@ void rad__draw(rad_stats_t *st, const rad__target_t *t, const rad__frustum_t *f,
 
 /* Work buffer layout and delta form factor table (hemicube.c). */
 int rad__hemicube_init(rad_scene_t *s);
+/* The delta form factor table of a hemi-cube of resolution RES: TOP and SIDE quadrants
+ * of (RES/2)^2 entries each, summing over the whole cube to exactly 2^30 (Q2.30). */
+void rad__dff_table(uint32_t res, rad_ff_t *top, rad_ff_t *side);
+/* Row R of face FACE's delta form factors: the quadrant row it mirrors, entry i for
+ * the pixels q + i and q - 1 - i (q = RES/2). */
+static inline const rad_ff_t *rad__dff_row(const rad_ff_t *top, const rad_ff_t *side, uint32_t res,
+                                           unsigned face, uint32_t r)
+{
+    uint32_t q = res / 2u;
+    if (face == 0) return top + (size_t)(r < q ? q - 1u - r : r - q) * q;
+    return side + (size_t)r * q;
+}
+/* The frame (x, y, z = N, unit) of a cube at a point of unit normal N, turned by the
+ * SPIN-th (mod 8) of its rational turns about N. */
+void rad__cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame);
+/* The axes a, b, d of face F (0 +z, 1 +x, 2 -x, 3 +y, 4 -y, 5 -z) are the cube's axes
+ * rad__face_axis[F] times rad__face_sign[F]. */
+extern const unsigned char rad__face_axis[6][3];
+extern const signed char rad__face_sign[6][3];
+
+/* A cube at any point (gather.c): centre C, FRAME, resolution RES, a hemi-cube (five
+ * faces, half sides) or, FULL, a whole cube (six whole faces); surface SKIP not drawn
+ * (past the last: none). Buffers of one face: Z and IDS of RES^2 pixels, STEPS of RES
+ * entries, zero. */
+typedef struct {
+    rad_vec3_t c, frame[3];
+    uint32_t res, skip;
+    int full;
+    uint32_t *z, *steps;
+    rad_index_t *ids;
+    rad_stats_t *st;
+} rad__eye_t;
+/* Face FACE of E's cube into its buffers: cleared, then every surface drawn (rows 0 at
+ * the face's top, b = +1, as the hemi-cube's). */
+void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 /* Form factors from patch P's centre to every element, into s->acc. */
 void rad__hemicube(rad_scene_t *s, uint32_t p);
 
@@ -142,11 +187,107 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
  * surface is a rounded convex combination of them. Returns how many, indices in K. */
 unsigned rad__surface_corners(const rad_scene_t *s, const rad_surface_t *sf, uint32_t *k);
 
+/* The core's scale (mesh.c; rad.h has the rules). rad__scale_geometry re-meshes the
+ * scene at the length shift its extent calls for (a no-op once it is there) and counts
+ * small elements; rad__scale_power picks the power shift for the emissions as they
+ * stand; rad__freeze, before a solve, does both and sets s->solving (a no-op while
+ * solving). Each restarts the solution when a shift changes: call them only before a
+ * solve, or (Gauss-Seidel) where the solution is replaced anyway. */
+void rad__scale_geometry(rad_scene_t *s);
+void rad__scale_power(rad_scene_t *s);
+void rad__freeze(rad_scene_t *s);
+/* Surface SF's emission in the core's scale (saturations counted). */
+rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf);
+/* The ambient radiosity per channel in the core's scale (solve.c). */
+void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat);
+
 /* Channel K (0 r, 1 g, 2 b) of C. */
 static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
 {
     return k == 0 ? c->r : k == 1 ? c->g : c->b;
 }
+
+/* Element E's radiosity as shown: plus reflectance times AMB when AMB is given, and at
+ * least 0 (while overshooting, power owed can make either negative for a while).
+ * Saturations are counted in SAT. */
+static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_rgb_t *amb,
+                                   uint32_t *sat)
+{
+    const rad_element_t *el = &s->pools.elements[e];
+    rad_rgb_t b = el->radiosity;
+    if (amb) {
+        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
+        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
+        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
+        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
+    }
+    if (b.r < 0) b.r = 0;
+    if (b.g < 0) b.g = 0;
+    if (b.b < 0) b.b = 0;
+    return b;
+}
+
+/* Gather sums (gather.c): weights (Q2.30) times shown radiosities (Q16.16, >= 0), over
+ * pixels whose weights sum to at most 2^30: below 2^61, exact in uint64 (WSUM). Signed
+ * sums of them (MSUM, int64) stay below 2^62; a moment is one read in Q20 (units of
+ * 2^-20 radiosity times the weights' sum as a fraction of 2^30). The twin sums floats
+ * (its weights are fractions already). */
+#if RAD_FLOAT
+typedef float rad__wsum_t;
+typedef float rad__msum_t;
+static inline rad__wsum_t rad__wterm(rad_ff_t w, rad_real_t b)
+{
+    return w * b;
+}
+static inline rad_real_t rad__wvalue(rad__wsum_t a, uint32_t *sat)
+{
+    (void)sat;
+    return a;
+}
+static inline rad__msum_t rad__msum_q20(rad__msum_t v)
+{
+    return v;
+}
+static inline rad__msum_t rad__msum_div(rad__msum_t v, int d)
+{
+    return v / (float)d;
+}
+/* M times the constant K (the float value of the fixed build's Q28 integer). */
+static inline rad_real_t rad__mscale(rad__msum_t m, float k, uint32_t *sat)
+{
+    (void)sat;
+    return m * k;
+}
+#else
+typedef uint64_t rad__wsum_t;
+typedef int64_t rad__msum_t;
+static inline rad__wsum_t rad__wterm(rad_ff_t w, rad_real_t b)
+{
+    return (uint64_t)w * (uint32_t)b;
+}
+/* A sum of weights of at most 2^30 in all, read as Q16.16 radiosity. */
+static inline rad_real_t rad__wvalue(rad__wsum_t a, uint32_t *sat)
+{
+    return rad__sat32((int64_t)((a + (1u << 29)) >> 30), sat);
+}
+static inline rad__msum_t rad__msum_q20(rad__msum_t v)
+{
+    return rad__shr_round(v, 26);
+}
+static inline rad__msum_t rad__msum_div(rad__msum_t v, int d)
+{
+    return rad__div_round(v, d);
+}
+/* round(M K / 2^32) for a moment |M| < 2^38 (Q20) and a constant K (Q28, < 2^32): a
+ * Q16.16 value. M = hi 2^16 + lo keeps both partial products below 2^54. */
+static inline rad_real_t rad__mscale(rad__msum_t m, uint32_t k, uint32_t *sat)
+{
+    uint64_t a = m < 0 ? (uint64_t)0 - (uint64_t)m : (uint64_t)m;
+    uint64_t t = (a >> 16) * k + (((a & 0xFFFFu) * k + 32768u) >> 16);
+    int64_t v = (int64_t)((t + 32768u) >> 16);
+    return rad__sat32(m < 0 ? -v : v, sat);
+}
+#endif
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

@@ -24,31 +24,83 @@ static int rgb_ok(const rad_rgb_t *c, rad_real_t hi, int open_top)
     return in_range(c->r, 0, hi) && in_range(c->g, 0, hi) && in_range(c->b, 0, hi);
 }
 
-int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg)
+/* Defaults filled in and every setting checked, as rad_init and rad_plan_polygon use
+ * them. Returns RAD_OK or RAD_ERR_ARG with *WHY naming the setting. */
+static int resolve_config(rad_config_t *c, const char **why)
+{
+    if (c->res == 0) c->res = 64;
+    if (c->max_element == 0) c->max_element = RAD__Q(4.0);
+    *why = "res not even within 8..RAD_MAX_RES";
+    if (c->res < 8 || c->res > RAD_MAX_RES || (c->res & 1u)) return RAD_ERR_ARG;
+    *why = "unknown flag, or band_rows with RAD_NO_BANDS";
+    if (c->flags & ~(RAD_NO_OVERSHOOT | RAD_NO_BANDS)) return RAD_ERR_ARG;
+    if ((c->flags & RAD_NO_BANDS) && c->band_rows) return RAD_ERR_ARG;
+    /* Checked before the default patch size is derived from it: 4 * max_element of an
+     * out-of-range value would overflow. */
+    *why = "max_element outside 1/16..2 RAD_COORD_LIMIT";
+    if (!in_range(c->max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    if (c->max_patch == 0) c->max_patch = 4 * c->max_element;
+    *why = "max_patch outside max_element..4 RAD_COORD_LIMIT";
+    if (!in_range(c->max_patch, c->max_element, RAD__Q(4 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    return RAD_OK;
+}
+
+/* C99 has no alignof: a type's alignment is its offset after a char in a struct. */
+typedef struct {
+    char c;
+    rad_surface_t t;
+} align_surface_t;
+typedef struct {
+    char c;
+    rad_patch_t t;
+} align_patch_t;
+typedef struct {
+    char c;
+    rad_element_t t;
+} align_element_t;
+typedef struct {
+    char c;
+    rad_vec3_t t;
+} align_vec3_t;
+
+static int aligned(const void *p, size_t a)
+{
+    return (uintptr_t)p % a == 0;
+}
+
+static int pools_aligned(const rad_pools_t *p)
+{
+    return aligned(p->surfaces, offsetof(align_surface_t, t)) &&
+           aligned(p->patches, offsetof(align_patch_t, t)) &&
+           aligned(p->elements, offsetof(align_element_t, t)) &&
+           aligned(p->vertices, offsetof(align_vec3_t, t));
+}
+
+/* The caller's sizes and kind against the library's: a program compiled with another
+ * RAD_INDEX_BITS would index the pools with other strides. Checked before S is used. */
+int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
+                 size_t scene_bytes, unsigned index_bytes, int is_float)
 {
     const uint32_t lim = RAD_INDEX_NONE - 1u;
+    const char *why;
     rad_scene_t z = {0};
+    if (scene_bytes != sizeof(rad_scene_t) || index_bytes != sizeof(rad_index_t) ||
+        is_float != RAD_FLOAT)
+        return RAD_ERR_ABI;
     if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
         !pools->vertices || !pools->work)
         return RAD_ERR_ARG;
     if (pools->max_surfaces > lim || pools->max_patches > lim || pools->max_elements > lim ||
         pools->max_vertices > lim)
         return RAD_ERR_ARG;
+    if (!pools_aligned(pools)) return RAD_ERR_ALIGN;
     z.pools = *pools;
     if (cfg) z.cfg = *cfg;
-    if (z.cfg.res == 0) z.cfg.res = 64;
-    if (z.cfg.max_element == 0) z.cfg.max_element = RAD__Q(4.0);
-    if (z.cfg.res < 8 || z.cfg.res > RAD_MAX_RES || (z.cfg.res & 1u)) return RAD_ERR_ARG;
-    if (z.cfg.flags & ~RAD_NO_OVERSHOOT) return RAD_ERR_ARG;
-    /* Checked before the default patch size is derived from it: 4 * max_element of an
-     * out-of-range value would overflow. */
-    if (!in_range(z.cfg.max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
-    if (z.cfg.max_patch == 0) z.cfg.max_patch = 4 * z.cfg.max_element;
-    if (!in_range(z.cfg.max_patch, z.cfg.max_element, RAD__Q(4 * RAD_COORD_LIMIT)))
-        return RAD_ERR_ARG;
+    if (resolve_config(&z.cfg, &why) < 0) return RAD_ERR_ARG;
     {
         int rc = rad__hemicube_init(&z);
         if (rc < 0) return rc;
+        if ((z.cfg.flags & RAD_NO_BANDS) && z.band_rows) return RAD_ERR_WORK;
     }
     *s = z;
     return RAD_OK;
@@ -61,21 +113,25 @@ static int vec_eq(rad_vec3_t a, rad_vec3_t b)
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
 
-/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_*. */
-static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area)
+/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_* with *WHY. */
+static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area,
+                         const char **why)
 {
     const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
     unsigned i;
     for (i = 0; i < n; i++) {
+        *why = "coordinate beyond +-RAD_COORD_LIMIT";
         if (!in_range(v[i].x, -lim, lim) || !in_range(v[i].y, -lim, lim) ||
             !in_range(v[i].z, -lim, lim))
             return RAD_ERR_RANGE;
+        *why = "two consecutive vertices equal";
         if (vec_eq(v[i], v[(i + 1) % n])) return RAD_ERR_DEGENERATE;
     }
     if (n == 3)
         *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
     else
         *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
+    *why = "area below 1/4096 (or vertices in a line)";
     if (!(*area >= MIN_AREA)) return RAD_ERR_DEGENERATE;
     if (n == 4) {
         uint32_t sat = 0;
@@ -83,15 +139,19 @@ static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, ra
             rad_vec3_t nk;
             /* Planar: every corner within sqrt(area) / 64 of the plane through v0. */
             rad_real_t h = rad__dot(rad__sub(v[i], v[0]), *normal);
+            *why = "quad corner farther than sqrt(area) / 64 from its plane";
             if (rad__mul(rad__mul(h, h, &sat), RAD__Q(4096.0), &sat) > *area)
                 return RAD_ERR_NONPLANAR;
             /* Convex: every corner turns the same way as the whole. */
+            *why = "quad with three corners in a line";
             if (rad__area_normal(rad__sub(v[(i + 1) % 4], v[i]),
                                  rad__sub(v[(i + 2) % 4], v[(i + 1) % 4]), &nk) <= 0)
                 return RAD_ERR_DEGENERATE;
+            *why = "quad not convex";
             if (rad__dot(nk, *normal) <= 0) return RAD_ERR_NONPLANAR;
         }
     }
+    *why = "";
     return RAD_OK;
 }
 
@@ -112,10 +172,11 @@ static rad_real_t max2(rad_real_t a, rad_real_t b)
 /* Emitters shoot from every element: direct light is the largest and most visible
  * term, and shooting it from many points (each hemi-cube turned differently) averages
  * the aliasing of any one cube, which a single shot from a big light leaves as blotches. */
-static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int emits, plan_t *p)
+static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, int emits,
+                      plan_t *p)
 {
     static const plan_t zero = {0, 0, 0, 0, 0, 0, 0};
-    rad_real_t me = s->cfg.max_element, mp = emits ? me : s->cfg.max_patch;
+    rad_real_t me = cfg->max_element, mp = emits ? me : cfg->max_patch;
     *p = zero;
     if (n == 4) {
         rad_real_t lu = max2(rad__length(rad__sub(v[1], v[0])), rad__length(rad__sub(v[2], v[3])));
@@ -139,6 +200,56 @@ static void plan_mesh(const rad_scene_t *s, const rad_vec3_t *v, unsigned n, int
         p->elements = m * m;
         p->vertices = (m + 1u) * (m + 2u) / 2u;
     }
+}
+
+static int args_ok(const rad_vec3_t *v, unsigned n)
+{
+    return v && (n == 3 || n == 4);
+}
+
+/* Everything rad_add_polygon decides before it writes, in its order: colours, then
+ * the polygon, then the mesh's plan. Returns RAD_OK or the error with *WHY. */
+static int plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                        const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_vec3_t *normal,
+                        rad_real_t *area, plan_t *plan, const char **why)
+{
+    int rc;
+    *why = "reflectance outside [0, 1)";
+    if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
+    *why = "emission outside [0, RAD_EMISSION_LIMIT]";
+    if (!rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0)) return RAD_ERR_RANGE;
+    rc = check_polygon(v, n, normal, area, why);
+    if (rc < 0) return rc;
+    plan_mesh(cfg, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), plan);
+    return RAD_OK;
+}
+
+static uint32_t add_sat(uint32_t a, uint32_t b)
+{
+    return b > UINT32_MAX - a ? UINT32_MAX : a + b;
+}
+
+int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan)
+{
+    rad_config_t c = {0};
+    rad_vec3_t normal;
+    rad_real_t area;
+    plan_t p;
+    int rc;
+    if (!plan) return RAD_ERR_ARG;
+    plan->problem = "NULL vertices, or not 3 or 4 of them";
+    if (!args_ok(v, n)) return RAD_ERR_ARG;
+    if (cfg) c = *cfg;
+    rc = resolve_config(&c, &plan->problem);
+    if (rc == RAD_OK)
+        rc = plan_polygon(&c, v, n, reflectance, emission, &normal, &area, &p, &plan->problem);
+    if (rc < 0) return rc;
+    plan->surfaces = add_sat(plan->surfaces, 1);
+    plan->patches = add_sat(plan->patches, p.patches);
+    plan->elements = add_sat(plan->elements, p.elements);
+    plan->vertices = add_sat(plan->vertices, p.vertices);
+    return RAD_OK;
 }
 
 static int fits(uint32_t used, uint32_t want, uint32_t max)
@@ -292,20 +403,164 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
 #undef T
 }
 
+static void mesh_surface(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, unsigned n,
+                         const plan_t *p)
+{
+    if (n == 4)
+        mesh_quad(s, surf, c, p);
+    else
+        mesh_tri(s, surf, c, p);
+}
+
+rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf)
+{
+    return rad__scale2_rgb(sf->emission, s->power_shift, &s->stats.saturations);
+}
+
 /* Emission as the solution's starting point: radiosity E, unshot power E * area. */
 static void start_surface(rad_scene_t *s, uint32_t surf)
 {
     const rad_surface_t *sf = &s->pools.surfaces[surf];
+    rad_rgb_t em = rad__emission(s, sf);
     uint32_t i;
-    for (i = 0; i < sf->n_elements; i++)
-        s->pools.elements[sf->first_element + i].radiosity = sf->emission;
+    for (i = 0; i < sf->n_elements; i++) s->pools.elements[sf->first_element + i].radiosity = em;
     for (i = 0; i < sf->n_patches; i++) {
         rad_patch_t *pt = &s->pools.patches[sf->first_patch + i];
-        pt->unshot[0] = rad__energy(sf->emission.r, pt->area);
-        pt->unshot[1] = rad__energy(sf->emission.g, pt->area);
-        pt->unshot[2] = rad__energy(sf->emission.b, pt->area);
+        pt->unshot[0] = rad__energy(em.r, pt->area);
+        pt->unshot[1] = rad__energy(em.g, pt->area);
+        pt->unshot[2] = rad__energy(em.b, pt->area);
         s->emitted = rad__esum(s->emitted, pt->unshot[0] + pt->unshot[1] + pt->unshot[2]);
     }
+}
+
+static void start_all(rad_scene_t *s)
+{
+    uint32_t i;
+    s->emitted = 0;
+    for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
+}
+
+/* ---- the core's scale (rad.h) ---------------------------------------------------- */
+
+#define SCALE_HALF       RAD__Q(RAD_COORD_LIMIT / 2.0) /* the largest coordinate into (16, 32] */
+#define SCALE_PEAK       RAD__Q(256.0)                 /* the brightest emission into (128, 256] */
+#define SMALL_AREA       RAD__Q(1.0 / 64.0)            /* 2^10 LSB: rounding 2^-11 of the area */
+#define MAX_LENGTH_SHIFT 15 /* for a scene within 2^-10: smaller than any polygon accepted */
+/* Emission scales up only: outputs come back in the caller's Q16.16, whose range a
+ * smaller scale would not widen, while it would round away the low bits of emissions. */
+#define MIN_POWER_SHIFT  0
+#define MAX_POWER_SHIFT  24 /* 2^-16 to 256 */
+
+/* The N in LO..HI that takes V > 0 into (TARGET / 2, TARGET] times 2^N, or the bound
+ * nearest it (0 for V = 0). */
+static int pick_shift(rad_real_t v, rad_real_t target, int lo, int hi)
+{
+    int n = 0;
+    if (!(v > 0)) return 0;
+    while (n > lo && rad__scale2(v, n, 0) > target) n--;
+    while (n < hi && rad__scale2(v, n + 1, 0) <= target) n++;
+    return n;
+}
+
+static rad_real_t larger_abs(rad_real_t m, rad_real_t v)
+{
+    if (v < 0) v = -v;
+    return v > m ? v : m;
+}
+
+/* The largest coordinate magnitude, in the caller's units: every vertex is a convex
+ * combination of its surface's corners, which are the caller's own vertices times
+ * 2^length_shift exactly (the lattice's weights at a corner are den, 0, 0...). */
+static rad_real_t extent(const rad_scene_t *s)
+{
+    rad_real_t m = 0;
+    uint32_t i, k[4];
+    unsigned j, n;
+    for (i = 0; i < s->n_surfaces; i++) {
+        n = rad__surface_corners(s, &s->pools.surfaces[i], k);
+        for (j = 0; j < n; j++) {
+            const rad_vec3_t *v = &s->pools.vertices[k[j]];
+            m = larger_abs(larger_abs(larger_abs(m, v->x), v->y), v->z);
+        }
+    }
+    return rad__scale2(m, -s->length_shift, 0); /* exact: a multiple of 2^length_shift */
+}
+
+/* The brightest emission channel of any surface, in the caller's units. */
+static rad_real_t peak(const rad_scene_t *s)
+{
+    rad_real_t m = 0;
+    uint32_t i;
+    for (i = 0; i < s->n_surfaces; i++) {
+        const rad_rgb_t *e = &s->pools.surfaces[i].emission;
+        m = larger_abs(larger_abs(larger_abs(m, e->r), e->g), e->b);
+    }
+    return m;
+}
+
+/* Meshes every surface again, in place, from its corners at length shift G: the same
+ * lattice (the plan is kept in the surface), vertices, centres and areas rounded at the
+ * new scale as if the caller had given the scaled polygons. The corners scale exactly
+ * (up by 2^(G - length_shift), or back down: they are multiples of 2^length_shift). */
+static void remesh(rad_scene_t *s, int g)
+{
+    uint32_t np = s->n_patches, ne = s->n_elements, nv = s->n_vertices, i, k[4];
+    int d = g - s->length_shift;
+    for (i = 0; i < s->n_surfaces; i++) {
+        const rad_surface_t *sf = &s->pools.surfaces[i];
+        plan_t p = {0, 0, 0, 0, 0, 0, 0};
+        rad_vec3_t c[4];
+        unsigned j, n = rad__surface_corners(s, sf, k);
+        for (j = 0; j < n; j++) c[j] = rad__scale2_vec(s->pools.vertices[k[j]], d, 0);
+        p.pu = sf->pu;
+        p.pv = sf->pv;
+        p.ku = sf->ku;
+        p.kv = sf->kv;
+        s->n_patches = sf->first_patch;
+        s->n_elements = sf->first_element;
+        s->n_vertices = sf->first_vertex;
+        mesh_surface(s, i, c, n, &p);
+    }
+    s->n_patches = np;
+    s->n_elements = ne;
+    s->n_vertices = nv;
+    s->length_shift = (int8_t)g;
+}
+
+/* The core's scale at length shift G and power shift P, and the start state at it;
+ * nothing changes when both stand (only ever called before a solve). */
+static void set_scale(rad_scene_t *s, int g, int p)
+{
+    if (g == s->length_shift && p == s->power_shift) return;
+    if (g != s->length_shift) remesh(s, g);
+    s->power_shift = (int8_t)p;
+    start_all(s);
+}
+
+static int pick_power_shift(const rad_scene_t *s)
+{
+    return pick_shift(peak(s), SCALE_PEAK, MIN_POWER_SHIFT, MAX_POWER_SHIFT);
+}
+
+void rad__scale_geometry(rad_scene_t *s)
+{
+    uint32_t e, small = 0;
+    set_scale(s, pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT), s->power_shift);
+    for (e = 0; e < s->n_elements; e++) small += s->pools.elements[e].area < SMALL_AREA;
+    s->stats.small_elements = small;
+}
+
+void rad__scale_power(rad_scene_t *s)
+{
+    set_scale(s, s->length_shift, pick_power_shift(s));
+}
+
+void rad__freeze(rad_scene_t *s)
+{
+    if (s->solving) return;
+    rad__scale_geometry(s);
+    rad__scale_power(s);
+    s->solving = 1;
 }
 
 int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
@@ -316,21 +571,20 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     rad_vec3_t normal;
     rad_real_t area;
     plan_t plan;
+    const char *why;
     int rc;
 
-    if (!s || !v || (n != 3 && n != 4)) return RAD_ERR_ARG;
+    if (!s || !args_ok(v, n)) return RAD_ERR_ARG;
     if (s->solving) return RAD_ERR_STATE;
-    if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
-        return RAD_ERR_RANGE;
-    rc = check_polygon(v, n, &normal, &area);
+    rc = plan_polygon(&s->cfg, v, n, reflectance, emission, &normal, &area, &plan, &why);
     if (rc < 0) return rc;
-    plan_mesh(s, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), &plan);
     if (!fits(s->n_surfaces, 1, s->pools.max_surfaces) ||
         !fits(s->n_patches, plan.patches, s->pools.max_patches) ||
         !fits(s->n_elements, plan.elements, s->pools.max_elements) ||
         !fits(s->n_vertices, plan.vertices, s->pools.max_vertices))
         return RAD_ERR_FULL;
 
+    set_scale(s, 0, 0); /* new polygons come in the caller's units (after a restart) */
     sf = &s->pools.surfaces[s->n_surfaces];
     sf->normal = normal;
     sf->reflectance = reflectance ? *reflectance : black;
@@ -342,10 +596,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     sf->pv = (rad_index_t)plan.pv;
     sf->ku = (rad_index_t)plan.ku;
     sf->kv = (rad_index_t)plan.kv;
-    if (n == 4)
-        mesh_quad(s, s->n_surfaces, v, &plan);
-    else
-        mesh_tri(s, s->n_surfaces, v, &plan);
+    mesh_surface(s, s->n_surfaces, v, n, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
@@ -366,10 +617,9 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
 
 int rad_restart(rad_scene_t *s)
 {
-    uint32_t i;
     if (!s) return RAD_ERR_ARG;
-    s->emitted = 0;
-    for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
+    s->power_shift = (int8_t)pick_power_shift(s); /* new emissions may need another */
+    start_all(s);
     s->solving = 0;
     s->stats.shots = 0;
     return RAD_OK;
@@ -390,11 +640,15 @@ const char *rad_strerror(int err)
     case RAD_OK: return "success";
     case RAD_ERR_ARG: return "invalid argument";
     case RAD_ERR_FULL: return "pool full";
-    case RAD_ERR_RANGE: return "value out of range";
+    case RAD_ERR_RANGE:
+        return "coordinate, reflectance or emission out of range (rad_plan_polygon names which)";
     case RAD_ERR_DEGENERATE: return "degenerate polygon";
     case RAD_ERR_NONPLANAR: return "quad not planar or not convex";
     case RAD_ERR_STATE: return "call out of order";
     case RAD_ERR_WORK: return "work buffer too small";
+    case RAD_ERR_ALIGN: return "pool not aligned for its type";
+    case RAD_ERR_ABI:
+        return "program compiled with another rad.h layout (RAD_INDEX_BITS or RAD_FLOAT)";
     default: return err > 0 ? "success" : "unknown error";
     }
 }

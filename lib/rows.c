@@ -14,7 +14,7 @@ int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
     if (!s || !rows || !rows->start || !rows->ids || !rows->ffs || rows->max_rows < s->n_patches ||
         rows->n_rows > s->n_patches)
         return RAD_ERR_ARG;
-    s->solving = 1; /* rows describe this geometry: no more polygons */
+    rad__freeze(s); /* rows describe this geometry: no more polygons */
     if (rows->n_rows == 0) rows->start[0] = 0;
     while (done < count && rows->n_rows < s->n_patches) {
         uint32_t p = rows->n_rows, e, n = rows->start[p], seen = 0;
@@ -91,24 +91,26 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
     if (!rows_ready(s, rows)) return RAD_ERR_STATE;
-    s->solving = 1;
+    rad__freeze(s);
+    rad__scale_power(s); /* for the emissions now: this solve starts from them alone */
     assemble(s, rows, matrix);
     /* The patch radiosities live after the matrix, in its type's room (4 bytes). */
     b = (rad_real_t *)(void *)(matrix + (size_t)np * np);
     for (k = 0; k < np; k++) {
-        const rad_rgb_t *em = &s->pools.surfaces[s->pools.patches[k].surface].emission;
-        b[3 * k] = em->r;
-        b[3 * k + 1] = em->g;
-        b[3 * k + 2] = em->b;
+        rad_rgb_t em = rad__emission(s, &s->pools.surfaces[s->pools.patches[k].surface]);
+        b[3 * k] = em.r;
+        b[3 * k + 1] = em.g;
+        b[3 * k + 2] = em.b;
     }
     for (it = 0; it < max_iter;) {
         int moved = 0;
         it++;
         for (k = 0; k < np; k++) {
             const rad_surface_t *sf = &s->pools.surfaces[s->pools.patches[k].surface];
+            rad_rgb_t em = rad__emission(s, sf);
             unsigned c;
             for (c = 0; c < 3; c++) {
-                rad_real_t v = gather(s, matrix, b, k, c, rad__channel(&sf->emission, c),
+                rad_real_t v = gather(s, matrix, b, k, c, rad__channel(&em, c),
                                       rad__channel(&sf->reflectance, c));
                 rad_real_t d = v > b[3 * k + c] ? v - b[3 * k + c] : b[3 * k + c] - v;
                 /* Relative to each value, so dim patches converge as well as bright ones. */
@@ -121,7 +123,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     }
     /* Elements: their emission plus every patch's total power shot once. */
     for (e = 0; e < s->n_elements; e++)
-        s->pools.elements[e].radiosity = s->pools.surfaces[s->pools.elements[e].surface].emission;
+        s->pools.elements[e].radiosity =
+            rad__emission(s, &s->pools.surfaces[s->pools.elements[e].surface]);
     for (k = 0; k < np; k++) {
         rad_energy_t u[3];
         const rad_patch_t *pt = &s->pools.patches[k];

@@ -1,8 +1,7 @@
 /* rad — the arithmetic behind the scalar shim that is too long to inline. */
 #include "scalar.h"
 
-#if !RAD_FLOAT
-
+/* In both builds: tables built in integers (gather.c) take square roots too. */
 uint64_t rad__isqrt64(uint64_t v)
 {
     /* Bit by bit, two result bits per step: 32 iterations, no division. */
@@ -18,6 +17,8 @@ uint64_t rad__isqrt64(uint64_t v)
     }
     return r;
 }
+
+#if !RAD_FLOAT
 
 static unsigned bitlen(uint64_t v)
 {
@@ -80,3 +81,19 @@ float rad__fsqrt(float x)
 }
 
 #endif
+
+rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat)
+{
+    v.x = rad__scale2(v.x, n, sat);
+    v.y = rad__scale2(v.y, n, sat);
+    v.z = rad__scale2(v.z, n, sat);
+    return v;
+}
+
+rad_rgb_t rad__scale2_rgb(rad_rgb_t c, int n, uint32_t *sat)
+{
+    c.r = rad__scale2(c.r, n, sat);
+    c.g = rad__scale2(c.g, n, sat);
+    c.b = rad__scale2(c.b, n, sat);
+    return c;
+}

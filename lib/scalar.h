@@ -16,6 +16,8 @@
 #define rad__isqrt64       radf__isqrt64
 #define rad__unit64        radf__unit64
 #define rad__fsqrt         radf__fsqrt
+#define rad__scale2_vec    radf__scale2_vec
+#define rad__scale2_rgb    radf__scale2_rgb
 #define rad__draw          radf__draw
 #define rad__hemicube_init radf__hemicube_init
 #define rad__hemicube      radf__hemicube
@@ -384,6 +386,15 @@ static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
     float q = v / m * (float)((int32_t)1 << s);
     return (int64_t)(q < 0 ? q - 0.5f : q + 0.5f);
 }
+/* V times 2^N, -31 <= N <= 31: exact (a power of two), short of float's range. */
+static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
+{
+    float f = 1.0f;
+    (void)sat;
+    for (; n > 0; n--) f *= 2.0f;
+    for (; n < 0; n++) f *= 0.5f;
+    return v * f;
+}
 /* (a U + b V) / c: U turned toward V by the angle whose cosine is a / c. */
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
@@ -599,6 +610,13 @@ static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
 {
     return rad__div_round((int64_t)v * ((int64_t)1 << s), m);
 }
+/* V times 2^N, -31 <= N <= 31: a shift, exact for N >= 0 (saturating, counted),
+ * rounded to nearest for N < 0. */
+static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
+{
+    if (n < 0) return (rad_real_t)rad__shr_round(v, (unsigned)-n);
+    return rad__sat32((int64_t)v * ((int64_t)1 << n), sat);
+}
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
     rad_vec3_t r;
@@ -609,6 +627,10 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 }
 
 #endif
+
+/* V and C times 2^N, each component as rad__scale2 (scalar.c: not inlined, for size). */
+rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat);
+rad_rgb_t rad__scale2_rgb(rad_rgb_t c, int n, uint32_t *sat);
 
 /* The magnitude of a signed energy (|u| < 2^62 in the fixed build: no overflow). */
 static inline rad_energy_t rad__eabs(rad_energy_t u)

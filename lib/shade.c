@@ -2,41 +2,47 @@
  * by the same rasterizer as the hemi-cube (raster.c) with colours instead of ids. */
 #include "internal.h"
 
-/* Element radiosity, plus reflectance times AMB when AMB is given, at least 0 (while
- * overshooting, power owed can make either negative for a while). */
+/* Element E as shown (rad__shown), its saturations counted in the scene. */
 static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
 {
-    const rad_element_t *el = &s->pools.elements[e];
-    rad_rgb_t b = el->radiosity;
-    if (amb) {
-        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
-        uint32_t *sat = &s->stats.saturations;
-        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
-        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
-        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
-    }
-    if (b.r < 0) b.r = 0;
-    if (b.g < 0) b.g = 0;
-    if (b.b < 0) b.b = 0;
-    return b;
+    return rad__shown(s, e, amb, &s->stats.saturations);
+}
+
+/* The ambient term in the core's scale, when FLAGS ask for it, into AMB; else null. */
+static const rad_rgb_t *shade_ambient(rad_scene_t *s, int flags, rad_rgb_t *amb)
+{
+    rad_real_t a[3];
+    if (!(flags & RAD_SHADE_AMBIENT)) return 0;
+    rad__ambient(s, a, &s->stats.saturations);
+    amb->r = a[0];
+    amb->g = a[1];
+    amb->b = a[2];
+    return amb;
+}
+
+/* B from the core's scale to the caller's, unless FLAGS keep the core's. */
+static rad_rgb_t to_caller(rad_scene_t *s, int flags, rad_rgb_t b)
+{
+    if (flags & RAD_SHADE_SCALED) return b;
+    return rad__scale2_rgb(b, -s->power_shift, &s->stats.saturations);
 }
 
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
 {
     rad_rgb_t amb;
     if (!s || !out || e >= s->n_elements) return RAD_ERR_ARG;
-    if (flags & RAD_SHADE_AMBIENT) rad_ambient(s, &amb);
-    *out = display(s, e, (flags & RAD_SHADE_AMBIENT) ? &amb : 0);
+    *out = to_caller(s, flags, display(s, e, shade_ambient(s, flags, &amb)));
     return RAD_OK;
 }
 
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
 {
     rad_rgb_t amb;
+    const rad_rgb_t *pamb;
     rad_ff_t *wsum;
     uint32_t e, v, k;
     if (!s || !out || n < s->n_vertices) return RAD_ERR_ARG;
-    if (flags & RAD_SHADE_AMBIENT) rad_ambient(s, &amb);
+    pamb = shade_ambient(s, flags, &amb);
     /* Two passes over the elements: the weight sums per vertex (in the accumulator
      * scratch, sized for max(elements, vertices)), then each element's share. */
     wsum = s->acc;
@@ -50,7 +56,7 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
     }
     for (e = 0; e < s->n_elements; e++) {
         const rad_element_t *el = &s->pools.elements[e];
-        rad_rgb_t b = display(s, e, (flags & RAD_SHADE_AMBIENT) ? &amb : 0);
+        rad_rgb_t b = display(s, e, pamb);
         rad_ff_t w = rad__vweight(el->area);
         for (k = 0; k < rad__nverts(el); k++) {
             rad_rgb_t *o = &out[el->v[k]];
@@ -60,6 +66,7 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
             o->b = rad__add_sat(o->b, rad__wpart(b.b, w, ws), &s->stats.saturations);
         }
     }
+    for (v = 0; v < s->n_vertices; v++) out[v] = to_caller(s, flags, out[v]);
     return (int)s->n_vertices;
 }
 
@@ -102,17 +109,21 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     rad_vec3_t ax[3]; /* right, up, forward */
     rad__frustum_t f;
     rad__target_t t;
-    rad_stats_t st = {0, 0, 0, 0};
+    rad_stats_t st = {0};
+    rad_vec3_t eye, target;
     rad_real_t kx, ky;
     uint32_t e, i, sat = 0;
 
     if (!s || !vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
         h > RAD_MAX_RASTER)
         return RAD_ERR_ARG;
-    if (!point_ok(cam->eye, lim) || !point_ok(cam->target, lim) ||
+    /* The camera in the core's scale (exact: a shift; saturation is out of range). */
+    eye = rad__scale2_vec(cam->eye, s->length_shift, &sat);
+    target = rad__scale2_vec(cam->target, s->length_shift, &sat);
+    if (sat || !point_ok(eye, lim) || !point_ok(target, lim) ||
         !(cam->tan_half_fov >= RAD__Q(1.0 / 16.0) && cam->tan_half_fov <= RAD__Q(16.0)))
         return RAD_ERR_ARG;
-    if (!rad__normalize(rad__sub(cam->target, cam->eye), &ax[2]) ||
+    if (!rad__normalize(rad__sub(target, eye), &ax[2]) ||
         !rad__normalize(rad__cross(ax[2], cam->up), &ax[0]))
         return RAD_ERR_ARG;
     ax[1] = rad__cross(ax[0], ax[2]);
@@ -150,10 +161,10 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
         rad__cvert_t cv[4];
         unsigned k, nv = rad__nverts(el);
         if (rad__dot(s->pools.surfaces[el->surface].normal,
-                     rad__sub(cam->eye, s->pools.vertices[el->v[0]])) <= 0)
+                     rad__sub(eye, s->pools.vertices[el->v[0]])) <= 0)
             continue; /* seen from behind: radiosity is one-sided */
         for (k = 0; k < nv; k++) {
-            rad_vec3_t d = rad__sub(s->pools.vertices[el->v[k]], cam->eye);
+            rad_vec3_t d = rad__sub(s->pools.vertices[el->v[k]], eye);
             const rad_rgb_t *c = &vrgb[el->v[k]];
             cv[k].a = rad__dot(d, ax[0]);
             cv[k].b = rad__dot(d, ax[1]);

@@ -148,7 +148,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
-    s->solving = 1;
+    rad__freeze(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
         rad_real_t amb[3];
@@ -165,6 +165,7 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     if (!s) return RAD_ERR_ARG;
+    if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
     return rad__shoot(s, 0, max_shots, tol);
 }
 
@@ -177,14 +178,21 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
     return rad__energy_ratio(total, s->emitted);
 }
 
+void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+{
+    ambient(s, amb, sat);
+}
+
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 {
     rad_real_t amb[3];
+    rad_rgb_t a;
     if (!s || !out) return RAD_ERR_ARG;
     ambient(s, amb, &s->stats.saturations);
-    out->r = amb[0];
-    out->g = amb[1];
-    out->b = amb[2];
+    a.r = amb[0];
+    a.g = amb[1];
+    a.b = amb[2];
+    *out = rad__scale2_rgb(a, -s->power_shift, &s->stats.saturations); /* the caller's scale */
     return RAD_OK;
 }
 
@@ -192,6 +200,7 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
 {
     uint32_t e;
     if (!s || !out || p >= s->n_patches) return RAD_ERR_ARG;
+    if (!s->solving) rad__scale_geometry(s); /* the row the solver will use */
     rad__hemicube(s, p);
     for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
     return (int)s->n_elements;
@@ -203,8 +212,9 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     rad_real_t amb[3];
     uint32_t p;
     if (!s || !patch) return RAD_ERR_ARG;
+    if (s->emitted == 0) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
-    s->solving = 1;
+    rad__freeze(s);
     shot_ambient(s, amb, &s->stats.saturations);
     p = select_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;

@@ -7,6 +7,9 @@
 #                     fixed and float twin, and their ratio -> $(BUILDDIR)/ports/port-bench.md
 #   make port-size    the core's .text/.data/.bss per target (-Os) and the RAM each port
 #                     test used (static + measured stack) -> $(BUILDDIR)/ports/port-size.md
+#   make port-guide   ports/README.md's worked firmware examples, built by the guide's own
+#                     commands and run under QEMU (ports/common/guide_check.sh); port-test
+#                     runs it too
 #   make port-nm      the cross-built core needs nothing but compiler runtime helpers
 #   make ports        port-nm, port-test and port-size
 # Toolchains and emulators: ARM_PREFIX, RV_PREFIX, QEMU_ARM, QEMU_RV32 (see below).
@@ -163,11 +166,14 @@ PORT_BENCH_OUTS := $(foreach r,$(PORT_BENCH_RUNS),$(PORT_OUT)/run/bench-$(r)-fix
 PORT_KEEP += $(PORT_HOST_OBJS) $(PORT_HOST_PROFILES:%=$(PORT_OUT)/host/test-%)
 .SECONDARY: $(PORT_KEEP)
 
-.PHONY: ports port-test port-bench port-size port-nm
+.PHONY: ports port-test port-bench port-size port-nm port-guide
 ports: port-nm port-test port-size
 
-port-test: $(PORT_TEST_OUTS)
+port-test: $(PORT_TEST_OUTS) port-guide
 	@$(PORT_SH) test-report $(PORT_OUT) $(PORT_TEST_RUNS)
+
+port-guide:
+	@QEMU_ARM="$(QEMU_ARM)" sh ports/common/guide_check.sh $(PORT_OUT)/guide $(ARM_PREFIX) "$(PORT_CM_PLAT)"
 
 port-bench: $(PORT_BENCH_OUTS)
 	@$(PORT_SH) bench-report $(PORT_OUT) $(PORT_BENCH_RUNS)

@@ -11,9 +11,7 @@
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
  *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits. Precision is
- *                 2^-16 units, so keep scenes between about 4 and 64 units across
- *                 (rad_cli scales every scene to 64 units; radiosity is scale-free).
+ *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
@@ -25,6 +23,18 @@
  *                 hemi-cube sums to exactly 2^30.
  * Rounding is to nearest everywhere; no operation relies on signed overflow or on
  * right shifts of negative numbers.
+ *
+ * Scale: results do not depend on the caller's units or emission scale. When the
+ * geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
+ * re-meshes it with coordinates times 2^length_shift (the largest into (16, 32]), and
+ * when a solve starts it scales radiosity and power by 2^power_shift (a brightest
+ * emission channel below 128 into (128, 256]): powers of two, so coordinates scale
+ * exactly. Radiosity does not depend on geometry scale and is linear in emission, so
+ * outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
+ * caller's units, and rad_render takes its camera in them; RAD_SHADE_SCALED keeps the
+ * core's scale (a dim scene's solution with all 16 fraction bits). The pools' geometry
+ * (vertices, patch centres, areas) and rad_element_t.radiosity are in the core's scale.
+ * stats.small_elements counts the elements whose area stays small even so.
  *
  * Every function returns int: 0 or a non-negative count on success, a negative
  * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
@@ -40,45 +50,46 @@
 extern "C" {
 #endif
 
-/* The float twin links beside the fixed library, so its symbols carry another prefix. */
+/* The float twin's functions are named radf_ (it links beside the fixed library). */
 #if RAD_FLOAT
-#define rad_init              radf_init
-#define rad_add_polygon       radf_add_polygon
-#define rad_shoot             radf_shoot
-#define rad_unshot_fraction   radf_unshot_fraction
-#define rad_ambient           radf_ambient
-#define rad_element_radiosity radf_element_radiosity
-#define rad_shade_vertices    radf_shade_vertices
-#define rad_render            radf_render
-#define rad_restart           radf_restart
-#define rad_set_surface       radf_set_surface
-#define rad_form_factors      radf_form_factors
-#define rad_strerror          radf_strerror
-#define rad_real_from_q16     radf_real_from_q16
-#define rad_rows_compute      radf_rows_compute
-#define rad_rows_shoot        radf_rows_shoot
-#define rad_rows_gauss_seidel radf_rows_gauss_seidel
-#define rad_mix               radf_mix
-#define rad_ff_from_code      radf_ff_from_code
-#define rad_shot_begin        radf_shot_begin
-#define rad_shot_part         radf_shot_part
-#define rad_shot_end          radf_shot_end
+#include "rad_float_names.h"
 #endif
+
+/* ---- version ------------------------------------------------------------------- */
+#define RAD_VERSION_MAJOR 0
+#define RAD_VERSION_MINOR 9
+#define RAD_VERSION_PATCH 0
+#define RAD__STR_(x)      #x
+#define RAD__STR(x)       RAD__STR_(x)
+#define RAD_VERSION \
+    RAD__STR(RAD_VERSION_MAJOR) "." RAD__STR(RAD_VERSION_MINOR) "." RAD__STR(RAD_VERSION_PATCH)
+/* One number for #if tests: 10000 major + 100 minor + patch. */
+#define RAD_VERSION_NUMBER (RAD_VERSION_MAJOR * 10000 + RAD_VERSION_MINOR * 100 + RAD_VERSION_PATCH)
 
 /* ---- scalar types -------------------------------------------------------------- */
 #if RAD_FLOAT
 typedef float rad_real_t;
 typedef float rad_energy_t;
 typedef float rad_ff_t;
-#define RAD_REAL(x)         ((rad_real_t)(x))
-#define RAD_TO_DOUBLE(r)    ((double)(r))
-#define RAD_FF_TO_DOUBLE(f) ((double)(f))
+#define RAD_REAL(x)              ((rad_real_t)(x))
+#define RAD_REAL_RATIO(num, den) ((rad_real_t)(num) / (rad_real_t)(den))
+#define RAD_TO_DOUBLE(r)         ((double)(r))
+#define RAD_FF_TO_DOUBLE(f)      ((double)(f))
 #else
 typedef int32_t rad_real_t;
 typedef int64_t rad_energy_t;
 typedef uint32_t rad_ff_t;
 /* For host code only: converts a double constant or variable, rounding to nearest. */
-#define RAD_REAL(x)         ((rad_real_t)((x)*65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+#define RAD_REAL(x) ((rad_real_t)((x)*65536.0 + ((x) < 0 ? -0.5 : 0.5)))
+/* NUM / DEN for integers (DEN > 0, |NUM| < 2^46, |NUM / DEN| < 32768) in integer
+ * arithmetic only, so firmware without an FPU or soft float can use it (a constant
+ * expression: static initialisers fold it at compile time). Rounds half away from zero,
+ * as RAD_REAL does, and equals RAD_REAL((double)NUM / DEN) for DEN < 2^20: a tie is a
+ * multiple of 2^-17, which a double holds exactly, and any other value lies at least
+ * 1 / (2 DEN) ulp from a tie, more than a double's rounding (2^-21 ulp below 32768). */
+#define RAD_REAL_RATIO(num, den)                                                             \
+    ((rad_real_t)(((int64_t)(num)*131072 + ((num) < 0 ? -(int64_t)(den) : (int64_t)(den))) / \
+                  (2 * (int64_t)(den))))
 #define RAD_TO_DOUBLE(r)    ((double)(r) / 65536.0)
 #define RAD_FF_TO_DOUBLE(f) ((double)(f) / 1073741824.0)
 #endif
@@ -110,6 +121,8 @@ typedef struct {
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
 #define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting) */
 #define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
+#define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
+#define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
 
 /* ---- pools --------------------------------------------------------------------- */
 /* A polygon as given (3 or 4 vertices), meshed into a grid of patches and elements. */
@@ -139,9 +152,16 @@ typedef struct {
     rad_index_t v[4]; /* v[3] == RAD_INDEX_NONE for a triangle */
     rad_index_t surface, patch;
     rad_real_t area;
-    rad_rgb_t radiosity; /* the solution so far (without the ambient term) */
+    rad_rgb_t radiosity; /* the solution so far (without the ambient term), in the
+                          * core's scale: the caller's radiosity times 2^power_shift */
 } rad_element_t;
 
+/* The caller's memory. Each pool is an array of its type, aligned as the compiler
+ * aligns that type (any array, static or from malloc, is): rad_init refuses another
+ * address with RAD_ERR_ALIGN. The work buffer may start at any address: the core
+ * starts its tables at the next multiple of 8, and RAD_WORK_BYTES counts the bytes
+ * that may cost. Bytes per entry: sizeof(rad_surface_t) etc., which depend on
+ * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets). */
 typedef struct {
     rad_surface_t *surfaces;
     uint32_t max_surfaces;
@@ -172,8 +192,15 @@ typedef struct {
     rad_real_t max_element; /* longest element edge; default 4.0 units */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
-    uint16_t flags;         /* RAD_NO_OVERSHOOT, or 0 */
+    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, or 0 */
 } rad_config_t;
+
+/* A work buffer too small for all five faces renders the cube in bands of rows (the
+ * same bits, more passes); rad_scene_t.band_rows tells which was chosen (0: all faces
+ * at once). RAD_NO_BANDS refuses bands instead: rad_init returns RAD_ERR_WORK unless
+ * the buffer holds all five faces (a buffer sized for fewer accumulators than the
+ * pools need does not then slow every shot down unnoticed). */
+#define RAD_NO_BANDS 8u
 
 /* Shooting (see rad_shoot) overshoots by default: a patch shoots its unshot power plus
  * the power it will receive back, estimated from the ambient term (Feda & Purgathofer,
@@ -188,6 +215,11 @@ typedef struct {
     uint32_t saturations;   /* values clamped to their format's range */
     uint32_t raster_calls;  /* polygons rasterized: hemi-cube surface pieces */
     uint64_t raster_pixels; /* pixels covered (before the depth test) */
+    /* Precision at risk: elements whose area at the core's scale is below 1/64 (2^10
+     * LSB, a rounding of 2^-11 = 0.05% of it), counted when the geometry freezes. The
+     * core scales every scene to one size, so these are elements small against their
+     * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
+    uint32_t small_elements;
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -197,6 +229,10 @@ typedef struct {
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
     rad_energy_t emitted; /* total emitted power, all channels */
+    /* The core's scale (see the top of this file): coordinates are the caller's times
+     * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
+     * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
+    int8_t length_shift, power_shift;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -212,9 +248,34 @@ typedef struct {
 
 /* Prepares S over the caller's pools with configuration CFG (NULL: defaults), and builds
  * the delta form factor table in the work buffer. Returns RAD_OK, RAD_ERR_ARG for NULL
- * or invalid settings, RAD_ERR_WORK when the work buffer cannot hold the table, the
- * accumulators and at least one row of a face. */
-int rad_init(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg);
+ * or invalid settings, RAD_ERR_ALIGN for a misaligned pool, RAD_ERR_WORK when the work
+ * buffer cannot hold the table, the accumulators and at least one row of a face (or all
+ * five faces, with RAD_NO_BANDS), RAD_ERR_ABI when the caller was compiled with another
+ * layout than the library: another RAD_INDEX_BITS or RAD_FLOAT, or a rad.h whose
+ * rad_scene_t differs (the macro passes what the caller's compiler saw, so a program
+ * that would index its pools with the wrong strides gets an error code, not a crash).
+ * On any error S is not written. */
+#define rad_init(s, pools, cfg) \
+    rad_init_abi((s), (pools), (cfg), sizeof(rad_scene_t), (unsigned)sizeof(rad_index_t), RAD_FLOAT)
+int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
+                 size_t scene_bytes, unsigned index_bytes, int is_float);
+
+/* Sizing before adding: what a polygon will take of each pool. */
+typedef struct {
+    uint32_t surfaces, patches, elements, vertices; /* summed over the planned polygons */
+    const char *problem; /* after an error: what is wrong, in a few words */
+} rad_plan_t;
+
+/* Adds to PLAN the surfaces, patches, elements and vertices rad_add_polygon would take
+ * for this polygon under configuration CFG (NULL: defaults), through the same code that
+ * meshes, so a caller can sum a scene's polygons and size the pools and RAD_WORK_BYTES
+ * (n = max(elements, vertices)) before rad_init. Counts saturate at UINT32_MAX. Returns
+ * RAD_OK, or the error rad_add_polygon would return for it (RAD_ERR_ARG, RAD_ERR_RANGE,
+ * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR) with the counts unchanged and PLAN->problem
+ * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after
+ * rad_add_polygon fails, the same call tells which value was out of range. */
+int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan);
 
 /* Adds a convex planar polygon of N = 3 or 4 vertices V (counter-clockwise seen from
  * the lit side) with REFLECTANCE and EMISSION (NULL: black), meshed at once into
@@ -237,8 +298,10 @@ int rad_restart(rad_scene_t *s);
 
 /* Shoots up to MAX_SHOTS patches, each time the one whose shot moves the most power
  * (its unshot power, plus the overshoot unless RAD_NO_OVERSHOOT; in magnitude, summed
- * over channels), and stops early once the unshot fraction is at most TOL. Returns
- * the number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
+ * over channels), and stops early once the unshot fraction is at most TOL. A call while
+ * something emits freezes the geometry (rad_add_polygon then returns RAD_ERR_STATE);
+ * while nothing emits no shot is possible, and the scene stays open. Returns the
+ * number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
@@ -262,21 +325,23 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
 rad_real_t rad_unshot_fraction(const rad_scene_t *s);
 
 /* The ambient term of Cohen et al. 1988: unshot power spread over the scene, times the
- * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT; returns
- * RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can outweigh the power
- * held: then the term is negative, and displayed radiosities (rad_element_radiosity,
- * rad_shade_vertices) are clamped at zero. */
+ * mean inter-reflection factor 1 / (1 - mean reflectance). Writes it to OUT, in the
+ * caller's units; returns RAD_OK or RAD_ERR_ARG. While overshooting, the power owed can
+ * outweigh the power held: then the term is negative, and displayed radiosities
+ * (rad_element_radiosity, rad_shade_vertices) are clamped at zero. */
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
+#define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
 
-/* Radiosity of element E (with FLAGS as above) into OUT. Returns RAD_OK or RAD_ERR_ARG. */
+/* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
+ * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
 
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
- * elements of its surface that share it. OUT holds N >= n_vertices entries. Uses the
- * work buffer's accumulators as scratch. Returns the number of vertices written, or
- * RAD_ERR_ARG. */
+ * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
+ * OUT holds N >= n_vertices entries. Uses the work buffer's accumulators as scratch.
+ * Returns the number of vertices written, or RAD_ERR_ARG. */
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
 
 /* ---- viewing ------------------------------------------------------------------- */
@@ -285,18 +350,20 @@ typedef struct {
     rad_real_t tan_half_fov; /* tangent of half the vertical field of view, 1/16..16 */
 } rad_camera_t;
 
-/* Renders the scene from CAM with vertex colours VRGB (from rad_shade_vertices) into
- * FB (W*H linear radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer,
- * through the same rasterizer as the hemi-cube. Pixels no surface covers are black.
- * Returns the number of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER,
- * a degenerate camera, an eye or target beyond 4 * RAD_COORD_LIMIT, tan_half_fov or
+/* Renders the scene from CAM (in the caller's units) with vertex colours VRGB (from
+ * rad_shade_vertices, in either scale: FB gets the same) into FB (W*H linear
+ * radiosity, row 0 at the top), using ZBUF (W*H) as the depth buffer, through the same
+ * rasterizer as the hemi-cube. Pixels no surface covers are black. Returns the number
+ * of triangles drawn, or RAD_ERR_ARG (sizes above RAD_MAX_RASTER, a degenerate camera,
+ * an eye or target beyond 4 * RAD_COORD_LIMIT in the core's scale, tan_half_fov or
  * tan_half_fov * W / H outside 1/16..16). */
 int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, rad_rgb_t *fb,
                uint32_t *zbuf, unsigned w, unsigned h);
 
 /* Form factors from the centre of patch P to every element, written to OUT (one per
  * element, summing to 1 in a closed scene): the hemi-cube row the solver uses when P
- * shoots (the cube's turn about the normal depends on P alone).
+ * shoots (the cube's turn about the normal depends on P alone; the geometry takes the
+ * core's scale first, which restarts a scene not yet solving).
  * Returns the number of elements, or RAD_ERR_ARG. */
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
@@ -342,6 +409,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
 /* Light groups: radiosity is linear in emission, so solve once per group of lights
  * (the others dark) and keep each solution's element radiosities; then any mix is
  * OUT[e] = sum_g INTENSITY[g] * GROUPS[g][e] per channel, for n_elements elements.
+ * OUT is in the groups' unit: keep them in the caller's (rad_element_radiosity without
+ * RAD_SHADE_SCALED), since each solve has the power shift of its own lights.
  * Saturations are counted in s->stats. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *intensity,
             uint32_t n_groups, rad_rgb_t *out);
@@ -352,8 +421,72 @@ rad_ff_t rad_ff_from_code(uint16_t code);
 /* Converts a Q16.16 value (as int32) to rad_real_t: identity in the fixed build. */
 rad_real_t rad_real_from_q16(int32_t q);
 
-/* A short English description of an RAD_ERR_* code. */
+/* A short English description of an RAD_ERR_* code, naming what to check. */
 const char *rad_strerror(int err);
+
+/* ---- gathering: the light arriving at any point --------------------------------- */
+/* A gather renders a cube of its own resolution at any point over the current
+ * solution, through the same rasterizer and element lattice as the shots, and sums
+ * what its pixels see: the way to take the solution to a lightmap's texels, a mesh's
+ * own vertices, or light probes (a gather is one call: bake a few a frame).
+ * A gatherer (rad_gather_t) is the caller's work buffer laid out by rad_gather_init:
+ * its delta form factor (or solid angle) tables and one face's buffers, as big as
+ * RAD_GATHER_BYTES(res) for hemispheres or RAD_GATHER_SH_BYTES(res) for spheres. A
+ * gather only reads the scene, so each thread may gather with a gatherer of its own.
+ * Needs frozen geometry: after the first shot, rad_rows_compute or rad_form_factors. */
+#define RAD_GATHER__BUFS(res)           \
+    ((size_t)(res) * sizeof(uint32_t) + \
+     (size_t)(res) * (res) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
+#define RAD_GATHER_BYTES(res) \
+    (2u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) + RAD_GATHER__BUFS(res))
+#define RAD_GATHER_SH_BYTES(res) \
+    (6u * ((size_t)(res) / 2u) * ((size_t)(res) / 2u) * sizeof(rad_ff_t) + RAD_GATHER__BUFS(res))
+#define RAD_GATHER_SH 1u /* rad_gather_init: a sphere gatherer (rad_gather_sh) */
+
+typedef struct {
+    uint16_t res;      /* cube resolution, even, 8..RAD_MAX_RES */
+    uint16_t sh;       /* 1: a sphere gatherer (six whole faces), 0: a hemisphere's */
+    uint32_t turn;     /* the hemi-cube's turn about the normal, set by the caller (0
+                        * after init): patch P's own cube has turn P */
+    rad_ff_t *table;   /* quadrant tables (see gather.c) */
+    uint32_t *steps;   /* res: a row's element id steps */
+    uint32_t *zbuf;    /* res^2: one face */
+    rad_index_t *ibuf; /* res^2 */
+    rad_stats_t stats; /* this gatherer's raster calls, pixels and saturations */
+} rad_gather_t;
+
+/* Lays a gatherer of resolution RES out in WORK (BYTES long; FLAGS 0 or RAD_GATHER_SH)
+ * and builds its tables. Returns RAD_OK, RAD_ERR_ARG (NULL, RES odd or outside
+ * 8..RAD_MAX_RES, unknown flags) or RAD_ERR_WORK (BYTES below the macro's size). */
+int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, size_t bytes);
+
+/* The radiosity arriving at POINT on a surface of normal NORMAL (any length; the side
+ * it points to is gathered), E = sum over the cube's pixels of F * B: the delta form
+ * factor F of each pixel (summing to exactly 1 over the cube) times the radiosity B of
+ * the element it sees (rad_element_radiosity's value with FLAGS: RAD_SHADE_AMBIENT
+ * adds reflectance times the ambient term, worked out on each call, a pass over the
+ * patches; at least 0), with no element seen counting as black. An element of
+ * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
+ * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
+ * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the
+ * caller's units. Surface SKIP is not drawn (the one POINT lies on; RAD_INDEX_NONE:
+ * none). Writes OUT; returns RAD_OK, RAD_ERR_ARG (NULL, a zero normal, a sphere
+ * gatherer, unknown flags), RAD_ERR_RANGE (POINT beyond +-RAD_COORD_LIMIT in the
+ * core's scale, NORMAL beyond it), RAD_ERR_STATE (geometry not frozen). */
+int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
+               const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out);
+
+/* A light probe: the radiosity seen from POINT in every direction w, B(w) (as
+ * rad_gather's B, with FLAGS), projected onto the nine real spherical harmonics of
+ * bands 0..2, SH[k] = integral of B(w) Y_k(w) dw over the sphere (w on the scene's own
+ * axes), in the order Y00; Y1-1 (y), Y10 (z), Y11 (x); Y2-2 (xy), Y2-1 (yz),
+ * Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2). A uniform environment B gives
+ * SH[0] = B sqrt(4 pi) and zeros. The radiosity arriving on a normal n is then
+ * sum_k A_l SH[k] Y_k(n) / pi with A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4 (Ramamoorthi
+ * & Hanrahan 2001). Values past 32767.99 in the core's scale saturate (counted).
+ * Returns as rad_gather (RAD_ERR_ARG for a hemisphere gatherer). */
+int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
+                  int flags, rad_rgb_t *sh);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,8 @@
 #ifdef RAD_CONFIG_FILE
 #include RAD_CONFIG_FILE
 #endif
+/* Installed headers: the values the library was built with (rad_build.h). */
+#include "rad_build.h"
 
 /* 1 builds the float twin: the same algorithm with float scalars (tests, comparisons). */
 #ifndef RAD_FLOAT

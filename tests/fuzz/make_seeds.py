@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpora of the fuzz harnesses (tests/fuzz/corpus/{obj,core,image}).
+"""Writes the seed corpora of the fuzz harnesses (tests/fuzz/corpus/{obj,core,image,mtl_texture}).
 
 The files are committed; run this again only to change them:
     python3 tests/fuzz/make_seeds.py
@@ -410,7 +410,27 @@ def image_seeds():
     out("image", "read_ppm_p3.bin", img(full, 1, 1, "r.ppm", 1.0, b"P3 1 1 255\n1 2 3\n"))
 
 
+def mtl_texture_seeds():
+    """fuzz_mtl_texture: MTL text, then \n%%TEX\n and the bytes of t.png."""
+    def seed(name, mtl, tex=b""):
+        out("mtl_texture", name, mtl + b"\n%%TEX\n" + tex)
+    seed("plain.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n", png(3, 2))
+    seed("options.bin", b"newmtl a\nKd 0.5 0.2 1\nmap_Kd -s 2 3 -o 0.5 0.25 -clamp on -bm 1 -blendu off t.png\n"
+         b"newmtl b\nmap_Kd -mm 0 1 -imfchan l -type sphere -texres 64 t.png\n", png(4, 4, ct=6))
+    seed("huge_scale.bin", b"newmtl a\nmap_Kd -s 1e30 -1e30 -o 1e30 t.png\n", png(2, 2, ct=0, depth=16))
+    seed("grey1.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n", png(9, 2, ct=0, depth=1))
+    seed("palette_interlaced.bin", b"newmtl a\nmap_Kd t.png\n", png(5, 5, ct=3, depth=4, interlace=1))
+    seed("cut.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n", png(8, 8, cut=60))
+    seed("bomb.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n", png(10000, 10000, rows=b"\x00" * 10))
+    seed("ppm.bin", b"newmtl a\nmap_Kd t.png\n", b"P6\n3 2\n255\n" + bytes(range(18)))
+    seed("empty.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\n")
+    seed("shared.bin", b"newmtl a\nKd 0 0 0\nmap_Kd t.png\nnewmtl b\nKd 0.5 0.5 0.5\nmap_Kd -clamp on t.png\n", png(3, 3))
+    seed("missing_and_bad.bin", b"newmtl a\nKd 0 0 0\nmap_Kd no such.png\nnewmtl b\nmap_Kd -s\n"
+         b"newmtl c\nmap_Kd -clamp maybe t.png\nnewmtl d\nmap_Kd\n", png(1, 1))
+
+
 if __name__ == "__main__":
     obj_seeds()
     core_seeds()
     image_seeds()
+    mtl_texture_seeds()

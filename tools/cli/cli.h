@@ -23,6 +23,7 @@
 #include <stdio.h>
 
 #include "formats/obj.h"
+#include "formats/texture.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */
@@ -68,6 +69,8 @@ typedef struct {
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
     double tol, exposure, max_patch, max_element;
     const char *ply, *csv, *views_file;
+    const char *gltf;               /* --export-gltf */
+    int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
     char **emit;
     int nemit;
     /* stored form factors and relighting */
@@ -87,6 +90,8 @@ typedef struct {
     float *img;
     unsigned char *rgb8;
     double exposure; /* 0 until the first view fixes it */
+    const obj_scene *sc;    /* with MAPS: views drawn with the textures' detail */
+    const tex_image *maps;
     double t_render, t_write;
 } out_t;
 
@@ -98,6 +103,9 @@ typedef struct {
     sc_solver *s;
     sc_opts so;
     sc_stats st;
+    tex_image *maps;                /* per material (map_Kd), NULL with --no-textures */
+    sc_poly *polys;                 /* what the solver was made from (--export-gltf) */
+    int npolys;
     sc_solution **sol;              /* groups: each group's solution, for mixing */
     double (*ks)[3];                /* groups: the run's intensities */
     int *group_of;                  /* material -> group, or -1 */

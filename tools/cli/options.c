@@ -105,6 +105,8 @@ static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->expos
 static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
 static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
+static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
+static void opt_no_textures(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_textures = 1; }
 
 static void opt_res(opts_t *o, const char *opt, const char *val)
 {
@@ -208,6 +210,10 @@ static const option_t options[] = {
     {"--export-ply", NULL, "FILE", "the meshed scene with vertex colours (PLY)", opt_ply},
     {"--dump-radiosity", NULL, "FILE",
      "one CSV row per element:\nelement,surface,material,area,cx,cy,cz,r,g,b", opt_csv},
+    {"--export-gltf", NULL, "FILE",
+     "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
+     "arriving at each vertex, materials unlit with their textures", opt_gltf},
+    {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
     SECTION("solver:"),
     {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
     {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},

@@ -10,6 +10,7 @@
 #include "formats/file_io.h"
 #include "formats/image.h"
 #include "host/clock.h"
+#include "host/tex_render.h"
 
 const char *ext_of(const char *path)
 {
@@ -78,6 +79,7 @@ void check_outputs(const opts_t *o)
     for (i = 0; i < o->nviews; i++) check_output(o->views[i].out, 1);
     if (o->ply) check_output(o->ply, 0);
     if (o->csv) check_output(o->csv, 0);
+    if (o->gltf) check_output(o->gltf, 0);
     if (o->save_ff) check_output(o->save_ff, 0);
 }
 
@@ -144,7 +146,9 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     char err[1024];
     double t1 = host_now();
     size_t npix = (size_t)o->width * o->height;
-    if (sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err) < 0) {
+    if ((ot->maps ? sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height,
+                                       ot->img, err, sizeof err)
+                  : sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err)) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
         return -1;
     }

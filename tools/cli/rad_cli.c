@@ -12,6 +12,7 @@
 
 #include "formats/file_io.h"
 #include "host/clock.h"
+#include "host/gltf_export.h"
 #include "host/obj_polys.h"
 
 /* ---- load: the scene, --emit, the light groups, the views and frames ------------- */
@@ -225,6 +226,21 @@ static int read_frames(opts_t *o)
     return 0;
 }
 
+/* map_Kd textures: each that fails is one warning and its material keeps Kd. */
+static int load_textures(run_t *r)
+{
+    r->maps = calloc((size_t)r->sc.nmaterials + 1, sizeof *r->maps);
+    if (!r->maps) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    if (tex_load_materials(&r->sc, r->maps, obj_warning, r->o) > 0) {
+        r->ot.sc = &r->sc;
+        r->ot.maps = r->maps;
+    }
+    return 0;
+}
+
 /* The scene and everything that names its materials. 1: done (--list-materials). */
 static int load_step(run_t *r)
 {
@@ -237,6 +253,9 @@ static int load_step(run_t *r)
     }
     r->have_scene = 1;
     if (apply_emit(o, &r->sc) < 0) return -1;
+    if (!o->no_textures && !o->list && load_textures(r) < 0) return -1;
+    for (i = 0; o->no_textures && i < r->sc.nmaterials; i++)
+        if (r->sc.materials[i].map_kd.line) obj_map_fallback(&r->sc.materials[i]); /* Kd 0: grey */
     if (o->list) {
         list_materials(&r->sc);
         return 1;
@@ -318,7 +337,7 @@ static int build_step(run_t *r)
     char err[1024];
     int npolys, i;
     sc_camera def;
-    sc_poly *polys = obj_to_polys(&r->sc, &npolys, o->quiet ? NULL : poly_warning, o);
+    sc_poly *polys = obj_to_polys_tex(&r->sc, r->ot.maps, &npolys, o->quiet ? NULL : poly_warning, o);
     if (!polys) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
@@ -330,7 +349,8 @@ static int build_step(run_t *r)
     r->so.res = o->res ? o->res : 128; /* 64 aliases visibly on elements a few pixels wide */
     r->so.no_overshoot = o->no_overshoot;
     r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
-    free(polys);
+    r->polys = polys; /* kept for --export-gltf */
+    r->npolys = npolys;
     if (!r->s) {
         fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
         return -1;
@@ -395,6 +415,12 @@ static int output_step(run_t *r)
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
     if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ambient, r->ot.exposure, &r->st);
+    if (rc == 0 && o->gltf) {
+        char err[1024];
+        rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, o->gltf, obj_warning,
+                            (void *)o, err, sizeof err);
+        if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
+    }
     return rc < 0 ? -1 : 0;
 }
 
@@ -498,6 +524,9 @@ static void free_run(run_t *r)
     free(r->ot.img);
     free(r->ot.rgb8);
     if (r->s) sc_destroy(r->s);
+    free(r->polys);
+    for (g = 0; r->maps && g < r->sc.nmaterials; g++) tex_free(&r->maps[g]);
+    free(r->maps);
     if (r->have_scene) obj_free(&r->sc);
     free_opts(r->o);
 }

@@ -33,10 +33,15 @@ typedef struct {
     const char *file;     /* file being parsed, for messages */
     long line;            /* first physical line of the current statement */
     int cur;              /* OBJ: material of the next faces; MTL: the one being defined */
-    size_t cap_verts, cap_indices, cap_faces, cap_mats;
+    int object, group;    /* OBJ: names index of the current o and g, -1 before any */
+    size_t cap_verts, cap_indices, cap_faces, cap_mats, cap_uvs, cap_normals, cap_names;
+    size_t cap_uv_indices, cap_normal_indices;
 } parser;
 
 typedef int (*statement_fn)(parser *p, const char *kw, char *rest);
+
+static char *join_path(const char *dir, const char *name);
+static char *dir_of(const char *path);
 
 /* ---- messages ------------------------------------------------------------------ */
 
@@ -110,31 +115,66 @@ static void *reserve(void *p, size_t *cap, size_t need, size_t elem)
     return q;
 }
 
-static int push_vert(parser *p, obj_vec3 v)
+/* ARR (N entries of ELEM bytes, room for *CAP) with room for one more: ARR itself or a
+   reallocation; NULL after the error ("too many WHAT", out of memory), ARR still valid. */
+static void *room_for_one(parser *p, void *arr, size_t *cap, int n, size_t elem,
+                          const char *what)
 {
-    obj_scene *sc = p->sc;
-    obj_vec3 *q;
-    if (sc->nverts == INT_MAX)
-        return fail(p, "too many vertices");
-    q = reserve(sc->verts, &p->cap_verts, (size_t)sc->nverts + 1, sizeof *q);
+    void *q;
+    if (n == INT_MAX) {
+        fail(p, "too many %s", what);
+        return NULL;
+    }
+    if (!(q = reserve(arr, cap, (size_t)n + 1, elem)))
+        fail(p, "out of memory");
+    return q;
+}
+
+/* Appends v to *arr (n entries, room for *cap): vertices and normals. */
+static int push_vec3(parser *p, obj_vec3 **arr, int *n, size_t *cap, obj_vec3 v, const char *what)
+{
+    obj_vec3 *q = room_for_one(p, *arr, cap, *n, sizeof *q, what);
     if (!q)
-        return fail(p, "out of memory");
-    sc->verts = q;
-    sc->verts[sc->nverts++] = v;
+        return -1;
+    *arr = q;
+    q[(*n)++] = v;
     return 0;
 }
 
-static int push_index(parser *p, int i)
+static int push_uv(parser *p, obj_vec2 t)
 {
     obj_scene *sc = p->sc;
+    obj_vec2 *q = room_for_one(p, sc->uvs, &p->cap_uvs, sc->nuvs, sizeof *q,
+                               "texture coordinates");
+    if (!q)
+        return -1;
+    sc->uvs = q;
+    sc->uvs[sc->nuvs++] = t;
+    return 0;
+}
+
+/* One face vertex: its position, texture coordinate and normal indices (-1: none),
+   kept in three arrays of nindices entries. */
+static int push_index(parser *p, const int ix[3])
+{
+    obj_scene *sc = p->sc;
+    size_t need = (size_t)sc->nindices + 1;
     int *q;
     if (sc->nindices == INT_MAX)
         return fail(p, "too many face vertices");
-    q = reserve(sc->indices, &p->cap_indices, (size_t)sc->nindices + 1, sizeof *q);
+    if ((q = reserve(sc->indices, &p->cap_indices, need, sizeof *q)) != NULL) {
+        sc->indices = q;
+        if ((q = reserve(sc->uv_indices, &p->cap_uv_indices, need, sizeof *q)) != NULL) {
+            sc->uv_indices = q;
+            if ((q = reserve(sc->normal_indices, &p->cap_normal_indices, need, sizeof *q)))
+                sc->normal_indices = q;
+        }
+    }
     if (!q)
         return fail(p, "out of memory");
-    sc->indices = q;
-    sc->indices[sc->nindices++] = i;
+    sc->indices[sc->nindices] = ix[0];
+    sc->uv_indices[sc->nindices] = ix[1];
+    sc->normal_indices[sc->nindices++] = ix[2];
     return 0;
 }
 
@@ -153,7 +193,26 @@ static int push_face(parser *p, int first, int count)
     q->first = first;
     q->count = count;
     q->line = line_int(p);
+    q->object = p->object;
+    q->group = p->group;
     return 0;
+}
+
+static char *copy_string(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = malloc(n);
+    if (c)
+        memcpy(c, s, n);
+    return c;
+}
+
+static void map_defaults(obj_map *t)
+{
+    free(t->path);
+    free(t->mtl);
+    memset(t, 0, sizeof *t);
+    t->scale[0] = t->scale[1] = 1.0;
 }
 
 static void material_defaults(obj_material *m)
@@ -163,6 +222,7 @@ static void material_defaults(obj_material *m)
         m->kd[i] = DEFAULT_KD;
         m->ke[i] = 0.0;
     }
+    map_defaults(&m->map_kd);
 }
 
 /* ---- material names: FNV-1a hashed, open addressing ------------------------------ */
@@ -469,6 +529,140 @@ static int parse_colour(parser *p, const char *kw, char *rest, double *dst)
     return 0;
 }
 
+/* Texture map options (MTL specification) and what they take: -o, -s and -t 1 to 3
+   numbers (u [v [w]]), -mm 2, -bm, -boost and -texres 1; -blendu, -blendv, -cc and
+   -clamp on or off; -imfchan and -type one word. */
+enum { MAP_NUMBERS, MAP_ON_OFF, MAP_WORD };
+
+typedef struct {
+    const char *name;
+    int kind, min, max;
+} map_option;
+
+static const map_option map_options[] = {
+    { "-blendu", MAP_ON_OFF, 1, 1 }, { "-blendv", MAP_ON_OFF, 1, 1 },
+    { "-bm", MAP_NUMBERS, 1, 1 },    { "-boost", MAP_NUMBERS, 1, 1 },
+    { "-cc", MAP_ON_OFF, 1, 1 },     { "-clamp", MAP_ON_OFF, 1, 1 },
+    { "-imfchan", MAP_WORD, 1, 1 },  { "-mm", MAP_NUMBERS, 2, 2 },
+    { "-o", MAP_NUMBERS, 1, 3 },     { "-s", MAP_NUMBERS, 1, 3 },
+    { "-t", MAP_NUMBERS, 1, 3 },     { "-texres", MAP_NUMBERS, 1, 1 },
+    { "-type", MAP_WORD, 1, 1 },     { NULL, 0, 0, 0 }
+};
+
+static const map_option *find_map_option(const char *tok)
+{
+    const map_option *o;
+    for (o = map_options; o->name; o++)
+        if (!strcmp(tok, o->name))
+            return o;
+    return NULL;
+}
+
+/* Is TOK a value option O can take (a number; on or off, kept as 1 or 0; any word)? */
+static int map_value(const map_option *o, const char *tok, double *v)
+{
+    if (o->kind == MAP_NUMBERS && is_decimal(tok)) {
+        *v = strtod(tok, NULL);
+        return fabs(*v) <= MAX_VALUE;
+    }
+    if (o->kind == MAP_ON_OFF && (!strcmp(tok, "on") || !strcmp(tok, "off"))) {
+        *v = tok[1] == 'n';
+        return 1;
+    }
+    *v = 0;
+    return o->kind == MAP_WORD;
+}
+
+/* Copies the next token of S (at most 63 characters, else "") into TOK without cutting
+   it out; returns the text after it. */
+static char *peek_token(char *s, char tok[64])
+{
+    size_t n = 0;
+    while (is_space((unsigned char)*s))
+        s++;
+    while (s[n] && !is_space((unsigned char)s[n]))
+        n++;
+    memcpy(tok, s, n < 64 ? n : 0);
+    tok[n < 64 ? n : 0] = '\0';
+    return s + n;
+}
+
+/* Reads option O's values from *REST into v. Returns the count read, or -1 (a warning
+   given) when fewer than its minimum are there. */
+static int map_option_values(parser *p, const map_option *o, char **rest, double v[3])
+{
+    int n = 0;
+    while (n < o->max) {
+        char tok[64], *after = peek_token(*rest, tok);
+        if (!*tok || !map_value(o, tok, &v[n]))
+            break; /* the file name, or the next option */
+        *rest = after;
+        n++;
+    }
+    if (n < o->min) {
+        warn(p, "map_Kd %s needs %d value%s: statement ignored", o->name, o->min,
+             o->min > 1 ? "s" : "");
+        return -1;
+    }
+    return n;
+}
+
+/* Keeps the values of -o, -s and -clamp. */
+static void map_apply(obj_map *t, const map_option *o, const double *v, int n)
+{
+    int offset = !strcmp(o->name, "-o");
+    if (!strcmp(o->name, "-clamp"))
+        t->clamp = v[0] > 0;
+    if (offset || !strcmp(o->name, "-s")) {
+        double *dst = offset ? t->offset : t->scale;
+        dst[0] = v[0];
+        dst[1] = n > 1 ? v[1] : offset ? 0.0 : 1.0;
+    }
+}
+
+/* The file name as written: the rest of the statement (spaces kept); backslashes, as
+   Windows exporters write them, become slashes. Joined to the MTL's folder. */
+static char *map_path(const parser *p, char *name)
+{
+    char *dir = dir_of(p->file), *path, *c;
+    for (c = name; *c; c++)
+        if (*c == '\\')
+            *c = '/';
+    path = dir ? join_path(dir, name) : NULL;
+    free(dir);
+    return path;
+}
+
+/* map_Kd [options] FILE. A malformed statement is a warning, not an error: the material
+   keeps its Kd (0.5 grey if Kd is 0, see obj_map_fallback). */
+static int parse_map_kd(parser *p, char *rest)
+{
+    obj_map *t = &p->sc->materials[p->cur].map_kd;
+    char tok[64], *after;
+    map_defaults(t);
+    t->line = line_int(p);
+    if (!(t->mtl = copy_string(p->file)))
+        return fail(p, "out of memory");
+    while ((after = peek_token(rest, tok)), tok[0] == '-') {
+        const map_option *o = find_map_option(tok);
+        double v[3];
+        int n;
+        if (!o)
+            break; /* a file whose name starts with '-' */
+        rest = after;
+        if ((n = map_option_values(p, o, &rest, v)) < 0)
+            return 0;
+        map_apply(t, o, v, n);
+    }
+    if (!*(rest = trim(rest))) {
+        warn(p, "map_Kd without a file name: ignored");
+        return 0;
+    }
+    if (!(t->path = map_path(p, rest)))
+        return fail(p, "out of memory");
+    return 0;
+}
+
 /* Valid MTL that says nothing about diffuse reflection or emission. */
 static const char *const mtl_ignored[] = {
     "Ka", "Ks", "Ns", "Ni", "d", "Tr", "Tf", "illum", "sharpness", "bump", "disp", "decal",
@@ -486,6 +680,11 @@ static int mtl_statement(parser *p, const char *kw, char *rest)
             return fail(p, "%s before any newmtl", kw);
         m = &p->sc->materials[p->cur];
         return parse_colour(p, kw, rest, colour == 1 ? m->kd : m->ke);
+    }
+    if (!strcmp(kw, "map_Kd")) {
+        if (p->cur < 0)
+            return fail(p, "%s before any newmtl", kw);
+        return parse_map_kd(p, rest);
     }
     if (!strncmp(kw, "map_", 4) || is_one_of(kw, mtl_ignored))
         return 0;
@@ -562,72 +761,145 @@ static int mtl_exists(const parser *p, const char *name)
 
 /* ---- OBJ ----------------------------------------------------------------------- */
 
-static int parse_vertex(parser *p, char *rest)
+/* Reads between MIN and MAX numbers (more must still be numbers, and are ignored); NEED
+   says how many in the message. Returns the count kept or -1. */
+static int parse_numbers(parser *p, const char *kw, const char *need, char *rest, double *c,
+                         int min, int max)
 {
-    obj_vec3 v;
-    double c[3];
     char *tok;
     int n = 0;
-    /* Extra values (w, or the r g b some exporters add) must be numbers but are ignored. */
     while ((tok = next_token(&rest)) != NULL) {
         double x;
         if (parse_number(p, tok, &x))
             return -1;
-        if (n < 3)
+        if (n < max)
             c[n] = x;
         n++;
     }
-    if (n < 3)
-        return fail(p, "vertex needs 3 coordinates, got %d", n);
+    if (n < min)
+        return fail(p, "%s needs %s, got %d", kw, need, n);
+    return n < max ? n : max;
+}
+
+/* v x y z or vn x y z. Extra values (w, or the r g b some exporters add) must be
+   numbers but are ignored. */
+static int parse_vec3(parser *p, int normal, char *rest)
+{
+    obj_scene *sc = p->sc;
+    obj_vec3 v;
+    double c[3];
+    if (parse_numbers(p, normal ? "vn" : "vertex", "3 coordinates", rest, c, 3, 3) < 0)
+        return -1;
     v.x = c[0];
     v.y = c[1];
     v.z = c[2];
-    return push_vert(p, v);
+    if (normal)
+        return push_vec3(p, &sc->normals, &sc->nnormals, &p->cap_normals, v, "normals");
+    return push_vec3(p, &sc->verts, &sc->nverts, &p->cap_verts, v, "vertices");
 }
 
-/* One face vertex: v, v/vt, v//vn or v/vt/vn; resolves v to a 0-based index. */
-static int parse_face_vertex(parser *p, const char *tok, int *out)
+/* vt u [v [w]]: v defaults to 0 (the OBJ specification); w is dropped. */
+static int parse_uv(parser *p, char *rest)
 {
-    const char *c = tok;
-    long long v, unused;
-    int n = p->sc->nverts, vlen;
-    if (read_int(&c, &v))
-        goto bad;
-    vlen = (int)(c - tok);
-    if (*c == '/') {
-        c++;
-        if (*c != '/' && read_int(&c, &unused))
-            goto bad;
-        if (*c == '/') {
-            c++;
-            if (read_int(&c, &unused))
-                goto bad;
-        }
-    }
-    if (*c)
-        goto bad;
+    obj_vec2 t;
+    double c[2] = { 0, 0 };
+    if (parse_numbers(p, "vt", "at least 1 coordinate", rest, c, 1, 2) < 0)
+        return -1;
+    t.u = c[0];
+    t.v = c[1];
+    return push_uv(p, t);
+}
+
+/* Resolves a 1-based (or negative, relative) OBJ index V, written as the LEN characters
+   at TEXT, against the N entries defined so far; WHAT[0] and WHAT[1] name one and many. */
+static int resolve_index(parser *p, long long v, const char *text, int len, int n,
+                         const char *const what[2], int *out)
+{
     if (v == 0)
-        return fail(p, "vertex index 0 (OBJ indices start at 1)");
+        return fail(p, "%s index 0 (OBJ indices start at 1)", what[0]);
     if (v > n || v < -(long long)n)
-        return fail(p, "vertex index %.*s out of range (%d vertices defined so far)",
-                    vlen > 40 ? 40 : vlen, tok, n);
+        return fail(p, "%s index %.*s out of range (%d %s defined so far)", what[0],
+                    len > 40 ? 40 : len, text, n, what[1]);
     *out = (int)(v > 0 ? v - 1 : n + v);
     return 0;
-bad:
-    return fail(p, "bad face vertex '%.40s'", tok);
+}
+
+/* A vt or vn index that does not resolve is not an error (the positions are whole, and
+   such files loaded before texture coordinates were read): the part is dropped with a
+   warning, once per face (*WARNED). */
+static void resolve_part(parser *p, long long v, int n, const char *what, int *out,
+                         int *warned)
+{
+    if (v != 0 && v <= n && v >= -(long long)n) {
+        *out = (int)(v > 0 ? v - 1 : n + v);
+        return;
+    }
+    if (!*warned)
+        warn(p, "%s index %lld out of range (%d defined so far): ignored", what, v, n);
+    *warned = 1;
+}
+
+/* One face vertex: v, v/vt, v//vn or v/vt/vn; resolves each part to a 0-based index
+   into ix[0..2], -1 for a part not given. */
+static int parse_face_vertex(parser *p, const char *tok, int ix[3], int *warned)
+{
+    static const char *const what[3][2] = { { "vertex", "vertices" },
+                                            { "texture coordinate", "texture coordinates" },
+                                            { "normal", "normals" } };
+    const obj_scene *sc = p->sc;
+    const int n[3] = { sc->nverts, sc->nuvs, sc->nnormals };
+    const char *c = tok;
+    int k;
+    ix[0] = ix[1] = ix[2] = -1;
+    for (k = 0; k < 3; k++) {
+        const char *start = c;
+        long long v;
+        if (k > 0) {
+            if (*c != '/')
+                break;
+            start = ++c;
+            if (k == 1 && *c == '/')
+                continue; /* v//vn */
+        }
+        if (read_int(&c, &v))
+            return fail(p, "bad face vertex '%.40s'", tok);
+        if (k > 0)
+            resolve_part(p, v, n[k], what[k][0], &ix[k], warned);
+        else if (resolve_index(p, v, start, (int)(c - start), n[k], what[k], &ix[k]))
+            return -1;
+    }
+    if (*c)
+        return fail(p, "bad face vertex '%.40s'", tok);
+    return 0;
+}
+
+/* A face has texture coordinates (normals) at all its vertices or at none. */
+static void whole_parts(int *uv, int *normal, int count)
+{
+    int k, has_uv = 1, has_normal = 1;
+    for (k = 0; k < count; k++) {
+        has_uv &= uv[k] >= 0;
+        has_normal &= normal[k] >= 0;
+    }
+    for (k = 0; k < count; k++) {
+        uv[k] = has_uv ? uv[k] : -1;
+        normal[k] = has_normal ? normal[k] : -1;
+    }
 }
 
 static int parse_face(parser *p, char *rest)
 {
-    int first = p->sc->nindices, count = 0, i = 0;
+    obj_scene *sc = p->sc;
+    int first = sc->nindices, count = 0, ix[3], warned = 0;
     char *tok;
     while ((tok = next_token(&rest)) != NULL) {
-        if (parse_face_vertex(p, tok, &i) || push_index(p, i))
+        if (parse_face_vertex(p, tok, ix, &warned) || push_index(p, ix))
             return -1;
         count++;
     }
     if (count < 3)
         return fail(p, "face needs at least 3 vertices, got %d", count);
+    whole_parts(sc->uv_indices + first, sc->normal_indices + first, count);
     if (p->cur < 0 && (p->cur = intern_material(p, OBJ_DEFAULT_MATERIAL)) < 0)
         return -1;
     return push_face(p, first, count);
@@ -665,13 +937,46 @@ static int parse_mtllib(parser *p, char *rest)
     return 0;
 }
 
+/* o NAME / g NAME: the faces that follow belong to it (*CUR: a names index). A name
+   equal to the current one adds nothing; names are otherwise not looked up, so one name
+   may appear more than once (readers that group faces compare the strings). No name:
+   the faces belong to none (-1). */
+static int parse_name(parser *p, char *rest, int *cur)
+{
+    obj_scene *sc = p->sc;
+    const char *name = trim(rest);
+    char **q;
+    if (!*name) {
+        *cur = -1;
+        return 0;
+    }
+    if (*cur >= 0 && !strcmp(sc->names[*cur], name))
+        return 0;
+    if (!(q = room_for_one(p, sc->names, &p->cap_names, sc->nnames, sizeof *q,
+                           "object and group names")))
+        return -1;
+    sc->names = q;
+    if (!(q[sc->nnames] = copy_string(name)))
+        return fail(p, "out of memory");
+    *cur = sc->nnames++;
+    return 0;
+}
+
 /* Valid OBJ that does not matter for radiosity. */
-static const char *const obj_ignored[] = { "vt", "vn", "vp", "g", "o", "s", "l", "p", "mg", NULL };
+static const char *const obj_ignored[] = { "vp", "s", "l", "p", "mg", NULL };
 
 static int obj_statement(parser *p, const char *kw, char *rest)
 {
     if (!strcmp(kw, "v"))
-        return parse_vertex(p, rest);
+        return parse_vec3(p, 0, rest);
+    if (!strcmp(kw, "vt"))
+        return parse_uv(p, rest);
+    if (!strcmp(kw, "vn"))
+        return parse_vec3(p, 1, rest);
+    if (!strcmp(kw, "o"))
+        return parse_name(p, rest, &p->object);
+    if (!strcmp(kw, "g"))
+        return parse_name(p, rest, &p->group);
     if (!strcmp(kw, "f"))
         return parse_face(p, rest);
     if (!strcmp(kw, "usemtl"))
@@ -701,6 +1006,19 @@ static void finish(parser *p)
         m->area += obj_face_area(sc, &sc->faces[i]);
         m->nfaces++;
     }
+    for (i = 0; i < sc->nmaterials; i++)
+        if (sc->materials[i].map_kd.line && !sc->materials[i].map_kd.path)
+            obj_map_fallback(&sc->materials[i]);
+}
+
+int obj_map_fallback(obj_material *m)
+{
+    int i;
+    if (m->kd[0] != 0 || m->kd[1] != 0 || m->kd[2] != 0)
+        return 0;
+    for (i = 0; i < 3; i++)
+        m->kd[i] = OBJ_FALLBACK_KD;
+    return 1;
 }
 
 int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
@@ -717,6 +1035,7 @@ int obj_parse(const char *text, size_t len, const char *name, const char *basedi
     p.basedir = basedir;
     p.file = name ? name : "(memory)";
     p.cur = -1;
+    p.object = p.group = -1;
     put_msg(err, errlen, "%s", "");
     if (each_statement(&p, text, len, obj_statement)) {
         obj_free(sc);
@@ -765,12 +1084,22 @@ void obj_free(obj_scene *sc)
     int i;
     if (!sc)
         return;
-    for (i = 0; i < sc->nmaterials; i++)
+    for (i = 0; i < sc->nmaterials; i++) {
         free(sc->materials[i].name);
+        free(sc->materials[i].map_kd.path);
+        free(sc->materials[i].map_kd.mtl);
+    }
+    for (i = 0; i < sc->nnames; i++)
+        free(sc->names[i]);
+    free(sc->names);
     free(sc->materials);
     free(sc->mat_index);
     free(sc->verts);
     free(sc->indices);
+    free(sc->uv_indices);
+    free(sc->normal_indices);
+    free(sc->uvs);
+    free(sc->normals);
     free(sc->faces);
     memset(sc, 0, sizeof *sc);
 }

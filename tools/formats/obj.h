@@ -1,8 +1,10 @@
 /* obj — Wavefront OBJ + MTL loader for the host tools (uses malloc and stdio).
  *
- * Only what a radiosity scene needs is kept: vertex positions, polygonal faces and,
- * per material, the diffuse reflectance (Kd) and emission (Ke). Everything else that
- * is valid OBJ/MTL is accepted and ignored; unknown statements are skipped and counted.
+ * Only what a radiosity scene and its export need is kept: vertex positions, texture
+ * coordinates (vt) and normals (vn), polygonal faces with their object (o) and group (g),
+ * and per material the diffuse reflectance (Kd), its texture (map_Kd) and the emission
+ * (Ke). Everything else that is valid OBJ/MTL is accepted and ignored; unknown statements
+ * are skipped and counted.
  * Errors are one line, "FILE:LINE: what is wrong"; warnings have the same form and go
  * to an optional callback.
  */
@@ -16,6 +18,19 @@ extern "C" {
 #endif
 
 typedef struct { double x, y, z; } obj_vec3;
+typedef struct { double u, v; } obj_vec2;
+
+/* A map_Kd statement. Of its options, -o and -s (offset and scale of u and v) and
+ * -clamp are kept; the others (-blendu, -blendv, -bm, -boost, -cc, -imfchan, -mm,
+ * -t, -texres, -type) are read and skipped. */
+typedef struct {
+    char *path;         /* the file, joined to the MTL's folder; NULL: no texture */
+    char *mtl;          /* the MTL file and line of the statement, for messages */
+    int line;
+    double offset[2];   /* texture coordinates used: (u, v) * scale + offset */
+    double scale[2];
+    int clamp;          /* 1: coordinates clamped to [0, 1]; 0: wrapped (repeat) */
+} obj_map;
 
 typedef struct {
     char *name;
@@ -25,6 +40,7 @@ typedef struct {
     int nfaces;     /* number of faces using it */
     int defined;    /* 1 if a newmtl defined it; 0 for "(default)" and undefined usemtl names */
     int use_line;   /* OBJ line of the first usemtl naming it, 0 if none */
+    obj_map map_kd; /* diffuse texture (map_Kd); map_kd.path NULL if none */
 } obj_material;
 
 typedef struct {
@@ -32,11 +48,18 @@ typedef struct {
     int first;      /* first entry in scene.indices */
     int count;      /* number of vertices, >= 3 */
     int line;       /* 1-based source line of the 'f' statement */
+    int object;     /* index into names of the current 'o', -1 before any */
+    int group;      /* index into names of the current 'g', -1 before any */
 } obj_face;
 
 typedef struct {
     obj_vec3 *verts; int nverts;
     int *indices; int nindices;      /* 0-based indices into verts, already resolved */
+    int *uv_indices;                 /* nindices entries: into uvs, -1 where a face gave no vt */
+    int *normal_indices;             /* nindices entries: into normals, -1 where no vn */
+    obj_vec2 *uvs; int nuvs;         /* vt u v (a w is read and dropped) */
+    obj_vec3 *normals; int nnormals; /* vn as given (not normalised) */
+    char **names; int nnames;        /* o and g names: an entry per statement that changes one */
     obj_face *faces; int nfaces;
     obj_material *materials; int nmaterials;
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
@@ -80,6 +103,12 @@ int obj_triangulate(const obj_scene *sc, const obj_face *f, int *out);
 /* Index of the material called NAME, or -1: a hash lookup in a parsed scene (200,000
    materials parse in linear time), a linear search in one made by hand. */
 int obj_find_material(const obj_scene *sc, const char *name);
+/* A material whose texture cannot be used keeps its Kd, or gets OBJ_FALLBACK_KD grey if
+   its Kd is all zero (exporters write Kd 0 0 0 beside map_Kd): never a black surface
+   by accident. obj_load applies it to malformed map_Kd statements, the texture loader
+   to files it cannot decode. Returns 1 if Kd was changed, else 0. */
+#define OBJ_FALLBACK_KD 0.5
+int obj_map_fallback(obj_material *m);
 /* Polygon area (Newell) of face f. */
 double obj_face_area(const obj_scene *sc, const obj_face *f);
 /* Newell normal of face f: its length is twice the polygon's area. */

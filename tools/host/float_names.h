@@ -1,8 +1,8 @@
 /* rad host glue: compiled with RAD_FLOAT=1, a file that includes this before
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once
- * per build of the core include it: tools/host/scene.c, tools/host/parallel.c and
- * tools/cli/rad_cli.c. */
+ * per build of the core include it: tools/host/scene.c, tools/host/parallel.c,
+ * tools/host/gltf_export.c, tools/host/tex_render.c and tools/cli/rad_cli.c. */
 #ifndef RAD_TOOLS_FLOAT_NAMES_H
 #define RAD_TOOLS_FLOAT_NAMES_H
 
@@ -21,6 +21,7 @@
 #define sc_vertex_pos scf_vertex_pos
 #define sc_shade scf_shade
 #define sc_render scf_render
+#define sc_render_values scf_render_values
 #define sc_form_factors scf_form_factors
 #define sc_checksum scf_checksum
 #define sc_core scf_core
@@ -36,5 +37,8 @@
 #define sc_solution_free scf_solution_free
 #define sc_mix scf_mix
 #define sc_solve_parallel scf_solve_parallel
+#define sc_corner_light scf_corner_light
+#define sc_export_gltf scf_export_gltf
+#define sc_render_textured scf_render_textured
 
 #endif

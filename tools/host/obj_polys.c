@@ -1,11 +1,61 @@
 /* rad host glue: OBJ faces to the core's polygons (see obj_polys.h). */
 #include "host/obj_polys.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define STR_(x) #x
 #define STR(x) STR_(x) /* a macro's value as a string */
+
+/* The texture coordinates of vertex VERT in face FC (its first corner of that vertex). */
+static const obj_vec2 *corner_uv(const obj_scene *sc, const obj_face *fc, int vert)
+{
+    int k;
+    for (k = 0; k < fc->count; k++)
+        if (sc->indices[fc->first + k] == vert)
+            return &sc->uvs[sc->uv_indices[fc->first + k]];
+    return &sc->uvs[sc->uv_indices[fc->first]];
+}
+
+static double tri_area(const double a[3], const double b[3], const double c[3])
+{
+    double u[3], v[3], n[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* Polygon P (of face FC, whose vertex indices are VERTS) textured by T: the mean of the
+   texture over its UV footprint, a quad's two triangles weighted by their areas (the
+   map from the face to UV is affine, so area in UV is area on the face). */
+static void textured_rho(const obj_scene *sc, const obj_face *fc, const int *verts,
+                         const tex_image *t, const double kd[3], sc_poly *p)
+{
+    double mean[3] = { 0, 0, 0 }, total = 0;
+    int k, tri;
+    for (tri = 0; tri + 2 < p->n; tri++) {
+        double part[3], a = tri_area(p->v[0], p->v[tri + 1], p->v[tri + 2]);
+        obj_vec2 foot[3];
+        foot[0] = *corner_uv(sc, fc, verts[0]);
+        foot[1] = *corner_uv(sc, fc, verts[tri + 1]);
+        foot[2] = *corner_uv(sc, fc, verts[tri + 2]);
+        tex_triangle_mean(t, foot, part);
+        a = a > 0 ? a : 1e-300; /* a sliver still counts, by its own mean */
+        for (k = 0; k < 3; k++)
+            mean[k] += a * part[k];
+        total += a;
+    }
+    for (k = 0; k < 3; k++)
+        mean[k] /= total;
+    tex_reflectance(kd, mean, p->rho);
+}
 
 static void poly_material(sc_poly *p, const obj_material *m, int tag)
 {
@@ -14,29 +64,72 @@ static void poly_material(sc_poly *p, const obj_material *m, int tag)
     p->tag = tag;
 }
 
+/* Per material, the texture's mean (whole[m][3] set once needed) for faces without
+   texture coordinates: their footprint is unknown, and Kd alone is often 0 beside a
+   map_Kd, so the image's own mean stands for it. */
+typedef struct {
+    const tex_image *maps;
+    double (*whole)[4];
+} textures;
+
+/* Fills polygon P from the N vertices VERTS of face F. */
+static void make_poly(const obj_scene *sc, int f, const int *verts, int n, textures *tx,
+                      sc_poly *p)
+{
+    const obj_face *fc = &sc->faces[f];
+    const obj_material *m = &sc->materials[fc->material];
+    int k;
+    p->n = n;
+    for (k = 0; k < n; k++) {
+        const obj_vec3 *v = &sc->verts[verts[k]];
+        p->v[k][0] = v->x;
+        p->v[k][1] = v->y;
+        p->v[k][2] = v->z;
+    }
+    poly_material(p, m, f);
+    if (!tx->maps || !tx->maps[fc->material].rgb)
+        return;
+    if (sc->uv_indices[fc->first] >= 0) {
+        textured_rho(sc, fc, verts, &tx->maps[fc->material], m->kd, p);
+        return;
+    }
+    if (!tx->whole[fc->material][3]) {
+        tex_image_mean(&tx->maps[fc->material], tx->whole[fc->material]);
+        tx->whole[fc->material][3] = 1;
+    }
+    tex_reflectance(m->kd, tx->whole[fc->material], p->rho);
+}
+
 sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *ctx)
 {
+    return obj_to_polys_tex(sc, NULL, n, warn, ctx);
+}
+
+sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
+                          obj_poly_warn_fn warn, void *ctx)
+{
     int f, cap = 0, cnt = 0, *tri = NULL, tcap = 0;
+    textures tx;
     sc_poly *p;
     for (f = 0; f < sc->nfaces; f++) cap += sc->faces[f].count <= 4 ? 1 : sc->faces[f].count - 2;
     p = calloc((size_t)(cap ? cap : 1), sizeof *p);
-    if (!p) return NULL;
+    tx.maps = maps;
+    tx.whole = maps ? calloc((size_t)sc->nmaterials + 1, sizeof *tx.whole) : NULL;
+    if (!p || (maps && !tx.whole)) {
+        free(p);
+        free(tx.whole);
+        return NULL;
+    }
     for (f = 0; f < sc->nfaces; f++) {
         const obj_face *fc = &sc->faces[f];
-        const obj_material *m = &sc->materials[fc->material];
-        int k, t, nt;
+        int t, nt;
         if (fc->count <= 4) {
-            p[cnt].n = fc->count;
-            for (k = 0; k < fc->count; k++) {
-                const obj_vec3 *v = &sc->verts[sc->indices[fc->first + k]];
-                p[cnt].v[k][0] = v->x; p[cnt].v[k][1] = v->y; p[cnt].v[k][2] = v->z;
-            }
-            poly_material(&p[cnt++], m, f);
+            make_poly(sc, f, sc->indices + fc->first, fc->count, &tx, &p[cnt++]);
             continue;
         }
         if (3 * (fc->count - 2) > tcap) {
             int *nt2 = realloc(tri, (size_t)(3 * (fc->count - 2)) * sizeof *tri);
-            if (!nt2) { free(tri); free(p); return NULL; }
+            if (!nt2) { free(tri); free(p); free(tx.whole); return NULL; }
             tri = nt2;
             tcap = 3 * (fc->count - 2);
         }
@@ -48,20 +141,14 @@ sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *
                                         : "skipped a degenerate polygon");
             continue;
         }
-        for (t = 0; t < nt; t++) {
-            p[cnt].n = 3;
-            for (k = 0; k < 3; k++) {
-                const obj_vec3 *v = &sc->verts[tri[3 * t + k]];
-                p[cnt].v[k][0] = v->x; p[cnt].v[k][1] = v->y; p[cnt].v[k][2] = v->z;
-            }
-            poly_material(&p[cnt++], m, f);
-        }
+        for (t = 0; t < nt; t++)
+            make_poly(sc, f, tri + 3 * t, 3, &tx, &p[cnt++]);
     }
     free(tri);
+    free(tx.whole);
     *n = cnt;
     return p;
 }
-
 
 int obj_match_material(void *ctx, int tag)
 {

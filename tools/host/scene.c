@@ -385,33 +385,64 @@ int sc_shade(sc_solver *h, int ambient, double *rgb)
     return 0;
 }
 
+/* Draws vertex values V through CAM into FB and Z (w * hgt each). RAD_OK or an error,
+ * with err. */
+static int render_core(struct sc_solver *h, const sc_camera *cam, const rad_rgb_t *v, int w,
+                       int hgt, rad_rgb_t *fb, uint32_t *z, char *err, size_t errlen)
+{
+    rad_camera_t c;
+    double t = tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0);
+    int a, rc = RAD_ERR_ARG, ok = fits_core(t) && fits_core(cam->up[0]) && fits_core(cam->up[1]) && fits_core(cam->up[2]);
+    /* Values past Q16.16 cannot even be converted: the core's refusal, without it. */
+    for (a = 0; a < 3; a++)
+        ok = ok && fits_core((cam->eye[a] - h->off[a]) * h->scale) && fits_core((cam->target[a] - h->off[a]) * h->scale);
+    if (ok) {
+        to_core(h, cam->eye, &c.eye);
+        to_core(h, cam->target, &c.target);
+        c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
+        c.tan_half_fov = RAD_REAL(t);
+        rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
+    }
+    if (rc < 0) snprintf(err, errlen, "cannot render this view: %s (camera too far, degenerate, or image too large)", rad_strerror(rc));
+    return rc;
+}
+
 int sc_render(sc_solver *h, const sc_camera *cam, int ambient, int w, int hgt, float *rgb,
                char *err, size_t errlen)
 {
-    rad_camera_t c;
     rad_rgb_t *v = shade_core(h, ambient), *fb = malloc((size_t)w * hgt * sizeof *fb);
     uint32_t *z = malloc((size_t)w * hgt * sizeof *z);
     int rc = -1;
     if (v && fb && z) {
         size_t i;
-        double t = tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0);
-        int a, ok = fits_core(t) && fits_core(cam->up[0]) && fits_core(cam->up[1]) && fits_core(cam->up[2]);
-        /* Values past Q16.16 cannot even be converted: the core's refusal, without it. */
-        for (a = 0; a < 3; a++)
-            ok = ok && fits_core((cam->eye[a] - h->off[a]) * h->scale) && fits_core((cam->target[a] - h->off[a]) * h->scale);
-        rc = RAD_ERR_ARG;
-        if (ok) {
-            to_core(h, cam->eye, &c.eye);
-            to_core(h, cam->target, &c.target);
-            c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
-            c.tan_half_fov = RAD_REAL(t);
-            rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
-        }
-        if (rc < 0) snprintf(err, errlen, "cannot render this view: %s (camera too far, degenerate, or image too large)", rad_strerror(rc));
+        rc = render_core(h, cam, v, w, hgt, fb, z, err, errlen);
         for (i = 0; rc >= 0 && i < (size_t)w * hgt; i++) {
             double o[3];
             rgb_out(h, &fb[i], o);
             rgb[3 * i] = (float)o[0]; rgb[3 * i + 1] = (float)o[1]; rgb[3 * i + 2] = (float)o[2];
+        }
+    } else {
+        snprintf(err, errlen, "out of memory for a %dx%d image", w, hgt);
+    }
+    free(v); free(fb); free(z);
+    return rc < 0 ? -1 : 0;
+}
+
+int sc_render_values(sc_solver *h, const sc_camera *cam, const double *values, int w, int hgt,
+                     double *out, unsigned char *solid, char *err, size_t errlen)
+{
+    rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v), *fb = malloc((size_t)w * hgt * sizeof *fb);
+    uint32_t *z = malloc((size_t)w * hgt * sizeof *z), i;
+    int rc = -1;
+    if (v && fb && z) {
+        size_t p;
+        for (i = 0; i < h->s.n_vertices; i++) {
+            v[i].r = RAD_REAL(values[3 * i]); v[i].g = RAD_REAL(values[3 * i + 1]); v[i].b = RAD_REAL(values[3 * i + 2]);
+        }
+        rc = render_core(h, cam, v, w, hgt, fb, z, err, errlen);
+        for (p = 0; rc >= 0 && p < (size_t)w * hgt; p++) {
+            out[3 * p] = RAD_TO_DOUBLE(fb[p].r); out[3 * p + 1] = RAD_TO_DOUBLE(fb[p].g); out[3 * p + 2] = RAD_TO_DOUBLE(fb[p].b);
+            solid[p] = z[p] > 1; /* 0: nothing drawn; 1: a crack filled from its neighbours */
         }
     } else {
         snprintf(err, errlen, "out of memory for a %dx%d image", w, hgt);

@@ -79,6 +79,12 @@ int sc_shade(sc_solver *s, int ambient, double *rgb);
 /* Renders w x h linear RGB (caller units, row 0 at top); 0 or -1 with err. */
 int sc_render(sc_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb,
                char *err, size_t errlen);
+/* Renders per-vertex VALUES (3 a core vertex, 0..65535, taken as they are: not in
+ * caller units) through CAM as sc_render does, into OUT (w x h x 3); SOLID[pixel] is 1
+ * where a surface was drawn (not a crack filled from its neighbours). For attributes
+ * other than light (texture coordinates, ids). 0 or -1 with err. */
+int sc_render_values(sc_solver *s, const sc_camera *cam, const double *values, int w, int h,
+                     double *out, unsigned char *solid, char *err, size_t errlen);
 /* Form factors from patch p to every element (n >= stats.elements). */
 int sc_form_factors(sc_solver *s, int p, double *ff);
 /* The raw bits of every element's radiosity, hashed (FNV-1a 64). */

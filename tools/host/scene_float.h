@@ -28,6 +28,8 @@ void scf_vertex_pos(scf_solver *s, int v, double p[3]);
 int scf_shade(scf_solver *s, int ambient, double *rgb);
 int scf_render(scf_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
     size_t errlen);
+int scf_render_values(scf_solver *s, const sc_camera *cam, const double *values, int w, int h,
+    double *out, unsigned char *solid, char *err, size_t errlen);
 int scf_form_factors(scf_solver *s, int p, double *ff);
 uint64_t scf_checksum(scf_solver *s);
 void *scf_core(scf_solver *s);

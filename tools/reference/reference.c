@@ -5,11 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-double ref_point_ff(const sc_poly *p)
+/* Lambert's sum over P's edges: sum of theta_i unit(R_i x R_i+1), per axis, into S. */
+static void lambert_sum(const sc_poly *p, double *s)
 {
-    /* Lambert: F = 1/(2 pi) |sum of theta_i (n . unit(R_i x R_i+1))|, n = +z. */
-    double sum = 0;
-    int i;
+    int i, k;
+    s[0] = s[1] = s[2] = 0;
     for (i = 0; i < p->n; i++) {
         const double *a = p->v[i], *b = p->v[(i + 1) % p->n];
         double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -17,9 +17,25 @@ double ref_point_ff(const sc_poly *p)
         double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
         double lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
         double th = acos((a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb));
-        sum += th * c[2] / lc;
+        for (k = 0; k < 3; k++) s[k] += th * c[k] / lc;
     }
-    return fabs(sum) / (2 * 3.14159265358979323846);
+}
+
+double ref_point_ff(const sc_poly *p)
+{
+    /* Lambert: F = 1/(2 pi) |sum of theta_i (n . unit(R_i x R_i+1))|, n = +z. */
+    double s[3];
+    lambert_sum(p, s);
+    return fabs(s[2]) / (2 * 3.14159265358979323846);
+}
+
+void ref_point_vector(const sc_poly *p, double *phi)
+{
+    int k;
+    lambert_sum(p, phi);
+    for (k = 0; k < 3; k++) phi[k] *= 0.5;
+    if (phi[2] < 0)
+        for (k = 0; k < 3; k++) phi[k] = -phi[k];
 }
 
 sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,

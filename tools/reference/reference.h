@@ -24,6 +24,10 @@ int ref_solution_diff(sc_solver *x, sc_solver *ref, double *worst, double *rms);
 /* Form factor from a differential area at the origin with normal +z to polygon P
  * (wholly above z = 0): F = 1/(2 pi) |sum theta_i (n . unit(R_i x R_i+1))|. */
 double ref_point_ff(const sc_poly *p);
+/* Lambert's vector: the integral of the direction w over polygon P (wholly above
+ * z = 0) seen from the origin, (1/2) sum theta_i unit(R_i x R_i+1), into PHI; its z
+ * component is pi ref_point_ff(P). */
+void ref_point_vector(const sc_poly *p, double *phi);
 /* Receiver K (0..REF_RECEIVERS-1) facing the origin: parallel centred, parallel
  * offset, perpendicular, tilted 45 degrees, large, grazing, tilted triangle. Returns 0
  * past the last. Its tag is 1. */

@@ -1,0 +1,395 @@
+/* rad — gathering: the light arriving at any point, through a cube of its own.
+ *
+ * A gather is the shots' hemi-cube (hemicube.c: the same rasterizer, lattice and
+ * delta form factor table) put at any point and normal, at its own resolution, with
+ * each pixel weighting the radiosity of the element it sees instead of adding to the
+ * element's form factor. The table sums to exactly 2^30 and every weight and shown
+ * radiosity is >= 0, so the fixed sum sum F B is exact in 64 bits (< 2^61) and is
+ * rounded once: in a closed scene whose elements all show B, the gather is B.
+ *
+ * A probe renders a whole cube (six whole faces) and projects the radiosity seen onto
+ * the spherical harmonics of bands 0..2 through the moments of the direction
+ * w = (a, b, 1) / r of each pixel (r^2 = a^2 + b^2 + 1, a and b the pixel centre's odd
+ * lattice numbers over the resolution): its solid angle dw ~ 1 / r^3, dw w, dw w w^T. Each face's moments need six quadrant tables, by the face's
+ * symmetries in a and b (c = 1 / r):
+ *     T0 = c^3 (dw)    TA = c^4 a (dw w_a)    TD = c^4 (dw w_d)
+ *     TAA = c^5 a^2 (dw w_a^2)    TAB = c^5 a b (dw w_a w_b)    TAD = c^5 a (dw w_a w_d)
+ * w_b's tables are w_a's transposed, and dw w_d^2 = dw - dw w_a^2 - dw w_b^2. All are
+ * built in integers in both builds and scaled alike so that each quadrant of T0 sums
+ * to exactly 2^26: the sphere's 24 quadrants to 1.5 * 2^30, standing for 4 pi.
+ * A uniform environment then has every first and mixed moment zero by the tables'
+ * symmetry, and equal diagonal moments by the cube's: bands 1 and 2 vanish exactly.
+ * The cube is turned by the rotation with rows (1, 2, 2) / 3, (2, 1, -2) / 3 and
+ * (-2, 2, -1) / 3: no scene axis lies along a face's pixel rows or columns, where the
+ * outlines of walls along the axes would alias by half a pixel over their whole length.
+ * The moments turn back to the scene's axes exactly (numerators in integers, then one
+ * division by 3 or 9), so a uniform environment's stay as they were.
+ */
+#include "internal.h"
+
+/* The six tables of one quadrant, each q^2 entries, i across + j q. */
+enum { T0, TA, TD, TAA, TAB, TAD, NTABLES };
+
+/* Moments of one face, on its axes a, b, d. */
+enum { M0, MA, MB, MD, MAA, MBB, MAB, MAD, MBD, NMOM };
+
+static int res_ok(unsigned res)
+{
+    return res >= 8u && res <= RAD_MAX_RES && !(res & 1u);
+}
+
+/* x y / 2^31, rounded, for x, y < 2^32. */
+static uint64_t mul31(uint64_t x, uint64_t y)
+{
+    return (x * y + (1u << 30)) >> 31;
+}
+
+/* Entry (i, j) of the quadrant tables before scaling, in Q31: c from c^2 = res^2 / N,
+ * N = A^2 + B^2 + res^2 for the odd numbers A = 2i + 1, B = 2j + 1 (a = A / res). */
+static void sphere_raw(uint32_t res, uint32_t i, uint32_t j, uint64_t *t)
+{
+    uint64_t aa = 2u * i + 1u, bb = 2u * j + 1u, r2 = (uint64_t)res * res;
+    uint64_t n = aa * aa + bb * bb + r2;
+    uint64_t c2 = (r2 << 40) / n; /* Q40, < 2^40 */
+    uint64_t c = rad__isqrt64(c2 << 22), a = (aa << 31) / res, b = (bb << 31) / res;
+    uint64_t c3 = mul31(mul31(c, c), c), c4 = mul31(c3, c), c5 = mul31(c4, c);
+    t[T0] = c3;
+    t[TA] = mul31(c4, a);
+    t[TD] = c4;
+    t[TAA] = mul31(c5, mul31(a, a));
+    t[TAB] = mul31(c5, mul31(a, b));
+    t[TAD] = mul31(c5, a);
+}
+
+/* The probe's tables: each entry times 2^26 / (the quadrant's sum of T0), rounded down,
+ * and T0's deficit given back one unit an entry, so each T0 quadrant sums to 2^26. */
+static void sphere_tables(uint32_t res, rad_ff_t *table)
+{
+    uint32_t q = res / 2u, n = q * q, k, m;
+    uint64_t sum = 0, got = 0, t[NTABLES];
+    for (k = 0; k < n; k++) {
+        sphere_raw(res, k % q, k / q, t);
+        sum += t[T0];
+    }
+    for (k = 0; k < n; k++) {
+        sphere_raw(res, k % q, k / q, t);
+        got += (t[T0] << 26) / sum;
+    }
+    for (k = 0; k < n; k++) {
+        sphere_raw(res, k % q, k / q, t);
+        for (m = 0; m < NTABLES; m++) {
+            uint64_t v = (t[m] << 26) / sum + (m == T0 && k < ((uint64_t)1 << 26) - got);
+            table[(size_t)m * n + k] = rad__ff_from_q30((uint32_t)v);
+        }
+    }
+}
+
+int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, size_t bytes)
+{
+    static const rad_stats_t zero = {0};
+    uintptr_t base = (uintptr_t)work, start = (base + 7u) & ~(uintptr_t)7u;
+    size_t q = res / 2u, tables = (flags & RAD_GATHER_SH) ? 6u * q * q : 2u * q * q;
+    size_t need;
+    uint32_t k;
+    if (!g || !work || !res_ok(res) || (flags & ~RAD_GATHER_SH)) return RAD_ERR_ARG;
+    need = (size_t)(start - base) + tables * sizeof(rad_ff_t) + res * sizeof(uint32_t) +
+           (size_t)res * res * (sizeof(uint32_t) + sizeof(rad_index_t));
+    if (bytes < need) return RAD_ERR_WORK;
+    g->res = (uint16_t)res;
+    g->sh = (uint16_t)(flags & RAD_GATHER_SH);
+    g->turn = 0;
+    g->table = (rad_ff_t *)start;
+    g->steps = (uint32_t *)(void *)(g->table + tables);
+    g->zbuf = g->steps + res;
+    g->ibuf = (rad_index_t *)(void *)(g->zbuf + (size_t)res * res);
+    g->stats = zero;
+    for (k = 0; k < res; k++) g->steps[k] = 0; /* once: every span leaves it zero */
+    if (g->sh)
+        sphere_tables(res, g->table);
+    else
+        rad__dff_table(res, g->table, g->table + q * q);
+    return RAD_OK;
+}
+
+static int in_range(const rad_vec3_t *v)
+{
+    const rad_real_t m = RAD__Q(RAD_COORD_LIMIT);
+    /* written so that a NaN fails in the float twin */
+    return v->x >= -m && v->x <= m && v->y >= -m && v->y <= m && v->z >= -m && v->z <= m;
+}
+
+/* The checks shared by both gathers, and the cube's fixed fields: POINT in the core's
+ * scale (the caller's times 2^length_shift, exact). */
+static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
+                     int sh, int flags, rad__eye_t *e)
+{
+    uint32_t sat = 0;
+    if (!s || !g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
+        return RAD_ERR_ARG;
+    if (!s->solving) return RAD_ERR_STATE;
+    e->c = rad__scale2_vec(*point, s->length_shift, &sat);
+    if (sat || !in_range(&e->c)) return RAD_ERR_RANGE;
+    e->res = g->res;
+    e->skip = skip;
+    e->full = sh;
+    e->z = g->zbuf;
+    e->steps = g->steps;
+    e->ids = g->ibuf;
+    e->st = &g->stats;
+    return RAD_OK;
+}
+
+/* The ambient term in the core's scale into AMB when FLAGS ask for it (a pass over the
+ * patches), else null. */
+static const rad_rgb_t *gather_ambient(const rad_scene_t *s, rad_gather_t *g, int flags,
+                                       rad_rgb_t *amb)
+{
+    rad_real_t a[3];
+    if (!(flags & RAD_SHADE_AMBIENT)) return 0;
+    rad__ambient(s, a, &g->stats.saturations);
+    amb->r = a[0];
+    amb->g = a[1];
+    amb->b = a[2];
+    return amb;
+}
+
+/* V from the core's scale to the caller's, unless FLAGS keep the core's. */
+static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, rad_rgb_t v)
+{
+    if (flags & RAD_SHADE_SCALED) return v;
+    return rad__scale2_rgb(v, -s->power_shift, &g->stats.saturations);
+}
+
+/* ---- a hemisphere --------------------------------------------------------------- */
+
+/* Adds a run of element ID's pixels (ID past the last: none seen), the sums W[k] of
+ * their NW weights, times its shown radiosity, to ACC[k]. Summing the weights first
+ * is exact in the fixed build (a run's weights sum to less than 2^30) and looks B up
+ * once a run; saturations are counted a run. */
+static void add_run(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, uint32_t id,
+                    const rad_ff_t *w, unsigned nw, rad__wsum_t (*acc)[3])
+{
+    rad_rgb_t b;
+    unsigned k;
+    if (id >= s->n_elements) return;
+    b = rad__shown(s, id, amb, &g->stats.saturations);
+    for (k = 0; k < nw; k++) {
+        acc[k][0] += rad__wterm(w[k], b.r);
+        acc[k][1] += rad__wterm(w[k], b.g);
+        acc[k][2] += rad__wterm(w[k], b.b);
+    }
+}
+
+/* Adds face FACE's sum of F B, per channel, to SUM. Row by row, so that the twin's
+ * float sums add at most res terms at a time. */
+static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, unsigned face,
+                     rad__wsum_t *sum)
+{
+    uint32_t res = g->res, q = res / 2u, rows = face ? q : res, r, x, c;
+    const rad_ff_t *top = g->table, *side = g->table + (size_t)q * q;
+    for (r = 0; r < rows; r++) {
+        const rad_index_t *ids = g->ibuf + (size_t)r * res;
+        const rad_ff_t *row = rad__dff_row(top, side, res, face, r);
+        rad__wsum_t acc[1][3] = {{0, 0, 0}};
+        rad_ff_t w[1] = {0};
+        uint32_t id = RAD_INDEX_NONE;
+        for (x = 0; x < res; x++) {
+            if (ids[x] != id) {
+                add_run(s, g, amb, id, w, 1, acc);
+                id = ids[x];
+                w[0] = 0;
+            }
+            w[0] += row[x < q ? q - 1u - x : x - q];
+        }
+        add_run(s, g, amb, id, w, 1, acc);
+        for (c = 0; c < 3; c++) sum[c] += acc[0][c];
+    }
+}
+
+int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
+               const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out)
+{
+    rad__eye_t e;
+    rad_vec3_t n;
+    rad_rgb_t amb, v;
+    const rad_rgb_t *ap;
+    rad__wsum_t sum[3] = {0, 0, 0};
+    unsigned f;
+    int rc = normal && out ? eye_setup(s, g, point, skip, 0, flags, &e) : RAD_ERR_ARG;
+    if (rc < 0) return rc;
+    if (!in_range(normal)) return RAD_ERR_RANGE;
+    if (!rad__normalize(*normal, &n)) return RAD_ERR_ARG;
+    rad__cube_frame(n, g->turn, e.frame);
+    ap = gather_ambient(s, g, flags, &amb);
+    for (f = 0; f < 5; f++) {
+        rad__eye_face(s, &e, f);
+        face_sum(s, g, ap, f, sum);
+    }
+    v.r = rad__wvalue(sum[0], &g->stats.saturations);
+    v.g = rad__wvalue(sum[1], &g->stats.saturations);
+    v.b = rad__wvalue(sum[2], &g->stats.saturations);
+    *out = gather_out(s, g, flags, v);
+    return RAD_OK;
+}
+
+/* ---- a sphere, in spherical harmonics ------------------------------------------- */
+
+/* Moments of the whole sphere: M0, then x, y, z, then xx, yy, zz, xy, yz, xz; per
+ * channel; on the cube's axes, then on the scene's. */
+typedef struct {
+    rad__msum_t m[10][3];
+} sphere_t;
+/* The second moments' places in sphere_t by axis pair. */
+static const unsigned char second[3][3] = {{4, 7, 9}, {7, 5, 8}, {9, 8, 6}};
+
+/* Row R's moments (per channel) into face sums FS: the pixels left of the centre have
+ * a < 0, those of the rows below it b < 0; a run ends at the centre too. */
+static void row_moments(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, uint32_t r,
+                        rad__msum_t (*fs)[3])
+{
+    static const signed char odd_a[NMOM] = {0, 1, 0, 0, 0, 0, 1, 1, 0};
+    static const signed char odd_b[NMOM] = {0, 0, 1, 0, 0, 0, 1, 0, 1};
+    uint32_t res = g->res, q = res / 2u, n = q * q, j = r < q ? q - 1u - r : r - q, x, m, c;
+    uint32_t id = RAD_INDEX_NONE;
+    const rad_index_t *ids = g->ibuf + (size_t)r * res;
+    const rad_ff_t *t = g->table;
+    rad__wsum_t half[2][NMOM][3] = {{{0, 0, 0}}};
+    rad_ff_t w[NMOM] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (x = 0; x < res; x++) {
+        uint32_t i = x < q ? q - 1u - x : x - q, ij = j * q + i, ji = i * q + j;
+        if (ids[x] != id || x == q) {
+            add_run(s, g, amb, id, w, NMOM, half[x > q]);
+            id = ids[x];
+            for (m = 0; m < NMOM; m++) w[m] = 0;
+        }
+        w[M0] += t[T0 * n + ij];
+        w[MA] += t[TA * n + ij];
+        w[MB] += t[TA * n + ji];
+        w[MD] += t[TD * n + ij];
+        w[MAA] += t[TAA * n + ij];
+        w[MBB] += t[TAA * n + ji];
+        w[MAB] += t[TAB * n + ij];
+        w[MAD] += t[TAD * n + ij];
+        w[MBD] += t[TAD * n + ji];
+    }
+    add_run(s, g, amb, id, w, NMOM, half[1]);
+    for (m = 0; m < NMOM; m++)
+        for (c = 0; c < 3; c++) {
+            rad__msum_t right = (rad__msum_t)half[1][m][c], left = (rad__msum_t)half[0][m][c];
+            rad__msum_t v = odd_a[m] ? right - left : right + left;
+            fs[m][c] += odd_b[m] && r >= q ? -v : v;
+        }
+}
+
+/* Face F's moments, on its own axes, onto the cube's: its axis k is the cube's axis
+ * rad__face_axis[F][k] times rad__face_sign[F][k]. */
+static void add_face(unsigned f, rad__msum_t (*fs)[3], sphere_t *sp)
+{
+    static const unsigned char first[3] = {MA, MB, MD};
+    static const unsigned char pair[3][3] = {{MAA, MAB, MAD}, {MAB, MBB, MBD}, {MAD, MBD, 0}};
+    const unsigned char *ax = rad__face_axis[f];
+    const signed char *sg = rad__face_sign[f];
+    unsigned c, k, l;
+    for (c = 0; c < 3; c++) {
+        rad__msum_t v[NMOM], dd;
+        for (k = 0; k < NMOM; k++) v[k] = rad__msum_q20(fs[k][c]);
+        dd = v[M0] - v[MAA] - v[MBB]; /* w_d^2 = 1 - w_a^2 - w_b^2 */
+        sp->m[0][c] += v[M0];
+        for (k = 0; k < 3; k++) {
+            sp->m[1 + ax[k]][c] += sg[k] < 0 ? -v[first[k]] : v[first[k]];
+            for (l = k; l < 3; l++) {
+                rad__msum_t w = k == 2 && l == 2 ? dd : v[pair[k][l]];
+                sp->m[second[ax[k]][ax[l]]][c] += sg[k] * sg[l] < 0 ? -w : w;
+            }
+        }
+    }
+}
+
+/* The probe's turn: row k, over 3, is the cube's axis k on the scene's axes. */
+static const signed char turn3[3][3] = {{1, 2, 2}, {2, 1, -2}, {-2, 2, -1}};
+
+static void probe_frame(rad_vec3_t *frame)
+{
+    unsigned k;
+    for (k = 0; k < 3; k++) {
+        frame[k].x = rad__div(rad__from_int(turn3[k][0]), rad__from_int(3), 0);
+        frame[k].y = rad__div(rad__from_int(turn3[k][1]), rad__from_int(3), 0);
+        frame[k].z = rad__div(rad__from_int(turn3[k][2]), rad__from_int(3), 0);
+    }
+}
+
+/* CUBE's moments on the scene's axes: m_i = sum_k R_ki m_k, m_ij = sum_kl R_ki R_lj m_kl
+ * for the rotation R = turn3 / 3. */
+static void to_scene(const sphere_t *cube, sphere_t *sp)
+{
+    static const unsigned char ii[6] = {0, 1, 2, 0, 1, 0}, jj[6] = {0, 1, 2, 1, 2, 2};
+    unsigned c, i, k, l;
+    for (c = 0; c < 3; c++) {
+        sp->m[0][c] = cube->m[0][c];
+        for (i = 0; i < 3; i++) {
+            rad__msum_t v = 0;
+            for (k = 0; k < 3; k++) v += (rad__msum_t)turn3[k][i] * cube->m[1 + k][c];
+            sp->m[1 + i][c] = rad__msum_div(v, 3);
+        }
+        for (i = 0; i < 6; i++) {
+            rad__msum_t v = 0;
+            for (k = 0; k < 3; k++)
+                for (l = 0; l < 3; l++)
+                    v +=
+                        (rad__msum_t)(turn3[k][ii[i]] * turn3[l][jj[i]]) * cube->m[second[k][l]][c];
+            sp->m[4 + i][c] = rad__msum_div(v, 9);
+        }
+    }
+}
+
+/* Y_lm times 4 pi / 1.5 (the tables' 1.5 * 2^30 is the sphere's 4 pi): Q28 integers in
+ * the fixed build. Y00 = 1 / (2 sqrt pi), Y1 = sqrt 3 / (2 sqrt pi) (x, y, z),
+ * Y2 = sqrt 15 / (2 sqrt pi) (xy, yz, xz), Y20 = sqrt 5 / (4 sqrt pi) (3z^2 - 1),
+ * Y22 = sqrt 15 / (4 sqrt pi) (x^2 - y^2). */
+#if RAD_FLOAT
+static const float sh_k[5] = {2.36327180f, 4.09330683f, 9.15291233f, 2.64221820f, 4.57645616f};
+#else
+static const uint32_t sh_k[5] = {634385944u, 1098788686u, 2456966195u, 709265047u, 1228483097u};
+#endif
+
+int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
+                  int flags, rad_rgb_t *sh)
+{
+    rad__eye_t e;
+    sphere_t cube = {{{0, 0, 0}}}, sp;
+    rad_rgb_t amb;
+    const rad_rgb_t *ap;
+    uint32_t *sat;
+    unsigned f, r, c, k;
+    int rc = sh ? eye_setup(s, g, point, skip, 1, flags, &e) : RAD_ERR_ARG;
+    if (rc < 0) return rc;
+    sat = &g->stats.saturations;
+    probe_frame(e.frame);
+    ap = gather_ambient(s, g, flags, &amb);
+    for (f = 0; f < 6; f++) {
+        rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
+        rad__eye_face(s, &e, f);
+        for (r = 0; r < g->res; r++) row_moments(s, g, ap, r, fs);
+        add_face(f, fs, &cube);
+    }
+    to_scene(&cube, &sp);
+    for (c = 0; c < 3; c++) {
+        rad_real_t v[9];
+        v[0] = rad__mscale(sp.m[0][c], sh_k[0], sat);
+        v[1] = rad__mscale(sp.m[2][c], sh_k[1], sat);
+        v[2] = rad__mscale(sp.m[3][c], sh_k[1], sat);
+        v[3] = rad__mscale(sp.m[1][c], sh_k[1], sat);
+        v[4] = rad__mscale(sp.m[7][c], sh_k[2], sat);
+        v[5] = rad__mscale(sp.m[8][c], sh_k[2], sat);
+        v[6] = rad__mscale(3 * sp.m[6][c] - sp.m[0][c], sh_k[3], sat);
+        v[7] = rad__mscale(sp.m[9][c], sh_k[2], sat);
+        v[8] = rad__mscale(sp.m[4][c] - sp.m[5][c], sh_k[4], sat);
+        for (k = 0; k < 9; k++) {
+            if (c == 0) sh[k].r = v[k];
+            if (c == 1) sh[k].g = v[k];
+            if (c == 2) sh[k].b = v[k];
+        }
+    }
+    for (k = 0; k < 9; k++) sh[k] = gather_out(s, g, flags, sh[k]);
+    return RAD_OK;
+}

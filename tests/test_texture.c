@@ -1,0 +1,834 @@
+/* Tests for textures: tools/formats/texture.c (decoding, sRGB, sampling, means over a
+ * UV triangle, hostile files) and the OBJ/MTL parts that feed it in tools/formats/obj.c
+ * (vt, vn, o, g, map_Kd). Every image is generated here and written with img_write. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "formats/image.h"
+#include "formats/obj.h"
+#include "formats/texture.h"
+#include "host/obj_polys.h"
+#include "host/tex_render.h"
+#include "scenes.h"
+#include "tmpdir.h"
+
+TMPDIR_GROUP("texture")
+
+/* ---- helpers ------------------------------------------------------------------- */
+
+static void near_at(double a, double b, double eps, const char *expr, const char *file, int line)
+{
+    if (fabs(a - b) <= eps)
+        return;
+    print_error("%s = %.17g, expected %.17g (+-%g)\n", expr, a, b, eps);
+    _fail(file, line);
+}
+#define assert_near(a, b, eps) near_at((a), (b), (eps), #a, __FILE__, __LINE__)
+
+/* Warnings seen by a callback. */
+typedef struct {
+    int n;
+    char msg[4][512];
+} warnings;
+
+static void collect(void *ctx, const char *msg)
+{
+    warnings *w = ctx;
+    if (w->n < 4)
+        snprintf(w->msg[w->n], sizeof w->msg[0], "%s", msg);
+    w->n++;
+}
+
+static void write_bytes(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, n, f), n);
+    assert_int_equal(fclose(f), 0);
+}
+
+static unsigned char *read_bytes(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char *d;
+    long len;
+    assert_non_null(f);
+    assert_int_equal(fseek(f, 0, SEEK_END), 0);
+    len = ftell(f);
+    assert_true(len > 0);
+    rewind(f);
+    d = malloc((size_t)len);
+    assert_non_null(d);
+    assert_int_equal(fread(d, 1, (size_t)len, f), (size_t)len);
+    fclose(f);
+    *n = (size_t)len;
+    return d;
+}
+
+/* The asymmetric test image: W x H, texel (x, y) = (10 + 40x, 20 + 60y, 7 + 11x + 29y),
+   so a flip, a transpose or a channel swap changes some texel. */
+#define AW 5
+#define AH 3
+static void asymmetric(unsigned char *rgb)
+{
+    int x, y;
+    for (y = 0; y < AH; y++)
+        for (x = 0; x < AW; x++) {
+            unsigned char *p = rgb + 3 * (y * AW + x);
+            p[0] = (unsigned char)(10 + 40 * x);
+            p[1] = (unsigned char)(20 + 60 * y);
+            p[2] = (unsigned char)(7 + 11 * x + 29 * y);
+        }
+}
+
+/* An image of W x H whose texel bytes are given, written as PNG to NAME; loaded back. */
+static void make_texture(const char *name, const unsigned char *rgb, int w, int h,
+                         tex_image *t)
+{
+    char err[512];
+    assert_int_equal(img_write(tmp_path(name), rgb, w, h, err, sizeof err), 0);
+    if (tex_load(tmp_path(name), t, err, sizeof err)) {
+        print_error("%s\n", err);
+        fail();
+    }
+}
+
+/* The IEC 61966-2-1 decoding, written out here again (the reference). */
+static double srgb_reference(double c)
+{
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+/* ---- tests: decoding ----------------------------------------------------------- */
+
+static void assert_asymmetric(const tex_image *t)
+{
+    int x, y, k;
+    unsigned char want[AW * AH * 3];
+    asymmetric(want);
+    assert_int_equal(t->w, AW);
+    assert_int_equal(t->h, AH);
+    for (y = 0; y < AH; y++)
+        for (x = 0; x < AW; x++)
+            for (k = 0; k < 3; k++)
+                if (t->rgb[3 * (y * AW + x) + k] != want[3 * (y * AW + x) + k]) {
+                    print_error("texel (%d, %d) channel %d: %d, expected %d\n", x, y, k,
+                                t->rgb[3 * (y * AW + x) + k], want[3 * (y * AW + x) + k]);
+                    fail();
+                }
+}
+
+/* PNG and PPM, and a PNG named .jpg: decoded by content, texel for texel. */
+static void test_decode_asymmetric(void **state)
+{
+    unsigned char rgb[AW * AH * 3];
+    tex_image t;
+    char err[512];
+    size_t n;
+    unsigned char *png;
+    (void)state;
+    asymmetric(rgb);
+    make_texture("a.png", rgb, AW, AH, &t);
+    assert_asymmetric(&t);
+    assert_int_equal(t.clamp, 0);
+    assert_near(t.scale[0], 1, 0);
+    tex_free(&t);
+    assert_null(t.rgb);
+    tex_free(&t); /* idempotent */
+    make_texture("a.ppm", rgb, AW, AH, &t);
+    assert_asymmetric(&t);
+    tex_free(&t);
+    png = read_bytes(tmp_path("a.png"), &n);
+    write_bytes(tmp_path("png_named.jpg"), png, n);
+    free(png);
+    assert_int_equal(tex_load(tmp_path("png_named.jpg"), &t, err, sizeof err), 0);
+    assert_asymmetric(&t);
+    tex_free(&t);
+}
+
+/* Every byte's linear value against the formula, and the formula's own fixed points. */
+static void test_srgb_decode(void **state)
+{
+    unsigned char rgb[256 * 3];
+    tex_image t;
+    double worst = 0, lin[3];
+    int i;
+    (void)state;
+    for (i = 0; i < 256; i++)
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = (unsigned char)i;
+    make_texture("ramp.png", rgb, 256, 1, &t);
+    for (i = 0; i < 256; i++) {
+        double want = srgb_reference(i / 255.0);
+        tex_texel(&t, i, 0, lin);
+        worst = fmax(worst, fabs(lin[0] - want));
+        assert_near(lin[1], lin[0], 0);
+        assert_near(tex_srgb_decode(i / 255.0), want, 1e-15);
+    }
+    print_message("sRGB table against the formula: worst %.3g\n", worst);
+    assert_true(worst <= 1e-15); /* 17 printed digits round-trip a double */
+    assert_near(tex_srgb_decode(0), 0, 0);
+    assert_near(tex_srgb_decode(1), 1, 1e-15);
+    assert_near(tex_srgb_decode(0.5), 0.21404114048223255, 1e-15); /* ((0.555/1.055)^2.4 */
+    assert_near(tex_srgb_decode(-1), 0, 0);
+    assert_near(tex_srgb_decode(2), 1, 1e-15);
+    tex_free(&t);
+}
+
+/* ---- tests: sampling ----------------------------------------------------------- */
+
+/* At a texel's centre the sample is the texel; half-way, the mean of two; across the
+   u = 0 seam, the last column and the first; v = 1 is row 0 (the top). */
+static void test_sample_bilinear(void **state)
+{
+    unsigned char rgb[AW * AH * 3];
+    tex_image t;
+    double s[3], a[3], b[3];
+    int x, y, k;
+    (void)state;
+    asymmetric(rgb);
+    make_texture("s.png", rgb, AW, AH, &t);
+    for (y = 0; y < AH; y++)
+        for (x = 0; x < AW; x++) {
+            tex_sample(&t, (x + 0.5) / AW, 1 - (y + 0.5) / AH, s);
+            tex_texel(&t, x, y, a);
+            for (k = 0; k < 3; k++)
+                assert_near(s[k], a[k], 1e-12);
+        }
+    tex_sample(&t, 2.0 / AW, 1 - 0.5 / AH, s); /* between columns 1 and 2 of row 0 */
+    tex_texel(&t, 1, 0, a);
+    tex_texel(&t, 2, 0, b);
+    for (k = 0; k < 3; k++)
+        assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
+    tex_sample(&t, 0, 1 - 1.5 / AH, s); /* u = 0: half column 4, half column 0 (row 1) */
+    tex_texel(&t, AW - 1, 1, a);
+    tex_texel(&t, 0, 1, b);
+    for (k = 0; k < 3; k++)
+        assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
+    tex_sample(&t, 3 + 0.5 / AW, -2 + 1 - 0.5 / AH, a); /* wrapped whole periods away */
+    tex_texel(&t, 0, 0, b);
+    for (k = 0; k < 3; k++)
+        assert_near(a[k], b[k], 1e-12);
+    t.clamp = 1; /* clamped: u = 0 is column 0 alone */
+    tex_sample(&t, -5, 1 - 1.5 / AH, s);
+    tex_texel(&t, 0, 1, b);
+    for (k = 0; k < 3; k++)
+        assert_near(s[k], b[k], 1e-12);
+    t.clamp = 0;
+    t.scale[0] = 2; /* -s 2: u = 0.25 reads u = 0.5 */
+    t.offset[1] = 0.5; /* -o 0 0.5 */
+    tex_sample(&t, 0.25, 1 - 0.5 / AH - 0.5, s); /* reads (0.5, 1 - 0.5 / AH): texel (2, 0) */
+    tex_texel(&t, 2, 0, b);
+    for (k = 0; k < 3; k++)
+        assert_near(s[k], b[k], 1e-12);
+    tex_free(&t);
+}
+
+/* The mean over the UV triangle (0,0) (1,0) (0,1) of a texture that varies along u only
+   (one row, 8 columns of known linear values): its analytic value is the integral of
+   f(u) 2 (1 - u) over [0, 1], f the wrapped linear interpolation between texel centres,
+   worked out here by Simpson's rule on each linear piece (exact for these quadratics). */
+static double piece_integral(double u0, double u1, double f0, double f1)
+{
+    double um = 0.5 * (u0 + u1), fm = 0.5 * (f0 + f1);
+    return (u1 - u0) / 6 * (f0 * 2 * (1 - u0) + 4 * fm * 2 * (1 - um) + f1 * 2 * (1 - u1));
+}
+
+static void test_triangle_mean(void **state)
+{
+    static const unsigned char bytes[8] = { 0, 255, 40, 200, 90, 10, 160, 120 };
+    const obj_vec2 tri[3] = { { 0, 0 }, { 1, 0 }, { 0, 1 } }, tri2[3] = { { 1, 1 }, { 0, 1 }, { 1, 0 } };
+    unsigned char rgb[8 * 3];
+    double f[8], want = 0, got[3], got2[3], texel_mean = 0, err1, err2;
+    tex_image t;
+    int i;
+    (void)state;
+    for (i = 0; i < 8; i++) {
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = bytes[i];
+        f[i] = srgb_reference(bytes[i] / 255.0);
+        texel_mean += f[i] / 8;
+    }
+    make_texture("row.png", rgb, 8, 1, &t);
+    /* Pieces: [0, 1/16] from the wrap (f7 to f0 across the seam), then centre to centre. */
+    want += piece_integral(0, 1.0 / 16, 0.5 * (f[7] + f[0]), f[0]);
+    for (i = 0; i < 7; i++)
+        want += piece_integral((i + 0.5) / 8, (i + 1.5) / 8, f[i], f[i + 1]);
+    want += piece_integral(15.0 / 16, 1, f[7], 0.5 * (f[7] + f[0]));
+    tex_triangle_mean(&t, tri, got);
+    err1 = fabs(got[0] - want);
+    /* The other half of the unit square: both halves together are one period, whose
+       mean is exactly the mean of the texels (each texel's tent integrates to 1 texel). */
+    tex_triangle_mean(&t, tri2, got2);
+    err2 = fabs(0.5 * (got[0] + got2[0]) - texel_mean);
+    print_message("mean over the triangle %.6f (analytic %.6f, error %.2g); over the square "
+                  "%.6f (texels %.6f, error %.2g)\n",
+                  got[0], want, err1, 0.5 * (got[0] + got2[0]), texel_mean, err2);
+    /* The midpoint rule is exact on linear pieces and errs at the kinks (texel centres)
+       by O(1/n^2), n = 33 here (4 a texel on the 8.06-texel hypotenuse): measured 1.8e-4
+       and 2.0e-4, and 6.9e-4 / 1.2e-5 at 2 / 16 a texel, as 1/n^2 predicts. The bound
+       is 2.5 times the measurement, so losing the density or the order fails it. */
+    assert_true(err1 <= 5e-4);
+    assert_true(err2 <= 5e-4);
+    assert_near(got[1], got[0], 0);
+    tex_free(&t);
+}
+
+/* A uniform texture's mean is its colour, whatever the footprint (wraps, slivers). */
+static void test_uniform_mean(void **state)
+{
+    unsigned char rgb[16 * 8 * 3];
+    const obj_vec2 feet[3][3] = { { { 0, 0 }, { 1, 0 }, { 0, 1 } },
+                                   { { -3.2, 7.1 }, { 40.5, 7.3 }, { 12, -19 } },
+                                   { { 0.1, 0.1 }, { 0.1000001, 0.1 }, { 0.1, 0.1000001 } } };
+    double want[3], got[3];
+    tex_image t;
+    int i, k;
+    (void)state;
+    for (i = 0; i < 16 * 8; i++) {
+        rgb[3 * i] = 200;
+        rgb[3 * i + 1] = 100;
+        rgb[3 * i + 2] = 30;
+    }
+    make_texture("uniform.png", rgb, 16, 8, &t);
+    tex_texel(&t, 3, 5, want);
+    for (i = 0; i < 3; i++) {
+        tex_triangle_mean(&t, feet[i], got);
+        for (k = 0; k < 3; k++)
+            assert_near(got[k], want[k], 1e-12); /* sums of 4096 equal values: rounding */
+    }
+    tex_free(&t);
+}
+
+static void test_reflectance_rule(void **state)
+{
+    const double black[3] = { 0, 0, 0 }, kd[3] = { 0.5, 1, 0.2 }, white[3] = { 1, 1, 1 };
+    const double texel[3] = { 0.8, 0.4, 0.6 };
+    double rho[3];
+    (void)state;
+    tex_reflectance(black, texel, rho); /* Kd 0: the texture alone */
+    assert_near(rho[0], 0.8, 0);
+    assert_near(rho[1], 0.4, 0);
+    assert_near(rho[2], 0.6, 0);
+    tex_reflectance(kd, texel, rho); /* else the texture times Kd */
+    assert_near(rho[0], 0.4, 1e-16);
+    assert_near(rho[1], 0.4, 0);
+    assert_near(rho[2], 0.12, 1e-16);
+    tex_reflectance(white, white, rho); /* kept below 1 */
+    assert_near(rho[0], TEX_RHO_MAX, 0);
+    assert_true(rho[2] < 1);
+}
+
+/* ---- tests: hostile files ------------------------------------------------------ */
+
+/* Each must fail with a one-line message naming the file and saying what: never crash,
+   never hang, and leave *out empty. */
+static void expect_refused(const char *path, const char *what)
+{
+    tex_image t;
+    char err[512];
+    int rc = tex_load(path, &t, err, sizeof err);
+    print_message("%s\n", rc ? err : "(accepted)");
+    assert_int_equal(rc, -1);
+    assert_null(t.rgb);
+    assert_int_equal(t.w, 0);
+    assert_non_null(strstr(err, path));
+    assert_non_null(strstr(err, what));
+    assert_null(strchr(err, '\n'));
+}
+
+static void put_be32(unsigned char *p, unsigned v)
+{
+    p[0] = (unsigned char)(v >> 24);
+    p[1] = (unsigned char)(v >> 16);
+    p[2] = (unsigned char)(v >> 8);
+    p[3] = (unsigned char)v;
+}
+
+static void test_hostile_images(void **state)
+{
+    unsigned char rgb[AW * AH * 3], *png;
+    size_t n;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(img_write(tmp_path("ok.png"), rgb, AW, AH, NULL, 0), 0);
+    png = read_bytes(tmp_path("ok.png"), &n);
+    /* A bomb: the IHDR declares 10000 x 10000 (bytes 16-23) in a file of ~100 bytes:
+       1e8 texels, past TEX_MAX_PIXELS and within stb_image's own 2^30-byte limit, so
+       ours refuses it; 100000 x 100000 stb_image refuses itself. */
+    put_be32(png + 16, 10000);
+    put_be32(png + 20, 10000);
+    write_bytes(tmp_path("bomb.png"), png, n);
+    expect_refused(tmp_path("bomb.png"), "declares 10000 x 10000 texels");
+    put_be32(png + 16, 100000);
+    put_be32(png + 20, 100000);
+    write_bytes(tmp_path("bomb2.png"), png, n);
+    expect_refused(tmp_path("bomb2.png"), "not an image");
+    put_be32(png + 16, AW);
+    put_be32(png + 20, AH);
+    write_bytes(tmp_path("cut.png"), png, n / 2); /* the header whole, the pixels cut */
+    expect_refused(tmp_path("cut.png"), "cannot decode");
+    write_bytes(tmp_path("cut_header.png"), png, 12);
+    expect_refused(tmp_path("cut_header.png"), "not an image");
+    free(png);
+    write_bytes(tmp_path("zero.png"), "", 0);
+    expect_refused(tmp_path("zero.png"), "empty file");
+    write_bytes(tmp_path("text.png"), "newmtl x\nKd 1 1 1\n", 18);
+    expect_refused(tmp_path("text.png"), "not an image");
+    expect_refused(tmp_path("missing.png"), "No such file");
+    expect_refused(tmpdir, "is a directory");
+}
+
+/* ---- tests: OBJ and MTL -------------------------------------------------------- */
+
+static void write_text(const char *name, const char *text)
+{
+    write_bytes(tmp_path(name), text, strlen(text));
+}
+
+/* vt, vn and their indices (negative ones too), v//vn, and o / g names per face. */
+static void test_obj_uv_groups(void **state)
+{
+    obj_scene sc;
+    warnings w = { 0 };
+    char err[512];
+    const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                       "vt 0 0\nvt 1 0\nvt 1 1 0.5\nvt 0.25\n"
+                       "vn 0 0 1\nvn 0 0 2\n"
+                       "o lamp\ng shade\n"
+                       "f 1/1/1 2/2/2 3/3/1\n"
+                       "f -4/-4 -3/-3 -1/-1\n"
+                       "g\nf 1//2 3//1 4//2\n"
+                       "o desk\ng top legs\nf 1 2 3 4\n"
+                       "f 1/1 2/9 3/3\n";
+    (void)state;
+    assert_int_equal(obj_parse(text, strlen(text), "uv.obj", NULL, &sc, collect, &w, err,
+                               sizeof err),
+                     0);
+    assert_int_equal(sc.nuvs, 4);
+    assert_near(sc.uvs[2].v, 1, 0);
+    assert_near(sc.uvs[3].u, 0.25, 0);
+    assert_near(sc.uvs[3].v, 0, 0); /* v defaults to 0 */
+    assert_int_equal(sc.nnormals, 2);
+    assert_near(sc.normals[1].z, 2, 0);
+    assert_int_equal(sc.nfaces, 5);
+    /* face 0: v/vt/vn */
+    assert_int_equal(sc.uv_indices[0], 0);
+    assert_int_equal(sc.uv_indices[2], 2);
+    assert_int_equal(sc.normal_indices[1], 1);
+    /* face 1: negative indices count back from the last vt */
+    assert_int_equal(sc.indices[sc.faces[1].first], 0);
+    assert_int_equal(sc.uv_indices[sc.faces[1].first], 0);
+    assert_int_equal(sc.uv_indices[sc.faces[1].first + 2], 3);
+    assert_int_equal(sc.normal_indices[sc.faces[1].first], -1);
+    /* face 2: v//vn has no texture coordinates */
+    assert_int_equal(sc.uv_indices[sc.faces[2].first], -1);
+    assert_int_equal(sc.normal_indices[sc.faces[2].first], 1);
+    /* face 4: vt 9 does not exist: warned, and the whole face has none */
+    assert_int_equal(w.n, 1);
+    assert_string_equal(w.msg[0], "uv.obj:20: texture coordinate index 9 out of range (4 "
+                                  "defined so far): ignored");
+    assert_int_equal(sc.uv_indices[sc.faces[4].first], -1);
+    assert_int_equal(sc.uv_indices[sc.faces[4].first + 2], -1);
+    /* names */
+    assert_int_equal(sc.nnames, 4);
+    assert_string_equal(sc.names[sc.faces[0].object], "lamp");
+    assert_string_equal(sc.names[sc.faces[0].group], "shade");
+    assert_int_equal(sc.faces[1].group, sc.faces[0].group);
+    assert_int_equal(sc.faces[2].group, -1);
+    assert_string_equal(sc.names[sc.faces[2].object], "lamp");
+    assert_string_equal(sc.names[sc.faces[3].object], "desk");
+    assert_string_equal(sc.names[sc.faces[3].group], "top legs");
+    assert_int_equal(sc.unknown_statements, 0);
+    obj_free(&sc);
+}
+
+/* map_Kd with options, a name with spaces, a path relative to the MTL's folder. */
+static void test_mtl_map_kd(void **state)
+{
+    obj_scene sc;
+    warnings w = { 0 };
+    char err[512], want[400];
+    unsigned char rgb[AW * AH * 3];
+    tex_image maps[4];
+    int i;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(mkdir(tmp_path("mats"), 0700), 0);
+    assert_int_equal(mkdir(tmp_path("mats/tex"), 0700), 0);
+    assert_int_equal(img_write(tmp_path("mats/tex/my wood.png"), rgb, AW, AH, NULL, 0), 0);
+    write_text("mats/m.mtl", "newmtl wood\nKd 0 0 0\n"
+                             "map_Kd -s 2 3 -o 0.5 -blendu off -bm 0.3 -clamp on -mm 0 1 "
+                             "-imfchan l tex/my wood.png\n"
+                             "newmtl broken\nKd 0 0 0\nmap_Kd tex\\missing.png\n"
+                             "newmtl bad_option\nKd 0 0 0\nmap_Kd -s\n"
+                             "newmtl tinted\nKd 0.2 0.3 0.4\nmap_Kd -clamp maybe tex/x.png\n");
+    write_text("scene.obj", "mtllib mats/m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                            "usemtl wood\nf 1 2 3\nusemtl broken\nf 1 2 3\n");
+    assert_int_equal(obj_load(tmp_path("scene.obj"), &sc, collect, &w, err, sizeof err), 0);
+    assert_int_equal(sc.nmaterials, 4);
+    /* parse-time warnings: -s without values, -clamp maybe */
+    for (i = 0; i < w.n && i < 4; i++)
+        print_message("%s\n", w.msg[i]);
+    assert_int_equal(w.n, 2);
+    snprintf(want, sizeof want, "%s:9: map_Kd -s needs 1 value: statement ignored",
+             tmp_path("mats/m.mtl"));
+    assert_string_equal(w.msg[0], want);
+    snprintf(want, sizeof want, "%s:12: map_Kd -clamp needs 1 value: statement ignored",
+             tmp_path("mats/m.mtl"));
+    assert_string_equal(w.msg[1], want);
+    {
+        const obj_map *m = &sc.materials[0].map_kd;
+        snprintf(want, sizeof want, "%s", tmp_path("mats/tex/my wood.png"));
+        assert_string_equal(m->path, want);
+        assert_int_equal(m->line, 3);
+        assert_near(m->scale[0], 2, 0);
+        assert_near(m->scale[1], 3, 0);
+        assert_near(m->offset[0], 0.5, 0);
+        assert_near(m->offset[1], 0, 0);
+        assert_int_equal(m->clamp, 1);
+    }
+    snprintf(want, sizeof want, "%s", tmp_path("mats/tex/missing.png"));
+    assert_string_equal(sc.materials[1].map_kd.path, want); /* backslash read as a slash */
+    assert_null(sc.materials[2].map_kd.path);
+    assert_near(sc.materials[2].kd[0], OBJ_FALLBACK_KD, 0); /* a malformed map: grey */
+    assert_near(sc.materials[3].kd[2], 0.4, 0);             /* keeps its Kd */
+    /* Loading: the wood decodes; the missing file is one warning naming the MTL line and
+       the file, and grey. */
+    w.n = 0;
+    assert_int_equal(tex_load_materials(&sc, maps, collect, &w), 1);
+    assert_asymmetric(&maps[0]);
+    assert_int_equal(maps[0].clamp, 1);
+    assert_near(maps[0].scale[1], 3, 0);
+    assert_null(maps[1].rgb);
+    assert_int_equal(w.n, 1);
+    snprintf(want, sizeof want, "%s:6: map_Kd: %s: cannot open: No such file or directory; using Kd 0.5 0.5 0.5",
+             tmp_path("mats/m.mtl"), tmp_path("mats/tex/missing.png"));
+    assert_string_equal(w.msg[0], want);
+    assert_near(sc.materials[1].kd[1], OBJ_FALLBACK_KD, 0);
+    tex_free(&maps[0]);
+    obj_free(&sc);
+}
+
+/* ---- tests: reflectance of textured faces and the solution --------------------- */
+
+/* A room (walls), a block in it and a lamp under the ceiling, every face with texture
+   coordinates 0 0, 1 0, 1 1, 0 1 at its corners, written as NAME with mtllib MTL. */
+static void write_room(const char *name, const char *mtl)
+{
+    static const char *const mats[3] = { "walls", "block", "lamp" };
+    sc_poly p[13];
+    char text[8192];
+    size_t used;
+    int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, k, v = 0;
+    n += box(p + n, -0.5, -1, -0.4, 0.1, -0.3, 0.3, 0);
+    p[n++] = quad(-0.3, 0.98, -0.3, 0.3, 0.98, -0.3, 0.3, 0.98, 0.3, -0.3, 0.98, 0.3);
+    used = (size_t)snprintf(text, sizeof text, "mtllib %s\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", mtl);
+    for (i = 0; i < n; i++) {
+        used += (size_t)snprintf(text + used, sizeof text - used, "usemtl %s\n",
+                                 mats[i < 6 ? 0 : i < 12 ? 1 : 2]);
+        for (k = 0; k < 4; k++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %.17g\n",
+                                     p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "f %d/1 %d/2 %d/3 %d/4\n", v + 1, v + 2, v + 3, v + 4);
+        v += 4;
+    }
+    assert_true(used < sizeof text);
+    write_text(name, text);
+}
+
+typedef struct {
+    obj_scene sc;
+    tex_image maps[8];
+    sc_poly *p;
+    int n;
+} textured;
+
+static void load_textured(const char *name, textured *t)
+{
+    char err[512];
+    assert_int_equal(obj_load(tmp_path(name), &t->sc, NULL, NULL, err, sizeof err), 0);
+    assert_true(t->sc.nmaterials <= 8);
+    tex_load_materials(&t->sc, t->maps, NULL, NULL);
+    t->p = obj_to_polys_tex(&t->sc, t->maps, &t->n, NULL, NULL);
+    assert_non_null(t->p);
+}
+
+static void free_textured(textured *t)
+{
+    int i;
+    for (i = 0; i < t->sc.nmaterials; i++)
+        tex_free(&t->maps[i]);
+    free(t->p);
+    obj_free(&t->sc);
+}
+
+/* Largest relative difference, per element above 1% of the brightest, between two
+   solutions of the same mesh (fixed build, or the float twin if FLOAT). */
+static double solution_difference(const textured *a, const textured *b, int use_float)
+{
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    char err[512];
+    double worst = 0, peak = 0, ra[3], rb[3];
+    int e, k, ne, pass;
+    sc_stats sa, sb;
+    for (pass = 0; pass < 2; pass++) {
+        void *x = use_float ? (void *)scf_create(a->p, a->n, &o, NULL, NULL, err, sizeof err)
+                            : (void *)sc_create(a->p, a->n, &o, NULL, NULL, err, sizeof err);
+        void *y = use_float ? (void *)scf_create(b->p, b->n, &o, NULL, NULL, err, sizeof err)
+                            : (void *)sc_create(b->p, b->n, &o, NULL, NULL, err, sizeof err);
+        assert_non_null(x);
+        assert_non_null(y);
+        if (use_float) {
+            scf_solve(x, 100000, 1e-4, NULL, NULL);
+            scf_solve(y, 100000, 1e-4, NULL, NULL);
+            scf_get_stats(x, &sa);
+            scf_get_stats(y, &sb);
+        } else {
+            sc_solve(x, 100000, 1e-4, NULL, NULL);
+            sc_solve(y, 100000, 1e-4, NULL, NULL);
+            sc_get_stats(x, &sa);
+            sc_get_stats(y, &sb);
+        }
+        assert_int_equal(sa.elements, sb.elements);
+        ne = sa.elements;
+        for (e = 0; e < ne; e++) {
+            if (use_float) {
+                scf_element_rgb(x, e, 1, ra);
+                scf_element_rgb(y, e, 1, rb);
+            } else {
+                sc_element_rgb(x, e, 1, ra);
+                sc_element_rgb(y, e, 1, rb);
+            }
+            for (k = 0; k < 3; k++)
+                if (pass == 0)
+                    peak = fmax(peak, rb[k]);
+                else if (rb[k] > 0.01 * peak)
+                    worst = fmax(worst, fabs(ra[k] / rb[k] - 1));
+        }
+        if (use_float) {
+            scf_destroy(x);
+            scf_destroy(y);
+        } else {
+            sc_destroy(x);
+            sc_destroy(y);
+        }
+    }
+    return worst;
+}
+
+/* A uniformly coloured texture gives the solution of the same colour in Kd: walls by
+   the texture alone (Kd 0), the block by texture times Kd. */
+static void test_uniform_texture_solution(void **state)
+{
+    unsigned char walls[4 * 4 * 3], block[2 * 2 * 3];
+    double lw[3], lb[3], kd_block[3] = { 0.5, 0.8, 1.0 }, rho[3];
+    char mtl[1024];
+    textured a, b;
+    int i, k;
+    (void)state;
+    for (i = 0; i < 16; i++) {
+        walls[3 * i] = 200;
+        walls[3 * i + 1] = 150;
+        walls[3 * i + 2] = 90;
+    }
+    for (i = 0; i < 4; i++) {
+        block[3 * i] = 60;
+        block[3 * i + 1] = 230;
+        block[3 * i + 2] = 120;
+    }
+    assert_int_equal(img_write(tmp_path("walls.png"), walls, 4, 4, NULL, 0), 0);
+    assert_int_equal(img_write(tmp_path("block.png"), block, 2, 2, NULL, 0), 0);
+    write_text("tex.mtl", "newmtl walls\nKd 0 0 0\nmap_Kd walls.png\n"
+                          "newmtl block\nKd 0.5 0.8 1\nmap_Kd block.png\n"
+                          "newmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+    for (k = 0; k < 3; k++) {
+        lw[k] = srgb_reference(walls[k] / 255.0);
+        lb[k] = srgb_reference(block[k] / 255.0) * kd_block[k];
+    }
+    snprintf(mtl, sizeof mtl, "newmtl walls\nKd %.17g %.17g %.17g\nnewmtl block\nKd %.17g %.17g "
+             "%.17g\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n", lw[0], lw[1], lw[2], lb[0], lb[1], lb[2]);
+    write_text("kd.mtl", mtl);
+    write_room("room_tex.obj", "tex.mtl");
+    write_room("room_kd.obj", "kd.mtl");
+    load_textured("room_tex.obj", &a);
+    load_textured("room_kd.obj", &b);
+    assert_int_equal(a.n, b.n);
+    for (i = 0; i < a.n; i++)
+        for (k = 0; k < 3; k++) {
+            rho[k] = b.p[i].rho[k];
+            assert_near(a.p[i].rho[k], rho[k], 1e-12); /* 4096 equal terms summed */
+        }
+    {
+        double fixed = solution_difference(&a, &b, 0), flt = solution_difference(&a, &b, 1);
+        print_message("uniform texture against Kd, per element: fixed %.3g%%, float %.3g%%\n",
+                      100 * fixed, 100 * flt);
+        assert_true(fixed <= 0.001); /* the goal: 0.1% */
+        assert_true(flt <= 0.001);
+    }
+    free_textured(&a);
+    free_textured(&b);
+}
+
+/* A face's reflectance is the mean of its footprint: half black, half white in linear
+   light gives 0.5 (a period: exact but for the midpoint rule's 1/n^2 at the kinks);
+   a face of the material without texture coordinates keeps Kd. */
+static void test_face_reflectance(void **state)
+{
+    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    textured t;
+    int i;
+    (void)state;
+    assert_int_equal(img_write(tmp_path("bw.png"), bw, 2, 1, NULL, 0), 0);
+    write_text("bw.mtl", "newmtl bw\nKd 0 0 0\nmap_Kd bw.png\n"
+                         "newmtl tinted\nKd 0.2 0.4 0.6\nmap_Kd bw.png\n");
+    write_text("bw.obj", "mtllib bw.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.25 0\nvt 0.75 1\n"
+                         "usemtl bw\nf 1/1 2/2 3/3 4/4\nf 1 2 3\n"
+                         "usemtl tinted\nf 1/1 2/2 3/3 4/4\n"
+                         "usemtl bw\nf 1/5 2/5 3/6\n");
+    load_textured("bw.obj", &t);
+    assert_int_equal(t.n, 4);
+    for (i = 0; i < 3; i++)
+        print_message("face %d: rho %.9f %.9f %.9f\n", i, t.p[i].rho[0], t.p[i].rho[1], t.p[i].rho[2]);
+    /* Bound: the midpoint rule at 4 a texel (test_triangle_mean); here the two halves'
+       samples mirror each other about u = 0.5, and 0.5 comes out to 1e-9. */
+    assert_near(t.p[0].rho[0], 0.5, 2e-4);
+    assert_near(t.p[0].rho[2], t.p[0].rho[0], 0);
+    assert_near(t.p[1].rho[1], 0.5, 1e-15); /* no vt: the image's mean, 0.5 */
+    assert_near(t.p[2].rho[1], 0.4 * t.p[0].rho[1], 1e-15);
+    assert_true(t.p[3].rho[0] < t.p[0].rho[0]); /* u 0.25 to 0.75 leans on the black texel */
+    free_textured(&t);
+}
+
+/* ---- tests: rendered views with the texture's detail --------------------------- */
+
+typedef struct {
+    textured t;
+    sc_solver *s;
+} solved;
+
+static void solve_textured(const char *name, solved *x)
+{
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    char err[512];
+    load_textured(name, &x->t);
+    x->s = sc_create(x->t.p, x->t.n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(x->s);
+    sc_solve(x->s, 100000, 1e-4, NULL, NULL);
+}
+
+static void free_solved(solved *x)
+{
+    sc_destroy(x->s);
+    free_textured(&x->t);
+}
+
+#define RW 96
+#define RH 96
+static const sc_camera room_view = { { 0, 0, 0.9 }, { 0, 0, -1 }, { 0, 1, 0 }, 60 };
+
+/* The room of test_uniform_texture_solution (its files) seen with texture detail
+   against the same colours in Kd seen plainly: per pixel, rho(texel) / rho(surface) is
+   1 up to the surface's Q16.16 reflectance, 2^-17 / rho: the smallest reflectance here
+   is the block's red, 0.5 x sRGB(60) = 0.0226, so 3.4e-4 (measured 2.3e-4). */
+static void test_render_uniform(void **state)
+{
+    static float a[RW * RH * 3], b[RW * RH * 3];
+    solved x, y;
+    char err[512];
+    double worst = 0, peak = 0;
+    int i;
+    (void)state;
+    solve_textured("room_tex.obj", &x);
+    solve_textured("room_kd.obj", &y);
+    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
+                                        sizeof err),
+                     0);
+    assert_int_equal(sc_render(y.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
+    for (i = 0; i < RW * RH * 3; i++)
+        peak = fmax(peak, b[i]);
+    for (i = 0; i < RW * RH * 3; i++)
+        if (b[i] > 0.01 * peak)
+            worst = fmax(worst, fabs(a[i] / b[i] - 1));
+    print_message("uniform texture rendered with detail against Kd: worst pixel %.3g\n", worst);
+    assert_true(worst <= 1.0 / 131072 / (0.5 * srgb_reference(60 / 255.0)) + 1e-6);
+    free_solved(&x);
+    free_solved(&y);
+}
+
+/* The back wall (u along +x) textured black | white: the black texel's centre (u =
+   0.25) renders dark and the white one's (u = 0.75) bright, in that order (a flip of u
+   swaps them); without detail both are the wall's mean. */
+static void test_render_detail(void **state)
+{
+    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    static float a[RW * RH * 3], b[RW * RH * 3];
+    solved x;
+    char err[512];
+    /* u = 0.25 and 0.75 on the wall z = -1, 1.9 away, seen at 60 degrees: x = -+0.5
+       over a half-width of 1.9 tan 30 = 1.097. */
+    int row = RH / 2, dark = (int)((1 - 0.5 / 1.097) / 2 * RW), bright = RW - 1 - dark;
+    (void)state;
+    assert_int_equal(img_write(tmp_path("bw2.png"), bw, 2, 1, NULL, 0), 0);
+    write_text("bw2.mtl", "newmtl walls\nKd 0.6 0.6 0.6\nnewmtl back\nKd 0 0 0\nmap_Kd bw2.png\n"
+                          "newmtl block\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+    {
+        /* room.obj of write_room, with the back wall (the box's -z face) in "back" */
+        char text[8192];
+        FILE *f;
+        size_t n;
+        write_room("bw2_base.obj", "bw2.mtl");
+        f = fopen(tmp_path("bw2_base.obj"), "rb");
+        assert_non_null(f);
+        n = fread(text, 1, sizeof text - 1, f);
+        fclose(f);
+        text[n] = '\0';
+        {
+            char *m = strstr(text, "usemtl walls"), out[8300];
+            int k;
+            for (k = 0; k < 4 && m; k++) /* box(): face 4 is -z */
+                m = strstr(m + 1, "usemtl walls");
+            assert_non_null(m);
+            snprintf(out, sizeof out, "%.*susemtl back %s", (int)(m - text), text, m + 12);
+            write_text("bw2.obj", out);
+        }
+    }
+    solve_textured("bw2.obj", &x);
+    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
+                                        sizeof err),
+                     0);
+    assert_int_equal(sc_render(x.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
+    print_message("back wall: u = 0.25 %.4f, u = 0.75 %.4f (plain %.4f, %.4f)\n",
+                  a[3 * (row * RW + dark)], a[3 * (row * RW + bright)], b[3 * (row * RW + dark)],
+                  b[3 * (row * RW + bright)]);
+    /* Texture detail: the dark texel's pixel reads within a pixel of u = 0.25, where the
+       bilinear texture rises 2 a unit of u: a pixel is 1/44 of u here, so below 5% of the
+       bright one. The bright one is about twice the plain mean (texel 1 over mean 0.5). */
+    assert_true(a[3 * (row * RW + dark)] < 0.05 * a[3 * (row * RW + bright)]);
+    assert_true(a[3 * (row * RW + bright)] > 1.8 * b[3 * (row * RW + bright)]);
+    assert_true(fabs(b[3 * (row * RW + dark)] / b[3 * (row * RW + bright)] - 1) < 0.05);
+    free_solved(&x);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_decode_asymmetric), cmocka_unit_test(test_srgb_decode),
+        cmocka_unit_test(test_sample_bilinear),   cmocka_unit_test(test_triangle_mean),
+        cmocka_unit_test(test_uniform_mean),      cmocka_unit_test(test_reflectance_rule),
+        cmocka_unit_test(test_hostile_images),    cmocka_unit_test(test_obj_uv_groups),
+        cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
+        cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
+        cmocka_unit_test(test_render_detail),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}

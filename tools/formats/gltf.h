@@ -1,0 +1,60 @@
+/* gltf — glTF 2.0 binary (.glb) export of an OBJ scene's own meshes, for engines
+ * (uses malloc and stdio).
+ *
+ * What is written: a node and a mesh per OBJ object or group (faces with the same o and
+ * g names, in the order they first appear; faces before any o or g form "(default)"),
+ * a primitive per material in each mesh, triangles (faces of 4 vertices as the fan
+ * (0,1,2)(0,2,3), larger ones ear-clipped by obj_triangulate), and vertices welded per
+ * (position, normal, texture coordinate, material): two corners are one vertex when
+ * they have the same OBJ position and texture coordinate indices, the same normal
+ * (their vn, else the face's unit normal) and the same material. Attributes: POSITION
+ * (with min and max), NORMAL (unit), TEXCOORD_0 (the MTL's -s / -o applied, v flipped
+ * to glTF's top-left origin; (0, 0) for a corner without one) when the primitive has
+ * texture coordinates, COLOR_0 (linear float RGB) when the caller gives corner colours:
+ * a welded vertex's colour is the weighted mean of its corners'. Materials: the
+ * caller's baseColorFactor, baseColorTexture when the caller gives the texture file
+ * (PNG or JPEG, embedded in the binary chunk; other formats are left out with a warning
+ * and the factor alone stays), KHR_materials_unlit (the colours are lighting already
+ * computed). Names are JSON-escaped; bytes that are not UTF-8 become '?'.
+ *
+ * Layout: the 12-byte header, a JSON chunk padded with spaces and a BIN chunk padded
+ * with zeros, both to 4 bytes; every bufferView starts at a multiple of 4 in the BIN
+ * chunk. Written atomically through a temporary file renamed over PATH.
+ */
+#ifndef RAD_TOOLS_GLTF_H
+#define RAD_TOOLS_GLTF_H
+
+#include <stddef.h>
+
+#include "formats/obj.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef void (*gltf_warn_fn)(void *ctx, const char *msg);
+
+typedef struct {
+    const obj_scene *sc;
+    /* sc->nindices x 3 linear RGB, one per face corner, and their weights (e.g. the
+       area they stand for; NULL: equal). NULL colours: no COLOR_0. */
+    const double *corner_rgb;
+    const double *corner_weight;
+    /* sc->nmaterials x 3: each material's baseColorFactor (NULL: Kd). */
+    const double *base_color;
+    /* sc->nmaterials texture file paths (NULL, or a NULL entry: no texture). The
+       sampler wraps (REPEAT) unless the material's map_kd.clamp. */
+    const char *const *texture;
+    gltf_warn_fn warn;
+    void *ctx;
+} gltf_input;
+
+/* Writes the scene IN to PATH as .glb. Returns 0, or -1 with a one-line message
+ * "PATH: what is wrong" in err (PATH untouched). */
+int gltf_write(const char *path, const gltf_input *in, char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

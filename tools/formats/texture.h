@@ -1,0 +1,95 @@
+/* texture — diffuse textures (MTL map_Kd) for the host tools: decoded with stb_image
+ * (Debian libstb-dev, linked as libstb), sampled in linear light.
+ *
+ * Decoding is bounded before it starts: the file is read through file_io (at most
+ * FIO_LIMIT_IMAGE bytes), stbi_info_from_memory reads the declared size from the header,
+ * and an image of more than TEX_MAX_PIXELS is refused without being decoded (a
+ * decompression bomb declares a huge size in a small file). The format comes from the
+ * content, never from the file name. Pixels are kept as the file's 8-bit sRGB (3 bytes a
+ * texel) and decoded to linear on sampling, through the IEC 61966-2-1 formula.
+ *
+ * Coordinates: (u, v) = (0, 0) is the image's bottom-left corner, (1, 1) its top-right
+ * (OBJ's convention; row 0 of the decoded image is its top). Texel (x, y) has its centre
+ * at ((x + 0.5) / w, 1 - (y + 0.5) / h). Sampling is bilinear between texel centres,
+ * wrapped (repeat) or clamped to the edge.
+ *
+ * Reflectance (the rule the tools follow): a texel's reflectance is its linear value
+ * times Kd when Kd is not all zero, else the texture alone (exporters write Kd 0 0 0
+ * beside map_Kd), each channel kept at most TEX_RHO_MAX. A map that cannot be used is
+ * one warning naming the MTL line and the file, and the material keeps its Kd (0.5 grey
+ * if Kd is 0: obj_map_fallback).
+ *
+ * Errors are one line, "PATH: what is wrong", copied into a caller buffer (which may be
+ * NULL or of length 0).
+ */
+#ifndef RAD_TOOLS_TEXTURE_H
+#define RAD_TOOLS_TEXTURE_H
+
+#include <stddef.h>
+
+#include "formats/obj.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Largest image decoded: 2^26 texels (8192 x 8192), 192 MiB as 8-bit RGB; stb_image
+ * needs about as much again while it decodes. */
+#define TEX_MAX_PIXELS (1L << 26)
+/* Largest reflectance a texel gives: the core's largest below 1 (Q16.16). */
+#define TEX_RHO_MAX (65535.0 / 65536.0)
+/* A triangle's mean is taken over at most TEX_MEAN_MAX_DIV^2 samples (see
+ * tex_triangle_mean). */
+#define TEX_MEAN_MAX_DIV 64
+
+typedef struct {
+    int w, h;
+    unsigned char *rgb; /* w * h * 3 bytes of sRGB, row 0 at the top; NULL: no image */
+    int clamp;          /* 1: coordinates clamped to the edge texels; 0: wrapped */
+    double offset[2], scale[2]; /* (u, v) used = (u, v) * scale + offset (map -o, -s) */
+    int borrowed;       /* 1: rgb belongs to another map (the same file): not freed here */
+} tex_image;
+
+typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
+
+/* Decodes SIZE bytes of any format stb_image reads (PNG, JPEG, BMP, TGA, GIF, PSD, HDR
+ * as 8-bit, PNM) into *out, as 8-bit RGB (alpha dropped, grey expanded, 16-bit reduced).
+ * NAME is used in messages. Returns 0, or -1 with err and *out empty. */
+int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
+               char *err, size_t errlen);
+/* Reads PATH (file_io, at most FIO_LIMIT_IMAGE bytes) and decodes it as above. */
+int tex_load(const char *path, tex_image *out, char *err, size_t errlen);
+/* Frees the pixels (unless borrowed) and empties *t. NULL-safe and idempotent. */
+void tex_free(tex_image *t);
+
+/* The sRGB transfer function's inverse (IEC 61966-2-1) for s in [0, 1]. */
+double tex_srgb_decode(double s);
+/* Texel (x, y)'s linear RGB (x, y inside the image). */
+void tex_texel(const tex_image *t, int x, int y, double rgb[3]);
+/* Bilinear sample at (u, v) (before the map's scale and offset), linear RGB. */
+void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
+/* The area-weighted mean of the bilinear texture over the triangle UV[0..2] of
+ * texture space (an element's footprint): the mean of samples at the centroids of the
+ * n^2 congruent triangles that split it, n about four a texel along its longest edge,
+ * at most TEX_MEAN_MAX_DIV (exact for a texture linear over the triangle; beyond the
+ * cap, a footprint more than 16 texels across is sampled less than four times a texel,
+ * and one more than 64 across less than once). */
+void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
+/* The mean of the texels, linear: the bilinear texture's mean over a period (each
+ * texel's tent integrates to one texel) when wrapped. */
+void tex_image_mean(const tex_image *t, double rgb[3]);
+/* The reflectance rule above: TEXEL (linear) times KD, or TEXEL alone if KD is 0. */
+void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
+
+/* Loads every material's map_Kd into maps[0 .. sc->nmaterials - 1] (maps[i].rgb NULL
+ * when material i has none or it fails). Materials naming the same file share one
+ * decoded image (the first one's; the others borrow it: free them all together, in any
+ * order). A failure is one warning "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings) and obj_map_fallback on the
+ * material. Returns the number of textures loaded. */
+int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

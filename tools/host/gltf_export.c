@@ -1,0 +1,197 @@
+/* rad host glue: the solution on the input's meshes, as glTF (see gltf_export.h). */
+#if defined(RAD_FLOAT) && RAD_FLOAT
+#include "host/float_names.h"
+#endif
+#include "host/gltf_export.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rad/rad.h"
+
+static int emits(const double *e)
+{
+    return e && (e[0] > 0 || e[1] > 0 || e[2] > 0);
+}
+
+typedef struct {
+    int *start, *elements; /* the elements of face f: elements[start[f] .. start[f + 1]) */
+    const double **emit;   /* per face: its polygons' emission, NULL if it has none */
+    double tol;            /* distance within which a corner is an element's vertex */
+} faces_index;
+
+/* Elements bucketed by face (a counting sort on their tags). */
+static int index_faces(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                       faces_index *fx)
+{
+    sc_stats st;
+    int e, f, *fill;
+    sc_get_stats(s, &st);
+    fx->start = calloc((size_t)sc->nfaces + 2, sizeof *fx->start);
+    fx->elements = malloc(((size_t)st.elements + 1) * sizeof *fx->elements);
+    fx->emit = calloc((size_t)sc->nfaces + 1, sizeof *fx->emit);
+    fill = calloc((size_t)sc->nfaces + 1, sizeof *fill);
+    if (!fx->start || !fx->elements || !fx->emit || !fill) {
+        free(fill);
+        return -1;
+    }
+    for (e = 0; e < st.elements; e++)
+        fx->start[sc_element_tag(s, e) + 1]++;
+    for (f = 0; f < sc->nfaces; f++)
+        fx->start[f + 1] += fx->start[f];
+    for (e = 0; e < st.elements; e++) {
+        int t = sc_element_tag(s, e);
+        fx->elements[fx->start[t] + fill[t]++] = e;
+    }
+    for (f = 0; f < n; f++)
+        fx->emit[polys[f].tag] = polys[f].emit;
+    free(fill);
+    return 0;
+}
+
+/* A corner matches an element's vertex within 1e-5 of the scene's extent: the fixed
+   core holds coordinates to 2^-16 of 64 units across (2.4e-7 of the extent). */
+static double match_tolerance(const obj_scene *sc)
+{
+    double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    double ext = 0;
+    int i, k;
+    for (i = 0; i < sc->nverts; i++) {
+        const double c[3] = { sc->verts[i].x, sc->verts[i].y, sc->verts[i].z };
+        for (k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], c[k]);
+            hi[k] = fmax(hi[k], c[k]);
+        }
+    }
+    for (k = 0; k < 3 && sc->nverts; k++)
+        ext = fmax(ext, hi[k] - lo[k]);
+    return 1e-5 * ext;
+}
+
+/* Squared distance from P to element E's nearest vertex. */
+static double vertex_distance(sc_solver *s, int e, const double p[3])
+{
+    int v[4], n = sc_element_vertices(s, e, v), k, a;
+    double best = HUGE_VAL;
+    for (k = 0; k < n; k++) {
+        double q[3], d = 0;
+        sc_vertex_pos(s, v[k], q);
+        for (a = 0; a < 3; a++)
+            d += (q[a] - p[a]) * (q[a] - p[a]);
+        best = fmin(best, d);
+    }
+    return best;
+}
+
+/* The light arriving at element E of a face emitting EMIT (NULL: none). */
+static void arriving(sc_solver *s, int e, const double *emit, double out[3])
+{
+    const rad_scene_t *core = sc_core(s);
+    const rad_rgb_t *r = &core->pools.surfaces[core->pools.elements[e].surface].reflectance;
+    const double rho[3] = { RAD_TO_DOUBLE(r->r), RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b) };
+    int k, lamp = emits(emit);
+    sc_element_rgb(s, e, 1, out);
+    for (k = 0; k < 3 && !lamp; k++)
+        out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
+}
+
+static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, int f, int c,
+                   double *rgb, double *weight)
+{
+    const obj_vec3 *v = &sc->verts[sc->indices[c]];
+    const double p[3] = { v->x, v->y, v->z };
+    double sum[3] = { 0, 0, 0 }, area = 0, best = HUGE_VAL, h[3];
+    int i, k, nearest = -1;
+    for (i = fx->start[f]; i < fx->start[f + 1]; i++) {
+        int e = fx->elements[i];
+        double d = vertex_distance(s, e, p);
+        if (d < best) {
+            best = d;
+            nearest = e;
+        }
+        if (d <= fx->tol * fx->tol) {
+            double a = sc_element_area(s, e);
+            arriving(s, e, fx->emit[f], h);
+            for (k = 0; k < 3; k++)
+                sum[k] += a * h[k];
+            area += a;
+        }
+    }
+    if (!(area > 0) && nearest >= 0) {
+        arriving(s, nearest, fx->emit[f], sum);
+        area = sc_element_area(s, nearest);
+        for (k = 0; k < 3; k++)
+            sum[k] *= area;
+    }
+    for (k = 0; k < 3; k++)
+        rgb[3 * c + k] = area > 0 ? sum[k] / area : 0;
+    weight[c] = area > 0 ? area : 0;
+}
+
+int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
+                    double *weight)
+{
+    faces_index fx;
+    int f, k, rc;
+    memset(&fx, 0, sizeof fx);
+    rc = index_faces(s, sc, polys, n, &fx);
+    fx.tol = match_tolerance(sc);
+    for (f = 0; rc == 0 && f < sc->nfaces; f++)
+        for (k = 0; k < sc->faces[f].count; k++)
+            corner(s, sc, &fx, f, sc->faces[f].first + k, rgb, weight);
+    free(fx.start);
+    free(fx.elements);
+    free((void *)fx.emit);
+    return rc;
+}
+
+/* Material M's baseColorFactor (see sc_export_gltf). */
+static void base_colour(const obj_material *m, int textured, double c[3])
+{
+    static const double one[3] = { 1, 1, 1 };
+    int k, lamp = emits(m->ke);
+    if (lamp || textured)
+        tex_reflectance(m->kd, one, c);
+    else
+        tex_reflectance(one, m->kd, c);
+    for (k = 0; k < 3 && lamp; k++)
+        c[k] = 1;
+}
+
+int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                   const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
+                   char *err, size_t errlen)
+{
+    size_t corners = (size_t)sc->nindices + 1, mats = (size_t)sc->nmaterials + 1;
+    double *rgb = malloc(3 * corners * sizeof *rgb), *weight = malloc(corners * sizeof *weight);
+    double *base = malloc(3 * mats * sizeof *base);
+    const char **tex = calloc(mats, sizeof *tex);
+    gltf_input in;
+    int m, rc = -1;
+    if (rgb && weight && base && tex && sc_corner_light(s, sc, polys, n, rgb, weight) == 0) {
+        for (m = 0; m < sc->nmaterials; m++) {
+            int textured = maps && maps[m].rgb;
+            const obj_material *mt = &sc->materials[m];
+            base_colour(mt, textured, base + 3 * m);
+            tex[m] = textured && !emits(mt->ke) ? mt->map_kd.path : NULL;
+        }
+        memset(&in, 0, sizeof in);
+        in.sc = sc;
+        in.corner_rgb = rgb;
+        in.corner_weight = weight;
+        in.base_color = base;
+        in.texture = tex;
+        in.warn = warn;
+        in.ctx = ctx;
+        rc = gltf_write(path, &in, err, errlen);
+    } else if (err && errlen) {
+        snprintf(err, errlen, "%s: out of memory", path);
+    }
+    free(rgb);
+    free(weight);
+    free(base);
+    free((void *)tex);
+    return rc;
+}

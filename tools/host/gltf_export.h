@@ -1,0 +1,42 @@
+/* rad host glue: the solution on the input's own meshes, exported as glTF 2.0
+ * (tools/formats/gltf.h). Built once per build of the core, like host/scene.c (float
+ * twin: scf_corner_light, scf_export_gltf). */
+#ifndef RAD_TOOLS_GLTF_EXPORT_H
+#define RAD_TOOLS_GLTF_EXPORT_H
+
+#include "formats/gltf.h"
+#include "formats/obj.h"
+#include "formats/texture.h"
+#include "host/scene.h"
+
+/* For every face corner of SC (sc->nindices of them): the light arriving there, linear
+ * RGB in caller units, into RGB[3 * corner], and the element area it was averaged over
+ * into WEIGHT[corner] (0 when the face has no element). The light arriving at an element
+ * is its radiosity (with the ambient term) less its emission, over its reflectance per
+ * channel (0 where the reflectance is 0); at a corner, the area-weighted mean over the
+ * elements of the corner's face that have a vertex there (the nearest element if none
+ * has). A face that emits gets its radiosity itself, to be shown with a base colour of 1.
+ * S must have been made from POLYS (N of them, tags = face indices: obj_to_polys).
+ * Returns 0, or -1 when out of memory. */
+int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
+                    double *weight);
+
+/* Writes PATH (.glb) from the solved S of SC's POLYS (N) with the textures MAPS
+ * (tex_load_materials; NULL: none): COLOR_0 from sc_corner_light; a material's
+ * baseColorFactor is 1 where it emits (COLOR_0 is then its radiosity), else Kd, or 1
+ * for a texture with Kd 0 (texture.h's rule), each at most TEX_RHO_MAX; its
+ * baseColorTexture is its map_Kd file when MAPS holds it. Warnings (a texture left out)
+ * go to WARN. Returns 0, or -1 with "PATH: what" in err. */
+int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                   const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
+                   char *err, size_t errlen);
+
+#ifndef RAD_HOST_FLOAT_NAMES
+int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                     double *rgb, double *weight);
+int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                    const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
+                    char *err, size_t errlen);
+#endif
+
+#endif
