@@ -206,14 +206,22 @@ static int32_t search(const int64_t *e, uint32_t n)
 static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
 {
     int32_t last = (int32_t)n - 1, i;
+    int64_t v, d;
     if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + rad__mul16(e[2], 2 * (int32_t)n - 3) > 0)
         return search(e, n);
-    if (at(e, h) >= 0) {
-        for (i = 0; i < 2; i++, h++)
-            if (h == last || at(e, h + 1) < 0) return h;
+    /* E_h, then its neighbours by differences: E_{h+1} - E_h = e1 + (2 h + 1) e2, which
+     * changes by 2 e2 a step (every E_k, k in [0, n], and so each difference, fits). */
+    v = at(e, h);
+    if (v >= 0) {
+        d = e[1] + rad__mul16(e[2], 2 * h + 1);
+        for (i = 0; i < 2; i++, h++, d += 2 * e[2]) {
+            if (h == last || (v += d) < 0) return h;
+        }
     } else {
-        for (i = 0; i < 2; i++, h--)
-            if (h == 0 || at(e, h - 1) >= 0) return h == 0 ? 0 : h - 1;
+        d = e[1] + rad__mul16(e[2], 2 * h - 1);
+        for (i = 0; i < 2; i++, h--, d -= 2 * e[2]) {
+            if (h == 0 || (v -= d) >= 0) return h == 0 ? 0 : h - 1;
+        }
     }
     return search(e, n);
 }
