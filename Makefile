@@ -100,7 +100,7 @@ $(BUILDDIR)/rad_cli_float: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/float/%.o) $(T
 $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
 	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
 
-bench: $(BUILDDIR)/rad_bench
+bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
 
 # Every test links both builds of the core (through the host glue) and the host tools,

@@ -295,21 +295,57 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     }
 }
 
+/* Whether half row H (its first pixel / (res / 2), over the layout of all five faces)
+ * may hold an element of [E0, E0 + N): by its smallest and largest id in BOUNDS, or
+ * always (BOUNDS null). */
+static int half_row_has(const uint32_t *bounds, uint32_t h, uint32_t e0, uint32_t n)
+{
+    return !bounds || (bounds[2u * h + 1u] >= e0 && bounds[2u * h] < e0 + n);
+}
+
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
- * as the work buffer's) to its element's sum. */
-static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg)
+ * as the work buffer's) to its element's sum, for the elements [E0, E0 + N), skipping
+ * the half rows BOUNDS rules out (see half_row_has). */
+static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
+                       uint32_t n, const uint32_t *bounds)
 {
     uint32_t res = s->cfg.res, q = res / 2u, i;
-    const uint32_t n = s->n_elements;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     for (r = reg->row0; r < reg->row1; r++) {
-        const rad_index_t *ids = ibuf + reg->offset + (size_t)(r - reg->row0) * res;
+        uint32_t px = reg->offset + (uint32_t)(r - reg->row0) * res;
+        const rad_index_t *ids = ibuf + px;
         const rad_ff_t *row = rad__dff_row(s->dff_top, s->dff_side, res, reg->face, (uint32_t)r);
-        for (i = 0; i < q; i++)
-            if (ids[i] < n) acc[ids[i]] += row[q - 1u - i];
-        for (i = q; i < res; i++)
-            if (ids[i] < n) acc[ids[i]] += row[i - q];
+        /* ids[i] - e0 wraps past N below E0 (and RAD_INDEX_NONE is above every range) */
+        if (half_row_has(bounds, px / q, e0, n))
+            for (i = 0; i < q; i++)
+                if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[q - 1u - i];
+        if (half_row_has(bounds, px / q + 1u, e0, n))
+            for (i = q; i < res; i++)
+                if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[i - q];
+    }
+}
+
+/* The smallest and largest element id of each half row of region REG of the item
+ * buffer IDS into BOUNDS (two per half row, indexed as in half_row_has; an empty half
+ * row gets smallest > largest). Skipping the half rows without its elements, a merge
+ * of a run of elements reads little more than its own pixels. */
+static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const region_t *reg,
+                            uint32_t *bounds)
+{
+    uint32_t q = s->cfg.res / 2u, n = s->n_elements, px, i;
+    uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    for (px = reg->offset; px < end; px += q) {
+        uint32_t lo = 0xFFFFFFFFu, hi = 0;
+        for (i = px; i < px + q; i++) {
+            uint32_t id = ids[i];
+            if (id < n) {
+                lo = id < lo ? id : lo;
+                hi = id > hi ? id : hi;
+            }
+        }
+        bounds[2u * (px / q)] = lo;
+        bounds[2u * (px / q) + 1u] = hi;
     }
 }
 
@@ -429,22 +465,21 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
-        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r]);
+        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements, 0);
     }
 }
 
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
 
-/* A part's buffer: its counters, a row of id steps, then depth and ids laid out as
- * all five faces. */
-typedef struct {
-    uint32_t calls, pad;
-    uint64_t pixels;
-} part_head_t;
+/* A part's buffer: its head, a row of id steps, then depth and ids laid out as all
+ * five faces. RAD_PART_BYTES counts 48 bytes for the head. */
+typedef char
+    rad__part_head_fits[sizeof(rad__part_head_t) <= 48u && sizeof(rad__part_head_t) % 8u == 0 ? 1
+                                                                                              : -1];
 
 static uint32_t *part_steps(void *buf)
 {
-    return (uint32_t *)(void *)((part_head_t *)buf + 1);
+    return (uint32_t *)(void *)((unsigned char *)buf + 48);
 }
 static uint32_t *part_z(const rad_scene_t *s, void *buf)
 {
@@ -464,14 +499,30 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
     return cv;
 }
 
+/* Rendering cost of a row of the top face and of a side face, relative: a top row took
+ * 1.3 times as long (processor time of two parts, on CornellBox-Original and the
+ * bundled box, res 128: cut at equal rows, the part with the top face took 1.25 times
+ * the other's). */
+#define TOP_ROW_COST  13u
+#define SIDE_ROW_COST 10u
+
+/* The row (of the 3 res, face after face) where cut K of NPARTS falls: at equal shares
+ * of the rows' cost. */
+static uint32_t part_cut(uint32_t res, unsigned k, unsigned nparts)
+{
+    uint64_t top = (uint64_t)TOP_ROW_COST * res, total = top + (uint64_t)SIDE_ROW_COST * 2u * res;
+    uint64_t x = total * k / nparts;
+    return (uint32_t)(x <= top ? x / TOP_ROW_COST : res + (x - top) / SIDE_ROW_COST);
+}
+
 /* The regions of part PART of NPARTS: the cube's rows, face after face (3 res rows of
- * res pixels), cut into NPARTS runs of equal length. Every pixel belongs to one part,
- * and accumulating the parts in order adds in the serial pass's order. */
+ * res pixels), cut into NPARTS runs of equal cost (part_cut: 0 and 3 res at the ends,
+ * in order). Every pixel belongs to one part, and accumulating the parts in order adds
+ * in the serial pass's order. */
 static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned nparts, region_t *r)
 {
-    uint32_t res = s->cfg.res, g = 0, total = 3u * res, f, n = 0;
-    uint32_t a = (uint32_t)((uint64_t)total * part / nparts),
-             b = (uint32_t)((uint64_t)total * (part + 1u) / nparts);
+    uint32_t res = s->cfg.res, g = 0, f, n = 0;
+    uint32_t a = part_cut(res, part, nparts), b = part_cut(res, part + 1u, nparts);
     for (f = 0; f < 5; f++) {
         uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
         if (b > g && lo < hi && lo < rows) {
@@ -491,28 +542,29 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     region_t reg[5];
     rad_stats_t st = {0};
     canvas_t cv = part_canvas(s, buf);
-    part_head_t *h = (part_head_t *)buf;
+    rad__part_head_t *h = (rad__part_head_t *)buf;
     unsigned r, nreg = part_regions(s, part, nparts, reg);
 
     cv.st = &st;
     for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
     if (nreg) render_scene(s, &cv, reg, nreg, p);
+    /* The depth buffer is done with: it keeps the bounds (12 res words of 3 res^2). */
+    for (r = 0; r < nreg; r++) half_row_bounds(s, cv.ids, &reg[r], cv.z);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
+    h->state = RAD__PART_RENDERED;
     return (int)st.raster_calls;
 }
 
-void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts)
+void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_t e0, uint32_t e1)
 {
     region_t reg[5];
     uint32_t e;
     unsigned k, r, nreg;
-    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    for (e = e0; e < e1; e++) s->acc[e] = 0;
     for (k = 0; k < nparts; k++) {
-        const part_head_t *h = (const part_head_t *)bufs[k];
-        s->stats.raster_calls += h->calls;
-        s->stats.raster_pixels += h->pixels;
         nreg = part_regions(s, k, nparts, reg);
-        for (r = 0; r < nreg; r++) accumulate(s, part_ids(s, bufs[k]), &reg[r]);
+        for (r = 0; r < nreg; r++)
+            accumulate(s, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0, part_z(s, bufs[k]));
     }
 }

@@ -176,12 +176,27 @@ static inline uint32_t rad__ff_decode(uint16_t c)
     return (uint32_t)(c & 2047u) << (c >> 11);
 }
 
+/* The head of a part buffer (RAD_PART_BYTES): the part's raster counts (rad_shot_part),
+ * then the shot as rad_shot_aim set it up (its power U, the same in every part) and
+ * the saturations of the part's receiving. STATE: RAD__PART_RENDERED, _AIMED, _RECEIVED
+ * or _SHOT, in that order. */
+typedef struct {
+    uint32_t calls, state;
+    uint64_t pixels;
+    rad_energy_t u[3];
+    uint32_t saturations, pad;
+} rad__part_head_t;
+#define RAD__PART_RENDERED 0u
+#define RAD__PART_AIMED    1u
+#define RAD__PART_RECEIVED 2u
+#define RAD__PART_SHOT     3u
+
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
- * cube's rows into BUF (RAD_PART_BYTES);
- * merging fills s->acc as rad__hemicube would, bit for bit. Needs all five faces in
- * one pass (band_rows 0). */
+ * cube's rows into BUF (RAD_PART_BYTES); merging the elements [E0, E1) fills s->acc
+ * there as rad__hemicube would, bit for bit: each sum takes its pixels in the serial
+ * pass's order, whatever the range. Needs all five faces in one pass (band_rows 0). */
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf);
-void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts);
+void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_t e0, uint32_t e1);
 
 /* The 3 or 4 corners of surface SF's vertex lattice (mesh.c): every vertex of the
  * surface is a rounded convex combination of them. Returns how many, indices in K. */

@@ -54,24 +54,35 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     }
 }
 
+/* Halvings after which overshooting stops (2^-16 of the estimate is below a Q16.16
+ * power's rounding for any power under 2^16 units): the shots are then plain. */
+#define OVER_STOP 16u
+
 /* The power patch PT will get back in channel C, from the ambient radiosity AMB:
- * what overshooting adds to its shot (0 for every patch when AMB is 0). */
+ * what overshooting adds to its shot (0 for every patch when AMB is 0), halved once
+ * per back-off. */
 static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb,
                               unsigned c)
 {
     rad_energy_t over;
-    if (amb[c] == 0) return 0; /* shooting plainly */
+    uint32_t k;
+    if (amb[c] == 0 || s->over_halvings >= OVER_STOP) return 0; /* shooting plainly */
     over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area),
                             rad__channel(&s->pools.surfaces[pt->surface].reflectance, c));
+    for (k = 0; k < s->over_halvings; k++) over = rad__energy_refl(over, RAD_REAL(0.5));
     if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
 }
 
-/* The ambient radiosity to overshoot by: 0 when shooting plainly. */
-static void shot_ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+/* The ambient radiosity to overshoot by: 0 when shooting plainly. Returns how often
+ * the estimate was clamped: not counted in stats.saturations, since the solution is
+ * unharmed (the debt is what was shot), but a sign that the estimate is too high. */
+static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb)
 {
+    uint32_t sat = 0;
     amb[0] = amb[1] = amb[2] = 0;
-    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, sat);
+    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, &sat);
+    return sat;
 }
 
 /* The patch whose shot moves the most power (its unshot power plus the overshoot, in
@@ -98,11 +109,94 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     return best;
 }
 
-/* Element E receives power F * U (per channel) from a shooter. The channels are worked
- * out before anything is stored, and saturations counted locally: a store to the
- * element or to the counter could otherwise alias the next channel's inputs, which kept
- * the channels from overlapping. */
-void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
+/* The net unshot power: each channel's signed sum over the patches, in magnitude,
+ * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
+ * rho F the part of the shot that the scene reflects back, so plainly shot it falls
+ * from the emitted power towards 0. Overshot, u carries the debt too; when the scene
+ * returns what the estimate says, the sum still only shrinks, but an estimate far
+ * above the return (1 - rho F near 1 on a debt that rho F never repays) throws it
+ * past 0 to the other side, further each time. */
+static rad_energy_t net_unshot(const rad_scene_t *s)
+{
+    rad_energy_t net[3] = {0, 0, 0};
+    uint32_t p, c;
+    for (p = 0; p < s->n_patches; p++)
+        for (c = 0; c < 3; c++) net[c] = rad__esum(net[c], s->pools.patches[p].unshot[c]);
+    return rad__esum(rad__esum(rad__eabs(net[0]), rad__eabs(net[1])), rad__eabs(net[2]));
+}
+
+/* Overshooting's estimate of the power coming back, the ambient term, assumes that
+ * every reflection stays in the scene. Where light escapes (a bright open box), the
+ * estimate owes far more than will arrive, the debts are shot back as negative power,
+ * overshot again, and the unshot power swings ever wider; where the ambient term's
+ * rounding (a step of 2^-16 / (1 - mean reflectance)) is larger than what is left, two
+ * shots undo each other for ever. Watched at every selection, the overshoot is halved
+ * (stats.backoffs, and the watch starts again from here) when
+ *   - the net unshot power exceeds twice the emitted power, or twice its value at the
+ *     last back-off (the swing; a working estimate stays within 1x, see net_unshot),
+ *   - anything saturated since the last selection, CLAMPED included (the ambient term
+ *     clamped, not counted in stats: the estimate beyond any radiosity),
+ * and overshooting stops at once (OVER_STOP) when the unshot total has not fallen
+ * below its lowest value for 4 selections a patch + 64 (the circle; twice the longest
+ * wait of a bright closed box, whose first shots raise the total before it falls).
+ * Plain shots never make the total grow. Where overshooting works none of these
+ * triggers, so the bits are those of the solve without the watch. Returns 1 when it
+ * backed off. */
+static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
+{
+    uint32_t window = s->n_patches < (1u << 28) ? 4u * s->n_patches + 64u : UINT32_MAX;
+    int saturated = clamped || s->stats.saturations != s->over_sat, grown;
+    rad_energy_t net;
+    s->over_sat = s->stats.saturations;
+    if ((s->cfg.flags & RAD_NO_OVERSHOOT) || s->over_halvings >= OVER_STOP) return 0;
+    if (total < s->over_low) {
+        s->over_low = total;
+        s->over_wait = 0;
+    } else if (s->over_wait < UINT32_MAX) {
+        s->over_wait++;
+    }
+    net = net_unshot(s);
+    grown = net > rad__esum(s->over_net, s->over_net);
+    if (!saturated && !grown && s->over_wait < window) return 0;
+    s->over_halvings = grown || saturated ? s->over_halvings + 1u : OVER_STOP;
+    s->stats.backoffs++;
+    s->over_low = total;
+    s->over_wait = 0;
+    if (net > s->over_net) s->over_net = net;
+    return 1;
+}
+
+/* Starts the watch before the first shot, after rad__freeze has set the emitted power
+ * at the core's scale (rad_init and rad_restart zero the count; computing rows
+ * freezes the scene but shoots nothing). */
+static void start_solving(rad_scene_t *s)
+{
+    if (s->stats.shots != 0) return;
+    s->over_low = RAD__ESUM;
+    s->over_wait = 0;
+    s->over_sat = s->stats.saturations;
+    s->over_halvings = 0;
+    s->over_net = s->emitted;
+}
+
+/* The shooter for the next shot (RAD_INDEX_NONE: none), after the ambient term AMB and
+ * the back-off's watch; TOTAL gets the magnitude of all unshot power. */
+static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
+{
+    uint32_t p;
+    int clamped = shot_ambient(s, amb) != 0;
+    p = select_shooter(s, amb, total);
+    if (p != RAD_INDEX_NONE && back_off(s, *total, clamped)) p = select_shooter(s, amb, total);
+    return p;
+}
+
+/* Element E receives power F * U (per channel) from a shooter, its saturations added
+ * to SAT. The channels are worked out before anything is stored, and saturations
+ * counted locally: a store to the element or to the counter could otherwise alias the
+ * next channel's inputs, which kept the channels from overlapping. Writes element E
+ * and its patch's unshot power only. */
+static void receive_element(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f,
+                            uint32_t *sat_out)
 {
     rad_element_t *el = &s->pools.elements[e];
     const rad_surface_t *sf = &s->pools.surfaces[el->surface];
@@ -115,7 +209,33 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
     el->radiosity.r = r;
     el->radiosity.g = g;
     el->radiosity.b = b;
-    s->stats.saturations += sat;
+    *sat_out += sat;
+}
+
+void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
+{
+    receive_element(s, u, e, f, &s->stats.saturations);
+}
+
+/* Patch P's shot, overshooting by ambient radiosity AMB: its power into U, and the
+ * power coming back to it owed until it comes. */
+static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t *u)
+{
+    rad_patch_t *pt = &s->pools.patches[p];
+    uint32_t c;
+    for (c = 0; c < 3; c++) {
+        /* The power coming back to this patch is shot now and owed until it comes. Any
+         * overshoot gives the same solution as long as the debt is what was shot, so
+         * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
+         * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
+         * sum fits. */
+        rad_energy_t over = overshoot(s, pt, amb, c), sum = pt->unshot[c] + over;
+        if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
+        if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
+        u[c] = pt->unshot[c] + over;
+        pt->unshot[c] = -over;
+    }
+    s->stats.shots++;
 }
 
 /* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
@@ -124,16 +244,10 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows,
                         int cube)
 {
-    rad_patch_t *pt = &s->pools.patches[p];
     rad_energy_t u[3];
-    uint32_t e, c;
+    uint32_t e;
 
-    for (c = 0; c < 3; c++) {
-        /* The power coming back to this patch is shot now and owed until it comes. */
-        rad_energy_t over = overshoot(s, pt, amb, c);
-        u[c] = rad__eclamp(pt->unshot[c] + over, &s->stats.saturations);
-        pt->unshot[c] = -over;
-    }
+    aim(s, p, amb, u);
     if (rows) {
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
@@ -142,19 +256,17 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
         for (e = 0; e < s->n_elements; e++)
             if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
-    s->stats.shots++;
 }
 
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
     rad__freeze(s);
+    start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
         rad_real_t amb[3];
-        uint32_t p;
-        shot_ambient(s, amb, &s->stats.saturations);
-        p = select_shooter(s, amb, &total);
+        uint32_t p = next_shooter(s, amb, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
         shoot_patch(s, p, amb, rows, 1);
         done++;
@@ -215,8 +327,8 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     if (s->emitted == 0) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
-    shot_ambient(s, amb, &s->stats.saturations);
-    p = select_shooter(s, amb, &total);
+    start_solving(s);
+    p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
     *patch = p;
     return 1;
@@ -231,16 +343,122 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     return rad__cube_part(s, patch, part, nparts, buf);
 }
 
-int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+/* The part buffers' heads. */
+static rad__part_head_t *head(void *const *bufs, unsigned k)
 {
-    rad_real_t amb[3];
+    return (rad__part_head_t *)bufs[k];
+}
+
+/* The checks of rad_shot_aim, _receive_part and _end. */
+static int shot_args(const rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
     unsigned k;
     if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0)
         return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++)
         if (!bufs[k]) return RAD_ERR_ARG;
-    rad__cube_merge(s, bufs, nparts);
-    shot_ambient(s, amb, &s->stats.saturations);
-    shoot_patch(s, patch, amb, 0, 0);
+    return RAD_OK;
+}
+
+/* Whether every part's head is in state STATE. */
+static int parts_in(void *const *bufs, unsigned nparts, uint32_t state)
+{
+    unsigned k;
+    for (k = 0; k < nparts; k++)
+        if (head(bufs, k)->state != state) return 0;
+    return 1;
+}
+
+/* Part PART of NPARTS of the elements, [E0, E1): cut at equal counts, each cut moved
+ * down to the first element of its patch. mesh.c appends each patch's elements as one
+ * block, so a patch (whose unshot power its elements add to) lies in one part. */
+static void receive_range(const rad_scene_t *s, unsigned part, unsigned nparts, uint32_t *e0,
+                          uint32_t *e1)
+{
+    uint32_t c[2], k, n = s->n_elements;
+    for (k = 0; k < 2; k++) {
+        uint32_t e = (uint32_t)((uint64_t)n * (part + k) / nparts);
+        c[k] = e < n ? s->pools.patches[s->pools.elements[e].patch].first_element : n;
+    }
+    *e0 = c[0];
+    *e1 = c[1];
+}
+
+static void aim_parts(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    rad_real_t amb[3];
+    rad_energy_t u[3];
+    unsigned k;
+    for (k = 0; k < nparts; k++) {
+        s->stats.raster_calls += head(bufs, k)->calls;
+        s->stats.raster_pixels += head(bufs, k)->pixels;
+    }
+    shot_ambient(s, amb);
+    aim(s, patch, amb, u);
+    for (k = 0; k < nparts; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        h->u[0] = u[0];
+        h->u[1] = u[1];
+        h->u[2] = u[2];
+        h->saturations = 0;
+        h->state = RAD__PART_AIMED;
+    }
+}
+
+int rad_shot_aim(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (!parts_in(bufs, nparts, RAD__PART_RENDERED)) return RAD_ERR_STATE;
+    aim_parts(s, patch, bufs, nparts);
+    return 1;
+}
+
+static int receive_part(rad_scene_t *s, void *const *bufs, unsigned nparts, unsigned part)
+{
+    rad__part_head_t *h = head(bufs, part);
+    uint32_t e, e0, e1, sat = 0;
+    int n = 0;
+    receive_range(s, part, nparts, &e0, &e1);
+    rad__cube_merge(s, bufs, nparts, e0, e1);
+    for (e = e0; e < e1; e++)
+        if (s->acc[e] > 0) {
+            receive_element(s, h->u, e, s->acc[e], &sat);
+            n++;
+        }
+    h->saturations = sat;
+    h->state = RAD__PART_RECEIVED;
+    return n;
+}
+
+int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts,
+                          unsigned part)
+{
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (part >= nparts) return RAD_ERR_ARG;
+    if (head(bufs, part)->state != RAD__PART_AIMED) return RAD_ERR_STATE;
+    return receive_part(s, bufs, nparts, part);
+}
+
+int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
+{
+    unsigned k;
+    int rc = shot_args(s, patch, bufs, nparts);
+    if (rc < 0) return rc;
+    if (parts_in(bufs, nparts, RAD__PART_RENDERED)) {
+        aim_parts(s, patch, bufs, nparts);
+    } else {
+        for (k = 0; k < nparts; k++) {
+            uint32_t st = head(bufs, k)->state;
+            if (st != RAD__PART_AIMED && st != RAD__PART_RECEIVED) return RAD_ERR_STATE;
+        }
+    }
+    for (k = 0; k < nparts; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        if (h->state == RAD__PART_AIMED) receive_part(s, bufs, nparts, k);
+        s->stats.saturations += h->saturations;
+        h->state = RAD__PART_SHOT;
+    }
     return 1;
 }

@@ -24,6 +24,9 @@
 #                   programs that need no hemi-cube above 64 (SMALL_TESTS), including
 #                   test_hostile's band-mode and small-limit tests
 #   check-fuzz      libFuzzer + ASan + UBSan, FUZZ_SECONDS per harness (tests/fuzz/)
+#   check-soak      tests/soak/soak.c under UBSan: SOAK_SCENES randomised scenes from
+#                   SOAK_SEED, each converged or reported not, saturations reported,
+#                   the energy balance met, rendered views finite (18 s, and the build)
 #
 # test_cli runs "build/rad_cli" relative to the working directory, so each suite runs
 # in $(CHECKDIR)/<stage>/root: symbolic links to this tree, with build/ pointing at the
@@ -43,6 +46,8 @@ CHECK_JOBS   ?= 2
 CHECK_GCC    ?= gcc
 CHECK_CLANG  ?= clang
 FUZZ_SECONDS ?= 60
+SOAK_SEED    ?= 19
+SOAK_SCENES  ?= 1000
 CHECK_STAGE  := sh tests/fuzz/check_stage.sh $(CHECK_STATUS)
 
 # Test programs by name (tests/test_NAME.c).
@@ -56,6 +61,7 @@ CHECK_ASAN_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-saniti
 CHECK_ASAN_ENV   := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:abort_on_error=0 \
                     UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 CHECK_VALGRIND   := valgrind -q --error-exitcode=99 --leak-check=full
+CHECK_SOAK_FLAGS := -fsanitize=undefined,float-cast-overflow -fno-sanitize-recover=all
 
 # -fno-tree-loop-distribute-patterns in LIBFLAGS is gcc's; clang refuses it.
 CHECK_CLANG_LIBFLAGS := -ffreestanding
@@ -72,7 +78,7 @@ endef
 # $(call check_make,STAGE-DIR,CC,OPT,CFLAGS_EXTRA,[extra make arguments]) TARGETS...
 check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build WERROR=-Werror CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
 
-CHECK_STAGES := asan valgrind clang lint idx16 small fuzz-obj fuzz-core fuzz-image fuzz-mtl_texture fuzz-views
+CHECK_STAGES := asan valgrind clang lint idx16 small soak fuzz-obj fuzz-core fuzz-image fuzz-mtl_texture fuzz-views
 CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
 
 .PHONY: check check-stages check-asan check-valgrind check-clang check-lint check-idx16 \
@@ -80,7 +86,8 @@ CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
         check-fuzz-mtl_texture check-fuzz-mtl_texture-run \
         check-fuzz-views check-fuzz-views-run \
         check-asan-run check-valgrind-run check-clang-run check-lint-run check-idx16-run \
-        check-small-run check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run
+        check-small-run check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run \
+        check-soak check-soak-run
 
 check:
 	@+rm -rf $(CHECK_STATUS); mkdir -p $(CHECK_STATUS); start=$$(date +%s); \
@@ -88,7 +95,7 @@ check:
 	sh tests/fuzz/check_summary.sh $(CHECK_STATUS) $$(($$(date +%s) - start)) $(CHECK_STAGES)
 
 # Longest first, so that -j2 overlaps valgrind with everything else.
-check-stages: check-valgrind check-asan check-fuzz check-clang check-idx16 check-small check-lint
+check-stages: check-valgrind check-asan check-fuzz check-clang check-idx16 check-small check-soak check-lint
 
 check-asan:
 	@+$(CHECK_STAGE) asan $(CHECKDIR)/asan.log $(CHECK_MAKE) check-asan-run
@@ -155,6 +162,13 @@ check-small:
 check-small-run:
 	$(call check_root,$(CHECKDIR)/small)
 	+$(call check_make,$(CHECKDIR)/small,$(CHECK_GCC),-O2 -g,-DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64,TESTS='$(call check_progs,$(SMALL_TESTS))') test
+
+check-soak:
+	@+$(CHECK_STAGE) soak $(CHECKDIR)/soak.log $(CHECK_MAKE) check-soak-run
+check-soak-run:
+	$(call check_root,$(CHECKDIR)/soak)
+	+$(call check_make,$(CHECKDIR)/soak,$(CHECK_GCC),-O2 -g,$(CHECK_SOAK_FLAGS)) build/tests/soak/soak
+	cd $(CHECKDIR)/soak/root && UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 build/tests/soak/soak $(SOAK_SEED) $(SOAK_SCENES)
 
 # ---- fuzzing ---------------------------------------------------------------------------
 # Harnesses in tests/fuzz/, seeds in tests/fuzz/corpus/NAME (read only); what a run adds

@@ -9,6 +9,7 @@
 #include "check.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
+#include "rad/rad.h"
 #include "scenes.h"
 
 static sc_poly *cornell(int *n)
@@ -77,10 +78,86 @@ static void test_bit_exact(void **st)
     free(p);
 }
 
+/* Shots through the core's split calls, NPARTS parts, the receiving parts run last
+ * first: each part writes only its own elements and patches, so any order gives the
+ * serial bits. Out-of-order calls are refused and change nothing. */
+static void split_shots(sc_solver *h, unsigned nparts, int shots)
+{
+    rad_scene_t *s = sc_core(h);
+    size_t bytes = RAD_PART_BYTES(s->cfg.res);
+    void *bufs[4];
+    unsigned k;
+    int shot;
+    assert_true(nparts <= 4);
+    for (k = 0; k < nparts; k++) assert_non_null(bufs[k] = malloc(bytes));
+    for (shot = 0; shot < shots; shot++) {
+        uint32_t p, st0 = s->stats.shots;
+        int got = 0;
+        assert_int_equal(rad_shot_begin(s, 0, &p), 1);
+        for (k = 0; k < nparts; k++) CHECK_INT_GE(rad_shot_part(s, p, k, nparts, bufs[k], bytes), 0, "part %u", k);
+        assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, 0), RAD_ERR_STATE); /* not aimed */
+        assert_int_equal(rad_shot_aim(s, p, bufs, nparts), 1);
+        assert_int_equal(rad_shot_aim(s, p, bufs, nparts), RAD_ERR_STATE); /* aimed twice */
+        assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, nparts), RAD_ERR_ARG);
+        for (k = nparts; k-- > 0;) {
+            int r = rad_shot_receive_part(s, p, bufs, nparts, k);
+            CHECK_INT_GE(r, 0, "receiving part %u of %u", k, nparts);
+            got += r;
+        }
+        assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, 0), RAD_ERR_STATE); /* twice */
+        /* A closed box: every element but the shooter's surface's sees the shooter. */
+        CHECK_INT_GT(got, 0, "elements that received in shot %d", shot);
+        assert_int_equal(rad_shot_end(s, p, bufs, nparts), 1);
+        assert_int_equal(s->stats.shots, st0 + 1u);
+        assert_int_equal(rad_shot_end(s, p, bufs, nparts), RAD_ERR_STATE); /* shot twice */
+        assert_int_equal(s->stats.shots, st0 + 1u);
+    }
+    for (k = 0; k < nparts; k++) free(bufs[k]);
+}
+
+/* Every patch's unshot power the same bits in A and B. */
+static void unshot_same(const rad_scene_t *a, const rad_scene_t *b)
+{
+    uint32_t p, c;
+    assert_int_equal(a->n_patches, b->n_patches);
+    for (p = 0; p < a->n_patches; p++)
+        for (c = 0; c < 3; c++) assert_int_equal(a->pools.patches[p].unshot[c], b->pools.patches[p].unshot[c]);
+}
+
+static void test_split_receive(void **st)
+{
+    int n;
+    unsigned nparts;
+    sc_poly *p = cornell(&n);
+    sc_opts o = {.max_element = 0.04, .res = 64};
+    char err[256];
+    sc_solver *ref = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    sc_stats a;
+    (void)st;
+    assert_non_null(ref);
+    assert_int_equal(sc_solve(ref, 60, 0, NULL, NULL), 60);
+    sc_get_stats(ref, &a);
+    for (nparts = 1; nparts <= 4; nparts++) {
+        sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+        sc_stats b;
+        assert_non_null(s);
+        split_shots(s, nparts, 60);
+        sc_get_stats(s, &b);
+        assert_int_equal(sc_checksum(s), sc_checksum(ref));
+        unshot_same(sc_core(ref), sc_core(s));
+        assert_int_equal(b.shots, a.shots);
+        assert_int_equal(b.raster_pixels, a.raster_pixels);
+        sc_destroy(s);
+    }
+    sc_destroy(ref);
+    free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bit_exact),
+        cmocka_unit_test(test_split_receive),
     };
     return cmocka_run_group_tests_name("parallel", tests, NULL, NULL);
 }

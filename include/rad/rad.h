@@ -207,7 +207,12 @@ typedef struct {
  * "Accelerating radiosity by overshooting", 1992). The estimate is left owing, as
  * negative unshot power, and paid back as the real power arrives; the solution is the
  * same, reached in fewer shots (`make bench` counts them). RAD_NO_OVERSHOOT shoots the
- * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. */
+ * unshot power alone, as Cohen et al. 1988: then the unshot total never grows. The
+ * estimate assumes that every reflection stays in the scene; where it proves too high
+ * (light escaping a bright open scene: the net unshot power swings beyond twice the
+ * emitted, or a value saturates), the overshoot is halved, down to plain shooting after
+ * 16 halvings, and where the unshot total stops falling (4 shots a patch + 64 without a
+ * new lowest), shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
 
 typedef struct {
@@ -220,6 +225,8 @@ typedef struct {
      * core scales every scene to one size, so these are elements small against their
      * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
     uint32_t small_elements;
+    uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
+                               of the power coming back proved too high */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -242,6 +249,12 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    /* overshooting's back-off (lib/solve.c), reset before the first shot */
+    rad_energy_t over_low;  /* lowest unshot total since the last back-off */
+    rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
+    uint32_t over_wait;     /* shooter selections since over_low was lowered */
+    uint32_t over_sat;      /* stats.saturations at the last selection */
+    uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
@@ -313,12 +326,24 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
  * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
 #define RAD_PART_BYTES(res)                   \
-    (16u + (size_t)(res) * sizeof(uint32_t) + \
+    (48u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
                   size_t bytes);
 int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
+/* rad_shot_end in parts, for the same threads: rad_shot_aim (one thread, after every
+ * rad_shot_part) counts the parts, takes the shooter's power and writes it to every
+ * buffer; then rad_shot_receive_part, PART of NPARTS at once on any threads, sums the
+ * pixels of every buffer for its own run of whole patches' elements and has them
+ * receive (returns how many did); rad_shot_end, after all of them, counts the parts'
+ * saturations. rad_shot_end does whatever was not done, so calling it alone is the
+ * serial shot. The result is bit for bit the same: each element's sum takes its
+ * pixels in order, and each patch's unshot power its elements in order. A call out of
+ * that order returns RAD_ERR_STATE. */
+int rad_shot_aim(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
+int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts,
+                          unsigned part);
 
 /* Unshot power as a fraction of the emitted power (0 when nothing emits): the sum of
  * every patch's channels in magnitude, so power owed counts as much as power held. */

@@ -30,5 +30,7 @@
 #define rad_gather_init       radf_gather_init
 #define rad_gather            radf_gather
 #define rad_gather_sh         radf_gather_sh
+#define rad_shot_aim          radf_shot_aim
+#define rad_shot_receive_part radf_shot_receive_part
 
 #endif

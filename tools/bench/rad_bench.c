@@ -1,25 +1,36 @@
 /* rad_bench — speed, memory and accuracy of the fixed core beside its float twin, on
  * the bundled Cornell box at three densities, the original Cornell box (when
- * ../shared/scenes is there) and a generated scene of 20,000+ elements. Prints a
- * Markdown report, writes it to docs/bench.md, replaces the README's section between
- * the bench markers, and draws the convergence plots with the project's PNG writer.
+ * ../shared/scenes is there) and a generated scene of 20,000+ elements, and rad_cli
+ * against a peer (RenderPark's rpkCpp, built outside the repository) as whole
+ * processes. Prints a Markdown report, writes it to docs/bench.md, replaces the
+ * README's section between the bench markers, and draws the convergence plots with
+ * the project's PNG writer.
  *
  * Times are wall-clock medians of several runs in this one process, two variants
  * solved shot by shot in turn; compare the ratios measured here, not absolute times
  * across machines.
  */
+/* wait4 (each child's own peak memory) is a BSD and Linux call, beyond POSIX. */
+#define _DEFAULT_SOURCE
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "formats/obj.h"
 #include "host/clock.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
 #include "bench/plot.h"
+#include "rad/rad.h"
 #include "reference/reference.h"
 #include "host/scene.h"
 
@@ -135,6 +146,16 @@ static sc_solver *fixed_solver(const bscene *sc, const sc_poly *polys, const sc_
     return s;
 }
 
+/* The solver's counts into R, whose total time is set. */
+static void run_stats(brun *r, const sc_stats *st)
+{
+    r->elements = st->elements;
+    r->patches = st->patches;
+    r->all_shots = st->shots;
+    r->pix_per_s = (double)st->raster_pixels / r->total;
+    r->bytes = st->pool_bytes + st->work_bytes;
+}
+
 /* Two variants (a build and options each) solved side by side RUNS times, shot by shot
  * (one shot of the first, one of the second, ...): each shot's time is its variant's
  * own, and both see the same machine, whose speed on a shared host drifts within
@@ -176,11 +197,7 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
             brun *x = &r[k][i];
             b[k]->stats(s[k], &st);
             x->total = pg[k].spent;
-            x->elements = st.elements;
-            x->patches = st.patches;
-            x->all_shots = st.shots;
-            x->pix_per_s = (double)st.raster_pixels / x->total;
-            x->bytes = st.pool_bytes + st.work_bytes;
+            run_stats(x, &st);
             b[k]->destroy(s[k]);
             tot[k][i] = x->total;
         }
@@ -195,6 +212,27 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
         out[k] = r[k][best];
         for (j = 0; j < 3; j++) out[k].t[j] = median(ti[j], runs);
     }
+}
+
+/* One fixed-build solve of SC to 0.001, once (for the largest scene), into R. */
+static void solo(const bscene *sc, brun *r)
+{
+    sc_opts o = scene_opts(sc);
+    prog_t pg;
+    sc_stats st;
+    double t0 = host_now();
+    sc_solver *s = fixed_solver(sc, sc->polys, &o);
+    run_alloc(r);
+    r->mesh = host_now() - t0;
+    pg.r = r;
+    pg.spent = 0;
+    pg.base = 0;
+    pg.t0 = host_now();
+    sc_solve(s, 1000000, 0.001, on_shot, &pg);
+    r->total = host_now() - pg.t0;
+    sc_get_stats(s, &st);
+    run_stats(r, &st);
+    sc_destroy(s);
 }
 
 /* Both builds at the scene's settings. */
@@ -593,12 +631,153 @@ static void report_hemicube(report_t *rp)
     }
 }
 
-static void report_peers(report_t *rp, const brun *fx)
+/* ---- the peer: whole processes, alternating ------------------------------------- */
+
+#define PEER_RUNS 9
+
+/* Runs ARGV (stdout and stderr to /dev/null) and waits for it: its wall time in SECS,
+ * and from wait4's rusage its processor time (user + system) in CPU and its own peak
+ * resident memory in KB. Returns 0 when it ran and exited with status 0. */
+static int run_child(char *const argv[], double *secs, double *cpu, long *kb)
 {
-    out(rp, "\nPeers on CornellBox-Original, as the issue measured them on this kind of machine: RenderPark's "
-        "hierarchical Galerkin radiosity 0.20 s and 16 MB at about 4,000 elements; its progressive shooting "
-        "with ray-cast form factors 169 s and 871 MB at 4,608 patches. rad (fixed, res 128, %d elements): "
-        "%.3f s to an unshot fraction of 0.01 and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
+    struct rusage ru;
+    double t0 = host_now();
+    int st;
+    pid_t pid = fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        int fd = open("/dev/null", O_WRONLY);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        execv(argv[0], argv);
+        _exit(127);
+    }
+    if (wait4(pid, &st, 0, &ru) != pid) return -1;
+    *secs = host_now() - t0;
+    *cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    *kb = ru.ru_maxrss;
+    return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0 : -1;
+}
+
+static int is_file(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+/* PATH's folder (up to its last '/', or "." ) into OUT. */
+static void dir_of(const char *path, char *out, size_t n)
+{
+    const char *sl = strrchr(path, '/');
+    if (!sl) snprintf(out, n, ".");
+    else snprintf(out, n, "%.*s", (int)(sl - path), path);
+}
+
+typedef struct {
+    char why[3072];        /* empty when measured; else why not */
+    double t[3], ratio[2]; /* medians: rad to 0.01, to 0.001, rpkCpp; rad/rpkCpp per round */
+    double cpu[3], cpu_ratio[2]; /* the same in processor time */
+    long kb[3];          /* peaks over the runs */
+} peer_t;
+
+/* The peer's scene beside it: converted from the OBJ SCENE with the shared converter
+ * (SCENE's folder/../peers/obj2mgf.py) when it is missing. */
+static int peer_scene(const char *scene, const char *mgf, peer_t *pr)
+{
+    char dir[512], conv[1024];
+    double t, cpu;
+    long kb;
+    char *argv[] = {"/usr/bin/env", "python3", conv, "-o", (char *)mgf, "--channel", "rgb", (char *)scene, NULL};
+    if (is_file(mgf)) return 0;
+    dir_of(scene, dir, sizeof dir);
+    snprintf(conv, sizeof conv, "%s/../peers/obj2mgf.py", dir);
+    fprintf(stderr, "rad_bench: converting %s to %s ...\n", scene, mgf);
+    if (!is_file(conv) || run_child(argv, &t, &cpu, &kb) < 0 || !is_file(mgf)) {
+        snprintf(pr->why, sizeof pr->why, "the scene could not be converted to %s (with %s)", mgf, conv);
+        return -1;
+    }
+    return 0;
+}
+
+/* rad_cli (beside this program) to 0.01 and 0.001 against rpkCpp's Galerkin solve,
+ * whole processes in turn, PEER_RUNS rounds. The peer is in $RAD_PEER_RPK, or
+ * ../peer-rpk: its build/rpk and cbo.mgf. */
+static void peer_bench(const char *self, const char *scene, peer_t *pr)
+{
+    const char *root = getenv("RAD_PEER_RPK");
+    char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
+    char *cmd[3][16] = {
+        {cli, (char *)scene, "--tol", "0.01", "--width", "64", "--height", "64", "-o", png, NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--width", "64", "--height", "64", "-o", png, NULL},
+        {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none", "-iterations", "30",
+         mgf, NULL}};
+    double t[3][PEER_RUNS], c[3][PEER_RUNS], r[2][PEER_RUNS], rc[2][PEER_RUNS];
+    int i, k;
+    memset(pr, 0, sizeof *pr);
+    if (!root || !*root) root = "../peer-rpk";
+    snprintf(rpk, sizeof rpk, "%s/build/rpk", root);
+    snprintf(mgf, sizeof mgf, "%s/cbo.mgf", root);
+    dir_of(self, dir, sizeof dir);
+    snprintf(cli, sizeof cli, "%s/rad_cli", dir);
+    snprintf(png, sizeof png, "%s/bench_peer.ppm", dir);
+    if (!is_file(rpk) || access(rpk, X_OK) != 0) {
+        snprintf(pr->why, sizeof pr->why, "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
+        return;
+    }
+    if (!is_file(cli)) { snprintf(pr->why, sizeof pr->why, "no %s", cli); return; }
+    if (!is_file(scene)) { snprintf(pr->why, sizeof pr->why, "no %s", scene); return; }
+    if (peer_scene(scene, mgf, pr) < 0) return;
+    fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
+    for (i = 0; i < PEER_RUNS; i++)
+        for (k = 0; k < 3; k++) {
+            long kb;
+            if (run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
+                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k < 2 ? scene : mgf);
+                return;
+            }
+            if (kb > pr->kb[k]) pr->kb[k] = kb;
+        }
+    remove(png);
+    for (i = 0; i < PEER_RUNS; i++)
+        for (k = 0; k < 2; k++) {
+            r[k][i] = t[k][i] / t[2][i];
+            rc[k][i] = c[k][i] / c[2][i];
+        }
+    for (k = 0; k < 3; k++) {
+        pr->t[k] = median(t[k], PEER_RUNS);
+        pr->cpu[k] = median(c[k], PEER_RUNS);
+    }
+    for (k = 0; k < 2; k++) {
+        pr->ratio[k] = median(r[k], PEER_RUNS);
+        pr->cpu_ratio[k] = median(rc[k], PEER_RUNS);
+    }
+}
+
+static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
+{
+    out(rp, "\nAgainst a peer on CornellBox-Original: RenderPark's hierarchical Galerkin radiosity (rpkCpp, "
+        "`rpk -force-onesided -radiance-method Galerkin -raytracing-method none -iterations 30`, one core, about "
+        "4,000 elements) beside `rad_cli --tol 0.01` (and 0.001) `--width 64 --height 64` (fixed build, default "
+        "mesh), whole processes in turn, %d rounds: medians of wall and processor (user + system) "
+        "time, the median of each round's ratio, and each program's peak resident memory over the rounds (wait4). ",
+        PEER_RUNS);
+    if (p->why[0]) {
+        out(rp, "Not measured: %s.\n", p->why);
+    } else {
+        static const char *nm[3] = {"rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin"};
+        int k;
+        out(rp, "\n\n| program | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB |\n"
+            "| --- | ---: | ---: | ---: | ---: | ---: |\n");
+        for (k = 0; k < 3; k++) {
+            char a[32] = "", b[32] = "";
+            if (k < 2) {
+                snprintf(a, sizeof a, "%.2f", p->ratio[k]);
+                snprintf(b, sizeof b, "%.2f", p->cpu_ratio[k]);
+            }
+            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], p->t[k], a, p->cpu[k], b, p->kb[k] / 1024.0);
+        }
+    }
+    out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 and "
+        "%.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
         fx->elements, fx->t[1], fx->total, fx->bytes / 1048576.0);
 }
 
@@ -678,6 +857,87 @@ static void report_relight(report_t *rp, const bscene *sc)
         rl.fresh_shots, rl.t_fresh / rl.t_relight);
 }
 
+/* The generated hall meshed to over 100,000 elements, solved once (fixed build). */
+static void report_large(report_t *rp)
+{
+    bscene sc;
+    brun r;
+    char sh[64];
+    memset(&sc, 0, sizeof sc);
+    sc.name = "generated hall, fine";
+    sc.polys = gen_hall(&sc.n);
+    if (!sc.polys) exit(1);
+    /* Element edge 0.078: 110,646 elements (the hall's 0.175 gives 23,384). */
+    sc.max_element = 0.078;
+    sc.res = 128;
+    fprintf(stderr, "rad_bench: %s ...\n", sc.name);
+    solo(&sc, &r);
+    if (r.elements < 100000)
+        fprintf(stderr, "rad_bench: warning: the fine hall has %d elements, fewer than 100,000\n", r.elements);
+    fmt_shots(sh, sizeof sh, &r);
+    out(rp, "\nA large scene: the generated hall meshed finer, solved once (fixed build, res 128, one core); "
+        "memory is the core's pools and work buffer, all it uses:\n\n| scene | elements | patches | meshing s | "
+        "shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot | memory MB |\n"
+        "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |\n");
+    out(rp, "| %s | %d | %d | %.3f | %s | %.2f | %.2f | %.3f | %.2f |\n", sc.name, r.elements, r.patches, r.mesh, sh,
+        r.t[1], r.total, 1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
+    run_free(&r);
+    free(sc.polys);
+}
+
+/* This thread's processor time, seconds. */
+static double thread_cpu(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+/* What two free cores could do, whatever the load: the scene solved to 0.001 through
+ * the core's split shot on this one thread, both parts of each stage in turn, each
+ * call timed on the thread's processor clock. Returns the serial time over the
+ * critical path (the serial calls plus the longer part of each stage): the 2-thread
+ * speed-up with no waiting and no other process. */
+static double parallel_bound(const bscene *sc)
+{
+    sc_opts o = scene_opts(sc);
+    sc_solver *h = fixed_solver(sc, sc->polys, &o);
+    rad_scene_t *s = sc_core(h);
+    size_t bytes = RAD_PART_BYTES(s->cfg.res);
+    void *bufs[2] = {malloc(bytes), malloc(bytes)};
+    double serial = 0, part[2][2] = {{0, 0}, {0, 0}}, t;
+    uint32_t p;
+    unsigned k;
+    if (!bufs[0] || !bufs[1]) exit(1);
+    for (;;) {
+        t = thread_cpu();
+        if (rad_shot_begin(s, RAD_REAL(0.001), &p) != 1) break;
+        serial += thread_cpu() - t;
+        for (k = 0; k < 2; k++) {
+            t = thread_cpu();
+            rad_shot_part(s, p, k, 2, bufs[k], bytes);
+            part[0][k] += thread_cpu() - t;
+        }
+        t = thread_cpu();
+        rad_shot_aim(s, p, bufs, 2);
+        serial += thread_cpu() - t;
+        for (k = 0; k < 2; k++) {
+            t = thread_cpu();
+            rad_shot_receive_part(s, p, bufs, 2, k);
+            part[1][k] += thread_cpu() - t;
+        }
+        t = thread_cpu();
+        rad_shot_end(s, p, bufs, 2);
+        serial += thread_cpu() - t;
+    }
+    free(bufs[0]);
+    free(bufs[1]);
+    sc_destroy(h);
+    t = serial + part[0][0] + part[0][1] + part[1][0] + part[1][1];
+    return t / (serial + (part[0][0] > part[0][1] ? part[0][0] : part[0][1]) +
+                (part[1][0] > part[1][1] ? part[1][0] : part[1][1]));
+}
+
 /* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
  * results differ in a bit. */
 static void parallel_times(const bscene *sc, double *m1, double *m2)
@@ -707,14 +967,21 @@ static void parallel_times(const bscene *sc, double *m1, double *m2)
 static void report_parallel(report_t *rp, const bscene *scenes, int ns, const brun *fx)
 {
     int i;
-    out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, summed in order: "
-        "bit-exact with the serial solve, checked by tests/test_parallel.c), fixed build, to 0.001, median of 3:\n\n"
-        "| scene | elements | 1 thread s | 2 threads s | speed-up |\n| --- | ---: | ---: | ---: | ---: |\n");
+    out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, then its receiving by "
+        "runs of whole patches' elements, each sum in the serial order: bit-exact with the serial solve, checked by "
+        "tests/test_parallel.c), fixed build, to 0.001, median of 3, with the machine's load average (1 minute) "
+        "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
+        "thread. The bound is what two free cores could give whatever the load: each stage's two parts timed "
+        "on one thread's processor clock, the serial time over the critical path (the calls between the "
+        "stages plus each stage's longer part):\n\n| scene | elements | 1 thread s | 2 threads s | speed-up | "
+        "load average | bound |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
-        double m1, m2;
+        double m1, m2, load = -1;
         if (scenes[i].big) continue; /* too long to repeat */
         parallel_times(&scenes[i], &m1, &m2);
-        out(rp, "| %s | %d | %.3f | %.3f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2);
+        if (getloadavg(&load, 1) != 1) load = -1;
+        out(rp, "| %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2,
+            load, parallel_bound(&scenes[i]));
     }
 }
 
@@ -780,10 +1047,16 @@ int main(int argc, char **argv)
     static bscene scenes[8];
     static brun fx[8], fl[8];
     static report_t rp;
+    static peer_t peer;
     double amax[8], arms[8];
     int ns, i, orig;
 
-    ns = load_scenes(argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj", scenes);
+    const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
+
+    /* First, while this process is small: a child's peak memory starts at its parent's
+     * at fork (Linux keeps the high-water mark across exec). */
+    peer_bench(argv[0], shared, &peer);
+    ns = load_scenes(shared, scenes);
     if (!ns) return 1;
     for (i = 0; i < ns; i++) {
         fprintf(stderr, "rad_bench: %s ...\n", scenes[i].name);
@@ -797,11 +1070,12 @@ int main(int argc, char **argv)
     report_speed(&rp, scenes, ns, fx, fl);
     report_twin(&rp, scenes, ns, amax, arms);
     report_hemicube(&rp);
-    if (orig >= 0) report_peers(&rp, &fx[orig]);
+    if (orig >= 0) report_peers(&rp, &peer, &fx[orig]);
     if (orig >= 0) report_patches(&rp, &scenes[orig]);
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
     report_parallel(&rp, scenes, ns, fx);
+    report_large(&rp);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

@@ -458,6 +458,7 @@ static void print_stats(const run_t *r)
     else printf("shots %d  unshot fraction %.6f  saturations %lu\n", r->rows_mode ? r->work : st->shots, st->unshot,
                 st->saturations);
     printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
+    printf("overshoot back-offs %lu\n", st->backoffs);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
     printf("exposure %.9g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");

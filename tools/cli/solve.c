@@ -111,8 +111,9 @@ static int rows_step(run_t *r, progress_t *pg)
 {
     const opts_t *o = r->o;
     char err[1024];
-    int rc = o->load_ff ? sc_rows_load(r->s, o->load_ff, err, sizeof err)
-                        : sc_rows_compute(r->s, pg->tty ? rows_progress : NULL, pg, err, sizeof err);
+    int rc = o->gauss_seidel && sc_gauss_seidel_check(r->s, err, sizeof err) < 0 ? -1 /* before any row */
+             : o->load_ff ? sc_rows_load(r->s, o->load_ff, err, sizeof err)
+                          : sc_rows_compute(r->s, pg->tty ? rows_progress : NULL, pg, err, sizeof err);
     progress_clear(pg);
     if (rc < 0) {
         fprintf(stderr, PROG ": %s%s%s\n", o->load_ff ? "" : o->scene, o->load_ff ? "" : ": ", err);

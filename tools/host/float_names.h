@@ -12,6 +12,9 @@
 #define sc_create scf_create
 #define sc_destroy scf_destroy
 #define sc_solve scf_solve
+#define sc_solve_started scf_solve_started
+#define sc_set_memory_limit scf_set_memory_limit
+#define sc_gauss_seidel_check scf_gauss_seidel_check
 #define sc_get_stats scf_get_stats
 #define sc_element_rgb scf_element_rgb
 #define sc_element_area scf_element_area

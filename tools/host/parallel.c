@@ -1,9 +1,11 @@
-/* rad host glue: the parallel solve (see parallel.h). Workers live for the whole
- * solve and wait for each shot by spinning on a shot counter, not by sleeping: a shot
- * takes well under a millisecond, and waking a sleeping thread on an idle core took as
- * long as the shot itself on our 2-core VMs (two threads started for each shot ran no
- * faster than one). A worker that cannot start has its part rendered by the calling
- * thread. The counters are GCC/clang __atomic builtins (acquire/release). */
+/* rad host glue: the parallel solve (see parallel.h). Each shot has two stages, run by
+ * every thread on its own part: rendering a run of the hemi-cube's rows, then (after
+ * the calling thread's rad_shot_aim) receiving for a run of the elements. Workers live
+ * for the whole solve and wait for each stage by spinning on a stage counter, not by
+ * sleeping: a shot takes well under a millisecond, and waking a sleeping thread on an
+ * idle core took as long as the shot itself on our 2-core VMs (two threads started for
+ * each shot ran no faster than one). A worker that cannot start has its parts done by
+ * the calling thread. The counters are GCC/clang __atomic builtins (acquire/release). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
@@ -18,16 +20,17 @@
 
 #define MAX_THREADS 64
 
-/* What the workers share: the shot to render (SHOT counts them; -1 tells the workers
- * to leave) and each part's buffer and the last shot it finished. */
+/* What the workers share: the stage to run (STAGE counts them, odd to render, even
+ * to receive; -1 tells the workers to leave), each part's buffer and the last stage
+ * it finished. */
 typedef struct {
-    const rad_scene_t *s;
+    rad_scene_t *s;
     uint32_t patch;
     unsigned nparts;
     size_t bytes;
     void *bufs[MAX_THREADS];
     int done[MAX_THREADS];
-    int shot;
+    int stage;
 } crew_t;
 
 typedef struct {
@@ -38,9 +41,13 @@ typedef struct {
 static int load(const int *p) { return __atomic_load_n(p, __ATOMIC_ACQUIRE); }
 static void store(int *p, int v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
 
-static void render(crew_t *c, unsigned part)
+/* Part PART's share of stage STAGE. */
+static void run_stage(crew_t *c, int stage, unsigned part)
 {
-    rad_shot_part(c->s, c->patch, part, c->nparts, c->bufs[part], c->bytes);
+    if (stage % 2)
+        rad_shot_part(c->s, c->patch, part, c->nparts, c->bufs[part], c->bytes);
+    else
+        rad_shot_receive_part(c->s, c->patch, c->bufs, c->nparts, part);
 }
 
 static void *work(void *arg)
@@ -49,12 +56,25 @@ static void *work(void *arg)
     crew_t *c = w->crew;
     int seen = 0;
     for (;;) {
-        int shot;
-        while ((shot = load(&c->shot)) == seen) sched_yield();
-        if (shot < 0) return NULL;
-        seen = shot;
-        render(c, w->part);
-        store(&c->done[w->part], shot);
+        int stage;
+        while ((stage = load(&c->stage)) == seen) sched_yield();
+        if (stage < 0) return NULL;
+        seen = stage;
+        run_stage(c, stage, w->part);
+        store(&c->done[w->part], stage);
+    }
+}
+
+/* Stage STAGE on every part: the workers' started, the calling thread's part 0 and the
+ * parts of workers that could not start. */
+static void stage_all(crew_t *c, int stage, const int *started)
+{
+    unsigned k;
+    store(&c->stage, stage);
+    run_stage(c, stage, 0);
+    for (k = 1; k < c->nparts; k++) {
+        if (!started[k]) run_stage(c, stage, k);
+        else while (load(&c->done[k]) != stage) sched_yield();
     }
 }
 
@@ -71,11 +91,12 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
     if (threads < 1) threads = 1;
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     if (s->band_rows != 0) return -1;
+    sc_solve_started(h, tol);
     c.s = s;
     c.patch = 0;
     c.nparts = (unsigned)threads;
     c.bytes = RAD_PART_BYTES(s->cfg.res);
-    c.shot = 0;
+    c.stage = 0;
     for (k = 0; k < threads; k++) {
         c.bufs[k] = malloc(c.bytes);
         c.done[k] = 0;
@@ -87,18 +108,15 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
         started[k] = pthread_create(&tid[k], NULL, work, &wk[k]) == 0;
     }
     while (ok && shots < max_shots && rad_shot_begin(s, t, &c.patch) == 1) {
-        store(&c.shot, shots + 1);
-        render(&c, 0);
-        for (k = 1; k < threads; k++) {
-            if (!started[k]) render(&c, (unsigned)k);
-            else while (load(&c.done[k]) != shots + 1) sched_yield();
-        }
-        rad_shot_end(s, c.patch, c.bufs, (unsigned)threads);
+        stage_all(&c, 2 * shots + 1, started);
+        rad_shot_aim(s, c.patch, c.bufs, c.nparts);
+        stage_all(&c, 2 * shots + 2, started);
+        rad_shot_end(s, c.patch, c.bufs, c.nparts);
         shots++;
         if (progress && progress(ctx, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)))) break;
     }
     if (ok) {
-        store(&c.shot, -1);
+        store(&c.stage, -1);
         for (k = 1; k < threads; k++) if (started[k]) pthread_join(tid[k], NULL);
     }
     for (k = 0; k < threads; k++) free(c.bufs[k]);

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "formats/ff_file.h"
 #include "rad/rad.h"
@@ -33,6 +34,11 @@ struct sc_solver {
     rad_ff_t *gs;               /* Gauss-Seidel matrix, RAD_GS_ENTRIES(patches) */
     size_t gs_entries;
     int mixed;                  /* elements hold a mix with the ambient term baked in */
+    int skipped_emitters;       /* emitting polygons the core could not mesh */
+    int solve_kind;             /* 0: none yet, 1: shooting to tol, 2 / 3: Gauss-Seidel
+                                   converged / stopped at its sweep limit */
+    double tol;                 /* the last solve's tolerance */
+    double mem_limit;           /* rows + matrix bytes; 0: half the physical memory */
 };
 
 typedef struct {
@@ -43,11 +49,27 @@ typedef struct {
 
 static void warnf(warner_t *w, int tag, const char *msg, int code)
 {
-    char buf[160];
+    char buf[256];
     if (w->seen++ < w->emitted || !w->warn) return;
     snprintf(buf, sizeof buf, "%s (%s)", msg, rad_strerror(code));
     w->warn(w->ctx, tag, buf);
     w->emitted++;
+}
+
+/* A skipped polygon, warned about; one that emits says that its light is lost. */
+static void skip_poly(struct sc_solver *h, const sc_poly *q, warner_t *w, const char *what, int code)
+{
+    char msg[192];
+    h->skipped++;
+    if (q->emit[0] > 0 || q->emit[1] > 0 || q->emit[2] > 0) {
+        h->skipped_emitters++;
+        snprintf(msg, sizeof msg, "skipped %s that emits light (%g %g %g): its light is lost", what, q->emit[0],
+                 q->emit[1], q->emit[2]);
+        warnf(w, q->tag, msg, code);
+        return;
+    }
+    snprintf(msg, sizeof msg, "skipped %s", what);
+    warnf(w, q->tag, msg, code);
 }
 
 static void free_pools(struct sc_solver *h)
@@ -123,14 +145,13 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
             t[0] = v[0]; t[1] = v[1 + k]; t[2] = v[2 + k];
             rc = rad_add_polygon(&h->s, t, 3, &rho, &em);
             if (rc >= 0) { h->tags[rc] = q->tag; memcpy(&h->emit[3 * rc], q->emit, sizeof q->emit); }
-            else if (rc == RAD_ERR_DEGENERATE) { h->skipped++; warnf(w, q->tag, "skipped a degenerate triangle of a split quad", rc); }
+            else if (rc == RAD_ERR_DEGENERATE) skip_poly(h, q, w, "a degenerate triangle of a split quad", rc);
             else return rc;
         }
         return RAD_OK;
     }
     if (rc == RAD_ERR_DEGENERATE) {
-        h->skipped++;
-        warnf(w, q->tag, "skipped a degenerate polygon", rc);
+        skip_poly(h, q, w, "a degenerate polygon", rc);
         return RAD_OK;
     }
     return rc;
@@ -204,6 +225,59 @@ static long estimate_elements(const struct sc_solver *h, const sc_poly *polys, i
     return (long)(sum > 1024.0 ? sum : 1024.0);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* Coordinates scaled by 32 / (half the span) keep 1/65536 of a unit: a vertex far
+ * from the rest shrinks every other polygon below that. When the farthest vertex from
+ * the median point is over 2^16 times as far as 90% of the vertices (all but one, when
+ * there are fewer than 20), writes which it is to err and returns 1 (else 0, and
+ * nothing is written). */
+static int outlier(const sc_poly *polys, int n, char *err, size_t errlen)
+{
+    size_t nv = 0, i, far = 0;
+    double *c, mid[3], d90, dmax = -1.0;
+    int k, a, ok = 1;
+    for (i = 0; i < (size_t)n; i++) nv += (size_t)polys[i].n;
+    c = malloc(nv * sizeof *c);
+    if (!c) return 0;
+    for (a = 0; a < 3; a++) {
+        for (i = 0, nv = 0; i < (size_t)n; i++)
+            for (k = 0; k < polys[i].n; k++) c[nv++] = polys[i].v[k][a];
+        qsort(c, nv, sizeof *c, cmp_double);
+        mid[a] = c[nv / 2];
+    }
+    for (i = 0, nv = 0; i < (size_t)n; i++)
+        for (k = 0; k < polys[i].n; k++) {
+            const double *v = polys[i].v[k];
+            double d = fmax(fabs(v[0] - mid[0]), fmax(fabs(v[1] - mid[1]), fabs(v[2] - mid[2])));
+            if (d > dmax) { dmax = d; far = i; }
+            c[nv++] = d;
+        }
+    qsort(c, nv, sizeof *c, cmp_double);
+    d90 = c[nv - 1 - (nv / 10 > 0 ? nv / 10 : 1)]; /* the farthest tenth left out, at least one */
+    free(c);
+    ok = dmax > 65536.0 * d90;
+    if (ok) {
+        const sc_poly *q = &polys[far];
+        int v = 0;
+        for (k = 1; k < q->n; k++)
+            if (fmax(fabs(q->v[k][0] - mid[0]), fmax(fabs(q->v[k][1] - mid[1]), fabs(q->v[k][2] - mid[2]))) >
+                fmax(fabs(q->v[v][0] - mid[0]), fmax(fabs(q->v[v][1] - mid[1]), fabs(q->v[v][2] - mid[2]))))
+                v = k;
+        snprintf(err, errlen,
+                 "the scene spans %.3g units: polygon %d (tag %d) has a vertex at (%.3g, %.3g, %.3g), %.2g times "
+                 "farther from the middle than the rest (90%% of the vertices lie within %.3g of it), so every "
+                 "other polygon falls below the core's precision (1/65536 of the span)",
+                 2.0 * dmax, (int)far, q->tag, q->v[v][0], q->v[v][1], q->v[v][2], d90 > 0 ? dmax / d90 : HUGE_VAL,
+                 d90);
+    }
+    return ok;
+}
+
 sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
                        char *err, size_t errlen)
 {
@@ -242,11 +316,14 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         if (!alloc_pools(h, cap, n, &cfg)) { snprintf(err, errlen, "out of memory for %ld elements", cap); break; }
         rc = rad_init(&h->s, &h->pools, &cfg);
         if (rc < 0) { snprintf(err, errlen, "cannot set up the solver: %s", rad_strerror(rc)); break; }
-        h->skipped = h->split = h->clamped = 0;
+        h->skipped = h->split = h->clamped = h->skipped_emitters = 0;
         w.seen = 0;
         for (i = 0; i < n && rc == RAD_OK; i++) rc = add_poly(h, &polys[i], &w);
         if (rc == RAD_OK) {
-            if (h->s.n_elements == 0) { snprintf(err, errlen, "no polygon could be meshed"); break; }
+            if (h->s.n_elements == 0) {
+                if (!outlier(polys, n, err, errlen)) snprintf(err, errlen, "no polygon could be meshed");
+                break;
+            }
             return h;
         }
         if (rc != RAD_ERR_FULL) {
@@ -278,11 +355,18 @@ static void unmix(struct sc_solver *h)
     if (h->mixed) sc_restart(h); /* also puts the emissions back at their scale */
 }
 
+void sc_solve_started(sc_solver *h, double tol)
+{
+    h->solve_kind = 1;
+    h->tol = tol;
+}
+
 int sc_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     int done = 0;
     rad_real_t t = RAD_REAL(tol);
     unmix(h);
+    sc_solve_started(h, tol);
     while (done < max_shots) {
         int k = rad_shoot(&h->s, progress ? 1u : (uint32_t)(max_shots - done), t);
         if (k <= 0) break;
@@ -308,6 +392,11 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
     st->saturations = h->s.stats.saturations;
     st->raster_calls = h->s.stats.raster_calls;
     st->raster_pixels = h->s.stats.raster_pixels;
+    st->solved = h->solve_kind != 0;
+    st->tol = h->tol;
+    st->converged = h->solve_kind == 2 || (h->solve_kind == 1 && rad_unshot_fraction(&h->s) <= RAD_REAL(h->tol));
+    st->backoffs = h->s.stats.backoffs;
+    st->skipped_emitters = h->skipped_emitters;
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
                      h->s.n_elements * sizeof *p->elements + h->s.n_vertices * sizeof *p->vertices;
     st->work_bytes = RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
@@ -562,6 +651,57 @@ static void ff_info(const struct sc_solver *h, ff_file_info *in)
     in->fingerprint = fingerprint(h);
 }
 
+void sc_set_memory_limit(sc_solver *h, double bytes)
+{
+    h->mem_limit = bytes > 0 ? bytes : 0;
+}
+
+/* The memory limit in bytes: the one set, else half the physical memory (1 GiB when
+ * the system does not say). */
+static double memory_limit(const struct sc_solver *h)
+{
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    if (h->mem_limit > 0) return h->mem_limit;
+    return pages > 0 && size > 0 ? 0.5 * (double)pages * (double)size : 1073741824.0;
+}
+
+/* Refuses (-1 with err) WHAT needing BYTES over the memory limit; the fix is named. */
+static int within_memory(const struct sc_solver *h, double bytes, const char *what, const char *fix, char *err,
+                         size_t errlen)
+{
+    double lim = memory_limit(h);
+    if (bytes <= lim) return 0;
+    snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what, bytes / 1e6, lim / 1e6,
+             h->mem_limit > 0 ? "" : " (half the physical memory)", fix);
+    return -1;
+}
+
+/* A sound bound: a row holds at most one entry per element and one per pixel of the
+ * hemi-cube (3 res^2: the top face and four half sides), each an id and a code. */
+static int rows_fit(const struct sc_solver *h, char *err, size_t errlen)
+{
+    const rad_scene_t *s = &h->s;
+    double pixels = 3.0 * s->cfg.res * s->cfg.res, per_row = s->n_elements < pixels ? s->n_elements : pixels;
+    double bytes = ((double)s->n_patches + 1.0) * sizeof *h->rows.start +
+                   (double)s->n_patches * per_row * (sizeof *h->rows.ids + sizeof *h->rows.ffs);
+    char what[96];
+    snprintf(what, sizeof what, "the form factor rows (%u patches x up to %.0f entries)", s->n_patches, per_row);
+    return within_memory(h, bytes, what,
+                         "lower the hemi-cube resolution (--res) or coarsen the mesh (--max-element, --max-patch)",
+                         err, errlen);
+}
+
+int sc_gauss_seidel_check(sc_solver *h, char *err, size_t errlen)
+{
+    uint32_t np = h->s.n_patches;
+    if (np > 16384u) {
+        snprintf(err, errlen, "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch size or shoot)", np);
+        return -1;
+    }
+    return within_memory(h, (double)RAD_GS_ENTRIES(np) * sizeof *h->gs, "the Gauss-Seidel matrix",
+                         "raise the patch size (--max-patch) or shoot", err, errlen);
+}
+
 int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen)
 {
     rad_scene_t *s = &h->s;
@@ -570,6 +710,7 @@ int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char 
     /* First guess: each patch sees a quarter of the elements (a closed room: about
      * half); grown by doubling, rows already stored are kept. */
     uint64_t cap = (uint64_t)np * (ne / 4u + 1u);
+    if (rows_fit(h, err, errlen) < 0) return -1;
     rows_free(h);
     if (cap > 0xFFFFFFFFu) cap = 0xFFFFFFFFu;
     h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
@@ -667,6 +808,7 @@ int sc_rows_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progre
     rad_real_t t = RAD_REAL(tol);
     if (!h->has_rows) return -1;
     unmix(h);
+    sc_solve_started(h, tol);
     while (done < max_shots) {
         int k = rad_rows_shoot(&h->s, &h->rows, progress ? 16u : (uint32_t)(max_shots - done), t);
         if (k <= 0) break;
@@ -682,10 +824,7 @@ int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size
     size_t need = RAD_GS_ENTRIES(np);
     int rc;
     if (!h->has_rows) { snprintf(err, errlen, "Gauss-Seidel needs the form factor rows"); return -1; }
-    if (np > 16384u) {
-        snprintf(err, errlen, "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch size or shoot)", np);
-        return -1;
-    }
+    if (sc_gauss_seidel_check(h, err, errlen) < 0) return -1;
     if (h->gs_entries < need) {
         free(h->gs);
         h->gs = malloc(need * sizeof *h->gs);
@@ -699,6 +838,8 @@ int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size
     rc = rad_rows_gauss_seidel(&h->s, &h->rows, h->gs, h->gs_entries, (uint32_t)(max_iter > 0 ? max_iter : 1),
                                RAD_REAL(tol));
     if (rc < 0) { snprintf(err, errlen, "Gauss-Seidel: %s", rad_strerror(rc)); return -1; }
+    h->solve_kind = rc < (max_iter > 0 ? max_iter : 1) ? 2 : 3;
+    h->tol = tol;
     return rc;
 }
 

@@ -37,6 +37,13 @@ typedef struct {
     unsigned long raster_calls;
     unsigned long long raster_pixels;
     size_t pool_bytes, work_bytes;  /* memory handed to the core */
+    /* How the last solve ended, for "not converged" and "saturated" reports: */
+    int solved;                     /* 1 after a solve (shooting or Gauss-Seidel) */
+    int converged;                  /* it reached its tolerance (unshot <= tol; Gauss-Seidel:
+                                       stopped before its sweep limit) */
+    double tol;                     /* that tolerance */
+    unsigned long backoffs;         /* overshoot halvings (rad_stats_t.backoffs) */
+    int skipped_emitters;           /* emitting polygons skipped (each warned) */
 } sc_stats;
 
 typedef struct {
@@ -65,6 +72,9 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
 void sc_destroy(sc_solver *s);
 /* Shoots until the unshot fraction <= tol or max_shots; returns shots done. */
 int sc_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+/* Records that a shooting solve to TOL starts (sc_solve and sc_rows_solve do it; other
+ * solvers over sc_core, such as sc_solve_parallel, call it), for sc_stats.converged. */
+void sc_solve_started(sc_solver *s, double tol);
 void sc_get_stats(sc_solver *s, sc_stats *st);
 /* Element radiosity in caller units (with the ambient term if ambient != 0). */
 void sc_element_rgb(sc_solver *s, int e, int ambient, double rgb[3]);
@@ -93,8 +103,14 @@ uint64_t sc_checksum(sc_solver *s);
 void *sc_core(sc_solver *s);
 
 /* ---- stored form factors (rad_rows_t): visibility once, then relighting ---- */
+/* The memory the rows (and the Gauss-Seidel matrix) may take, in bytes; 0: the
+ * default, half of the physical memory. */
+void sc_set_memory_limit(sc_solver *s, double bytes);
 /* Renders every patch's hemi-cube once and keeps its row (malloc'd, grown until
- * it fits). Progress may stop it (-1). Returns 0 or -1 with err. */
+ * it fits). Refused before anything is allocated when the rows' bound, patches x
+ * min(elements, 3 res^2) entries of 6 bytes (a hemi-cube has 3 res^2 pixels, each
+ * seeing one element), exceeds the memory limit. Progress may stop it (-1). Returns
+ * 0 or -1 with err. */
 int sc_rows_compute(sc_solver *s, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen);
 /* Writes the rows to PATH (tools/formats/ff_file.h, atomic) / reads them from PATH, checking
  * that the file was made by this build for this very mesh (fingerprint) at this
@@ -110,6 +126,9 @@ int sc_rows_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progre
  * RAD_GS_ENTRIES(patches) malloc'd once and kept). Returns the sweeps, or -1 with
  * err (no rows, more than 16384 patches, out of memory). */
 int sc_rows_gauss_seidel(sc_solver *s, int max_iter, double tol, char *err, size_t errlen);
+/* Whether Gauss-Seidel can take this scene (patches, matrix memory), to ask before
+ * the rows are computed: 0 or -1 with err. */
+int sc_gauss_seidel_check(sc_solver *s, char *err, size_t errlen);
 /* New reflectance RHO and/or emission EMIT (caller units; NULL keeps it) for every
  * surface whose polygon tag MATCH accepts, then sc_restart. Reflectance >= 1 is
  * clamped as at create. Returns the surfaces changed, or -1 with err (negative or

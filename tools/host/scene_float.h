@@ -18,6 +18,9 @@ scf_solver *scf_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn
     char *err, size_t errlen);
 void scf_destroy(scf_solver *s);
 int scf_solve(scf_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+void scf_solve_started(scf_solver *s, double tol);
+void scf_set_memory_limit(scf_solver *s, double bytes);
+int scf_gauss_seidel_check(scf_solver *s, char *err, size_t errlen);
 void scf_get_stats(scf_solver *s, sc_stats *st);
 void scf_element_rgb(scf_solver *s, int e, int ambient, double rgb[3]);
 double scf_element_area(scf_solver *s, int e);
