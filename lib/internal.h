@@ -46,6 +46,8 @@ typedef struct {
  * patch across the lines. */
 typedef struct {
     int64_t c[3][3];
+    int64_t o[3][3]; /* on the current face, coefficient j's E at pixel (x, y):
+                        o[j][0] + x o[j][1] + y o[j][2] */
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
     int32_t hint[2];       /* the last span's first and last cells on this face, or -1 */

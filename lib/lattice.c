@@ -45,20 +45,28 @@ static unsigned bits(uint32_t v)
     return b;
 }
 
-static void cross(const int64_t *a, const int64_t *b, int64_t *r)
+/* Corners (and their sums, shifted) are within +-2^22: int32, products below 2^45. */
+static void cross(const int32_t *a, const int32_t *b, int64_t *r)
 {
-    r[0] = a[1] * b[2] - a[2] * b[1];
-    r[1] = a[2] * b[0] - a[0] * b[2];
-    r[2] = a[0] * b[1] - a[1] * b[0];
+    r[0] = rad__mul32(a[1], b[2]) - rad__mul32(a[2], b[1]);
+    r[1] = rad__mul32(a[2], b[0]) - rad__mul32(a[0], b[2]);
+    r[2] = rad__mul32(a[0], b[1]) - rad__mul32(a[1], b[0]);
+}
+
+/* -V when NEG, else V. */
+static int64_t negate_if(int64_t v, int neg)
+{
+    return neg ? -v : v;
 }
 
 /* The family of lines k = 0..N joining (N - k) P0 + k P1 to (N - k) R0 + k R1, K
  * elements to a patch along it, oriented so that E_k >= 0 on P1's side. */
-static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const int64_t *r0,
-                   const int64_t *r1, uint32_t n, uint32_t k, unsigned shift)
+static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const int32_t *r0,
+                   const int32_t *r1, uint32_t n, uint32_t k, unsigned shift)
 {
-    int64_t x[3], y[3], y2[3], z[3], pm[3], rm[3], far[3], l[3];
-    const int64_t nn = n;
+    int64_t x[3], y[3], y2[3], z[3], l[3];
+    int32_t pm[3], rm[3], far[3];
+    const int32_t nn = (int32_t)n; /* < 2^12 */
     unsigned c;
     f->n = n;
     f->k = k;
@@ -69,17 +77,18 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
     cross(p1, r1, z);
     for (c = 0; c < 3; c++) {
         y[c] += y2[c];
-        f->c[0][c] = nn * nn * x[c];
-        f->c[1][c] = nn * (y[c] - 2 * x[c]);
+        f->c[0][c] = rad__mul16(rad__mul16(x[c], nn), nn);
+        f->c[1][c] = rad__mul16(y[c] - 2 * x[c], nn);
         f->c[2][c] = x[c] - y[c] + z[c];
     }
     /* The sign of the line half way, (p0 + p1) to (r0 + r1), seen against P1: on at most
      * 17 bits a corner, so the triple product fits (the same sign as for every line
      * k < n, unless the surface is seen edge-on, where it covers next to no pixels). */
     for (c = 0; c < 3; c++) {
-        pm[c] = shift ? rad__shr_round(p0[c] + p1[c], shift) : p0[c] + p1[c];
-        rm[c] = shift ? rad__shr_round(r0[c] + r1[c], shift) : r0[c] + r1[c];
-        far[c] = shift ? rad__shr_round(p1[c], shift) : p1[c];
+        int64_t sp = (int64_t)p0[c] + p1[c], sr = (int64_t)r0[c] + r1[c];
+        pm[c] = (int32_t)(shift ? rad__shr_round(sp, shift) : sp);
+        rm[c] = (int32_t)(shift ? rad__shr_round(sr, shift) : sr);
+        far[c] = (int32_t)(shift ? rad__shr_round(p1[c], shift) : p1[c]);
     }
     cross(pm, rm, l);
     if (l[0] * far[0] + l[1] * far[1] + l[2] * far[2] < 0)
@@ -89,7 +98,7 @@ static void family(rad__family_t *f, const int64_t *p0, const int64_t *p1, const
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res)
 {
-    int64_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    int32_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
@@ -104,9 +113,9 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
         if (c > m) m = c;
     }
     for (i = 0; i < n; i++) {
-        q[i][0] = rad__grid(corner[i].x, m, s);
-        q[i][1] = rad__grid(corner[i].y, m, s);
-        q[i][2] = rad__grid(corner[i].z, m, s);
+        q[i][0] = (int32_t)rad__grid(corner[i].x, m, s);
+        q[i][1] = (int32_t)rad__grid(corner[i].y, m, s);
+        q[i][2] = (int32_t)rad__grid(corner[i].z, m, s);
     }
     lt->first = sf->first_element;
     lt->pu = sf->pu;
@@ -133,13 +142,28 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned c, f;
+    unsigned c, f, j;
+    const int32_t res = lt->res;
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
     }
-    /* no span yet on this face */
-    for (f = 0; f < lt->nfam; f++) lt->fam[f].hint[0] = lt->fam[f].hint[1] = -1;
+    for (f = 0; f < lt->nfam; f++) {
+        rad__family_t *fm = &lt->fam[f];
+        for (j = 0; j < 3; j++) {
+            /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d:
+             * within +-res <= 2^10 a component, so E at any pixel keeps the bound above,
+             * and each product is rad__mul16's. */
+            const int64_t *k = fm->c[j];
+            int64_t ca = negate_if(k[lt->axis[0]], lt->sign[0] < 0);
+            int64_t cb = negate_if(k[lt->axis[1]], lt->sign[1] < 0);
+            int64_t cd = negate_if(k[lt->axis[2]], lt->sign[2] < 0);
+            fm->o[j][0] = rad__mul16(ca, 1 - res) + rad__mul16(cb, res - 1) + rad__mul16(cd, res);
+            fm->o[j][1] = 2 * ca;
+            fm->o[j][2] = -2 * cb;
+        }
+        fm->hint[0] = fm->hint[1] = -1; /* no span yet on this face */
+    }
 }
 
 /* ---- spans --------------------------------------------------------------------- */
@@ -154,9 +178,10 @@ typedef struct {
     int32_t i, end, step;
 } walk_t;
 
-static int64_t at(const int64_t *e, int64_t k)
+/* E_k for k in [0, n], n < 2^12. */
+static int64_t at(const int64_t *e, int32_t k)
 {
-    return e[0] + k * (e[1] + k * e[2]);
+    return e[0] + rad__mul16(e[1] + rad__mul16(e[2], k), k);
 }
 
 /* Largest k in [0, n - 1] with E_k >= 0 (0 when none), the coefficients E at a pixel:
@@ -182,49 +207,51 @@ static int32_t search(const int64_t *e, uint32_t n)
 static int32_t search_from(const int64_t *e, uint32_t n, int32_t h)
 {
     int32_t last = (int32_t)n - 1, i;
-    if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + (2 * (int64_t)n - 3) * e[2] > 0)
+    int64_t v, d;
+    if (h < 0 || n < 2 || e[1] + e[2] > 0 || e[1] + rad__mul16(e[2], 2 * (int32_t)n - 3) > 0)
         return search(e, n);
-    if (at(e, h) >= 0) {
-        for (i = 0; i < 2; i++, h++)
-            if (h == last || at(e, h + 1) < 0) return h;
+    /* E_h, then its neighbours by differences: E_{h+1} - E_h = e1 + (2 h + 1) e2, which
+     * changes by 2 e2 a step (every E_k, k in [0, n], and so each difference, fits). */
+    v = at(e, h);
+    if (v >= 0) {
+        d = e[1] + rad__mul16(e[2], 2 * h + 1);
+        for (i = 0; i < 2; i++, h++, d += 2 * e[2]) {
+            if (h == last || (v += d) < 0) return h;
+        }
     } else {
-        for (i = 0; i < 2; i++, h--)
-            if (h == 0 || at(e, h - 1) >= 0) return h == 0 ? 0 : h - 1;
+        d = e[1] + rad__mul16(e[2], 2 * h - 1);
+        for (i = 0; i < 2; i++, h--, d -= 2 * e[2]) {
+            if (h == 0 || (v -= d) >= 0) return h == 0 ? 0 : h - 1;
+        }
     }
     return search(e, n);
 }
 
 /* Sets W up for family F on row Y from pixel XS to XE - 1, searching from F's hints
  * and leaving this span's cells there. */
-static void walk_start(const rad__lattice_t *lt, rad__family_t *f, int32_t y, int32_t xs,
-                       int32_t xe, walk_t *w)
+static void walk_start(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk_t *w)
 {
-    int64_t e[3], de[3], k, sg, res = lt->res, span = xe - 1 - xs;
+    int64_t e[3], de[3], last[3];
+    int32_t k, sg, span = xe - 1 - xs;
     unsigned j;
     for (j = 0; j < 3; j++) {
-        /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d. */
-        const int64_t *c = f->c[j];
-        int64_t ca = lt->sign[0] * c[lt->axis[0]], cb = lt->sign[1] * c[lt->axis[1]],
-                cd = lt->sign[2] * c[lt->axis[2]];
-        de[j] = 2 * ca;
-        e[j] =
-            ca * (2 * (int64_t)xs + 1 - res) + cb * ((int64_t)res - 2 * (int64_t)y - 1) + cd * res;
+        /* pixel (xs, y) and the last, (xe - 1, y): x, y, span < res <= 2^10 */
+        de[j] = f->o[j][1];
+        e[j] = f->o[j][0] + rad__mul16(de[j], xs) + rad__mul16(f->o[j][2], y);
+        last[j] = e[j] + rad__mul16(de[j], span);
     }
     w->i = f->hint[0] = search_from(e, f->n, f->hint[0]);
-    /* The last pixel's column, with E moved there and back (one array less of stack). */
-    for (j = 0; j < 3; j++) e[j] += span * de[j];
-    w->end = f->hint[1] = search_from(e, f->n, f->hint[1]);
-    for (j = 0; j < 3; j++) e[j] -= span * de[j];
+    w->end = f->hint[1] = search_from(last, f->n, f->hint[1]);
     w->step = w->end > w->i ? 1 : w->end < w->i ? -1 : 0;
     if (!w->step) return;
     sg = w->step;
     k = w->i + (sg > 0);
-    w->t = sg * at(e, k) - (sg < 0);
-    w->st = sg * at(de, k);
-    w->d = e[1] + (2 * k + sg) * e[2];
-    w->sd = de[1] + (2 * k + sg) * de[2];
-    w->d2 = 2 * sg * e[2];
-    w->sd2 = 2 * sg * de[2];
+    w->t = negate_if(at(e, k), sg < 0) - (sg < 0);
+    w->st = negate_if(at(de, k), sg < 0);
+    w->d = e[1] + rad__mul16(e[2], 2 * k + sg);
+    w->sd = de[1] + rad__mul16(de[2], 2 * k + sg);
+    w->d2 = negate_if(2 * e[2], sg < 0);
+    w->sd2 = negate_if(2 * de[2], sg < 0);
 }
 
 /* A triangle's element needs its cell's column x and row y and which side of the
@@ -248,7 +275,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     uint32_t unit, wrap, first;
     int32_t i, fi;
     walk_t w;
-    walk_start(lt, fm, y, xs, xe, &w);
+    walk_start(fm, y, xs, xe, &w);
     if (lt->nfam == 3) {
         unit = wrap = tri_unit[f];
         first = (uint32_t)w.i * unit;
@@ -278,7 +305,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
         } else {
             /* the first pixel with T >= 0, p or later (a negative quotient truncates to
              * at most 0) */
-            c = (-t + st - 1) / st;
+            c = rad__sdiv64(-t + st - 1, st);
             p = c > p ? c : p;
             if (p >= n) break;
         }

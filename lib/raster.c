@@ -89,7 +89,8 @@ typedef struct {
 static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t px, int32_t py,
                        int flip)
 {
-    int64_t ex = (int64_t)b->x - a->x, ey = (int64_t)b->y - a->y;
+    /* Positions within [0, 2^15] (centres within 2^15 + 8): differences fit int32. */
+    int32_t ex = b->x - a->x, ey = b->y - a->y;
     int owned;
     if (flip) {
         ex = -ex;
@@ -99,9 +100,17 @@ static void edge_setup(edge_t *ed, const pvert_t *a, const pvert_t *b, int32_t p
     /* Half-open ownership: of the two directions along a shared edge, exactly one
      * (pointing down, or right when horizontal) includes centres lying on it. */
     owned = ey > 0 || (ey == 0 && ex > 0);
-    ed->e = ex * ((int64_t)py - a->y) - ey * ((int64_t)px - a->x) - (owned ? 0 : 1);
-    ed->dx = -ey * SUB;
-    ed->dy = ex * SUB;
+    ed->e = rad__mul32(ex, py - a->y) - rad__mul32(ey, px - a->x) - (owned ? 0 : 1);
+    ed->dx = (int64_t)-ey * SUB;
+    ed->dy = (int64_t)ex * SUB;
+}
+
+/* a / b for a >= 0, b > 0: in 32 bits when both fit (most rows: 64-bit division is a
+ * long library call on targets without a divider), the same quotient either way. */
+static int64_t udiv(int64_t a, int64_t b)
+{
+    if (((uint64_t)a | (uint64_t)b) >> 32 == 0) return (int64_t)((uint32_t)a / (uint32_t)b);
+    return (int64_t)rad__udiv64((uint64_t)a, (uint64_t)b);
 }
 
 /* Narrows pixels LO..HI of a row (from the bounding box's first) to those where edge
@@ -112,13 +121,13 @@ static void span_edge(const edge_t *ed, int32_t *lo, int32_t *hi)
     int64_t e = ed->e, dx = ed->dx;
     if (dx > 0) {
         if (e < 0) {
-            int64_t t = (-e + dx - 1) / dx;
+            int64_t t = udiv(-e + dx - 1, dx);
             if (t > *lo) *lo = t > *hi ? *hi + 1 : (int32_t)t;
         }
     } else if (e < 0) {
         *hi = -1;
     } else if (dx < 0) {
-        int64_t t = e / -dx;
+        int64_t t = udiv(e, -dx);
         if (t < *hi) *hi = (int32_t)t;
     }
 }
@@ -126,8 +135,7 @@ static void span_edge(const edge_t *ed, int32_t *lo, int32_t *hi)
 /* Twice the signed area of triangle A, B, C in subpixels^2. */
 static int64_t area2(const pvert_t *a, const pvert_t *b, const pvert_t *c)
 {
-    return ((int64_t)b->x - a->x) * ((int64_t)c->y - a->y) -
-           ((int64_t)c->x - a->x) * ((int64_t)b->y - a->y);
+    return rad__mul32(b->x - a->x, c->y - a->y) - rad__mul32(c->x - a->x, b->y - a->y);
 }
 
 /* Plane of attribute K through triangle V0, V1, V2 (twice its area AR): the value at
@@ -136,11 +144,13 @@ static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, 
                        int64_t ar, int32_t px, int32_t py, uint64_t *val, uint64_t *sx,
                        uint64_t *sy)
 {
-    int64_t d1 = (int64_t)v1->at[k] - v0->at[k], d2 = (int64_t)v2->at[k] - v0->at[k];
-    int64_t x1 = (int64_t)v1->x - v0->x, y1 = (int64_t)v1->y - v0->y;
-    int64_t x2 = (int64_t)v2->x - v0->x, y2 = (int64_t)v2->y - v0->y;
-    int64_t gx = (d1 * y2 - d2 * y1) * 65536 / ar;
-    int64_t gy = (d2 * x1 - d1 * x2) * 65536 / ar;
+    /* Attributes <= 2^30 and positions within [0, 2^15]: differences fit int32. */
+    int32_t d1 = (int32_t)v1->at[k] - (int32_t)v0->at[k];
+    int32_t d2 = (int32_t)v2->at[k] - (int32_t)v0->at[k];
+    int32_t x1 = v1->x - v0->x, y1 = v1->y - v0->y;
+    int32_t x2 = v2->x - v0->x, y2 = v2->y - v0->y;
+    int64_t gx = rad__sdiv64((rad__mul32(d1, y2) - rad__mul32(d2, y1)) * 65536, ar);
+    int64_t gy = rad__sdiv64((rad__mul32(d2, x1) - rad__mul32(d1, x2)) * 65536, ar);
     *val = ((uint64_t)v0->at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v0->x) +
            (uint64_t)gy * (uint64_t)((int64_t)py - v0->y);
     *sx = (uint64_t)gx * SUB;

@@ -56,13 +56,145 @@ static inline int64_t rad__shr_round(int64_t v, unsigned n)
     return (int64_t)(biased >> n) - (int64_t)((uint64_t)1 << (62 - n));
 }
 
+/* Integer products, exact, in both builds. Targets without a 32 x 32 -> 64 bit
+ * multiply (ARMv6-M, ARMv8-M baseline: Cortex-M0, M0+, M23 have a 32-bit MULS only)
+ * build them inline from 32-bit products of 16-bit halves, instead of a call to
+ * libgcc's 64 x 64 bit multiply: the same integers, so the same bits everywhere.
+ * RAD__MUL_SPLIT=1 selects those forms on any target (the host tests both). */
+#ifndef RAD__MUL_SPLIT
+#if defined(__ARM_ARCH_6M__) || defined(__ARM_ARCH_8M_BASE__)
+#define RAD__MUL_SPLIT 1
+#else
+#define RAD__MUL_SPLIT 0
+#endif
+#endif
+
+/* The int64 whose two's complement is U (a conversion C99 leaves to the compiler). */
+static inline int64_t rad__s64(uint64_t u)
+{
+    return u >> 63 ? -(int64_t)~u - 1 : (int64_t)u;
+}
+
+/* a * b for any two int32: |a b| <= 2^62. */
+static inline int64_t rad__mul32(int32_t a, int32_t b)
+{
+#if RAD__MUL_SPLIT
+    /* The unsigned product hi 2^32 + lo of ua, ub: partial products of 16-bit halves
+     * are below 2^32, and so is each with a carry of at most 2^16 - 1 added (mid, mid2:
+     * (2^16 - 1)^2 + 2^16 - 1 < 2^32). A negative a is ua - 2^32 (b alike), so the
+     * signed product is the unsigned one less ub 2^32 and ua 2^32, mod 2^64. */
+    uint32_t ua = (uint32_t)a, ub = (uint32_t)b;
+    uint32_t lo = (ua & 0xFFFFu) * (ub & 0xFFFFu);
+    uint32_t mid = (ua >> 16) * (ub & 0xFFFFu) + (lo >> 16);
+    uint32_t mid2 = (ua & 0xFFFFu) * (ub >> 16) + (mid & 0xFFFFu);
+    uint32_t hi = (ua >> 16) * (ub >> 16) + (mid >> 16) + (mid2 >> 16);
+    hi -= (a < 0 ? ub : 0u) + (b < 0 ? ua : 0u);
+    return rad__s64((uint64_t)hi << 32 | (mid2 << 16) | (lo & 0xFFFFu));
+#else
+    return (int64_t)a * b;
+#endif
+}
+
+/* x * m for |m| < 2^16, the product within int64 (the caller's range). */
+static inline int64_t rad__mul16(int64_t x, int32_t m)
+{
+#if RAD__MUL_SPLIT
+    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves, p0 and
+     * p1) and the high word's, of which only the low 32 bits reach the sum; the low
+     * word's carry is rlo < p0. Then the sign. */
+    uint64_t ux = (uint64_t)x, r;
+    uint32_t lo = (uint32_t)ux, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
+    uint32_t p0 = (lo & 0xFFFFu) * um, p1 = (lo >> 16) * um, rlo = p0 + (p1 << 16);
+    uint32_t rhi = (uint32_t)(ux >> 32) * um + (p1 >> 16) + (rlo < p0);
+    r = (uint64_t)rhi << 32 | rlo;
+    return rad__s64(m < 0 ? 0u - r : r);
+#else
+    return x * m;
+#endif
+}
+
+/* The leading zero bits of d > 0, found in five halvings (16, 8, 4, 2, 1). */
+static inline unsigned rad__clz32(uint32_t d)
+{
+    unsigned s = 0;
+    if (d <= 0xFFFFu) {
+        s = 16;
+        d <<= 16;
+    }
+    if (d <= 0xFFFFFFu) {
+        s += 8;
+        d <<= 8;
+    }
+    if (d <= 0xFFFFFFFu) {
+        s += 4;
+        d <<= 4;
+    }
+    if (d <= 0x3FFFFFFFu) {
+        s += 2;
+        d <<= 2;
+    }
+    if (d <= 0x7FFFFFFFu) s += 1;
+    return s;
+}
+
+/* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
+ * normalised V (top bit set), estimated from V's top half, then corrected: the
+ * estimate is at most 2 too large (Knuth, TAOCP 4.3.1, Theorem B). Leaves the
+ * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16. */
+static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
+{
+    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu, q = *u / vn1, rhat = *u - q * vn1;
+    while (q > 0xFFFFu || q * vn0 > (rhat << 16) + lo16) {
+        q--;
+        rhat += vn1;
+        if (rhat > 0xFFFFu) break;
+    }
+    *u = (*u << 16) + lo16 - q * v; /* the true remainder < v, mod 2^32 */
+    return q;
+}
+
+/* n / d for d > 0 and n / d < 2^32 (n >> 32 < d): long division by two 16-bit digits
+ * with 32-bit divisions (Hacker's Delight's divlu), for targets where a 64-bit division
+ * is a long library call. */
+static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
+{
+    unsigned s = rad__clz32(d);
+    uint32_t u1 = (uint32_t)(n >> 32), u0 = (uint32_t)n, q1;
+    uint32_t u = s ? u1 << s | u0 >> (32u - s) : u1, lo = u0 << s;
+    d <<= s;
+    q1 = rad__udigit(&u, lo >> 16, d);
+    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
+}
+
+/* n / d for d > 0: by rad__udiv64_32 where it applies on RAD__MUL_SPLIT targets. */
+static inline uint64_t rad__udiv64(uint64_t n, uint64_t d)
+{
+#if RAD__MUL_SPLIT
+    if (d >> 32 == 0 && n >> 32 < d) return rad__udiv64_32(n, (uint32_t)d);
+#endif
+    return n / d;
+}
+
+/* num / den truncated toward zero, as C99's division, for den != 0 and num > INT64_MIN. */
+static inline int64_t rad__sdiv64(int64_t num, int64_t den)
+{
+#if RAD__MUL_SPLIT
+    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
+    int64_t q = (int64_t)rad__udiv64(n, d);
+    return (num < 0) != (den < 0) ? -q : q;
+#else
+    return num / den;
+#endif
+}
+
 /* num / den rounded half away from zero (C99 division truncates toward zero). */
 static inline int64_t rad__div_round(int64_t num, int64_t den)
 {
     int neg = (num < 0) != (den < 0);
     uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
     uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
-    uint64_t q = (n + d / 2u) / d;
+    uint64_t q = rad__udiv64(n + d / 2u, d);
     return neg ? -(int64_t)q : (int64_t)q;
 }
 
@@ -291,21 +423,21 @@ static inline rad_real_t rad__sat32(int64_t v, uint32_t *sat)
 /* Inputs: |a|, |b| < 2^25 (differences of in-range coordinates, or unit vectors). */
 static inline rad_real_t rad__dot(rad_vec3_t a, rad_vec3_t b)
 {
-    int64_t s = (int64_t)a.x * b.x + (int64_t)a.y * b.y + (int64_t)a.z * b.z;
+    int64_t s = rad__mul32(a.x, b.x) + rad__mul32(a.y, b.y) + rad__mul32(a.z, b.z);
     return (rad_real_t)rad__shr_round(s, 16);
 }
 /* Cross product of vectors of magnitude <= 2 (unit vectors), rounded to Q16.16. */
 static inline rad_vec3_t rad__cross(rad_vec3_t a, rad_vec3_t b)
 {
     rad_vec3_t r;
-    r.x = (rad_real_t)rad__shr_round((int64_t)a.y * b.z - (int64_t)a.z * b.y, 16);
-    r.y = (rad_real_t)rad__shr_round((int64_t)a.z * b.x - (int64_t)a.x * b.z, 16);
-    r.z = (rad_real_t)rad__shr_round((int64_t)a.x * b.y - (int64_t)a.y * b.x, 16);
+    r.x = (rad_real_t)rad__shr_round(rad__mul32(a.y, b.z) - rad__mul32(a.z, b.y), 16);
+    r.y = (rad_real_t)rad__shr_round(rad__mul32(a.z, b.x) - rad__mul32(a.x, b.z), 16);
+    r.z = (rad_real_t)rad__shr_round(rad__mul32(a.x, b.y) - rad__mul32(a.y, b.x), 16);
     return r;
 }
 static inline rad_real_t rad__mul(rad_real_t a, rad_real_t b, uint32_t *sat)
 {
-    return rad__sat32(rad__shr_round((int64_t)a * b, 16), sat);
+    return rad__sat32(rad__shr_round(rad__mul32(a, b), 16), sat);
 }
 static inline rad_real_t rad__div(rad_real_t a, rad_real_t b, uint32_t *sat)
 {
@@ -324,9 +456,9 @@ static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
  * exact in Q32 (< 2^49); its length converts to an area in Q16.16 (< 2^31). */
 static inline rad_real_t rad__area_normal(rad_vec3_t d1, rad_vec3_t d2, rad_vec3_t *n)
 {
-    int64_t cx = (int64_t)d1.y * d2.z - (int64_t)d1.z * d2.y;
-    int64_t cy = (int64_t)d1.z * d2.x - (int64_t)d1.x * d2.z;
-    int64_t cz = (int64_t)d1.x * d2.y - (int64_t)d1.y * d2.x;
+    int64_t cx = rad__mul32(d1.y, d2.z) - rad__mul32(d1.z, d2.y);
+    int64_t cy = rad__mul32(d1.z, d2.x) - rad__mul32(d1.x, d2.z);
+    int64_t cz = rad__mul32(d1.x, d2.y) - rad__mul32(d1.y, d2.x);
     uint64_t len = rad__unit64(cx, cy, cz, n);     /* |c| in Q32 */
     return (rad_real_t)((len + (1u << 16)) >> 17); /* |c| / 2 in Q16.16, rounded */
 }
@@ -356,13 +488,13 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
 /* |a|, |b| < 2^26: the product fits int64 comfortably. */
 static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
 {
-    return a + (rad_real_t)rad__div_round(((int64_t)b - a) * da, (int64_t)da - db);
+    return a + (rad_real_t)rad__div_round(rad__mul32(b - a, da), (int64_t)da - db);
 }
 /* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
 typedef uint64_t rad__recip_t;
 static inline rad__recip_t rad__recip(rad_real_t d)
 {
-    return (((uint64_t)1 << 46) + ((uint64_t)d >> 1)) / (uint64_t)d;
+    return rad__udiv64(((uint64_t)1 << 46) + ((uint64_t)d >> 1), (uint64_t)d);
 }
 /* num * scale / d for num in [0, 2 d], scale <= 2^15: num * inv <= 2^47, times scale
  * <= 2^62. */
@@ -396,7 +528,7 @@ static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
 {
     uint64_t a = (uint64_t)(area > 0 ? area : 1);
-    uint64_t q = (((uint64_t)u << 16) + (a >> 1)) / a;
+    uint64_t q = rad__udiv64(((uint64_t)u << 16) + (a >> 1), a);
     if (q > (uint64_t)INT32_MAX) {
         if (sat) (*sat)++;
         return INT32_MAX;
@@ -412,7 +544,7 @@ static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
         d >>= 1;
     }
     if (d == 0) return n ? INT32_MAX : 0;
-    q = ((n << 16) + (d >> 1)) / d;
+    q = rad__udiv64((n << 16) + (d >> 1), d);
     return q > (uint64_t)INT32_MAX ? INT32_MAX : (rad_real_t)q;
 }
 static inline rad_real_t rad__add_sat(rad_real_t a, rad_real_t b, uint32_t *sat)
@@ -446,7 +578,8 @@ static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
 /* G = F * a / b in Q2.30, saturating at 4.0 (F <= 2^30, a < 2^31). */
 static inline rad_ff_t rad__ff_scale(rad_ff_t f, rad_real_t a, rad_real_t b, uint32_t *sat)
 {
-    uint64_t v = ((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u) / (uint64_t)(b > 0 ? b : 1);
+    uint64_t v =
+        rad__udiv64((uint64_t)f * (uint64_t)a + (uint64_t)b / 2u, (uint64_t)(b > 0 ? b : 1));
     if (v > 0xFFFFFFFFu) {
         if (sat) (*sat)++;
         return 0xFFFFFFFFu;
@@ -468,7 +601,7 @@ static inline rad_ff_t rad__vweight(rad_real_t area)
 }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 {
-    return (rad_real_t)(((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u) / wsum);
+    return (rad_real_t)rad__udiv64((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u, wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i)
 {

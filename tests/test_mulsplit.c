@@ -1,0 +1,163 @@
+/* The split integer forms of the scalar shim (RAD__MUL_SPLIT: what the Cortex-M0 runs,
+ * products from 16-bit halves and 64/32 division by 16-bit digits) against the host's
+ * native 64-bit operations: they must be equal, bit for bit, or the M0's checksums
+ * would differ from the host's. Edge values pairwise, then a pseudo-random stream. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "check.h"
+#define RAD__MUL_SPLIT 1
+#include "scalar.h"
+
+/* The exact reference for products that may leave 64 bits (GCC and Clang on 64-bit
+ * hosts). */
+__extension__ typedef unsigned __int128 u128;
+
+static uint64_t rng_state = 0x2545F4914F6CDD1Dull;
+static uint64_t rnd(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return rng_state;
+}
+
+static const int32_t edges32[] = {0,          1,           -1,         2,          0xFFFF,
+                                  0x10000,    -0x10000,    0x10001,    -0xFFFF,    0x7FFF,
+                                  0x8000,     -0x8000,     0x7FFFFFFF, INT32_MIN,  INT32_MIN + 1,
+                                  0x7FFF0000, -0x7FFF0000, 0x12345678, -0x3C5A0F1E};
+#define N32 (sizeof edges32 / sizeof edges32[0])
+
+static int32_t rnd32(void)
+{
+    return (int32_t)(uint32_t)(rnd() >> (rnd() % 33u));
+}
+
+/* rad__mul32 is the exact product of any two int32, signs and extremes included. */
+static void test_mul32(void **st)
+{
+    size_t i, j;
+    (void)st;
+    for (i = 0; i < N32; i++)
+        for (j = 0; j < N32; j++)
+            CHECK_INT_EQ(rad__mul32(edges32[i], edges32[j]), (int64_t)edges32[i] * edges32[j],
+                         "rad__mul32(%ld, %ld)", (long)edges32[i], (long)edges32[j]);
+    for (i = 0; i < 200000; i++) {
+        int32_t a = rnd() & 1 ? -rnd32() : rnd32(), b = rnd() & 1 ? -rnd32() : rnd32();
+        CHECK_INT_EQ(rad__mul32(a, b), (int64_t)a * b, "rad__mul32(%ld, %ld)", (long)a, (long)b);
+    }
+}
+
+/* rad__mul16 is x * m for |m| < 2^16 whenever the product fits int64 (its contract),
+ * x over the whole int64 range. */
+static void test_mul16(void **st)
+{
+    static const int64_t xs[] = {0,
+                                 1,
+                                 -1,
+                                 0xFFFF,
+                                 0x10000,
+                                 0xFFFFFFFF,
+                                 0x100000000,
+                                 -0x100000000,
+                                 (int64_t)1 << 46,
+                                 -((int64_t)1 << 46),
+                                 ((int64_t)1 << 60) - 1};
+    static const int32_t ms[] = {0, 1, -1, 2, -2, 1023, -1024, 0x7FFF, -0x8000, 0xFFFF, -0xFFFF};
+    size_t i, j, n = 0;
+    (void)st;
+    for (i = 0; i < sizeof xs / sizeof xs[0]; i++)
+        for (j = 0; j < sizeof ms / sizeof ms[0]; j++)
+            if ((u128)(xs[i] < 0 ? -xs[i] : xs[i]) * (uint32_t)(ms[j] < 0 ? -ms[j] : ms[j]) <
+                ((u128)1 << 63))
+                CHECK_INT_EQ(rad__mul16(xs[i], ms[j]), xs[i] * ms[j], "rad__mul16(%lld, %ld)",
+                             (long long)xs[i], (long)ms[j]);
+    for (i = 0; i < 200000; i++) {
+        int64_t x = (int64_t)(rnd() >> (rnd() % 63u + 1u));
+        int32_t m = (int32_t)(rnd() % 65536u);
+        if (rnd() & 1) x = -x;
+        if (rnd() & 1) m = -m;
+        if ((u128)(x < 0 ? -x : x) * (uint32_t)(m < 0 ? -m : m) >= ((u128)1 << 63)) continue;
+        n++;
+        CHECK_INT_EQ(rad__mul16(x, m), x * m, "rad__mul16(%lld, %ld)", (long long)x, (long)m);
+    }
+    /* most of the stream is in range (a draw out of range is skipped, not counted) */
+    CHECK_INT_GT(n, 100000, "in-range draws of 200000");
+}
+
+/* rad__udiv64_32 is n / d for every n with n / d < 2^32: quotients and remainders at
+ * their extremes (0, 2^32 - 1; 0, d - 1), divisors of every length. */
+static void test_udiv64_32(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 400000; i++) {
+        uint32_t d = (uint32_t)(rnd() >> (rnd() % 32u + 32u)),
+                 q = (uint32_t)(rnd() >> (rnd() % 33u));
+        uint64_t r, n;
+        if (!d) d = 1;
+        if (i % 5 == 0) q = 0xFFFFFFFFu;
+        if (i % 7 == 0) q = 0;
+        r = i % 3 == 0 ? d - 1u : rnd() % d;
+        n = (uint64_t)q * d + r;
+        CHECK_INT_EQ(rad__udiv64_32(n, d), q, "rad__udiv64_32(%llu, %lu)", (unsigned long long)n,
+                     (unsigned long)d);
+    }
+}
+
+/* A numerator and a non-zero denominator of any sign, magnitudes below 2^62 of every
+ * length. */
+static void rnd_pair(int64_t *num, int64_t *den)
+{
+    *num = (int64_t)(rnd() >> (rnd() % 62u + 2u));
+    *den = (int64_t)(rnd() >> (rnd() % 62u + 2u));
+    if (!*den) *den = 1;
+    if (rnd() & 1) *num = -*num;
+    if (rnd() & 1) *den = -*den;
+}
+
+/* rad__div_round through the split path and past it (64-bit divisors, quotients of 2^32
+ * and more) equals the native rounding. */
+static void test_div_round(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 200000; i++) {
+        int64_t num, den;
+        uint64_t n, d, want;
+        rnd_pair(&num, &den);
+        n = num < 0 ? (uint64_t)-num : (uint64_t)num;
+        d = den < 0 ? (uint64_t)-den : (uint64_t)den;
+        want = (n + d / 2u) / d;
+        CHECK_INT_EQ(rad__div_round(num, den),
+                     (num < 0) != (den < 0) ? -(int64_t)want : (int64_t)want,
+                     "rad__div_round(%lld, %lld)", (long long)num, (long long)den);
+    }
+}
+
+/* rad__sdiv64 truncates toward zero as C99's division does, signs of both kinds, and
+ * rad__udiv64 (under it) past the 32-bit quotient and divisor. */
+static void test_sdiv64(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 200000; i++) {
+        int64_t num, den;
+        rnd_pair(&num, &den);
+        CHECK_INT_EQ(rad__sdiv64(num, den), num / den, "rad__sdiv64(%lld, %lld)", (long long)num,
+                     (long long)den);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
+        cmocka_unit_test(test_udiv64_32), cmocka_unit_test(test_div_round),
+        cmocka_unit_test(test_sdiv64),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
