@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The split integer forms of the scalar shim (RAD__MUL_SPLIT: what the Cortex-M0 runs,
  * products from 16-bit halves and 64/32 division by 16-bit digits) against the host's
  * native 64-bit operations: they must be equal, bit for bit, or the M0's checksums
