@@ -403,6 +403,36 @@ static void test_emission_limit(void **state)
     done(&r);
 }
 
+/* -o /dev/stdout (the Unix habit): the image goes down standard output, as PNG since the
+ * name has no extension, byte for byte the file -o x.png writes; /dev/stdout itself is
+ * left as it was (file_io writes it through the descriptor, never replaces it). */
+static void test_image_to_stdout(void **state)
+{
+    result_t r;
+    struct stat before, after;
+    char *want, *got, e[512];
+    size_t nwant, ngot;
+    (void)state;
+    CHECK_INT_EQ(lstat("/dev/stdout", &before), 0, "lstat /dev/stdout");
+    RUN(&r, CORNELL, SMALL, "--quiet", "-o", tmp_path("x.png"));
+    expect(&r, 0, "");
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "--quiet", "-o", "/dev/stdout");
+    expect(&r, 0, "");
+    done(&r);
+    if (fio_read_all(tmp_path("x.png"), FIO_LIMIT_IMAGE, &want, &nwant, e, sizeof e) < 0 ||
+        fio_read_all(tmp_path("run.out"), FIO_LIMIT_IMAGE, &got, &ngot, e, sizeof e) < 0)
+        fail_msg("%s", e);
+    CHECK_INT_GT(ngot, 8, "bytes on standard output");
+    CHECK_INT_EQ(ngot, nwant, "-o /dev/stdout's bytes against -o x.png's");
+    CHECK_INT_EQ(memcmp(got, want, nwant), 0, "-o /dev/stdout's image against -o x.png's");
+    free(want);
+    free(got);
+    CHECK_INT_EQ(lstat("/dev/stdout", &after), 0, "lstat /dev/stdout");
+    CHECK_INT_EQ(after.st_ino, before.st_ino, "/dev/stdout's inode, kept");
+    CHECK_INT_EQ(after.st_mode, before.st_mode, "/dev/stdout's kind and mode, kept");
+}
+
 /* ---- the default camera and the exposure ---------------------------------------------- */
 
 /* The two images are the same, pixel for pixel. */
@@ -587,6 +617,7 @@ int main(void)
         cmocka_unit_test(test_exposure_shared_and_printed),
         cmocka_unit_test(test_outward_room_warns),
         cmocka_unit_test(test_help_matches_readme),
+        cmocka_unit_test(test_image_to_stdout),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

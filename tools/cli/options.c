@@ -227,7 +227,7 @@ static void opt_probes_out(opts_t *o, const char *opt, const char *val) { (void)
 
 static const option_t options[] = {
     SECTION("output:"),
-    {"-o", NULL, "FILE", "image to write (.png or .ppm); default: scene name + .png", opt_output},
+    {"-o", NULL, "FILE", "image to write (.png or .ppm; /dev/stdout or a pipe: PNG); default: scene name + .png", opt_output},
     {"--camera", NULL, "EX,EY,EZ,LX,LY,LZ[,FOV]",
      "eye, look-at point, vertical field of view (degrees, 45);\n"
      "repeat '--camera ... -o FILE' to render many views of one solve", opt_camera},

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include "formats/file_io.h"
 #include "formats/image.h"
@@ -58,13 +59,27 @@ char *default_output(const char *scene)
     return out;
 }
 
+/* The image format for PATH: by its extension, .png or .ppm; a name without one under
+ * /dev/ or /proc/self/fd/ (-o /dev/stdout, whatever standard output is), or that is a
+ * device or a FIFO now, gets PNG: file_io writes those in place, through their own
+ * descriptor, so there is no name to tell the format by. Anything else: NULL. */
+static const char *image_format(const char *path)
+{
+    struct stat st;
+    if (strcasecmp(ext_of(path), ".png") == 0) return "png";
+    if (strcasecmp(ext_of(path), ".ppm") == 0) return "ppm";
+    if (strncmp(path, "/dev/", 5) == 0 || strncmp(path, "/proc/self/fd/", 14) == 0) return "png";
+    if (stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) return "png";
+    return NULL;
+}
+
 /* Fails early (exit 1) when PATH could not be written after a long solve (fio_check_out:
  * a folder that does not exist or is not writable, a directory, a name too long for its
  * temporary file) or, for images, has an unknown extension. */
 static void check_output(const char *path, int image)
 {
     char err[1024];
-    if (image && strcasecmp(ext_of(path), ".png") != 0 && strcasecmp(ext_of(path), ".ppm") != 0) {
+    if (image && !image_format(path)) {
         fprintf(stderr, PROG ": %s: unknown image extension (use .png or .ppm)\n", path);
         exit(CLI_EXIT_ERROR);
     }
@@ -159,7 +174,9 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     tonemap(ot->img, npix, ot->exposure, ot->rgb8);
     ot->t_render += host_now() - t1;
     t1 = host_now();
-    if (path && img_write(path, ot->rgb8, o->width, o->height, err, sizeof err) < 0) {
+    fflush(stdout); /* what was printed comes before an image sent to /dev/stdout */
+    if (path && img_write_as(path, image_format(path), ot->rgb8, o->width, o->height, err,
+                             sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }
