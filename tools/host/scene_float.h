@@ -10,15 +10,7 @@
 #ifndef RAD_HOST_FLOAT_NAMES
 typedef struct scf_solver scf_solver;
 typedef struct scf_solution scf_solution;
-typedef struct scf_gatherer scf_gatherer;scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
-void scf_gatherer_free(scf_gatherer *g);
-int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
-int scf_gather_sh(scf_gatherer *g, const double p[3], int ambient, double sh[9][3]);
-unsigned long scf_gatherer_saturations(scf_gatherer *g);
-
-int scf_solve_parallel(scf_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress,
-    void *ctx);
-
+typedef struct scf_gatherer scf_gatherer;
 #endif
 
 scf_solver *scf_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
