@@ -313,6 +313,7 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
     uint32_t res = s->cfg.res, q = res / 2u, i;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
+    if (q == 0) return; /* rad_init keeps res >= 8: for the analyzer, which cannot see it */
     for (r = reg->row0; r < reg->row1; r++) {
         uint32_t px = reg->offset + (uint32_t)(r - reg->row0) * res;
         const rad_index_t *ids = ibuf + px;
@@ -336,6 +337,7 @@ static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const 
 {
     uint32_t q = s->cfg.res / 2u, n = s->n_elements, px, i;
     uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    if (q == 0) return; /* as in accumulate */
     for (px = reg->offset; px < end; px += q) {
         uint32_t lo = 0xFFFFFFFFu, hi = 0;
         for (i = px; i < px + q; i++) {

@@ -410,8 +410,8 @@ static void test_image_to_stdout(void **state)
 {
     result_t r;
     struct stat before, after;
-    char *want, *got, e[512];
-    size_t nwant, ngot;
+    char *want = NULL, *got = NULL, e[512];
+    size_t nwant = 0, ngot = 0;
     (void)state;
     CHECK_INT_EQ(lstat("/dev/stdout", &before), 0, "lstat /dev/stdout");
     RUN(&r, CORNELL, SMALL, "--quiet", "-o", tmp_path("x.png"));

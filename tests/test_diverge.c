@@ -12,6 +12,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "rad/rad.h"
 #include "scenes.h"
 #include "formats/obj.h"
 #include "host/obj_polys.h"
@@ -287,7 +288,8 @@ static void test_rows_memory(void **st)
     assert_non_null(s);
     sc_get_stats(s, &a);
     per_row = a.elements < 3 * 32 * 32 ? a.elements : 3 * 32 * 32;
-    bound = 4.0 * (a.patches + 1) + 6.0 * a.patches * per_row;
+    /* an entry is an element id (rad_index_t: 16 or 32 bits) and a 16-bit code */
+    bound = 4.0 * (a.patches + 1) + (sizeof(rad_index_t) + 2.0) * a.patches * per_row;
     sc_set_memory_limit(s, bound - 1);
     assert_int_equal(sc_rows_compute(s, NULL, NULL, err, sizeof err), -1);
     print_message("limit %.0f bytes: %s\n", bound - 1, err);
