@@ -13,6 +13,7 @@
 
 #include "check.h"
 #include "formats/obj.h"
+#include "warnings.h"
 
 #define DATA "tests/data/obj/"
 
@@ -34,20 +35,6 @@ static void assert_vec_at(obj_vec3 v, double x, double y, double z, const char *
     near_at(v.z, z, 0, "z", file, line);
 }
 #define assert_vec(v, x, y, z) assert_vec_at((v), (x), (y), (z), __FILE__, __LINE__)
-
-/* Warnings seen by the callback. */
-typedef struct {
-    int n;
-    char msg[4][256];
-} warnings;
-
-static void collect(void *ctx, const char *msg)
-{
-    warnings *w = ctx;
-    if (w->n < 4)
-        snprintf(w->msg[w->n], sizeof w->msg[0], "%s", msg);
-    w->n++;
-}
 
 static warnings seen;
 static char err[512];

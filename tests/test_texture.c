@@ -21,6 +21,7 @@
 #include "host/tex_render.h"
 #include "scenes.h"
 #include "tmpdir.h"
+#include "warnings.h"
 
 TMPDIR_GROUP("texture")
 
@@ -34,20 +35,6 @@ static void near_at(double a, double b, double eps, const char *expr, const char
     _fail(file, line);
 }
 #define assert_near(a, b, eps) near_at((a), (b), (eps), #a, __FILE__, __LINE__)
-
-/* Warnings seen by a callback. */
-typedef struct {
-    int n;
-    char msg[4][512];
-} warnings;
-
-static void collect(void *ctx, const char *msg)
-{
-    warnings *w = ctx;
-    if (w->n < 4)
-        snprintf(w->msg[w->n], sizeof w->msg[0], "%s", msg);
-    w->n++;
-}
 
 static void write_bytes(const char *path, const void *data, size_t n)
 {
