@@ -227,13 +227,15 @@ typedef struct {
 } canvas_t;
 
 /* One pass of a cube: its centre C and frame, the regions drawn, and the surface not
- * drawn (the shooter's own; any value past the last surface: none). */
+ * drawn (the shooter's own; any value past the last surface: none), nor those joined
+ * to patch GROUP (the shooter's group, rad_join_polygon, which stands for one flat
+ * patch: from its centre off a curved group's faces it would light itself). */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
     const region_t *reg;
     unsigned nreg;
-    uint32_t skip;
+    uint32_t skip, group;
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
@@ -292,7 +294,8 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
             t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
-        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
+        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F,
+                  (rad_index_t)rad__group_element(s, sf, sf->first_element));
     }
 }
 
@@ -398,8 +401,11 @@ void rad__cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 static void render_view(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps)
 {
     uint32_t k;
-    for (k = 0; k < s->n_surfaces; k++)
-        if (k != ps->skip) render_surface(s, cv, ps, &s->pools.surfaces[k]);
+    for (k = 0; k < s->n_surfaces; k++) {
+        const rad_surface_t *sf = &s->pools.surfaces[k];
+        if (k != ps->skip && (sf->n_patches != 0 || sf->first_patch != ps->group))
+            render_surface(s, cv, ps, sf);
+    }
 }
 
 /* Every surface but the shooter's own into the regions, seen from patch P's centre
@@ -416,6 +422,7 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     ps.reg = reg;
     ps.nreg = nreg;
     ps.skip = pt->surface;
+    ps.group = p;
     render_view(s, cv, &ps);
 }
 
@@ -453,6 +460,7 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     ps.reg = &reg;
     ps.nreg = 1;
     ps.skip = e->skip;
+    ps.group = UINT32_MAX;
     clear_region(&cv, &reg);
     render_view(s, &cv, &ps);
 }

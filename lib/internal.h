@@ -305,6 +305,14 @@ static inline rad_real_t rad__mscale(rad__msum_t m, uint32_t k, uint32_t *sat)
 }
 #endif
 
+/* The element that element E's surface SF shows and whose id its pixels carry: E
+ * itself, or for a surface joined to a group (rad_join_polygon: no patch of its own)
+ * the group's receiver, its patch's first element, whose area is the group's. */
+static inline uint32_t rad__group_element(const rad_scene_t *s, const rad_surface_t *sf, uint32_t e)
+{
+    return sf->n_patches ? e : s->pools.patches[sf->first_patch].first_element;
+}
+
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)
 {

@@ -193,7 +193,7 @@ typedef struct {
     rad_real_t max_element; /* longest element edge; default 4.0 units */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
-    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, or 0 */
+    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
 } rad_config_t;
 
 /* A work buffer too small for all five faces renders the cube in bands of rows (the
@@ -215,6 +215,17 @@ typedef struct {
  * 16 halvings, and where the unshot total stops falling (4 shots a patch + 64 without a
  * new lowest), shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
+
+/* Polygons that reflect (no emission) are accepted down to an area of 2^-16 square
+ * units (one LSB; by default 1/4096), so that detail too small for the core's
+ * precision still occludes in every hemi-cube and passes on the power it receives:
+ * power reaches an element and its patch as rho F U whatever the element's area, so
+ * the energy carried is exact, while the element's own radiosity, that power over an
+ * area rounded to 2^-16 (a relative error up to 2^-17 / area) and from the few pixels
+ * it covers in each shot, is imprecise: shade such faces from the solution around them
+ * (rad_gather at the face). An emitter still needs 1/4096: its power is its emission
+ * times its area (an emission given later by rad_set_surface carries that rounding). */
+#define RAD_SMALL_FACES 64u
 
 typedef struct {
     uint32_t shots;         /* patches shot */
@@ -299,8 +310,29 @@ int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
 int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
 
+/* Adds polygon V (N = 3 or 4 vertices, as rad_add_polygon; area below 1/4096, one
+ * element) as a surface of its own that joins the last patch added, with REFLECTANCE
+ * (NULL: black) and no emission (RAD_SMALL_FACES). Faces too small for a patch each,
+ * grouped by the caller (nearby, facing about the same way), then act as one patch of
+ * their size: drawn one by one in every cube, but their pixels count for the group's
+ * first element, its receiver, whose area becomes the group's (a face's own share of
+ * a shot is often below the 2^-16 a power keeps); the group shoots from the patch's
+ * centre (the mean of its elements' vertices) on its first surface's normal, and every
+ * face of it shows the group's radiosity (rad_element_radiosity, rad_shade_vertices).
+ * Each join is a pass over the patch's elements. A group's surfaces cannot emit
+ * (rad_set_surface refuses it); its overshoot, ambient share and Gauss-Seidel row take
+ * its first surface's reflectance. Takes 1 surface, no patch, 1 element and N
+ * vertices. Returns the new surface's index, or RAD_ERR_ARG (no RAD_SMALL_FACES, a
+ * polygon of 1/4096 or more or longer than max_element, a group of 16384 units^2),
+ * RAD_ERR_STATE (after shooting started, no patch yet, or the last patch emits),
+ * RAD_ERR_RANGE, RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR or RAD_ERR_FULL as
+ * rad_add_polygon. */
+int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance);
+
 /* Changes the reflectance and emission of surface SURF (either may be NULL to keep it).
- * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE. */
+ * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE
+ * (also: an emission for a surface of a group, rad_join_polygon). */
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
 

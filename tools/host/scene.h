@@ -45,6 +45,8 @@ typedef struct {
     double tol;                     /* that tolerance */
     unsigned long backoffs;         /* overshoot halvings (rad_stats_t.backoffs) */
     int skipped_emitters;           /* emitting polygons skipped (each warned) */
+    int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
+                                       shown from the light around them */
 } sc_stats;
 
 typedef struct {
