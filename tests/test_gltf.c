@@ -21,6 +21,7 @@
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
 #include "tmpdir.h"
+#include "assimp.h"
 
 TMPDIR_GROUP("gltf")
 
@@ -344,25 +345,6 @@ static void collect(void *ctx, const char *msg)
     int *n = ctx;
     print_message("warning: %s\n", msg);
     (*n)++;
-}
-
-/* assimp reads FILE without an error (skipped with a message if not installed). */
-static void assimp_reads(const char *path)
-{
-    char cmd[600];
-    int rc;
-    if (system("command -v assimp >/dev/null 2>&1") != 0) {
-        print_message("assimp not installed (Debian assimp-utils): its check skipped\n");
-        return;
-    }
-    snprintf(cmd, sizeof cmd, "assimp info '%s' > '%s' 2>&1", path, tmp_path("assimp.txt"));
-    rc = system(cmd);
-    if (rc != 0) {
-        snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("assimp.txt"));
-        if (system(cmd)) {
-        }
-    }
-    assert_int_equal(rc, 0);
 }
 
 /* ---- tests ------------------------------------------------------------------------ */

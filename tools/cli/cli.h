@@ -73,6 +73,7 @@ typedef struct {
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
+    int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
     /* stored form factors and relighting */
@@ -176,7 +177,9 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int check_cameras(sc_solver *s, const opts_t *o);
 int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
-int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st);
+/* --export-ply: 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear) binary float
+ * radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
+int write_ply(const char *path, sc_solver *s, int ambient, int linear, double exposure, const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front

@@ -108,6 +108,7 @@ static void opt_height(opts_t *o, const char *opt, const char *val) { o->height 
 static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->exposure = parse_pos(opt, val); }
 static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
 static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
+static void opt_ply_linear(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->ply_linear = 1; }
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
 static void opt_no_textures(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_textures = 1; }
@@ -239,6 +240,9 @@ static const option_t options[] = {
      "its 97th percentile maps to white; one exposure for every view)", opt_exposure},
     {"--no-ambient", NULL, NULL, "show the partial solution without the ambient term", opt_no_ambient},
     {"--export-ply", NULL, "FILE", "the meshed scene with vertex colours (PLY)", opt_ply},
+    {"--ply-linear", NULL, NULL,
+     "--export-ply as binary PLY: linear float radiosity, welded\n"
+     "vertices, normals (default: ASCII, sRGB at the images' exposure)", opt_ply_linear},
     {"--dump-radiosity", NULL, "FILE",
      "one CSV row per element:\nelement,surface,material,area,cx,cy,cz,r,g,b", opt_csv},
     {"--export-gltf", NULL, "FILE",
@@ -358,6 +362,7 @@ static void check_combinations(opts_t *o)
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
+    if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
         if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);

@@ -415,7 +415,7 @@ static int output_step(run_t *r)
     else
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
-    if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ambient, r->ot.exposure, &r->st);
+    if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
     if (rc == 0 && o->gltf) {
         char err[1024];
         rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, o->gltf, obj_warning,
@@ -462,7 +462,8 @@ static void print_stats(const run_t *r)
     printf("overshoot back-offs %lu\n", st->backoffs);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
-    printf("exposure %.9g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");
+    printf("exposure %.9g (%s%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view",
+           o->ply && !o->ply_linear ? "; also --export-ply's sRGB colours" : "");
     if (r->landing >= 0)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);

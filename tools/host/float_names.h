@@ -3,7 +3,8 @@
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once
  * per build of the core include it: tools/host/scene.c, tools/host/parallel.c,
- * tools/host/gltf_export.c, tools/host/tex_render.c and tools/cli/rad_cli.c. */
+ * tools/host/gltf_export.c, tools/host/tex_render.c, tools/host/ply_export.c and
+ * tools/cli/rad_cli.c. */
 #ifndef RAD_TOOLS_FLOAT_NAMES_H
 #define RAD_TOOLS_FLOAT_NAMES_H
 
@@ -49,6 +50,7 @@
 #define sc_gatherer_saturations scf_gatherer_saturations
 #define sc_corner_light scf_corner_light
 #define sc_export_gltf scf_export_gltf
+#define sc_export_ply scf_export_ply
 #define sc_render_textured scf_render_textured
 
 #endif
