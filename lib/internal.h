@@ -223,24 +223,41 @@ static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
     return k == 0 ? c->r : k == 1 ? c->g : c->b;
 }
 
-/* Element E's radiosity as shown: plus reflectance times AMB when AMB is given, and at
- * least 0 (while overshooting, power owed can make either negative for a while).
- * Saturations are counted in SAT. */
-static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_rgb_t *amb,
-                                   uint32_t *sat)
+/* What the ambient term AMB adds to the shown radiosity of a surface of reflectance R. */
+static inline rad_rgb_t rad__ambient_part(const rad_rgb_t *r, const rad_rgb_t *amb, uint32_t *sat)
 {
-    const rad_element_t *el = &s->pools.elements[e];
-    rad_rgb_t b = el->radiosity;
-    if (amb) {
-        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
-        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
-        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
-        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
+    rad_rgb_t a;
+    a.r = rad__mul(r->r, amb->r, sat);
+    a.g = rad__mul(r->g, amb->g, sat);
+    a.b = rad__mul(r->b, amb->b, sat);
+    return a;
+}
+
+/* Radiosity B as shown: plus the ambient part A when A is given, and at least 0 (while
+ * overshooting, power owed can make either negative for a while). */
+static inline rad_rgb_t rad__shown_plus(rad_rgb_t b, const rad_rgb_t *a, uint32_t *sat)
+{
+    if (a) {
+        b.r = rad__add_sat(b.r, a->r, sat);
+        b.g = rad__add_sat(b.g, a->g, sat);
+        b.b = rad__add_sat(b.b, a->b, sat);
     }
     if (b.r < 0) b.r = 0;
     if (b.g < 0) b.g = 0;
     if (b.b < 0) b.b = 0;
     return b;
+}
+
+/* Element E's radiosity as shown: plus reflectance times AMB when AMB is given, and at
+ * least 0. Saturations are counted in SAT. */
+static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_rgb_t *amb,
+                                   uint32_t *sat)
+{
+    const rad_element_t *el = &s->pools.elements[e];
+    rad_rgb_t a;
+    if (!amb) return rad__shown_plus(el->radiosity, 0, sat);
+    a = rad__ambient_part(&s->pools.surfaces[el->surface].reflectance, amb, sat);
+    return rad__shown_plus(el->radiosity, &a, sat);
 }
 
 /* Gather sums (gather.c): weights (Q2.30) times shown radiosities (Q16.16, >= 0), over

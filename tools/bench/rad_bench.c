@@ -26,6 +26,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <pthread.h>
+
+#include "bake/lightmap.h"
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
@@ -988,6 +991,114 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
     }
 }
 
+/* ---- lightmap baking ---------------------------------------------------------- */
+
+/* A lightmap bake's worker: the covered texels of rows Y % STEP == FIRST through a
+ * gatherer of its own; its gathers counted and its thread's processor time. */
+typedef struct {
+    lm_atlas *a;
+    sc_gatherer *g;
+    int first, step;
+    long gathers;
+    double cpu;
+} lm_work;
+
+static int lm_count(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    lm_work *w = ctx;
+    w->gathers++;
+    return sc_gather(w->g, p, n, 1, rgb);
+}
+
+static void *lm_worker(void *arg)
+{
+    lm_work *w = arg;
+    double t = thread_cpu();
+    if (lm_gather_rows(w->a, w->first, w->step, lm_count, w) != 0) exit(1);
+    w->cpu = thread_cpu() - t;
+    return NULL;
+}
+
+/* The rows Y % STEP in FIRST[0..NT-1] of A gathered at RES on NT threads at once (one
+ * per set); their gathers into *N, the wall time returned, the processor time of the
+ * first thread (its gathers alone) into *CPU0. */
+static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt, long *n, double *cpu0)
+{
+    lm_work w[2];
+    pthread_t th;
+    double t0;
+    int k;
+    for (k = 0; k < nt; k++) {
+        w[k].a = a;
+        w[k].first = first[k];
+        w[k].step = step;
+        w[k].gathers = 0;
+        if (!(w[k].g = sc_gatherer_new(s, res, 0))) exit(1);
+    }
+    t0 = host_now();
+    if (nt > 1 && pthread_create(&th, NULL, lm_worker, &w[1]) != 0) exit(1);
+    lm_worker(&w[0]);
+    if (nt > 1) pthread_join(th, NULL);
+    t0 = host_now() - t0;
+    *n = 0;
+    for (k = 0; k < nt; k++) {
+        *n += w[k].gathers;
+        sc_gatherer_free(w[k].g);
+    }
+    *cpu0 = w[0].cpu / (w[0].gathers ? w[0].gathers : 1);
+    return t0;
+}
+
+/* CornellBox-Original (SC, NULL when absent) baked into 512 x 512 texels: the whole
+ * bake's gathers, then per gather resolution the time of a gather over a subset of
+ * rows (every STEP-th: the whole bake would take minutes at 64), on one thread and
+ * on two (the same rows split in two sets). */
+static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
+{
+    static const int res[3] = {16, 32, 64}, steps[3] = {4, 8, 32};
+    lm_opts lo = {512, 0, 0};
+    lm_atlas a;
+    sc_opts o;
+    sc_solver *s;
+    char err[512];
+    long total = 0, n1, n2;
+    double load = -1;
+    int i, x, y;
+    out(rp, "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 x 512 texels, "
+        "solved as above (fixed build, to 0.001), each covered texel one gather (`sc_gather`, with the ambient "
+        "term). Each resolution gathers every n-th row of the atlas (a sample of the texels), once on one "
+        "thread and once on two (the same rows in two sets); us per gather is the processor time of one "
+        "thread over its gathers, the whole bake's estimate that times the bake's gathers:\n\n");
+    if (!sc) {
+        out(rp, "skipped: %s not found.\n", shared);
+        return;
+    }
+    o = scene_opts(sc);
+    s = fixed_solver(sc, sc->polys, &o);
+    sc_solve(s, 1000000, 0.001, NULL, NULL);
+    if (lm_build(&a, sc->polys, sc->n, &lo, err, sizeof err) != 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3];
+            total += lm_texel_point(&a, x, y, p);
+        }
+    out(rp, "%d charts, %ld texels gathered of %d.\n\n| gather res | rows | gathers | us per gather | "
+        "texels/s, 1 thread | texels/s, 2 threads | speed-up | whole bake s, 1 thread (estimate) | load average |\n"
+        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n", a.ncharts, total, a.size * a.size);
+    for (i = 0; i < 3; i++) {
+        int one[1] = {0}, two[2] = {0, steps[i]};
+        double cpu, cpu2, t1, t2;
+        fprintf(stderr, "rad_bench: lightmap at gather resolution %d ...\n", res[i]);
+        t1 = lm_rows(s, &a, res[i], steps[i], one, 1, &n1, &cpu);
+        t2 = lm_rows(s, &a, res[i], 2 * steps[i], two, 2, &n2, &cpu2);
+        if (getloadavg(&load, 1) != 1) load = -1;
+        out(rp, "| %d | 1 in %d | %ld | %.1f | %.0f | %.0f | %.2f | %.1f | %.2f |\n", res[i], steps[i], n1, 1e6 * cpu,
+            n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * total, load);
+    }
+    lm_free(&a);
+    sc_destroy(s);
+}
+
 /* docs/bench.md, and the README's section between the bench markers, regenerated. */
 static void write_docs(const report_t *rp)
 {
@@ -1309,6 +1420,7 @@ int main(int argc, char **argv)
     report_parallel(&rp, scenes, ns, fx);
     report_large(&rp);
     report_textures(&rp, argv[0]);
+    report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

@@ -24,6 +24,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/scene.h"
@@ -194,6 +195,10 @@ int bake_prepare(run_t *r);
 /* --lightmap and --probes / --probe-file: baked from the solution (after the views);
  * 0, or -1 after one line on stderr. Nothing asked: 0. */
 int bake_step(run_t *r);
+/* --export-gltf with --lightmap: the .glb written after the bake, with TEXCOORD_1 and
+ * the atlas (sc_export_gltf_lightmap); WARN gets the writer's warnings. 0 (nothing to
+ * do, or written) or -1 (said). */
+int bake_export_gltf(run_t *r, gltf_warn_fn warn);
 void bake_free(run_t *r);
 /* The scene's name + .probes.json (malloc'd), as default_output. */
 char *probes_output(const char *scene);

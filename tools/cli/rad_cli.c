@@ -416,7 +416,7 @@ static int output_step(run_t *r)
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
     if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
-    if (rc == 0 && o->gltf) {
+    if (rc == 0 && o->gltf && !o->lightmap) { /* with a lightmap: after the bake */
         char err[1024];
         rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, o->gltf, obj_warning,
                             (void *)o, err, sizeof err);
@@ -580,6 +580,7 @@ int main(int argc, char **argv)
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
     if (rc == 0) rc = bake_step(&r);
+    if (rc == 0) rc = bake_export_gltf(&r, obj_warning);
     if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
     if (rc == 0) rc = verdict(&r);

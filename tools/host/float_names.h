@@ -51,6 +51,7 @@
 #define sc_corner_light scf_corner_light
 #define sc_export_gltf scf_export_gltf
 #define sc_export_ply scf_export_ply
+#define sc_export_gltf_lightmap scf_export_gltf_lightmap
 #define sc_render_textured scf_render_textured
 
 #endif
