@@ -26,6 +26,7 @@
 
 #include "formats/obj.h"
 #include "formats/texture.h"
+#include "host/fgather.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */
@@ -98,6 +99,8 @@ typedef struct {
     double exposure; /* 0 until the first view fixes it */
     const obj_scene *sc;    /* with MAPS: views drawn with the textures' detail */
     const tex_image *maps;
+    sc_fgather *fg;         /* --gather: views and vertex exports by gathering, else NULL */
+    long gathers;           /* the views' gathers */
     double t_render, t_write;
 } out_t;
 
@@ -176,7 +179,8 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int check_cameras(sc_solver *s, const opts_t *o);
 int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
-int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st);
+/* The meshed scene, its vertex colours from sc_vertex_colours (gathered with FG). */
+int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, double exposure, const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front
