@@ -428,7 +428,7 @@ static void test_solution_colours(void **state)
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-5, NULL, NULL);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, tmp_path("box.glb"), NULL, NULL, err,
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("box.glb"), NULL, NULL, err,
                                     sizeof err),
                      0);
     read_glb(tmp_path("box.glb"), &g);
@@ -517,7 +517,7 @@ static void test_solution_colours(void **state)
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-3, NULL, NULL);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, tmp_path("room.glb"), collect,
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("room.glb"), collect,
                                     &warnings, err, sizeof err),
                      0);
     assert_int_equal(warnings, 1); /* the TGA */

@@ -276,26 +276,9 @@ typedef struct {
  * from C before the move into *DIST. */
 static void tri_sample(const tri_t *t, const double c[2], double m, double q[2], double *dist)
 {
-    int k, pass;
     geom_tri2_closest(t->p, c, q);
     *dist = hypot(q[0] - c[0], q[1] - c[1]);
-    for (pass = 0; pass < 2; pass++)
-        for (k = 0; k < 3; k++) {
-            const double *p0 = t->p[k], *p1 = t->p[(k + 1) % 3], *p2 = t->p[(k + 2) % 3];
-            double nx = p0[1] - p1[1], ny = p1[0] - p0[0], len = hypot(nx, ny), s;
-            if (!t->b[k] || !(len > 0.0)) continue;
-            nx /= len;
-            ny /= len;
-            if ((p2[0] - p0[0]) * nx + (p2[1] - p0[1]) * ny < 0.0) {
-                nx = -nx;
-                ny = -ny;
-            }
-            s = (q[0] - p0[0]) * nx + (q[1] - p0[1]) * ny;
-            if (s < m) {
-                q[0] += (m - s) * nx;
-                q[1] += (m - s) * ny;
-            }
-        }
+    geom_tri2_inset(&t->p, &t->b, 1, m, q);
 }
 
 /* Samples the texels of chart C within a texel of triangle T (those it touches, and
@@ -371,25 +354,10 @@ static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a
  * moves past the nearest such face by the margin. */
 static void push_out(lm_atlas *a, const lm_chart *c, float *st)
 {
-    double s[2] = {st[0], st[1]}, p[3], best = HUGE_VAL, dir[3], dirs[4][3];
-    int k, j, found = -1;
+    double s[2] = {st[0], st[1]}, p[3], best, dir[3];
     rect_point(a, c, s, lift_of(a), p);
-    for (k = 0; k < 3; k++) {
-        dirs[0][k] = c->u[k];
-        dirs[1][k] = -c->u[k];
-        dirs[2][k] = c->v[k];
-        dirs[3][k] = -c->v[k];
-    }
-    for (j = 0; j < 4; j++) {
-        int back = 0;
-        double t = geom_grid_ray(a->grid, a->polys, p, dirs[j], 0.75 * a->texel, &back);
-        if (back && t < best) {
-            best = t;
-            found = j;
-        }
-    }
-    if (found < 0) return;
-    memcpy(dir, dirs[found], sizeof dir);
+    best = geom_back_ray(a->grid, a->polys, p, c->u, c->v, 0.75 * a->texel, dir);
+    if (!(best < HUGE_VAL)) return;
     best += margin_of(a);
     st[0] = (float)(s[0] + best / a->texel * geom_dot(dir, c->u));
     st[1] = (float)(s[1] + best / a->texel * geom_dot(dir, c->v));

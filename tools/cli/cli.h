@@ -27,6 +27,7 @@
 #include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
+#include "host/fgather.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */
@@ -100,6 +101,8 @@ typedef struct {
     double exposure; /* 0 until the first view fixes it */
     const obj_scene *sc;    /* with MAPS: views drawn with the textures' detail */
     const tex_image *maps;
+    sc_fgather *fg;         /* --gather: views and vertex exports by gathering, else NULL */
+    long gathers;           /* the views' gathers */
     double t_render, t_write;
 } out_t;
 
@@ -178,9 +181,11 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int check_cameras(sc_solver *s, const opts_t *o);
 int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
-/* --export-ply: 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear) binary float
- * radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
-int write_ply(const char *path, sc_solver *s, int ambient, int linear, double exposure, const sc_stats *st);
+/* --export-ply: the meshed scene, its vertex colours from sc_vertex_colours (gathered
+ * with FG when --gather is given), 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear)
+ * binary float radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
+int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+              const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front

@@ -205,10 +205,10 @@ static void opt_lightmap(opts_t *o, const char *opt, const char *val)
 
 static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
 
-static void opt_gather_res(opts_t *o, const char *opt, const char *val)
+static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
     o->gather_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->gather_res % 2) die_usage("--gather-res must be even", val);
+    if (o->gather_res % 2) die_usage("--gather must be even", val);
 }
 
 static void opt_probes(opts_t *o, const char *opt, const char *val)
@@ -249,13 +249,18 @@ static const option_t options[] = {
      "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
      "arriving at each vertex, materials unlit with their textures", opt_gltf},
     {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
+    {"--gather", NULL, "RES",
+     "shade the views and vertex exports by gathering the light at each\n"
+     "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
+     "for small lamps): shadows sharper than the elements; also the\n"
+     "lightmap's and probes' gather resolution (32 without it)", opt_gather},
     SECTION("solver:"),
     {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
     {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels too", opt_threads},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels and --gather's gathers too", opt_threads},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
@@ -287,7 +292,6 @@ static const option_t options[] = {
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
-    {"--gather-res", NULL, "N", "a texel's or probe's gather cube resolution, even, 8..1024 (32)", opt_gather_res},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},

@@ -165,9 +165,16 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     char err[1024];
     double t1 = host_now();
     size_t npix = (size_t)o->width * o->height;
-    if ((ot->maps ? sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height,
-                                       ot->img, err, sizeof err)
-                  : sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err)) < 0) {
+    int rc;
+    if (ot->fg) {
+        rc = sc_fgather_render(ot->fg, cam, o->width, o->height, ot->img, &ot->gathers, err, sizeof err);
+        if (rc == 0 && ot->maps) rc = sc_texture_detail(s, ot->sc, ot->maps, cam, o->width, o->height, ot->img, err, sizeof err);
+    } else if (ot->maps) {
+        rc = sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
+    } else {
+        rc = sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
+    }
+    if (rc < 0) {
         fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
         return -1;
     }
@@ -234,13 +241,15 @@ int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, 
     return out_commit(fo);
 }
 
-/* The vertex colours are sc_shade's: each core vertex's radiosity (Gouraud). */
-int write_ply(const char *path, sc_solver *s, int ambient, int linear, double exposure, const sc_stats *st)
+/* The vertex colours are sc_vertex_colours': each core vertex's radiosity (Gouraud), or
+ * gathered with FG. */
+int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+              const sc_stats *st)
 {
     char err[1024];
     int rc = -1;
     double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
-    if (!rgb || sc_shade(s, ambient, rgb) < 0) fprintf(stderr, PROG ": out of memory\n");
+    if (!rgb || sc_vertex_colours(s, fg, ambient, rgb) < 0) fprintf(stderr, PROG ": out of memory\n");
     else if ((rc = sc_export_ply(s, rgb, path, linear ? PLY_BINARY_LINEAR : PLY_ASCII_SRGB, exposure, err,
                                  sizeof err)) < 0)
         fprintf(stderr, PROG ": %s\n", err);

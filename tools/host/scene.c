@@ -1257,13 +1257,19 @@ static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3
 
 int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
 {
+    return sc_gather_on(q, p, n, -1, ambient, rgb);
+}
+
+int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient, double rgb[3])
+{
     rad_vec3_t c, nc;
     rad_rgb_t out;
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     int flags = gather_frame(q, p, ambient, &c);
     if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
     nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, RAD_INDEX_NONE, flags, &out) < 0) return -1;
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface, flags, &out) < 0)
+        return -1;
     rgb_out(q->h, &out, rgb);
     return 0;
 }

@@ -166,6 +166,9 @@ void sc_gatherer_free(sc_gatherer *g);
  * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the
  * surface. 0, or -1 (P outside the scene's frame, N zero, a sphere gatherer). */
 int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+/* sc_gather from a point on core surface SURFACE (-1: none), which is not drawn: a
+ * quad planar only within the core's tolerance is not seen edge-on from just above. */
+int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int ambient, double rgb[3]);
 /* The radiosity seen from P in every direction, projected on the nine real SH of bands
  * 0..2 (rad_gather_sh's order and scale), caller units. 0 or -1 as sc_gather. */
 int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]);
