@@ -11,6 +11,8 @@
 #define rad__shoot           radf__shoot
 #define rad__cube_part       radf__cube_part
 #define rad__cube_merge      radf__cube_merge
+#define rad__cube_level      radf__cube_level
+#define rad__shot_cube       radf__shot_cube
 #define rad__surface_corners radf__surface_corners
 #define rad__lattice_init    radf__lattice_init
 #define rad__lattice_face    radf__lattice_face
@@ -149,8 +151,14 @@ typedef struct {
 /* Face FACE of E's cube into its buffers: cleared, then every surface drawn (rows 0 at
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
-/* Form factors from patch P's centre to every element, into s->acc. */
+/* Form factors from patch P's centre to every element, into s->acc, at res. */
 void rad__hemicube(rad_scene_t *s, uint32_t p);
+/* The shot's cube at coarse level LEVEL (0: res; rad_config_t.coarse) or the deepest
+ * the scene allows: sets s->cube_res and the cube's tables (block sums of the res
+ * table, built when the level changes). Returns the level set. */
+unsigned rad__cube_level(rad_scene_t *s, unsigned level);
+/* rad__hemicube at the level rad__cube_level set. */
+void rad__shot_cube(rad_scene_t *s, uint32_t p);
 
 /* Element E receives power F * U (three channels) from a shooter; its patch's unshot
  * power grows by what it reflects (solve.c). */

@@ -44,6 +44,10 @@ static int resolve_config(rad_config_t *c, const char **why)
     *why = "unknown flag, or band_rows with RAD_NO_BANDS";
     if (c->flags & ~(RAD_NO_OVERSHOOT | RAD_NO_BANDS | RAD_SMALL_FACES)) return RAD_ERR_ARG;
     if ((c->flags & RAD_NO_BANDS) && c->band_rows) return RAD_ERR_ARG;
+    *why = "coarse negative, or coarse_res not 0 or even within 8..res";
+    if (c->coarse < 0 ||
+        (c->coarse_res && (c->coarse_res < 8 || c->coarse_res > c->res || (c->coarse_res & 1u))))
+        return RAD_ERR_ARG;
     /* Checked before the default patch size is derived from it: 4 * max_element of an
      * out-of-range value would overflow. */
     *why = "max_element outside 1/16..2 RAD_COORD_LIMIT";

@@ -565,7 +565,7 @@ static void free_textured(textured *t)
    solutions of the same mesh (fixed build, or the float twin if FLOAT). */
 static double solution_difference(const textured *a, const textured *b, int use_float)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
     char err[512];
     double worst = 0, peak = 0, ra[3], rb[3];
     int e, k, ne, pass;
@@ -708,7 +708,7 @@ typedef struct {
 
 static void solve_textured(const char *name, solved *x)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
     char err[512];
     load_textured(name, &x->t);
     x->s = sc_create(x->t.p, x->t.n, &o, NULL, NULL, err, sizeof err);

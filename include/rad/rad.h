@@ -194,7 +194,24 @@ typedef struct {
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
     uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
+    uint16_t coarse_res;    /* least resolution of a coarse shot (below); 0: res / 4 */
+    rad_real_t coarse;      /* unshot fraction below which shots coarsen; 0: never */
 } rad_config_t;
+
+/* Coarse shots: the first shots (the emitters', the first bounces') carry most of the
+ * light, the late ones little, so a late shot's cube may be coarser. Once the unshot
+ * fraction (rad_unshot_fraction) at a shot is at most COARSE, that shot renders its
+ * cube at res / 2, at most COARSE / 8 at res / 4, and so on (each level an eighth of
+ * the last), never below COARSE_RES (even, 8..res; res / 4 when 0) nor where res / 2
+ * is not made of whole 2^level x 2^level blocks. A patch shooting its own emission
+ * (its unshot power at least half its emitted power: the direct light) stays at res.
+ * A coarse cube's delta form factors are the block sums of the res table, so they
+ * still sum to exactly 2^30, and the light shot after the switch is what was unshot
+ * then: the error coarse shots add is bounded by that share. Raising res with
+ * COARSE = 1 puts the direct light at the finer res and everything else coarser
+ * (README: Coarse shots). Needs all five faces in the work buffer (band_rows 0):
+ * with bands every shot is at res. Stored rows and rad_form_factors are always at
+ * res. 0 (the default) keeps every shot at res: the same bits as without the field. */
 
 /* A work buffer too small for all five faces renders the cube in bands of rows (the
  * same bits, more passes); rad_scene_t.band_rows tells which was chosen (0: all faces
@@ -237,8 +254,9 @@ typedef struct {
      * core scales every scene to one size, so these are elements small against their
      * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
     uint32_t small_elements;
-    uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
+    uint32_t backoffs;     /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
                                of the power coming back proved too high */
+    uint32_t coarse_shots; /* shots whose cube was coarser than res (rad_config_t.coarse) */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -261,6 +279,11 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    /* the shot's cube: its resolution and delta form factor tables (cfg.res and the
+     * dff tables but for a coarse shot, whose tables follow its depth buffer) */
+    rad_ff_t *cube_top, *cube_side;
+    uint16_t cube_res;
+    uint16_t cube_built; /* the coarse level whose tables are built, 0: none */
     /* overshooting's back-off (lib/solve.c), reset before the first shot */
     rad_energy_t over_low;  /* lowest unshot total since the last back-off */
     rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */

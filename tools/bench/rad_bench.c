@@ -135,7 +135,7 @@ static double median(double *v, int n)
 /* The scene's mesh and resolution as solver options. */
 static sc_opts scene_opts(const bscene *sc)
 {
-    sc_opts o = {0, 0, 0, 0, 0, 0};
+    sc_opts o = {0};
     o.max_element = sc->max_element;
     o.max_patch = sc->max_patch;
     o.res = sc->res;
@@ -678,11 +678,30 @@ static void dir_of(const char *path, char *out, size_t n)
     else snprintf(out, n, "%.*s", (int)(sl - path), path);
 }
 
+/* The programs of the peer table: rad_cli to 0.01 and 0.001 at its defaults, rpkCpp,
+ * then rad_cli to 0.001 with coarse shots, and both at the bench's element edge 0.08. */
+#define PEER_CMDS 6
+#define PEER_RPK  2
+
+/* Coarse shots as the bench measures them (rad_config_t.coarse): the emitters' shots at
+ * res 192, the others at 96, 48 and 24 as the unshot fraction falls below 1, 1/8 and
+ * 1/64 (chosen on CornellBox-Original: more accurate than every shot at 128, below
+ * half its time; see the peer table's accuracy column). */
+#define COARSE_RES   192
+#define COARSE_FRAC  1.0
+#define COARSE_FLOOR 24
+#define COARSE_FLAGS "--res", "192", "--coarse", "1", "--coarse-res", "24"
+
 typedef struct {
-    char why[3072];        /* empty when measured; else why not */
-    double t[3], ratio[2]; /* medians: rad to 0.01, to 0.001, rpkCpp; rad/rpkCpp per round */
-    double cpu[3], cpu_ratio[2]; /* the same in processor time */
-    long kb[3];          /* peaks over the runs */
+    char why[3072];                        /* empty when measured; else why not */
+    double t[PEER_CMDS], ratio[PEER_CMDS]; /* medians: each program; rad/rpkCpp per round */
+    double cpu[PEER_CMDS], cpu_ratio[PEER_CMDS]; /* the same in processor time */
+    long kb[PEER_CMDS];                    /* peaks over the runs */
+    /* per element against a res-512 solve to 1e-4 of the same mesh (peer_accuracy):
+     * rms and max relative error over elements above 10% and above 1% of the brightest */
+    double rms[PEER_CMDS][2], max[PEER_CMDS][2];
+    int elements[PEER_CMDS];
+    size_t bytes[PEER_CMDS];               /* pools and work buffer */
 } peer_t;
 
 /* The peer's scene beside it: converted from the OBJ SCENE with the shared converter
@@ -711,12 +730,17 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
 {
     const char *root = getenv("RAD_PEER_RPK");
     char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
-    char *cmd[3][16] = {
+    char *cmd[PEER_CMDS][24] = {
         {cli, (char *)scene, "--tol", "0.01", "--width", "64", "--height", "64", "-o", png, NULL},
         {cli, (char *)scene, "--tol", "0.001", "--width", "64", "--height", "64", "-o", png, NULL},
         {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none", "-iterations", "30",
-         mgf, NULL}};
-    double t[3][PEER_RUNS], c[3][PEER_RUNS], r[2][PEER_RUNS], rc[2][PEER_RUNS];
+         mgf, NULL},
+        {cli, (char *)scene, "--tol", "0.001", COARSE_FLAGS, "--width", "64", "--height", "64", "-o", png, NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", "--width", "64", "--height", "64", "-o", png,
+         NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", COARSE_FLAGS, "--width", "64", "--height",
+         "64", "-o", png, NULL}};
+    double t[PEER_CMDS][PEER_RUNS], c[PEER_CMDS][PEER_RUNS], r[PEER_CMDS][PEER_RUNS], rc[PEER_CMDS][PEER_RUNS];
     int i, k;
     memset(pr, 0, sizeof *pr);
     if (!root || !*root) root = "../peer-rpk";
@@ -734,28 +758,122 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
     if (peer_scene(scene, mgf, pr) < 0) return;
     fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
     for (i = 0; i < PEER_RUNS; i++)
-        for (k = 0; k < 3; k++) {
+        for (k = 0; k < PEER_CMDS; k++) {
             long kb;
             if (run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
-                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k < 2 ? scene : mgf);
+                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k != PEER_RPK ? scene : mgf);
                 return;
             }
             if (kb > pr->kb[k]) pr->kb[k] = kb;
         }
     remove(png);
     for (i = 0; i < PEER_RUNS; i++)
-        for (k = 0; k < 2; k++) {
-            r[k][i] = t[k][i] / t[2][i];
-            rc[k][i] = c[k][i] / c[2][i];
+        for (k = 0; k < PEER_CMDS; k++) {
+            r[k][i] = t[k][i] / t[PEER_RPK][i];
+            rc[k][i] = c[k][i] / c[PEER_RPK][i];
         }
-    for (k = 0; k < 3; k++) {
+    for (k = 0; k < PEER_CMDS; k++) {
         pr->t[k] = median(t[k], PEER_RUNS);
         pr->cpu[k] = median(c[k], PEER_RUNS);
-    }
-    for (k = 0; k < 2; k++) {
         pr->ratio[k] = median(r[k], PEER_RUNS);
         pr->cpu_ratio[k] = median(rc[k], PEER_RUNS);
     }
+}
+
+/* Per element, A against the reference REF of the same mesh: the relative error of
+ * r + g + b (with the ambient term) over the elements of SC's non-emitting faces above
+ * FLOOR[k] of the brightest of them, rms in RMS[k] and largest in MAX[k]. */
+static void element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2], double *rms,
+                             double *mx)
+{
+    sc_stats st;
+    double *b, top = 0, s2[2] = {0, 0};
+    int e, k, i, n[2] = {0, 0}, ntag = 0;
+    char *emits;
+    for (i = 0; i < sc->n; i++) if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
+    sc_get_stats(ref, &st);
+    b = malloc((size_t)st.elements * sizeof *b);
+    emits = calloc((size_t)ntag + 1, 1);
+    if (!b || !emits) exit(1);
+    for (i = 0; i < sc->n; i++) if (poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
+    for (e = 0; e < st.elements; e++) {
+        double x[3];
+        sc_element_rgb(ref, e, 1, x);
+        b[e] = x[0] + x[1] + x[2];
+        if (!emits[sc_element_tag(ref, e)] && b[e] > top) top = b[e];
+    }
+    for (k = 0; k < 2; k++) mx[k] = 0;
+    for (e = 0; e < st.elements; e++) {
+        double x[3], d;
+        if (emits[sc_element_tag(ref, e)]) continue;
+        sc_element_rgb(a, e, 1, x);
+        d = fabs((x[0] + x[1] + x[2]) / b[e] - 1);
+        for (k = 0; k < 2; k++) {
+            if (b[e] <= floor[k] * top) continue;
+            s2[k] += d * d;
+            n[k]++;
+            if (d > mx[k]) mx[k] = d;
+        }
+    }
+    for (k = 0; k < 2; k++) rms[k] = n[k] ? sqrt(s2[k] / n[k]) : 0;
+    free(b);
+    free(emits);
+}
+
+/* SC's solve at O to TOL (fixed build). */
+static sc_solver *solved(const bscene *sc, const sc_opts *o, double tol)
+{
+    sc_solver *s = fixed_solver(sc, sc->polys, o);
+    sc_solve(s, 1000000, tol, NULL, NULL);
+    return s;
+}
+
+/* The coarse shots' settings over O. */
+static sc_opts coarse_opts(sc_opts o)
+{
+    o.res = COARSE_RES;
+    o.coarse = COARSE_FRAC;
+    o.coarse_res = COARSE_FLOOR;
+    return o;
+}
+
+/* Each rad_cli row of the peer table solved in this process (the same core, mesh and
+ * settings, so the same bits) against a solve of its mesh at res 512 to 1e-4: the
+ * accuracy column. */
+static void peer_accuracy(const char *scene, peer_t *pr)
+{
+    static const double floor[2] = {0.1, 0.01};
+    static const double edge[2] = {0, 0.08}; /* rad_cli's default, the bench's */
+    static const int rows[2][2] = {{1, 3}, {4, 5}};
+    bscene sc;
+    int m, k;
+    memset(&sc, 0, sizeof sc);
+    sc.polys = load_obj(scene, &sc.n, NULL);
+    sc.name = scene;
+    if (!sc.polys) return;
+    for (m = 0; m < 2; m++) {
+        sc_opts o = {0}, v[2];
+        sc_solver *ref;
+        o.max_element = edge[m];
+        o.res = 512;
+        fprintf(stderr, "rad_bench: the res-512 reference (element edge %s) ...\n", m ? "0.08" : "default");
+        ref = solved(&sc, &o, 1e-4);
+        v[0] = o;
+        v[0].res = 128;
+        v[1] = coarse_opts(v[0]);
+        for (k = 0; k < 2 + (m == 0); k++) {
+            int row = k < 2 ? rows[m][k] : 0;
+            sc_solver *a = solved(&sc, &v[k < 2 ? k : 0], row == 0 ? 0.01 : 0.001);
+            sc_stats st;
+            element_accuracy(&sc, ref, a, floor, pr->rms[row], pr->max[row]);
+            sc_get_stats(a, &st);
+            pr->elements[row] = st.elements;
+            pr->bytes[row] = st.pool_bytes + st.work_bytes;
+            sc_destroy(a);
+        }
+        sc_destroy(ref);
+    }
+    free(sc.polys);
 }
 
 static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
@@ -769,17 +887,34 @@ static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
     if (p->why[0]) {
         out(rp, "Not measured: %s.\n", p->why);
     } else {
-        static const char *nm[3] = {"rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin"};
+        static const char *nm[PEER_CMDS] = {
+            "rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin",
+            "rad_cli --tol 0.001 --res 192 --coarse 1 --coarse-res 24", "rad_cli --tol 0.001 --max-element 0.08",
+            "rad_cli --tol 0.001 --max-element 0.08 --res 192 --coarse 1 --coarse-res 24"};
         int k;
-        out(rp, "\n\n| program | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB |\n"
-            "| --- | ---: | ---: | ---: | ---: | ---: |\n");
-        for (k = 0; k < 3; k++) {
-            char a[32] = "", b[32] = "";
-            if (k < 2) {
+        out(rp, "The accuracy column: each rad row solved again in this process (the same bits), per element "
+            "against a solve of its mesh at res 512 to an unshot fraction of 1e-4, relative error of r + g + b "
+            "(with the ambient term) over the non-emitting elements above 10%% (and 1%%) of the brightest: rms / "
+            "max. `--coarse 1 --coarse-res 24 --res 192`: the emitters' shots at 192, the others at 96, 48, 24 "
+            "as the unshot fraction falls below 1, 1/8, 1/64.\n\n"
+            "| program | elements | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB | pools + "
+            "work MB | accuracy >10%%: rms / max | >1%%: rms / max |\n"
+            "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        for (k = 0; k < PEER_CMDS; k++) {
+            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""};
+            int j;
+            if (k != PEER_RPK) {
                 snprintf(a, sizeof a, "%.2f", p->ratio[k]);
                 snprintf(b, sizeof b, "%.2f", p->cpu_ratio[k]);
             }
-            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], p->t[k], a, p->cpu[k], b, p->kb[k] / 1024.0);
+            if (k != PEER_RPK && p->elements[k]) {
+                snprintf(n, sizeof n, "%d", p->elements[k]);
+                snprintf(mb, sizeof mb, "%.2f", p->bytes[k] / 1048576.0);
+                for (j = 0; j < 2; j++)
+                    snprintf(acc[j], sizeof acc[j], "%.2f%% / %.2f%%", 100 * p->rms[k][j], 100 * p->max[k][j]);
+            }
+            out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm[k], n, p->t[k], a, p->cpu[k],
+                b, p->kb[k] / 1024.0, mb, acc[0], acc[1]);
         }
     }
     out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 and "
@@ -889,6 +1024,43 @@ static void report_large(report_t *rp)
         r.t[1], r.total, 1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
     run_free(&r);
     free(sc.polys);
+}
+
+/* Coarse shots on the generated hall: the default settings and HALL_COARSE solved side
+ * by side in this process (shot by shot, fixed build, the default's bits are those of
+ * the build before coarse shots), and each against a res-512 solve to 1e-4. */
+static void report_hall_coarse(report_t *rp, const bscene *sc, const sc_opts *variant, const char *flags)
+{
+    static const double floor[2] = {0.1, 0.01};
+    const build_t *b[2] = {&builds[0], &builds[0]};
+    sc_opts o[2], r512 = scene_opts(sc);
+    brun run[2];
+    double rms[2][2], mx[2][2];
+    sc_solver *ref;
+    int k;
+    fprintf(stderr, "rad_bench: coarse shots on the hall ...\n");
+    o[0] = scene_opts(sc);
+    o[1] = *variant;
+    interleaved(sc, b, o, sc->runs, run);
+    r512.res = 512;
+    ref = solved(sc, &r512, 1e-4);
+    for (k = 0; k < 2; k++) {
+        sc_solver *a = solved(sc, &o[k], 0.001);
+        element_accuracy(sc, ref, a, floor, rms[k], mx[k]);
+        sc_destroy(a);
+    }
+    sc_destroy(ref);
+    out(rp, "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one core: the default "
+        "(res 128) and `%s` solved side by side to 0.001 in this process, one shot of each in turn, median of %d; "
+        "accuracy per element against a res-512 solve to 1e-4 of the same mesh, as in the peer table:\n\n"
+        "| settings | shots | s to 0.001 | time / default | pools + work MB | accuracy >10%%: rms / max | "
+        ">1%%: rms / max |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        run[0].elements, run[0].patches, flags, sc->runs);
+    for (k = 0; k < 2; k++)
+        out(rp, "| %s | %d | %.3f | %.2f | %.2f | %.2f%% / %.2f%% | %.2f%% / %.2f%% |\n", k ? flags : "default",
+            run[k].all_shots, run[k].total, run[k].total / run[0].total, run[k].bytes / 1048576.0, 100 * rms[k][0],
+            100 * mx[k][0], 100 * rms[k][1], 100 * mx[k][1]);
+    for (k = 0; k < 2; k++) run_free(&run[k]);
 }
 
 /* This thread's processor time, seconds. */
@@ -1399,6 +1571,7 @@ int main(int argc, char **argv)
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */
     peer_bench(argv[0], shared, &peer);
+    if (!peer.why[0]) peer_accuracy(shared, &peer);
     ns = load_scenes(shared, scenes);
     if (!ns) return 1;
     for (i = 0; i < ns; i++) {
@@ -1421,6 +1594,10 @@ int main(int argc, char **argv)
     report_large(&rp);
     report_textures(&rp, argv[0]);
     report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
+    {
+        sc_opts v = coarse_opts(scene_opts(&scenes[ns - 1]));
+        report_hall_coarse(&rp, &scenes[ns - 1], &v, "--res 192 --coarse 1 --coarse-res 24");
+    }
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

@@ -72,6 +72,8 @@ typedef struct {
     sc_camera pending;
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
     double tol, exposure, max_patch, max_element;
+    double coarse;                  /* --coarse (0: never), --coarse-res (0: res / 4) */
+    int coarse_res;
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */

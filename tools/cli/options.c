@@ -119,6 +119,19 @@ static void opt_res(opts_t *o, const char *opt, const char *val)
     if (o->res % 2) die_usage("--res must be even", val);
 }
 
+static void opt_coarse(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (parse_list(val, &o->coarse, 1, 0) != 1 || !(o->coarse >= 0 && o->coarse <= 64))
+        die_usage("--coarse wants a number in [0, 64]", val);
+}
+
+static void opt_coarse_res(opts_t *o, const char *opt, const char *val)
+{
+    o->coarse_res = (int)parse_int(opt, val, 8, 1024);
+    if (o->coarse_res % 2) die_usage("--coarse-res must be even", val);
+}
+
 static void opt_max_patch(opts_t *o, const char *opt, const char *val) { o->max_patch = parse_pos(opt, val); }
 static void opt_max_element(opts_t *o, const char *opt, const char *val) { o->max_element = parse_pos(opt, val); }
 
@@ -256,6 +269,10 @@ static const option_t options[] = {
      "lightmap's and probes' gather resolution (32 without it)", opt_gather},
     SECTION("solver:"),
     {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
+    {"--coarse", NULL, "F",
+     "once the unshot fraction is below F, shots (but the emitters' own\n"
+     "light) render at res / 2, below F / 8 at res / 4, ... (0: never)", opt_coarse},
+    {"--coarse-res", NULL, "N", "the least resolution of a coarse shot (res / 4)", opt_coarse_res},
     {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},

@@ -497,7 +497,7 @@ static int outlier(const sc_poly *polys, int n, char *err, size_t errlen)
 sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
                        char *err, size_t errlen)
 {
-    static const sc_opts defaults = {0, 0, 0, 0, 0, 0};
+    static const sc_opts defaults = {0};
     struct sc_solver *h = calloc(1, sizeof *h);
     rad_config_t cfg;
     long cap, limit;
@@ -523,6 +523,8 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         cfg.res = (uint16_t)(o->res ? o->res : 64);
         cfg.band_rows = (uint16_t)o->band_rows;
         cfg.flags = (o->no_overshoot ? RAD_NO_OVERSHOOT : 0u) | RAD_SMALL_FACES;
+        cfg.coarse = RAD_REAL(o->coarse);
+        cfg.coarse_res = (uint16_t)o->coarse_res;
         cap = estimate_elements(h, polys, n, me);
         same = malloc((size_t)n);
         order = same ? poly_order(h, polys, n, me, same) : NULL;
@@ -629,6 +631,7 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
     st->tol = h->tol;
     st->converged = h->solve_kind == 2 || (h->solve_kind == 1 && rad_unshot_fraction(&h->s) <= RAD_REAL(h->tol));
     st->backoffs = h->s.stats.backoffs;
+    st->coarse_shots = h->s.stats.coarse_shots;
     st->skipped_emitters = h->skipped_emitters;
     st->tiny = h->n_tiny;
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
