@@ -488,6 +488,7 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
 /* |a|, |b| < 2^26: the product fits int64 comfortably. */
 static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
 {
+    if (a == b) return a; /* the quotient is 0 (a hemi-cube's colours): no division */
     return a + (rad_real_t)rad__div_round(rad__mul32(b - a, da), (int64_t)da - db);
 }
 /* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
