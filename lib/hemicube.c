@@ -271,14 +271,14 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     /* Facing away at every corner (a quad may be planar only within rounding):
      * invisible. */
     for (i = 0; i < n; i++)
-        front |= rad__dot(sf->normal, rad__sub(ps->c, s->pools.vertices[k[i]])) > 0;
+        front |= rad__dot_unit(rad__sub(ps->c, s->pools.vertices[k[i]]), sf->normal) > 0;
     if (!front) return;
     for (i = 0; i < n; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
         uint32_t code;
-        loc[i].x = rad__dot(d, ps->frame[0]);
-        loc[i].y = rad__dot(d, ps->frame[1]);
-        loc[i].z = rad__dot(d, ps->frame[2]);
+        loc[i].x = rad__dot_unit(d, ps->frame[0]);
+        loc[i].y = rad__dot_unit(d, ps->frame[1]);
+        loc[i].z = rad__dot_unit(d, ps->frame[2]);
         code = cv->full ? full_codes(loc[i]) : cube_codes(loc[i]);
         all &= code;
         any |= code;
