@@ -190,34 +190,39 @@ unsigned rad__cube_level(rad_scene_t *s, unsigned level)
 
 /* ---- passes -------------------------------------------------------------------- */
 
-/* The regions rendered in pass K (all five faces at once, or one band of one face);
- * returns how many, 0 past the last pass. */
+/* The regions of rows [A, B) of the cube's rows, face after face (the top's res, then
+ * the four sides' res / 2 each: 3 res rows of res pixels), into R; each region's
+ * offset is its first pixel's in that layout less BASE. Returns how many (<= 5). Every
+ * row falls in one region, in the layout's order. */
+static unsigned row_regions(const rad_scene_t *s, uint32_t a, uint32_t b, uint32_t base,
+                            region_t *r)
+{
+    uint32_t res = s->cube_res, g = 0, f, n = 0;
+    for (f = 0; f < 5; f++) {
+        uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
+        if (b > g && lo < hi && lo < rows) {
+            r[n].face = f;
+            r[n].row0 = (int)lo;
+            r[n].row1 = (int)hi;
+            r[n].offset = face_offset(s, f) + lo * res - base;
+            n++;
+        }
+        g += rows;
+    }
+    return n;
+}
+
+/* The regions rendered in pass K: all five faces at once, or band K of the layout's
+ * rows (row_regions: a band may end in one face and go on in the next, so at res 16 in
+ * bands of 16 rows the four half sides take two passes, not four, and the surfaces are
+ * set up three times a cube instead of five); returns how many, 0 past the last pass.
+ * Pixels are accumulated in the same order either way. */
 static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 {
-    uint32_t band = s->band_rows;
-    unsigned f;
-    if (band == 0) {
-        if (k) return 0;
-        for (f = 0; f < 5; f++) {
-            r[f].face = f;
-            r[f].row0 = 0;
-            r[f].row1 = (int)face_rows(s, f);
-            r[f].offset = face_offset(s, f);
-        }
-        return 5;
-    }
-    for (f = 0; f < 5; f++) {
-        uint32_t rows = face_rows(s, f), nb = (rows + band - 1u) / band;
-        if (k < nb) {
-            r->face = f;
-            r->row0 = (int)(k * band);
-            r->row1 = (int)((k + 1u) * band < rows ? (k + 1u) * band : rows);
-            r->offset = 0;
-            return 1;
-        }
-        k -= nb;
-    }
-    return 0;
+    uint32_t band = s->band_rows, res = s->cube_res, a = (uint32_t)k * band;
+    if (band == 0) return k ? 0u : row_regions(s, 0, 3u * res, 0, r);
+    if (a >= 3u * res) return 0;
+    return row_regions(s, a, a + band < 3u * res ? a + band : 3u * res, a * res, r);
 }
 
 /* The faces look along +z, +x, -x, +y, -y (and a full cube's sixth, -z): their axes a
@@ -333,14 +338,14 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     /* Facing away at every corner (a quad may be planar only within rounding):
      * invisible. */
     for (i = 0; i < n; i++)
-        front |= rad__dot(sf->normal, rad__sub(ps->c, s->pools.vertices[k[i]])) > 0;
+        front |= rad__dot_unit(rad__sub(ps->c, s->pools.vertices[k[i]]), sf->normal) > 0;
     if (!front) return;
     for (i = 0; i < n; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
         uint32_t code;
-        loc[i].x = rad__dot(d, ps->frame[0]);
-        loc[i].y = rad__dot(d, ps->frame[1]);
-        loc[i].z = rad__dot(d, ps->frame[2]);
+        loc[i].x = rad__dot_unit(d, ps->frame[0]);
+        loc[i].y = rad__dot_unit(d, ps->frame[1]);
+        loc[i].z = rad__dot_unit(d, ps->frame[2]);
         code = cv->full ? full_codes(loc[i]) : cube_codes(loc[i]);
         all &= code;
         any |= code;
@@ -599,26 +604,14 @@ static uint32_t part_cut(uint32_t res, unsigned k, unsigned nparts)
     return (uint32_t)(x <= top ? x / TOP_ROW_COST : res + (x - top) / SIDE_ROW_COST);
 }
 
-/* The regions of part PART of NPARTS: the cube's rows, face after face (3 res rows of
- * res pixels), cut into NPARTS runs of equal cost (part_cut: 0 and 3 res at the ends,
- * in order). Every pixel belongs to one part, and accumulating the parts in order adds
- * in the serial pass's order. */
+/* The regions of part PART of NPARTS: the cube's rows cut into NPARTS runs of equal
+ * cost (part_cut: 0 and 3 res at the ends, in order), laid out as all five faces.
+ * Every pixel belongs to one part, and accumulating the parts in order adds in the
+ * serial pass's order. */
 static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned nparts, region_t *r)
 {
-    uint32_t res = s->cube_res, g = 0, f, n = 0;
-    uint32_t a = part_cut(res, part, nparts), b = part_cut(res, part + 1u, nparts);
-    for (f = 0; f < 5; f++) {
-        uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
-        if (b > g && lo < hi && lo < rows) {
-            r[n].face = f;
-            r[n].row0 = (int)lo;
-            r[n].row1 = (int)hi;
-            r[n].offset = face_offset(s, f) + lo * res;
-            n++;
-        }
-        g += rows;
-    }
-    return n;
+    uint32_t res = s->cube_res;
+    return row_regions(s, part_cut(res, part, nparts), part_cut(res, part + 1u, nparts), 0, r);
 }
 
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf)

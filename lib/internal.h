@@ -58,21 +58,27 @@ typedef struct {
 /* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
  * element ids from FIRST, PU patches across a quad (a triangle's patch levels); seen
  * on a face of resolution RES whose axes a, b, d are the cube's AXIS (0 x, 1 y, 2 z)
- * times SIGN. */
+ * times SIGN. Set up when a span first needs it (READY: 0 not yet, 1 the families,
+ * 2 and the face's coefficients), from SF and its NCORNER corners CORNER. */
 typedef struct {
     rad__family_t fam[3];
-    unsigned nfam;
+    unsigned nfam, ncorner, ready;
     int32_t res;
     uint32_t first, pu;
+    const rad_surface_t *sf;
+    const rad_vec3_t *corner;
     unsigned char axis[3];
     signed char sign[3];
 } rad__lattice_t;
 
 /* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
- * to the centre of a cube of resolution RES, on the cube's axes. */
+ * to the centre of a cube of resolution RES, on the cube's axes: only recorded (CORNER
+ * must last while LT is drawn), computed by the first span drawn, so a surface whose
+ * outline covers no pixel of a pass (a band it misses) costs no set-up. */
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res);
-/* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1). */
+/* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1): recorded,
+ * and its coefficients computed by the first span drawn on it. */
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */
