@@ -694,7 +694,7 @@ static void test_lightmap(void **state)
     sc_poly *polys;
     sc_solver *s;
     sc_gatherer *gt;
-    sc_opts o = { 0, 0.25, 32, 0, 0, 0 };
+    sc_opts o = {.max_element = 0.25, .res = 32};
     lm_opts lo = { 64, 0, 0 };
     lm_atlas a;
     char err[600];
@@ -725,7 +725,7 @@ static void test_lightmap(void **state)
     assert_non_null(gt);
     assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
     assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
-    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, &a, tmp_path("lm.glb"), NULL,
+    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, tmp_path("lm.glb"), NULL,
                                              NULL, err, sizeof err),
                      0);
     read_glb(tmp_path("lm.glb"), &g);

@@ -435,7 +435,7 @@ static double chair_vertices_min(sc_solver *s)
 /* Builds and solves O (res 64, to an unshot fraction of 0.001) and measures it. */
 static void solve_scene(const polys_t *o, result_t *r)
 {
-    sc_opts opt = {0, 0, 64, 0, 0, 0};
+    sc_opts opt = {.res = 64};
     warns_t w = {0, -1, ""};
     char err[256];
     sc_solver *s;
@@ -548,7 +548,7 @@ static void test_every_face_counted(void **st)
     const double line[3][3] = {{2.4, 1, 2.4}, {2.5, 1, 2.4}, {2.6, 1, 2.4}};
     const double lamp[3][3] = {{1, 1, 1}, {1.001, 1, 1}, {1, 1, 1.001}};
     polys_t o = {0};
-    sc_opts opt = {0, 0, 16, 0, 0, 0};
+    sc_opts opt = {.res = 16};
     warns_t w = {0, -1, ""};
     char err[256];
     sc_solver *s;
