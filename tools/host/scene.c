@@ -173,6 +173,8 @@ static uint64_t group_key(const double *c, const double *n, double cell)
     for (a = 1; a < 3; a++)
         if (fabs(n[a]) > fabs(n[major])) major = a;
     face = 2 * major + (n[major] < 0);
+    if (!(fabs(n[major]) > 0)) return key << 8; /* no normal (a zero-area face): any bin,
+                                                   the core refuses it when it is joined */
     for (a = 0; a < 3; a++) {
         int bin;
         if (a == major) continue;
