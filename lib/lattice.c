@@ -98,6 +98,19 @@ static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res)
 {
+    lt->sf = sf;
+    lt->corner = corner;
+    lt->ncorner = n;
+    lt->res = res;
+    lt->ready = 0;
+}
+
+/* The families of LT's surface from its corners (rad__lattice_init's). */
+static void lattice_setup(rad__lattice_t *lt)
+{
+    const rad_surface_t *sf = lt->sf;
+    const rad_vec3_t *corner = lt->corner;
+    const unsigned n = lt->ncorner;
     int32_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
@@ -119,7 +132,6 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     }
     lt->first = sf->first_element;
     lt->pu = sf->pu;
-    lt->res = res;
     if (n == 4) {
         /* Columns between Q0Q3 and Q1Q2, rows between Q0Q1 and Q3Q2. */
         lt->nfam = 2;
@@ -142,12 +154,19 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
 
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned c, f, j;
-    const int32_t res = lt->res;
+    unsigned c;
     for (c = 0; c < 3; c++) {
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
     }
+    if (lt->ready == 2) lt->ready = 1;
+}
+
+/* The coefficients of LT's families on its face (rad__lattice_face's). */
+static void face_setup(rad__lattice_t *lt)
+{
+    unsigned f, j;
+    const int32_t res = lt->res;
     for (f = 0; f < lt->nfam; f++) {
         rad__family_t *fm = &lt->fam[f];
         for (j = 0; j < 3; j++) {
@@ -261,62 +280,78 @@ static const uint32_t tri_unit[3] = {1u - (1u << 24), (1u << 12) - (1u << 24), 1
 #define TRI_BIAS (128u << 24)
 
 /* Family F (of LT) along the span XS..XE-1 of row Y: every line it crosses adds its
- * change of the element id to STEPS at the first pixel past it, the pixel found by one
- * division. A quad's change is F's unit within a patch and what moves to the next
- * patch at a patch's edge; a triangle's, F's part of the packed cell (tri_unit).
- * Returns the first pixel's part of the id (or of the packed cell). Steps add mod 2^32. */
+ * change of the element id to STEPS at the first pixel past it. A quad's change is F's
+ * unit within a patch and what moves to the next patch at a patch's edge; a
+ * triangle's, F's part of the packed cell (tri_unit). Returns the first pixel's part
+ * of the id (or of the packed cell). Steps add mod 2^32.
+ *
+ * The pixel past a line is found by stepping, not dividing: at the span's pixel P, V
+ * is the next line's T, U what V changes by to the line after, W what U changes by
+ * (T, D and D2 at pixel P: T + P ST, D + P SD, D2 + P SD2). A pixel to the right adds
+ * ST, SD and SD2 to them; a line crossed adds U to V and W to U, and SD to ST, SD2 to
+ * SD. With ST > 0, T grows along the row, so the first pixel from P on where V >= 0
+ * is the one a division would give (the ceiling of -T / ST, or P); P never moves back,
+ * so a span costs a step a pixel and a line, against a 64-bit division a line (a long
+ * library call on 32-bit targets). V, U and W are E_k, its first and second
+ * differences in k at a pixel of the face, k in [0, n + 1]: within the header's
+ * bound (< 2^62), like every value stepped before. */
 static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe,
                              uint32_t *steps)
 {
     rad__family_t *fm = &lt->fam[f];
-    const int32_t k = (int32_t)fm->k;
-    int64_t n = xe - xs, p = 0;
-    int64_t t, st, d, sd, d2, sd2;
-    uint32_t unit, wrap, first;
-    int32_t i, fi;
+    const uint32_t k = fm->k;
+    const int32_t n = xe - xs;
+    int64_t v, u, wv, st, sd, sd2;
+    uint32_t unit, wrap, first, fi, q;
+    int32_t i, p = 0;
     walk_t w;
     walk_start(fm, y, xs, xe, &w);
+    q = (uint32_t)w.i / k; /* w.i >= 0: one unsigned division, no signed one */
+    fi = (uint32_t)w.i - q * k;
     if (lt->nfam == 3) {
         unit = wrap = tri_unit[f];
         first = (uint32_t)w.i * unit;
     } else {
         unit = fm->unit;
-        wrap = fm->coarse - (fm->k - 1u) * fm->unit;
-        first = (uint32_t)(w.i / k) * fm->coarse + (uint32_t)(w.i % k) * fm->unit;
+        wrap = fm->coarse - (k - 1u) * fm->unit;
+        first = q * fm->coarse + fi * fm->unit;
     }
     if (!w.step) return first;
     if (w.step < 0) {
         unit = 0u - unit;
         wrap = 0u - wrap;
     }
-    t = w.t;
+    v = w.t;
     st = w.st;
-    d = w.d;
+    u = w.d;
     sd = w.sd;
-    d2 = w.d2;
+    wv = w.d2;
     sd2 = w.sd2;
     i = w.i;
-    fi = w.i % k;
     while (i != w.end) {
-        int64_t c;
         uint32_t wraps;
         if (st <= 0) { /* a line seen going backwards: crossed here or not at all */
-            if (t + p * st < 0) break;
+            if (v < 0) break;
         } else {
-            /* the first pixel with T >= 0, p or later (a negative quotient truncates to
-             * at most 0) */
-            c = rad__sdiv64(-t + st - 1, st);
-            p = c > p ? c : p;
-            if (p >= n) break;
+            while (v < 0) {
+                if (++p >= n) return first;
+                v += st;
+                u += sd;
+                wv += sd2;
+            }
         }
         i += w.step;
-        fi += w.step;
-        wraps = fi == k || fi < 0;
-        fi = fi == k ? 0 : fi < 0 ? k - 1 : fi;
+        if (w.step > 0) {
+            wraps = ++fi == k;
+            fi = wraps ? 0u : fi;
+        } else {
+            wraps = fi == 0u;
+            fi = wraps ? k - 1u : fi - 1u;
+        }
         steps[p] += wraps ? wrap : unit;
-        t += d;
+        v += u;
+        u += wv;
         st += sd;
-        d += d2;
         sd += sd2;
     }
     return first;
@@ -358,10 +393,19 @@ static uint32_t tri_element(const rad__lattice_t *lt, uint32_t packed)
 void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, uint32_t *z,
                        rad_index_t *ids, uint64_t w, uint64_t dw, uint32_t *steps)
 {
-    uint32_t acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
+    uint32_t acc;
     unsigned f;
     int32_t x, n = xe - xs;
     if (n <= 0) return;
+    if (lt->ready == 0) {
+        lattice_setup(lt);
+        lt->ready = 1;
+    }
+    if (lt->ready == 1) {
+        face_setup(lt);
+        lt->ready = 2;
+    }
+    acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
     for (f = 0; f < lt->nfam; f++) acc += family_steps(lt, f, y, xs, xe, steps);
     z += xs;
     ids += xs;

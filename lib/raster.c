@@ -67,7 +67,8 @@ static unsigned clip_plane(const rad__frustum_t *f, unsigned p, const rad__cvert
 {
     unsigned i, m = 0;
     for (i = 0; i < n; i++) {
-        const rad__cvert_t *a = &src[i], *b = &src[(i + 1) % n];
+        const rad__cvert_t *a = &src[i],
+                           *b = &src[i + 1 < n ? i + 1 : 0]; /* no modulo: a call on M0 */
         rad_real_t da = plane_dist(f, a, p), db = plane_dist(f, b, p);
         if (da >= 0) dst[m++] = *a;
         if ((da >= 0) != (db >= 0)) {
@@ -235,7 +236,8 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
 
     px = x0 * SUB + SUB / 2;
     py = y0 * SUB + SUB / 2;
-    for (k = 0; k < n; k++) edge_setup(&ed[k], &v[k], &v[(k + 1) % n], px, py, a1 + a2 < 0);
+    for (k = 0; k < n; k++)
+        edge_setup(&ed[k], &v[k], &v[k + 1 < n ? k + 1 : 0], px, py, a1 + a2 < 0);
     if (n == 3) ed[3] = ed[0];
     for (k = 0; k < nat; k++)
         attr_setup(&v[0], &v[b], &v[b + 1], k, best, px, py, &val[k], &sx[k], &sy[k]);

@@ -488,6 +488,7 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
 /* |a|, |b| < 2^26: the product fits int64 comfortably. */
 static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
 {
+    if (a == b) return a; /* the quotient is 0 (a hemi-cube's colours): no division */
     return a + (rad_real_t)rad__div_round(rad__mul32(b - a, da), (int64_t)da - db);
 }
 /* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
@@ -628,6 +629,36 @@ static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int
 }
 
 #endif
+
+#if RAD__MUL_SPLIT && !RAD_FLOAT
+/* floor(V / 2^N) for |V| < 2^31 - 2^(N + 1), 1 <= N <= 16, in 32 bits: V + 2^31 is not
+ * negative and below 2^32. */
+static inline int32_t rad__floor_shr32(int32_t v, unsigned n)
+{
+    return (int32_t)(((uint32_t)v + 0x80000000u) >> n) - (int32_t)(0x80000000u >> n);
+}
+#endif
+
+/* rad__dot(A, U), the same value, for components |A| <= 2^24 (differences of in-range
+ * points) and |U| < 2^17 (unit vectors, rounding included). On RAD__MUL_SPLIT targets
+ * in six 32-bit products, no 64-bit sum: with A = 2^12 AH + AL (AL the low 12 bits,
+ * |AH| <= 2^12), H = sum AH U and L = sum AL U are below 3 2^29 in magnitude, so
+ * A . U = 2^12 H + L; with H = 16 HH + HL (HL its low 4 bits) the rounded quotient
+ * floor((2^12 H + L + 2^15) / 2^16) is HH + floor((2^12 HL + L + 2^15) / 2^16), and
+ * that numerator is below 2^30. */
+static inline rad_real_t rad__dot_unit(rad_vec3_t a, rad_vec3_t u)
+{
+#if RAD__MUL_SPLIT && !RAD_FLOAT
+    int32_t h = rad__floor_shr32(a.x, 12) * u.x + rad__floor_shr32(a.y, 12) * u.y +
+                rad__floor_shr32(a.z, 12) * u.z;
+    int32_t l = (int32_t)((uint32_t)a.x & 0xFFFu) * u.x + (int32_t)((uint32_t)a.y & 0xFFFu) * u.y +
+                (int32_t)((uint32_t)a.z & 0xFFFu) * u.z;
+    int32_t x = (int32_t)(((uint32_t)h & 15u) << 12) + l + 32768;
+    return rad__floor_shr32(h, 4) + rad__floor_shr32(x, 16);
+#else
+    return rad__dot(a, u);
+#endif
+}
 
 /* V and C times 2^N, each component as rad__scale2 (scalar.c: not inlined, for size). */
 rad_vec3_t rad__scale2_vec(rad_vec3_t v, int n, uint32_t *sat);

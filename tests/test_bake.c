@@ -216,7 +216,7 @@ static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb
 /* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES). */
 static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0};
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
     lm_opts lo = {size, 0.0, 0};
     char err[256] = "";
     baker b = {NULL, NULL, 0};
@@ -545,7 +545,7 @@ static int count_of(const char *text, const char *part)
 static void test_probes_grid(void **state)
 {
     sc_poly polys[12];
-    sc_opts o = {0, 0, 64, 0, 0, 0};
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
     int dims[3], n = cube(polys, -2, 2, 1, 1.0), i, k, inside = 0;
     char err[256] = "", *json;
     size_t len;

@@ -153,12 +153,47 @@ static void test_sdiv64(void **st)
     }
 }
 
+/* rad__dot_unit is rad__dot's rounded value, computed natively here, over its whole
+ * contract: components |a| <= 2^24, |u| < 2^17 (edges both ways, then random). */
+static int64_t dot_native(rad_vec3_t a, rad_vec3_t u)
+{
+    int64_t s = (int64_t)a.x * u.x + (int64_t)a.y * u.y + (int64_t)a.z * u.z;
+    return (s + 32768 + (INT64_C(1) << 62)) / 65536 - (INT64_C(1) << 46); /* floor: a positive numerator */
+}
+
+static void test_dot_unit(void **st)
+{
+    static const int32_t ea[] = {0, 1, -1, 0xFFF, 0x1000, -0x1000, 0x7FFF, -0x8000,
+                                 0xFFFFFF, -0xFFFFFF, 1 << 24, -(1 << 24), 0x123456};
+    static const int32_t eu[] = {0, 1, -1, 65535, 65536, -65536, 65537, -65537, 0x1FFFF, -0x1FFFF, 46341};
+    size_t i, j, na = sizeof ea / sizeof ea[0], nu = sizeof eu / sizeof eu[0];
+    (void)st;
+    for (i = 0; i < na * na * na; i++)
+        for (j = 0; j < nu; j++) {
+            rad_vec3_t a = {ea[i % na], ea[i / na % na], ea[i / na / na]};
+            rad_vec3_t u = {eu[j], eu[(j + 3) % nu], eu[(j + 7) % nu]};
+            CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u), "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)",
+                         (long)a.x, (long)a.y, (long)a.z, (long)u.x, (long)u.y, (long)u.z);
+        }
+    for (i = 0; i < 200000; i++) {
+        rad_vec3_t a, u;
+        a.x = (int32_t)(rnd() % ((2u << 24) + 1u)) - (1 << 24);
+        a.y = (int32_t)(rnd() % ((2u << 24) + 1u)) - (1 << 24);
+        a.z = (int32_t)(rnd() % ((2u << 24) + 1u)) - (1 << 24);
+        u.x = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
+        u.y = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
+        u.z = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
+        CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u), "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)",
+                     (long)a.x, (long)a.y, (long)a.z, (long)u.x, (long)u.y, (long)u.z);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
         cmocka_unit_test(test_udiv64_32), cmocka_unit_test(test_div_round),
-        cmocka_unit_test(test_sdiv64),
+        cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

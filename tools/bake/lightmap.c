@@ -617,6 +617,80 @@ int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, si
     return rc;
 }
 
+/* Polygon Q has vertex P (exactly: the polygons carry the OBJ's coordinates). */
+static int poly_has(const sc_poly *q, const double p[3])
+{
+    int k;
+    for (k = 0; k < q->n; k++)
+        if (!cmp3(q->v[k], p)) return 1;
+    return 0;
+}
+
+static void corner_uv(const lm_atlas *a, const int *byface, int lo, int hi, const double p[3], double uv[2])
+{
+    int i, poly = lo < hi ? byface[lo] : -1;
+    double xy[2];
+    for (i = lo; i < hi; i++)
+        if (poly_has(&a->polys[byface[i]], p)) {
+            poly = byface[i];
+            break;
+        }
+    uv[0] = uv[1] = 0.0;
+    if (poly >= 0 && lm_uv(a, poly, p, xy) == 0) {
+        uv[0] = xy[0] / a->size;
+        uv[1] = xy[1] / a->size;
+    }
+}
+
+int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv)
+{
+    int *first = calloc((size_t)sc->nfaces + 2, sizeof *first), *byface = malloc(((size_t)a->npolys + 1) * sizeof *byface);
+    int *fill = calloc((size_t)sc->nfaces + 1, sizeof *fill), i, f, k;
+    if (!first || !byface || !fill) {
+        free(first);
+        free(byface);
+        free(fill);
+        return -1;
+    }
+    for (i = 0; i < a->npolys; i++)
+        if (a->polys[i].tag >= 0 && a->polys[i].tag < sc->nfaces) first[a->polys[i].tag + 1]++;
+    for (f = 0; f < sc->nfaces; f++) first[f + 1] += first[f];
+    for (i = 0; i < a->npolys; i++) {
+        int t = a->polys[i].tag;
+        if (t >= 0 && t < sc->nfaces) byface[first[t] + fill[t]++] = i;
+    }
+    for (f = 0; f < sc->nfaces; f++)
+        for (k = 0; k < sc->faces[f].count; k++) {
+            int c = sc->faces[f].first + k;
+            const obj_vec3 *v = &sc->verts[sc->indices[c]];
+            const double p[3] = {v->x, v->y, v->z};
+            corner_uv(a, byface, first[f], first[f + 1], p, uv + 2 * (size_t)c);
+        }
+    free(first);
+    free(byface);
+    free(fill);
+    return 0;
+}
+
+int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err, size_t errlen)
+{
+    size_t t = (size_t)a->size * a->size, i;
+    unsigned char *px = malloc(3 * t);
+    float top = 0.0f;
+    int rc;
+    for (i = 0; i < 3 * t; i++)
+        if (a->rgb[i] > top) top = a->rgb[i]; /* NaN compares false: left out */
+    *scale = top > 0.0f ? top : 1.0;
+    if (!px) {
+        snprintf(err, errlen, "out of memory for a %dx%d lightmap image", a->size, a->size);
+        return -1;
+    }
+    tonemap(a->rgb, t, 1.0 / *scale, px);
+    rc = img_encode_png(px, a->size, a->size, png, n, err, errlen);
+    free(px);
+    return rc;
+}
+
 void lm_free(lm_atlas *a)
 {
     free(a->charts);

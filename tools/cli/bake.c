@@ -9,6 +9,7 @@
 #include "bake/lightmap.h"
 #include "bake/probes.h"
 #include "host/clock.h"
+#include "host/gltf_export.h"
 #include "host/obj_polys.h"
 
 #define GATHER_RES 32 /* --gather-res's default: 0.84% from Lambert at 64 (tests/test_bake.c) */
@@ -144,6 +145,18 @@ int bake_step(run_t *r)
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
+    return rc;
+}
+
+int bake_export_gltf(run_t *r, gltf_warn_fn warn)
+{
+    const opts_t *o = r->o;
+    char err[1024];
+    int rc;
+    if (!o->gltf || !r->bake || !r->bake->has_atlas) return 0;
+    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, &r->bake->atlas, o->gltf,
+                                 warn, (void *)o, err, sizeof err);
+    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     return rc;
 }
 

@@ -3,7 +3,8 @@
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once
  * per build of the core include it: tools/host/scene.c, tools/host/parallel.c,
- * tools/host/gltf_export.c, tools/host/tex_render.c, tools/host/fgather.c and
+ * tools/host/gltf_export.c, tools/host/tex_render.c, tools/host/ply_export.c,
+ * tools/host/fgather.c and
  * tools/cli/rad_cli.c. */
 #ifndef RAD_TOOLS_FLOAT_NAMES_H
 #define RAD_TOOLS_FLOAT_NAMES_H
@@ -52,6 +53,8 @@
 #define sc_corner_light scf_corner_light
 #define sc_corner_light_fg scf_corner_light_fg
 #define sc_export_gltf scf_export_gltf
+#define sc_export_ply scf_export_ply
+#define sc_export_gltf_lightmap scf_export_gltf_lightmap
 #define sc_render_textured scf_render_textured
 #define sc_texture_detail scf_texture_detail
 #define sc_render_surfaces scf_render_surfaces

@@ -180,10 +180,42 @@ static void base_colour(const obj_material *m, int textured, double c[3])
         c[k] = 1;
 }
 
+/* The lightmap's part of IN from atlas LM: TEXCOORD_1 per corner into UV (2 per corner),
+   the PNG into *PNG, the lightmap named by every material that does not emit (USE).
+   0, or -1 with err. */
+static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, double *uv, unsigned char *use,
+                          unsigned char **png, gltf_input *in, char *err, size_t errlen)
+{
+    int m;
+    if (!uv || !use || lm_corner_uvs(lm, sc, uv) != 0) {
+        snprintf(err, errlen, "out of memory for the lightmap's UVs");
+        return -1;
+    }
+    if (lm_png(lm, png, &in->lightmap_png_size, &in->lightmap_scale, err, errlen) != 0)
+        return -1;
+    for (m = 0; m < sc->nmaterials; m++)
+        use[m] = !emits(sc->materials[m].ke);
+    in->corner_uv1 = uv;
+    in->lightmap_png = *png;
+    in->lightmap_use = use;
+    return 0;
+}
+
 int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                    const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
                    void *ctx, char *err, size_t errlen)
 {
+    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, path, warn, ctx, err, errlen);
+}
+
+int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                            const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
+                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                            size_t errlen)
+{
+    double *uv = lm ? malloc(2 * ((size_t)sc->nindices + 1) * sizeof *uv) : NULL;
+    unsigned char *use = lm ? malloc((size_t)sc->nmaterials + 1) : NULL, *png = NULL;
+    char why[600] = "";
     size_t corners = (size_t)sc->nindices + 1, mats = (size_t)sc->nmaterials + 1;
     double *rgb = malloc(3 * corners * sizeof *rgb), *weight = malloc(corners * sizeof *weight);
     double *base = malloc(3 * mats * sizeof *base);
@@ -205,10 +237,16 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
         in.texture = tex;
         in.warn = warn;
         in.ctx = ctx;
-        rc = gltf_write(path, &in, err, errlen);
+        if (lm && lightmap_input(lm, sc, uv, use, &png, &in, why, sizeof why) != 0)
+            snprintf(err, errlen, "%s: %s", path, why);
+        else
+            rc = gltf_write(path, &in, err, errlen);
     } else if (err && errlen) {
         snprintf(err, errlen, "%s: out of memory", path);
     }
+    free(uv);
+    free(use);
+    free(png);
     free(rgb);
     free(weight);
     free(base);

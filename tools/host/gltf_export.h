@@ -5,6 +5,7 @@
 #ifndef RAD_TOOLS_GLTF_EXPORT_H
 #define RAD_TOOLS_GLTF_EXPORT_H
 
+#include "bake/lightmap.h"
 #include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
@@ -38,6 +39,14 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
                    const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
                    void *ctx, char *err, size_t errlen);
 
+/* sc_export_gltf with the lightmap LM (NULL: none) baked over POLYS: TEXCOORD_1 each
+ * corner's place on the atlas (lm_corner_uvs), the atlas embedded as PNG (lm_png) and
+ * named in the extras of every material that does not emit (gltf_input). */
+int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                            const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
+                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                            size_t errlen);
+
 #ifndef RAD_HOST_FLOAT_NAMES
 int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                      double *rgb, double *weight);
@@ -46,6 +55,10 @@ int scf_corner_light_fg(scf_solver *s, scf_fgather *fg, const obj_scene *sc, con
 int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                     const tex_image *maps, scf_fgather *fg, const char *path, gltf_warn_fn warn,
                     void *ctx, char *err, size_t errlen);
+int scf_export_gltf_lightmap(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                             const tex_image *maps, scf_fgather *fg, const lm_atlas *lm,
+                             const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                             size_t errlen);
 #endif
 
 #endif

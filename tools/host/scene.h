@@ -28,6 +28,9 @@ typedef struct {
     int band_rows;                  /* 0: all faces at once */
     long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
     int no_overshoot;               /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
+    double coarse;                  /* rad_config_t.coarse: unshot fraction below which
+                                       shots coarsen; 0: never */
+    int coarse_res;                 /* rad_config_t.coarse_res: their floor; 0: res / 4 */
 } sc_opts;
 
 typedef struct {
@@ -44,7 +47,10 @@ typedef struct {
                                        stopped before its sweep limit) */
     double tol;                     /* that tolerance */
     unsigned long backoffs;         /* overshoot halvings (rad_stats_t.backoffs) */
+    unsigned long coarse_shots;     /* shots below res (rad_stats_t.coarse_shots) */
     int skipped_emitters;           /* emitting polygons skipped (each warned) */
+    int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
+                                       shown from the light around them */
 } sc_stats;
 
 typedef struct {
