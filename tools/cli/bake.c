@@ -12,7 +12,7 @@
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
 
-#define GATHER_RES 32 /* the bake's gather resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
+#define GATHER_RES 32 /* the gathers' resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
 
 typedef struct {
     sc_gatherer *g;
