@@ -51,6 +51,11 @@ typedef struct {
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
     int32_t hint[2];       /* the last span's first and last cells on this face, or -1 */
+    /* Spans start from a walker (lattice.c) at line WK of pixel (WX, WY), -1 before the
+     * face's first span: w[0..6] are E_k, D = E_{k+1} - E_k, D2 (D's change to the
+     * next k), and the changes of E and D a pixel right and a row down. */
+    int64_t w[7];
+    int32_t wk, wx, wy;
 } rad__family_t;
 
 /* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
