@@ -46,7 +46,7 @@ LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
 TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c \
-              tools/host/tex_render.c
+              tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
               tools/host/clock.c tools/bench/plot.c

@@ -163,6 +163,15 @@ static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, ra
 
 /* ---- a hemisphere --------------------------------------------------------------- */
 
+/* Element ID's shown radiosity into B; 0 when ID is past the last (none seen). */
+static inline int run_shown(const rad_scene_t *s, const rad_rgb_t *amb, uint32_t id, uint32_t *sat,
+                            rad_rgb_t *b)
+{
+    if (id >= s->n_elements) return 0;
+    *b = rad__shown(s, id, amb, sat);
+    return 1;
+}
+
 /* Adds a run of element ID's pixels (ID past the last: none seen), the sums W[k] of
  * their NW weights, times its shown radiosity, to ACC[k]. Summing the weights first
  * is exact in the fixed build (a run's weights sum to less than 2^30) and looks B up
@@ -172,8 +181,7 @@ static void add_run(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb,
 {
     rad_rgb_t b;
     unsigned k;
-    if (id >= s->n_elements) return;
-    b = rad__shown(s, id, amb, &g->stats.saturations);
+    if (!run_shown(s, amb, id, &g->stats.saturations, &b)) return;
     for (k = 0; k < nw; k++) {
         acc[k][0] += rad__wterm(w[k], b.r);
         acc[k][1] += rad__wterm(w[k], b.g);
@@ -181,30 +189,86 @@ static void add_run(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb,
     }
 }
 
+/* The ambient part (rad__ambient_part) of the last surface a hemisphere's run met, and
+ * the saturations computing it counted: neighbouring runs are mostly of one surface. */
+typedef struct {
+    const rad_rgb_t *amb;
+    uint32_t surface, sat;
+    rad_rgb_t part;
+} part_cache_t;
+
+/* rad__shown of element ID through cache C, the same values and count of saturations;
+ * 0 when ID is past the last. */
+static inline int run_shown_cached(const rad_scene_t *s, part_cache_t *c, uint32_t id,
+                                   uint32_t *sat, rad_rgb_t *b)
+{
+    const rad_element_t *el;
+    if (id >= s->n_elements) return 0;
+    el = &s->pools.elements[id];
+    if (!c->amb) {
+        *b = rad__shown_plus(el->radiosity, 0, sat);
+        return 1;
+    }
+    if (el->surface != c->surface) {
+        c->surface = el->surface;
+        c->sat = 0;
+        c->part = rad__ambient_part(&s->pools.surfaces[el->surface].reflectance, c->amb, &c->sat);
+    }
+    *sat += c->sat;
+    *b = rad__shown_plus(el->radiosity, &c->part, sat);
+    return 1;
+}
+
+/* A run of one element in a row of a hemisphere's face: its id and weight so far, and
+ * the row's sums. */
+typedef struct {
+    uint32_t id;
+    rad_ff_t w;
+    rad__wsum_t acc[3];
+} run_t;
+
+/* Ends R's run (add_run's sum for one weight, inline: the hemisphere's hot loop) and
+ * starts one of element ID. */
+static inline void run_next(const rad_scene_t *s, part_cache_t *pc, uint32_t *sat, run_t *r,
+                            uint32_t id)
+{
+    rad_rgb_t b;
+    if (run_shown_cached(s, pc, r->id, sat, &b)) {
+        r->acc[0] += rad__wterm(r->w, b.r);
+        r->acc[1] += rad__wterm(r->w, b.g);
+        r->acc[2] += rad__wterm(r->w, b.b);
+    }
+    r->id = id;
+    r->w = 0;
+}
+
 /* Adds face FACE's sum of F B, per channel, to SUM. Row by row, so that the twin's
- * float sums add at most res terms at a time. */
+ * float sums add at most res terms at a time; a run goes on across the row's centre,
+ * where the weights' mirrored halves meet. Saturations are counted here and added to
+ * the gatherer's once. */
 static void face_sum(const rad_scene_t *s, rad_gather_t *g, const rad_rgb_t *amb, unsigned face,
                      rad__wsum_t *sum)
 {
-    uint32_t res = g->res, q = res / 2u, rows = face ? q : res, r, x, c;
+    uint32_t res = g->res, q = res / 2u, rows = face ? q : res, r, x, c, sat = 0;
     const rad_ff_t *top = g->table, *side = g->table + (size_t)q * q;
+    part_cache_t pc = {0, 0xFFFFFFFFu, 0, {0, 0, 0}}; /* no surface's index */
+    pc.amb = amb;
     for (r = 0; r < rows; r++) {
         const rad_index_t *ids = g->ibuf + (size_t)r * res;
         const rad_ff_t *row = rad__dff_row(top, side, res, face, r);
-        rad__wsum_t acc[1][3] = {{0, 0, 0}};
-        rad_ff_t w[1] = {0};
-        uint32_t id = RAD_INDEX_NONE;
-        for (x = 0; x < res; x++) {
-            if (ids[x] != id) {
-                add_run(s, g, amb, id, w, 1, acc);
-                id = ids[x];
-                w[0] = 0;
-            }
-            w[0] += row[x < q ? q - 1u - x : x - q];
+        run_t run = {RAD_INDEX_NONE, 0, {0, 0, 0}};
+        for (x = 0; x < q; x++) {
+            if (ids[x] != run.id) run_next(s, &pc, &sat, &run, ids[x]);
+            run.w += row[q - 1u - x];
         }
-        add_run(s, g, amb, id, w, 1, acc);
-        for (c = 0; c < 3; c++) sum[c] += acc[0][c];
+        for (; x < res; x++) {
+            if (ids[x] != run.id) run_next(s, &pc, &sat, &run, ids[x]);
+            run.w += row[x - q];
+        }
+        run_next(s, &pc, &sat, &run, RAD_INDEX_NONE);
+        for (c = 0; c < 3; c++) sum[c] += run.acc[c];
     }
+    g->stats.saturations += sat;
 }
 
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,

@@ -29,12 +29,12 @@ static uint32_t rows_of(uint32_t res, int full, unsigned f)
 }
 static uint32_t face_rows(const rad_scene_t *s, unsigned f)
 {
-    return rows_of(s->cfg.res, 0, f);
+    return rows_of(s->cube_res, 0, f);
 }
 /* First pixel of face F when all five faces are in the buffers: the top, then the sides. */
 static uint32_t face_offset(const rad_scene_t *s, unsigned f)
 {
-    uint32_t res = s->cfg.res;
+    uint32_t res = s->cube_res;
     return f ? res * res + (f - 1u) * res * (res / 2u) : 0u;
 }
 
@@ -120,7 +120,72 @@ int rad__hemicube_init(rad_scene_t *s)
     s->ibuf = (rad_index_t *)(s->zbuf + s->pass_pixels);
     rad__dff_table(res, s->dff_top, s->dff_side);
     for (k = 0; k < res; k++) s->steps[k] = 0; /* once: every span leaves it zero */
+    s->cube_res = s->cfg.res;
+    s->cube_top = s->dff_top;
+    s->cube_side = s->dff_side;
+    s->cube_built = 0;
     return RAD_OK;
+}
+
+/* ---- coarse shots (rad_config_t.coarse) ---------------------------------------- */
+
+/* A coarse cube's tables follow the pixels of a level-1 cube in the depth buffer (the
+ * most any coarse cube draws): 3 res^2 / 4 words, then at most 2 (res / 4)^2 words of
+ * tables, within the 3 res^2 words it holds with all faces in one pass. */
+static rad_ff_t *coarse_tables(const rad_scene_t *s)
+{
+    return (rad_ff_t *)(void *)(s->zbuf + RAD_PIXELS_ALL(s->cfg.res / 2u));
+}
+
+/* The sums of the M x M blocks of quadrant table IN (Q x Q, row after row from the
+ * cube's centre out) into OUT ((Q / M)^2, the same layout): pixel (i, j) of the cube
+ * at res / M covers pixels (M i .. M i + M - 1, M j .. M j + M - 1) of the cube at
+ * res, counted from the centre as both tables are. */
+static void block_sums(const rad_ff_t *in, uint32_t q, uint32_t m, rad_ff_t *out)
+{
+    uint32_t qc = q / m, i, j, a, b;
+    for (j = 0; j < qc; j++)
+        for (i = 0; i < qc; i++) {
+            rad_ff_t sum = 0;
+            for (b = 0; b < m; b++)
+                for (a = 0; a < m; a++) sum += in[(size_t)(j * m + b) * q + i * m + a];
+            out[(size_t)j * qc + i] = sum;
+        }
+}
+
+/* The deepest level at most LEVEL that S allows: its cube at least the floor
+ * (coarse_res, else res / 4, and 8) and res / 2 made of whole 2^level blocks; 0 with
+ * bands (the depth buffer holds no tail). */
+static unsigned allowed_level(const rad_scene_t *s, unsigned level)
+{
+    uint32_t res = s->cfg.res, floor = s->cfg.coarse_res ? s->cfg.coarse_res : res / 4u;
+    unsigned l;
+    if (s->band_rows != 0) return 0;
+    if (floor < 8u) floor = 8u;
+    for (l = 0; l < level; l++)
+        if ((res >> (l + 1u)) < floor || (res / 2u) % (2u << l) != 0) break;
+    return l;
+}
+
+unsigned rad__cube_level(rad_scene_t *s, unsigned level)
+{
+    uint32_t q = s->cfg.res / 2u, m;
+    level = allowed_level(s, level);
+    m = 1u << level;
+    s->cube_res = (uint16_t)(s->cfg.res >> level);
+    if (level == 0) {
+        s->cube_top = s->dff_top;
+        s->cube_side = s->dff_side;
+        return 0;
+    }
+    s->cube_top = coarse_tables(s);
+    s->cube_side = s->cube_top + (size_t)(q / m) * (q / m);
+    if (s->cube_built != level) {
+        block_sums(s->dff_top, q, m, s->cube_top);
+        block_sums(s->dff_side, q, m, s->cube_side);
+        s->cube_built = (uint16_t)level;
+    }
+    return level;
 }
 
 /* ---- passes -------------------------------------------------------------------- */
@@ -132,7 +197,7 @@ int rad__hemicube_init(rad_scene_t *s)
 static unsigned row_regions(const rad_scene_t *s, uint32_t a, uint32_t b, uint32_t base,
                             region_t *r)
 {
-    uint32_t res = s->cfg.res, g = 0, f, n = 0;
+    uint32_t res = s->cube_res, g = 0, f, n = 0;
     for (f = 0; f < 5; f++) {
         uint32_t rows = face_rows(s, f), lo = a > g ? a - g : 0u, hi = b - g < rows ? b - g : rows;
         if (b > g && lo < hi && lo < rows) {
@@ -154,7 +219,7 @@ static unsigned row_regions(const rad_scene_t *s, uint32_t a, uint32_t b, uint32
  * Pixels are accumulated in the same order either way. */
 static unsigned pass_regions(const rad_scene_t *s, unsigned k, region_t *r)
 {
-    uint32_t band = s->band_rows, res = s->cfg.res, a = (uint32_t)k * band;
+    uint32_t band = s->band_rows, res = s->cube_res, a = (uint32_t)k * band;
     if (band == 0) return k ? 0u : row_regions(s, 0, 3u * res, 0, r);
     if (a >= 3u * res) return 0;
     return row_regions(s, a, a + band < 3u * res ? a + band : 3u * res, a * res, r);
@@ -232,13 +297,15 @@ typedef struct {
 } canvas_t;
 
 /* One pass of a cube: its centre C and frame, the regions drawn, and the surface not
- * drawn (the shooter's own; any value past the last surface: none). */
+ * drawn (the shooter's own; any value past the last surface: none), nor those joined
+ * to patch GROUP (the shooter's group, rad_join_polygon, which stands for one flat
+ * patch: from its centre off a curved group's faces it would light itself). */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
     const region_t *reg;
     unsigned nreg;
-    uint32_t skip;
+    uint32_t skip, group;
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
@@ -297,7 +364,8 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
             t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
-        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F, (rad_index_t)sf->first_element);
+        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F,
+                  (rad_index_t)rad__group_element(s, sf, sf->first_element));
     }
 }
 
@@ -315,14 +383,14 @@ static int half_row_has(const uint32_t *bounds, uint32_t h, uint32_t e0, uint32_
 static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
                        uint32_t n, const uint32_t *bounds)
 {
-    uint32_t res = s->cfg.res, q = res / 2u, i;
+    uint32_t res = s->cube_res, q = res / 2u, i;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     if (q == 0) return; /* rad_init keeps res >= 8: for the analyzer, which cannot see it */
     for (r = reg->row0; r < reg->row1; r++) {
         uint32_t px = reg->offset + (uint32_t)(r - reg->row0) * res;
         const rad_index_t *ids = ibuf + px;
-        const rad_ff_t *row = rad__dff_row(s->dff_top, s->dff_side, res, reg->face, (uint32_t)r);
+        const rad_ff_t *row = rad__dff_row(s->cube_top, s->cube_side, res, reg->face, (uint32_t)r);
         /* ids[i] - e0 wraps past N below E0 (and RAD_INDEX_NONE is above every range) */
         if (half_row_has(bounds, px / q, e0, n))
             for (i = 0; i < q; i++)
@@ -340,8 +408,8 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
 static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const region_t *reg,
                             uint32_t *bounds)
 {
-    uint32_t q = s->cfg.res / 2u, n = s->n_elements, px, i;
-    uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cfg.res;
+    uint32_t q = s->cube_res / 2u, n = s->n_elements, px, i;
+    uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cube_res;
     if (q == 0) return; /* as in accumulate */
     for (px = reg->offset; px < end; px += q) {
         uint32_t lo = 0xFFFFFFFFu, hi = 0;
@@ -403,8 +471,11 @@ void rad__cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
 static void render_view(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps)
 {
     uint32_t k;
-    for (k = 0; k < s->n_surfaces; k++)
-        if (k != ps->skip) render_surface(s, cv, ps, &s->pools.surfaces[k]);
+    for (k = 0; k < s->n_surfaces; k++) {
+        const rad_surface_t *sf = &s->pools.surfaces[k];
+        if (k != ps->skip && (sf->n_patches != 0 || sf->first_patch != ps->group))
+            render_surface(s, cv, ps, sf);
+    }
 }
 
 /* Every surface but the shooter's own into the regions, seen from patch P's centre
@@ -421,6 +492,7 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     ps.reg = reg;
     ps.nreg = nreg;
     ps.skip = pt->surface;
+    ps.group = p;
     render_view(s, cv, &ps);
 }
 
@@ -433,7 +505,7 @@ static canvas_t scene_canvas(const rad_scene_t *s, uint32_t *z, rad_index_t *ids
     cv.ids = ids;
     cv.steps = steps;
     cv.st = st;
-    cv.res = s->cfg.res;
+    cv.res = s->cube_res;
     cv.full = 0;
     return cv;
 }
@@ -458,23 +530,32 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     ps.reg = &reg;
     ps.nreg = 1;
     ps.skip = e->skip;
+    ps.group = UINT32_MAX;
     clear_region(&cv, &reg);
     render_view(s, &cv, &ps);
 }
 
-void rad__hemicube(rad_scene_t *s, uint32_t p)
+void rad__shot_cube(rad_scene_t *s, uint32_t p)
 {
     region_t reg[5];
     canvas_t cv = scene_canvas(s, s->zbuf, s->ibuf, s->steps, &s->stats);
     unsigned k, nreg, r;
     uint32_t e;
 
+    /* A cube at res draws over a coarse cube's tables. */
+    if (s->cube_res == s->cfg.res) s->cube_built = 0;
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
         for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements, 0);
     }
+}
+
+void rad__hemicube(rad_scene_t *s, uint32_t p)
+{
+    rad__cube_level(s, 0);
+    rad__shot_cube(s, p);
 }
 
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
@@ -495,7 +576,7 @@ static uint32_t *part_z(const rad_scene_t *s, void *buf)
 }
 static rad_index_t *part_ids(const rad_scene_t *s, void *buf)
 {
-    return (rad_index_t *)(void *)(part_z(s, buf) + RAD_PIXELS_ALL(s->cfg.res));
+    return (rad_index_t *)(void *)(part_z(s, buf) + RAD_PIXELS_ALL(s->cube_res));
 }
 
 /* The part's canvas in BUF, its steps zeroed. */
@@ -503,7 +584,7 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 {
     canvas_t cv = scene_canvas(s, part_z(s, buf), part_ids(s, buf), part_steps(buf), 0);
     uint32_t i;
-    for (i = 0; i < s->cfg.res; i++) cv.steps[i] = 0;
+    for (i = 0; i < s->cube_res; i++) cv.steps[i] = 0;
     return cv;
 }
 
@@ -529,7 +610,7 @@ static uint32_t part_cut(uint32_t res, unsigned k, unsigned nparts)
  * serial pass's order. */
 static unsigned part_regions(const rad_scene_t *s, unsigned part, unsigned nparts, region_t *r)
 {
-    uint32_t res = s->cfg.res;
+    uint32_t res = s->cube_res;
     return row_regions(s, part_cut(res, part, nparts), part_cut(res, part + 1u, nparts), 0, r);
 }
 

@@ -11,6 +11,8 @@
 #define rad__shoot           radf__shoot
 #define rad__cube_part       radf__cube_part
 #define rad__cube_merge      radf__cube_merge
+#define rad__cube_level      radf__cube_level
+#define rad__shot_cube       radf__shot_cube
 #define rad__surface_corners radf__surface_corners
 #define rad__lattice_init    radf__lattice_init
 #define rad__lattice_face    radf__lattice_face
@@ -160,8 +162,14 @@ typedef struct {
 /* Face FACE of E's cube into its buffers: cleared, then every surface drawn (rows 0 at
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
-/* Form factors from patch P's centre to every element, into s->acc. */
+/* Form factors from patch P's centre to every element, into s->acc, at res. */
 void rad__hemicube(rad_scene_t *s, uint32_t p);
+/* The shot's cube at coarse level LEVEL (0: res; rad_config_t.coarse) or the deepest
+ * the scene allows: sets s->cube_res and the cube's tables (block sums of the res
+ * table, built when the level changes). Returns the level set. */
+unsigned rad__cube_level(rad_scene_t *s, unsigned level);
+/* rad__hemicube at the level rad__cube_level set. */
+void rad__shot_cube(rad_scene_t *s, uint32_t p);
 
 /* Element E receives power F * U (three channels) from a shooter; its patch's unshot
  * power grows by what it reflects (solve.c). */
@@ -234,24 +242,41 @@ static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
     return k == 0 ? c->r : k == 1 ? c->g : c->b;
 }
 
-/* Element E's radiosity as shown: plus reflectance times AMB when AMB is given, and at
- * least 0 (while overshooting, power owed can make either negative for a while).
- * Saturations are counted in SAT. */
-static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_rgb_t *amb,
-                                   uint32_t *sat)
+/* What the ambient term AMB adds to the shown radiosity of a surface of reflectance R. */
+static inline rad_rgb_t rad__ambient_part(const rad_rgb_t *r, const rad_rgb_t *amb, uint32_t *sat)
 {
-    const rad_element_t *el = &s->pools.elements[e];
-    rad_rgb_t b = el->radiosity;
-    if (amb) {
-        const rad_rgb_t *r = &s->pools.surfaces[el->surface].reflectance;
-        b.r = rad__add_sat(b.r, rad__mul(r->r, amb->r, sat), sat);
-        b.g = rad__add_sat(b.g, rad__mul(r->g, amb->g, sat), sat);
-        b.b = rad__add_sat(b.b, rad__mul(r->b, amb->b, sat), sat);
+    rad_rgb_t a;
+    a.r = rad__mul(r->r, amb->r, sat);
+    a.g = rad__mul(r->g, amb->g, sat);
+    a.b = rad__mul(r->b, amb->b, sat);
+    return a;
+}
+
+/* Radiosity B as shown: plus the ambient part A when A is given, and at least 0 (while
+ * overshooting, power owed can make either negative for a while). */
+static inline rad_rgb_t rad__shown_plus(rad_rgb_t b, const rad_rgb_t *a, uint32_t *sat)
+{
+    if (a) {
+        b.r = rad__add_sat(b.r, a->r, sat);
+        b.g = rad__add_sat(b.g, a->g, sat);
+        b.b = rad__add_sat(b.b, a->b, sat);
     }
     if (b.r < 0) b.r = 0;
     if (b.g < 0) b.g = 0;
     if (b.b < 0) b.b = 0;
     return b;
+}
+
+/* Element E's radiosity as shown: plus reflectance times AMB when AMB is given, and at
+ * least 0. Saturations are counted in SAT. */
+static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_rgb_t *amb,
+                                   uint32_t *sat)
+{
+    const rad_element_t *el = &s->pools.elements[e];
+    rad_rgb_t a;
+    if (!amb) return rad__shown_plus(el->radiosity, 0, sat);
+    a = rad__ambient_part(&s->pools.surfaces[el->surface].reflectance, amb, sat);
+    return rad__shown_plus(el->radiosity, &a, sat);
 }
 
 /* Gather sums (gather.c): weights (Q2.30) times shown radiosities (Q16.16, >= 0), over
@@ -315,6 +340,14 @@ static inline rad_real_t rad__mscale(rad__msum_t m, uint32_t k, uint32_t *sat)
     return rad__sat32(m < 0 ? -v : v, sat);
 }
 #endif
+
+/* The element that element E's surface SF shows and whose id its pixels carry: E
+ * itself, or for a surface joined to a group (rad_join_polygon: no patch of its own)
+ * the group's receiver, its patch's first element, whose area is the group's. */
+static inline uint32_t rad__group_element(const rad_scene_t *s, const rad_surface_t *sf, uint32_t e)
+{
+    return sf->n_patches ? e : s->pools.patches[sf->first_patch].first_element;
+}
 
 /* Number of vertices of element E (3 or 4). */
 static inline unsigned rad__nverts(const rad_element_t *e)

@@ -10,8 +10,11 @@
  */
 #include "internal.h"
 
-#define MIN_AREA    RAD__Q(1.0 / 4096.0) /* smallest surface accepted, in units^2 */
-#define MIN_ELEMENT RAD__Q(1.0 / 16.0)   /* smallest max_element setting */
+#define MIN_AREA       RAD__Q(1.0 / 4096.0)  /* smallest surface accepted, in units^2 */
+#define MIN_SMALL      RAD__Q(1.0 / 65536.0) /* with RAD_SMALL_FACES, for reflectors (rad.h) */
+#define MIN_ELEMENT    RAD__Q(1.0 / 16.0)    /* smallest max_element setting */
+/* A group's area grows by less than MIN_AREA a join: below this it cannot overflow. */
+#define MAX_GROUP_AREA RAD__Q(16384.0)
 
 static int in_range(rad_real_t v, rad_real_t lo, rad_real_t hi)
 {
@@ -25,6 +28,11 @@ static int rgb_ok(const rad_rgb_t *c, rad_real_t hi, int open_top)
     return in_range(c->r, 0, hi) && in_range(c->g, 0, hi) && in_range(c->b, 0, hi);
 }
 
+static int rgb_any(const rad_rgb_t *c)
+{
+    return c && (c->r > 0 || c->g > 0 || c->b > 0);
+}
+
 /* Defaults filled in and every setting checked, as rad_init and rad_plan_polygon use
  * them. Returns RAD_OK or RAD_ERR_ARG with *WHY naming the setting. */
 static int resolve_config(rad_config_t *c, const char **why)
@@ -34,8 +42,12 @@ static int resolve_config(rad_config_t *c, const char **why)
     *why = "res not even within 8..RAD_MAX_RES";
     if (c->res < 8 || c->res > RAD_MAX_RES || (c->res & 1u)) return RAD_ERR_ARG;
     *why = "unknown flag, or band_rows with RAD_NO_BANDS";
-    if (c->flags & ~(RAD_NO_OVERSHOOT | RAD_NO_BANDS)) return RAD_ERR_ARG;
+    if (c->flags & ~(RAD_NO_OVERSHOOT | RAD_NO_BANDS | RAD_SMALL_FACES)) return RAD_ERR_ARG;
     if ((c->flags & RAD_NO_BANDS) && c->band_rows) return RAD_ERR_ARG;
+    *why = "coarse negative, or coarse_res not 0 or even within 8..res";
+    if (c->coarse < 0 ||
+        (c->coarse_res && (c->coarse_res < 8 || c->coarse_res > c->res || (c->coarse_res & 1u))))
+        return RAD_ERR_ARG;
     /* Checked before the default patch size is derived from it: 4 * max_element of an
      * out-of-range value would overflow. */
     *why = "max_element outside 1/16..2 RAD_COORD_LIMIT";
@@ -114,9 +126,10 @@ static int vec_eq(rad_vec3_t a, rad_vec3_t b)
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
 
-/* Normal and area of polygon V (3 or 4 vertices), or a negative RAD_ERR_* with *WHY. */
-static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, rad_real_t *area,
-                         const char **why)
+/* Normal and area (at least MIN) of polygon V (3 or 4 vertices), or a negative
+ * RAD_ERR_* with *WHY. */
+static int check_polygon(const rad_vec3_t *v, unsigned n, rad_real_t min, rad_vec3_t *normal,
+                         rad_real_t *area, const char **why)
 {
     const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
     unsigned i;
@@ -132,8 +145,9 @@ static int check_polygon(const rad_vec3_t *v, unsigned n, rad_vec3_t *normal, ra
         *area = rad__area_normal(rad__sub(v[1], v[0]), rad__sub(v[2], v[0]), normal);
     else
         *area = rad__area_normal(rad__sub(v[2], v[0]), rad__sub(v[3], v[1]), normal);
-    *why = "area below 1/4096 (or vertices in a line)";
-    if (!(*area >= MIN_AREA)) return RAD_ERR_DEGENERATE;
+    *why = min == MIN_AREA ? "area below 1/4096 (or vertices in a line)"
+                           : "area below 2^-16 (or vertices in a line)";
+    if (!(*area >= min)) return RAD_ERR_DEGENERATE;
     if (n == 4) {
         uint32_t sat = 0;
         for (i = 0; i < 4; i++) {
@@ -214,14 +228,15 @@ static int plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n
                         const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_vec3_t *normal,
                         rad_real_t *area, plan_t *plan, const char **why)
 {
-    int rc;
+    int rc, emits = rgb_any(emission);
     *why = "reflectance outside [0, 1)";
     if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
     *why = "emission outside [0, RAD_EMISSION_LIMIT]";
     if (!rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0)) return RAD_ERR_RANGE;
-    rc = check_polygon(v, n, normal, area, why);
+    rc = check_polygon(v, n, (cfg->flags & RAD_SMALL_FACES) && !emits ? MIN_SMALL : MIN_AREA,
+                       normal, area, why);
     if (rc < 0) return rc;
-    plan_mesh(cfg, v, n, emission && (emission->r > 0 || emission->g > 0 || emission->b > 0), plan);
+    plan_mesh(cfg, v, n, emits, plan);
     return RAD_OK;
 }
 
@@ -404,6 +419,54 @@ static void mesh_tri(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, const p
 #undef T
 }
 
+/* Patch PT's shooting point: the mean of its elements' vertices (a group's centre;
+ * rad_join_polygon). Offsets by RAD_COORD_LIMIT keep the sums non-negative; a sum of at
+ * most 2^20 vertices of at most 2^23 fits the ratio's 2^46 without a shift. */
+static rad_vec3_t group_center(const rad_scene_t *s, const rad_patch_t *pt)
+{
+    const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
+    rad_energy_t x = 0, y = 0, z = 0, cnt = 0;
+    rad_vec3_t c;
+    uint32_t e, k;
+    for (e = pt->first_element; e < (uint32_t)pt->first_element + pt->n_elements; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        for (k = 0; k < rad__nverts(el); k++) {
+            const rad_vec3_t *v = &s->pools.vertices[el->v[k]];
+            x += v->x + lim;
+            y += v->y + lim;
+            z += v->z + lim;
+            cnt += RAD__ONE;
+        }
+    }
+    c.x = rad__energy_ratio(x, cnt) - lim;
+    c.y = rad__energy_ratio(y, cnt) - lim;
+    c.z = rad__energy_ratio(z, cnt) - lim;
+    return c;
+}
+
+/* Polygon C (N corners) as one element of patch P: the vertices of a lattice of one (a
+ * triangle's T(0,0), T(1,0), T(0,1); a quad's G(0,0), G(1,0), G(0,1), G(1,1)), as
+ * mesh_tri and mesh_quad lay them out. Its pixels go to P's first element, the group's
+ * receiver (rad__group_element), so that the group's power is rounded once a shot, not
+ * once a face (a face's share of a pixel is often below the 2^-16 a power keeps): that
+ * element's area, P's area and count grow by the polygon's, and P's centre moves. */
+static void mesh_joined(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, unsigned n, uint32_t p)
+{
+    rad_patch_t *pt = &s->pools.patches[p];
+    rad_real_t a;
+    uint32_t v0 = s->n_vertices;
+    s->pools.vertices[s->n_vertices++] = c[0];
+    s->pools.vertices[s->n_vertices++] = c[1];
+    s->pools.vertices[s->n_vertices++] = c[n - 1];
+    if (n == 4) s->pools.vertices[s->n_vertices++] = c[2];
+    a = add_element(s, surf, p, v0, v0 + 1u, n == 4 ? v0 + 3u : v0 + 2u,
+                    n == 4 ? v0 + 2u : RAD_INDEX_NONE);
+    pt->area += a;
+    s->pools.elements[pt->first_element].area += a;
+    pt->n_elements++;
+    pt->center = group_center(s, pt);
+}
+
 static void mesh_surface(rad_scene_t *s, uint32_t surf, const rad_vec3_t *c, unsigned n,
                          const plan_t *p)
 {
@@ -517,9 +580,13 @@ static void remesh(rad_scene_t *s, int g)
         p.pv = sf->pv;
         p.ku = sf->ku;
         p.kv = sf->kv;
-        s->n_patches = sf->first_patch;
         s->n_elements = sf->first_element;
         s->n_vertices = sf->first_vertex;
+        if (sf->n_patches == 0) { /* joined to a patch meshed before it */
+            mesh_joined(s, i, c, n, sf->first_patch);
+            continue;
+        }
+        s->n_patches = sf->first_patch;
         mesh_surface(s, i, c, n, &p);
     }
     s->n_patches = np;
@@ -605,12 +672,67 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     return (int)s->n_surfaces++;
 }
 
+int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance)
+{
+    static const rad_rgb_t black = {0, 0, 0};
+    rad_surface_t *sf, *first;
+    rad_vec3_t normal;
+    rad_real_t area;
+    plan_t plan;
+    const char *why;
+    uint32_t p;
+    int rc;
+
+    if (!s || !args_ok(v, n) || !(s->cfg.flags & RAD_SMALL_FACES)) return RAD_ERR_ARG;
+    if (s->solving || s->n_patches == 0) return RAD_ERR_STATE;
+    p = s->n_patches - 1u;
+    first = &s->pools.surfaces[s->pools.patches[p].surface];
+    if (rgb_any(&first->emission)) return RAD_ERR_STATE;
+    rc = plan_polygon(&s->cfg, v, n, reflectance, NULL, &normal, &area, &plan, &why);
+    if (rc < 0) return rc;
+    if (plan.elements != 1 || !(area < MIN_AREA) || s->pools.patches[p].area > MAX_GROUP_AREA)
+        return RAD_ERR_ARG;
+    if (!fits(s->n_surfaces, 1, s->pools.max_surfaces) ||
+        !fits(s->n_elements, 1, s->pools.max_elements) ||
+        !fits(s->n_vertices, n, s->pools.max_vertices))
+        return RAD_ERR_FULL;
+
+    set_scale(s, 0, 0); /* as rad_add_polygon: the caller's units */
+    sf = &s->pools.surfaces[s->n_surfaces];
+    sf->normal = normal;
+    sf->reflectance = reflectance ? *reflectance : black;
+    sf->emission = black;
+    sf->first_patch = (rad_index_t)p;
+    sf->n_patches = 0;
+    sf->first_element = (rad_index_t)s->n_elements;
+    sf->first_vertex = (rad_index_t)s->n_vertices;
+    sf->pu = sf->pv = sf->ku = sf->kv = 1;
+    mesh_joined(s, s->n_surfaces, v, n, p);
+    sf->n_elements = 1;
+    sf->n_vertices = (rad_index_t)n;
+    start_surface(s, s->n_surfaces);
+    return (int)s->n_surfaces++;
+}
+
+/* Surface SURF shares a patch with another (rad_join_polygon): either joined or the
+ * first of a group. Such a patch's power is E A over the whole group: none may emit. */
+static int grouped(const rad_scene_t *s, uint32_t surf)
+{
+    const rad_surface_t *sf = &s->pools.surfaces[surf];
+    const rad_patch_t *pt;
+    if (sf->n_patches == 0) return 1;
+    pt = &s->pools.patches[sf->first_patch + sf->n_patches - 1u];
+    return (uint32_t)pt->first_element + pt->n_elements !=
+           (uint32_t)sf->first_element + sf->n_elements;
+}
+
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission)
 {
     if (!s || surf >= s->n_surfaces) return RAD_ERR_ARG;
     if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
         return RAD_ERR_RANGE;
+    if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
     if (reflectance) s->pools.surfaces[surf].reflectance = *reflectance;
     if (emission) s->pools.surfaces[surf].emission = *emission;
     return RAD_OK;

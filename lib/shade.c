@@ -6,6 +6,7 @@
 /* Element E as shown (rad__shown), its saturations counted in the scene. */
 static rad_rgb_t display(rad_scene_t *s, uint32_t e, const rad_rgb_t *amb)
 {
+    e = rad__group_element(s, &s->pools.surfaces[s->pools.elements[e].surface], e);
     return rad__shown(s, e, amb, &s->stats.saturations);
 }
 

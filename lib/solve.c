@@ -239,21 +239,56 @@ static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t 
     s->stats.shots++;
 }
 
+/* Whether patch PT's unshot power is mostly its own emission: at least half of its
+ * emitted power (summed over channels), as on its first shot. */
+static int shoots_emission(const rad_scene_t *s, const rad_patch_t *pt)
+{
+    const rad_rgb_t *e = &s->pools.surfaces[pt->surface].emission;
+    rad_energy_t own = 0, u = 0;
+    uint32_t c;
+    if (e->r == 0 && e->g == 0 && e->b == 0) return 0;
+    for (c = 0; c < 3; c++) {
+        own = rad__esum(own, rad__energy(rad__channel(e, c), pt->area));
+        u = rad__esum(u, rad__eabs(pt->unshot[c]));
+    }
+    return u >= own / 2;
+}
+
+/* Coarse shots (rad_config_t.coarse): the level of patch P's shot taken at unshot
+ * total TOTAL, each level at an eighth of the last's fraction (so the light shot at
+ * level L is at most about 8^-(L-1) COARSE of the emitted), set up by
+ * rad__cube_level. The emitters' own light, the direct light, is the most any shots
+ * carry: a patch shooting its emission stays at res (its later shots, of light it
+ * reflects, coarsen as any other's). Called before the shot is aimed. */
+static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
+{
+    rad_real_t frac = rad__energy_ratio(total, s->emitted), lim = s->cfg.coarse;
+    unsigned level = 0;
+    if (lim > 0 && shoots_emission(s, &s->pools.patches[p])) lim = 0;
+    while (lim > 0 && frac <= lim && level < 8u) {
+        level++;
+        lim /= 8;
+    }
+    rad__cube_level(s, level);
+}
+
 /* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
- * stored row, or through the form factors in s->acc, rendering its hemi-cube first
- * when CUBE is set. */
+ * stored row, or through the form factors of its hemi-cube (at the level TOTAL, the
+ * unshot total, gives). */
 static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const rad_rows_t *rows,
-                        int cube)
+                        rad_energy_t total)
 {
     rad_energy_t u[3];
     uint32_t e;
 
+    if (!rows) shot_level(s, p, total);
     aim(s, p, amb, u);
     if (rows) {
         for (e = rows->start[p]; e < rows->start[p + 1]; e++)
             rad__receive(s, u, rows->ids[e], rad__ff_from_q30(rad__ff_decode(rows->ffs[e])));
     } else {
-        if (cube) rad__hemicube(s, p);
+        if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
+        rad__shot_cube(s, p);
         for (e = 0; e < s->n_elements; e++)
             if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
     }
@@ -269,7 +304,7 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
         rad_real_t amb[3];
         uint32_t p = next_shooter(s, amb, &total);
         if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) break;
-        shoot_patch(s, p, amb, rows, 1);
+        shoot_patch(s, p, amb, rows, total);
         done++;
     }
     return (int)done;
@@ -331,6 +366,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     start_solving(s);
     p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
+    shot_level(s, p, total);
     *patch = p;
     return 1;
 }
@@ -396,6 +432,7 @@ static void aim_parts(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigne
     }
     shot_ambient(s, amb);
     aim(s, patch, amb, u);
+    if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
     for (k = 0; k < nparts; k++) {
         rad__part_head_t *h = head(bufs, k);
         h->u[0] = u[0];

@@ -216,7 +216,7 @@ static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb
 /* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES). */
 static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0};
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
     lm_opts lo = {size, 0.0, 0};
     char err[256] = "";
     baker b = {NULL, NULL, 0};
@@ -545,7 +545,7 @@ static int count_of(const char *text, const char *part)
 static void test_probes_grid(void **state)
 {
     sc_poly polys[12];
-    sc_opts o = {0, 0, 64, 0, 0, 0};
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
     int dims[3], n = cube(polys, -2, 2, 1, 1.0), i, k, inside = 0;
     char err[256] = "", *json;
     size_t len;
@@ -666,7 +666,7 @@ static void test_cli_bake(void **state)
     CHECK_INT_EQ(stat(lm, &st), -1, "no lightmap file after the error");
     CHECK_INT_EQ(stat(tmp_path("cli.png"), &st), -1, "no image either: the atlas is laid out before the solve");
     free(err);
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --probes 2,2,2 --probes-out %s", lm, pj);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --probes 2,2,2 --probes-out %s", lm, pj);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake (%s)", err ? err : "");
     free(err);
     CHECK_INT_EQ(hdr_read(lm, &im, NULL, 0), 0, "the lightmap read back");
@@ -679,7 +679,7 @@ static void test_cli_bake(void **state)
     free(json);
     /* On 3 threads, the same file to the bit. */
     CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &one, &len, NULL, 0), 0, "the lightmap's bytes");
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather-res 8 --threads 3", lm);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --threads 3", lm);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 3 threads (%s)", err ? err : "");
     free(err);
     CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0, "the 3 threads' lightmap's bytes");

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bake/lightmap.h"
 #include "formats/gltf.h"
 #include "formats/image.h"
 #include "formats/obj.h"
@@ -21,6 +22,7 @@
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
 #include "tmpdir.h"
+#include "assimp.h"
 
 TMPDIR_GROUP("gltf")
 
@@ -346,25 +348,6 @@ static void collect(void *ctx, const char *msg)
     (*n)++;
 }
 
-/* assimp reads FILE without an error (skipped with a message if not installed). */
-static void assimp_reads(const char *path)
-{
-    char cmd[600];
-    int rc;
-    if (system("command -v assimp >/dev/null 2>&1") != 0) {
-        print_message("assimp not installed (Debian assimp-utils): its check skipped\n");
-        return;
-    }
-    snprintf(cmd, sizeof cmd, "assimp info '%s' > '%s' 2>&1", path, tmp_path("assimp.txt"));
-    rc = system(cmd);
-    if (rc != 0) {
-        snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("assimp.txt"));
-        if (system(cmd)) {
-        }
-    }
-    assert_int_equal(rc, 0);
-}
-
 /* ---- tests ------------------------------------------------------------------------ */
 
 /* Two objects, one with two groups; a cube without vn (flat: 24 welded vertices), a
@@ -428,7 +411,7 @@ static void test_solution_colours(void **state)
     obj_scene sc;
     sc_poly *polys;
     sc_solver *s;
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
     char err[600];
     tex_image maps[4];
     glb g;
@@ -445,7 +428,7 @@ static void test_solution_colours(void **state)
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-5, NULL, NULL);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, tmp_path("box.glb"), NULL, NULL, err,
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("box.glb"), NULL, NULL, err,
                                     sizeof err),
                      0);
     read_glb(tmp_path("box.glb"), &g);
@@ -534,7 +517,7 @@ static void test_solution_colours(void **state)
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-3, NULL, NULL);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, tmp_path("room.glb"), collect,
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("room.glb"), collect,
                                     &warnings, err, sizeof err),
                      0);
     assert_int_equal(warnings, 1); /* the TGA */
@@ -649,6 +632,163 @@ static void test_cli(void **state)
     }
 }
 
+/* ---- the lightmap in the .glb ------------------------------------------------------ */
+
+static int lm_gather_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    return sc_gather(ctx, p, n, 1, rgb);
+}
+
+/* sRGB code C (0..255) back to linear. */
+static double srgb_decode8(int c)
+{
+    double v = c / 255.0;
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+/* The decoded image IM bilinearly at atlas position XY (texel centres at half-integers,
+   clamped at the border, as lm_lookup and a GPU's CLAMP_TO_EDGE LINEAR), times SCALE. */
+static void image_lookup(const img_t *im, const double xy[2], double scale, double rgb[3])
+{
+    double fx = xy[0] - 0.5, fy = xy[1] - 0.5, x0 = floor(fx), y0 = floor(fy);
+    int dx, dy, k;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    for (dy = 0; dy < 2; dy++)
+        for (dx = 0; dx < 2; dx++) {
+            double w = (dx ? fx - x0 : 1 - (fx - x0)) * (dy ? fy - y0 : 1 - (fy - y0));
+            int x = (int)fmin(fmax(x0 + dx, 0), im->w - 1), y = (int)fmin(fmax(y0 + dy, 0), im->h - 1);
+            for (k = 0; k < 3; k++)
+                rgb[k] += w * scale * srgb_decode8(im->rgb[3 * ((size_t)y * im->w + x) + k]);
+        }
+}
+
+/* The embedded lightmap (images[0], PNG) decoded into IM through a file of its own. */
+static void embedded_image(const glb *g, img_t *im)
+{
+    const jparser *p = &g->j;
+    int img = j_at(p, j_get(p, g->root, "images"), 0);
+    int v = j_at(p, j_get(p, g->root, "bufferViews"), (int)j_num(p, img, "bufferView", -1));
+    char err[600];
+    FILE *f = fopen(tmp_path("lm_embedded.png"), "wb");
+    assert_true(img >= 0 && v >= 0 && f);
+    assert_true(j_str_is(p, j_get(p, img, "mimeType"), "image/png"));
+    assert_int_equal(fwrite(g->bin + (size_t)j_num(p, v, "byteOffset", 0), 1,
+                            (size_t)j_num(p, v, "byteLength", 0), f),
+                     (size_t)j_num(p, v, "byteLength", 0));
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(img_read(tmp_path("lm_embedded.png"), im, err, sizeof err), 0);
+}
+
+/* A lit room with a block (12 charts) baked into a 64 x 64 atlas and exported with it:
+   every primitive has TEXCOORD_1 with one UV per vertex, inside [0, 1] and within its
+   accessor's min and max; every material that does not emit names the lightmap in its
+   extras (texCoord 1, the scale); and the embedded PNG, bilinearly sampled at each
+   vertex's TEXCOORD_1, gives the light the atlas holds there (lm_lookup) within the
+   8-bit quantisation: half a code's step of the sRGB curve at its steepest (2.4 / 1.055
+   per unit at 1) times the scale, which the bilinear weights (summing to 1) keep.
+   The block's faces share one vn, so without TEXCOORD_1 its corners would weld into 8
+   vertices; each face is a chart of its own, so they stay 20. assimp reads the file. */
+static void test_lightmap(void **state)
+{
+    obj_scene sc;
+    sc_poly *polys;
+    sc_solver *s;
+    sc_gatherer *gt;
+    sc_opts o = {.max_element = 0.25, .res = 32};
+    lm_opts lo = { 64, 0, 0 };
+    lm_atlas a;
+    char err[600];
+    img_t im;
+    glb g;
+    int n, m, k, checked = 0;
+    double worst = 0, bound, scale = -1;
+    (void)state;
+    write_text("lm.mtl", "newmtl wall\nKd 0.6 0.5 0.4\nnewmtl red\nKd 0.7 0.1 0.1\n"
+                         "newmtl lamp\nKd 0.5 0.5 0.5\nKe 8 8 8\n");
+    write_text("lm.obj", "mtllib lm.mtl\n"
+                         "v -1 0 -1\nv 1 0 -1\nv 1 2 -1\nv -1 2 -1\n"
+                         "v -1 0 1\nv 1 0 1\nv 1 2 1\nv -1 2 1\n"
+                         "v -0.3 1.99 -0.3\nv 0.3 1.99 -0.3\nv 0.3 1.99 0.3\nv -0.3 1.99 0.3\n"
+                         "v -0.5 0 -0.5\nv 0 0 -0.5\nv 0 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+                         "v -0.5 0 0\nv 0 0 0\nv 0 0.5 0\nv -0.5 0.5 0\nvn 0 1 0\n"
+                         "usemtl wall\no room\nf 1 5 6 2\nf 1 2 3 4\nf 5 8 7 6\nf 1 4 8 5\nf 2 6 7 3\n"
+                         "f 4 3 7 8\n"
+                         "usemtl lamp\no lamp\nf 9 10 11 12\n"
+                         "usemtl red\no block\nf 20//1 19//1 15//1 16//1\nf 13//1 16//1 15//1 14//1\n"
+                         "f 17//1 18//1 19//1 20//1\nf 13//1 17//1 20//1 16//1\nf 14//1 15//1 19//1 18//1\n");
+    assert_int_equal(obj_load(tmp_path("lm.obj"), &sc, NULL, NULL, err, sizeof err), 0);
+    polys = obj_to_polys(&sc, &n, NULL, NULL);
+    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 100000, 1e-3, NULL, NULL);
+    gt = sc_gatherer_new(s, 16, 0);
+    assert_non_null(gt);
+    assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
+    assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
+    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, tmp_path("lm.glb"), NULL,
+                                             NULL, err, sizeof err),
+                     0);
+    read_glb(tmp_path("lm.glb"), &g);
+    check_structure(&g);
+    embedded_image(&g, &im);
+    assert_int_equal(im.w, 64);
+    assert_int_equal(im.h, 64);
+    {
+        const jparser *p = &g.j;
+        int meshes = j_get(p, g.root, "meshes"), accs = j_get(p, g.root, "accessors");
+        int views = j_get(p, g.root, "bufferViews"), mats = j_get(p, g.root, "materials");
+        for (m = 0; m < j_count(p, mats); m++) {
+            int lm = j_get(p, j_get(p, j_at(p, mats, m), "extras"), "lightmap");
+            int lamp = m == 2; /* materials in MTL order: wall, red, lamp */
+            assert_true((lm >= 0) == !lamp);
+            if (lm < 0)
+                continue;
+            assert_int_equal(j_num(p, lm, "texCoord", -1), 1);
+            assert_int_equal(j_num(p, lm, "index", -1), 0);
+            scale = j_num(p, lm, "scale", -1);
+        }
+        assert_true(scale > 0);
+        bound = scale * 0.5 * (2.4 / 1.055) / 255;
+        for (m = 0; m < j_count(p, meshes); m++) {
+            int pr = j_at(p, j_get(p, j_at(p, meshes, m), "primitives"), 0), at = j_get(p, pr, "attributes");
+            int ua = j_at(p, accs, (int)j_num(p, at, "TEXCOORD_1", -1));
+            int pa = j_at(p, accs, (int)j_num(p, at, "POSITION", -1));
+            int uv = j_at(p, views, (int)j_num(p, ua, "bufferView", -1)), nv = (int)j_num(p, ua, "count", 0), x;
+            const unsigned char *d = g.bin + (size_t)j_num(p, uv, "byteOffset", 0);
+            assert_true(ua >= 0 && uv >= 0);
+            assert_int_equal(nv, (int)j_num(p, pa, "count", -1));
+            for (x = 0; x < nv; x++) {
+                double xy[2], want[3], got[3];
+                for (k = 0; k < 2; k++) {
+                    float f = f32(d + 8 * x + 4 * k);
+                    assert_true(f >= 0 && f <= 1);
+                    assert_true(f >= (float)p->n[j_at(p, j_get(p, ua, "min"), k)].num);
+                    assert_true(f <= (float)p->n[j_at(p, j_get(p, ua, "max"), k)].num);
+                    xy[k] = f * 64.0;
+                }
+                lm_lookup(&a, xy, want);
+                image_lookup(&im, xy, scale, got);
+                for (k = 0; k < 3; k++)
+                    worst = fmax(worst, fabs(got[k] - want[k]));
+                checked++;
+            }
+        }
+        /* the room's 6 faces, the lamp, the block's 5: 4 corners each, none welded */
+        assert_int_equal(checked, 6 * 4 + 4 + 5 * 4);
+    }
+    print_message("lightmap in the glb: %d vertices, scale %.4g, largest difference %.3g "
+                  "(bound %.3g: half an sRGB code at its steepest)\n", checked, scale, worst, bound);
+    assert_true(worst <= bound);
+    img_free(&im);
+    free_glb(&g);
+    assimp_reads(tmp_path("lm.glb"));
+    lm_free(&a);
+    sc_gatherer_free(gt);
+    sc_destroy(s);
+    free(polys);
+    obj_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -656,6 +796,7 @@ int main(void)
         cmocka_unit_test(test_solution_colours),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_cli),
+        cmocka_unit_test(test_lightmap),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "check.h"
+#include "host/parallel.h"
 #include "rad/rad.h"
 #include "reference/reference.h"
 #include "scenes.h"
@@ -345,6 +346,210 @@ static void test_element_lattice(void **st)
     free(work);
 }
 
+/* ---- coarse shots (rad_config_t.coarse) ----------------------------------------- */
+
+/* A closed room 2 x 2 x 2 of reflectance RHO whose ceiling (face 1) emits 1: 6 quads. */
+static int lit_room(sc_poly *p, double rho, double ceiling_rho)
+{
+    int n = box(p, -1, -1, -1, 1, 1, 1, 1), i;
+    for (i = 0; i < n; i++) set_mat(&p[i], rho, rho, rho, 0, 0, 0);
+    set_mat(&p[1], ceiling_rho, ceiling_rho, ceiling_rho, 1, 1, 1);
+    return n;
+}
+
+/* The level the rule in rad.h gives at unshot fraction FRAC, worked out in double:
+ * one per power of 8 that COARSE / 8^k stays at or above FRAC, then cut to the deepest
+ * the resolution allows (res >> level >= FLOOR, and res / 2 a multiple of 2^level). */
+static unsigned expected_level(double frac, double coarse, unsigned res, unsigned floor)
+{
+    unsigned level = 0, deepest = 0;
+    while (coarse > 0 && frac <= coarse && level < 8) {
+        level++;
+        coarse /= 8;
+    }
+    while ((res >> (deepest + 1)) >= floor && (res / 2) % (2u << deepest) == 0) deepest++;
+    return level < deepest ? level : deepest;
+}
+
+/* The first non-emitting shooter's cube: its resolution is the rule's, and its tables
+ * are the block sums of the res table, entry by entry, summing to exactly 2^30. */
+static void test_coarse_tables(void **st)
+{
+    static const struct { unsigned res, floor; double coarse; } c[] = {
+        {64, 8, 64}, {64, 16, 64}, {64, 0, 64}, {192, 8, 64}, {192, 8, 1}, {100, 8, 64}, {256, 32, 8}};
+    size_t i;
+    (void)st;
+    for (i = 0; i < sizeof c / sizeof c[0]; i++) {
+        sc_poly p[6];
+        int n = lit_room(p, 0.5, 0);
+        sc_opts o = {.max_patch = 1, .max_element = 0.5, .res = (int)c[i].res, .coarse = c[i].coarse,
+                     .coarse_res = (int)c[i].floor};
+        char err[256];
+        sc_solver *h = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+        rad_scene_t *s;
+        uint32_t patch = 0, q = c[i].res / 2u, m, qc, a, b, x, y, shots = 0;
+        uint64_t sum = 0;
+        unsigned want, floor = c[i].floor ? c[i].floor : c[i].res / 4u;
+        assert_non_null(h);
+        s = sc_core(h);
+        /* The ceiling's patches shoot first (at res: emitters' shots stay there). */
+        for (;;) {
+            const rad_rgb_t *e;
+            assert_int_equal(rad_shot_begin(s, 0, &patch), 1);
+            e = &s->pools.surfaces[s->pools.patches[patch].surface].emission;
+            if (e->r == 0) break;
+            CHECK_INT_EQ(s->cube_res, c[i].res, "res %u: an emitter's cube", c[i].res);
+            assert_int_equal(sc_solve(h, 1, 0, NULL, NULL), 1);
+            shots++;
+        }
+        want = expected_level(RAD_TO_DOUBLE(rad_unshot_fraction(s)), c[i].coarse, c[i].res, floor < 8 ? 8 : floor);
+        CHECK_INT_EQ(s->cube_res, c[i].res >> want, "res %u, floor %u, coarse %g after %u emitter shots (unshot %.4f)",
+                     c[i].res, floor, c[i].coarse, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)));
+        m = 1u << want;
+        qc = q / m;
+        for (y = 0; y < qc; y++)
+            for (x = 0; x < qc; x++) {
+                uint64_t t = 0, d = 0;
+                for (b = 0; b < m; b++)
+                    for (a = 0; a < m; a++) {
+                        t += s->dff_top[(y * m + b) * q + x * m + a];
+                        d += s->dff_side[(y * m + b) * q + x * m + a];
+                    }
+                CHECK_INT_EQ(s->cube_top[y * qc + x], t, "res %u level %u: top entry %u, %u", c[i].res, want, x, y);
+                CHECK_INT_EQ(s->cube_side[y * qc + x], d, "res %u level %u: side entry %u, %u", c[i].res, want, x, y);
+                sum += 4u * (uint64_t)s->cube_top[y * qc + x] + 8u * (uint64_t)s->cube_side[y * qc + x];
+            }
+        CHECK_INT_EQ(sum, (uint64_t)1 << 30, "res %u level %u: the coarse table's sum (Q2.30)", c[i].res, want);
+        print_message("res %3u floor %2u coarse %4g: first non-emitter at unshot %.4f renders at %u, table sums to 2^30\n",
+                      c[i].res, floor, c[i].coarse, RAD_TO_DOUBLE(rad_unshot_fraction(s)), (unsigned)s->cube_res);
+        sc_destroy(h);
+    }
+}
+
+/* Energy in a closed room of reflectance 1/2, shot plainly: a shot of power u hands
+ * rho F u to each element it sees, and their patches hold it as unshot power, so the
+ * room's unshot total goes from T0 to T0 - u + rho u S, S the row's sum: 1 when the
+ * cube's table sums to one (a closed room: every pixel sees an element). A coarse
+ * table that lost or doubled a block would move S by that block's share. */
+static void test_coarse_closed_room(void **st)
+{
+    sc_poly p[6];
+    int n = lit_room(p, 0.5, 0.5), shot, coarse = 0;
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 64, .no_overshoot = 1, .coarse = 1, .coarse_res = 8};
+    char err[256];
+    sc_solver *h = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    rad_scene_t *s;
+    double worst = 0, least = 1e300;
+    (void)st;
+    assert_non_null(h);
+    s = sc_core(h);
+    for (shot = 0; shot < 200; shot++) {
+        uint32_t q, best = 0;
+        double t0 = 0, t1 = 0, u, sum;
+        for (q = 0; q < s->n_patches; q++) {
+            t0 += (double)s->pools.patches[q].unshot[0];
+            if (s->pools.patches[q].unshot[0] > s->pools.patches[best].unshot[0]) best = q;
+        }
+        u = (double)s->pools.patches[best].unshot[0];
+        assert_int_equal(sc_solve(h, 1, 0, NULL, NULL), 1);
+        for (q = 0; q < s->n_patches; q++) t1 += (double)s->pools.patches[q].unshot[0];
+        sum = (t1 - t0 + u) / (0.5 * u);
+        if (s->cube_res == s->cfg.res) continue;
+        coarse++;
+        /* Each receiving element rounds its share to the nearest unit of power: at
+         * most 1/2 unit each, over the room's 384 elements, against rho u >= 5.4e7
+         * units here (the least coarse shot's, measured): below 3.6e-6. */
+        CHECK_LE(fabs(sum - 1), 3.6e-6, "shot %d at res %u: the row's sum (unshot %.0f -> %.0f, shooter %.0f)", shot,
+                 (unsigned)s->cube_res, t0, t1, u);
+        if (fabs(sum - 1) > worst) worst = fabs(sum - 1);
+        if (0.5 * u < least) least = 0.5 * u;
+    }
+    CHECK_INT_GE(coarse, 100, "coarse shots of 200 (every non-emitter's once the unshot fraction is below 1)");
+    print_message("closed room: %d coarse shots of 200, row sums within %.2e of 1 (least rho u %.3g units)\n", coarse,
+                  worst, least);
+    sc_destroy(h);
+}
+
+/* Coarse shots through the core's parts (sc_solve_parallel) give the serial bits, in
+ * both builds: the parts lay their buffers out at the shot's resolution and merge
+ * through its tables; and with bands (no room for the tables) every shot stays at
+ * res, the same bits as without coarse shots. */
+#define COARSE_PARTS(P)                                                                    \
+    static void coarse_parts_##P(const sc_poly *p, int n)                                  \
+    {                                                                                      \
+        sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 64, .coarse = 1, .coarse_res = 8}; \
+        char err[256];                                                                     \
+        P##_solver *ref = P##_create(p, n, &o, NULL, NULL, err, sizeof err);               \
+        sc_stats a, b;                                                                     \
+        int threads;                                                                       \
+        assert_non_null(ref);                                                              \
+        assert_int_equal(P##_solve(ref, 200, 0, NULL, NULL), 200);                         \
+        P##_get_stats(ref, &a);                                                            \
+        CHECK_INT_GE(a.coarse_shots, 100, #P ": coarse shots of 200");                     \
+        for (threads = 2; threads <= 3; threads++) {                                       \
+            P##_solver *s = P##_create(p, n, &o, NULL, NULL, err, sizeof err);             \
+            assert_non_null(s);                                                            \
+            assert_int_equal(P##_solve_parallel(s, threads, 200, 0, NULL, NULL), 200);     \
+            P##_get_stats(s, &b);                                                          \
+            assert_int_equal(P##_checksum(s), P##_checksum(ref));                          \
+            assert_int_equal(b.raster_pixels, a.raster_pixels);                            \
+            assert_int_equal(b.coarse_shots, a.coarse_shots);                              \
+            P##_destroy(s);                                                                \
+        }                                                                                  \
+        P##_destroy(ref);                                                                  \
+    }
+COARSE_PARTS(sc)
+COARSE_PARTS(scf)
+
+static void test_coarse_parts_and_bands(void **st)
+{
+    sc_poly p[12];
+    int n = lit_room(p, 0.6, 0.5), k;
+    char err[256];
+    uint64_t sum[2];
+    (void)st;
+    n += box(p + n, -0.3, -1, -0.3, 0.3, 0.2, 0.3, 0);
+    for (k = 6; k < n; k++) set_mat(&p[k], 0.4, 0.5, 0.6, 0, 0, 0);
+    coarse_parts_sc(p, n);
+    coarse_parts_scf(p, n);
+    for (k = 0; k < 2; k++) {
+        sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32, .band_rows = 5, .coarse = k, .coarse_res = 8};
+        sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+        sc_stats stt;
+        assert_non_null(s);
+        assert_int_equal(sc_solve(s, 100, 0, NULL, NULL), 100);
+        sc_get_stats(s, &stt);
+        CHECK_INT_EQ(stt.coarse_shots, 0, "coarse shots with bands (coarse %d)", k);
+        sum[k] = sc_checksum(s);
+        sc_destroy(s);
+    }
+    assert_int_equal(sum[1], sum[0]);
+}
+
+/* rad_init refuses a floor that is odd, below 8 or above res, and a negative fraction. */
+static void test_coarse_config(void **st)
+{
+    static rad_surface_t sf[1];
+    static rad_patch_t pt[1];
+    static rad_element_t el[1];
+    static rad_vec3_t vx[1];
+    static const struct { uint16_t floor; double coarse; int rc; } c[] = {
+        {0, 0, RAD_OK}, {8, 0.5, RAD_OK}, {32, 1, RAD_OK}, {7, 0.5, RAD_ERR_ARG}, {6, 0.5, RAD_ERR_ARG},
+        {34, 0.5, RAD_ERR_ARG}, {0, -0.25, RAD_ERR_ARG}};
+    size_t bytes = RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), 1), i;
+    void *work = malloc(bytes);
+    (void)st;
+    assert_non_null(work);
+    for (i = 0; i < sizeof c / sizeof c[0]; i++) {
+        rad_pools_t p = {.surfaces = sf, .max_surfaces = 1, .patches = pt, .max_patches = 1, .elements = el,
+                         .max_elements = 1, .vertices = vx, .max_vertices = 1, .work = work, .work_bytes = bytes};
+        rad_config_t cfg = {.res = 32, .coarse_res = c[i].floor, .coarse = RAD_REAL(c[i].coarse)};
+        rad_scene_t s;
+        CHECK_INT_EQ(rad_init(&s, &p, &cfg), c[i].rc, "coarse_res %u, coarse %g", c[i].floor, c[i].coarse);
+    }
+    free(work);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -355,6 +560,10 @@ int main(void)
         cmocka_unit_test(test_bands_bit_exact),
         cmocka_unit_test(test_blocker_no_leak),
         cmocka_unit_test(test_element_lattice),
+        cmocka_unit_test(test_coarse_tables),
+        cmocka_unit_test(test_coarse_closed_room),
+        cmocka_unit_test(test_coarse_parts_and_bands),
+        cmocka_unit_test(test_coarse_config),
     };
     return cmocka_run_group_tests_name("hemicube", tests, NULL, NULL);
 }

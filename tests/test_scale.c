@@ -202,7 +202,7 @@ static unsigned char work[RAD_WORK_BYTES(RES, RAD_PIXELS_ALL(RES), NV)];
 static int init(rad_scene_t *s, double L)
 {
     rad_pools_t pools = {surfaces, NS, patches, NP, elements, NE, vertices, NV, work, sizeof work};
-    rad_config_t cfg = {0, 0, RES, 0, 0};
+    rad_config_t cfg = {0, 0, RES, 0, 0, 0, 0};
     cfg.max_element = RAD_REAL(q16(L / 8));
     cfg.max_patch = RAD_REAL(q16(L / 4));
     return rad_init(s, &pools, &cfg);
@@ -567,7 +567,7 @@ static void test_small_elements(void **st)
     rad_scene_t s;
     rad_vec3_t q[4];
     rad_pools_t pools = {surfaces, NS, patches, NP, elements, NE, vertices, NV, work, sizeof work};
-    rad_config_t cfg = {0, 0, RES, 0, 0};
+    rad_config_t cfg = {0, 0, RES, 0, 0, 0, 0};
     rad_rgb_t grey = rgb(0.5, 0.5, 0.5), em = rgb(1, 1, 1);
     (void)st;
     cfg.max_element = RAD_REAL(1.0 / 16);

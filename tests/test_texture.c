@@ -9,11 +9,13 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
+#include "check.h"
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
@@ -563,7 +565,7 @@ static void free_textured(textured *t)
    solutions of the same mesh (fixed build, or the float twin if FLOAT). */
 static double solution_difference(const textured *a, const textured *b, int use_float)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
     char err[512];
     double worst = 0, peak = 0, ra[3], rb[3];
     int e, k, ne, pass;
@@ -706,7 +708,7 @@ typedef struct {
 
 static void solve_textured(const char *name, solved *x)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0 };
+    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
     char err[512];
     load_textured(name, &x->t);
     x->s = sc_create(x->t.p, x->t.n, &o, NULL, NULL, err, sizeof err);
@@ -807,6 +809,159 @@ static void test_render_detail(void **state)
     free_solved(&x);
 }
 
+/* ---- tests: large footprints and unusual maps --------------------------------------- */
+
+/* Bricks of 16 x 8 texels (mortar white, each brick its own colour) in a 64 x 64 map. */
+static void bricks(unsigned char *rgb)
+{
+    int x, y, k;
+    for (y = 0; y < 64; y++)
+        for (x = 0; x < 64; x++) {
+            int row = y / 8, col = (x + (row % 2) * 8) / 16, mortar = y % 8 == 0 || (x + (row % 2) * 8) % 16 == 0;
+            for (k = 0; k < 3; k++)
+                rgb[3 * (64 * y + x) + k] = (unsigned char)(mortar ? 250 : 30 + (37 * row + 53 * col + 71 * k) % 160);
+        }
+}
+
+/* A footprint more than TEX_MEAN_MAX_DIV / 4 texels across is integrated along lines:
+   the two halves of a square of whole periods (2 x 2, then 6 x 6 with -s 3 and -o 0.25)
+   give the image's mean, since each line is exact across and the diagonal's share of
+   one half is the other's; a sampling lattice of 64 a side beat with the bricks'
+   period (a wall of this kind measured 36% dark). Clamped, a uniform map far past its
+   edges is its colour. */
+static void test_large_footprint_mean(void **state)
+{
+    static const obj_vec2 lo[3] = { { 0, 0 }, { 2, 0 }, { 2, 2 } }, hi[3] = { { 0, 0 }, { 2, 2 }, { 0, 2 } };
+    static const obj_vec2 far[3] = { { -1, -1 }, { 3, -1 }, { 3, 3 } };
+    unsigned char rgb[64 * 64 * 3];
+    tex_image t;
+    double want[3], a[3], b[3], worst = 0;
+    int pass, k;
+    (void)state;
+    bricks(rgb);
+    make_texture("bricks.png", rgb, 64, 64, &t);
+    tex_image_mean(&t, want);
+    for (pass = 0; pass < 2; pass++) {
+        if (pass) {
+            t.scale[0] = t.scale[1] = 3;
+            t.offset[0] = t.offset[1] = 0.25;
+        }
+        tex_triangle_mean(&t, lo, a);
+        tex_triangle_mean(&t, hi, b);
+        for (k = 0; k < 3; k++)
+            worst = fmax(worst, fabs(0.5 * (a[k] + b[k]) - want[k]) / want[k]);
+        print_message("bricks, %s: halves %.6f and %.6f, their mean against the image's %.6f\n",
+                      pass ? "-s 3 -o 0.25" : "2 x 2 periods", a[0], b[0], want[0]);
+    }
+    CHECK_LE(worst, 1e-9, "two halves of whole periods against the image's mean, relative (rounding only: "
+             "some 10^4 lines of sums below 10^3)");
+    tex_free(&t);
+    memset(rgb, 0, sizeof rgb);
+    for (k = 0; k < 64 * 64; k++) {
+        rgb[3 * k] = 200;
+        rgb[3 * k + 1] = 90;
+        rgb[3 * k + 2] = 10;
+    }
+    make_texture("flat.png", rgb, 64, 64, &t);
+    t.clamp = 1;
+    tex_triangle_mean(&t, far, a);
+    tex_texel(&t, 0, 0, want);
+    for (k = 0; k < 3; k++)
+        assert_near(a[k], want[k], 1e-12);
+    tex_free(&t);
+}
+
+/* Writes a W x H PNG of COLOR_TYPE and DEPTH from ROWS (packed, big-endian 16-bit). */
+static void write_png(const char *name, int w, int h, int color_type, int depth, const unsigned char *rows,
+                      size_t stride)
+{
+    FILE *f = fopen(tmp_path(name), "wb");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    int y;
+    assert_true(f && png && info);
+    if (setjmp(png_jmpbuf(png)))
+        fail_msg("libpng could not write %s", name);
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, color_type, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    for (y = 0; y < h; y++)
+        png_write_row(png, (png_const_bytep)(rows + (size_t)y * stride));
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void expect_texel(const tex_image *t, int x, int y, const unsigned char want[3], const char *what)
+{
+    double c[3];
+    int k;
+    tex_texel(t, x, y, c);
+    for (k = 0; k < 3; k++)
+        if (fabs(c[k] - tex_srgb_decode(want[k] / 255.0)) > 1e-15)
+            fail_msg("%s texel (%d, %d) channel %d: %.17g, want byte %u (%.17g)", what, x, y, k, c[k], want[k],
+                     tex_srgb_decode(want[k] / 255.0));
+}
+
+/* 16-bit RGB keeps each sample's high byte, grey + alpha its grey (alpha dropped); a
+   1 x 1 map is its texel everywhere, over any footprint; UVs far out (1e29) and a
+   footprint of 192,000 texel rows (past the lines' limit) take the sampler and give
+   values inside the texels' range. */
+static void test_unusual_maps(void **state)
+{
+    static const unsigned char rgb16[2 * 6] = { 0x12, 0x34, 0xab, 0xcd, 0x00, 0xff, 0xff, 0x01, 0x80, 0x00, 0x7f, 0xff };
+    static const unsigned char ga[2 * 2] = { 0x40, 0x00, 0xc8, 0xff };
+    static const unsigned char want16[2][3] = { { 0x12, 0xab, 0x00 }, { 0xff, 0x80, 0x7f } };
+    static const unsigned char wantga[2][3] = { { 0x40, 0x40, 0x40 }, { 0xc8, 0xc8, 0xc8 } };
+    static const obj_vec2 wide[3] = { { 0, 0 }, { 50, 0 }, { 0, 50 } }, huge[3] = { { 0, 0 }, { 1e29, 0 }, { 0, 1e29 } };
+    static const obj_vec2 tall[3] = { { 0, 0 }, { 1, 0 }, { 0, 3000 } };
+    unsigned char one[3] = { 10, 200, 90 }, rgb[64 * 64 * 3];
+    tex_image t;
+    char err[512];
+    double c[3], lo[3] = { 1, 1, 1 }, hi[3] = { 0, 0, 0 };
+    int x, y, k, i;
+    (void)state;
+    write_png("rgb16.png", 2, 1, PNG_COLOR_TYPE_RGB, 16, rgb16, sizeof rgb16);
+    assert_int_equal(tex_load(tmp_path("rgb16.png"), &t, err, sizeof err), 0);
+    for (x = 0; x < 2; x++)
+        expect_texel(&t, x, 0, want16[x], "16-bit RGB");
+    tex_free(&t);
+    write_png("ga.png", 1, 2, PNG_COLOR_TYPE_GRAY_ALPHA, 8, ga, 2);
+    assert_int_equal(tex_load(tmp_path("ga.png"), &t, err, sizeof err), 0);
+    for (y = 0; y < 2; y++)
+        expect_texel(&t, 0, y, wantga[y], "grey + alpha");
+    tex_free(&t);
+
+    make_texture("one.png", one, 1, 1, &t);
+    tex_sample(&t, 0.3, -7.9, c);
+    for (k = 0; k < 3; k++)
+        assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-15);
+    tex_triangle_mean(&t, wide, c);
+    for (k = 0; k < 3; k++)
+        assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-12);
+    tex_free(&t);
+
+    bricks(rgb);
+    make_texture("bricks2.png", rgb, 64, 64, &t);
+    for (y = 0; y < 64; y++)
+        for (x = 0; x < 64; x++) {
+            tex_texel(&t, x, y, c);
+            for (k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], c[k]);
+                hi[k] = fmax(hi[k], c[k]);
+            }
+        }
+    for (i = 0; i < 2; i++) {
+        tex_triangle_mean(&t, i ? tall : huge, c);
+        for (k = 0; k < 3; k++)
+            if (!(c[k] >= lo[k] && c[k] <= hi[k]))
+                fail_msg("%s footprint: channel %d = %g, outside the texels' %g .. %g", i ? "tall" : "far", k, c[k],
+                         lo[k], hi[k]);
+    }
+    tex_free(&t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -816,7 +971,8 @@ int main(void)
         cmocka_unit_test(test_hostile_images),    cmocka_unit_test(test_obj_uv_groups),
         cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
         cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
-        cmocka_unit_test(test_render_detail),
+        cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
+        cmocka_unit_test(test_unusual_maps),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

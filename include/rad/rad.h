@@ -193,8 +193,25 @@ typedef struct {
     rad_real_t max_element; /* longest element edge; default 4.0 units */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
-    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, or 0 */
+    uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
+    uint16_t coarse_res;    /* least resolution of a coarse shot (below); 0: res / 4 */
+    rad_real_t coarse;      /* unshot fraction below which shots coarsen; 0: never */
 } rad_config_t;
+
+/* Coarse shots: the first shots (the emitters', the first bounces') carry most of the
+ * light, the late ones little, so a late shot's cube may be coarser. Once the unshot
+ * fraction (rad_unshot_fraction) at a shot is at most COARSE, that shot renders its
+ * cube at res / 2, at most COARSE / 8 at res / 4, and so on (each level an eighth of
+ * the last), never below COARSE_RES (even, 8..res; res / 4 when 0) nor where res / 2
+ * is not made of whole 2^level x 2^level blocks. A patch shooting its own emission
+ * (its unshot power at least half its emitted power: the direct light) stays at res.
+ * A coarse cube's delta form factors are the block sums of the res table, so they
+ * still sum to exactly 2^30, and the light shot after the switch is what was unshot
+ * then: the error coarse shots add is bounded by that share. Raising res with
+ * COARSE = 1 puts the direct light at the finer res and everything else coarser
+ * (README: Coarse shots). Needs all five faces in the work buffer (band_rows 0):
+ * with bands every shot is at res. Stored rows and rad_form_factors are always at
+ * res. 0 (the default) keeps every shot at res: the same bits as without the field. */
 
 /* A work buffer too small for all five faces renders the cube in bands of rows (the
  * same bits, more passes); rad_scene_t.band_rows tells which was chosen (0: all faces
@@ -216,6 +233,17 @@ typedef struct {
  * new lowest), shots are plain from then on; each counted in rad_stats_t.backoffs. */
 #define RAD_NO_OVERSHOOT 1u
 
+/* Polygons that reflect (no emission) are accepted down to an area of 2^-16 square
+ * units (one LSB; by default 1/4096), so that detail too small for the core's
+ * precision still occludes in every hemi-cube and passes on the power it receives:
+ * power reaches an element and its patch as rho F U whatever the element's area, so
+ * the energy carried is exact, while the element's own radiosity, that power over an
+ * area rounded to 2^-16 (a relative error up to 2^-17 / area) and from the few pixels
+ * it covers in each shot, is imprecise: shade such faces from the solution around them
+ * (rad_gather at the face). An emitter still needs 1/4096: its power is its emission
+ * times its area (an emission given later by rad_set_surface carries that rounding). */
+#define RAD_SMALL_FACES 64u
+
 typedef struct {
     uint32_t shots;         /* patches shot */
     uint32_t saturations;   /* values clamped to their format's range */
@@ -226,8 +254,9 @@ typedef struct {
      * core scales every scene to one size, so these are elements small against their
      * scene (a square of side 1/8: 1/512 of a scene 64 units across): mesh coarser. */
     uint32_t small_elements;
-    uint32_t backoffs;      /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
+    uint32_t backoffs;     /* overshoot halvings (see RAD_NO_OVERSHOOT): the estimate
                                of the power coming back proved too high */
+    uint32_t coarse_shots; /* shots whose cube was coarser than res (rad_config_t.coarse) */
 } rad_stats_t;
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
@@ -250,6 +279,11 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    /* the shot's cube: its resolution and delta form factor tables (cfg.res and the
+     * dff tables but for a coarse shot, whose tables follow its depth buffer) */
+    rad_ff_t *cube_top, *cube_side;
+    uint16_t cube_res;
+    uint16_t cube_built; /* the coarse level whose tables are built, 0: none */
     /* overshooting's back-off (lib/solve.c), reset before the first shot */
     rad_energy_t over_low;  /* lowest unshot total since the last back-off */
     rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
@@ -299,8 +333,29 @@ int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
 int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
 
+/* Adds polygon V (N = 3 or 4 vertices, as rad_add_polygon; area below 1/4096, one
+ * element) as a surface of its own that joins the last patch added, with REFLECTANCE
+ * (NULL: black) and no emission (RAD_SMALL_FACES). Faces too small for a patch each,
+ * grouped by the caller (nearby, facing about the same way), then act as one patch of
+ * their size: drawn one by one in every cube, but their pixels count for the group's
+ * first element, its receiver, whose area becomes the group's (a face's own share of
+ * a shot is often below the 2^-16 a power keeps); the group shoots from the patch's
+ * centre (the mean of its elements' vertices) on its first surface's normal, and every
+ * face of it shows the group's radiosity (rad_element_radiosity, rad_shade_vertices).
+ * Each join is a pass over the patch's elements. A group's surfaces cannot emit
+ * (rad_set_surface refuses it); its overshoot, ambient share and Gauss-Seidel row take
+ * its first surface's reflectance. Takes 1 surface, no patch, 1 element and N
+ * vertices. Returns the new surface's index, or RAD_ERR_ARG (no RAD_SMALL_FACES, a
+ * polygon of 1/4096 or more or longer than max_element, a group of 16384 units^2),
+ * RAD_ERR_STATE (after shooting started, no patch yet, or the last patch emits),
+ * RAD_ERR_RANGE, RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR or RAD_ERR_FULL as
+ * rad_add_polygon. */
+int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
+                     const rad_rgb_t *reflectance);
+
 /* Changes the reflectance and emission of surface SURF (either may be NULL to keep it).
- * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE. */
+ * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE
+ * (also: an emission for a surface of a group, rad_join_polygon). */
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
 

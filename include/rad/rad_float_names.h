@@ -9,6 +9,7 @@
 #define rad_init_abi          radf_init_abi
 #define rad_plan_polygon      radf_plan_polygon
 #define rad_add_polygon       radf_add_polygon
+#define rad_join_polygon      radf_join_polygon
 #define rad_shoot             radf_shoot
 #define rad_unshot_fraction   radf_unshot_fraction
 #define rad_ambient           radf_ambient

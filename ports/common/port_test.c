@@ -246,7 +246,8 @@ static int add_quad(rad_scene_t *s, const rad_vec3_t *v, unsigned mat)
 static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
 {
     rad_pools_t pools;
-    rad_config_t cfg;
+    /* Designated: every field not named (coarse shots among them) is 0, its default. */
+    rad_config_t cfg = {.res = 0};
     unsigned i, k;
     int rc;
 

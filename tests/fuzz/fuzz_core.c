@@ -301,7 +301,7 @@ static void *alloc_exact(size_t n) { return malloc(n ? n : 1); }
 static int setup(reader_t *r, ctx_t *c)
 {
     static const uint16_t resv[] = {8, 10, 16, 32, 12, 64, 20, 0, 6, 7, 9, 1026, 2048, 65534, 1024, 2};
-    rad_config_t cfg;
+    rad_config_t cfg = {.res = 0}; /* every field not set below is 0, its default */
     uint8_t f = u8(r);
     uint16_t res;
     size_t pixels, misalign, need, n;
@@ -319,6 +319,10 @@ static int setup(reader_t *r, ctx_t *c)
     cfg.res = res;
     cfg.band_rows = (f & 4) ? (uint16_t)(u8(r) % 40u) : 0;
     cfg.flags = (f & 0x40) ? RAD_NO_OVERSHOOT : 0u;
+    if (f & 0x80) { /* coarse shots, valid or not */
+        cfg.coarse = real(r);
+        cfg.coarse_res = (uint16_t)(u8(r) & 0xFEu);
+    }
     c->pools.surfaces = alloc_exact(c->pools.max_surfaces * sizeof(rad_surface_t));
     c->pools.patches = alloc_exact(c->pools.max_patches * sizeof(rad_patch_t));
     c->pools.elements = alloc_exact(c->pools.max_elements * sizeof(rad_element_t));

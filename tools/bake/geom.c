@@ -125,6 +125,29 @@ int geom_tri2_touches_box(const double t[3][2], double x0, double y0, double sid
     return 1;
 }
 
+void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m, double q[2])
+{
+    int k, i, pass;
+    for (pass = 0; pass < 2; pass++)
+        for (i = 0; i < n; i++)
+            for (k = 0; k < 3; k++) {
+                const double *p0 = t[i][k], *p1 = t[i][(k + 1) % 3], *p2 = t[i][(k + 2) % 3];
+                double nx = p0[1] - p1[1], ny = p1[0] - p0[0], len = hypot(nx, ny), s;
+                if (!b[i][k] || !(len > 0.0)) continue;
+                nx /= len;
+                ny /= len;
+                if ((p2[0] - p0[0]) * nx + (p2[1] - p0[1]) * ny < 0.0) {
+                    nx = -nx;
+                    ny = -ny;
+                }
+                s = (q[0] - p0[0]) * nx + (q[1] - p0[1]) * ny;
+                if (s < m) {
+                    q[0] += (m - s) * nx;
+                    q[1] += (m - s) * ny;
+                }
+            }
+}
+
 /* ---- rays through a grid ---- */
 
 typedef struct {
@@ -286,5 +309,28 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
                 int k = (z * gr->g + y) * gr->g + x, j;
                 for (j = gr->start[k]; j < gr->start[k + 1]; j++) nearest(gr, p, gr->ids[j], o, dir, len, &best, back);
             }
+    return best;
+}
+
+double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
+                     double len, double dir[3])
+{
+    double best = HUGE_VAL, dirs[4][3];
+    int k, j, found = -1;
+    for (k = 0; k < 3; k++) {
+        dirs[0][k] = u[k];
+        dirs[1][k] = -u[k];
+        dirs[2][k] = v[k];
+        dirs[3][k] = -v[k];
+    }
+    for (j = 0; j < 4; j++) {
+        int back = 0;
+        double t = geom_grid_ray(grid, p, o, dirs[j], len, &back);
+        if (back && t < best) {
+            best = t;
+            found = j;
+        }
+    }
+    if (found >= 0) memcpy(dir, dirs[found], 3 * sizeof *dir);
     return best;
 }

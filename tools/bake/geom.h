@@ -45,6 +45,10 @@ void geom_tri2_closest(const double t[3][2], const double c[2], double q[2]);
 /* 1 when triangle T and the square [X0, X0 + SIDE] x [Y0, Y0 + SIDE] overlap by more
  * than a touch. */
 int geom_tri2_touches_box(const double t[3][2], double x0, double y0, double side);
+/* Moves Q M in from the lines of the edges of the N triangles T flagged in B (edge k
+ * from vertex k to k + 1; the third vertex lies on the inner side), in two passes so
+ * that both edges of a corner are met: a sample kept off a boundary. */
+void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m, double q[2]);
 
 /* A uniform grid of the polygons' boxes; NULL when out of memory. */
 void *geom_grid_new(const sc_poly *p, const geom_poly *g, int n);
@@ -53,5 +57,11 @@ void geom_grid_free(void *grid);
  * distance): its distance, HUGE_VAL if none; *BACK 1 when it is met from behind. */
 double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const double *dir, double len,
                      int *back);
+/* Of the four rays from P along +-U and +-V (unit, in a plane P lies just above) within
+ * LEN, the one that meets a back face nearest: its distance, its direction into DIR;
+ * HUGE_VAL if none does. A sample whose ray meets a back face first lies inside
+ * geometry (a box on the floor, a thick wall through it): move it out past that face. */
+double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
+                     double len, double dir[3]);
 
 #endif

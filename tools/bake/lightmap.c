@@ -276,26 +276,9 @@ typedef struct {
  * from C before the move into *DIST. */
 static void tri_sample(const tri_t *t, const double c[2], double m, double q[2], double *dist)
 {
-    int k, pass;
     geom_tri2_closest(t->p, c, q);
     *dist = hypot(q[0] - c[0], q[1] - c[1]);
-    for (pass = 0; pass < 2; pass++)
-        for (k = 0; k < 3; k++) {
-            const double *p0 = t->p[k], *p1 = t->p[(k + 1) % 3], *p2 = t->p[(k + 2) % 3];
-            double nx = p0[1] - p1[1], ny = p1[0] - p0[0], len = hypot(nx, ny), s;
-            if (!t->b[k] || !(len > 0.0)) continue;
-            nx /= len;
-            ny /= len;
-            if ((p2[0] - p0[0]) * nx + (p2[1] - p0[1]) * ny < 0.0) {
-                nx = -nx;
-                ny = -ny;
-            }
-            s = (q[0] - p0[0]) * nx + (q[1] - p0[1]) * ny;
-            if (s < m) {
-                q[0] += (m - s) * nx;
-                q[1] += (m - s) * ny;
-            }
-        }
+    geom_tri2_inset(&t->p, &t->b, 1, m, q);
 }
 
 /* Samples the texels of chart C within a texel of triangle T (those it touches, and
@@ -371,25 +354,10 @@ static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a
  * moves past the nearest such face by the margin. */
 static void push_out(lm_atlas *a, const lm_chart *c, float *st)
 {
-    double s[2] = {st[0], st[1]}, p[3], best = HUGE_VAL, dir[3], dirs[4][3];
-    int k, j, found = -1;
+    double s[2] = {st[0], st[1]}, p[3], best, dir[3];
     rect_point(a, c, s, lift_of(a), p);
-    for (k = 0; k < 3; k++) {
-        dirs[0][k] = c->u[k];
-        dirs[1][k] = -c->u[k];
-        dirs[2][k] = c->v[k];
-        dirs[3][k] = -c->v[k];
-    }
-    for (j = 0; j < 4; j++) {
-        int back = 0;
-        double t = geom_grid_ray(a->grid, a->polys, p, dirs[j], 0.75 * a->texel, &back);
-        if (back && t < best) {
-            best = t;
-            found = j;
-        }
-    }
-    if (found < 0) return;
-    memcpy(dir, dirs[found], sizeof dir);
+    best = geom_back_ray(a->grid, a->polys, p, c->u, c->v, 0.75 * a->texel, dir);
+    if (!(best < HUGE_VAL)) return;
     best += margin_of(a);
     st[0] = (float)(s[0] + best / a->texel * geom_dot(dir, c->u));
     st[1] = (float)(s[1] + best / a->texel * geom_dot(dir, c->v));
@@ -645,6 +613,80 @@ int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, si
     }
     tonemap(a->rgb, t, exposure > 0.0 ? exposure : tonemap_auto_exposure(a->rgb, t), px);
     rc = img_write(path, px, a->size, a->size, err, errlen);
+    free(px);
+    return rc;
+}
+
+/* Polygon Q has vertex P (exactly: the polygons carry the OBJ's coordinates). */
+static int poly_has(const sc_poly *q, const double p[3])
+{
+    int k;
+    for (k = 0; k < q->n; k++)
+        if (!cmp3(q->v[k], p)) return 1;
+    return 0;
+}
+
+static void corner_uv(const lm_atlas *a, const int *byface, int lo, int hi, const double p[3], double uv[2])
+{
+    int i, poly = lo < hi ? byface[lo] : -1;
+    double xy[2];
+    for (i = lo; i < hi; i++)
+        if (poly_has(&a->polys[byface[i]], p)) {
+            poly = byface[i];
+            break;
+        }
+    uv[0] = uv[1] = 0.0;
+    if (poly >= 0 && lm_uv(a, poly, p, xy) == 0) {
+        uv[0] = xy[0] / a->size;
+        uv[1] = xy[1] / a->size;
+    }
+}
+
+int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv)
+{
+    int *first = calloc((size_t)sc->nfaces + 2, sizeof *first), *byface = malloc(((size_t)a->npolys + 1) * sizeof *byface);
+    int *fill = calloc((size_t)sc->nfaces + 1, sizeof *fill), i, f, k;
+    if (!first || !byface || !fill) {
+        free(first);
+        free(byface);
+        free(fill);
+        return -1;
+    }
+    for (i = 0; i < a->npolys; i++)
+        if (a->polys[i].tag >= 0 && a->polys[i].tag < sc->nfaces) first[a->polys[i].tag + 1]++;
+    for (f = 0; f < sc->nfaces; f++) first[f + 1] += first[f];
+    for (i = 0; i < a->npolys; i++) {
+        int t = a->polys[i].tag;
+        if (t >= 0 && t < sc->nfaces) byface[first[t] + fill[t]++] = i;
+    }
+    for (f = 0; f < sc->nfaces; f++)
+        for (k = 0; k < sc->faces[f].count; k++) {
+            int c = sc->faces[f].first + k;
+            const obj_vec3 *v = &sc->verts[sc->indices[c]];
+            const double p[3] = {v->x, v->y, v->z};
+            corner_uv(a, byface, first[f], first[f + 1], p, uv + 2 * (size_t)c);
+        }
+    free(first);
+    free(byface);
+    free(fill);
+    return 0;
+}
+
+int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err, size_t errlen)
+{
+    size_t t = (size_t)a->size * a->size, i;
+    unsigned char *px = malloc(3 * t);
+    float top = 0.0f;
+    int rc;
+    for (i = 0; i < 3 * t; i++)
+        if (a->rgb[i] > top) top = a->rgb[i]; /* NaN compares false: left out */
+    *scale = top > 0.0f ? top : 1.0;
+    if (!px) {
+        snprintf(err, errlen, "out of memory for a %dx%d lightmap image", a->size, a->size);
+        return -1;
+    }
+    tonemap(a->rgb, t, 1.0 / *scale, px);
+    rc = img_encode_png(px, a->size, a->size, png, n, err, errlen);
     free(px);
     return rc;
 }

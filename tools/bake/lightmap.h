@@ -35,6 +35,7 @@
 
 #include <stddef.h>
 
+#include "formats/obj.h"
 #include "host/scene.h"
 
 #define LM_MAX_SIZE 8192
@@ -101,6 +102,18 @@ void lm_lookup(const lm_atlas *a, const double xy[2], double rgb[3]);
 /* Writes the atlas: .hdr (linear, tools/formats/hdr.h) or .png/.ppm (sRGB at EXPOSURE;
  * 0: automatic over the covered texels). 0, or -1 with err; never a partial file. */
 int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, size_t errlen);
+
+/* Each face corner of SC (whose faces the atlas's polygons came from: tags = face
+ * indices, obj_to_polys) as a glTF UV on the atlas ([0, 1], origin at the top left),
+ * into UV[2 * corner]: on the polygon of its face that has the corner's vertex (the
+ * face's first polygon if none has; (0, 0) for a face without one). 0, or -1 out of
+ * memory. */
+int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv);
+
+/* The atlas as 8-bit sRGB PNG bytes for embedding (*PNG, malloc'd, *N bytes), scaled so
+ * that its largest channel is white: a texel's light is *SCALE times its sRGB-decoded
+ * value, within half a code's step (no texel clips). 0, or -1 with err. */
+int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err, size_t errlen);
 
 void lm_free(lm_atlas *a);
 

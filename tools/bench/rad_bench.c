@@ -26,7 +26,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <pthread.h>
+
+#include "bake/lightmap.h"
+#include "formats/image.h"
 #include "formats/obj.h"
+#include "formats/texture.h"
 #include "host/clock.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
@@ -130,7 +135,7 @@ static double median(double *v, int n)
 /* The scene's mesh and resolution as solver options. */
 static sc_opts scene_opts(const bscene *sc)
 {
-    sc_opts o = {0, 0, 0, 0, 0, 0};
+    sc_opts o = {0};
     o.max_element = sc->max_element;
     o.max_patch = sc->max_patch;
     o.res = sc->res;
@@ -673,11 +678,30 @@ static void dir_of(const char *path, char *out, size_t n)
     else snprintf(out, n, "%.*s", (int)(sl - path), path);
 }
 
+/* The programs of the peer table: rad_cli to 0.01 and 0.001 at its defaults, rpkCpp,
+ * then rad_cli to 0.001 with coarse shots, and both at the bench's element edge 0.08. */
+#define PEER_CMDS 6
+#define PEER_RPK  2
+
+/* Coarse shots as the bench measures them (rad_config_t.coarse): the emitters' shots at
+ * res 192, the others at 96, 48 and 24 as the unshot fraction falls below 1, 1/8 and
+ * 1/64 (chosen on CornellBox-Original: more accurate than every shot at 128, below
+ * half its time; see the peer table's accuracy column). */
+#define COARSE_RES   192
+#define COARSE_FRAC  1.0
+#define COARSE_FLOOR 24
+#define COARSE_FLAGS "--res", "192", "--coarse", "1", "--coarse-res", "24"
+
 typedef struct {
-    char why[3072];        /* empty when measured; else why not */
-    double t[3], ratio[2]; /* medians: rad to 0.01, to 0.001, rpkCpp; rad/rpkCpp per round */
-    double cpu[3], cpu_ratio[2]; /* the same in processor time */
-    long kb[3];          /* peaks over the runs */
+    char why[3072];                        /* empty when measured; else why not */
+    double t[PEER_CMDS], ratio[PEER_CMDS]; /* medians: each program; rad/rpkCpp per round */
+    double cpu[PEER_CMDS], cpu_ratio[PEER_CMDS]; /* the same in processor time */
+    long kb[PEER_CMDS];                    /* peaks over the runs */
+    /* per element against a res-512 solve to 1e-4 of the same mesh (peer_accuracy):
+     * rms and max relative error over elements above 10% and above 1% of the brightest */
+    double rms[PEER_CMDS][2], max[PEER_CMDS][2];
+    int elements[PEER_CMDS];
+    size_t bytes[PEER_CMDS];               /* pools and work buffer */
 } peer_t;
 
 /* The peer's scene beside it: converted from the OBJ SCENE with the shared converter
@@ -706,12 +730,17 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
 {
     const char *root = getenv("RAD_PEER_RPK");
     char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
-    char *cmd[3][16] = {
+    char *cmd[PEER_CMDS][24] = {
         {cli, (char *)scene, "--tol", "0.01", "--width", "64", "--height", "64", "-o", png, NULL},
         {cli, (char *)scene, "--tol", "0.001", "--width", "64", "--height", "64", "-o", png, NULL},
         {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none", "-iterations", "30",
-         mgf, NULL}};
-    double t[3][PEER_RUNS], c[3][PEER_RUNS], r[2][PEER_RUNS], rc[2][PEER_RUNS];
+         mgf, NULL},
+        {cli, (char *)scene, "--tol", "0.001", COARSE_FLAGS, "--width", "64", "--height", "64", "-o", png, NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", "--width", "64", "--height", "64", "-o", png,
+         NULL},
+        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", COARSE_FLAGS, "--width", "64", "--height",
+         "64", "-o", png, NULL}};
+    double t[PEER_CMDS][PEER_RUNS], c[PEER_CMDS][PEER_RUNS], r[PEER_CMDS][PEER_RUNS], rc[PEER_CMDS][PEER_RUNS];
     int i, k;
     memset(pr, 0, sizeof *pr);
     if (!root || !*root) root = "../peer-rpk";
@@ -729,28 +758,122 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
     if (peer_scene(scene, mgf, pr) < 0) return;
     fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
     for (i = 0; i < PEER_RUNS; i++)
-        for (k = 0; k < 3; k++) {
+        for (k = 0; k < PEER_CMDS; k++) {
             long kb;
             if (run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
-                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k < 2 ? scene : mgf);
+                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k != PEER_RPK ? scene : mgf);
                 return;
             }
             if (kb > pr->kb[k]) pr->kb[k] = kb;
         }
     remove(png);
     for (i = 0; i < PEER_RUNS; i++)
-        for (k = 0; k < 2; k++) {
-            r[k][i] = t[k][i] / t[2][i];
-            rc[k][i] = c[k][i] / c[2][i];
+        for (k = 0; k < PEER_CMDS; k++) {
+            r[k][i] = t[k][i] / t[PEER_RPK][i];
+            rc[k][i] = c[k][i] / c[PEER_RPK][i];
         }
-    for (k = 0; k < 3; k++) {
+    for (k = 0; k < PEER_CMDS; k++) {
         pr->t[k] = median(t[k], PEER_RUNS);
         pr->cpu[k] = median(c[k], PEER_RUNS);
-    }
-    for (k = 0; k < 2; k++) {
         pr->ratio[k] = median(r[k], PEER_RUNS);
         pr->cpu_ratio[k] = median(rc[k], PEER_RUNS);
     }
+}
+
+/* Per element, A against the reference REF of the same mesh: the relative error of
+ * r + g + b (with the ambient term) over the elements of SC's non-emitting faces above
+ * FLOOR[k] of the brightest of them, rms in RMS[k] and largest in MAX[k]. */
+static void element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2], double *rms,
+                             double *mx)
+{
+    sc_stats st;
+    double *b, top = 0, s2[2] = {0, 0};
+    int e, k, i, n[2] = {0, 0}, ntag = 0;
+    char *emits;
+    for (i = 0; i < sc->n; i++) if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
+    sc_get_stats(ref, &st);
+    b = malloc((size_t)st.elements * sizeof *b);
+    emits = calloc((size_t)ntag + 1, 1);
+    if (!b || !emits) exit(1);
+    for (i = 0; i < sc->n; i++) if (poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
+    for (e = 0; e < st.elements; e++) {
+        double x[3];
+        sc_element_rgb(ref, e, 1, x);
+        b[e] = x[0] + x[1] + x[2];
+        if (!emits[sc_element_tag(ref, e)] && b[e] > top) top = b[e];
+    }
+    for (k = 0; k < 2; k++) mx[k] = 0;
+    for (e = 0; e < st.elements; e++) {
+        double x[3], d;
+        if (emits[sc_element_tag(ref, e)]) continue;
+        sc_element_rgb(a, e, 1, x);
+        d = fabs((x[0] + x[1] + x[2]) / b[e] - 1);
+        for (k = 0; k < 2; k++) {
+            if (b[e] <= floor[k] * top) continue;
+            s2[k] += d * d;
+            n[k]++;
+            if (d > mx[k]) mx[k] = d;
+        }
+    }
+    for (k = 0; k < 2; k++) rms[k] = n[k] ? sqrt(s2[k] / n[k]) : 0;
+    free(b);
+    free(emits);
+}
+
+/* SC's solve at O to TOL (fixed build). */
+static sc_solver *solved(const bscene *sc, const sc_opts *o, double tol)
+{
+    sc_solver *s = fixed_solver(sc, sc->polys, o);
+    sc_solve(s, 1000000, tol, NULL, NULL);
+    return s;
+}
+
+/* The coarse shots' settings over O. */
+static sc_opts coarse_opts(sc_opts o)
+{
+    o.res = COARSE_RES;
+    o.coarse = COARSE_FRAC;
+    o.coarse_res = COARSE_FLOOR;
+    return o;
+}
+
+/* Each rad_cli row of the peer table solved in this process (the same core, mesh and
+ * settings, so the same bits) against a solve of its mesh at res 512 to 1e-4: the
+ * accuracy column. */
+static void peer_accuracy(const char *scene, peer_t *pr)
+{
+    static const double floor[2] = {0.1, 0.01};
+    static const double edge[2] = {0, 0.08}; /* rad_cli's default, the bench's */
+    static const int rows[2][2] = {{1, 3}, {4, 5}};
+    bscene sc;
+    int m, k;
+    memset(&sc, 0, sizeof sc);
+    sc.polys = load_obj(scene, &sc.n, NULL);
+    sc.name = scene;
+    if (!sc.polys) return;
+    for (m = 0; m < 2; m++) {
+        sc_opts o = {0}, v[2];
+        sc_solver *ref;
+        o.max_element = edge[m];
+        o.res = 512;
+        fprintf(stderr, "rad_bench: the res-512 reference (element edge %s) ...\n", m ? "0.08" : "default");
+        ref = solved(&sc, &o, 1e-4);
+        v[0] = o;
+        v[0].res = 128;
+        v[1] = coarse_opts(v[0]);
+        for (k = 0; k < 2 + (m == 0); k++) {
+            int row = k < 2 ? rows[m][k] : 0;
+            sc_solver *a = solved(&sc, &v[k < 2 ? k : 0], row == 0 ? 0.01 : 0.001);
+            sc_stats st;
+            element_accuracy(&sc, ref, a, floor, pr->rms[row], pr->max[row]);
+            sc_get_stats(a, &st);
+            pr->elements[row] = st.elements;
+            pr->bytes[row] = st.pool_bytes + st.work_bytes;
+            sc_destroy(a);
+        }
+        sc_destroy(ref);
+    }
+    free(sc.polys);
 }
 
 static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
@@ -764,17 +887,34 @@ static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
     if (p->why[0]) {
         out(rp, "Not measured: %s.\n", p->why);
     } else {
-        static const char *nm[3] = {"rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin"};
+        static const char *nm[PEER_CMDS] = {
+            "rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin",
+            "rad_cli --tol 0.001 --res 192 --coarse 1 --coarse-res 24", "rad_cli --tol 0.001 --max-element 0.08",
+            "rad_cli --tol 0.001 --max-element 0.08 --res 192 --coarse 1 --coarse-res 24"};
         int k;
-        out(rp, "\n\n| program | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB |\n"
-            "| --- | ---: | ---: | ---: | ---: | ---: |\n");
-        for (k = 0; k < 3; k++) {
-            char a[32] = "", b[32] = "";
-            if (k < 2) {
+        out(rp, "The accuracy column: each rad row solved again in this process (the same bits), per element "
+            "against a solve of its mesh at res 512 to an unshot fraction of 1e-4, relative error of r + g + b "
+            "(with the ambient term) over the non-emitting elements above 10%% (and 1%%) of the brightest: rms / "
+            "max. `--coarse 1 --coarse-res 24 --res 192`: the emitters' shots at 192, the others at 96, 48, 24 "
+            "as the unshot fraction falls below 1, 1/8, 1/64.\n\n"
+            "| program | elements | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB | pools + "
+            "work MB | accuracy >10%%: rms / max | >1%%: rms / max |\n"
+            "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        for (k = 0; k < PEER_CMDS; k++) {
+            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""};
+            int j;
+            if (k != PEER_RPK) {
                 snprintf(a, sizeof a, "%.2f", p->ratio[k]);
                 snprintf(b, sizeof b, "%.2f", p->cpu_ratio[k]);
             }
-            out(rp, "| %s | %.3f | %s | %.3f | %s | %.1f |\n", nm[k], p->t[k], a, p->cpu[k], b, p->kb[k] / 1024.0);
+            if (k != PEER_RPK && p->elements[k]) {
+                snprintf(n, sizeof n, "%d", p->elements[k]);
+                snprintf(mb, sizeof mb, "%.2f", p->bytes[k] / 1048576.0);
+                for (j = 0; j < 2; j++)
+                    snprintf(acc[j], sizeof acc[j], "%.2f%% / %.2f%%", 100 * p->rms[k][j], 100 * p->max[k][j]);
+            }
+            out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm[k], n, p->t[k], a, p->cpu[k],
+                b, p->kb[k] / 1024.0, mb, acc[0], acc[1]);
         }
     }
     out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 and "
@@ -886,6 +1026,43 @@ static void report_large(report_t *rp)
     free(sc.polys);
 }
 
+/* Coarse shots on the generated hall: the default settings and HALL_COARSE solved side
+ * by side in this process (shot by shot, fixed build, the default's bits are those of
+ * the build before coarse shots), and each against a res-512 solve to 1e-4. */
+static void report_hall_coarse(report_t *rp, const bscene *sc, const sc_opts *variant, const char *flags)
+{
+    static const double floor[2] = {0.1, 0.01};
+    const build_t *b[2] = {&builds[0], &builds[0]};
+    sc_opts o[2], r512 = scene_opts(sc);
+    brun run[2];
+    double rms[2][2], mx[2][2];
+    sc_solver *ref;
+    int k;
+    fprintf(stderr, "rad_bench: coarse shots on the hall ...\n");
+    o[0] = scene_opts(sc);
+    o[1] = *variant;
+    interleaved(sc, b, o, sc->runs, run);
+    r512.res = 512;
+    ref = solved(sc, &r512, 1e-4);
+    for (k = 0; k < 2; k++) {
+        sc_solver *a = solved(sc, &o[k], 0.001);
+        element_accuracy(sc, ref, a, floor, rms[k], mx[k]);
+        sc_destroy(a);
+    }
+    sc_destroy(ref);
+    out(rp, "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one core: the default "
+        "(res 128) and `%s` solved side by side to 0.001 in this process, one shot of each in turn, median of %d; "
+        "accuracy per element against a res-512 solve to 1e-4 of the same mesh, as in the peer table:\n\n"
+        "| settings | shots | s to 0.001 | time / default | pools + work MB | accuracy >10%%: rms / max | "
+        ">1%%: rms / max |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        run[0].elements, run[0].patches, flags, sc->runs);
+    for (k = 0; k < 2; k++)
+        out(rp, "| %s | %d | %.3f | %.2f | %.2f | %.2f%% / %.2f%% | %.2f%% / %.2f%% |\n", k ? flags : "default",
+            run[k].all_shots, run[k].total, run[k].total / run[0].total, run[k].bytes / 1048576.0, 100 * rms[k][0],
+            100 * mx[k][0], 100 * rms[k][1], 100 * mx[k][1]);
+    for (k = 0; k < 2; k++) run_free(&run[k]);
+}
+
 /* This thread's processor time, seconds. */
 static double thread_cpu(void)
 {
@@ -986,6 +1163,114 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
     }
 }
 
+/* ---- lightmap baking ---------------------------------------------------------- */
+
+/* A lightmap bake's worker: the covered texels of rows Y % STEP == FIRST through a
+ * gatherer of its own; its gathers counted and its thread's processor time. */
+typedef struct {
+    lm_atlas *a;
+    sc_gatherer *g;
+    int first, step;
+    long gathers;
+    double cpu;
+} lm_work;
+
+static int lm_count(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    lm_work *w = ctx;
+    w->gathers++;
+    return sc_gather(w->g, p, n, 1, rgb);
+}
+
+static void *lm_worker(void *arg)
+{
+    lm_work *w = arg;
+    double t = thread_cpu();
+    if (lm_gather_rows(w->a, w->first, w->step, lm_count, w) != 0) exit(1);
+    w->cpu = thread_cpu() - t;
+    return NULL;
+}
+
+/* The rows Y % STEP in FIRST[0..NT-1] of A gathered at RES on NT threads at once (one
+ * per set); their gathers into *N, the wall time returned, the processor time of the
+ * first thread (its gathers alone) into *CPU0. */
+static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt, long *n, double *cpu0)
+{
+    lm_work w[2];
+    pthread_t th;
+    double t0;
+    int k;
+    for (k = 0; k < nt; k++) {
+        w[k].a = a;
+        w[k].first = first[k];
+        w[k].step = step;
+        w[k].gathers = 0;
+        if (!(w[k].g = sc_gatherer_new(s, res, 0))) exit(1);
+    }
+    t0 = host_now();
+    if (nt > 1 && pthread_create(&th, NULL, lm_worker, &w[1]) != 0) exit(1);
+    lm_worker(&w[0]);
+    if (nt > 1) pthread_join(th, NULL);
+    t0 = host_now() - t0;
+    *n = 0;
+    for (k = 0; k < nt; k++) {
+        *n += w[k].gathers;
+        sc_gatherer_free(w[k].g);
+    }
+    *cpu0 = w[0].cpu / (w[0].gathers ? w[0].gathers : 1);
+    return t0;
+}
+
+/* CornellBox-Original (SC, NULL when absent) baked into 512 x 512 texels: the whole
+ * bake's gathers, then per gather resolution the time of a gather over a subset of
+ * rows (every STEP-th: the whole bake would take minutes at 64), on one thread and
+ * on two (the same rows split in two sets). */
+static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
+{
+    static const int res[3] = {16, 32, 64}, steps[3] = {4, 8, 32};
+    lm_opts lo = {512, 0, 0};
+    lm_atlas a;
+    sc_opts o;
+    sc_solver *s;
+    char err[512];
+    long total = 0, n1, n2;
+    double load = -1;
+    int i, x, y;
+    out(rp, "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 x 512 texels, "
+        "solved as above (fixed build, to 0.001), each covered texel one gather (`sc_gather`, with the ambient "
+        "term). Each resolution gathers every n-th row of the atlas (a sample of the texels), once on one "
+        "thread and once on two (the same rows in two sets); us per gather is the processor time of one "
+        "thread over its gathers, the whole bake's estimate that times the bake's gathers:\n\n");
+    if (!sc) {
+        out(rp, "skipped: %s not found.\n", shared);
+        return;
+    }
+    o = scene_opts(sc);
+    s = fixed_solver(sc, sc->polys, &o);
+    sc_solve(s, 1000000, 0.001, NULL, NULL);
+    if (lm_build(&a, sc->polys, sc->n, &lo, err, sizeof err) != 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3];
+            total += lm_texel_point(&a, x, y, p);
+        }
+    out(rp, "%d charts, %ld texels gathered of %d.\n\n| gather res | rows | gathers | us per gather | "
+        "texels/s, 1 thread | texels/s, 2 threads | speed-up | whole bake s, 1 thread (estimate) | load average |\n"
+        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n", a.ncharts, total, a.size * a.size);
+    for (i = 0; i < 3; i++) {
+        int one[1] = {0}, two[2] = {0, steps[i]};
+        double cpu, cpu2, t1, t2;
+        fprintf(stderr, "rad_bench: lightmap at gather resolution %d ...\n", res[i]);
+        t1 = lm_rows(s, &a, res[i], steps[i], one, 1, &n1, &cpu);
+        t2 = lm_rows(s, &a, res[i], 2 * steps[i], two, 2, &n2, &cpu2);
+        if (getloadavg(&load, 1) != 1) load = -1;
+        out(rp, "| %d | 1 in %d | %ld | %.1f | %.0f | %.0f | %.2f | %.1f | %.2f |\n", res[i], steps[i], n1, 1e6 * cpu,
+            n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * total, load);
+    }
+    lm_free(&a);
+    sc_destroy(s);
+}
+
 /* docs/bench.md, and the README's section between the bench markers, regenerated. */
 static void write_docs(const report_t *rp)
 {
@@ -1034,6 +1319,235 @@ static void draw_plots(const bscene *scenes, int ns, const brun *fx)
     if (plot_write("docs/convergence_time.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
 }
 
+/* ---- textures: loading and sampling them, whole processes ---------------------------- */
+
+#define TEX_RUNS 9
+#define TEX_SIDE 512 /* texels a side of each generated map */
+#define TEX_MAPS 7   /* six walls and the block */
+
+typedef struct {
+    char why[256];          /* empty when measured; else why not */
+    int elements, shots[3]; /* textures, --no-textures, the textures' means as Kd */
+    double t[2][3], cpu[2][3]; /* medians per view size (64, 512 square), variant as above */
+    double ratio[2][2], cpu_ratio[2][2]; /* the maps over the other two: median per round */
+} texbench_t;
+
+/* A map of TEX_SIDE^2: bricks of 64 x 32 in a hue of its own, mortar lines, noise. */
+static int write_map(const char *path, int m)
+{
+    unsigned char *rgb = malloc((size_t)TEX_SIDE * TEX_SIDE * 3);
+    int x, y, k, rc;
+    if (!rgb) return -1;
+    for (y = 0; y < TEX_SIDE; y++)
+        for (x = 0; x < TEX_SIDE; x++) {
+            unsigned h = (unsigned)x * 73856093u ^ (unsigned)y * 19349663u ^ (unsigned)m * 83492791u;
+            int mortar = y % 32 < 2 || (x + (y / 32 % 2) * 32) % 64 < 2;
+            for (k = 0; k < 3; k++)
+                rgb[3 * ((size_t)y * TEX_SIDE + x) + k] =
+                    (unsigned char)(mortar ? 200 : 60 + 25 * ((m + k) % 5) + (int)((h >> (8 * k)) % 40));
+        }
+    rc = img_write(path, rgb, TEX_SIDE, TEX_SIDE, NULL, 0);
+    free(rgb);
+    return rc;
+}
+
+/* DIR/room.obj: a room of 2 m with a block and a lamp, each wall and the block with a
+ * map of its own (walls' UVs 0..2: the map twice across), mtllib MTL. */
+static int write_room(const char *dir, const char *name, const char *mtl)
+{
+    static const double grey[3] = {0.5, 0.5, 0.5}, lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+    static const double blo[3] = {-0.5, -1, -0.4}, bhi[3] = {0.1, -0.2, 0.3};
+    static const double lamp[4][3] = {{-0.3, 0.98, -0.3}, {0.3, 0.98, -0.3}, {0.3, 0.98, 0.3}, {-0.3, 0.98, 0.3}};
+    sc_poly p[12];
+    char path[600];
+    FILE *f;
+    int n = 0, i, k;
+    add_box(p, &n, lo, hi, 1, -1, grey);
+    add_box(p, &n, blo, bhi, 0, 2, grey);
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (!(f = fopen(path, "w"))) return -1;
+    fprintf(f, "mtllib %s\nvt 0 0\nvt 2 0\nvt 2 2\nvt 0 2\nvt 1 0\nvt 1 1\nvt 0 1\n", mtl);
+    for (i = 0; i <= n; i++) {
+        for (k = 0; k < 4; k++)
+            fprintf(f, "v %.17g %.17g %.17g\n", i < n ? p[i].v[k][0] : lamp[k][0], i < n ? p[i].v[k][1] : lamp[k][1],
+                    i < n ? p[i].v[k][2] : lamp[k][2]);
+        if (i == n) fprintf(f, "usemtl lamp\nf -4 -3 -2 -1\n");
+        else if (i < 6) fprintf(f, "usemtl m%d\nf -4/1 -3/2 -2/3 -1/4\n", i);
+        else fprintf(f, "usemtl m6\nf -4/1 -3/5 -2/6 -1/7\n");
+    }
+    return fclose(f);
+}
+
+/* DIR/kd.mtl: each material's Kd the reflectance rad gives its textured face (the
+ * same bits reach the core), so that solve is the textured one without the maps. */
+static int write_kd_mtl(const char *dir, const char *obj)
+{
+    obj_scene sc;
+    tex_image maps[TEX_MAPS + 1];
+    sc_poly *p;
+    char path[600];
+    FILE *f;
+    int n, i, m;
+    if (obj_load(obj, &sc, NULL, NULL, path, sizeof path) < 0) return -1;
+    if (sc.nmaterials > TEX_MAPS + 1 || tex_load_materials(&sc, maps, NULL, NULL) != TEX_MAPS) {
+        obj_free(&sc);
+        return -1;
+    }
+    p = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
+    snprintf(path, sizeof path, "%s/kd.mtl", dir);
+    f = p ? fopen(path, "w") : NULL;
+    for (m = 0; f && m < sc.nmaterials; m++)
+        for (i = 0; i < n; i++)
+            if (sc.faces[p[i].tag].material == m) {
+                fprintf(f, "newmtl %s\nKd %.17g %.17g %.17g\nKe %.17g %.17g %.17g\n", sc.materials[m].name, p[i].rho[0],
+                        p[i].rho[1], p[i].rho[2], p[i].emit[0], p[i].emit[1], p[i].emit[2]);
+                break;
+            }
+    for (m = 0; m < sc.nmaterials; m++) tex_free(&maps[m]);
+    free(p);
+    obj_free(&sc);
+    return f && fclose(f) == 0 ? 0 : -1;
+}
+
+static int make_tex_scene(const char *dir)
+{
+    char path[600];
+    FILE *f;
+    int m;
+    snprintf(path, sizeof path, "%s/room.mtl", dir);
+    if (!(f = fopen(path, "w"))) return -1;
+    for (m = 0; m < TEX_MAPS; m++) fprintf(f, "newmtl m%d\nKd 0 0 0\nmap_Kd map%d.png\n", m, m);
+    fprintf(f, "newmtl lamp\nKd 0 0 0\nKe 12 12 12\n");
+    if (fclose(f) != 0) return -1;
+    for (m = 0; m < TEX_MAPS; m++) {
+        snprintf(path, sizeof path, "%s/map%d.png", dir, m);
+        if (write_map(path, m) < 0) return -1;
+    }
+    snprintf(path, sizeof path, "%s/room.obj", dir);
+    if (write_room(dir, "room.obj", "room.mtl") < 0 || write_room(dir, "room_kd.obj", "kd.mtl") < 0) return -1;
+    return write_kd_mtl(dir, path);
+}
+
+/* The three variants' shots and elements, solved here at rad_cli's settings. */
+static void tex_shots(const char *dir, texbench_t *tb)
+{
+    static const char *const obj[3] = {"room.obj", "room.obj", "room_kd.obj"};
+    int v;
+    for (v = 0; v < 3; v++) {
+        obj_scene sc;
+        tex_image maps[TEX_MAPS + 1];
+        sc_opts o = {.max_element = 0.08, .max_patch = 0.32, .res = 128};
+        char path[600], err[256];
+        sc_poly *p;
+        sc_solver *s;
+        sc_stats st;
+        int n, m;
+        snprintf(path, sizeof path, "%s/%s", dir, obj[v]);
+        if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) continue;
+        if (v == 0) tex_load_materials(&sc, maps, NULL, NULL);
+        p = v == 0 ? obj_to_polys_tex(&sc, maps, &n, NULL, NULL) : obj_to_polys(&sc, &n, NULL, NULL);
+        if (v == 1)
+            for (m = 0; p && m < n; m++) /* --no-textures: Kd 0 shows 0.5 grey (obj_map_fallback) */
+                if (p[m].emit[0] == 0) p[m].rho[0] = p[m].rho[1] = p[m].rho[2] = 0.5;
+        s = p ? sc_create(p, n, &o, NULL, NULL, err, sizeof err) : NULL;
+        if (s) {
+            tb->shots[v] = sc_solve(s, 1000000, 0.001, NULL, NULL);
+            sc_get_stats(s, &st);
+            tb->elements = st.elements;
+            sc_destroy(s);
+        }
+        if (v == 0)
+            for (m = 0; m < sc.nmaterials; m++) tex_free(&maps[m]);
+        free(p);
+        obj_free(&sc);
+    }
+}
+
+/* rad_cli with the maps, with --no-textures, and on the maps' means as Kd, whole
+ * processes in turn, TEX_RUNS rounds, views of 64 and 512 square. */
+static void tex_bench(const char *self, texbench_t *tb)
+{
+    static const char *const files[] = {"room.obj", "room_kd.obj", "room.mtl", "kd.mtl", "view.png"};
+    char dir[64] = "/tmp/rad_bench_tex.XXXXXX", cli[1024], here[512], room[600], kd[600], png[600];
+    char w[2][8] = {"64", "512"};
+    double t[2][3][TEX_RUNS], c[2][3][TEX_RUNS], r[2][2][TEX_RUNS], rc[2][2][TEX_RUNS];
+    int i, k, v, m;
+    long kb;
+    memset(tb, 0, sizeof *tb);
+    dir_of(self, here, sizeof here);
+    snprintf(cli, sizeof cli, "%s/rad_cli", here);
+    if (!is_file(cli)) { snprintf(tb->why, sizeof tb->why, "no %.200s", cli); return; }
+    if (!mkdtemp(dir) || make_tex_scene(dir) < 0) { snprintf(tb->why, sizeof tb->why, "the scene could not be written"); return; }
+    snprintf(room, sizeof room, "%s/room.obj", dir);
+    snprintf(kd, sizeof kd, "%s/room_kd.obj", dir);
+    snprintf(png, sizeof png, "%s/view.png", dir);
+    fprintf(stderr, "rad_bench: textures, %d rounds ...\n", TEX_RUNS);
+    tex_shots(dir, tb);
+    for (i = 0; i < TEX_RUNS && !tb->why[0]; i++)
+        for (k = 0; k < 2; k++)
+            for (v = 0; v < 3; v++) {
+                char *cmd[16] = {cli, v == 2 ? kd : room, "--max-element", "0.08", "--width", w[k], "--height", w[k],
+                                 "-o", png, v == 1 ? "--no-textures" : NULL, NULL};
+                if (run_child(cmd, &t[k][v][i], &c[k][v][i], &kb) < 0) snprintf(tb->why, sizeof tb->why, "rad_cli failed");
+            }
+    for (m = 0; m < TEX_MAPS; m++) {
+        snprintf(png, sizeof png, "%s/map%d.png", dir, m);
+        remove(png);
+    }
+    for (m = 0; m < 5; m++) {
+        snprintf(png, sizeof png, "%s/%s", dir, files[m]);
+        remove(png);
+    }
+    rmdir(dir);
+    if (tb->why[0]) return;
+    for (k = 0; k < 2; k++) {
+        for (i = 0; i < TEX_RUNS; i++)
+            for (v = 0; v < 2; v++) {
+                r[k][v][i] = t[k][0][i] / t[k][v + 1][i];
+                rc[k][v][i] = c[k][0][i] / c[k][v + 1][i];
+            }
+        for (v = 0; v < 3; v++) {
+            tb->t[k][v] = median(t[k][v], TEX_RUNS);
+            tb->cpu[k][v] = median(c[k][v], TEX_RUNS);
+        }
+        for (v = 0; v < 2; v++) {
+            tb->ratio[k][v] = median(r[k][v], TEX_RUNS);
+            tb->cpu_ratio[k][v] = median(rc[k][v], TEX_RUNS);
+        }
+    }
+}
+
+static void report_textures(report_t *rp, const char *self)
+{
+    static const char *const nm[3] = {"with the maps", "`--no-textures` (Kd 0: 0.5 grey)",
+                                      "the maps' means as Kd (the same solve)"};
+    texbench_t tb;
+    int k, v;
+    tex_bench(self, &tb);
+    out(rp, "\nTextures: a generated room of 2 m (six walls and a block, each with a %d x %d PNG map_Kd of its own, "
+        "the walls' twice across; a lamp), `rad_cli --max-element 0.08` (fixed build, res 128), whole processes "
+        "in turn, %d rounds: medians of wall and processor (user + system) time and of each round's ratio (the "
+        "run with the maps over this one). The maps change the light, so "
+        "`--no-textures` solves another scene; the third run gives every face the reflectance the maps give it as "
+        "Kd: the same solve without loading or sampling a map. ", TEX_SIDE, TEX_SIDE, TEX_RUNS);
+    if (tb.why[0]) {
+        out(rp, "Not measured: %s.\n", tb.why);
+        return;
+    }
+    out(rp, "%d elements.\n\n| run | shots to 0.001 | view | wall s | ratio | processor s | ratio |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n", tb.elements);
+    for (v = 0; v < 3; v++)
+        for (k = 0; k < 2; k++) {
+            char a[2][32] = {"", ""};
+            if (v > 0) {
+                snprintf(a[0], sizeof a[0], "%.2f", tb.ratio[k][v - 1]);
+                snprintf(a[1], sizeof a[1], "%.2f", tb.cpu_ratio[k][v - 1]);
+            }
+            out(rp, "| %s | %d | %s | %.3f | %s | %.3f | %s |\n", k ? "" : nm[v], tb.shots[v], k ? "512" : "64",
+                tb.t[k][v], a[0], tb.cpu[k][v], a[1]);
+        }
+}
+
 /* Index of the scene named NAME, or -1. */
 static int scene_named(const bscene *scenes, int ns, const char *name)
 {
@@ -1057,6 +1571,7 @@ int main(int argc, char **argv)
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */
     peer_bench(argv[0], shared, &peer);
+    if (!peer.why[0]) peer_accuracy(shared, &peer);
     ns = load_scenes(shared, scenes);
     if (!ns) return 1;
     for (i = 0; i < ns; i++) {
@@ -1077,6 +1592,12 @@ int main(int argc, char **argv)
     report_relight(&rp, &scenes[1]);
     report_parallel(&rp, scenes, ns, fx);
     report_large(&rp);
+    report_textures(&rp, argv[0]);
+    report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
+    {
+        sc_opts v = coarse_opts(scene_opts(&scenes[ns - 1]));
+        report_hall_coarse(&rp, &scenes[ns - 1], &v, "--res 192 --coarse 1 --coarse-res 24");
+    }
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

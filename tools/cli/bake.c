@@ -3,23 +3,21 @@
  * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
 #include "cli.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bake/lightmap.h"
 #include "bake/probes.h"
 #include "host/clock.h"
+#include "host/gltf_export.h"
 #include "host/obj_polys.h"
 
-#define GATHER_RES 32 /* --gather-res's default: 0.84% from Lambert at 64 (tests/test_bake.c) */
+#define GATHER_RES 32 /* the bake's gather resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
 
 typedef struct {
     sc_gatherer *g;
     int ambient;
     long gathers;
-    lm_atlas *a; /* a lightmap worker's: its rows, Y % STEP == FIRST */
-    int first, step, rc;
 } gather_ctx;
 
 static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
@@ -54,39 +52,29 @@ char *probes_output(const char *scene)
     return out;
 }
 
-static void *lm_worker(void *arg)
+typedef struct {
+    lm_atlas *a;
+    int ambient;
+    long *gathers; /* per thread */
+} texel_job;
+
+static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
-    gather_ctx *c = arg;
-    c->rc = lm_gather_rows(c->a, c->first, c->step, lm_gather, c);
-    return NULL;
+    texel_job *j = ctx;
+    gather_ctx c = {g, j->ambient, 0};
+    int rc = lm_gather_rows(j->a, first, step, lm_gather, &c);
+    j->gathers[first] = c.gathers;
+    return rc;
 }
 
 /* The texels on N threads (--threads), each with a gatherer of its own, by rows: the
  * same bits as one. 0, or -1 (a gather failed, no memory, no thread). */
 static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
 {
-    gather_ctx *c = calloc((size_t)n, sizeof *c);
-    pthread_t *th = calloc((size_t)n, sizeof *th);
-    int i, started = 0, rc = c && th ? 0 : -1;
-    for (i = 0; rc == 0 && i < n; i++) {
-        c[i].g = sc_gatherer_new(r->s, res, 0);
-        c[i].ambient = r->ambient;
-        c[i].a = a;
-        c[i].first = i;
-        c[i].step = n;
-        if (!c[i].g) rc = -1;
-    }
-    for (i = 1; rc == 0 && i < n; i++, started++)
-        if (pthread_create(&th[i], NULL, lm_worker, &c[i]) != 0) rc = -1;
-    if (rc == 0) lm_worker(&c[0]);
-    for (i = 1; i <= started; i++) pthread_join(th[i], NULL);
-    for (i = 0; c && i < n; i++) {
-        if (c[i].rc < 0) rc = -1;
-        *gathers += c[i].gathers;
-        sc_gatherer_free(c[i].g);
-    }
-    free(c);
-    free(th);
+    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long))};
+    int i, rc = j.gathers ? sc_gather_split(r->s, res, n, texel_rows, &j) : -1;
+    for (i = 0; j.gathers && i < n; i++) *gathers += j.gathers[i];
+    free(j.gathers);
     return rc;
 }
 
@@ -148,7 +136,7 @@ int bake_step(run_t *r)
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
     int rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0, NULL, 0, 1, 0};
+    gather_ctx c = {NULL, r->ambient, 0};
     if (!b) return 0;
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);
     if (rc == 0 && (o->probes || o->probe_file)) {
@@ -157,6 +145,18 @@ int bake_step(run_t *r)
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
+    return rc;
+}
+
+int bake_export_gltf(run_t *r, gltf_warn_fn warn)
+{
+    const opts_t *o = r->o;
+    char err[1024];
+    int rc;
+    if (!o->gltf || !r->bake || !r->bake->has_atlas) return 0;
+    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, &r->bake->atlas, o->gltf,
+                                 warn, (void *)o, err, sizeof err);
+    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     return rc;
 }
 

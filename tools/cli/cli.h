@@ -24,8 +24,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
+#include "host/fgather.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */
@@ -70,9 +72,12 @@ typedef struct {
     sc_camera pending;
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
     double tol, exposure, max_patch, max_element;
+    double coarse;                  /* --coarse (0: never), --coarse-res (0: res / 4) */
+    int coarse_res;
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
+    int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
     /* stored form factors and relighting */
@@ -98,6 +103,8 @@ typedef struct {
     double exposure; /* 0 until the first view fixes it */
     const obj_scene *sc;    /* with MAPS: views drawn with the textures' detail */
     const tex_image *maps;
+    sc_fgather *fg;         /* --gather: views and vertex exports by gathering, else NULL */
+    long gathers;           /* the views' gathers */
     double t_render, t_write;
 } out_t;
 
@@ -176,7 +183,11 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int check_cameras(sc_solver *s, const opts_t *o);
 int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
-int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st);
+/* --export-ply: the meshed scene, its vertex colours from sc_vertex_colours (gathered
+ * with FG when --gather is given), 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear)
+ * binary float radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
+int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+              const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front
@@ -191,6 +202,10 @@ int bake_prepare(run_t *r);
 /* --lightmap and --probes / --probe-file: baked from the solution (after the views);
  * 0, or -1 after one line on stderr. Nothing asked: 0. */
 int bake_step(run_t *r);
+/* --export-gltf with --lightmap: the .glb written after the bake, with TEXCOORD_1 and
+ * the atlas (sc_export_gltf_lightmap); WARN gets the writer's warnings. 0 (nothing to
+ * do, or written) or -1 (said). */
+int bake_export_gltf(run_t *r, gltf_warn_fn warn);
 void bake_free(run_t *r);
 /* The scene's name + .probes.json (malloc'd), as default_output. */
 char *probes_output(const char *scene);

@@ -108,6 +108,7 @@ static void opt_height(opts_t *o, const char *opt, const char *val) { o->height 
 static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->exposure = parse_pos(opt, val); }
 static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
 static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
+static void opt_ply_linear(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->ply_linear = 1; }
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
 static void opt_no_textures(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_textures = 1; }
@@ -116,6 +117,19 @@ static void opt_res(opts_t *o, const char *opt, const char *val)
 {
     o->res = (int)parse_int(opt, val, 8, 1024);
     if (o->res % 2) die_usage("--res must be even", val);
+}
+
+static void opt_coarse(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (parse_list(val, &o->coarse, 1, 0) != 1 || !(o->coarse >= 0 && o->coarse <= 64))
+        die_usage("--coarse wants a number in [0, 64]", val);
+}
+
+static void opt_coarse_res(opts_t *o, const char *opt, const char *val)
+{
+    o->coarse_res = (int)parse_int(opt, val, 8, 1024);
+    if (o->coarse_res % 2) die_usage("--coarse-res must be even", val);
 }
 
 static void opt_max_patch(opts_t *o, const char *opt, const char *val) { o->max_patch = parse_pos(opt, val); }
@@ -204,10 +218,10 @@ static void opt_lightmap(opts_t *o, const char *opt, const char *val)
 
 static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
 
-static void opt_gather_res(opts_t *o, const char *opt, const char *val)
+static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
     o->gather_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->gather_res % 2) die_usage("--gather-res must be even", val);
+    if (o->gather_res % 2) die_usage("--gather must be even", val);
 }
 
 static void opt_probes(opts_t *o, const char *opt, const char *val)
@@ -239,19 +253,31 @@ static const option_t options[] = {
      "its 97th percentile maps to white; one exposure for every view)", opt_exposure},
     {"--no-ambient", NULL, NULL, "show the partial solution without the ambient term", opt_no_ambient},
     {"--export-ply", NULL, "FILE", "the meshed scene with vertex colours (PLY)", opt_ply},
+    {"--ply-linear", NULL, NULL,
+     "--export-ply as binary PLY: linear float radiosity, welded\n"
+     "vertices, normals (default: ASCII, sRGB at the images' exposure)", opt_ply_linear},
     {"--dump-radiosity", NULL, "FILE",
      "one CSV row per element:\nelement,surface,material,area,cx,cy,cz,r,g,b", opt_csv},
     {"--export-gltf", NULL, "FILE",
      "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
      "arriving at each vertex, materials unlit with their textures", opt_gltf},
     {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
+    {"--gather", NULL, "RES",
+     "shade the views and vertex exports by gathering the light at each\n"
+     "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
+     "for small lamps): shadows sharper than the elements; also the\n"
+     "lightmap's and probes' gather resolution (32 without it)", opt_gather},
     SECTION("solver:"),
     {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
+    {"--coarse", NULL, "F",
+     "once the unshot fraction is below F, shots (but the emitters' own\n"
+     "light) render at res / 2, below F / 8 at res / 4, ... (0: never)", opt_coarse},
+    {"--coarse-res", NULL, "N", "the least resolution of a coarse shot (res / 4)", opt_coarse_res},
     {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels too", opt_threads},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels and --gather's gathers too", opt_threads},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
@@ -283,7 +309,6 @@ static const option_t options[] = {
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
-    {"--gather-res", NULL, "N", "a texel's or probe's gather cube resolution, even, 8..1024 (32)", opt_gather_res},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
@@ -358,6 +383,7 @@ static void check_combinations(opts_t *o)
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
+    if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
         if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);

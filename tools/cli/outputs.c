@@ -12,6 +12,7 @@
 #include "formats/file_io.h"
 #include "formats/image.h"
 #include "host/clock.h"
+#include "host/ply_export.h"
 #include "host/tex_render.h"
 
 const char *ext_of(const char *path)
@@ -164,9 +165,16 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     char err[1024];
     double t1 = host_now();
     size_t npix = (size_t)o->width * o->height;
-    if ((ot->maps ? sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height,
-                                       ot->img, err, sizeof err)
-                  : sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err)) < 0) {
+    int rc;
+    if (ot->fg) {
+        rc = sc_fgather_render(ot->fg, cam, o->width, o->height, ot->img, &ot->gathers, err, sizeof err);
+        if (rc == 0 && ot->maps) rc = sc_texture_detail(s, ot->sc, ot->maps, cam, o->width, o->height, ot->img, err, sizeof err);
+    } else if (ot->maps) {
+        rc = sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
+    } else {
+        rc = sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
+    }
+    if (rc < 0) {
         fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
         return -1;
     }
@@ -233,44 +241,18 @@ int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, 
     return out_commit(fo);
 }
 
-static void ply_body(FILE *f, sc_solver *s, const double *rgb, double exposure, const sc_stats *st)
+/* The vertex colours are sc_vertex_colours': each core vertex's radiosity (Gouraud), or
+ * gathered with FG. */
+int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+              const sc_stats *st)
 {
-    int v, e;
-    fprintf(f, "ply\nformat ascii 1.0\ncomment rad radiosity, sRGB vertex colours at exposure %g\n", exposure);
-    fprintf(f, "element vertex %d\nproperty float x\nproperty float y\nproperty float z\n", st->vertices);
-    fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n");
-    fprintf(f, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", st->elements);
-    for (v = 0; v < st->vertices; v++) {
-        double p[3];
-        float lin[3];
-        unsigned char c[3];
-        sc_vertex_pos(s, v, p);
-        lin[0] = (float)rgb[3 * v];
-        lin[1] = (float)rgb[3 * v + 1];
-        lin[2] = (float)rgb[3 * v + 2];
-        tonemap(lin, 1, exposure, c);
-        fprintf(f, "%.7g %.7g %.7g %u %u %u\n", p[0], p[1], p[2], c[0], c[1], c[2]);
-    }
-    for (e = 0; e < st->elements; e++) {
-        int vi[4], k, n = sc_element_vertices(s, e, vi);
-        fprintf(f, "%d", n);
-        for (k = 0; k < n; k++) fprintf(f, " %d", vi[k]);
-        fprintf(f, "\n");
-    }
-}
-
-int write_ply(const char *path, sc_solver *s, int ambient, double exposure, const sc_stats *st)
-{
-    fio_out *fo;
-    FILE *f;
+    char err[1024];
+    int rc = -1;
     double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
-    if (!rgb || sc_shade(s, ambient, rgb) < 0) {
-        free(rgb);
-        fprintf(stderr, PROG ": out of memory\n");
-        return -1;
-    }
-    f = out_open(path, &fo);
-    if (f) ply_body(f, s, rgb, exposure, st);
+    if (!rgb || sc_vertex_colours(s, fg, ambient, rgb) < 0) fprintf(stderr, PROG ": out of memory\n");
+    else if ((rc = sc_export_ply(s, rgb, path, linear ? PLY_BINARY_LINEAR : PLY_ASCII_SRGB, exposure, err,
+                                 sizeof err)) < 0)
+        fprintf(stderr, PROG ": %s\n", err);
     free(rgb);
-    return f ? out_commit(fo) : -1;
+    return rc < 0 ? -1 : 0;
 }

@@ -349,6 +349,8 @@ static int build_step(run_t *r)
     r->so.max_element = o->max_element;
     r->so.res = o->res ? o->res : 128; /* 64 aliases visibly on elements a few pixels wide */
     r->so.no_overshoot = o->no_overshoot;
+    r->so.coarse = o->coarse;
+    r->so.coarse_res = o->coarse_res;
     r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
     r->polys = polys; /* kept for --export-gltf */
     r->npolys = npolys;
@@ -410,15 +412,19 @@ static int output_step(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
+    if (o->gather_res && !(r->ot.fg = sc_fgather_new(r->s, r->polys, r->npolys, o->gather_res, o->threads, r->ambient))) {
+        fprintf(stderr, PROG ": out of memory for the final gather\n");
+        return -1;
+    }
     if (o->animate) rc = render_frames(r);
     else if (o->each_group) rc = render_each_group(r);
     else
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
-    if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ambient, r->ot.exposure, &r->st);
-    if (rc == 0 && o->gltf) {
+    if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
+    if (rc == 0 && o->gltf && !o->lightmap) { /* with a lightmap: after the bake */
         char err[1024];
-        rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, o->gltf, obj_warning,
+        rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, o->gltf, obj_warning,
                             (void *)o, err, sizeof err);
         if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     }
@@ -460,9 +466,12 @@ static void print_stats(const run_t *r)
                 st->saturations);
     printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
     printf("overshoot back-offs %lu\n", st->backoffs);
+    if (r->ot.fg) printf("final gather: resolution %d, %ld pixel gathers\n", o->gather_res, r->ot.gathers);
+    printf("coarse shots %lu\n", st->coarse_shots);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
-    printf("exposure %.9g (%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view");
+    printf("exposure %.9g (%s%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view",
+           o->ply && !o->ply_linear ? "; also --export-ply's sRGB colours" : "");
     if (r->landing >= 0)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);
@@ -525,6 +534,7 @@ static void free_run(run_t *r)
     free(r->group_of);
     free(r->ot.img);
     free(r->ot.rgb8);
+    sc_fgather_free(r->ot.fg);
     bake_free(r);
     if (r->s) sc_destroy(r->s);
     free(r->polys);
@@ -579,6 +589,7 @@ int main(int argc, char **argv)
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
     if (rc == 0) rc = bake_step(&r);
+    if (rc == 0) rc = bake_export_gltf(&r, obj_warning);
     if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
     if (rc == 0) rc = verdict(&r);

@@ -26,6 +26,7 @@
 #define GL_ELEMENT_ARRAY_BUFFER 34963
 #define GL_REPEAT 10497
 #define GL_CLAMP_TO_EDGE 33071
+#define GL_LINEAR 9729
 
 /* ---- a growing byte buffer ----------------------------------------------------- */
 
@@ -145,7 +146,8 @@ typedef struct {
 typedef struct {
     int v, vt;
     float n[3];
-    int corner; /* sc->indices position of this face corner */
+    float uv1[2]; /* the lightmap's UV, 0 without one */
+    int corner;   /* sc->indices position of this face corner */
     int tri;    /* position in the primitive's index list */
 } corner_rec;
 
@@ -181,6 +183,8 @@ static int cmp_corner(const void *a, const void *b)
 {
     const corner_rec *x = a, *y = b;
     int c = memcmp(x->n, y->n, sizeof x->n);
+    if (!c)
+        c = memcmp(x->uv1, y->uv1, sizeof x->uv1);
     if (x->v != y->v)
         return (x->v > y->v) - (x->v < y->v);
     if (x->vt != y->vt)
@@ -192,7 +196,8 @@ static int cmp_corner(const void *a, const void *b)
 
 static int same_vertex(const corner_rec *x, const corner_rec *y)
 {
-    return x->v == y->v && x->vt == y->vt && !memcmp(x->n, y->n, sizeof x->n);
+    return x->v == y->v && x->vt == y->vt && !memcmp(x->n, y->n, sizeof x->n) &&
+           !memcmp(x->uv1, y->uv1, sizeof x->uv1);
 }
 
 /* canon[i]: the smallest names index with the same string as names[i]. */
@@ -375,6 +380,24 @@ static void vertex_colour(const gltf_input *in, const corner_rec *c, int n, doub
         rgb[k] = sum > 0 ? rgb[k] / sum : 0;
 }
 
+/* The lightmap's UVs (each welded vertex's corners share one) as attribute NAME, with
+   min and max. */
+static void write_uv1(writer *w, const prim_verts *pv, const char *name, buf *p)
+{
+    float lo[2] = { HUGE_VALF, HUGE_VALF }, hi[2] = { -HUGE_VALF, -HUGE_VALF };
+    size_t at = w->bin.n;
+    int i, k, acc;
+    for (i = 0; i < pv->nverts; i++)
+        for (k = 0; k < 2; k++) {
+            float f = pv->c[pv->first[i]].uv1[k];
+            put_f32(&w->bin, f);
+            lo[k] = f < lo[k] ? f : lo[k];
+            hi[k] = f > hi[k] ? f : hi[k];
+        }
+    acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC2", lo, hi, 2);
+    putf(p, ",\"%s\":%d", name, acc);
+}
+
 /* Writes the attribute arrays; appends their accessors to the primitive's JSON P. */
 static void write_attributes(writer *w, const prim_verts *pv, buf *p)
 {
@@ -418,6 +441,12 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
         acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC2", NULL, NULL, 0);
         putf(p, ",\"TEXCOORD_0\":%d", acc);
     }
+    /* TEXCOORD_n must count from 0: without texture coordinates of its own, a primitive
+       gets the lightmap's as TEXCOORD_0 too (no texture of its own reads them). */
+    if (w->in->corner_uv1 && !pv->textured)
+        write_uv1(w, pv, "TEXCOORD_0", p);
+    if (w->in->corner_uv1)
+        write_uv1(w, pv, "TEXCOORD_1", p);
     if (w->in->corner_rgb) {
         at = w->bin.n;
         for (i = 0; i < pv->nverts; i++) {
@@ -433,9 +462,10 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
 }
 
 /* Corners of the triangles of faces R[0..n-1] (one material), sorted by weld key. */
-static corner_rec *gather_corners(const obj_scene *sc, const face_rec *r, int n, int *ncorners,
+static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n, int *ncorners,
                                   int *textured)
 {
+    const obj_scene *sc = in->sc;
     corner_rec *c = NULL;
     int *tri = NULL, i, t, k, count = 0;
     size_t cap = 0, tcap = 0;
@@ -462,6 +492,8 @@ static corner_rec *gather_corners(const obj_scene *sc, const face_rec *r, int n,
             x->vt = sc->uv_indices[x->corner];
             *textured |= x->vt >= 0;
             corner_normal(sc, f, k, x->n);
+            x->uv1[0] = in->corner_uv1 ? (float)in->corner_uv1[2 * (size_t)x->corner] : 0.0f;
+            x->uv1[1] = in->corner_uv1 ? (float)in->corner_uv1[2 * (size_t)x->corner + 1] : 0.0f;
             x->tri = count++;
         }
     }
@@ -485,7 +517,7 @@ static int write_primitive(writer *w, const face_rec *r, int n, buf *prims, int 
     size_t at;
     int i, v, acc;
     buf p = { 0 };
-    if (!(c = gather_corners(sc, r, n, &pv.n, &pv.textured)))
+    if (!(c = gather_corners(w->in, r, n, &pv.n, &pv.textured)))
         return -1;
     pv.c = c;
     pv.m = &sc->materials[r[0].material];
@@ -579,11 +611,24 @@ static const char *image_mime(const unsigned char *d, size_t n)
     return NULL;
 }
 
+/* Bytes DATA (SIZE) as a bufferView of their own, 4-aligned; returns its index. */
+static int embed_bytes(writer *w, const void *data, size_t size)
+{
+    size_t at;
+    pad4(&w->bin, 0);
+    at = w->bin.n;
+    put(&w->bin, data, size);
+    putf(&w->views, "%s{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}",
+         w->nviews ? "," : "", (unsigned long)at, (unsigned long)size);
+    pad4(&w->bin, 0);
+    return w->nviews++;
+}
+
 /* Embeds material M's texture file; returns its bufferView or -1 (warned). */
 static int embed_image(writer *w, int m, const char **mime)
 {
     char *data, err[600], msg[800];
-    size_t size, at;
+    size_t size;
     if (fio_read_all(w->in->texture[m], FIO_LIMIT_IMAGE, &data, &size, err, sizeof err)) {
         snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
     } else if (!(*mime = image_mime((const unsigned char *)data, size))) {
@@ -591,18 +636,29 @@ static int embed_image(writer *w, int m, const char **mime)
                  w->in->texture[m]);
         free(data);
     } else {
-        pad4(&w->bin, 0);
-        at = w->bin.n;
-        put(&w->bin, data, size);
+        int view = embed_bytes(w, data, size);
         free(data);
-        putf(&w->views, "%s{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}",
-             w->nviews ? "," : "", (unsigned long)at, (unsigned long)size);
-        pad4(&w->bin, 0);
-        return w->nviews++;
+        return view;
     }
     if (w->in->warn)
         w->in->warn(w->in->ctx, msg);
     return -1;
+}
+
+/* The lightmap's image, sampler and texture after the materials' N textures and NIMG
+   images; returns its texture index, or -1 without one. */
+static int lightmap_texture(writer *w, int n, int nimg, buf *tex, buf *img, buf *smp)
+{
+    int view;
+    if (!w->in->lightmap_png)
+        return -1;
+    view = embed_bytes(w, w->in->lightmap_png, w->in->lightmap_png_size);
+    putf(img, "%s{\"name\":\"lightmap\",\"bufferView\":%d,\"mimeType\":\"image/png\"}",
+         nimg ? "," : "", view);
+    putf(smp, "%s{\"magFilter\":%d,\"minFilter\":%d,\"wrapS\":%d,\"wrapT\":%d}", n ? "," : "",
+         GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, GL_CLAMP_TO_EDGE);
+    putf(tex, "%s{\"name\":\"lightmap\",\"sampler\":%d,\"source\":%d}", n ? "," : "", n, nimg);
+    return n;
 }
 
 /* An earlier material's image of the same texture file, or -1. */
@@ -621,7 +677,7 @@ static void write_materials(writer *w, buf *j)
 {
     const obj_scene *sc = w->in->sc;
     buf tex = { 0 }, img = { 0 }, smp = { 0 };
-    int m, k, n = 0, nimg = 0;
+    int m, k, n = 0, nimg = 0, lm;
     for (m = 0; m < sc->nmaterials; m++) {
         const char *mime = NULL;
         int has = w->in->texture && w->in->texture[m], image = has ? image_before(w, m) : -1;
@@ -640,6 +696,7 @@ static void write_materials(writer *w, buf *j)
         putf(&tex, "%s{\"sampler\":%d,\"source\":%d}", n ? "," : "", n, image);
         w->texture_of[m] = n++;
     }
+    lm = lightmap_texture(w, n, nimg, &tex, &img, &smp);
     put_text(j, ",\"materials\":[");
     for (m = 0; m < sc->nmaterials; m++) {
         const double *c = w->in->base_color ? w->in->base_color + 3 * m : sc->materials[m].kd;
@@ -652,10 +709,14 @@ static void write_materials(writer *w, buf *j)
         if (w->image_of[m] >= 0)
             putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
         put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1},"
-               "\"extensions\":{\"KHR_materials_unlit\":{}}}");
+               "\"extensions\":{\"KHR_materials_unlit\":{}}");
+        if (lm >= 0 && (!w->in->lightmap_use || w->in->lightmap_use[m]))
+            putf(j, ",\"extras\":{\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}}", lm,
+                 w->in->lightmap_scale);
+        put_text(j, "}");
     }
     put_text(j, "]");
-    if (n) {
+    if (n || lm >= 0) {
         put_text(j, ",\"textures\":[");
         put(j, tex.p, tex.n);
         put_text(j, "],\"images\":[");

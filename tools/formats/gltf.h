@@ -12,7 +12,8 @@
  * (with min and max), NORMAL (unit), TEXCOORD_0 (the MTL's -s / -o applied, v flipped
  * to glTF's top-left origin; (0, 0) for a corner without one) when the primitive has
  * texture coordinates, COLOR_0 (linear float RGB) when the caller gives corner colours:
- * a welded vertex's colour is the weighted mean of its corners'. Materials: the
+ * a welded vertex's colour is the weighted mean of its corners', TEXCOORD_1 when the
+ * caller gives a lightmap UV per corner (see gltf_input). Materials: the
  * caller's baseColorFactor, baseColorTexture when the caller gives the texture file
  * (PNG or JPEG, embedded in the binary chunk; other formats are left out with a warning
  * and the factor alone stays), KHR_materials_unlit (the colours are lighting already
@@ -48,6 +49,18 @@ typedef struct {
     const char *const *texture;
     gltf_warn_fn warn;
     void *ctx;
+    /* sc->nindices x 2: each face corner's lightmap UV, glTF's convention ([0, 1], origin
+       at the image's top left), written as TEXCOORD_1 (with min and max); vertices are
+       welded per that UV too. NULL: no TEXCOORD_1. */
+    const double *corner_uv1;
+    /* The lightmap, PNG bytes embedded as an image with a texture (CLAMP_TO_EDGE,
+       LINEAR), and the light a texel stands for: SCALE times its sRGB-decoded value.
+       A material whose LIGHTMAP_USE flag is set (NULL: every one) names it in its
+       extras: "lightmap": {"index": texture, "texCoord": 1, "scale": SCALE}. */
+    const unsigned char *lightmap_png;
+    size_t lightmap_png_size;
+    double lightmap_scale;
+    const unsigned char *lightmap_use;
 } gltf_input;
 
 /* Writes the scene IN to PATH as .glb. Returns 0, or -1 with a one-line message

@@ -150,6 +150,36 @@ int img_write_as(const char *path, const char *format, const unsigned char *rgb,
     return fio_out_commit(o, err, errlen);
 }
 
+/* PNG bytes in memory (for embedding), through the file writer over a memory stream. */
+int img_encode_png(const unsigned char *rgb, int w, int h, unsigned char **out, size_t *n, char *err,
+                   size_t errlen)
+{
+    png_msg pm = { "out of memory" };
+    char *data = NULL;
+    size_t len = 0;
+    FILE *fp;
+    int rc = -1;
+    *out = NULL;
+    *n = 0;
+    if (!size_ok(w, h)) {
+        snprintf(err, errlen, "invalid image size %dx%d (each must be 1..%d)", w, h, IMG_MAX_DIM);
+        return -1;
+    }
+    fp = open_memstream(&data, &len);
+    if (fp && png_write_fp(fp, rgb, w, h, &pm) == 0)
+        rc = 0;
+    if (fp && fclose(fp) != 0)
+        rc = -1;
+    if (rc == 0) {
+        *out = (unsigned char *)data;
+        *n = len;
+        return 0;
+    }
+    free(data);
+    snprintf(err, errlen, "PNG encoding: %s", pm.msg);
+    return -1;
+}
+
 /* ---- reading ---- */
 
 /* Everything that must be released after a longjmp lives here, in the caller's frame,

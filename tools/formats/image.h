@@ -33,6 +33,11 @@ int img_write(const char *path, const unsigned char *rgb, int w, int h, char *er
 int img_write_as(const char *path, const char *format, const unsigned char *rgb, int w, int h, char *err,
                  size_t errlen);
 
+/* RGB (w*h*3) encoded as PNG bytes in memory: *OUT (malloc'd, the caller frees) and *N.
+ * Returns 0, or -1 with a message in err (*OUT NULL). */
+int img_encode_png(const unsigned char *rgb, int w, int h, unsigned char **out, size_t *n, char *err,
+                   size_t errlen);
+
 /* Reads a PNG (any colour type/bit depth: 16-bit is stripped to 8, palette and grey are
  * expanded, alpha and tRNS are dropped) or a binary P6 PPM (maxval 255, header comments
  * allowed). The format is chosen by the file's magic bytes, not its name. The file is

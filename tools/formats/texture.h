@@ -42,6 +42,7 @@ extern "C" {
 /* A triangle's mean is taken over at most TEX_MEAN_MAX_DIV^2 samples (see
  * tex_triangle_mean). */
 #define TEX_MEAN_MAX_DIV 64
+#define TEX_ROW_BLOCK 16
 
 typedef struct {
     int w, h;
@@ -49,6 +50,11 @@ typedef struct {
     int clamp;          /* 1: coordinates clamped to the edge texels; 0: wrapped */
     double offset[2], scale[2]; /* (u, v) used = (u, v) * scale + offset (map -o, -s) */
     int borrowed;       /* 1: rgb belongs to another map (the same file): not freed here */
+    /* The sums of each row's linear texels at every TEX_ROW_BLOCK-th texel: (y nb + b) 3 + k
+       holds channel k of row y's texels x < b TEX_ROW_BLOCK, nb = w / TEX_ROW_BLOCK + 1
+       (1.5 bytes a texel beside rgb's three); NULL if memory ran out (means then sample).
+       Shared with rgb by a borrowed map. */
+    double *row_sums;
 } tex_image;
 
 typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
@@ -70,11 +76,13 @@ void tex_texel(const tex_image *t, int x, int y, double rgb[3]);
 /* Bilinear sample at (u, v) (before the map's scale and offset), linear RGB. */
 void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
 /* The area-weighted mean of the bilinear texture over the triangle UV[0..2] of
- * texture space (an element's footprint): the mean of samples at the centroids of the
- * n^2 congruent triangles that split it, n about four a texel along its longest edge,
- * at most TEX_MEAN_MAX_DIV (exact for a texture linear over the triangle; beyond the
- * cap, a footprint more than 16 texels across is sampled less than four times a texel,
- * and one more than 64 across less than once). */
+ * texture space (an element's footprint). Up to TEX_MEAN_MAX_DIV / 4 texels across:
+ * the mean of samples at the centroids of the n^2 congruent triangles that split it, n
+ * about four a texel along its longest edge (exact for a texture linear over the
+ * triangle). Larger: integrated exactly along lines of constant v, two a texel row,
+ * from the row sums (a sampling lattice coarser than the texels would beat with any
+ * period of the image); the sampler again if they are missing or the footprint spans
+ * more than 65,536 texel rows. */
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
 /* The mean of the texels, linear: the bilinear texture's mean over a period (each
  * texel's tent integrates to one texel) when wrapped. */

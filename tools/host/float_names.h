@@ -3,7 +3,9 @@
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once
  * per build of the core include it: tools/host/scene.c, tools/host/parallel.c,
- * tools/host/gltf_export.c, tools/host/tex_render.c and tools/cli/rad_cli.c. */
+ * tools/host/gltf_export.c, tools/host/tex_render.c, tools/host/ply_export.c,
+ * tools/host/fgather.c and
+ * tools/cli/rad_cli.c. */
 #ifndef RAD_TOOLS_FLOAT_NAMES_H
 #define RAD_TOOLS_FLOAT_NAMES_H
 
@@ -45,10 +47,24 @@
 #define sc_gatherer_new scf_gatherer_new
 #define sc_gatherer_free scf_gatherer_free
 #define sc_gather scf_gather
+#define sc_gather_on scf_gather_on
 #define sc_gather_sh scf_gather_sh
 #define sc_gatherer_saturations scf_gatherer_saturations
 #define sc_corner_light scf_corner_light
+#define sc_corner_light_fg scf_corner_light_fg
 #define sc_export_gltf scf_export_gltf
+#define sc_export_ply scf_export_ply
+#define sc_export_gltf_lightmap scf_export_gltf_lightmap
 #define sc_render_textured scf_render_textured
+#define sc_texture_detail scf_texture_detail
+#define sc_render_surfaces scf_render_surfaces
+#define sc_split_fn scf_split_fn
+#define sc_gather_split scf_gather_split
+#define sc_fgather scf_fgather
+#define sc_fgather_new scf_fgather_new
+#define sc_fgather_free scf_fgather_free
+#define sc_fgather_vertices scf_fgather_vertices
+#define sc_vertex_colours scf_vertex_colours
+#define sc_fgather_render scf_fgather_render
 
 #endif

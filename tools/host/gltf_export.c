@@ -20,6 +20,8 @@ static int emits(const double *e)
 typedef struct {
     int *start, *elements; /* the elements of face f: elements[start[f] .. start[f + 1]) */
     const double **emit;   /* per face: its polygons' emission, NULL if it has none */
+    const double *ve;      /* per core vertex: the light arriving, gathered (NULL: none) */
+    const unsigned char *vok;
     double tol;            /* distance within which a corner is an element's vertex */
 } faces_index;
 
@@ -71,8 +73,8 @@ static double match_tolerance(const obj_scene *sc)
     return 1e-5 * ext;
 }
 
-/* Squared distance from P to element E's nearest vertex. */
-static double vertex_distance(sc_solver *s, int e, const double p[3])
+/* Squared distance from P to element E's nearest vertex, that vertex into *NEAR. */
+static double vertex_distance(sc_solver *s, int e, const double p[3], int *near)
 {
     int v[4], n = sc_element_vertices(s, e, v), k, a;
     double best = HUGE_VAL;
@@ -81,18 +83,27 @@ static double vertex_distance(sc_solver *s, int e, const double p[3])
         sc_vertex_pos(s, v[k], q);
         for (a = 0; a < 3; a++)
             d += (q[a] - p[a]) * (q[a] - p[a]);
-        best = fmin(best, d);
+        if (d < best) {
+            best = d;
+            *near = v[k];
+        }
     }
     return best;
 }
 
-/* The light arriving at element E of a face emitting EMIT (NULL: none). */
-static void arriving(sc_solver *s, int e, const double *emit, double out[3])
+/* The light arriving at element E of a face emitting EMIT (NULL: none), or, gathered,
+   at its vertex nearest P. */
+static void arriving(sc_solver *s, const faces_index *fx, int e, const double *emit, const double p[3],
+                     double out[3])
 {
     const rad_scene_t *core = sc_core(s);
     const rad_rgb_t *r = &core->pools.surfaces[core->pools.elements[e].surface].reflectance;
     const double rho[3] = { RAD_TO_DOUBLE(r->r), RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b) };
-    int k, lamp = emits(emit);
+    int k, lamp = emits(emit), near = 0;
+    if (fx->ve && !lamp && vertex_distance(s, e, p, &near) < HUGE_VAL && fx->vok[near]) {
+        memcpy(out, &fx->ve[3 * near], 3 * sizeof *out);
+        return;
+    }
     sc_element_rgb(s, e, 1, out);
     for (k = 0; k < 3 && !lamp; k++)
         out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
@@ -107,21 +118,22 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, int
     int i, k, nearest = -1;
     for (i = fx->start[f]; i < fx->start[f + 1]; i++) {
         int e = fx->elements[i];
-        double d = vertex_distance(s, e, p);
+        int nv = 0;
+        double d = vertex_distance(s, e, p, &nv);
         if (d < best) {
             best = d;
             nearest = e;
         }
         if (d <= fx->tol * fx->tol) {
             double a = sc_element_area(s, e);
-            arriving(s, e, fx->emit[f], h);
+            arriving(s, fx, e, fx->emit[f], p, h);
             for (k = 0; k < 3; k++)
                 sum[k] += a * h[k];
             area += a;
         }
     }
     if (!(area > 0) && nearest >= 0) {
-        arriving(s, nearest, fx->emit[f], sum);
+        arriving(s, fx, nearest, fx->emit[f], p, sum);
         area = sc_element_area(s, nearest);
         for (k = 0; k < 3; k++)
             sum[k] *= area;
@@ -134,10 +146,17 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, int
 int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                     double *weight)
 {
+    return sc_corner_light_fg(s, NULL, sc, polys, n, rgb, weight);
+}
+
+int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
+                       double *rgb, double *weight)
+{
     faces_index fx;
     int f, k, rc;
     memset(&fx, 0, sizeof fx);
     rc = index_faces(s, sc, polys, n, &fx);
+    if (rc == 0 && fg) rc = sc_fgather_vertices(fg, &fx.ve, &fx.vok);
     fx.tol = match_tolerance(sc);
     for (f = 0; rc == 0 && f < sc->nfaces; f++)
         for (k = 0; k < sc->faces[f].count; k++)
@@ -161,17 +180,49 @@ static void base_colour(const obj_material *m, int textured, double c[3])
         c[k] = 1;
 }
 
-int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                   const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
-                   char *err, size_t errlen)
+/* The lightmap's part of IN from atlas LM: TEXCOORD_1 per corner into UV (2 per corner),
+   the PNG into *PNG, the lightmap named by every material that does not emit (USE).
+   0, or -1 with err. */
+static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, double *uv, unsigned char *use,
+                          unsigned char **png, gltf_input *in, char *err, size_t errlen)
 {
+    int m;
+    if (!uv || !use || lm_corner_uvs(lm, sc, uv) != 0) {
+        snprintf(err, errlen, "out of memory for the lightmap's UVs");
+        return -1;
+    }
+    if (lm_png(lm, png, &in->lightmap_png_size, &in->lightmap_scale, err, errlen) != 0)
+        return -1;
+    for (m = 0; m < sc->nmaterials; m++)
+        use[m] = !emits(sc->materials[m].ke);
+    in->corner_uv1 = uv;
+    in->lightmap_png = *png;
+    in->lightmap_use = use;
+    return 0;
+}
+
+int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                   const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
+                   void *ctx, char *err, size_t errlen)
+{
+    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, path, warn, ctx, err, errlen);
+}
+
+int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                            const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
+                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                            size_t errlen)
+{
+    double *uv = lm ? malloc(2 * ((size_t)sc->nindices + 1) * sizeof *uv) : NULL;
+    unsigned char *use = lm ? malloc((size_t)sc->nmaterials + 1) : NULL, *png = NULL;
+    char why[600] = "";
     size_t corners = (size_t)sc->nindices + 1, mats = (size_t)sc->nmaterials + 1;
     double *rgb = malloc(3 * corners * sizeof *rgb), *weight = malloc(corners * sizeof *weight);
     double *base = malloc(3 * mats * sizeof *base);
     const char **tex = calloc(mats, sizeof *tex);
     gltf_input in;
     int m, rc = -1;
-    if (rgb && weight && base && tex && sc_corner_light(s, sc, polys, n, rgb, weight) == 0) {
+    if (rgb && weight && base && tex && sc_corner_light_fg(s, fg, sc, polys, n, rgb, weight) == 0) {
         for (m = 0; m < sc->nmaterials; m++) {
             int textured = maps && maps[m].rgb;
             const obj_material *mt = &sc->materials[m];
@@ -186,10 +237,16 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
         in.texture = tex;
         in.warn = warn;
         in.ctx = ctx;
-        rc = gltf_write(path, &in, err, errlen);
+        if (lm && lightmap_input(lm, sc, uv, use, &png, &in, why, sizeof why) != 0)
+            snprintf(err, errlen, "%s: %s", path, why);
+        else
+            rc = gltf_write(path, &in, err, errlen);
     } else if (err && errlen) {
         snprintf(err, errlen, "%s: out of memory", path);
     }
+    free(uv);
+    free(use);
+    free(png);
     free(rgb);
     free(weight);
     free(base);

@@ -5,9 +5,11 @@
 #ifndef RAD_TOOLS_GLTF_EXPORT_H
 #define RAD_TOOLS_GLTF_EXPORT_H
 
+#include "bake/lightmap.h"
 #include "formats/gltf.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
+#include "host/fgather.h"
 #include "host/scene.h"
 
 /* For every face corner of SC (sc->nindices of them): the light arriving there, linear
@@ -21,23 +23,42 @@
  * Returns 0, or -1 when out of memory. */
 int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                     double *weight);
+/* The same, the light arriving at each element's vertex gathered by FG (NULL: the
+ * element's own, as sc_corner_light) on the faces that do not emit. 0 or -1. */
+int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
+                       double *rgb, double *weight);
 
 /* Writes PATH (.glb) from the solved S of SC's POLYS (N) with the textures MAPS
- * (tex_load_materials; NULL: none): COLOR_0 from sc_corner_light; a material's
+ * (tex_load_materials; NULL: none): COLOR_0 from sc_corner_light_fg with FG (NULL:
+ * the elements'); a material's
  * baseColorFactor is 1 where it emits (COLOR_0 is then its radiosity), else Kd, or 1
  * for a texture with Kd 0 (texture.h's rule), each at most TEX_RHO_MAX; its
  * baseColorTexture is its map_Kd file when MAPS holds it. Warnings (a texture left out)
  * go to WARN. Returns 0, or -1 with "PATH: what" in err. */
 int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                   const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
-                   char *err, size_t errlen);
+                   const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
+                   void *ctx, char *err, size_t errlen);
+
+/* sc_export_gltf with the lightmap LM (NULL: none) baked over POLYS: TEXCOORD_1 each
+ * corner's place on the atlas (lm_corner_uvs), the atlas embedded as PNG (lm_png) and
+ * named in the extras of every material that does not emit (gltf_input). */
+int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                            const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
+                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                            size_t errlen);
 
 #ifndef RAD_HOST_FLOAT_NAMES
 int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                      double *rgb, double *weight);
+int scf_corner_light_fg(scf_solver *s, scf_fgather *fg, const obj_scene *sc, const sc_poly *polys,
+                        int n, double *rgb, double *weight);
 int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                    const tex_image *maps, const char *path, gltf_warn_fn warn, void *ctx,
-                    char *err, size_t errlen);
+                    const tex_image *maps, scf_fgather *fg, const char *path, gltf_warn_fn warn,
+                    void *ctx, char *err, size_t errlen);
+int scf_export_gltf_lightmap(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
+                             const tex_image *maps, scf_fgather *fg, const lm_atlas *lm,
+                             const char *path, gltf_warn_fn warn, void *ctx, char *err,
+                             size_t errlen);
 #endif
 
 #endif

@@ -40,6 +40,10 @@ struct sc_solver {
                                    converged / stopped at its sweep limit */
     double tol;                 /* the last solve's tolerance */
     double mem_limit;           /* rows + matrix bytes; 0: half the physical memory */
+    /* faces below the core's own minimum area (RAD_SMALL_FACES; see join_poly) */
+    unsigned char *tiny;        /* per surface: 1 below TINY_AREA, | 2 in a group */
+    double *area;               /* per surface: its area from its vertices, in core units^2 */
+    int n_tiny;
 };
 
 typedef struct {
@@ -77,9 +81,12 @@ static void free_pools(struct sc_solver *h)
 {
     free(h->pools.surfaces); free(h->pools.patches); free(h->pools.elements);
     free(h->pools.vertices); free(h->pools.work); free(h->tags); free(h->emit);
+    free(h->tiny); free(h->area);
     memset(&h->pools, 0, sizeof h->pools);
     h->tags = NULL;
     h->emit = NULL;
+    h->tiny = NULL;
+    h->area = NULL;
 }
 
 static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad_config_t *cfg)
@@ -102,7 +109,10 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     p->work = malloc(p->work_bytes);
     h->tags = calloc(p->max_surfaces, sizeof *h->tags);
     h->emit = calloc(3u * (size_t)p->max_surfaces, sizeof *h->emit);
-    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit;
+    h->tiny = calloc(p->max_surfaces, sizeof *h->tiny);
+    h->area = calloc(p->max_surfaces, sizeof *h->area);
+    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit && h->tiny &&
+           h->area;
 }
 
 static rad_real_t emit_ch(struct sc_solver *h, double e)
@@ -126,18 +136,82 @@ static void to_core(const struct sc_solver *h, const double *p, rad_vec3_t *v)
     v->z = RAD_REAL((p[2] - h->off[2]) * h->scale);
 }
 
+/* A face below the core's own minimum area: the core meshes it only with
+ * RAD_SMALL_FACES, in a group of its neighbours (join_poly). */
+#define TINY_AREA (1.0 / 4096.0)
+
+/* Area of polygon V (N corners, convex) in core units^2, from its rounded corners;
+ * NRM (if not NULL) gets its normal, of twice that length. */
+static double poly_area(const rad_vec3_t *v, int n, double *nrm)
+{
+    double c[3] = {0, 0, 0};
+    int k;
+    for (k = 1; k + 1 < n; k++) {
+        double a[3] = {RAD_TO_DOUBLE(v[k].x) - RAD_TO_DOUBLE(v[0].x), RAD_TO_DOUBLE(v[k].y) - RAD_TO_DOUBLE(v[0].y),
+                       RAD_TO_DOUBLE(v[k].z) - RAD_TO_DOUBLE(v[0].z)};
+        double b[3] = {RAD_TO_DOUBLE(v[k + 1].x) - RAD_TO_DOUBLE(v[0].x),
+                       RAD_TO_DOUBLE(v[k + 1].y) - RAD_TO_DOUBLE(v[0].y),
+                       RAD_TO_DOUBLE(v[k + 1].z) - RAD_TO_DOUBLE(v[0].z)};
+        c[0] += a[1] * b[2] - a[2] * b[1];
+        c[1] += a[2] * b[0] - a[0] * b[2];
+        c[2] += a[0] * b[1] - a[1] * b[0];
+    }
+    if (nrm) memcpy(nrm, c, sizeof c);
+    return 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+/* The group of a tiny face of centre C (core units) and normal N (any length): the
+ * cell of a grid CELL wide holding C, and the bin of N's direction, TINY_DIRS^2 on each
+ * face of a cube map (about 30 degrees each). */
+#define TINY_DIRS 3
+static uint64_t group_key(const double *c, const double *n, double cell)
+{
+    uint64_t key = 0;
+    int a, major = 0, face;
+    for (a = 0; a < 3; a++) /* |c| <= 64 and cell >= 1/16: 2048 cells an axis at most */
+        key = key << 16 | ((uint64_t)((long)floor(c[a] / cell) + 32768L) & 0xFFFFu);
+    for (a = 1; a < 3; a++)
+        if (fabs(n[a]) > fabs(n[major])) major = a;
+    face = 2 * major + (n[major] < 0);
+    for (a = 0; a < 3; a++) {
+        int bin;
+        if (a == major) continue;
+        bin = (int)floor((n[a] / fabs(n[major]) + 1.0) * 0.5 * TINY_DIRS);
+        face = face * TINY_DIRS + (bin < 0 ? 0 : bin >= TINY_DIRS ? TINY_DIRS - 1 : bin);
+    }
+    return key << 8 | (uint64_t)face;
+}
+
+/* Surface SURF, made of polygon Q's corners V (N of them), is kept. */
+static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const rad_vec3_t *v, int n)
+{
+    h->tags[surf] = q->tag;
+    memcpy(&h->emit[3 * surf], q->emit, sizeof q->emit);
+    h->area[surf] = poly_area(v, n, NULL);
+    h->tiny[surf] = h->area[surf] < TINY_AREA;
+    h->n_tiny += h->tiny[surf] & 1;
+}
+
+/* Polygon Q in the core's units into V; its area there. */
+static double poly_core(const struct sc_solver *h, const sc_poly *q, rad_vec3_t *v)
+{
+    int i;
+    for (i = 0; i < q->n; i++) to_core(h, q->v[i], &v[i]);
+    return poly_area(v, q->n, NULL);
+}
+
 /* Adds one polygon; a quad the core refuses as non-planar is split in two. Returns
  * RAD_OK, RAD_ERR_FULL (grow and retry) or another error (fatal). */
 static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
 {
     rad_vec3_t v[4];
     rad_rgb_t rho, em;
-    int i, rc;
-    for (i = 0; i < q->n; i++) to_core(h, q->v[i], &v[i]);
+    int rc;
+    poly_core(h, q, v);
     rho.r = rho_ch(h, q->rho[0]); rho.g = rho_ch(h, q->rho[1]); rho.b = rho_ch(h, q->rho[2]);
     em.r = emit_ch(h, q->emit[0]); em.g = emit_ch(h, q->emit[1]); em.b = emit_ch(h, q->emit[2]);
     rc = rad_add_polygon(&h->s, v, (unsigned)q->n, &rho, &em);
-    if (rc >= 0) { h->tags[rc] = q->tag; memcpy(&h->emit[3 * rc], q->emit, sizeof q->emit); return RAD_OK; }
+    if (rc >= 0) { keep_surface(h, rc, q, v, q->n); return RAD_OK; }
     if (q->n == 4 && (rc == RAD_ERR_NONPLANAR || rc == RAD_ERR_DEGENERATE)) {
         rad_vec3_t t[3];
         int k;
@@ -145,7 +219,7 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
         for (k = 0; k < 2; k++) {
             t[0] = v[0]; t[1] = v[1 + k]; t[2] = v[2 + k];
             rc = rad_add_polygon(&h->s, t, 3, &rho, &em);
-            if (rc >= 0) { h->tags[rc] = q->tag; memcpy(&h->emit[3 * rc], q->emit, sizeof q->emit); }
+            if (rc >= 0) keep_surface(h, rc, q, t, 3);
             else if (rc == RAD_ERR_DEGENERATE) skip_poly(h, q, w, "a degenerate triangle of a split quad", rc);
             else return rc;
         }
@@ -156,6 +230,147 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
         return RAD_OK;
     }
     return rc;
+}
+
+/* Most faces a group shoots together (each join is a pass over the group). */
+#define GROUP_MAX 1024
+
+/* Tiny polygon Q joins the group of the last patch (rad_join_polygon), so that the
+ * group's power is shot at once rather than left in thousands of patches too small to
+ * be chosen. Where the core cannot join it (a quad to split, a sliver longer than an
+ * element, a full group) it is added as add_poly does, and starts a group. Returns as
+ * add_poly. */
+static int join_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
+{
+    uint32_t p = h->s.n_patches - 1u, first = h->s.pools.patches[p].surface;
+    rad_vec3_t v[4];
+    rad_rgb_t rho;
+    int rc, c;
+    poly_core(h, q, v);
+    rho.r = RAD_REAL(q->rho[0] >= 1.0 ? RHO_MAX : q->rho[0]);
+    rho.g = RAD_REAL(q->rho[1] >= 1.0 ? RHO_MAX : q->rho[1]);
+    rho.b = RAD_REAL(q->rho[2] >= 1.0 ? RHO_MAX : q->rho[2]);
+    rc = h->s.pools.patches[p].n_elements < GROUP_MAX ? rad_join_polygon(&h->s, v, (unsigned)q->n, &rho) : RAD_ERR_ARG;
+    if (rc == RAD_ERR_FULL) return rc;
+    if (rc < 0) return add_poly(h, q, w);
+    for (c = 0; c < 3; c++) h->clamped += q->rho[c] >= 1.0;
+    keep_surface(h, rc, q, v, q->n);
+    h->tiny[rc] |= 2;
+    h->tiny[first] |= 2;
+    return RAD_OK;
+}
+
+typedef struct {
+    int tiny, i, part;
+    uint64_t key;
+    const double *rho;
+} order_item;
+
+static int cmp_order(const void *a, const void *b)
+{
+    const order_item *x = a, *y = b;
+    int c;
+    if (x->tiny != y->tiny) return x->tiny - y->tiny;
+    if (!x->tiny) return x->i - y->i; /* as given */
+    if (x->key != y->key) return x->key < y->key ? -1 : 1;
+    for (c = 0; c < 3; c++)
+        if (x->rho[c] != y->rho[c]) return x->rho[c] < y->rho[c] ? -1 : 1;
+    if (x->part != y->part) return x->part - y->part;
+    return x->i - y->i;
+}
+
+/* A corner of a polygon, for finding polygons that touch. */
+typedef struct {
+    uint64_t key;
+    double p[3];
+    int poly;
+} corner_item;
+
+static int cmp_corner(const void *a, const void *b)
+{
+    const corner_item *x = a, *y = b;
+    int k;
+    if (x->key != y->key) return x->key < y->key ? -1 : 1;
+    for (k = 0; k < 3; k++)
+        if (x->p[k] != y->p[k]) return x->p[k] < y->p[k] ? -1 : 1;
+    return x->poly - y->poly;
+}
+
+static int find_part(int *up, int k)
+{
+    while (up[k] != k) k = up[k] = up[up[k]];
+    return k;
+}
+
+/* PART[k]: the least index of the polygons joined to polygon k through shared corners
+ * (equal coordinates), among the tiny ones of its key and reflectance: a group is one
+ * connected piece, not separate things that share a cell and a direction. Returns 0,
+ * or -1 out of memory. */
+static int touching_parts(const sc_poly *polys, int n, const order_item *it, int *part)
+{
+    size_t nc = 0, i;
+    corner_item *c;
+    int k, a;
+    for (k = 0; k < n; k++) {
+        part[k] = k;
+        if (it[k].tiny) nc += (size_t)polys[k].n;
+    }
+    c = malloc((nc ? nc : 1) * sizeof *c);
+    if (!c) return -1;
+    for (k = 0, nc = 0; k < n; k++)
+        for (a = 0; it[k].tiny && a < polys[k].n; a++) {
+            memcpy(c[nc].p, polys[k].v[a], sizeof c[nc].p);
+            c[nc].key = it[k].key;
+            c[nc++].poly = k;
+        }
+    qsort(c, nc, sizeof *c, cmp_corner);
+    for (i = 1; i < nc; i++)
+        if (c[i].key == c[i - 1].key && !memcmp(c[i].p, c[i - 1].p, sizeof c[i].p) &&
+            !memcmp(polys[c[i].poly].rho, polys[c[i - 1].poly].rho, sizeof polys[0].rho)) {
+            int x = find_part(part, c[i].poly), y = find_part(part, c[i - 1].poly);
+            if (x < y) part[y] = x; else part[x] = y;
+        }
+    free(c);
+    for (k = 0; k < n; k++) part[k] = find_part(part, k);
+    return 0;
+}
+
+/* The order polygons go to the core: every one that is not tiny as given, then the
+ * tiny ones by group (group_key, of the element size CELL, reflectance and connected
+ * piece), so that each group's faces follow one another. SAME[k]: polygon ORDER[k] may join the group
+ * of the one before it. Returns ORDER (malloc'd; NULL: out of memory). */
+static int *poly_order(const struct sc_solver *h, const sc_poly *polys, int n, double cell, unsigned char *same)
+{
+    order_item *it = malloc((size_t)n * sizeof *it);
+    int *order = malloc((size_t)n * sizeof *order), k, a;
+    if (!it || !order) { free(it); free(order); return NULL; }
+    /* ORDER's memory holds the pieces until the sort */
+    for (k = 0; k < n; k++) {
+        rad_vec3_t v[4];
+        double nrm[3], c[3] = {0, 0, 0};
+        it[k].i = k;
+        it[k].key = 0;
+        it[k].rho = polys[k].rho;
+        poly_core(h, &polys[k], v);
+        it[k].tiny = poly_area(v, polys[k].n, nrm) < TINY_AREA;
+        for (a = 0; a < polys[k].n; a++) {
+            c[0] += RAD_TO_DOUBLE(v[a].x) / polys[k].n;
+            c[1] += RAD_TO_DOUBLE(v[a].y) / polys[k].n;
+            c[2] += RAD_TO_DOUBLE(v[a].z) / polys[k].n;
+        }
+        if (it[k].tiny) it[k].key = group_key(c, nrm, cell);
+    }
+    if (touching_parts(polys, n, it, order) < 0) { free(it); free(order); return NULL; }
+    for (k = 0; k < n; k++) it[k].part = order[k];
+    qsort(it, (size_t)n, sizeof *it, cmp_order);
+    for (k = 0; k < n; k++) {
+        const sc_poly *q = &polys[it[k].i], *r = k ? &polys[it[k - 1].i] : NULL;
+        order[k] = it[k].i;
+        same[k] = r && it[k].tiny && it[k - 1].tiny && it[k].key == it[k - 1].key && it[k].part == it[k - 1].part &&
+                  !memcmp(q->rho, r->rho, sizeof q->rho) && !(q->emit[0] > 0 || q->emit[1] > 0 || q->emit[2] > 0);
+    }
+    free(it);
+    return order;
 }
 
 static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *err, size_t errlen)
@@ -282,11 +497,13 @@ static int outlier(const sc_poly *polys, int n, char *err, size_t errlen)
 sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
                        char *err, size_t errlen)
 {
-    static const sc_opts defaults = {0, 0, 0, 0, 0, 0};
+    static const sc_opts defaults = {0};
     struct sc_solver *h = calloc(1, sizeof *h);
     rad_config_t cfg;
     long cap, limit;
     warner_t w;
+    int *order = NULL;
+    unsigned char *same = NULL;
     if (!o) o = &defaults;
     if (!h) { snprintf(err, errlen, "out of memory"); return NULL; }
     if (n <= 0) { snprintf(err, errlen, "the scene has no polygons"); free(h); return NULL; }
@@ -305,40 +522,57 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         cfg.max_patch = RAD_REAL(mp);
         cfg.res = (uint16_t)(o->res ? o->res : 64);
         cfg.band_rows = (uint16_t)o->band_rows;
-        cfg.flags = o->no_overshoot ? RAD_NO_OVERSHOOT : 0u;
+        cfg.flags = (o->no_overshoot ? RAD_NO_OVERSHOOT : 0u) | RAD_SMALL_FACES;
+        cfg.coarse = RAD_REAL(o->coarse);
+        cfg.coarse_res = (uint16_t)o->coarse_res;
         cap = estimate_elements(h, polys, n, me);
+        same = malloc((size_t)n);
+        order = same ? poly_order(h, polys, n, me, same) : NULL;
+        if (!order) {
+            snprintf(err, errlen, "out of memory");
+            free(same);
+            free(h);
+            return NULL;
+        }
     }
     limit = o->max_elements > 0 ? o->max_elements : 4000000L;
     if (limit > (long)RAD_INDEX_NONE - 1) limit = (long)RAD_INDEX_NONE - 1; /* 65534 with 16-bit indices */
     w.warn = warn; w.ctx = ctx; w.emitted = 0;
     for (;;) {
-        int i, rc = RAD_OK;
+        int i, added, rc = RAD_OK;
         if (cap > limit) cap = limit;
         if (!alloc_pools(h, cap, n, &cfg)) { snprintf(err, errlen, "out of memory for %ld elements", cap); break; }
         rc = rad_init(&h->s, &h->pools, &cfg);
         if (rc < 0) { snprintf(err, errlen, "cannot set up the solver: %s", rad_strerror(rc)); break; }
-        h->skipped = h->split = h->clamped = h->skipped_emitters = 0;
+        h->skipped = h->split = h->clamped = h->skipped_emitters = h->n_tiny = 0;
         w.seen = 0;
-        for (i = 0; i < n && rc == RAD_OK; i++) rc = add_poly(h, &polys[i], &w);
+        for (i = 0, added = 0; i < n && rc == RAD_OK; i++) {
+            uint32_t before = h->s.n_surfaces;
+            rc = same[i] && added ? join_poly(h, &polys[order[i]], &w) : add_poly(h, &polys[order[i]], &w);
+            added = h->s.n_surfaces > before;
+        }
         if (rc == RAD_OK) {
             if (h->s.n_elements == 0) {
                 if (!outlier(polys, n, err, errlen)) snprintf(err, errlen, "no polygon could be meshed");
                 break;
             }
+            free(order);
+            free(same);
             return h;
         }
         if (rc != RAD_ERR_FULL) {
-            snprintf(err, errlen, "polygon %d (tag %d): %s", i - 1, polys[i - 1].tag, rad_strerror(rc));
+            snprintf(err, errlen, "polygon %d (tag %d): %s", order[i - 1], polys[order[i - 1]].tag, rad_strerror(rc));
             break;
         }
         free_pools(h);
         if (cap >= limit) {
             snprintf(err, errlen, "the scene needs more than %ld elements: raise the element size", limit);
-            sc_destroy(h);
-            return NULL;
+            break;
         }
         cap *= 2;
     }
+    free(order);
+    free(same);
     sc_destroy(h);
     return NULL;
 }
@@ -397,7 +631,9 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
     st->tol = h->tol;
     st->converged = h->solve_kind == 2 || (h->solve_kind == 1 && rad_unshot_fraction(&h->s) <= RAD_REAL(h->tol));
     st->backoffs = h->s.stats.backoffs;
+    st->coarse_shots = h->s.stats.coarse_shots;
     st->skipped_emitters = h->skipped_emitters;
+    st->tiny = h->n_tiny;
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
                      h->s.n_elements * sizeof *p->elements + h->s.n_vertices * sizeof *p->vertices;
     st->work_bytes = RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
@@ -411,15 +647,23 @@ static void rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
     o[2] = RAD_TO_DOUBLE(c->b) / h->escale;
 }
 
+static int shade_flags(const struct sc_solver *h, int ambient)
+{
+    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
+}
+
 void sc_element_rgb(sc_solver *h, int e, int ambient, double rgb[3])
 {
     rad_rgb_t c = {0, 0, 0};
-    rad_element_radiosity(&h->s, (uint32_t)e, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, &c);
+    rad_element_radiosity(&h->s, (uint32_t)e, shade_flags(h, ambient), &c); /* a group's face: the group's */
     rgb_out(h, &c, rgb);
 }
 
 double sc_element_area(sc_solver *h, int e)
 {
+    uint32_t surf = h->pools.elements[e].surface;
+    if (h->tiny[surf] && h->pools.surfaces[surf].n_elements == 1) /* a group's receiver holds the group's */
+        return h->area[surf] / (h->scale * h->scale);
     return RAD_TO_DOUBLE(h->pools.elements[e].area) / (h->scale * h->scale);
 }
 
@@ -461,7 +705,7 @@ static int fits_core(double x) { return x > -32767.0 && x < 32767.0; }
 static rad_rgb_t *shade_core(struct sc_solver *h, int ambient)
 {
     rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v);
-    if (v) rad_shade_vertices(&h->s, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, v, h->s.n_vertices);
+    if (v) rad_shade_vertices(&h->s, shade_flags(h, ambient), v, h->s.n_vertices);
     return v;
 }
 
@@ -856,6 +1100,12 @@ int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double
             return -1;
         }
     if (rho) { r.r = rho_ch(h, rho[0]); r.g = rho_ch(h, rho[1]); r.b = rho_ch(h, rho[2]); }
+    for (i = 0; emit && (emit[0] > 0 || emit[1] > 0 || emit[2] > 0) && i < h->s.n_surfaces; i++)
+        if ((h->tiny[i] & 2) && match(ctx, h->tags[i])) {
+            snprintf(err, errlen, "surface %u (tag %d) is one of a group of faces below the core's precision, "
+                     "shot together, which cannot emit", i, h->tags[i]);
+            return -1;
+        }
     for (i = 0; i < h->s.n_surfaces; i++) {
         if (!match(ctx, h->tags[i])) continue;
         if (rho && (rc = rad_set_surface(&h->s, i, &r, NULL)) < 0) {
@@ -1010,13 +1260,19 @@ static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3
 
 int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
 {
+    return sc_gather_on(q, p, n, -1, ambient, rgb);
+}
+
+int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient, double rgb[3])
+{
     rad_vec3_t c, nc;
     rad_rgb_t out;
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     int flags = gather_frame(q, p, ambient, &c);
     if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
     nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, RAD_INDEX_NONE, flags, &out) < 0) return -1;
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface, flags, &out) < 0)
+        return -1;
     rgb_out(q->h, &out, rgb);
     return 0;
 }

@@ -28,6 +28,9 @@ typedef struct {
     int band_rows;                  /* 0: all faces at once */
     long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
     int no_overshoot;               /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
+    double coarse;                  /* rad_config_t.coarse: unshot fraction below which
+                                       shots coarsen; 0: never */
+    int coarse_res;                 /* rad_config_t.coarse_res: their floor; 0: res / 4 */
 } sc_opts;
 
 typedef struct {
@@ -44,7 +47,10 @@ typedef struct {
                                        stopped before its sweep limit) */
     double tol;                     /* that tolerance */
     unsigned long backoffs;         /* overshoot halvings (rad_stats_t.backoffs) */
+    unsigned long coarse_shots;     /* shots below res (rad_stats_t.coarse_shots) */
     int skipped_emitters;           /* emitting polygons skipped (each warned) */
+    int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
+                                       shown from the light around them */
 } sc_stats;
 
 typedef struct {
@@ -164,6 +170,9 @@ void sc_gatherer_free(sc_gatherer *g);
  * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the
  * surface. 0, or -1 (P outside the scene's frame, N zero, a sphere gatherer). */
 int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+/* sc_gather from a point on core surface SURFACE (-1: none), which is not drawn: a
+ * quad planar only within the core's tolerance is not seen edge-on from just above. */
+int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int ambient, double rgb[3]);
 /* The radiosity seen from P in every direction, projected on the nine real SH of bands
  * 0..2 (rad_gather_sh's order and scale), caller units. 0 or -1 as sc_gather. */
 int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]);

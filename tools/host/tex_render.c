@@ -75,11 +75,50 @@ static const tex_image *surface_map(sc_solver *s, const obj_scene *sc, const tex
     return &maps[sc->faces[f].material];
 }
 
+/* Per core vertex: the surface number + 1 in base 1024. */
+static void id_values(sc_solver *s, double *ids)
+{
+    const rad_scene_t *core = sc_core(s);
+    uint32_t si, v;
+    for (si = 0; si < core->n_surfaces; si++) {
+        const rad_surface_t *sf = &core->pools.surfaces[si];
+        for (v = sf->first_vertex; v < sf->first_vertex + sf->n_vertices; v++) {
+            double id = si + 1.0;
+            int k;
+            for (k = 0; k < 3; k++, id = floor(id / ID_BASE))
+                ids[3 * v + k] = fmod(id, ID_BASE);
+        }
+    }
+}
+
+int sc_render_surfaces(sc_solver *s, const sc_camera *cam, int w, int h, int *surface, char *err,
+                       size_t errlen)
+{
+    const rad_scene_t *core = sc_core(s);
+    size_t nv = (size_t)core->n_vertices + 1, np = (size_t)w * (size_t)h, i;
+    double *vid = malloc(3 * nv * sizeof *vid), *pid = malloc(3 * np * sizeof *pid);
+    unsigned char *solid = malloc(np);
+    int rc = -1;
+    if (!vid || !pid || !solid)
+        snprintf(err, errlen, "out of memory for a %dx%d image", w, h);
+    else {
+        id_values(s, vid);
+        rc = sc_render_values(s, cam, vid, w, h, pid, solid, err, errlen);
+        for (i = 0; rc == 0 && i < np; i++) {
+            double id = floor(pid[3 * i] + 0.5) + ID_BASE * floor(pid[3 * i + 1] + 0.5) +
+                        ID_BASE * ID_BASE * floor(pid[3 * i + 2] + 0.5) - 1;
+            surface[i] = solid[i] && id >= 0 && id < core->n_surfaces ? (int)id : -1;
+        }
+    }
+    free(vid);
+    free(pid);
+    free(solid);
+    return rc;
+}
+
 /* Per core vertex: (u, v) in the map's own coordinates (its -s / -o applied), shifted
-   by whole periods to be >= 0 when it wraps (the renderer's values are unsigned), and
-   the surface number + 1 in base 1024. */
-static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *maps,
-                          double *uv, double *ids)
+   by whole periods to be >= 0 when it wraps (the renderer's values are unsigned). */
+static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *maps, double *uv)
 {
     const rad_scene_t *core = sc_core(s);
     uint32_t si, v;
@@ -96,7 +135,7 @@ static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *ma
                 shift[1] = k ? fmin(shift[1], floor(b)) : floor(b);
             }
         for (v = sf->first_vertex; v < sf->first_vertex + sf->n_vertices; v++) {
-            double p[3], q[2] = { 0, 0 }, id = si + 1.0;
+            double p[3], q[2] = { 0, 0 };
             if (t) {
                 sc_vertex_pos(s, (int)v, p);
                 uv_at(sc, &sc->faces[f], p, q);
@@ -106,27 +145,23 @@ static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *ma
             uv[3 * v] = fmin(fmax(q[0], 0), 65535);
             uv[3 * v + 1] = fmin(fmax(q[1], 0), 65535);
             uv[3 * v + 2] = 0;
-            for (k = 0; k < 3; k++, id = floor(id / ID_BASE))
-                ids[3 * v + k] = fmod(id, ID_BASE);
         }
     }
 }
 
-/* Multiplies pixel I by its texel over its surface's reflectance. */
+/* Multiplies pixel I, of surface ID, by its texel over its surface's reflectance. */
 static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, const double *uv,
-                   const double *ids, size_t i, float *rgb)
+                   int id, size_t i, float *rgb)
 {
     const rad_scene_t *core = sc_core(s);
-    double id = floor(ids[3 * i] + 0.5) + ID_BASE * floor(ids[3 * i + 1] + 0.5) +
-                ID_BASE * ID_BASE * floor(ids[3 * i + 2] + 0.5) - 1;
     const rad_surface_t *sf;
     const tex_image *t;
     tex_image plain;
     double texel[3], rho[3], sr[3];
     int f, k;
-    if (!(id >= 0 && id < core->n_surfaces))
+    if (id < 0)
         return;
-    sf = &core->pools.surfaces[(uint32_t)id];
+    sf = &core->pools.surfaces[id];
     if (!(t = surface_map(s, sc, maps, sf, &f)))
         return;
     plain = *t; /* the values carry the map's scale and offset already */
@@ -142,35 +177,39 @@ static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, con
             rgb[3 * i + k] = (float)(rgb[3 * i + k] * rho[k] / sr[k]);
 }
 
+int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
+                      const sc_camera *cam, int w, int h, float *rgb, char *err, size_t errlen)
+{
+    const rad_scene_t *core = sc_core(s);
+    size_t nv = (size_t)core->n_vertices + 1, np = (size_t)w * (size_t)h, i;
+    double *vuv = malloc(3 * nv * sizeof *vuv), *puv = malloc(3 * np * sizeof *puv);
+    unsigned char *solid = malloc(np);
+    int *id = malloc(np * sizeof *id);
+    int rc = -1;
+    if (!vuv || !puv || !solid || !id)
+        snprintf(err, errlen, "out of memory for a %dx%d image", w, h);
+    else {
+        vertex_values(s, sc, maps, vuv);
+        rc = sc_render_values(s, cam, vuv, w, h, puv, solid, err, errlen) ||
+                     sc_render_surfaces(s, cam, w, h, id, err, errlen)
+                 ? -1
+                 : 0;
+        for (i = 0; rc == 0 && i < np; i++)
+            if (solid[i])
+                detail(s, sc, maps, puv, id[i], i, rgb);
+    }
+    free(vuv);
+    free(puv);
+    free(solid);
+    free(id);
+    return rc;
+}
+
 int sc_render_textured(sc_solver *s, const obj_scene *sc, const tex_image *maps,
                        const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
                        size_t errlen)
 {
-    const rad_scene_t *core = sc_core(s);
-    size_t nv = (size_t)core->n_vertices + 1, np = (size_t)w * (size_t)h, i;
-    double *vuv = malloc(3 * nv * sizeof *vuv), *vid = malloc(3 * nv * sizeof *vid);
-    double *puv = malloc(3 * np * sizeof *puv), *pid = malloc(3 * np * sizeof *pid);
-    unsigned char *solid = malloc(np), *solid2 = malloc(np);
-    int rc = -1;
     if (sc_render(s, cam, ambient, w, h, rgb, err, errlen))
-        ; /* its message */
-    else if (!vuv || !vid || !puv || !pid || !solid || !solid2)
-        snprintf(err, errlen, "out of memory for a %dx%d image", w, h);
-    else {
-        vertex_values(s, sc, maps, vuv, vid);
-        rc = sc_render_values(s, cam, vuv, w, h, puv, solid, err, errlen) ||
-                     sc_render_values(s, cam, vid, w, h, pid, solid2, err, errlen)
-                 ? -1
-                 : 0;
-        for (i = 0; rc == 0 && i < np; i++)
-            if (solid[i] && solid2[i])
-                detail(s, sc, maps, puv, pid, i, rgb);
-    }
-    free(vuv);
-    free(vid);
-    free(puv);
-    free(pid);
-    free(solid);
-    free(solid2);
-    return rc;
+        return -1;
+    return sc_texture_detail(s, sc, maps, cam, w, h, rgb, err, errlen);
 }

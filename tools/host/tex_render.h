@@ -20,7 +20,22 @@ int sc_render_textured(sc_solver *s, const obj_scene *sc, const tex_image *maps,
                        const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
                        size_t errlen);
 
+/* The second half of sc_render_textured: RGB, a render of CAM (w x h) by any means,
+ * gets the textures' detail. 0 or -1 with err. */
+int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
+                      const sc_camera *cam, int w, int h, float *rgb, char *err, size_t errlen);
+
+/* Per pixel of CAM's w x h view: the core surface drawn there, -1 where none (or a
+ * crack filled from its neighbours), from a render of each surface's number. 0 or -1
+ * with err. */
+int sc_render_surfaces(sc_solver *s, const sc_camera *cam, int w, int h, int *surface, char *err,
+                       size_t errlen);
+
 #ifndef RAD_HOST_FLOAT_NAMES
+int scf_texture_detail(scf_solver *s, const obj_scene *sc, const tex_image *maps,
+                       const sc_camera *cam, int w, int h, float *rgb, char *err, size_t errlen);
+int scf_render_surfaces(scf_solver *s, const sc_camera *cam, int w, int h, int *surface, char *err,
+                        size_t errlen);
 int scf_render_textured(scf_solver *s, const obj_scene *sc, const tex_image *maps,
                         const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
                         size_t errlen);

@@ -88,7 +88,7 @@ int ref_receiver(int k, sc_poly *p)
 double ref_hemicube_ff(int k, int res, int twin, double *want)
 {
     sc_poly p[2];
-    sc_opts o = {0, 0, 0, 0, 0, 0};
+    sc_opts o = {0};
     sc_stats stt;
     char err[256];
     double sum = 0, *ff = NULL;
