@@ -95,6 +95,9 @@ static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const
         for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
 }
 
+static void lattice_setup(rad__lattice_t *lt);
+static void face_setup(rad__lattice_t *lt);
+
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res)
 {
@@ -102,7 +105,8 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     lt->corner = corner;
     lt->ncorner = n;
     lt->res = res;
-    lt->ready = 0;
+    lattice_setup(lt);
+    lt->ready = 1;
 }
 
 /* The families of LT's surface from its corners (rad__lattice_init's). */
@@ -159,7 +163,8 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
     }
-    if (lt->ready == 2) lt->ready = 1;
+    face_setup(lt);
+    lt->ready = 2;
 }
 
 /* The coefficients of LT's families on its face (rad__lattice_face's). */
@@ -564,14 +569,6 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
     unsigned f;
     int32_t x, n = xe - xs;
     if (n <= 0) return;
-    if (lt->ready == 0) {
-        lattice_setup(lt);
-        lt->ready = 1;
-    }
-    if (lt->ready == 1) {
-        face_setup(lt);
-        lt->ready = 2;
-    }
     acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
     for (f = 0; f < lt->nfam; f++) acc += family_steps(lt, f, y, xs, xe, steps);
     z += xs;
