@@ -53,13 +53,18 @@ typedef struct {
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
     int32_t hint[2];       /* the last span's first and last cells on this face, or -1 */
+    /* Spans start from a walker (lattice.c) at line WK of pixel (WX, WY), -1 before the
+     * face's first span: w[0..6] are E_k, D = E_{k+1} - E_k, D2 (D's change to the
+     * next k), and the changes of E and D a pixel right and a row down. */
+    int64_t w[7];
+    int32_t wk, wx, wy;
 } rad__family_t;
 
 /* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
  * element ids from FIRST, PU patches across a quad (a triangle's patch levels); seen
  * on a face of resolution RES whose axes a, b, d are the cube's AXIS (0 x, 1 y, 2 z)
- * times SIGN. Set up when a span first needs it (READY: 0 not yet, 1 the families,
- * 2 and the face's coefficients), from SF and its NCORNER corners CORNER. */
+ * times SIGN; from SF and its NCORNER corners CORNER (READY: 1 the families set up,
+ * 2 and the face's coefficients). */
 typedef struct {
     rad__family_t fam[3];
     unsigned nfam, ncorner, ready;
@@ -72,13 +77,12 @@ typedef struct {
 } rad__lattice_t;
 
 /* The lattice of surface SF from its N corners (rad__surface_corners' order) relative
- * to the centre of a cube of resolution RES, on the cube's axes: only recorded (CORNER
- * must last while LT is drawn), computed by the first span drawn, so a surface whose
- * outline covers no pixel of a pass (a band it misses) costs no set-up. */
+ * to the centre of a cube of resolution RES, on the cube's axes. (Set up here, not at
+ * the first span: there the set-up's frames would sit under the rasterizer's, and the
+ * Cortex-M0 port has no stack to spare.) */
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res);
-/* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1): recorded,
- * and its coefficients computed by the first span drawn on it. */
+/* LT seen on a face whose axes a, b, d are the cube's AXIS times SIGN (+-1). */
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 /* Pixels XS..XE-1 of row Y of an item buffer: depth W (* 2^16) stepping by DW, ids
  * the elements of LT under each pixel. STEPS: XE - XS entries, zero, left zero. */

@@ -95,6 +95,9 @@ static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const
         for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
 }
 
+static void lattice_setup(rad__lattice_t *lt);
+static void face_setup(rad__lattice_t *lt);
+
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res)
 {
@@ -102,7 +105,8 @@ void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_ve
     lt->corner = corner;
     lt->ncorner = n;
     lt->res = res;
-    lt->ready = 0;
+    lattice_setup(lt);
+    lt->ready = 1;
 }
 
 /* The families of LT's surface from its corners (rad__lattice_init's). */
@@ -159,7 +163,8 @@ void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const sign
         lt->axis[c] = (unsigned char)(axis[c] % 3u);
         lt->sign[c] = sign[c] < 0 ? -1 : 1;
     }
-    if (lt->ready == 2) lt->ready = 1;
+    face_setup(lt);
+    lt->ready = 2;
 }
 
 /* The coefficients of LT's families on its face (rad__lattice_face's). */
@@ -182,6 +187,7 @@ static void face_setup(rad__lattice_t *lt)
             fm->o[j][2] = -2 * cb;
         }
         fm->hint[0] = fm->hint[1] = -1; /* no span yet on this face */
+        fm->wk = -1;                    /* no walker yet */
     }
 }
 
@@ -273,6 +279,162 @@ static void walk_start(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk
     w->sd2 = negate_if(2 * de[2], sg < 0);
 }
 
+/* ---- the walker: a span's start cell and values by adds from the last span's ---- */
+
+/* V times M (|M| < 2^10): no product for the steps of one pixel or row. */
+static int64_t times(int64_t v, int32_t m)
+{
+    return m == 1 ? v : m == -1 ? -v : m == 0 ? 0 : rad__mul16(v, m);
+}
+
+/* F's walker at line K of pixel (X, Y), from the coefficients (the values the
+ * old-style start computes: at, and the differences in k, of each). */
+static void walker_init(rad__family_t *f, int32_t x, int32_t y, int32_t k)
+{
+    int64_t a[3], ox[3], oy[3];
+    unsigned j;
+    for (j = 0; j < 3; j++) {
+        ox[j] = f->o[j][1];
+        oy[j] = f->o[j][2];
+        a[j] = f->o[j][0] + rad__mul16(ox[j], x) + rad__mul16(oy[j], y);
+    }
+    f->w[0] = at(a, k);
+    f->w[1] = a[1] + rad__mul16(a[2], 2 * k + 1);
+    f->w[2] = 2 * a[2];
+    f->w[3] = at(ox, k);
+    f->w[4] = ox[1] + rad__mul16(ox[2], 2 * k + 1);
+    f->w[5] = at(oy, k);
+    f->w[6] = oy[1] + rad__mul16(oy[2], 2 * k + 1);
+    f->wk = k;
+    f->wx = x;
+    f->wy = y;
+}
+
+/* F's walker to pixel (X, Y): E, D and D2 are linear along rows and columns, and their
+ * changes (w[3..6], and 2 o[2][1], 2 o[2][2] for D2) do not depend on the pixel. */
+static void walker_move(rad__family_t *f, int32_t x, int32_t y)
+{
+    int32_t dx = x - f->wx, dy = y - f->wy;
+    if (dx) {
+        f->w[0] += times(f->w[3], dx);
+        f->w[1] += times(f->w[4], dx);
+        f->w[2] += times(2 * f->o[2][1], dx);
+    }
+    if (dy) {
+        f->w[0] += times(f->w[5], dy);
+        f->w[1] += times(f->w[6], dy);
+        f->w[2] += times(2 * f->o[2][2], dy);
+    }
+    f->wx = x;
+    f->wy = y;
+}
+
+/* The walker from line k to k + 1 (UP) or k - 1: E_{k+1} = E_k + D_k, D_{k+1} = D_k +
+ * D2; down, D_{k-1} = D_k - D2 first, then E_{k-1} = E_k - D_{k-1}; their changes
+ * along rows and columns alike. */
+static void walker_line(rad__family_t *f, int up)
+{
+    int64_t sd2 = 2 * f->o[2][1], yd2 = 2 * f->o[2][2];
+    if (up) {
+        f->w[0] += f->w[1];
+        f->w[1] += f->w[2];
+        f->w[3] += f->w[4];
+        f->w[4] += sd2;
+        f->w[5] += f->w[6];
+        f->w[6] += yd2;
+        f->wk++;
+    } else {
+        f->w[1] -= f->w[2];
+        f->w[0] -= f->w[1];
+        f->w[4] -= sd2;
+        f->w[3] -= f->w[4];
+        f->w[6] -= yd2;
+        f->w[5] -= f->w[6];
+        f->wk--;
+    }
+}
+
+/* The cell search gives when E_k does not increase with k: the largest k in
+ * [0, n - 1] with E_k >= 0, or 0; from line K (in that range) with E = E_k, D = E_{k+1}
+ * - E_k, D2 = D's change, by whole lines. */
+static int32_t cell_walk(int64_t e, int64_t d, int64_t d2, int32_t k, uint32_t n)
+{
+    const int32_t last = (int32_t)n - 1;
+    if (e >= 0) {
+        while (k < last && e + d >= 0) {
+            e += d;
+            d += d2;
+            k++;
+        }
+    } else {
+        while (k > 0 && e < 0) {
+            d -= d2;
+            e -= d;
+            k--;
+        }
+    }
+    return k;
+}
+
+/* Whether E_k does not increase with k over [0, n - 1] at a pixel, from its D = E_{k+1}
+ * - E_k and D2 at line K: D is linear in k, so its largest value over [0, n - 2] is at
+ * one end (the search's own test, at the walker). */
+static int mono_at(int64_t d, int64_t d2, int32_t k, uint32_t n)
+{
+    if (n < 2) return 1; /* one cell: every search gives 0 */
+    return (d2 > 0 ? d + times(d2, (int32_t)n - 2 - k) : d - times(d2, k)) <= 0;
+}
+
+/* walk_start's W, the same cells and values, from F's walker when E_k does not
+ * increase with k at the span's two ends (there the cell is the search's unique
+ * answer, and a walk over lines finds it); else walk_start's own way. */
+static void walk_start_walker(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk_t *w)
+{
+    int32_t span = xe - 1 - xs, i;
+    int64_t sd2 = 2 * f->o[2][1], e, d, d2;
+    if (f->wk < 0) {
+        int64_t a[3];
+        unsigned j;
+        for (j = 0; j < 3; j++)
+            a[j] = f->o[j][0] + rad__mul16(f->o[j][1], xs) + rad__mul16(f->o[j][2], y);
+        walker_init(f, xs, y, search(a, f->n));
+    } else {
+        walker_move(f, xs, y);
+    }
+    if (!mono_at(f->w[1], f->w[2], f->wk, f->n)) {
+        walk_start(f, y, xs, xe, w);
+        return;
+    }
+    i = cell_walk(f->w[0], f->w[1], f->w[2], f->wk, f->n);
+    while (f->wk < i) walker_line(f, 1);
+    while (f->wk > i) walker_line(f, 0);
+    e = f->w[0] + times(f->w[3], span);
+    d = f->w[1] + times(f->w[4], span);
+    d2 = f->w[2] + times(sd2, span);
+    if (!mono_at(d, d2, i, f->n)) {
+        walk_start(f, y, xs, xe, w);
+        return;
+    }
+    w->i = i;
+    w->end = cell_walk(e, d, d2, i, f->n);
+    w->step = w->end > i ? 1 : w->end < i ? -1 : 0;
+    if (w->step > 0) {
+        w->t = f->w[0] + f->w[1];
+        w->st = f->w[3] + f->w[4];
+        w->d = f->w[1] + f->w[2];
+        w->sd = f->w[4] + sd2;
+        w->d2 = f->w[2];
+        w->sd2 = sd2;
+    } else if (w->step < 0) {
+        w->t = -f->w[0] - 1;
+        w->st = -f->w[3];
+        w->d = f->w[1] - f->w[2];
+        w->sd = f->w[4] - sd2;
+        w->d2 = -f->w[2];
+        w->sd2 = -sd2;
+    }
+}
+
 /* A triangle's element needs its cell's column x and row y and which side of the
  * i + j line l it is on: the steps add up to x + 2^12 y + 2^24 (l - x - y + 128), mod
  * 2^32, and these are each family's steps. */
@@ -285,16 +447,15 @@ static const uint32_t tri_unit[3] = {1u - (1u << 24), (1u << 12) - (1u << 24), 1
  * triangle's, F's part of the packed cell (tri_unit). Returns the first pixel's part
  * of the id (or of the packed cell). Steps add mod 2^32.
  *
- * The pixel past a line is found by stepping, not dividing: at the span's pixel P, V
- * is the next line's T, U what V changes by to the line after, W what U changes by
- * (T, D and D2 at pixel P: T + P ST, D + P SD, D2 + P SD2). A pixel to the right adds
- * ST, SD and SD2 to them; a line crossed adds U to V and W to U, and SD to ST, SD2 to
- * SD. With ST > 0, T grows along the row, so the first pixel from P on where V >= 0
- * is the one a division would give (the ceiling of -T / ST, or P); P never moves back,
- * so a span costs a step a pixel and a line, against a 64-bit division a line (a long
- * library call on 32-bit targets). V, U and W are E_k, its first and second
- * differences in k at a pixel of the face, k in [0, n + 1]: within the header's
- * bound (< 2^62), like every value stepped before. */
+ * The pixel past a line: with ST > 0, T grows along the row, and it is the first pixel
+ * from P on where T >= 0. Where a 64-bit division is an instruction (RAD__DIV64), it
+ * is the ceiling of -T / ST (or P), with T, D and D2 at the span's first pixel.
+ * Elsewhere (a long library call) it is found by stepping: V, U and W are T, D and D2
+ * at pixel P, and a pixel to the right adds ST, SD and SD2 to them; P never moves
+ * back, so a span costs a step a pixel and a line. Either way a line crossed adds U
+ * to V and W to U, SD to ST and SD2 to SD. V, U and W are E_k and its first and
+ * second differences in k at a pixel of the face, k in [0, n + 1]: within the
+ * header's bound (< 2^62), like every value stepped before. */
 static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t xs, int32_t xe,
                              uint32_t *steps)
 {
@@ -305,7 +466,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     uint32_t unit, wrap, first, fi, q;
     int32_t i, p = 0;
     walk_t w;
-    walk_start(fm, y, xs, xe, &w);
+    walk_start_walker(fm, y, xs, xe, &w);
     q = (uint32_t)w.i / k; /* w.i >= 0: one unsigned division, no signed one */
     fi = (uint32_t)w.i - q * k;
     if (lt->nfam == 3) {
@@ -331,14 +492,25 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     while (i != w.end) {
         uint32_t wraps;
         if (st <= 0) { /* a line seen going backwards: crossed here or not at all */
+#if RAD__DIV64
+            if (v + p * st < 0) break;
+#else
             if (v < 0) break;
+#endif
         } else {
+#if RAD__DIV64
+            /* v, u, wv at pixel 0; a negative quotient truncates to at most 0 */
+            int64_t c = (-v + st - 1) / st;
+            p = c > p ? (int32_t)(c < n ? c : n) : p;
+            if (p >= n) break;
+#else
             while (v < 0) {
                 if (++p >= n) return first;
                 v += st;
                 u += sd;
                 wv += sd2;
             }
+#endif
         }
         i += w.step;
         if (w.step > 0) {
@@ -397,14 +569,6 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
     unsigned f;
     int32_t x, n = xe - xs;
     if (n <= 0) return;
-    if (lt->ready == 0) {
-        lattice_setup(lt);
-        lt->ready = 1;
-    }
-    if (lt->ready == 1) {
-        face_setup(lt);
-        lt->ready = 2;
-    }
     acc = lt->nfam == 3 ? TRI_BIAS : lt->first;
     for (f = 0; f < lt->nfam; f++) acc += family_steps(lt, f, y, xs, xe, steps);
     z += xs;

@@ -69,6 +69,15 @@ static inline int64_t rad__shr_round(int64_t v, unsigned n)
 #endif
 #endif
 
+/* Whether a 64-bit division is one instruction (64-bit targets), not a library call. */
+#ifndef RAD__DIV64
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define RAD__DIV64 1
+#else
+#define RAD__DIV64 0
+#endif
+#endif
+
 /* The int64 whose two's complement is U (a conversion C99 leaves to the compiler). */
 static inline int64_t rad__s64(uint64_t u)
 {
