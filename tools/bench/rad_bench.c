@@ -1631,9 +1631,7 @@ int main(int argc, char **argv)
     report_large(&rp);
     report_textures(&rp, argv[0]);
     report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
-    {
-        report_hall_coarse(&rp, &scenes[ns - 1]);
-    }
+    report_hall_coarse(&rp, &scenes[ns - 1]);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);
