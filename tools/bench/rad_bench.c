@@ -1113,10 +1113,9 @@ static double thread_cpu(void)
  * call timed on the thread's processor clock. Returns the serial time over the
  * critical path (the serial calls plus the longer part of each stage): the 2-thread
  * speed-up with no waiting and no other process. */
-static double parallel_bound(const bscene *sc)
+static double parallel_bound(const bscene *sc, const sc_opts *o)
 {
-    sc_opts o = scene_opts(sc);
-    sc_solver *h = fixed_solver(sc, sc->polys, &o);
+    sc_solver *h = fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
     size_t bytes = RAD_PART_BYTES(s->cfg.res);
     void *bufs[2] = {malloc(bytes), malloc(bytes)};
@@ -1155,14 +1154,13 @@ static double parallel_bound(const bscene *sc)
 
 /* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
  * results differ in a bit. */
-static void parallel_times(const bscene *sc, double *m1, double *m2)
+static void parallel_times(const bscene *sc, const sc_opts *o, double *m1, double *m2)
 {
     double t1[3], t2[3];
     int rep;
     for (rep = 0; rep < 3; rep++) {
-        sc_opts o = scene_opts(sc);
-        sc_solver *a = fixed_solver(sc, sc->polys, &o);
-        sc_solver *b = fixed_solver(sc, sc->polys, &o);
+        sc_solver *a = fixed_solver(sc, sc->polys, o);
+        sc_solver *b = fixed_solver(sc, sc->polys, o);
         double t0;
         t0 = host_now();
         sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
@@ -1188,15 +1186,21 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
         "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
         "thread. The bound is what two free cores could give whatever the load: each stage's two parts timed "
         "on one thread's processor clock, the serial time over the critical path (the calls between the "
-        "stages plus each stage's longer part):\n\n| scene | elements | 1 thread s | 2 threads s | speed-up | "
-        "load average | bound |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "stages plus each stage's longer part); each scene at res 128 and at rad_cli's defaults (res 192, coarse "
+        "shots):\n\n| scene | settings | elements | 1 thread s | 2 threads s | speed-up | load average | bound |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
-        double m1, m2, load = -1;
+        int k;
         if (scenes[i].big) continue; /* too long to repeat */
-        parallel_times(&scenes[i], &m1, &m2);
-        if (getloadavg(&load, 1) != 1) load = -1;
-        out(rp, "| %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2,
-            load, parallel_bound(&scenes[i]));
+        for (k = 0; k < 2; k++) {
+            sc_opts o = k ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
+            double m1, m2, load = -1;
+            parallel_times(&scenes[i], &o, &m1, &m2);
+            if (getloadavg(&load, 1) != 1) load = -1;
+            out(rp, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
+                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m1, m2, m1 / m2, load,
+                parallel_bound(&scenes[i], &o));
+        }
     }
 }
 
