@@ -27,6 +27,7 @@
 #define rad__freeze          radf__freeze
 #define rad__scale_power     radf__scale_power
 #define rad__ambient         radf__ambient
+#define rad__patch_rho       radf__patch_rho
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -241,6 +242,17 @@ static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
     return k == 0 ? c->r : k == 1 ? c->g : c->b;
 }
 
+/* Element E's reflectance: its own (rad_use_element_reflectance) or its surface's. */
+static inline const rad_rgb_t *rad__element_rho(const rad_scene_t *s, uint32_t e)
+{
+    if (s->element_rho) return &s->element_rho[e];
+    return &s->pools.surfaces[s->pools.elements[e].surface].reflectance;
+}
+
+/* Patch PT's reflectance (solve.c): its surface's, or with per-element reflectances
+ * the area-weighted mean of its surface's elements' (for a group, its receiver's). */
+rad_rgb_t rad__patch_rho(const rad_scene_t *s, const rad_patch_t *pt);
+
 /* What the ambient term AMB adds to the shown radiosity of a surface of reflectance R. */
 static inline rad_rgb_t rad__ambient_part(const rad_rgb_t *r, const rad_rgb_t *amb, uint32_t *sat)
 {
@@ -274,7 +286,7 @@ static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_r
     const rad_element_t *el = &s->pools.elements[e];
     rad_rgb_t a;
     if (!amb) return rad__shown_plus(el->radiosity, 0, sat);
-    a = rad__ambient_part(&s->pools.surfaces[el->surface].reflectance, amb, sat);
+    a = rad__ambient_part(rad__element_rho(s, e), amb, sat);
     return rad__shown_plus(el->radiosity, &a, sat);
 }
 

@@ -75,6 +75,10 @@ typedef struct {
     char c;
     rad_vec3_t t;
 } align_vec3_t;
+typedef struct {
+    char c;
+    rad_rgb_t t;
+} align_rgb_t;
 
 static int aligned(const void *p, size_t a)
 {
@@ -497,6 +501,16 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
     }
 }
 
+/* Every element of surface SF reflects as SF, when elements have reflectances of their
+ * own (rad_use_element_reflectance). */
+static void element_rho_reset(rad_scene_t *s, const rad_surface_t *sf)
+{
+    uint32_t i;
+    if (!s->element_rho) return;
+    for (i = 0; i < sf->n_elements; i++)
+        s->element_rho[sf->first_element + i] = sf->reflectance;
+}
+
 static void start_all(rad_scene_t *s)
 {
     uint32_t i;
@@ -668,6 +682,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
+    element_rho_reset(s, sf);
     start_surface(s, s->n_surfaces);
     return (int)s->n_surfaces++;
 }
@@ -710,6 +725,7 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
     mesh_joined(s, s->n_surfaces, v, n, p);
     sf->n_elements = 1;
     sf->n_vertices = (rad_index_t)n;
+    element_rho_reset(s, sf);
     start_surface(s, s->n_surfaces);
     return (int)s->n_surfaces++;
 }
@@ -733,8 +749,31 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
     if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
         return RAD_ERR_RANGE;
     if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
-    if (reflectance) s->pools.surfaces[surf].reflectance = *reflectance;
+    if (reflectance) {
+        s->pools.surfaces[surf].reflectance = *reflectance;
+        element_rho_reset(s, &s->pools.surfaces[surf]);
+    }
     if (emission) s->pools.surfaces[surf].emission = *emission;
+    return RAD_OK;
+}
+
+int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
+{
+    uint32_t i;
+    if (!s || !rho) return RAD_ERR_ARG;
+    if (!aligned(rho, offsetof(align_rgb_t, t))) return RAD_ERR_ALIGN;
+    if (s->solving || s->element_rho) return RAD_ERR_STATE;
+    s->element_rho = rho;
+    for (i = 0; i < s->n_surfaces; i++) element_rho_reset(s, &s->pools.surfaces[i]);
+    return RAD_OK;
+}
+
+int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *reflectance)
+{
+    if (!s || !reflectance || e >= s->n_elements) return RAD_ERR_ARG;
+    if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
+    if (!s->element_rho) return RAD_ERR_STATE;
+    s->element_rho[e] = *reflectance;
     return RAD_OK;
 }
 

@@ -33,6 +33,47 @@ static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_
     return rad__add_sat(b, db, sat);
 }
 
+static int rgb_eq(const rad_rgb_t *a, const rad_rgb_t *b)
+{
+    return a->r == b->r && a->g == b->g && a->b == b->b;
+}
+
+/* With per-element reflectances: sum over the patch's elements of rho_e A_e over
+ * sum of A_e, per channel, each product rounded once (|error| <= n / 2 LSB of power
+ * over >= n LSB of area: below 1 LSB of the ratio); a mean rounding up to 1 (only
+ * from elements all within a few LSB of it) is kept at the largest value below. The
+ * elements of a group's other surfaces are skipped: their power goes to the
+ * receiver, the patch's first element, whose area is the group's. */
+rad_rgb_t rad__patch_rho(const rad_scene_t *s, const rad_patch_t *pt)
+{
+    const rad_rgb_t *rho = s->element_rho, *first;
+    rad_energy_t area = 0, sum[3] = {0, 0, 0};
+    uint32_t e, end = (uint32_t)pt->first_element + pt->n_elements;
+    rad_rgb_t m;
+    int same = 1;
+    unsigned c;
+    if (!rho) return s->pools.surfaces[pt->surface].reflectance;
+    first = &rho[pt->first_element];
+    for (e = pt->first_element; e < end; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        if (el->surface != pt->surface) continue;
+        same = same && rgb_eq(&rho[e], first);
+        area = rad__esum(area, rad__energy(RAD__ONE, el->area));
+        sum[0] = rad__esum(sum[0], rad__energy(rho[e].r, el->area));
+        sum[1] = rad__esum(sum[1], rad__energy(rho[e].g, el->area));
+        sum[2] = rad__esum(sum[2], rad__energy(rho[e].b, el->area));
+    }
+    if (same) return *first; /* exactly: a uniform patch has the bits of a NULL pool */
+    for (c = 0; c < 3; c++) {
+        rad_real_t v = rad__energy_ratio(sum[c], area);
+        if (v >= RAD__ONE) v = RAD__ONE - RAD__EPS;
+        if (c == 0) m.r = v;
+        else if (c == 1) m.g = v;
+        else m.b = v;
+    }
+    return m;
+}
+
 /* The ambient radiosity per channel (negative while more power is owed than held). */
 static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
 {
@@ -40,11 +81,11 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     uint32_t p, c;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
-        const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
+        const rad_rgb_t r = rad__patch_rho(s, pt);
         area = rad__esum(area, rad__energy(RAD__ONE, pt->area));
-        rho[0] = rad__esum(rho[0], rad__energy(r->r, pt->area));
-        rho[1] = rad__esum(rho[1], rad__energy(r->g, pt->area));
-        rho[2] = rad__esum(rho[2], rad__energy(r->b, pt->area));
+        rho[0] = rad__esum(rho[0], rad__energy(r.r, pt->area));
+        rho[1] = rad__esum(rho[1], rad__energy(r.g, pt->area));
+        rho[2] = rad__esum(rho[2], rad__energy(r.b, pt->area));
         for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], pt->unshot[c]);
     }
     /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
@@ -59,17 +100,17 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
  * power's rounding for any power under 2^16 units): the shots are then plain. */
 #define OVER_STOP 16u
 
-/* The power patch PT will get back in channel C, from the ambient radiosity AMB:
- * what overshooting adds to its shot (0 for every patch when AMB is 0), halved once
- * per back-off. */
-static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb,
-                              unsigned c)
+/* The power patch PT, of reflectance RHO (rad__patch_rho), will get back in channel C,
+ * from the ambient radiosity AMB: what overshooting adds to its shot (0 for every
+ * patch when AMB is 0), halved once per back-off. */
+static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_rgb_t *rho,
+                              const rad_real_t *amb, unsigned c)
 {
     rad_energy_t over;
     uint32_t k;
     if (amb[c] == 0 || s->over_halvings >= OVER_STOP) return 0; /* shooting plainly */
     over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area),
-                            rad__channel(&s->pools.surfaces[pt->surface].reflectance, c));
+                            rad__channel(rho, c));
     for (k = 0; k < s->over_halvings; k++) over = rad__energy_refl(over, RAD_REAL(0.5));
     if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
@@ -97,9 +138,11 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         rad_energy_t u = 0;
+        rad_rgb_t rho = {0, 0, 0};
+        if (amb[0] != 0 || amb[1] != 0 || amb[2] != 0) rho = rad__patch_rho(s, pt);
         for (c = 0; c < 3; c++) {
             sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
-            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, amb, c));
+            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, &rho, amb, c));
         }
         if (u > most) {
             most = u;
@@ -200,13 +243,13 @@ static void receive_element(rad_scene_t *s, const rad_energy_t *u, uint32_t e, r
                             uint32_t *sat_out)
 {
     rad_element_t *el = &s->pools.elements[e];
-    const rad_surface_t *sf = &s->pools.surfaces[el->surface];
+    const rad_rgb_t *rho = rad__element_rho(s, e);
     rad_energy_t *pu = s->pools.patches[el->patch].unshot;
     rad_real_t a = el->area;
     uint32_t sat = 0;
-    rad_real_t r = receive(&sat, u[0], f, sf->reflectance.r, a, el->radiosity.r, &pu[0]);
-    rad_real_t g = receive(&sat, u[1], f, sf->reflectance.g, a, el->radiosity.g, &pu[1]);
-    rad_real_t b = receive(&sat, u[2], f, sf->reflectance.b, a, el->radiosity.b, &pu[2]);
+    rad_real_t r = receive(&sat, u[0], f, rho->r, a, el->radiosity.r, &pu[0]);
+    rad_real_t g = receive(&sat, u[1], f, rho->g, a, el->radiosity.g, &pu[1]);
+    rad_real_t b = receive(&sat, u[2], f, rho->b, a, el->radiosity.b, &pu[2]);
     el->radiosity.r = r;
     el->radiosity.g = g;
     el->radiosity.b = b;
@@ -223,6 +266,7 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t *u)
 {
     rad_patch_t *pt = &s->pools.patches[p];
+    rad_rgb_t rho = rad__patch_rho(s, pt);
     uint32_t c;
     for (c = 0; c < 3; c++) {
         /* The power coming back to this patch is shot now and owed until it comes. Any
@@ -230,7 +274,7 @@ static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t 
          * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
          * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
          * sum fits. */
-        rad_energy_t over = overshoot(s, pt, amb, c), sum = pt->unshot[c] + over;
+        rad_energy_t over = overshoot(s, pt, &rho, amb, c), sum = pt->unshot[c] + over;
         if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
         if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
         u[c] = pt->unshot[c] + over;
