@@ -27,7 +27,7 @@
 #define rad__freeze          radf__freeze
 #define rad__scale_power     radf__scale_power
 #define rad__ambient         radf__ambient
-#define rad__patch_rho       radf__patch_rho
+#define rad__patch_mean      radf__patch_mean
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -249,9 +249,16 @@ static inline const rad_rgb_t *rad__element_rho(const rad_scene_t *s, uint32_t e
     return &s->pools.surfaces[s->pools.elements[e].surface].reflectance;
 }
 
-/* Patch PT's reflectance (solve.c): its surface's, or with per-element reflectances
- * the area-weighted mean of its surface's elements' (for a group, its receiver's). */
-rad_rgb_t rad__patch_rho(const rad_scene_t *s, const rad_patch_t *pt);
+/* Patch P's reflectance: its surface's, or with per-element reflectances the mean the
+ * array keeps after the elements' (rad__patch_mean). */
+static inline const rad_rgb_t *rad__patch_rho(const rad_scene_t *s, uint32_t p)
+{
+    if (s->element_rho) return &s->element_rho[s->pools.max_elements + p];
+    return &s->pools.surfaces[s->pools.patches[p].surface].reflectance;
+}
+
+/* Sets patch P's entry of the array to the area-weighted mean of its elements' (mesh.c). */
+void rad__patch_mean(rad_scene_t *s, uint32_t p);
 
 /* What the ambient term AMB adds to the shown radiosity of a surface of reflectance R. */
 static inline rad_rgb_t rad__ambient_part(const rad_rgb_t *r, const rad_rgb_t *amb, uint32_t *sat)

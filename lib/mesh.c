@@ -501,14 +501,56 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
     }
 }
 
-/* Every element of surface SF reflects as SF, when elements have reflectances of their
- * own (rad_use_element_reflectance). */
+static int rgb_eq(const rad_rgb_t *a, const rad_rgb_t *b)
+{
+    return a->r == b->r && a->g == b->g && a->b == b->b;
+}
+
+/* Sum over the patch's elements of rho_e A_e over the sum of A_e, per channel, each
+ * product rounded once (|error| <= n / 2 LSB of power over >= n LSB of area: below 1
+ * LSB of the ratio); a mean rounding up to 1 (only from elements all within a few LSB
+ * of it) is kept at the largest value below. The elements of a group's other surfaces
+ * are skipped: their power goes to the receiver, the patch's first element, whose
+ * area is the group's. Elements that all agree give their value exactly. */
+void rad__patch_mean(rad_scene_t *s, uint32_t p)
+{
+    const rad_patch_t *pt = &s->pools.patches[p];
+    const rad_rgb_t *rho = s->element_rho, *first = &rho[pt->first_element];
+    rad_energy_t area = 0, sum[3] = {0, 0, 0};
+    uint32_t e, end = (uint32_t)pt->first_element + pt->n_elements;
+    rad_rgb_t *m = &s->element_rho[s->pools.max_elements + p];
+    int same = 1;
+    for (e = pt->first_element; e < end; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        if (el->surface != pt->surface) continue;
+        same = same && rgb_eq(&rho[e], first);
+        area = rad__esum(area, rad__energy(RAD__ONE, el->area));
+        sum[0] = rad__esum(sum[0], rad__energy(rho[e].r, el->area));
+        sum[1] = rad__esum(sum[1], rad__energy(rho[e].g, el->area));
+        sum[2] = rad__esum(sum[2], rad__energy(rho[e].b, el->area));
+    }
+    if (same) {
+        *m = *first;
+        return;
+    }
+    m->r = rad__energy_ratio(sum[0], area);
+    m->g = rad__energy_ratio(sum[1], area);
+    m->b = rad__energy_ratio(sum[2], area);
+    if (m->r >= RAD__ONE) m->r = RAD__ONE - RAD__EPS;
+    if (m->g >= RAD__ONE) m->g = RAD__ONE - RAD__EPS;
+    if (m->b >= RAD__ONE) m->b = RAD__ONE - RAD__EPS;
+}
+
+/* Every element and patch of surface SF reflects as SF, when elements have
+ * reflectances of their own (rad_use_element_reflectance). */
 static void element_rho_reset(rad_scene_t *s, const rad_surface_t *sf)
 {
     uint32_t i;
     if (!s->element_rho) return;
     for (i = 0; i < sf->n_elements; i++)
         s->element_rho[sf->first_element + i] = sf->reflectance;
+    for (i = 0; i < sf->n_patches; i++)
+        s->element_rho[s->pools.max_elements + sf->first_patch + i] = sf->reflectance;
 }
 
 static void start_all(rad_scene_t *s)
@@ -639,9 +681,12 @@ void rad__scale_power(rad_scene_t *s)
 
 void rad__freeze(rad_scene_t *s)
 {
+    uint32_t p;
     if (s->solving) return;
     rad__scale_geometry(s);
     rad__scale_power(s);
+    /* the patches' means over their elements' areas at this scale */
+    for (p = 0; s->element_rho && p < s->n_patches; p++) rad__patch_mean(s, p);
     s->solving = 1;
 }
 
@@ -774,6 +819,7 @@ int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *ref
     if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
     if (!s->element_rho) return RAD_ERR_STATE;
     s->element_rho[e] = *reflectance;
+    rad__patch_mean(s, s->pools.elements[e].patch);
     return RAD_OK;
 }
 

@@ -33,47 +33,6 @@ static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_
     return rad__add_sat(b, db, sat);
 }
 
-static int rgb_eq(const rad_rgb_t *a, const rad_rgb_t *b)
-{
-    return a->r == b->r && a->g == b->g && a->b == b->b;
-}
-
-/* With per-element reflectances: sum over the patch's elements of rho_e A_e over
- * sum of A_e, per channel, each product rounded once (|error| <= n / 2 LSB of power
- * over >= n LSB of area: below 1 LSB of the ratio); a mean rounding up to 1 (only
- * from elements all within a few LSB of it) is kept at the largest value below. The
- * elements of a group's other surfaces are skipped: their power goes to the
- * receiver, the patch's first element, whose area is the group's. */
-rad_rgb_t rad__patch_rho(const rad_scene_t *s, const rad_patch_t *pt)
-{
-    const rad_rgb_t *rho = s->element_rho, *first;
-    rad_energy_t area = 0, sum[3] = {0, 0, 0};
-    uint32_t e, end = (uint32_t)pt->first_element + pt->n_elements;
-    rad_rgb_t m;
-    int same = 1;
-    unsigned c;
-    if (!rho) return s->pools.surfaces[pt->surface].reflectance;
-    first = &rho[pt->first_element];
-    for (e = pt->first_element; e < end; e++) {
-        const rad_element_t *el = &s->pools.elements[e];
-        if (el->surface != pt->surface) continue;
-        same = same && rgb_eq(&rho[e], first);
-        area = rad__esum(area, rad__energy(RAD__ONE, el->area));
-        sum[0] = rad__esum(sum[0], rad__energy(rho[e].r, el->area));
-        sum[1] = rad__esum(sum[1], rad__energy(rho[e].g, el->area));
-        sum[2] = rad__esum(sum[2], rad__energy(rho[e].b, el->area));
-    }
-    if (same) return *first; /* exactly: a uniform patch has the bits of a NULL pool */
-    for (c = 0; c < 3; c++) {
-        rad_real_t v = rad__energy_ratio(sum[c], area);
-        if (v >= RAD__ONE) v = RAD__ONE - RAD__EPS;
-        if (c == 0) m.r = v;
-        else if (c == 1) m.g = v;
-        else m.b = v;
-    }
-    return m;
-}
-
 /* The ambient radiosity per channel (negative while more power is owed than held). */
 static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
 {
@@ -81,11 +40,11 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     uint32_t p, c;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
-        const rad_rgb_t r = rad__patch_rho(s, pt);
+        const rad_rgb_t *r = rad__patch_rho(s, p);
         area = rad__esum(area, rad__energy(RAD__ONE, pt->area));
-        rho[0] = rad__esum(rho[0], rad__energy(r.r, pt->area));
-        rho[1] = rad__esum(rho[1], rad__energy(r.g, pt->area));
-        rho[2] = rad__esum(rho[2], rad__energy(r.b, pt->area));
+        rho[0] = rad__esum(rho[0], rad__energy(r->r, pt->area));
+        rho[1] = rad__esum(rho[1], rad__energy(r->g, pt->area));
+        rho[2] = rad__esum(rho[2], rad__energy(r->b, pt->area));
         for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], pt->unshot[c]);
     }
     /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
@@ -137,12 +96,11 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     rad_energy_t most = 0, sum = 0;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
+        const rad_rgb_t *rho = rad__patch_rho(s, p);
         rad_energy_t u = 0;
-        rad_rgb_t rho = {0, 0, 0};
-        if (amb[0] != 0 || amb[1] != 0 || amb[2] != 0) rho = rad__patch_rho(s, pt);
         for (c = 0; c < 3; c++) {
             sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
-            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, &rho, amb, c));
+            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
         }
         if (u > most) {
             most = u;
@@ -266,7 +224,7 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t *u)
 {
     rad_patch_t *pt = &s->pools.patches[p];
-    rad_rgb_t rho = rad__patch_rho(s, pt);
+    const rad_rgb_t *rho = rad__patch_rho(s, p);
     uint32_t c;
     for (c = 0; c < 3; c++) {
         /* The power coming back to this patch is shot now and owed until it comes. Any
@@ -274,7 +232,7 @@ static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t 
          * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
          * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
          * sum fits. */
-        rad_energy_t over = overshoot(s, pt, &rho, amb, c), sum = pt->unshot[c] + over;
+        rad_energy_t over = overshoot(s, pt, rho, amb, c), sum = pt->unshot[c] + over;
         if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
         if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
         u[c] = pt->unshot[c] + over;

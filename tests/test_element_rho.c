@@ -25,7 +25,7 @@ typedef struct {
     rad_patch_t pt[NP];
     rad_element_t el[NE];
     rad_vec3_t vx[NV];
-    rad_rgb_t rho[NE];
+    rad_rgb_t rho[RAD_ELEMENT_RHO_ENTRIES(NE, NP)];
     unsigned char work[RAD_WORK_BYTES(64, RAD_PIXELS_ALL(64), NV)];
     rad_scene_t s;
 } world_t;

@@ -364,19 +364,23 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
 
 /* Reflectance per element, for a surface whose colour varies across it (a texture's
- * mean over each element's footprint). RHO is the caller's array of max_elements
- * rad_rgb_t (12 bytes an element in the fixed build; aligned as rad_rgb_t), kept by
- * the scene from then on: the elements already added get their surface's
- * reflectance, those added later too, rad_set_surface sets its elements' again, and
- * rad_set_element_reflectance one. Without this call (the default) every element
- * reflects as its surface and rad_element_t does not grow: firmware that does not use
- * it pays nothing. The core reads an element's entry wherever it reflects: receiving,
- * its shown ambient part (RAD_SHADE_AMBIENT, gathers); a patch's reflectance
- * (overshooting, the ambient term's mean, a Gauss-Seidel row) is the area-weighted
- * mean of its elements' (a patch whose elements share one value takes it exactly, so
- * a scene without differing elements gives the bits of one without the call; for a
- * group, its receiver's). Returns RAD_OK, RAD_ERR_ARG (NULL), RAD_ERR_ALIGN, or
- * RAD_ERR_STATE (the geometry is frozen, or an array is in use already). */
+ * mean over each element's footprint). RHO is the caller's array of
+ * RAD_ELEMENT_RHO_ENTRIES(max_elements, max_patches) rad_rgb_t (12 bytes each in the
+ * fixed build; aligned as rad_rgb_t), kept by the scene from then on: the elements'
+ * reflectances, then each patch's, which the core keeps. The elements already added
+ * get their surface's reflectance, those added later too, rad_set_surface sets its
+ * elements' again, and rad_set_element_reflectance one. Without this call (the
+ * default) every element reflects as its surface and rad_element_t does not grow:
+ * firmware that does not use it pays nothing. The core reads an element's entry
+ * wherever it reflects: receiving, its shown ambient part (RAD_SHADE_AMBIENT,
+ * gathers); a patch's reflectance (overshooting, the ambient term's mean, a
+ * Gauss-Seidel row) is the area-weighted mean of its elements' (kept up to date; a
+ * patch whose elements share one value takes it exactly, so a scene without differing
+ * elements gives the bits of one without the call; for a group, its receiver's).
+ * Returns RAD_OK, RAD_ERR_ARG (NULL), RAD_ERR_ALIGN, or RAD_ERR_STATE (the geometry
+ * is frozen, or an array is in use already). */
+#define RAD_ELEMENT_RHO_ENTRIES(max_elements, max_patches) \
+    ((size_t)(max_elements) + (size_t)(max_patches))
 int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho);
 
 /* Sets element E's own reflectance (rad_use_element_reflectance) to REFLECTANCE, each
