@@ -977,6 +977,67 @@ static void test_large_footprint_mean(void **state)
     tex_free(&t);
 }
 
+/* The integral of a texel's tent (1 - |t|, centred at 0) over [a, b]. */
+static double tent_integral(double a, double b)
+{
+    double lo = fmax(a, -1), hi = fmin(b, 1), s = 0;
+    if (!(hi > lo))
+        return 0;
+    if (lo < 0) /* the rising side: 1 + t */
+        s += (fmin(hi, 0) - lo) * (1 + 0.5 * (fmin(hi, 0) + lo));
+    if (hi > 0) /* the falling side: 1 - t */
+        s += (hi - fmax(lo, 0)) * (1 - 0.5 * (hi + fmax(lo, 0)));
+    return s;
+}
+
+/* A rectangle footprint along the texel axes is integrated exactly (mean_of_rect):
+   against the bilinear texture's integral as a sum over texels of the colour times the
+   tents' integrals in x and in y (separable; wrapped texel indices), to rounding
+   (1e-12: a few thousand terms near 1); whole periods give the image's mean; the memo
+   of shared edges changes no bit. */
+static void test_rect_mean(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    const obj_vec2 rect[4] = { { 0.13, 0.21 }, { 0.71, 0.21 }, { 0.71, 0.93 }, { 0.13, 0.93 } };
+    const obj_vec2 periods[4] = { { -1, 0 }, { 1, 0 }, { 1, 3 }, { -1, 3 } };
+    unsigned char rgb[64 * 64 * 3];
+    tex_image t;
+    tex_memo *memo = malloc(sizeof *memo);
+    double got[3], again[3], want[3] = { 0, 0, 0 }, mean[3], x0, x1, y0, y1, worst = 0;
+    int i, j, k;
+    (void)state;
+    assert_non_null(memo);
+    memo->image = NULL;
+    bricks(rgb);
+    make_texture("bricks_rect.png", rgb, 64, 64, &t);
+    x0 = 0.13 * 64 - 0.5;
+    x1 = 0.71 * 64 - 0.5;
+    y0 = (1 - 0.93) * 64 - 0.5; /* v up, rows down */
+    y1 = (1 - 0.21) * 64 - 0.5;
+    for (j = (int)floor(y0) - 1; j <= (int)floor(y1) + 2; j++)
+        for (i = (int)floor(x0) - 1; i <= (int)floor(x1) + 2; i++) {
+            double w = tent_integral(x0 - i, x1 - i) * tent_integral(y0 - j, y1 - j), c[3];
+            tex_texel(&t, (i % 64 + 64) % 64, (j % 64 + 64) % 64, c);
+            for (k = 0; k < 3; k++)
+                want[k] += w * c[k] / ((x1 - x0) * (y1 - y0));
+        }
+    tex_polygon_mean(&t, pos, rect, 4, NULL, got);
+    tex_polygon_mean(&t, pos, rect, 4, memo, again);
+    tex_polygon_mean(&t, pos, rect, 4, memo, again); /* from the memo */
+    for (k = 0; k < 3; k++)
+        worst = fmax(worst, fabs(got[k] - want[k]));
+    print_message("rectangle footprint: %.9f against the texels' tent sum %.9f (worst channel %.2g)\n", got[0],
+                  want[0], worst);
+    CHECK_LE(worst, 1e-12, "rectangle footprint's mean against the separable tent sum");
+    assert_memory_equal(got, again, sizeof got);
+    tex_image_mean(&t, mean);
+    tex_polygon_mean(&t, pos, periods, 4, memo, got);
+    for (k = 0; k < 3; k++)
+        CHECK_NEAR(got[k], mean[k], 1e-12, "2 x 3 whole periods against the image's mean, channel %d", k);
+    tex_free(&t);
+    free(memo);
+}
+
 /* Writes a W x H PNG of COLOR_TYPE and DEPTH from ROWS (packed, big-endian 16-bit). */
 static void write_png(const char *name, int w, int h, int color_type, int depth, const unsigned char *rows,
                       size_t stride)
@@ -1079,6 +1140,7 @@ int main(void)
         cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
         cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
         cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
+        cmocka_unit_test(test_rect_mean),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

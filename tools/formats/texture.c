@@ -12,6 +12,7 @@
 #include "formats/file_io.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -484,15 +485,56 @@ static double tent_below(double t)
     return 1;
 }
 
+/* G(X) = sum_j W_j (integral of R_j from 0 to X) for the rows of [Y0, Y1] (W_j: the
+   row's tent integrated over it) into G: through MEMO (NULL: none), where neighbouring
+   elements share their edges' values. */
+static void rect_edge(const tex_image *t, double y0, double y1, double x, tex_memo *memo, double g[3])
+{
+    tex_memo_entry *m = NULL;
+    double j;
+    if (memo) {
+        uint64_t key[3], h = 1469598103934665603u;
+        int i;
+        if (memo->image != t) {
+            memset(memo, 0, sizeof *memo);
+            memo->image = t;
+        }
+        memcpy(&key[0], &x, 8);
+        memcpy(&key[1], &y0, 8);
+        memcpy(&key[2], &y1, 8);
+        for (i = 0; i < 3; i++)
+            h = (h ^ key[i]) * 1099511628211u;
+        m = &memo->e[(h >> 32) % TEX_MEMO_ENTRIES];
+        if (m->used && m->x == x && m->y0 == y0 && m->y1 == y1) {
+            memcpy(g, m->g, sizeof m->g);
+            return;
+        }
+    }
+    g[0] = g[1] = g[2] = 0;
+    for (j = floor(y0); j <= floor(y1) + 1; j++) {
+        double w = tent_below(y1 - j) - tent_below(y0 - j);
+        if (w > 0)
+            row_integral(t, row_index(t, j), x, w, g);
+    }
+    if (m) {
+        m->used = 1;
+        m->x = x;
+        m->y0 = y0;
+        m->y1 = y1;
+        memcpy(m->g, g, sizeof m->g);
+    }
+}
+
 /* The mean over UV[0..3] when it is a rectangle with sides along the texel axes (a wall's
    element, the common case), exactly: the bilinear texture between y0 and y1 is the sum
    of the rows' interpolants R_j times the tents' integrals W_j over [y0, y1], so the
-   integral is sum_j W_j (integral of R_j from x0 to x1), two row integrals a texel row
-   (a footprint of r rows: 2 r + 4, not the lines' 8 a row on each of two triangles).
-   0, or -1 (not such a rectangle, no row sums, too many rows) for the general path. */
-static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], double rgb[3])
+   integral is G(x1) - G(x0) (rect_edge), one row integral a texel row and edge (a
+   footprint of r rows: 2 r + 4, not the lines' 8 a row on each of two triangles; a
+   lattice's elements share their edges' through MEMO). 0, or -1 (not such a rectangle,
+   no row sums, too many rows) for the general path. */
+static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo, double rgb[3])
 {
-    double x[4], y[4], x0, x1, y0, y1, sum[3] = { 0, 0, 0 }, wsum = 0, j;
+    double x[4], y[4], x0, x1, y0, y1, g0[3], g1[3], wsum = 0, j;
     int i, k;
     for (i = 0; i < 4; i++) {
         x[i] = (uv[i].u * t->scale[0] + t->offset[0]) * t->w - 0.5;
@@ -522,30 +564,23 @@ static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], double rgb[3])
         x0 -= q;
         x1 -= q;
     }
-    for (j = floor(y0); j <= floor(y1) + 1; j++) {
-        double w = tent_below(y1 - j) - tent_below(y0 - j), acc[3] = { 0, 0, 0 };
-        int r = row_index(t, j);
-        if (!(w > 0))
-            continue;
-        row_integral(t, r, x1, w, acc);
-        row_integral(t, r, x0, -w, acc);
-        for (k = 0; k < 3; k++)
-            sum[k] += acc[k];
-        wsum += w;
-    }
+    for (j = floor(y0); j <= floor(y1) + 1; j++)
+        wsum += tent_below(y1 - j) - tent_below(y0 - j);
     if (!(wsum > 0))
         return -1;
+    rect_edge(t, y0, y1, x0, memo, g0);
+    rect_edge(t, y0, y1, x1, memo, g1);
     for (k = 0; k < 3; k++)
-        rgb[k] = sum[k] / (wsum * (x1 - x0));
+        rgb[k] = (g1[k] - g0[k]) / (wsum * (x1 - x0));
     return 0;
 }
 
 void tex_polygon_mean(const tex_image *t, const double (*pos)[3], const obj_vec2 *uv, int n,
-                      double rgb[3])
+                      tex_memo *memo, double rgb[3])
 {
     double total = 0;
     int k, tri;
-    if (n == 4 && mean_of_rect(t, uv, rgb) == 0)
+    if (n == 4 && mean_of_rect(t, uv, memo, rgb) == 0)
         return;
     rgb[0] = rgb[1] = rgb[2] = 0;
     for (tri = 0; tri + 2 < n; tri++) {

@@ -29,7 +29,7 @@ static void textured_rho(const obj_scene *sc, const obj_face *fc, const int *ver
     int k;
     for (k = 0; k < p->n; k++)
         uv[k] = *corner_uv(sc, fc, verts[k]);
-    tex_polygon_mean(t, (const double(*)[3])p->v, uv, p->n, mean);
+    tex_polygon_mean(t, (const double(*)[3])p->v, uv, p->n, NULL, mean);
     tex_reflectance(kd, mean, p->rho);
 }
 

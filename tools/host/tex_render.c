@@ -155,6 +155,9 @@ int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps
     const rad_scene_t *core = sc_core(s);
     uint32_t si, e;
     int n = 0;
+    tex_memo *memo = malloc(sizeof *memo); /* NULL: each element on its own */
+    if (memo)
+        memo->image = NULL;
     for (si = 0; si < core->n_surfaces; si++) {
         const rad_surface_t *sf = &core->pools.surfaces[si];
         int f, k;
@@ -174,13 +177,16 @@ int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps
                 uv[k].u = q[0];
                 uv[k].v = q[1];
             }
-            tex_polygon_mean(t, (const double(*)[3])p, uv, nv, mean);
+            tex_polygon_mean(t, (const double(*)[3])p, uv, nv, memo, mean);
             tex_reflectance(sc->materials[sc->faces[f].material].kd, mean, rho);
-            if (sc_set_element_rho(s, (int)e, rho, err, errlen) < 0)
+            if (sc_set_element_rho(s, (int)e, rho, err, errlen) < 0) {
+                free(memo);
                 return -1;
+            }
             n++;
         }
     }
+    free(memo);
     return n;
 }
 
