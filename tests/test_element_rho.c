@@ -304,8 +304,20 @@ static void test_uniform_same_bits(void **st)
     for (e = 0; e < w[0]->s.n_elements; e++)
         assert_memory_equal(&w[0]->el[e].radiosity, &w[1]->el[e].radiosity, sizeof(rad_rgb_t));
     assert_memory_equal(&amb[0], &amb[1], sizeof amb[0]);
-    print_message("uniform element array: %d shots, %u elements, the same bits as without\n", shots[0],
-                  (unsigned)w[0]->s.n_elements);
+    { /* a gather with the ambient term: the array's uncached path, the same bits */
+        static unsigned char gw[RAD_GATHER_BYTES(32)];
+        const rad_vec3_t at = V(3, -20, 5), up = V(0, 1, 0);
+        rad_rgb_t ga[2];
+        for (i = 0; i < 2; i++) {
+            rad_gather_t gt;
+            assert_int_equal(rad_gather_init(&gt, 32, 0, gw, sizeof gw), RAD_OK);
+            assert_int_equal(rad_gather(&w[i]->s, &gt, &at, &up, RAD_INDEX_NONE, RAD_SHADE_AMBIENT, &ga[i]), RAD_OK);
+        }
+        assert_true(ga[0].r > 0);
+        assert_memory_equal(&ga[0], &ga[1], sizeof ga[0]);
+    }
+    print_message("uniform element array: %d shots, %u elements, the same bits as without (and a gather)\n",
+                  shots[0], (unsigned)w[0]->s.n_elements);
     free(w[0]);
     free(w[1]);
 }
