@@ -205,8 +205,8 @@ static inline int run_shown_cached(const rad_scene_t *s, part_cache_t *c, uint32
     const rad_element_t *el;
     if (id >= s->n_elements) return 0;
     el = &s->pools.elements[id];
-    if (!c->amb) {
-        *b = rad__shown_plus(el->radiosity, 0, sat);
+    if (!c->amb || s->element_rho) { /* nothing to cache per surface */
+        *b = rad__shown(s, id, c->amb, sat);
         return 1;
     }
     if (el->surface != c->surface) {

@@ -27,6 +27,7 @@
 #define rad__freeze          radf__freeze
 #define rad__scale_power     radf__scale_power
 #define rad__ambient         radf__ambient
+#define rad__patch_mean      radf__patch_mean
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -241,6 +242,24 @@ static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)
     return k == 0 ? c->r : k == 1 ? c->g : c->b;
 }
 
+/* Element E's reflectance: its own (rad_use_element_reflectance) or its surface's. */
+static inline const rad_rgb_t *rad__element_rho(const rad_scene_t *s, uint32_t e)
+{
+    if (s->element_rho) return &s->element_rho[e];
+    return &s->pools.surfaces[s->pools.elements[e].surface].reflectance;
+}
+
+/* Patch P's reflectance: its surface's, or with per-element reflectances the mean the
+ * array keeps after the elements' (rad__patch_mean). */
+static inline const rad_rgb_t *rad__patch_rho(const rad_scene_t *s, uint32_t p)
+{
+    if (s->element_rho) return &s->element_rho[s->pools.max_elements + p];
+    return &s->pools.surfaces[s->pools.patches[p].surface].reflectance;
+}
+
+/* Sets patch P's entry of the array to the area-weighted mean of its elements' (mesh.c). */
+void rad__patch_mean(rad_scene_t *s, uint32_t p);
+
 /* What the ambient term AMB adds to the shown radiosity of a surface of reflectance R. */
 static inline rad_rgb_t rad__ambient_part(const rad_rgb_t *r, const rad_rgb_t *amb, uint32_t *sat)
 {
@@ -274,7 +293,7 @@ static inline rad_rgb_t rad__shown(const rad_scene_t *s, uint32_t e, const rad_r
     const rad_element_t *el = &s->pools.elements[e];
     rad_rgb_t a;
     if (!amb) return rad__shown_plus(el->radiosity, 0, sat);
-    a = rad__ambient_part(&s->pools.surfaces[el->surface].reflectance, amb, sat);
+    a = rad__ambient_part(rad__element_rho(s, e), amb, sat);
     return rad__shown_plus(el->radiosity, &a, sat);
 }
 

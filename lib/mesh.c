@@ -75,6 +75,10 @@ typedef struct {
     char c;
     rad_vec3_t t;
 } align_vec3_t;
+typedef struct {
+    char c;
+    rad_rgb_t t;
+} align_rgb_t;
 
 static int aligned(const void *p, size_t a)
 {
@@ -497,6 +501,58 @@ static void start_surface(rad_scene_t *s, uint32_t surf)
     }
 }
 
+static int rgb_eq(const rad_rgb_t *a, const rad_rgb_t *b)
+{
+    return a->r == b->r && a->g == b->g && a->b == b->b;
+}
+
+/* Sum over the patch's elements of rho_e A_e over the sum of A_e, per channel, each
+ * product rounded once (|error| <= n / 2 LSB of power over >= n LSB of area: below 1
+ * LSB of the ratio); a mean rounding up to 1 (only from elements all within a few LSB
+ * of it) is kept at the largest value below. The elements of a group's other surfaces
+ * are skipped: their power goes to the receiver, the patch's first element, whose
+ * area is the group's. Elements that all agree give their value exactly. */
+void rad__patch_mean(rad_scene_t *s, uint32_t p)
+{
+    const rad_patch_t *pt = &s->pools.patches[p];
+    const rad_rgb_t *rho = s->element_rho, *first = &rho[pt->first_element];
+    rad_energy_t area = 0, sum[3] = {0, 0, 0};
+    uint32_t e, end = (uint32_t)pt->first_element + pt->n_elements;
+    rad_rgb_t *m = &s->element_rho[s->pools.max_elements + p];
+    int same = 1;
+    for (e = pt->first_element; e < end; e++) {
+        const rad_element_t *el = &s->pools.elements[e];
+        if (el->surface != pt->surface) continue;
+        same = same && rgb_eq(&rho[e], first);
+        area = rad__esum(area, rad__energy(RAD__ONE, el->area));
+        sum[0] = rad__esum(sum[0], rad__energy(rho[e].r, el->area));
+        sum[1] = rad__esum(sum[1], rad__energy(rho[e].g, el->area));
+        sum[2] = rad__esum(sum[2], rad__energy(rho[e].b, el->area));
+    }
+    if (same) {
+        *m = *first;
+        return;
+    }
+    m->r = rad__energy_ratio(sum[0], area);
+    m->g = rad__energy_ratio(sum[1], area);
+    m->b = rad__energy_ratio(sum[2], area);
+    if (m->r >= RAD__ONE) m->r = RAD__ONE - RAD__EPS;
+    if (m->g >= RAD__ONE) m->g = RAD__ONE - RAD__EPS;
+    if (m->b >= RAD__ONE) m->b = RAD__ONE - RAD__EPS;
+}
+
+/* Every element and patch of surface SF reflects as SF, when elements have
+ * reflectances of their own (rad_use_element_reflectance). */
+static void element_rho_reset(rad_scene_t *s, const rad_surface_t *sf)
+{
+    uint32_t i;
+    if (!s->element_rho) return;
+    for (i = 0; i < sf->n_elements; i++)
+        s->element_rho[sf->first_element + i] = sf->reflectance;
+    for (i = 0; i < sf->n_patches; i++)
+        s->element_rho[s->pools.max_elements + sf->first_patch + i] = sf->reflectance;
+}
+
 static void start_all(rad_scene_t *s)
 {
     uint32_t i;
@@ -625,9 +681,12 @@ void rad__scale_power(rad_scene_t *s)
 
 void rad__freeze(rad_scene_t *s)
 {
+    uint32_t p;
     if (s->solving) return;
     rad__scale_geometry(s);
     rad__scale_power(s);
+    /* the patches' means over their elements' areas at this scale */
+    for (p = 0; s->element_rho && p < s->n_patches; p++) rad__patch_mean(s, p);
     s->solving = 1;
 }
 
@@ -668,6 +727,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
+    element_rho_reset(s, sf);
     start_surface(s, s->n_surfaces);
     return (int)s->n_surfaces++;
 }
@@ -710,6 +770,7 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
     mesh_joined(s, s->n_surfaces, v, n, p);
     sf->n_elements = 1;
     sf->n_vertices = (rad_index_t)n;
+    element_rho_reset(s, sf);
     start_surface(s, s->n_surfaces);
     return (int)s->n_surfaces++;
 }
@@ -733,8 +794,32 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
     if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
         return RAD_ERR_RANGE;
     if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
-    if (reflectance) s->pools.surfaces[surf].reflectance = *reflectance;
+    if (reflectance) {
+        s->pools.surfaces[surf].reflectance = *reflectance;
+        element_rho_reset(s, &s->pools.surfaces[surf]);
+    }
     if (emission) s->pools.surfaces[surf].emission = *emission;
+    return RAD_OK;
+}
+
+int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
+{
+    uint32_t i;
+    if (!s || !rho) return RAD_ERR_ARG;
+    if (!aligned(rho, offsetof(align_rgb_t, t))) return RAD_ERR_ALIGN;
+    if (s->solving || s->element_rho) return RAD_ERR_STATE;
+    s->element_rho = rho;
+    for (i = 0; i < s->n_surfaces; i++) element_rho_reset(s, &s->pools.surfaces[i]);
+    return RAD_OK;
+}
+
+int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *reflectance)
+{
+    if (!s || !reflectance || e >= s->n_elements) return RAD_ERR_ARG;
+    if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
+    if (!s->element_rho) return RAD_ERR_STATE;
+    s->element_rho[e] = *reflectance;
+    rad__patch_mean(s, s->pools.elements[e].patch);
     return RAD_OK;
 }
 

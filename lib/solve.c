@@ -40,7 +40,7 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
     uint32_t p, c;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
-        const rad_rgb_t *r = &s->pools.surfaces[pt->surface].reflectance;
+        const rad_rgb_t *r = rad__patch_rho(s, p);
         area = rad__esum(area, rad__energy(RAD__ONE, pt->area));
         rho[0] = rad__esum(rho[0], rad__energy(r->r, pt->area));
         rho[1] = rad__esum(rho[1], rad__energy(r->g, pt->area));
@@ -59,17 +59,17 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
  * power's rounding for any power under 2^16 units): the shots are then plain. */
 #define OVER_STOP 16u
 
-/* The power patch PT will get back in channel C, from the ambient radiosity AMB:
- * what overshooting adds to its shot (0 for every patch when AMB is 0), halved once
- * per back-off. */
-static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_real_t *amb,
-                              unsigned c)
+/* The power patch PT, of reflectance RHO (rad__patch_rho), will get back in channel C,
+ * from the ambient radiosity AMB: what overshooting adds to its shot (0 for every
+ * patch when AMB is 0), halved once per back-off. */
+static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const rad_rgb_t *rho,
+                              const rad_real_t *amb, unsigned c)
 {
     rad_energy_t over;
     uint32_t k;
     if (amb[c] == 0 || s->over_halvings >= OVER_STOP) return 0; /* shooting plainly */
     over = rad__energy_refl(rad__energy(amb[c] < 0 ? -amb[c] : amb[c], pt->area),
-                            rad__channel(&s->pools.surfaces[pt->surface].reflectance, c));
+                            rad__channel(rho, c));
     for (k = 0; k < s->over_halvings; k++) over = rad__energy_refl(over, RAD_REAL(0.5));
     if (over > RAD__EMAX) over = RAD__EMAX; /* the float build's ambient term has no ceiling */
     return amb[c] < 0 ? -over : over;
@@ -96,10 +96,11 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     rad_energy_t most = 0, sum = 0;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
+        const rad_rgb_t *rho = rad__patch_rho(s, p);
         rad_energy_t u = 0;
         for (c = 0; c < 3; c++) {
             sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
-            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, amb, c));
+            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
         }
         if (u > most) {
             most = u;
@@ -200,13 +201,13 @@ static void receive_element(rad_scene_t *s, const rad_energy_t *u, uint32_t e, r
                             uint32_t *sat_out)
 {
     rad_element_t *el = &s->pools.elements[e];
-    const rad_surface_t *sf = &s->pools.surfaces[el->surface];
+    const rad_rgb_t *rho = rad__element_rho(s, e);
     rad_energy_t *pu = s->pools.patches[el->patch].unshot;
     rad_real_t a = el->area;
     uint32_t sat = 0;
-    rad_real_t r = receive(&sat, u[0], f, sf->reflectance.r, a, el->radiosity.r, &pu[0]);
-    rad_real_t g = receive(&sat, u[1], f, sf->reflectance.g, a, el->radiosity.g, &pu[1]);
-    rad_real_t b = receive(&sat, u[2], f, sf->reflectance.b, a, el->radiosity.b, &pu[2]);
+    rad_real_t r = receive(&sat, u[0], f, rho->r, a, el->radiosity.r, &pu[0]);
+    rad_real_t g = receive(&sat, u[1], f, rho->g, a, el->radiosity.g, &pu[1]);
+    rad_real_t b = receive(&sat, u[2], f, rho->b, a, el->radiosity.b, &pu[2]);
     el->radiosity.r = r;
     el->radiosity.g = g;
     el->radiosity.b = b;
@@ -223,6 +224,7 @@ void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f)
 static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t *u)
 {
     rad_patch_t *pt = &s->pools.patches[p];
+    const rad_rgb_t *rho = rad__patch_rho(s, p);
     uint32_t c;
     for (c = 0; c < 3; c++) {
         /* The power coming back to this patch is shot now and owed until it comes. Any
@@ -230,7 +232,7 @@ static void aim(rad_scene_t *s, uint32_t p, const rad_real_t *amb, rad_energy_t 
          * one that would take the shot past +-RAD__EMAX is cut to reach it, not clamped
          * after (which would lose the difference). |unshot|, |over| <= RAD__EMAX: the
          * sum fits. */
-        rad_energy_t over = overshoot(s, pt, amb, c), sum = pt->unshot[c] + over;
+        rad_energy_t over = overshoot(s, pt, rho, amb, c), sum = pt->unshot[c] + over;
         if (sum > RAD__EMAX) over = RAD__EMAX - pt->unshot[c];
         if (sum < -RAD__EMAX) over = -RAD__EMAX - pt->unshot[c];
         u[c] = pt->unshot[c] + over;

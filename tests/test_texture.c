@@ -577,6 +577,9 @@ static double solution_difference(const textured *a, const textured *b, int use_
                             : (void *)sc_create(b->p, b->n, &o, NULL, NULL, err, sizeof err);
         assert_non_null(x);
         assert_non_null(y);
+        /* A's elements each the mean of their own footprint, as rad_cli has them */
+        assert_true((use_float ? scf_texture_elements(x, &a->sc, a->maps, err, sizeof err)
+                               : sc_texture_elements(x, &a->sc, a->maps, err, sizeof err)) >= 0);
         if (use_float) {
             scf_solve(x, 100000, 1e-4, NULL, NULL);
             scf_solve(y, 100000, 1e-4, NULL, NULL);
@@ -720,6 +723,109 @@ static void free_solved(solved *x)
 {
     sc_destroy(x->s);
     free_textured(&x->t);
+}
+
+/* A room of white walls (Kd 0.7) whose floor (map "split": Kd 0 0 0) has u = (z + 1) / 2,
+   and the lamp of write_room, as NAME. */
+static void write_split_room(const char *name)
+{
+    sc_poly p[7];
+    char text[4096];
+    size_t used;
+    int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, k;
+    p[n++] = quad(-0.3, 0.98, -0.3, 0.3, 0.98, -0.3, 0.3, 0.98, 0.3, -0.3, 0.98, 0.3);
+    write_text("split.mtl", "newmtl split\nKd 0 0 0\nmap_Kd split.png\n"
+                            "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
+    used = (size_t)snprintf(text, sizeof text, "mtllib split.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n");
+    for (i = 0; i < n; i++) {
+        used += (size_t)snprintf(text + used, sizeof text - used, "usemtl %s\n",
+                                 i == 0 ? "split" : i < 6 ? "white" : "lamp");
+        for (k = 0; k < 4; k++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %.17g\n",
+                                     p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
+        used += (size_t)snprintf(text + used, sizeof text - used, i == 0 ? "f -4/1 -3/2 -2/3 -1/4\n"
+                                                                         : "f -4 -3 -2 -1\n");
+    }
+    assert_true(used < sizeof text);
+    write_text(name, text);
+}
+
+/* The area-weighted mean green over red of the elements of OBJ face F. */
+static double face_green_over_red(sc_solver *s, int f)
+{
+    sc_stats st;
+    double g = 0, r = 0, rgb[3];
+    int e;
+    sc_get_stats(s, &st);
+    for (e = 0; e < st.elements; e++)
+        if (sc_element_tag(s, e) == f) {
+            sc_element_rgb(s, e, 1, rgb);
+            r += sc_element_area(s, e) * rgb[0];
+            g += sc_element_area(s, e) * rgb[1];
+        }
+    return g / r;
+}
+
+/* Reflectance per element: a floor half red, half white (a 64 x 4 map, columns 0..31
+   red) under a lamp. Each floor element gets its own footprint's mean: 8 texel columns
+   a 0.25 element; the bilinear map blends red and white only within half a texel of
+   the halves' border and of the wrap at u = 0, which adds at most (white - red) / 4
+   over 1/128 of u to an element 1/8 wide, (white - red) / 64, plus Q16.16's rounding.
+   The wall beside the red half (z = -1) then gets more red than the one beside the
+   white (z = +1): its green over red is lower. With the face's one mean (no call) the
+   room is symmetric about z = 0 and the two walls agree to the solve's noise. */
+static void test_element_reflectance(void **state)
+{
+    unsigned char map[64 * 4 * 3];
+    const unsigned char red[3] = { 230, 60, 50 }, white[3] = { 235, 235, 235 };
+    double lr[3], lw[3], worst = 0, ratio[2][2];
+    char err[512];
+    int i, k, e, pass, set = 0;
+    (void)state;
+    for (i = 0; i < 64 * 4; i++)
+        memcpy(&map[3 * i], i % 64 < 32 ? red : white, 3);
+    for (k = 0; k < 3; k++) {
+        lr[k] = tex_srgb_decode(red[k] / 255.0);
+        lw[k] = tex_srgb_decode(white[k] / 255.0);
+    }
+    assert_int_equal(img_write(tmp_path("split.png"), map, 64, 4, NULL, 0), 0);
+    write_split_room("split.obj");
+    for (pass = 0; pass < 2; pass++) {
+        solved x;
+        sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
+        sc_stats st;
+        load_textured("split.obj", &x.t);
+        x.s = sc_create(x.t.p, x.t.n, &o, NULL, NULL, err, sizeof err);
+        assert_non_null(x.s);
+        if (pass == 1) {
+            set = sc_texture_elements(x.s, &x.t.sc, x.t.maps, err, sizeof err);
+            CHECK_INT_EQ(set, 64, "floor elements given their own reflectance (8 x 8)");
+        }
+        sc_solve(x.s, 100000, 1e-4, NULL, NULL);
+        sc_get_stats(x.s, &st);
+        for (e = 0; pass == 1 && e < st.elements; e++) {
+            double c[3], rho[3];
+            if (sc_element_tag(x.s, e) != 0)
+                continue;
+            sc_element_centroid(x.s, e, c);
+            sc_element_rho(x.s, e, rho);
+            for (k = 0; k < 3; k++) {
+                double want = c[2] < 0 ? lr[k] : lw[k];
+                worst = fmax(worst, fabs(rho[k] - want) / (fabs(lw[k] - lr[k]) / 64 + 1.0 / 65536));
+            }
+        }
+        ratio[pass][0] = face_green_over_red(x.s, 4); /* z = -1: beside the red half */
+        ratio[pass][1] = face_green_over_red(x.s, 5); /* z = +1: beside the white half */
+        sc_destroy(x.s);
+        free_textured(&x.t);
+    }
+    print_message("per-element reflectance: floor elements off their half's colour by %.3f of the bound "
+                  "(|white - red| / 64 + 2^-16); wall green/red beside red %.4f, beside white %.4f (one mean "
+                  "a face: %.4f, %.4f)\n", worst, ratio[1][0], ratio[1][1], ratio[0][0], ratio[0][1]);
+    CHECK_LE(worst, 1.0, "floor element reflectance off its half's colour, over |white - red| / 64 + 2^-16");
+    /* symmetric: the two walls' shots differ by the order they come in only */
+    CHECK_LE(fabs(ratio[0][0] / ratio[0][1] - 1), 0.005, "one mean a face: the walls' green/red disagree");
+    CHECK_LE(ratio[1][0], 0.97 * ratio[1][1], "the wall beside the red half: green/red against the white side's");
 }
 
 #define RW 96
@@ -871,6 +977,67 @@ static void test_large_footprint_mean(void **state)
     tex_free(&t);
 }
 
+/* The integral of a texel's tent (1 - |t|, centred at 0) over [a, b]. */
+static double tent_integral(double a, double b)
+{
+    double lo = fmax(a, -1), hi = fmin(b, 1), s = 0;
+    if (!(hi > lo))
+        return 0;
+    if (lo < 0) /* the rising side: 1 + t */
+        s += (fmin(hi, 0) - lo) * (1 + 0.5 * (fmin(hi, 0) + lo));
+    if (hi > 0) /* the falling side: 1 - t */
+        s += (hi - fmax(lo, 0)) * (1 - 0.5 * (hi + fmax(lo, 0)));
+    return s;
+}
+
+/* A rectangle footprint along the texel axes is integrated exactly (mean_of_rect):
+   against the bilinear texture's integral as a sum over texels of the colour times the
+   tents' integrals in x and in y (separable; wrapped texel indices), to rounding
+   (1e-12: a few thousand terms near 1); whole periods give the image's mean; the memo
+   of shared edges changes no bit. */
+static void test_rect_mean(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    const obj_vec2 rect[4] = { { 0.13, 0.21 }, { 0.71, 0.21 }, { 0.71, 0.93 }, { 0.13, 0.93 } };
+    const obj_vec2 periods[4] = { { -1, 0 }, { 1, 0 }, { 1, 3 }, { -1, 3 } };
+    unsigned char rgb[64 * 64 * 3];
+    tex_image t;
+    tex_memo *memo = malloc(sizeof *memo);
+    double got[3], again[3], want[3] = { 0, 0, 0 }, mean[3], x0, x1, y0, y1, worst = 0;
+    int i, j, k;
+    (void)state;
+    assert_non_null(memo);
+    memo->image = NULL;
+    bricks(rgb);
+    make_texture("bricks_rect.png", rgb, 64, 64, &t);
+    x0 = 0.13 * 64 - 0.5;
+    x1 = 0.71 * 64 - 0.5;
+    y0 = (1 - 0.93) * 64 - 0.5; /* v up, rows down */
+    y1 = (1 - 0.21) * 64 - 0.5;
+    for (j = (int)floor(y0) - 1; j <= (int)floor(y1) + 2; j++)
+        for (i = (int)floor(x0) - 1; i <= (int)floor(x1) + 2; i++) {
+            double w = tent_integral(x0 - i, x1 - i) * tent_integral(y0 - j, y1 - j), c[3];
+            tex_texel(&t, (i % 64 + 64) % 64, (j % 64 + 64) % 64, c);
+            for (k = 0; k < 3; k++)
+                want[k] += w * c[k] / ((x1 - x0) * (y1 - y0));
+        }
+    tex_polygon_mean(&t, pos, rect, 4, NULL, got);
+    tex_polygon_mean(&t, pos, rect, 4, memo, again);
+    tex_polygon_mean(&t, pos, rect, 4, memo, again); /* from the memo */
+    for (k = 0; k < 3; k++)
+        worst = fmax(worst, fabs(got[k] - want[k]));
+    print_message("rectangle footprint: %.9f against the texels' tent sum %.9f (worst channel %.2g)\n", got[0],
+                  want[0], worst);
+    CHECK_LE(worst, 1e-12, "rectangle footprint's mean against the separable tent sum");
+    assert_memory_equal(got, again, sizeof got);
+    tex_image_mean(&t, mean);
+    tex_polygon_mean(&t, pos, periods, 4, memo, got);
+    for (k = 0; k < 3; k++)
+        CHECK_NEAR(got[k], mean[k], 1e-12, "2 x 3 whole periods against the image's mean, channel %d", k);
+    tex_free(&t);
+    free(memo);
+}
+
 /* Writes a W x H PNG of COLOR_TYPE and DEPTH from ROWS (packed, big-endian 16-bit). */
 static void write_png(const char *name, int w, int h, int color_type, int depth, const unsigned char *rows,
                       size_t stride)
@@ -972,7 +1139,8 @@ int main(void)
         cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
         cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
         cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
-        cmocka_unit_test(test_unusual_maps),
+        cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
+        cmocka_unit_test(test_rect_mean),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

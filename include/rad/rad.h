@@ -162,7 +162,8 @@ typedef struct {
  * address with RAD_ERR_ALIGN. The work buffer may start at any address: the core
  * starts its tables at the next multiple of 8, and RAD_WORK_BYTES counts the bytes
  * that may cost. Bytes per entry: sizeof(rad_surface_t) etc., which depend on
- * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets). */
+ * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets).
+ */
 typedef struct {
     rad_surface_t *surfaces;
     uint32_t max_surfaces;
@@ -263,6 +264,7 @@ typedef struct {
 typedef struct {
     rad_config_t cfg;
     rad_pools_t pools;
+    rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
     rad_energy_t emitted; /* total emitted power, all channels */
@@ -353,11 +355,40 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
 int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
                      const rad_rgb_t *reflectance);
 
-/* Changes the reflectance and emission of surface SURF (either may be NULL to keep it).
- * Takes effect on the next rad_restart(). Returns RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE
- * (also: an emission for a surface of a group, rad_join_polygon). */
+/* Changes the reflectance and emission of surface SURF (either may be NULL to keep it);
+ * a reflectance is also set on each of its elements' own entries, if they have them
+ * (rad_use_element_reflectance). Takes effect on the next rad_restart(). Returns
+ * RAD_OK, RAD_ERR_ARG or RAD_ERR_RANGE (also: an emission for a surface of a group,
+ * rad_join_polygon). */
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission);
+
+/* Reflectance per element, for a surface whose colour varies across it (a texture's
+ * mean over each element's footprint). RHO is the caller's array of
+ * RAD_ELEMENT_RHO_ENTRIES(max_elements, max_patches) rad_rgb_t (12 bytes each in the
+ * fixed build; aligned as rad_rgb_t), kept by the scene from then on: the elements'
+ * reflectances, then each patch's, which the core keeps. The elements already added
+ * get their surface's reflectance, those added later too, rad_set_surface sets its
+ * elements' again, and rad_set_element_reflectance one. Without this call (the
+ * default) every element reflects as its surface and rad_element_t does not grow:
+ * firmware that does not use it pays nothing. The core reads an element's entry
+ * wherever it reflects: receiving, its shown ambient part (RAD_SHADE_AMBIENT,
+ * gathers); a patch's reflectance (overshooting, the ambient term's mean, a
+ * Gauss-Seidel row) is the area-weighted mean of its elements' (kept up to date; a
+ * patch whose elements share one value takes it exactly, so a scene without differing
+ * elements gives the bits of one without the call; for a group, its receiver's).
+ * Returns RAD_OK, RAD_ERR_ARG (NULL), RAD_ERR_ALIGN, or RAD_ERR_STATE (the geometry
+ * is frozen, or an array is in use already). */
+#define RAD_ELEMENT_RHO_ENTRIES(max_elements, max_patches) \
+    ((size_t)(max_elements) + (size_t)(max_patches))
+int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho);
+
+/* Sets element E's own reflectance (rad_use_element_reflectance) to REFLECTANCE, each
+ * channel in [0, 1). Takes effect on the next rad_restart(), as rad_set_surface; an
+ * element joined to a group (rad_join_polygon) reflects as the group's receiver (its
+ * patch's first element), so set that one. Returns RAD_OK, RAD_ERR_ARG (NULL, E
+ * beyond the elements added), RAD_ERR_RANGE or RAD_ERR_STATE (no array in use). */
+int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *reflectance);
 
 /* Resets the solution to the emission alone (the geometry stays), so the scene can be
  * solved again after rad_set_surface(). Returns RAD_OK or RAD_ERR_ARG. */

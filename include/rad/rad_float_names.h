@@ -18,6 +18,8 @@
 #define rad_render            radf_render
 #define rad_restart           radf_restart
 #define rad_set_surface       radf_set_surface
+#define rad_use_element_reflectance radf_use_element_reflectance
+#define rad_set_element_reflectance radf_set_element_reflectance
 #define rad_form_factors      radf_form_factors
 #define rad_strerror          radf_strerror
 #define rad_real_from_q16     radf_real_from_q16

@@ -1561,7 +1561,7 @@ static void tex_bench(const char *self, texbench_t *tb)
 static void report_textures(report_t *rp, const char *self)
 {
     static const char *const nm[3] = {"with the maps", "`--no-textures` (Kd 0: 0.5 grey)",
-                                      "the maps' means as Kd (the same solve)"};
+                                      "the maps' means as Kd (the faces' means)"};
     texbench_t tb;
     int k, v;
     tex_bench(self, &tb);
@@ -1570,7 +1570,8 @@ static void report_textures(report_t *rp, const char *self)
         "shots), whole processes in turn, %d rounds: medians of wall and processor (user + system) time and of each round's ratio (the "
         "run with the maps over this one). The maps change the light, so "
         "`--no-textures` solves another scene; the third run gives every face the reflectance the maps give it as "
-        "Kd: the same solve without loading or sampling a map. ", TEX_SIDE, TEX_SIDE, TEX_RUNS);
+        "Kd: the solve without loading or sampling a map, but for the maps' run giving each element the mean of "
+        "its own footprint (the light moves within a face; the shots differ by a few). ", TEX_SIDE, TEX_SIDE, TEX_RUNS);
     if (tb.why[0]) {
         out(rp, "Not measured: %s.\n", tb.why);
         return;

@@ -15,6 +15,7 @@
 #include "host/clock.h"
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
+#include "host/tex_render.h"
 
 /* ---- load: the scene, --emit, the light groups, the views and frames ------------- */
 
@@ -353,6 +354,11 @@ static int build_step(run_t *r)
     r->polys = polys; /* kept for --export-gltf */
     r->npolys = npolys;
     if (!r->s) {
+        fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
+        return -1;
+    }
+    /* each element of a textured face: the texture's mean over its own footprint */
+    if (r->ot.maps && sc_texture_elements(r->s, &r->sc, r->ot.maps, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", o->scene, err);
         return -1;
     }

@@ -12,6 +12,7 @@
 #include "formats/file_io.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -456,6 +457,146 @@ void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
             }
     for (k = 0; k < 3; k++)
         rgb[k] = sum[k] / ((double)n * n);
+}
+
+static double tri_area(const double a[3], const double b[3], const double c[3])
+{
+    double u[3], v[3], n[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        u[k] = b[k] - a[k];
+        v[k] = c[k] - a[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* The integral of the texel-centred tent over [j - 1, j + 1] from -infinity to j + T. */
+static double tent_below(double t)
+{
+    if (t <= -1)
+        return 0;
+    if (t <= 0)
+        return 0.5 * (1 + t) * (1 + t);
+    if (t < 1)
+        return 1 - 0.5 * (1 - t) * (1 - t);
+    return 1;
+}
+
+/* G(X) = sum_j W_j (integral of R_j from 0 to X) for the rows of [Y0, Y1] (W_j: the
+   row's tent integrated over it) into G: through MEMO (NULL: none), where neighbouring
+   elements share their edges' values. */
+static void rect_edge(const tex_image *t, double y0, double y1, double x, tex_memo *memo, double g[3])
+{
+    tex_memo_entry *m = NULL;
+    double j;
+    if (memo) {
+        uint64_t key[3], h = 1469598103934665603u;
+        int i;
+        if (memo->image != t) {
+            memset(memo, 0, sizeof *memo);
+            memo->image = t;
+        }
+        memcpy(&key[0], &x, 8);
+        memcpy(&key[1], &y0, 8);
+        memcpy(&key[2], &y1, 8);
+        for (i = 0; i < 3; i++)
+            h = (h ^ key[i]) * 1099511628211u;
+        m = &memo->e[(h >> 32) % TEX_MEMO_ENTRIES];
+        if (m->used && m->x == x && m->y0 == y0 && m->y1 == y1) {
+            memcpy(g, m->g, sizeof m->g);
+            return;
+        }
+    }
+    g[0] = g[1] = g[2] = 0;
+    for (j = floor(y0); j <= floor(y1) + 1; j++) {
+        double w = tent_below(y1 - j) - tent_below(y0 - j);
+        if (w > 0)
+            row_integral(t, row_index(t, j), x, w, g);
+    }
+    if (m) {
+        m->used = 1;
+        m->x = x;
+        m->y0 = y0;
+        m->y1 = y1;
+        memcpy(m->g, g, sizeof m->g);
+    }
+}
+
+/* The mean over UV[0..3] when it is a rectangle with sides along the texel axes (a wall's
+   element, the common case), exactly: the bilinear texture between y0 and y1 is the sum
+   of the rows' interpolants R_j times the tents' integrals W_j over [y0, y1], so the
+   integral is G(x1) - G(x0) (rect_edge), one row integral a texel row and edge (a
+   footprint of r rows: 2 r + 4, not the lines' 8 a row on each of two triangles; a
+   lattice's elements share their edges' through MEMO). 0, or -1 (not such a rectangle,
+   no row sums, too many rows) for the general path. */
+static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo, double rgb[3])
+{
+    double x[4], y[4], x0, x1, y0, y1, g0[3], g1[3], wsum = 0, j;
+    int i, k;
+    for (i = 0; i < 4; i++) {
+        x[i] = (uv[i].u * t->scale[0] + t->offset[0]) * t->w - 0.5;
+        y[i] = (1.0 - (uv[i].v * t->scale[1] + t->offset[1])) * t->h - 0.5;
+        if (!(fabs(x[i]) < 1e15 && fabs(y[i]) < 1e15))
+            return -1;
+    }
+    /* sides alternately along x and y: corners 0, 2 opposite, 1 and 3 each sharing x
+       with one of them and y with the other (to a billionth of the side), apart */
+    x0 = fmin(x[0], x[2]);
+    x1 = fmax(x[0], x[2]);
+    y0 = fmin(y[0], y[2]);
+    y1 = fmax(y[0], y[2]);
+    if (!t->row_sums || !(x1 - x0 > 0 && y1 - y0 > 0 && y1 - y0 <= MEAN_MAX_ROWS))
+        return -1;
+    for (i = 1; i < 4; i += 2) {
+        double ex = 1e-9 * (x1 - x0), ey = 1e-9 * (y1 - y0);
+        int a = fabs(x[i] - x[0]) <= ex && fabs(y[i] - y[2]) <= ey;
+        int b = fabs(x[i] - x[2]) <= ex && fabs(y[i] - y[0]) <= ey;
+        if (!a && !b)
+            return -1;
+    }
+    if (fabs(x[1] - x[3]) <= 1e-9 * (x1 - x0))
+        return -1; /* 1 and 3 the same corner */
+    if (!t->clamp) { /* whole periods off: the row integrals need none of their own */
+        double q = floor(x0 / t->w) * t->w;
+        x0 -= q;
+        x1 -= q;
+    }
+    for (j = floor(y0); j <= floor(y1) + 1; j++)
+        wsum += tent_below(y1 - j) - tent_below(y0 - j);
+    if (!(wsum > 0))
+        return -1;
+    rect_edge(t, y0, y1, x0, memo, g0);
+    rect_edge(t, y0, y1, x1, memo, g1);
+    for (k = 0; k < 3; k++)
+        rgb[k] = (g1[k] - g0[k]) / (wsum * (x1 - x0));
+    return 0;
+}
+
+void tex_polygon_mean(const tex_image *t, const double (*pos)[3], const obj_vec2 *uv, int n,
+                      tex_memo *memo, double rgb[3])
+{
+    double total = 0;
+    int k, tri;
+    if (n == 4 && mean_of_rect(t, uv, memo, rgb) == 0)
+        return;
+    rgb[0] = rgb[1] = rgb[2] = 0;
+    for (tri = 0; tri + 2 < n; tri++) {
+        double part[3], a = tri_area(pos[0], pos[tri + 1], pos[tri + 2]);
+        obj_vec2 foot[3];
+        foot[0] = uv[0];
+        foot[1] = uv[tri + 1];
+        foot[2] = uv[tri + 2];
+        tex_triangle_mean(t, foot, part);
+        a = a > 0 ? a : 1e-300; /* a sliver still counts, by its own mean */
+        for (k = 0; k < 3; k++)
+            rgb[k] += a * part[k];
+        total += a;
+    }
+    for (k = 0; k < 3; k++)
+        rgb[k] /= total;
 }
 
 void tex_image_mean(const tex_image *t, double rgb[3])

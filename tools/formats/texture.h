@@ -84,6 +84,27 @@ void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
  * period of the image); the sampler again if they are missing or the footprint spans
  * more than 65,536 texel rows. */
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
+/* Values tex_polygon_mean keeps for the elements of a lattice, which share edges: a
+ * caller's, of any content at first (it clears itself for another image). */
+#define TEX_MEMO_ENTRIES 256
+typedef struct {
+    double x, y0, y1, g[3];
+    int used;
+} tex_memo_entry;
+typedef struct {
+    const void *image;
+    tex_memo_entry e[TEX_MEMO_ENTRIES];
+} tex_memo;
+
+/* The area-weighted mean over the convex polygon POS[0 .. N-1] (3 or 4 corners, in
+ * space) of texture coordinates UV: tex_triangle_mean over the fan from corner 0, each
+ * triangle weighted by its area in space (the map from a face to UV is affine on each,
+ * so area in UV is area on the face). A face's or an element's footprint. A quad
+ * whose footprint is a rectangle along the texel axes is integrated exactly instead,
+ * from the row sums, a row integral a texel row and edge; MEMO (NULL: none) keeps the
+ * edges' for the next elements. */
+void tex_polygon_mean(const tex_image *t, const double (*pos)[3], const obj_vec2 *uv, int n,
+                      tex_memo *memo, double rgb[3]);
 /* The mean of the texels, linear: the bilinear texture's mean over a period (each
  * texel's tent integrates to one texel) when wrapped. */
 void tex_image_mean(const tex_image *t, double rgb[3]);

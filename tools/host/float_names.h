@@ -23,6 +23,9 @@
 #define sc_element_area scf_element_area
 #define sc_element_centroid scf_element_centroid
 #define sc_element_tag scf_element_tag
+#define sc_set_element_rho scf_set_element_rho
+#define sc_element_rho scf_element_rho
+#define sc_texture_elements scf_texture_elements
 #define sc_element_vertices scf_element_vertices
 #define sc_vertex_pos scf_vertex_pos
 #define sc_shade scf_shade

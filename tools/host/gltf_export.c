@@ -96,15 +96,14 @@ static double vertex_distance(sc_solver *s, int e, const double p[3], int *near)
 static void arriving(sc_solver *s, const faces_index *fx, int e, const double *emit, const double p[3],
                      double out[3])
 {
-    const rad_scene_t *core = sc_core(s);
-    const rad_rgb_t *r = &core->pools.surfaces[core->pools.elements[e].surface].reflectance;
-    const double rho[3] = { RAD_TO_DOUBLE(r->r), RAD_TO_DOUBLE(r->g), RAD_TO_DOUBLE(r->b) };
+    double rho[3];
     int k, lamp = emits(emit), near = 0;
     if (fx->ve && !lamp && vertex_distance(s, e, p, &near) < HUGE_VAL && fx->vok[near]) {
         memcpy(out, &fx->ve[3 * near], 3 * sizeof *out);
         return;
     }
     sc_element_rgb(s, e, 1, out);
+    sc_element_rho(s, e, rho); /* the element's own, where it has one */
     for (k = 0; k < 3 && !lamp; k++)
         out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
 }

@@ -19,42 +19,17 @@ static const obj_vec2 *corner_uv(const obj_scene *sc, const obj_face *fc, int ve
     return &sc->uvs[sc->uv_indices[fc->first]];
 }
 
-static double tri_area(const double a[3], const double b[3], const double c[3])
-{
-    double u[3], v[3], n[3];
-    int k;
-    for (k = 0; k < 3; k++) {
-        u[k] = b[k] - a[k];
-        v[k] = c[k] - a[k];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-}
-
 /* Polygon P (of face FC, whose vertex indices are VERTS) textured by T: the mean of the
-   texture over its UV footprint, a quad's two triangles weighted by their areas (the
-   map from the face to UV is affine, so area in UV is area on the face). */
+   texture over its UV footprint (tex_polygon_mean). */
 static void textured_rho(const obj_scene *sc, const obj_face *fc, const int *verts,
                          const tex_image *t, const double kd[3], sc_poly *p)
 {
-    double mean[3] = { 0, 0, 0 }, total = 0;
-    int k, tri;
-    for (tri = 0; tri + 2 < p->n; tri++) {
-        double part[3], a = tri_area(p->v[0], p->v[tri + 1], p->v[tri + 2]);
-        obj_vec2 foot[3];
-        foot[0] = *corner_uv(sc, fc, verts[0]);
-        foot[1] = *corner_uv(sc, fc, verts[tri + 1]);
-        foot[2] = *corner_uv(sc, fc, verts[tri + 2]);
-        tex_triangle_mean(t, foot, part);
-        a = a > 0 ? a : 1e-300; /* a sliver still counts, by its own mean */
-        for (k = 0; k < 3; k++)
-            mean[k] += a * part[k];
-        total += a;
-    }
-    for (k = 0; k < 3; k++)
-        mean[k] /= total;
+    double mean[3];
+    obj_vec2 uv[4];
+    int k;
+    for (k = 0; k < p->n; k++)
+        uv[k] = *corner_uv(sc, fc, verts[k]);
+    tex_polygon_mean(t, (const double(*)[3])p->v, uv, p->n, NULL, mean);
     tex_reflectance(kd, mean, p->rho);
 }
 

@@ -44,6 +44,7 @@ struct sc_solver {
     unsigned char *tiny;        /* per surface: 1 below TINY_AREA, | 2 in a group */
     double *area;               /* per surface: its area from its vertices, in core units^2 */
     int n_tiny;
+    rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
 };
 
 typedef struct {
@@ -81,7 +82,8 @@ static void free_pools(struct sc_solver *h)
 {
     free(h->pools.surfaces); free(h->pools.patches); free(h->pools.elements);
     free(h->pools.vertices); free(h->pools.work); free(h->tags); free(h->emit);
-    free(h->tiny); free(h->area);
+    free(h->tiny); free(h->area); free(h->erho);
+    h->erho = NULL;
     memset(&h->pools, 0, sizeof h->pools);
     h->tags = NULL;
     h->emit = NULL;
@@ -699,6 +701,47 @@ void sc_element_centroid(sc_solver *h, int e, double c[3])
 int sc_element_tag(sc_solver *h, int e)
 {
     return h->tags[h->pools.elements[e].surface];
+}
+
+int sc_set_element_rho(sc_solver *h, int e, const double rho[3], char *err, size_t errlen)
+{
+    rad_rgb_t r;
+    int k, rc;
+    for (k = 0; k < 3; k++)
+        if (!(rho[k] >= 0 && rho[k] <= 1e30)) {
+            snprintf(err, errlen, "element %d: reflectance must be finite and >= 0", e);
+            return -1;
+        }
+    if (!h->erho) {
+        h->erho = malloc(RAD_ELEMENT_RHO_ENTRIES(h->pools.max_elements, h->pools.max_patches) * sizeof *h->erho);
+        if (!h->erho) {
+            snprintf(err, errlen, "out of memory for %u element reflectances", (unsigned)h->pools.max_elements);
+            return -1;
+        }
+        if ((rc = rad_use_element_reflectance(&h->s, h->erho)) < 0) {
+            free(h->erho);
+            h->erho = NULL;
+            snprintf(err, errlen, "per-element reflectance: %s", rad_strerror(rc));
+            return -1;
+        }
+    }
+    r.r = rho_ch(h, rho[0]);
+    r.g = rho_ch(h, rho[1]);
+    r.b = rho_ch(h, rho[2]);
+    if ((rc = rad_set_element_reflectance(&h->s, (uint32_t)e, &r)) < 0) {
+        snprintf(err, errlen, "element %d: %s", e, rad_strerror(rc));
+        return -1;
+    }
+    return 0;
+}
+
+void sc_element_rho(sc_solver *h, int e, double rho[3])
+{
+    const rad_element_t *el = &h->pools.elements[e];
+    const rad_rgb_t *r = h->erho ? &h->erho[e] : &h->pools.surfaces[el->surface].reflectance;
+    rho[0] = RAD_TO_DOUBLE(r->r);
+    rho[1] = RAD_TO_DOUBLE(r->g);
+    rho[2] = RAD_TO_DOUBLE(r->b);
 }
 
 /* A double that RAD_REAL converts without overflow (and not NaN). */

@@ -88,6 +88,14 @@ void sc_element_rgb(sc_solver *s, int e, int ambient, double rgb[3]);
 double sc_element_area(sc_solver *s, int e);
 void sc_element_centroid(sc_solver *s, int e, double c[3]);
 int sc_element_tag(sc_solver *s, int e);
+/* Element E's reflectance of its own (rad_use_element_reflectance; the array is made
+ * by the first call, which must come before the first solve), each channel >= 0,
+ * clamped below 1 as at create (counted), for the next solve. sc_set_surfaces sets a
+ * surface's elements back to the surface's. 0, or -1 with err (a negative or
+ * non-finite value, out of memory, the first call after solving). */
+int sc_set_element_rho(sc_solver *s, int e, const double rho[3], char *err, size_t errlen);
+/* Element E's reflectance: its own if set, else its surface's. */
+void sc_element_rho(sc_solver *s, int e, double rho[3]);
 /* Vertex ids of element e (3 or 4, returned). */
 int sc_element_vertices(sc_solver *s, int e, int v[4]);
 void sc_vertex_pos(sc_solver *s, int v, double p[3]);

@@ -25,6 +25,8 @@ void scf_element_rgb(scf_solver *s, int e, int ambient, double rgb[3]);
 double scf_element_area(scf_solver *s, int e);
 void scf_element_centroid(scf_solver *s, int e, double c[3]);
 int scf_element_tag(scf_solver *s, int e);
+int scf_set_element_rho(scf_solver *s, int e, const double rho[3], char *err, size_t errlen);
+void scf_element_rho(scf_solver *s, int e, double rho[3]);
 int scf_element_vertices(scf_solver *s, int e, int v[4]);
 void scf_vertex_pos(scf_solver *s, int v, double p[3]);
 int scf_shade(scf_solver *s, int ambient, double *rgb);

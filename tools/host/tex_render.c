@@ -149,9 +149,84 @@ static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *ma
     }
 }
 
-/* Multiplies pixel I, of surface ID, by its texel over its surface's reflectance. */
+int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps, char *err,
+                        size_t errlen)
+{
+    const rad_scene_t *core = sc_core(s);
+    uint32_t si, e;
+    int n = 0;
+    tex_memo *memo = malloc(sizeof *memo); /* NULL: each element on its own */
+    if (memo)
+        memo->image = NULL;
+    for (si = 0; si < core->n_surfaces; si++) {
+        const rad_surface_t *sf = &core->pools.surfaces[si];
+        int f, k;
+        const tex_image *t = surface_map(s, sc, maps, sf, &f);
+        /* one element: the face's own mean already (obj_to_polys_tex); joined to a
+           group: it reflects as the group's receiver */
+        if (!t || sf->n_elements < 2 || sf->n_patches == 0)
+            continue;
+        for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++) {
+            int v[4], nv = sc_element_vertices(s, (int)e, v);
+            double p[4][3], mean[3], rho[3];
+            obj_vec2 uv[4];
+            for (k = 0; k < nv; k++) {
+                double q[2];
+                sc_vertex_pos(s, v[k], p[k]);
+                uv_at(sc, &sc->faces[f], p[k], q);
+                uv[k].u = q[0];
+                uv[k].v = q[1];
+            }
+            tex_polygon_mean(t, (const double(*)[3])p, uv, nv, memo, mean);
+            tex_reflectance(sc->materials[sc->faces[f].material].kd, mean, rho);
+            if (sc_set_element_rho(s, (int)e, rho, err, errlen) < 0) {
+                free(memo);
+                return -1;
+            }
+            n++;
+        }
+    }
+    free(memo);
+    return n;
+}
+
+/* Per core vertex of a textured surface: the area-weighted mean of the reflectances of
+   its surface's elements around it (as rad_shade_vertices weighs their radiosities), so
+   that a pixel's radiosity and reflectance are interpolated alike. */
+static void vertex_rho(sc_solver *s, const obj_scene *sc, const tex_image *maps, double *vr)
+{
+    const rad_scene_t *core = sc_core(s);
+    uint32_t si, e, v;
+    for (v = 0; v < 4u * core->n_vertices; v++)
+        vr[v] = 0; /* 3 a vertex, then the weights */
+    for (si = 0; si < core->n_surfaces; si++) {
+        const rad_surface_t *sf = &core->pools.surfaces[si];
+        int f;
+        if (!surface_map(s, sc, maps, sf, &f))
+            continue;
+        for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++) {
+            int vs[4], nv = sc_element_vertices(s, (int)e, vs), k, c;
+            double rho[3], a = sc_element_area(s, (int)e);
+            sc_element_rho(s, (int)e, rho);
+            for (k = 0; k < nv; k++) {
+                for (c = 0; c < 3; c++)
+                    vr[3 * vs[k] + c] += a * rho[c];
+                vr[3 * core->n_vertices + vs[k]] += a;
+            }
+        }
+    }
+    for (v = 0; v < core->n_vertices; v++) {
+        double w = vr[3 * core->n_vertices + v];
+        int c;
+        for (c = 0; c < 3; c++)
+            vr[3 * v + c] = w > 0 ? vr[3 * v + c] / w : 0;
+    }
+}
+
+/* Multiplies pixel I, of surface ID, by its texel over the reflectance the solution
+   used there: RHO_AT (3 a pixel, the elements' interpolated) or else its surface's. */
 static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, const double *uv,
-                   int id, size_t i, float *rgb)
+                   const double *rho_at, int id, size_t i, float *rgb)
 {
     const rad_scene_t *core = sc_core(s);
     const rad_surface_t *sf;
@@ -169,9 +244,9 @@ static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, con
     plain.offset[0] = plain.offset[1] = 0;
     tex_sample(&plain, uv[3 * i], uv[3 * i + 1], texel);
     tex_reflectance(sc->materials[sc->faces[f].material].kd, texel, rho);
-    sr[0] = RAD_TO_DOUBLE(sf->reflectance.r);
-    sr[1] = RAD_TO_DOUBLE(sf->reflectance.g);
-    sr[2] = RAD_TO_DOUBLE(sf->reflectance.b);
+    sr[0] = rho_at ? rho_at[3 * i] : RAD_TO_DOUBLE(sf->reflectance.r);
+    sr[1] = rho_at ? rho_at[3 * i + 1] : RAD_TO_DOUBLE(sf->reflectance.g);
+    sr[2] = rho_at ? rho_at[3 * i + 2] : RAD_TO_DOUBLE(sf->reflectance.b);
     for (k = 0; k < 3; k++)
         if (sr[k] > 0)
             rgb[3 * i + k] = (float)(rgb[3 * i + k] * rho[k] / sr[k]);
@@ -182,24 +257,32 @@ int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
 {
     const rad_scene_t *core = sc_core(s);
     size_t nv = (size_t)core->n_vertices + 1, np = (size_t)w * (size_t)h, i;
-    double *vuv = malloc(3 * nv * sizeof *vuv), *puv = malloc(3 * np * sizeof *puv);
+    int own = core->element_rho != NULL; /* elements' reflectances: a fourth render */
+    double *vuv = malloc(4 * nv * sizeof *vuv), *puv = malloc(3 * np * sizeof *puv);
+    double *prho = own ? malloc(3 * np * sizeof *prho) : NULL;
     unsigned char *solid = malloc(np);
     int *id = malloc(np * sizeof *id);
     int rc = -1;
-    if (!vuv || !puv || !solid || !id)
+    if (!vuv || !puv || !solid || !id || (own && !prho))
         snprintf(err, errlen, "out of memory for a %dx%d image", w, h);
     else {
+        rc = 0;
+        if (own) {
+            vertex_rho(s, sc, maps, vuv);
+            rc = sc_render_values(s, cam, vuv, w, h, prho, solid, err, errlen);
+        }
         vertex_values(s, sc, maps, vuv);
-        rc = sc_render_values(s, cam, vuv, w, h, puv, solid, err, errlen) ||
+        rc = rc || sc_render_values(s, cam, vuv, w, h, puv, solid, err, errlen) ||
                      sc_render_surfaces(s, cam, w, h, id, err, errlen)
                  ? -1
                  : 0;
         for (i = 0; rc == 0 && i < np; i++)
             if (solid[i])
-                detail(s, sc, maps, puv, id[i], i, rgb);
+                detail(s, sc, maps, puv, prho, id[i], i, rgb);
     }
     free(vuv);
     free(puv);
+    free(prho);
     free(solid);
     free(id);
     return rc;
