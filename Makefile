@@ -148,8 +148,8 @@ example: all
 
 # The README's picture, regenerated (never edited by hand).
 readme-image: $(BUILDDIR)/rad_cli
-	$(BUILDDIR)/rad_cli examples/cornell_box.obj -o docs/cornell_box.png --res 128 --width 400 --height 400 --quiet
-	$(BUILDDIR)/rad_cli examples/gallery.obj -o docs/gallery.png --res 128 --width 400 --height 300 --quiet
+	$(BUILDDIR)/rad_cli examples/cornell_box.obj -o docs/cornell_box.png --width 400 --height 400 --quiet
+	$(BUILDDIR)/rad_cli examples/gallery.obj -o docs/gallery.png --width 400 --height 300 --quiet
 
 # ---- installing ----------------------------------------------------------------
 # make install-lib: the libraries, headers and pkg-config files (rad, rad_float) alone;
