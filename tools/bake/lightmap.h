@@ -16,11 +16,12 @@
  *
  * Texels: every texel that a polygon's projection touches is covered (the square and
  * the triangle overlap: separating axes), and so is the ring of texels around them;
- * each is gathered once at a sample point: the point of its chart nearest the texel's
- * centre, moved 1/8 texel (at least 2^-12 of the scene's extent) in from the chart's
- * boundary edges, lifted off the plane by 2^-12 of the extent. Then four short rays
- * along the plane (3/4 texel) look for a back face: a sample that meets one first is
- * inside geometry (a box on the floor, a thick wall through it) and moves out past it.
+ * each has a sample point (where it is gathered, once, unless the bake interpolates
+ * it: below): the point of its chart nearest the texel's centre, moved 1/8 texel (at
+ * least 2^-12 of the scene's extent) in from the chart's boundary edges, lifted off the
+ * plane by 2^-12 of the extent. Then four short rays along the plane (3/4 texel) look
+ * for a back face: a sample that meets one first is inside geometry (a box on the
+ * floor, a thick wall through it) and moves out past it.
  * Gathering the ring (rather than dilating into it) puts values of the surface's own
  * edge under a bilinear lookup there, from either side of a seam. Texels of a
  * rectangle left over (a concave chart's) get the mean of their filled neighbours,
@@ -36,8 +37,10 @@
  * polygon and whose corners' channel sums lie within TOL of the largest is filled by
  * bilinear interpolation of its corners; any other block gathers its edges' midpoints
  * and centre and splits in four, down to blocks of one texel (every texel gathered).
- * So texels near boundaries, geometry and the ring are gathered, and the light between
- * gathered texels 2 apart varies by at most TOL where it is interpolated. A pass's
+ * So texels near boundaries, geometry and the ring are gathered; where the bake
+ * interpolates, the block's gathered corners (4 or 2 texels apart) agree within TOL,
+ * and a feature narrower than a block that no corner sees (a thin shadow) is missed,
+ * as in any irradiance cache. A pass's
  * decisions depend only on the values gathered before it: any split of each pass's
  * gathers over threads gives the same bits. A tolerance of 0 gathers every texel.
  *
