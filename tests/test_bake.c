@@ -477,7 +477,8 @@ static void test_lightmap_adaptive(void **state)
             same &= !memcmp(&ad.rgb[3 * i], &ex.rgb[3 * i], 3 * sizeof *ad.rgb);
             continue;
         }
-        CHECK_THAT(ad.state[i] & LM_LERPED, "texel %d,%d gathered or interpolated", (int)(i % ex.size), (int)(i / ex.size));
+        CHECK_THAT(ad.state[i] & LM_LERPED, "texel %d,%d gathered or interpolated", (int)(i % ex.size),
+                   (int)(i / ex.size));
         for (k = 0; k < 3; k++) {
             top = fmax(top, ex.rgb[3 * i + k]);
             d = fmax(d, fabs(ad.rgb[3 * i + k] - ex.rgb[3 * i + k]));
@@ -489,8 +490,8 @@ static void test_lightmap_adaptive(void **state)
     }
     rms = sqrt(sq / (lerped ? lerped : 1));
     printf("lightmap adaptive (tolerance %g) against every texel: %d of %d texels gathered (%.1f%%), %d interpolated: "
-           "worst %.2f%%, rms %.2f%% (bounds 7%%, 1%%; gathered at most 90%%)\n", LM_TOL, na, ne, 100.0 * na / ne, lerped, 100.0 * worst,
-           100.0 * rms);
+           "worst %.2f%%, rms %.2f%% (bounds 7%%, 1%%; gathered at most 90%%)\n",
+           LM_TOL, na, ne, 100.0 * na / ne, lerped, 100.0 * worst, 100.0 * rms);
     CHECK_INT_EQ(ne, covered, "the every-texel bake's gathers: the covered texels");
     CHECK_INT_EQ(na + lerped, covered, "texels gathered or interpolated");
     CHECK_THAT(same, "the texels both bakes gather: the same bits");
@@ -744,6 +745,9 @@ static void test_cli_bake(void **state)
     (void)state;
     CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)", err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-size wants a whole number from 1 to 8192", "the message");
+    free(err);
+    CHECK_INT_EQ(cli("--lightmap-tol 1.5", &err), 2, "exit status of --lightmap-tol 1.5 (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-tol wants a number in [0, 1]", "the message");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
     CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");

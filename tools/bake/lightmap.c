@@ -610,7 +610,8 @@ static void interpolate(lm_atlas *a, const lm_chart *c, int x, int y, int b)
             double u = (double)i / b, v = (double)j / b;
             if (a->state[at] & (LM_WANT | LM_GATHERED)) continue;
             for (k = 0; k < 3; k++)
-                a->rgb[3 * at + k] = (float)((1 - v) * ((1 - u) * e00[k] + u * e10[k]) + v * ((1 - u) * e01[k] + u * e11[k]));
+                a->rgb[3 * at + k] =
+                    (float)((1 - v) * ((1 - u) * e00[k] + u * e10[k]) + v * ((1 - u) * e01[k] + u * e11[k]));
             a->state[at] |= LM_LERPED;
         }
 }
@@ -636,7 +637,8 @@ static long split_blocks(lm_atlas *a, int b)
                     for (i = 0; i <= b; i += h > 1 ? h : 1) n += want(a, c, x + i, y + j);
                 for (j = 0; h > 1 && j < b; j += h)
                     for (i = 0; i < b; i += h)
-                        if (x + i < c->w && y + j < c->h) a->block[(size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i)] = (unsigned char)h;
+                        if (x + i < c->w && y + j < c->h)
+                            a->block[(size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i)] = (unsigned char)h;
             }
     }
     return n;
