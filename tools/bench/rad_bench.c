@@ -679,18 +679,37 @@ static void dir_of(const char *path, char *out, size_t n)
 }
 
 /* The programs of the peer table: rad_cli to 0.01 and 0.001 at its defaults, rpkCpp,
- * then rad_cli to 0.001 with coarse shots, and both at the bench's element edge 0.08. */
-#define PEER_CMDS 6
+ * then every shot at 128 (rad_cli's default before coarse shots), and at the bench's
+ * element edge 0.08 the defaults, every shot at 128 and coarse shots from res 256. */
+#define PEER_CMDS 7
 #define PEER_RPK  2
 
-/* Coarse shots as the bench measures them (rad_config_t.coarse): the emitters' shots at
- * res 192, the others at 96, 48 and 24 as the unshot fraction falls below 1, 1/8 and
- * 1/64 (chosen on CornellBox-Original: more accurate than every shot at 128, below
- * half its time; see the peer table's accuracy column). */
-#define COARSE_RES   192
-#define COARSE_FRAC  1.0
-#define COARSE_FLOOR 24
-#define COARSE_FLAGS "--res", "192", "--coarse", "1", "--coarse-res", "24"
+/* rad_cli's defaults (tools/cli/cli.h CLI_RES, CLI_COARSE; cli_shot_settings): the
+ * emitters' shots at res 192, the others at 96, 48 and 24 as the unshot fraction falls
+ * below 1, 1/8 and 1/64 (chosen on CornellBox-Original: more accurate than every shot
+ * at 128, about half its time; see the peer table's accuracy column). */
+#define CLI_RES      192
+#define CLI_COARSE   1.0
+#define CLI_FLOOR    24
+
+/* Each rad_cli row of the peer table as the solver's settings: its tolerance, element
+ * edge (0: rad_cli's default), res, coarse fraction and floor, and its flags. */
+typedef struct {
+    double tol, edge;
+    int res;
+    double coarse;
+    int coarse_res;
+    const char *flags;
+} peer_row_t;
+
+static const peer_row_t peer_rows[PEER_CMDS] = {
+    {0.01, 0, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.01"},
+    {0.001, 0, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.001"},
+    {0, 0, 0, 0, 0, NULL}, /* rpkCpp */
+    {0.001, 0, 128, 0, 0, "--tol 0.001 --res 128 --coarse 0"},
+    {0.001, 0.08, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.001 --max-element 0.08"},
+    {0.001, 0.08, 128, 0, 0, "--tol 0.001 --max-element 0.08 --res 128 --coarse 0"},
+    {0.001, 0.08, 256, 2, 32, "--tol 0.001 --max-element 0.08 --res 256 --coarse 2"}};
 
 typedef struct {
     char why[3072];                        /* empty when measured; else why not */
@@ -730,16 +749,9 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
 {
     const char *root = getenv("RAD_PEER_RPK");
     char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
-    char *cmd[PEER_CMDS][24] = {
-        {cli, (char *)scene, "--tol", "0.01", "--width", "64", "--height", "64", "-o", png, NULL},
-        {cli, (char *)scene, "--tol", "0.001", "--width", "64", "--height", "64", "-o", png, NULL},
-        {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none", "-iterations", "30",
-         mgf, NULL},
-        {cli, (char *)scene, "--tol", "0.001", COARSE_FLAGS, "--width", "64", "--height", "64", "-o", png, NULL},
-        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", "--width", "64", "--height", "64", "-o", png,
-         NULL},
-        {cli, (char *)scene, "--tol", "0.001", "--max-element", "0.08", COARSE_FLAGS, "--width", "64", "--height",
-         "64", "-o", png, NULL}};
+    char *cmd[PEER_CMDS][24], words[PEER_CMDS][128];
+    char *rpk_cmd[] = {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none",
+                       "-iterations", "30", mgf, NULL};
     double t[PEER_CMDS][PEER_RUNS], c[PEER_CMDS][PEER_RUNS], r[PEER_CMDS][PEER_RUNS], rc[PEER_CMDS][PEER_RUNS];
     int i, k;
     memset(pr, 0, sizeof *pr);
@@ -756,6 +768,20 @@ static void peer_bench(const char *self, const char *scene, peer_t *pr)
     if (!is_file(cli)) { snprintf(pr->why, sizeof pr->why, "no %s", cli); return; }
     if (!is_file(scene)) { snprintf(pr->why, sizeof pr->why, "no %s", scene); return; }
     if (peer_scene(scene, mgf, pr) < 0) return;
+    for (k = 0; k < PEER_CMDS; k++) {
+        char *w, *save = NULL;
+        int j = 2;
+        if (k == PEER_RPK) {
+            memcpy(cmd[k], rpk_cmd, sizeof rpk_cmd);
+            continue;
+        }
+        cmd[k][0] = cli;
+        cmd[k][1] = (char *)scene;
+        snprintf(words[k], sizeof words[k], "%s --width 64 --height 64 -o", peer_rows[k].flags);
+        for (w = strtok_r(words[k], " ", &save); w; w = strtok_r(NULL, " ", &save)) cmd[k][j++] = w;
+        cmd[k][j++] = png;
+        cmd[k][j] = NULL;
+    }
     fprintf(stderr, "rad_bench: rad_cli against rpkCpp, %d rounds ...\n", PEER_RUNS);
     for (i = 0; i < PEER_RUNS; i++)
         for (k = 0; k < PEER_CMDS; k++) {
@@ -828,12 +854,12 @@ static sc_solver *solved(const bscene *sc, const sc_opts *o, double tol)
     return s;
 }
 
-/* The coarse shots' settings over O. */
-static sc_opts coarse_opts(sc_opts o)
+/* O with peer row ROW's res and coarse shots (rad_cli's defaults, or a row's flags). */
+static sc_opts row_opts(sc_opts o, const peer_row_t *row)
 {
-    o.res = COARSE_RES;
-    o.coarse = COARSE_FRAC;
-    o.coarse_res = COARSE_FLOOR;
+    o.res = row->res;
+    o.coarse = row->coarse;
+    o.coarse_res = row->coarse_res;
     return o;
 }
 
@@ -844,7 +870,6 @@ static void peer_accuracy(const char *scene, peer_t *pr)
 {
     static const double floor[2] = {0.1, 0.01};
     static const double edge[2] = {0, 0.08}; /* rad_cli's default, the bench's */
-    static const int rows[2][2] = {{1, 3}, {4, 5}};
     bscene sc;
     int m, k;
     memset(&sc, 0, sizeof sc);
@@ -852,23 +877,22 @@ static void peer_accuracy(const char *scene, peer_t *pr)
     sc.name = scene;
     if (!sc.polys) return;
     for (m = 0; m < 2; m++) {
-        sc_opts o = {0}, v[2];
+        sc_opts o = {0};
         sc_solver *ref;
         o.max_element = edge[m];
         o.res = 512;
         fprintf(stderr, "rad_bench: the res-512 reference (element edge %s) ...\n", m ? "0.08" : "default");
         ref = solved(&sc, &o, 1e-4);
-        v[0] = o;
-        v[0].res = 128;
-        v[1] = coarse_opts(v[0]);
-        for (k = 0; k < 2 + (m == 0); k++) {
-            int row = k < 2 ? rows[m][k] : 0;
-            sc_solver *a = solved(&sc, &v[k < 2 ? k : 0], row == 0 ? 0.01 : 0.001);
+        for (k = 0; k < PEER_CMDS; k++) {
+            sc_opts v = row_opts(o, &peer_rows[k]);
+            sc_solver *a;
             sc_stats st;
-            element_accuracy(&sc, ref, a, floor, pr->rms[row], pr->max[row]);
+            if (k == PEER_RPK || peer_rows[k].edge != edge[m]) continue;
+            a = solved(&sc, &v, peer_rows[k].tol);
+            element_accuracy(&sc, ref, a, floor, pr->rms[k], pr->max[k]);
             sc_get_stats(a, &st);
-            pr->elements[row] = st.elements;
-            pr->bytes[row] = st.pool_bytes + st.work_bytes;
+            pr->elements[k] = st.elements;
+            pr->bytes[k] = st.pool_bytes + st.work_bytes;
             sc_destroy(a);
         }
         sc_destroy(ref);
@@ -887,23 +911,22 @@ static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
     if (p->why[0]) {
         out(rp, "Not measured: %s.\n", p->why);
     } else {
-        static const char *nm[PEER_CMDS] = {
-            "rad_cli --tol 0.01", "rad_cli --tol 0.001", "rpkCpp Galerkin",
-            "rad_cli --tol 0.001 --res 192 --coarse 1 --coarse-res 24", "rad_cli --tol 0.001 --max-element 0.08",
-            "rad_cli --tol 0.001 --max-element 0.08 --res 192 --coarse 1 --coarse-res 24"};
         int k;
         out(rp, "The accuracy column: each rad row solved again in this process (the same bits), per element "
             "against a solve of its mesh at res 512 to an unshot fraction of 1e-4, relative error of r + g + b "
             "(with the ambient term) over the non-emitting elements above 10%% (and 1%%) of the brightest: rms / "
-            "max. `--coarse 1 --coarse-res 24 --res 192`: the emitters' shots at 192, the others at 96, 48, 24 "
-            "as the unshot fraction falls below 1, 1/8, 1/64.\n\n"
+            "max. rad_cli's defaults: the emitters' shots at res 192, the others at 96, 48, 24 as the unshot "
+            "fraction falls below 1, 1/8, 1/64 (`--res 192 --coarse 1 --coarse-res 24`); `--res 128 --coarse 0`: "
+            "every shot at 128, the defaults before; `--res 256 --coarse 2`: 256, then 128, 64, 32 below 2, 1/4, "
+            "1/32.\n\n"
             "| program | elements | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB | pools + "
             "work MB | accuracy >10%%: rms / max | >1%%: rms / max |\n"
             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (k = 0; k < PEER_CMDS; k++) {
-            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""};
+            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""}, nm[160] = "rpkCpp Galerkin";
             int j;
             if (k != PEER_RPK) {
+                snprintf(nm, sizeof nm, "rad_cli %s", peer_rows[k].flags);
                 snprintf(a, sizeof a, "%.2f", p->ratio[k]);
                 snprintf(b, sizeof b, "%.2f", p->cpu_ratio[k]);
             }
@@ -913,7 +936,7 @@ static void report_peers(report_t *rp, const peer_t *p, const brun *fx)
                 for (j = 0; j < 2; j++)
                     snprintf(acc[j], sizeof acc[j], "%.2f%% / %.2f%%", 100 * p->rms[k][j], 100 * p->max[k][j]);
             }
-            out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm[k], n, p->t[k], a, p->cpu[k],
+            out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm, n, p->t[k], a, p->cpu[k],
                 b, p->kb[k] / 1024.0, mb, acc[0], acc[1]);
         }
     }
@@ -1026,41 +1049,55 @@ static void report_large(report_t *rp)
     free(sc.polys);
 }
 
-/* Coarse shots on the generated hall: the default settings and HALL_COARSE solved side
- * by side in this process (shot by shot, fixed build, the default's bits are those of
- * the build before coarse shots), and each against a res-512 solve to 1e-4. */
-static void report_hall_coarse(report_t *rp, const bscene *sc, const sc_opts *variant, const char *flags)
+/* Coarse shots on the generated hall: every shot at res 128 (the scene's settings, the
+ * bits of the build before coarse shots) against peer rows 1 (rad_cli's defaults) and
+ * 6 (res 256, coarse 2), each pair solved side by side in this process (shot by shot,
+ * fixed build), and each against a res-512 solve to 1e-4. */
+static void report_hall_coarse(report_t *rp, const bscene *sc)
 {
     static const double floor[2] = {0.1, 0.01};
+    static const int rows[2] = {1, 6};
     const build_t *b[2] = {&builds[0], &builds[0]};
-    sc_opts o[2], r512 = scene_opts(sc);
-    brun run[2];
-    double rms[2][2], mx[2][2];
+    sc_opts o[3], r512 = scene_opts(sc);
+    brun run[2][2];
+    double rms[3][2], mx[3][2];
     sc_solver *ref;
     int k;
     fprintf(stderr, "rad_bench: coarse shots on the hall ...\n");
     o[0] = scene_opts(sc);
-    o[1] = *variant;
-    interleaved(sc, b, o, sc->runs, run);
+    for (k = 0; k < 2; k++) {
+        sc_opts pair[2];
+        o[k + 1] = row_opts(o[0], &peer_rows[rows[k]]);
+        pair[0] = o[0];
+        pair[1] = o[k + 1];
+        interleaved(sc, b, pair, sc->runs, run[k]);
+    }
     r512.res = 512;
     ref = solved(sc, &r512, 1e-4);
-    for (k = 0; k < 2; k++) {
+    for (k = 0; k < 3; k++) {
         sc_solver *a = solved(sc, &o[k], 0.001);
         element_accuracy(sc, ref, a, floor, rms[k], mx[k]);
         sc_destroy(a);
     }
     sc_destroy(ref);
-    out(rp, "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one core: the default "
-        "(res 128) and `%s` solved side by side to 0.001 in this process, one shot of each in turn, median of %d; "
-        "accuracy per element against a res-512 solve to 1e-4 of the same mesh, as in the peer table:\n\n"
-        "| settings | shots | s to 0.001 | time / default | pools + work MB | accuracy >10%%: rms / max | "
+    out(rp, "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one core: every shot at "
+        "res 128 (`--res 128 --coarse 0`) against rad_cli's defaults and against `--res 256 --coarse 2`, each "
+        "pair solved side by side to 0.001 in this process, one shot of each in turn, median of %d (time / res "
+        "128 is that pair's ratio); accuracy per element against a res-512 solve to 1e-4 of the same mesh, as in "
+        "the peer table:\n\n"
+        "| settings | shots | s to 0.001 | time / res 128 | pools + work MB | accuracy >10%%: rms / max | "
         ">1%%: rms / max |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-        run[0].elements, run[0].patches, flags, sc->runs);
-    for (k = 0; k < 2; k++)
-        out(rp, "| %s | %d | %.3f | %.2f | %.2f | %.2f%% / %.2f%% | %.2f%% / %.2f%% |\n", k ? flags : "default",
-            run[k].all_shots, run[k].total, run[k].total / run[0].total, run[k].bytes / 1048576.0, 100 * rms[k][0],
+        run[0][0].elements, run[0][0].patches, sc->runs);
+    for (k = 0; k < 3; k++) {
+        const brun *r = k ? &run[k - 1][1] : &run[0][0];
+        out(rp, "| %s | %d | %.3f | %.2f | %.2f | %.2f%% / %.2f%% | %.2f%% / %.2f%% |\n",
+            k == 0   ? "`--res 128 --coarse 0`"
+            : k == 1 ? "rad_cli's defaults (res 192, coarse 1)"
+                     : "`--res 256 --coarse 2`",
+            r->all_shots, r->total, k ? r->total / run[k - 1][0].total : 1.0, r->bytes / 1048576.0, 100 * rms[k][0],
             100 * mx[k][0], 100 * rms[k][1], 100 * mx[k][1]);
-    for (k = 0; k < 2; k++) run_free(&run[k]);
+    }
+    for (k = 0; k < 4; k++) run_free(&run[k / 2][k % 2]);
 }
 
 /* This thread's processor time, seconds. */
@@ -1076,10 +1113,9 @@ static double thread_cpu(void)
  * call timed on the thread's processor clock. Returns the serial time over the
  * critical path (the serial calls plus the longer part of each stage): the 2-thread
  * speed-up with no waiting and no other process. */
-static double parallel_bound(const bscene *sc)
+static double parallel_bound(const bscene *sc, const sc_opts *o)
 {
-    sc_opts o = scene_opts(sc);
-    sc_solver *h = fixed_solver(sc, sc->polys, &o);
+    sc_solver *h = fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
     size_t bytes = RAD_PART_BYTES(s->cfg.res);
     void *bufs[2] = {malloc(bytes), malloc(bytes)};
@@ -1118,14 +1154,13 @@ static double parallel_bound(const bscene *sc)
 
 /* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
  * results differ in a bit. */
-static void parallel_times(const bscene *sc, double *m1, double *m2)
+static void parallel_times(const bscene *sc, const sc_opts *o, double *m1, double *m2)
 {
     double t1[3], t2[3];
     int rep;
     for (rep = 0; rep < 3; rep++) {
-        sc_opts o = scene_opts(sc);
-        sc_solver *a = fixed_solver(sc, sc->polys, &o);
-        sc_solver *b = fixed_solver(sc, sc->polys, &o);
+        sc_solver *a = fixed_solver(sc, sc->polys, o);
+        sc_solver *b = fixed_solver(sc, sc->polys, o);
         double t0;
         t0 = host_now();
         sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
@@ -1151,15 +1186,21 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
         "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
         "thread. The bound is what two free cores could give whatever the load: each stage's two parts timed "
         "on one thread's processor clock, the serial time over the critical path (the calls between the "
-        "stages plus each stage's longer part):\n\n| scene | elements | 1 thread s | 2 threads s | speed-up | "
-        "load average | bound |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "stages plus each stage's longer part); each scene at res 128 and at rad_cli's defaults (res 192, coarse "
+        "shots):\n\n| scene | settings | elements | 1 thread s | 2 threads s | speed-up | load average | bound |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
-        double m1, m2, load = -1;
+        int k;
         if (scenes[i].big) continue; /* too long to repeat */
-        parallel_times(&scenes[i], &m1, &m2);
-        if (getloadavg(&load, 1) != 1) load = -1;
-        out(rp, "| %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", scenes[i].name, fx[i].elements, m1, m2, m1 / m2,
-            load, parallel_bound(&scenes[i]));
+        for (k = 0; k < 2; k++) {
+            sc_opts o = k ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
+            double m1, m2, load = -1;
+            parallel_times(&scenes[i], &o, &m1, &m2);
+            if (getloadavg(&load, 1) != 1) load = -1;
+            out(rp, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
+                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m1, m2, m1 / m2, load,
+                parallel_bound(&scenes[i], &o));
+        }
     }
 }
 
@@ -1470,7 +1511,7 @@ static void tex_shots(const char *dir, texbench_t *tb)
     for (v = 0; v < 3; v++) {
         obj_scene sc;
         tex_image maps[TEX_MAPS + 1];
-        sc_opts o = {.max_element = 0.08, .max_patch = 0.32, .res = 128};
+        sc_opts o = row_opts((sc_opts){.max_element = 0.08, .max_patch = 0.32}, &peer_rows[1]); /* rad_cli's */
         char path[600], err[256];
         sc_poly *p;
         sc_solver *s;
@@ -1559,8 +1600,8 @@ static void report_textures(report_t *rp, const char *self)
     int k, v;
     tex_bench(self, &tb);
     out(rp, "\nTextures: a generated room of 2 m (six walls and a block, each with a %d x %d PNG map_Kd of its own, "
-        "the walls' twice across; a lamp), `rad_cli --max-element 0.08` (fixed build, res 128), whole processes "
-        "in turn, %d rounds: medians of wall and processor (user + system) time and of each round's ratio (the "
+        "the walls' twice across; a lamp), `rad_cli --max-element 0.08` (fixed build, its defaults: res 192, coarse "
+        "shots), whole processes in turn, %d rounds: medians of wall and processor (user + system) time and of each round's ratio (the "
         "run with the maps over this one). The maps change the light, so "
         "`--no-textures` solves another scene; the third run gives every face the reflectance the maps give it as "
         "Kd: the same solve without loading or sampling a map. ", TEX_SIDE, TEX_SIDE, TEX_RUNS);
@@ -1628,10 +1669,7 @@ int main(int argc, char **argv)
     report_large(&rp);
     report_textures(&rp, argv[0]);
     report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
-    {
-        sc_opts v = coarse_opts(scene_opts(&scenes[ns - 1]));
-        report_hall_coarse(&rp, &scenes[ns - 1], &v, "--res 192 --coarse 1 --coarse-res 24");
-    }
+    report_hall_coarse(&rp, &scenes[ns - 1]);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

@@ -37,6 +37,13 @@
 #define CLI_EXIT_WARNED 3   /* outputs written, but not converged or saturated */
 
 #define MAX_VIEWS 4096
+
+/* rad_cli's hemi-cube defaults (cli_shot_settings; tools/bench/rad_bench.c measures
+ * them as CLI_FLAGS): res, coarse shots below an unshot fraction of CLI_COARSE; with
+ * stored rows, CLI_ROWS_RES and no coarse shots. */
+#define CLI_RES      192
+#define CLI_COARSE   1.0
+#define CLI_ROWS_RES 128
 /* The largest emission channel accepted: the OBJ loader's limit on any number, now also
  * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
  * below 32768 with that emission at 256; past it values saturate, and are reported),
@@ -72,7 +79,7 @@ typedef struct {
     sc_camera pending;
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
     double tol, exposure, max_patch, max_element;
-    double coarse;                  /* --coarse (0: never), --coarse-res (0: res / 4) */
+    double coarse;                  /* --coarse (0: never; -1: not given), --coarse-res (0: not given) */
     int coarse_res;
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
@@ -97,6 +104,8 @@ typedef struct {
     int lightmap_size, gather_res, probe_dims[3], probes;
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
 } opts_t;
+
+void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);
 
 typedef struct {
     float *img;

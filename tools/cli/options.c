@@ -276,11 +276,11 @@ static const option_t options[] = {
      "for small lamps): shadows sharper than the elements; also the\n"
      "lightmap's and probes' gather resolution (32 without it)", opt_gather},
     SECTION("solver:"),
-    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (128)", opt_res},
+    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (192; 128 with stored rows)", opt_res},
     {"--coarse", NULL, "F",
      "once the unshot fraction is below F, shots (but the emitters' own\n"
-     "light) render at res / 2, below F / 8 at res / 4, ... (0: never)", opt_coarse},
-    {"--coarse-res", NULL, "N", "the least resolution of a coarse shot (res / 4)", opt_coarse_res},
+     "light) render at res / 2, below F / 8 at res / 4, ... (1; 0: never)", opt_coarse},
+    {"--coarse-res", NULL, "N", "the least resolution of a coarse shot (res / 8, at least 24)", opt_coarse_res},
     {"--max-patch", NULL, "L", "longest patch edge (4 x the element edge)", opt_max_patch},
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
@@ -402,6 +402,25 @@ static void check_combinations(opts_t *o)
     }
 }
 
+/* The hemi-cube settings of a run: res 192 and coarse shots by default, so that the
+ * direct light, which the emitters' own shots carry, is drawn finer than the late shots
+ * that move little (README, Coarse shots: on CornellBox-Original more accurate than
+ * every shot at 128, in about half the time). Stored rows (ROWS) are every patch's row
+ * at res, so there the default stays 128 and nothing coarsens. */
+void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)
+{
+    so->res = o->res ? o->res : rows ? CLI_ROWS_RES : CLI_RES;
+    so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : CLI_COARSE;
+    /* res / 8 made even, but not below 24 (a cube of 8 or 16 misses whole surfaces): a
+     * res of 24 or less never coarsens */
+    so->coarse_res = o->coarse_res;
+    if (!so->coarse_res) {
+        so->coarse_res = so->res / 16 * 2;
+        if (so->coarse_res < 24) so->coarse_res = 24;
+        if (so->coarse_res > so->res) so->coarse_res = so->res;
+    }
+}
+
 static void set_defaults(opts_t *o, int argc)
 {
     memset(o, 0, sizeof *o);
@@ -409,6 +428,7 @@ static void set_defaults(opts_t *o, int argc)
     o->tol = 0.001;
     o->max_shots = 1000000;
     o->threads = 1;
+    o->coarse = -1; /* not given: cli_shot_settings */
     o->lightmap_tol = LM_TOL;
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);

@@ -347,10 +347,8 @@ static int build_step(run_t *r)
     memset(&r->so, 0, sizeof r->so);
     r->so.max_patch = o->max_patch;
     r->so.max_element = o->max_element;
-    r->so.res = o->res ? o->res : 128; /* 64 aliases visibly on elements a few pixels wide */
+    cli_shot_settings(o, r->rows_mode, &r->so);
     r->so.no_overshoot = o->no_overshoot;
-    r->so.coarse = o->coarse;
-    r->so.coarse_res = o->coarse_res;
     r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
     r->polys = polys; /* kept for --export-gltf */
     r->npolys = npolys;
@@ -467,7 +465,8 @@ static void print_stats(const run_t *r)
     printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
     printf("overshoot back-offs %lu\n", st->backoffs);
     if (r->ot.fg) printf("final gather: resolution %d, %ld pixel gathers\n", o->gather_res, r->ot.gathers);
-    printf("coarse shots %lu\n", st->coarse_shots);
+    printf("coarse shots %lu (below an unshot fraction of %g, down to res %d)\n", st->coarse_shots, r->so.coarse,
+           r->so.coarse_res);
     if (r->rows_mode) print_rows_stats(r);
     printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
     printf("exposure %.9g (%s%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view",
