@@ -20,6 +20,7 @@
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "formats/hdr.h"
+#include "host/obj_polys.h"
 #include "host/scene.h"
 #include "reference/reference.h"
 
@@ -213,23 +214,34 @@ static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb
     return sc_gather(b->g, p, n, 1, rgb);
 }
 
-/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES). */
-static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
+/* Builds and bakes A over solver S's solution (SIZE texels a side, gather resolution
+ * RES, adaptive tolerance TOL): the gathers done. */
+static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int res, double tol, lm_atlas *a)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
-    lm_opts lo = {size, 0.0, 0};
+    lm_opts lo = {size, 0.0, 0, tol};
     char err[256] = "";
     baker b = {NULL, NULL, 0};
-    b.s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
-    assert_non_null(b.s);
-    sc_solve(b.s, 100000, 1e-4, NULL, NULL);
-    b.g = sc_gatherer_new(b.s, res, 0);
+    b.s = s;
+    b.g = sc_gatherer_new(s, res, 0);
     assert_non_null(b.g);
     CHECK_INT_EQ(lm_build(a, polys, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
     CHECK_INT_EQ(lm_bake(a, gather_cb, &b), 0, "lm_bake");
     CHECK_INT_EQ(sc_gatherer_saturations(b.g), 0, "values saturated in the gathers");
     sc_gatherer_free(b.g);
-    sc_destroy(b.s);
+    return b.calls;
+}
+
+/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES) at
+ * the default tolerance. */
+static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
+{
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    char err[256] = "";
+    sc_solver *s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 100000, 1e-4, NULL, NULL);
+    bake_atlas(s, polys, n, size, res, LM_TOL, a);
+    sc_destroy(s);
 }
 
 /* Lambert's point-to-polygon form factor from P (normal +y) to polygon Q: Q in the
@@ -422,13 +434,82 @@ static void test_lightmap_no_leaks(void **state)
     lm_free(&a);
 }
 
+static int cube(sc_poly *q, double lo, double hi, int inward, double emit);
+
+/* Adaptive gathering against gathering every texel, over one solution: a floor of
+ * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
+ * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,
+ * its contact with the floor and the light's fall-off towards the floor's edges. Every
+ * texel the adaptive bake gathers has the every-texel bake's bits (the same sample,
+ * the same gather); the others, interpolated, are compared per texel (the largest
+ * channel difference over the exact texel's largest channel). Measured: 86% of the
+ * texels gathered (a small atlas: most blocks touch a boundary, the box or the ring),
+ * the interpolated within 4.98%, rms 0.51%; the bounds leave a margin over that. Part
+ * of what is measured is the every-texel bake's own noise: the cube's pixels that the
+ * emitter's outline covers change from texel to texel, and interpolation keeps only the
+ * corners' share of it. */
+static void test_lightmap_adaptive(void **state)
+{
+    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    char err[256] = "";
+    lm_atlas ex, ad;
+    sc_poly polys[8];
+    sc_solver *s;
+    int ne, na, covered = 0, lerped = 0, same = 1;
+    size_t i;
+    double worst = 0.0, sq = 0.0, rms;
+    (void)state;
+    polys[0] = flat(-2, 2, -2, 2, 0, 1, 0.5, 0.0);
+    polys[1] = flat(-1, 1, -1, 1, 2, 0, 0.0, 1.0);
+    cube(polys + 2, 0.0, 0.6, 0, 0.0);
+    for (i = 2; i < 8; i++) polys[i].rho[0] = polys[i].rho[1] = polys[i].rho[2] = 0.5;
+    s = sc_create(polys, 8, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 100000, 1e-4, NULL, NULL);
+    ne = bake_atlas(s, polys, 8, 128, 32, 0.0, &ex);
+    na = bake_atlas(s, polys, 8, 128, 32, LM_TOL, &ad);
+    for (i = 0; i < (size_t)ex.size * ex.size; i++) {
+        double top = 0.0, d = 0.0;
+        int k;
+        if (isnan(ex.sample[2 * i])) continue;
+        covered++;
+        if (ad.state[i] & LM_GATHERED) {
+            same &= !memcmp(&ad.rgb[3 * i], &ex.rgb[3 * i], 3 * sizeof *ad.rgb);
+            continue;
+        }
+        CHECK_THAT(ad.state[i] & LM_LERPED, "texel %d,%d gathered or interpolated", (int)(i % ex.size),
+                   (int)(i / ex.size));
+        for (k = 0; k < 3; k++) {
+            top = fmax(top, ex.rgb[3 * i + k]);
+            d = fmax(d, fabs(ad.rgb[3 * i + k] - ex.rgb[3 * i + k]));
+        }
+        d = top > 0.0 ? d / top : d;
+        worst = fmax(worst, d);
+        sq += d * d;
+        lerped++;
+    }
+    rms = sqrt(sq / (lerped ? lerped : 1));
+    printf("lightmap adaptive (tolerance %g) against every texel: %d of %d texels gathered (%.1f%%), %d interpolated: "
+           "worst %.2f%%, rms %.2f%% (bounds 7%%, 1%%; gathered at most 90%%)\n",
+           LM_TOL, na, ne, 100.0 * na / ne, lerped, 100.0 * worst, 100.0 * rms);
+    CHECK_INT_EQ(ne, covered, "the every-texel bake's gathers: the covered texels");
+    CHECK_INT_EQ(na + lerped, covered, "texels gathered or interpolated");
+    CHECK_THAT(same, "the texels both bakes gather: the same bits");
+    CHECK_LE(worst, 0.07, "the worst interpolated texel's error");
+    CHECK_LE(rms, 0.01, "the interpolated texels' rms error");
+    CHECK_LE(na, 0.9 * ne, "texels gathered of the every-texel bake's");
+    lm_free(&ex);
+    lm_free(&ad);
+    sc_destroy(s);
+}
+
 /* Packing: the charts' rectangles lie inside the atlas and PADDING apart; every
  * polygon's vertices inside its rectangle's ring; every point of a polygon (a lattice
  * of 55 points inside each triangle) in a covered texel of its own chart. */
 static void test_lightmap_packing(void **state)
 {
     sc_poly polys[2 * TN * TN + 1];
-    lm_opts o = {96, 0.0, 0};
+    lm_opts o = {96, 0.0, 0, LM_TOL};
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys), i, j, k, points = 0;
@@ -481,7 +562,8 @@ static void test_lightmap_bad_sizes(void **state)
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys);
-    lm_opts zero = {0, 0.0, 0}, big = {8193, 0.0, 0}, small = {8, 0.0, 0}, fine = {64, 0.001, 0}, o64 = {64, 0.0, 0};
+    lm_opts zero = {0, 0.0, 0, LM_TOL}, big = {8193, 0.0, 0, LM_TOL}, small = {8, 0.0, 0, LM_TOL};
+    lm_opts fine = {64, 0.001, 0, LM_TOL}, o64 = {64, 0.0, 0, LM_TOL}, tol = {64, 0.0, 0, 1.5};
     (void)state;
     CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
     CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
@@ -491,6 +573,10 @@ static void test_lightmap_bad_sizes(void **state)
     CHECK_CONTAINS(err, "cannot fit 129 charts", "the message");
     CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1, "a texel of 0.001 in 64 x 64 refused");
     CHECK_CONTAINS(err, "cannot fit 129 charts at a texel of 0.001", "the message");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &tol, err, sizeof err), -1, "a tolerance of 1.5 refused");
+    CHECK_CONTAINS(err, "a lightmap tolerance of 1.5 is outside 0..1", "the message");
+    tol.tol = NAN;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &tol, err, sizeof err), -1, "a tolerance of NaN refused");
     assert_null(a.rgb);
     memset(polys, 0, sizeof polys[0]);
     polys[0].n = 3; /* three vertices at the origin */
@@ -645,9 +731,9 @@ static int cli(const char *args, char **err)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* The options: a lightmap and probes written; a size of 0 a usage error, an atlas too
- * small for the charts an error naming them before the solve, and then no file; the lightmap
- * baked on 3 threads is the same file as on one. */
+/* The options: a lightmap and probes written; a size of 0 or a tolerance above 1 a usage
+ * error, an atlas too small for the charts an error naming them before the solve, and
+ * then no file; the lightmap baked on 3 threads is the same file as on one. */
 static void test_cli_bake(void **state)
 {
     char args[1024], *err = NULL, *json = NULL, *one = NULL, *three = NULL;
@@ -659,6 +745,9 @@ static void test_cli_bake(void **state)
     (void)state;
     CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)", err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-size wants a whole number from 1 to 8192", "the message");
+    free(err);
+    CHECK_INT_EQ(cli("--lightmap-tol 1.5", &err), 2, "exit status of --lightmap-tol 1.5 (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-tol wants a number in [0, 1]", "the message");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
     CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
@@ -677,9 +766,13 @@ static void test_cli_bake(void **state)
     CHECK_INT_EQ(fio_read_all(pj, 1u << 20, &json, &len, NULL, 0), 0, "the probes read back");
     CHECK_INT_EQ(count_of(json, "{\"p\": ["), 8, "probes in the JSON");
     free(json);
-    /* On 3 threads, the same file to the bit. */
+    /* On 3 threads, the same file to the bit; at 128 texels and a tolerance of 0.2 the
+     * adaptive passes interpolate (9366 of the 11,236 texels gathered). */
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2", lm);
+    CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 1 thread (%s)", err ? err : "");
+    free(err);
     CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &one, &len, NULL, 0), 0, "the lightmap's bytes");
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --threads 3", lm);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2 --threads 3", lm);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 3 threads (%s)", err ? err : "");
     free(err);
     CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0, "the 3 threads' lightmap's bytes");
@@ -698,6 +791,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_lambert),
         cmocka_unit_test(test_lightmap_no_seams),
         cmocka_unit_test(test_lightmap_no_leaks),
+        cmocka_unit_test(test_lightmap_adaptive),
         cmocka_unit_test(test_lightmap_packing),
         cmocka_unit_test(test_lightmap_bad_sizes),
         cmocka_unit_test(test_probes_grid),

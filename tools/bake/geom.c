@@ -313,10 +313,11 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
 }
 
 double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
-                     double len, double dir[3])
+                     double len, double dir[3], double *met)
 {
     double best = HUGE_VAL, dirs[4][3];
     int k, j, found = -1;
+    if (met) *met = HUGE_VAL;
     for (k = 0; k < 3; k++) {
         dirs[0][k] = u[k];
         dirs[1][k] = -u[k];
@@ -326,6 +327,7 @@ double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const 
     for (j = 0; j < 4; j++) {
         int back = 0;
         double t = geom_grid_ray(grid, p, o, dirs[j], len, &back);
+        if (met && t < *met) *met = t;
         if (back && t < best) {
             best = t;
             found = j;

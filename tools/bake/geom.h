@@ -60,8 +60,9 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
 /* Of the four rays from P along +-U and +-V (unit, in a plane P lies just above) within
  * LEN, the one that meets a back face nearest: its distance, its direction into DIR;
  * HUGE_VAL if none does. A sample whose ray meets a back face first lies inside
- * geometry (a box on the floor, a thick wall through it): move it out past that face. */
+ * geometry (a box on the floor, a thick wall through it): move it out past that face.
+ * MET (unless NULL): the nearest face of any side the four meet, HUGE_VAL if none. */
 double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
-                     double len, double dir[3]);
+                     double len, double dir[3], double *met);
 
 #endif

@@ -284,7 +284,7 @@ static void tri_sample(const tri_t *t, const double c[2], double m, double q[2],
 /* Samples the texels of chart C within a texel of triangle T (those it touches, and
  * their ring), keeping each texel's nearest sample; BEST (the rectangle's texels)
  * holds the distances so far. */
-static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, double m, float *best)
+static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, int poly, double m, float *best)
 {
     double lo[2], hi[2];
     int i, j, k;
@@ -304,6 +304,7 @@ static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, double m,
             at = (size_t)(c->y + j) * a->size + (size_t)(c->x + i);
             a->sample[2 * at] = (float)q[0];
             a->sample[2 * at + 1] = (float)q[1];
+            a->poly[at] = poly;
         }
 }
 
@@ -333,7 +334,7 @@ static int raster_chart(lm_atlas *a, const lm_chart *c, const unsigned char *int
             t.b[0] = k == 1 && !interior[4 * p];
             t.b[1] = !interior[4 * p + k];
             t.b[2] = k + 2 == q->n && !interior[4 * p + q->n - 1];
-            raster_tri(a, c, &t, m, best);
+            raster_tri(a, c, &t, p, m, best);
         }
     }
     free(best);
@@ -351,16 +352,17 @@ static double lift_of(const lm_atlas *a) { return ldexp(a->extent, -12); }
 static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a->extent, -12)); }
 
 /* A sample whose rays along the plane meet a back face first is inside geometry: it
- * moves past the nearest such face by the margin. */
-static void push_out(lm_atlas *a, const lm_chart *c, float *st)
+ * moves past the nearest such face by the margin. 1 when the rays met no face at all. */
+static int push_out(lm_atlas *a, const lm_chart *c, float *st)
 {
-    double s[2] = {st[0], st[1]}, p[3], best, dir[3];
+    double s[2] = {st[0], st[1]}, p[3], best, dir[3], met;
     rect_point(a, c, s, lift_of(a), p);
-    best = geom_back_ray(a->grid, a->polys, p, c->u, c->v, 0.75 * a->texel, dir);
-    if (!(best < HUGE_VAL)) return;
+    best = geom_back_ray(a->grid, a->polys, p, c->u, c->v, 0.75 * a->texel, dir, &met);
+    if (!(best < HUGE_VAL)) return !(met < HUGE_VAL);
     best += margin_of(a);
     st[0] = (float)(s[0] + best / a->texel * geom_dot(dir, c->u));
     st[1] = (float)(s[1] + best / a->texel * geom_dot(dir, c->v));
+    return 0;
 }
 
 static int place_samples(lm_atlas *a, const unsigned char *interior)
@@ -374,8 +376,12 @@ static int place_samples(lm_atlas *a, const unsigned char *interior)
         if (raster_chart(a, c, interior, m) != 0) return -1;
         for (y = 0; y < c->h; y++)
             for (x = 0; x < c->w; x++) {
-                float *st = &a->sample[2 * ((size_t)(c->y + y) * a->size + (size_t)(c->x + x))];
-                if (!isnan(st[0])) push_out(a, c, st);
+                size_t at = (size_t)(c->y + y) * a->size + (size_t)(c->x + x);
+                float *st = &a->sample[2 * at];
+                /* free: no face within the rays' reach, and the sample at the centre (the
+                 * float of x + 0.5 is exact) */
+                if (!isnan(st[0]) && push_out(a, c, st) && st[0] == x + 0.5f && st[1] == y + 0.5f)
+                    a->state[at] = LM_FREE;
             }
     }
     return 0;
@@ -391,9 +397,13 @@ static int alloc_atlas(lm_atlas *a, int n)
     a->owner = malloc(t * sizeof *a->owner);
     a->sample = malloc(2 * t * sizeof *a->sample);
     a->rgb = calloc(3 * t, sizeof *a->rgb);
-    if (!a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb) return -1;
+    a->poly = malloc(t * sizeof *a->poly);
+    a->state = calloc(t, 1);
+    a->block = calloc(t, 1);
+    if (!a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb || !a->poly || !a->state || !a->block)
+        return -1;
     for (i = 0; i < t; i++) {
-        a->owner[i] = -1;
+        a->owner[i] = a->poly[i] = -1;
         a->sample[2 * i] = a->sample[2 * i + 1] = NAN;
     }
     return 0;
@@ -452,11 +462,16 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
         snprintf(err, errlen, "a lightmap size of %d is outside 1..%d", o->size, LM_MAX_SIZE);
         return -1;
     }
+    if (!(o->tol >= 0.0 && o->tol <= 1.0)) {
+        snprintf(err, errlen, "a lightmap tolerance of %g is outside 0..1", o->tol);
+        return -1;
+    }
     if (n < 1 || !(o->texel >= 0.0) || !isfinite(o->texel)) {
         snprintf(err, errlen, n < 1 ? "no polygons to bake" : "a texel size must be a positive number");
         return -1;
     }
     a->size = o->size;
+    a->tol = o->tol;
     a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : LM_PADDING;
     a->npolys = n;
     a->polys = polys;
@@ -538,11 +553,116 @@ int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
         for (x = 0; x < a->size; x++) {
             size_t i = (size_t)y * a->size + (size_t)x;
             double p[3], rgb[3];
-            if (!lm_texel_point(a, x, y, p)) continue;
+            if (!(a->state[i] & LM_WANT) || !lm_texel_point(a, x, y, p)) continue;
             if (fn(ctx, p, a->charts[a->owner[i]].n, rgb) != 0) return -1;
             for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
+            a->state[i] = (unsigned char)((a->state[i] & LM_FREE) | LM_GATHERED);
         }
     return 0;
+}
+
+/* ---- adaptive gathering: blocks ---- */
+
+/* Texel (X, Y) of chart C's rectangle, covered and not yet gathered, marked for the next
+ * pass; 1 if it was marked. */
+static long want(lm_atlas *a, const lm_chart *c, int x, int y)
+{
+    size_t at = (size_t)(c->y + y) * a->size + (size_t)(c->x + x);
+    if (x >= c->w || y >= c->h || isnan(a->sample[2 * at]) || (a->state[at] & (LM_WANT | LM_GATHERED))) return 0;
+    a->state[at] = (unsigned char)((a->state[at] & LM_FREE) | LM_WANT);
+    return 1;
+}
+
+/* The block of B texels at (X, Y) of chart C: every one of its (B + 1)^2 texels inside
+ * the rectangle, free and of one polygon, its corners gathered and their channel sums
+ * within the tolerance of the largest. */
+static int smooth(const lm_atlas *a, const lm_chart *c, int x, int y, int b)
+{
+    double lo = HUGE_VAL, hi = 0.0;
+    int i, j, k, poly = a->poly[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)];
+    if (x + b >= c->w || y + b >= c->h) return 0;
+    for (j = y; j <= y + b; j++)
+        for (i = x; i <= x + b; i++) {
+            size_t at = (size_t)(c->y + j) * a->size + (size_t)(c->x + i);
+            if (!(a->state[at] & LM_FREE) || a->poly[at] != poly) return 0;
+        }
+    for (j = y; j <= y + b; j += b)
+        for (i = x; i <= x + b; i += b) {
+            size_t at = (size_t)(c->y + j) * a->size + (size_t)(c->x + i);
+            double sum = 0.0;
+            if (!(a->state[at] & LM_GATHERED)) return 0;
+            for (k = 0; k < 3; k++) sum += a->rgb[3 * at + k];
+            lo = fmin(lo, sum);
+            hi = fmax(hi, sum);
+        }
+    return hi - lo <= a->tol * hi;
+}
+
+/* The block's texels not gathered (nor to be) take the bilinear mix of its corners. */
+static void interpolate(lm_atlas *a, const lm_chart *c, int x, int y, int b)
+{
+    const float *e00 = &a->rgb[3 * ((size_t)(c->y + y) * a->size + (size_t)(c->x + x))];
+    const float *e10 = e00 + 3 * (size_t)b, *e01 = e00 + 3 * (size_t)b * a->size, *e11 = e01 + 3 * (size_t)b;
+    int i, j, k;
+    for (j = 0; j <= b; j++)
+        for (i = 0; i <= b; i++) {
+            size_t at = (size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i);
+            double u = (double)i / b, v = (double)j / b;
+            if (a->state[at] & (LM_WANT | LM_GATHERED)) continue;
+            for (k = 0; k < 3; k++)
+                a->rgb[3 * at + k] =
+                    (float)((1 - v) * ((1 - u) * e00[k] + u * e10[k]) + v * ((1 - u) * e01[k] + u * e11[k]));
+            a->state[at] |= LM_LERPED;
+        }
+}
+
+/* Each waiting block of B texels: interpolated, or split in four (blocks of one texel:
+ * every texel marked). The texels marked. */
+static long split_blocks(lm_atlas *a, int b)
+{
+    long n = 0;
+    int ci, x, y, i, j, h = b / 2;
+    for (ci = 0; ci < a->ncharts; ci++) {
+        const lm_chart *c = &a->charts[ci];
+        for (y = 0; y < c->h; y += b)
+            for (x = 0; x < c->w; x += b) {
+                unsigned char *blk = &a->block[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)];
+                if (*blk != b) continue;
+                *blk = 0;
+                if (smooth(a, c, x, y, b)) {
+                    interpolate(a, c, x, y, b);
+                    continue;
+                }
+                for (j = 0; j <= b; j += h > 1 ? h : 1)
+                    for (i = 0; i <= b; i += h > 1 ? h : 1) n += want(a, c, x + i, y + j);
+                for (j = 0; h > 1 && j < b; j += h)
+                    for (i = 0; i < b; i += h)
+                        if (x + i < c->w && y + j < c->h)
+                            a->block[(size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i)] = (unsigned char)h;
+            }
+    }
+    return n;
+}
+
+long lm_plan(lm_atlas *a)
+{
+    long n = 0;
+    int ci, x, y;
+    if (a->pass++ == 0) {
+        for (ci = 0; ci < a->ncharts; ci++) {
+            const lm_chart *c = &a->charts[ci];
+            int step = a->tol > 0.0 ? LM_STEP : 1;
+            for (y = 0; y < c->h; y += step)
+                for (x = 0; x < c->w; x += step) {
+                    n += want(a, c, x, y);
+                    if (step > 1) a->block[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = LM_STEP;
+                }
+        }
+        a->waiting = a->tol > 0.0 ? LM_STEP : 0;
+        return n;
+    }
+    for (; n == 0 && a->waiting > 1; a->waiting /= 2) n = split_blocks(a, a->waiting);
+    return n;
 }
 
 int lm_dilate(lm_atlas *a)
@@ -559,7 +679,9 @@ int lm_dilate(lm_atlas *a)
 
 int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx)
 {
-    return lm_gather_rows(a, 0, 1, fn, ctx) == 0 ? lm_dilate(a) : -1;
+    while (lm_plan(a) > 0)
+        if (lm_gather_rows(a, 0, 1, fn, ctx) != 0) return -1;
+    return lm_dilate(a);
 }
 
 /* ---- lookups and output ---- */
@@ -699,6 +821,9 @@ void lm_free(lm_atlas *a)
     free(a->owner);
     free(a->sample);
     free(a->rgb);
+    free(a->poly);
+    free(a->state);
+    free(a->block);
     geom_grid_free(a->grid);
     memset(a, 0, sizeof *a);
 }

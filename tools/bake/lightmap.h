@@ -16,11 +16,12 @@
  *
  * Texels: every texel that a polygon's projection touches is covered (the square and
  * the triangle overlap: separating axes), and so is the ring of texels around them;
- * each is gathered once at a sample point: the point of its chart nearest the texel's
- * centre, moved 1/8 texel (at least 2^-12 of the scene's extent) in from the chart's
- * boundary edges, lifted off the plane by 2^-12 of the extent. Then four short rays
- * along the plane (3/4 texel) look for a back face: a sample that meets one first is
- * inside geometry (a box on the floor, a thick wall through it) and moves out past it.
+ * each has a sample point (where it is gathered, once, unless the bake interpolates
+ * it: below): the point of its chart nearest the texel's centre, moved 1/8 texel (at
+ * least 2^-12 of the scene's extent) in from the chart's boundary edges, lifted off the
+ * plane by 2^-12 of the extent. Then four short rays along the plane (3/4 texel) look
+ * for a back face: a sample that meets one first is inside geometry (a box on the
+ * floor, a thick wall through it) and moves out past it.
  * Gathering the ring (rather than dilating into it) puts values of the surface's own
  * edge under a bilinear lookup there, from either side of a seam. Texels of a
  * rectangle left over (a concave chart's) get the mean of their filled neighbours,
@@ -28,7 +29,23 @@
  * A texel holds E, the radiosity arriving (sc_gather's units): a surface of
  * reflectance rho there shows rho E plus its own emission.
  *
- * Memory: 24 bytes a texel (owner, sample, colour) and a few words a polygon.
+ * Adaptive gathering (a tolerance above 0): not every texel is gathered. A texel is
+ * free when its sample is its centre (not moved in from a boundary nor out of
+ * geometry) and the four rays meet no face within their 3/4 texel. Each chart's
+ * rectangle is cut into blocks of LM_STEP texels from its corner; a block's corners are
+ * gathered first (pass 1). A block whose (b + 1)^2 texels are all free and on one
+ * polygon and whose corners' channel sums lie within TOL of the largest is filled by
+ * bilinear interpolation of its corners; any other block gathers its edges' midpoints
+ * and centre and splits in four, down to blocks of one texel (every texel gathered).
+ * So texels near boundaries, geometry and the ring are gathered; where the bake
+ * interpolates, the block's gathered corners (4 or 2 texels apart) agree within TOL,
+ * and a feature narrower than a block that no corner sees (a thin shadow) is missed,
+ * as in any irradiance cache. A pass's
+ * decisions depend only on the values gathered before it: any split of each pass's
+ * gathers over threads gives the same bits. A tolerance of 0 gathers every texel.
+ *
+ * Memory: 30 bytes a texel (owner, sample, polygon, colour, state) and a few words a
+ * polygon.
  */
 #ifndef RAD_TOOLS_LIGHTMAP_H
 #define RAD_TOOLS_LIGHTMAP_H
@@ -40,6 +57,8 @@
 
 #define LM_MAX_SIZE 8192
 #define LM_PADDING 2 /* texels between rectangles, for mipmaps' first levels */
+#define LM_STEP 4    /* texels between the first pass's gathers, within a chart */
+#define LM_TOL 0.05  /* the default tolerance of the adaptive bake (tests/test_bake.c) */
 
 /* The light arriving at world point P on a surface of unit normal N, into RGB.
  * Returns 0, or nonzero to stop the bake. */
@@ -49,6 +68,7 @@ typedef struct {
     int size;      /* N: the atlas is N x N texels, 1..LM_MAX_SIZE */
     double texel;  /* world units a texel; 0: the smallest that fits */
     int padding;   /* texels between rectangles; 0: LM_PADDING, -1: none */
+    double tol;    /* adaptive gathering's tolerance, 0..1 (LM_TOL); 0: every texel */
 } lm_opts;
 
 typedef struct {
@@ -69,22 +89,36 @@ typedef struct {
     float *sample;    /* size^2 * 2: a covered texel's sample (s, t) in its rectangle,
                        * NaN when not covered */
     float *rgb;       /* size^2 * 3: the baked light, row 0 at the top */
+    int *poly;        /* size^2: the polygon of a covered texel's sample */
+    unsigned char *state; /* size^2: LM_FREE, and how the texel got its light */
+    unsigned char *block; /* size^2: the size of the block waiting with its corner here, 0: none */
+    double tol;
+    int pass, waiting; /* passes planned so far; the size of the blocks waiting */
     const sc_poly *polys;
     void *grid;       /* the polygons by cell, for the sample's rays */
 } lm_atlas;
 
 /* Charts, packing and texel samples for POLYS (kept by pointer until lm_free). Returns
- * 0, or -1 with one line in err: a size of 0 or above LM_MAX_SIZE, an atlas that cannot
- * fit (at the given texel size, or at any with too many charts), out of memory. */
+ * 0, or -1 with one line in err: a size of 0 or above LM_MAX_SIZE, a tolerance outside
+ * 0..1, an atlas that cannot fit (at the given texel size, or at any with too many
+ * charts), out of memory. */
 int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen);
 
-/* Gathers every covered texel through FN, then dilates. Returns 0, or -1 when FN
- * stopped it (the atlas then holds what was gathered, undilated). */
+/* Texel states: LM_FREE a flag (see above), and at most one of the others. */
+enum { LM_FREE = 1, LM_WANT = 2, LM_GATHERED = 4, LM_LERPED = 8 };
+
+/* Gathers the covered texels through FN (every one, or adaptively: see above), then
+ * dilates. Returns 0, or -1 when FN stopped it (the atlas then holds what was
+ * gathered, undilated) or there was no memory for the dilation. */
 int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx);
-/* lm_bake in parts: the covered texels of the rows Y with Y % STEP == FIRST (threads
- * may gather such sets at once, each through a context of its own: a texel's value
- * does not depend on which thread gathers it), then, once every row is gathered, the
- * dilation. Each returns 0, or -1 (FN stopped it; no memory for the dilation). */
+/* lm_bake in parts: while lm_plan gives a count of texels above 0 (it decides, from
+ * the texels gathered so far, which blocks are interpolated and which split, and marks
+ * the texels the next pass gathers), gather them: lm_gather_rows gathers the marked
+ * texels of the rows Y with Y % STEP == FIRST (threads may gather such sets at once,
+ * each through a context of its own: a texel's value does not depend on which thread
+ * gathers it); once lm_plan gives 0, the dilation. lm_gather_rows and lm_dilate return
+ * 0, or -1 (FN stopped it; no memory for the dilation). */
+long lm_plan(lm_atlas *a);
 int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
 int lm_dilate(lm_atlas *a);
 

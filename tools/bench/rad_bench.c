@@ -1206,7 +1206,7 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
 
 /* ---- lightmap baking ---------------------------------------------------------- */
 
-/* A lightmap bake's worker: the covered texels of rows Y % STEP == FIRST through a
+/* A lightmap bake's worker: the marked texels of rows Y % STEP == FIRST through a
  * gatherer of its own; its gathers counted and its thread's processor time. */
 typedef struct {
     lm_atlas *a;
@@ -1228,14 +1228,16 @@ static void *lm_worker(void *arg)
     lm_work *w = arg;
     double t = thread_cpu();
     if (lm_gather_rows(w->a, w->first, w->step, lm_count, w) != 0) exit(1);
-    w->cpu = thread_cpu() - t;
+    w->cpu += thread_cpu() - t;
     return NULL;
 }
 
-/* The rows Y % STEP in FIRST[0..NT-1] of A gathered at RES on NT threads at once (one
- * per set); their gathers into *N, the wall time returned, the processor time of the
- * first thread (its gathers alone) into *CPU0. */
-static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt, long *n, double *cpu0)
+/* The marked texels of the rows Y % STEP in FIRST[0..NT-1] of A gathered at RES on NT
+ * threads at once (one per set), pass by pass (lm_plan) when PLAN; their gathers into
+ * *N, the wall time returned, the processor time of the first thread a gather (its
+ * gathers alone) into *CPU0. */
+static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt, int plan, long *n,
+                      double *cpu0)
 {
     lm_work w[2];
     pthread_t th;
@@ -1246,12 +1248,16 @@ static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *f
         w[k].first = first[k];
         w[k].step = step;
         w[k].gathers = 0;
+        w[k].cpu = 0.0;
         if (!(w[k].g = sc_gatherer_new(s, res, 0))) exit(1);
     }
     t0 = host_now();
-    if (nt > 1 && pthread_create(&th, NULL, lm_worker, &w[1]) != 0) exit(1);
-    lm_worker(&w[0]);
-    if (nt > 1) pthread_join(th, NULL);
+    while (!plan || lm_plan(a) > 0) {
+        if (nt > 1 && pthread_create(&th, NULL, lm_worker, &w[1]) != 0) exit(1);
+        lm_worker(&w[0]);
+        if (nt > 1) pthread_join(th, NULL);
+        if (!plan) break;
+    }
     t0 = host_now() - t0;
     *n = 0;
     for (k = 0; k < nt; k++) {
@@ -1262,26 +1268,41 @@ static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *f
     return t0;
 }
 
+/* A laid out for SC at tolerance TOL, its first pass planned; its covered texels. */
+static long lm_layout(const bscene *sc, double tol, lm_atlas *a)
+{
+    lm_opts lo = {512, 0, 0, tol};
+    char err[512];
+    long covered = 0;
+    int x, y;
+    if (lm_build(a, sc->polys, sc->n, &lo, err, sizeof err) != 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    for (y = 0; y < a->size; y++)
+        for (x = 0; x < a->size; x++) {
+            double p[3];
+            covered += lm_texel_point(a, x, y, p);
+        }
+    return covered;
+}
+
 /* CornellBox-Original (SC, NULL when absent) baked into 512 x 512 texels: the whole
- * bake's gathers, then per gather resolution the time of a gather over a subset of
- * rows (every STEP-th: the whole bake would take minutes at 64), on one thread and
- * on two (the same rows split in two sets). */
+ * adaptive bake (the default tolerance, gather resolution 32) on one thread and on two,
+ * then per gather resolution the time of a gather over a subset of rows (every STEP-th
+ * of the every-texel bake: it would take minutes at 64), on one thread and on two (the
+ * same rows split in two sets). */
 static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
 {
     static const int res[3] = {16, 32, 64}, steps[3] = {4, 8, 32};
-    lm_opts lo = {512, 0, 0};
     lm_atlas a;
     sc_opts o;
     sc_solver *s;
-    char err[512];
-    long total = 0, n1, n2;
-    double load = -1;
-    int i, x, y;
+    long covered, n1, n2;
+    double load = -1, cpu, cpu2, t1, t2;
+    int i, one[1] = {0}, two[2] = {0, 1};
     out(rp, "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 x 512 texels, "
-        "solved as above (fixed build, to 0.001), each covered texel one gather (`sc_gather`, with the ambient "
-        "term). Each resolution gathers every n-th row of the atlas (a sample of the texels), once on one "
-        "thread and once on two (the same rows in two sets); us per gather is the processor time of one "
-        "thread over its gathers, the whole bake's estimate that times the bake's gathers:\n\n");
+        "solved as above (fixed build, to 0.001), a gather `sc_gather` with the ambient term. The whole bake at "
+        "the defaults (gather resolution 32, `--lightmap-tol` %g: the adaptive passes), once on one thread and "
+        "once on two (each pass's rows in two sets), wall time of the gathers' passes (the planning between them "
+        "included, not the solve nor the layout):\n\n", LM_TOL);
     if (!sc) {
         out(rp, "skipped: %s not found.\n", shared);
         return;
@@ -1289,26 +1310,39 @@ static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     o = scene_opts(sc);
     s = fixed_solver(sc, sc->polys, &o);
     sc_solve(s, 1000000, 0.001, NULL, NULL);
-    if (lm_build(&a, sc->polys, sc->n, &lo, err, sizeof err) != 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
-    for (y = 0; y < a.size; y++)
-        for (x = 0; x < a.size; x++) {
-            double p[3];
-            total += lm_texel_point(&a, x, y, p);
-        }
-    out(rp, "%d charts, %ld texels gathered of %d.\n\n| gather res | rows | gathers | us per gather | "
-        "texels/s, 1 thread | texels/s, 2 threads | speed-up | whole bake s, 1 thread (estimate) | load average |\n"
-        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n", a.ncharts, total, a.size * a.size);
+    fprintf(stderr, "rad_bench: lightmap, the whole adaptive bake ...\n");
+    covered = lm_layout(sc, LM_TOL, &a);
+    t1 = lm_rows(s, &a, 32, 1, one, 1, 1, &n1, &cpu);
+    lm_free(&a);
+    lm_layout(sc, LM_TOL, &a);
+    t2 = lm_rows(s, &a, 32, 2, two, 2, 1, &n2, &cpu2);
+    if (getloadavg(&load, 1) != 1) load = -1;
+    out(rp, "| charts | texels covered | gathers | of the covered | us per gather | s, 1 thread | s, 2 threads | "
+        "speed-up | load average |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
+        "| %d | %ld | %ld | %.1f%% | %.1f | %.2f | %.2f | %.2f | %.2f |\n\n", a.ncharts, covered, n1,
+        100.0 * n1 / covered, 1e6 * cpu, t1, t2, t1 / t2, load);
+    lm_free(&a);
+    out(rp, "Each gather resolution over every n-th row of the every-texel bake (`--lightmap-tol 0`: a sample of "
+        "the texels), once on one thread and once on two (the same rows in two sets); us per gather is the "
+        "processor time of one thread over its gathers, the every-texel bake's estimate that times the covered "
+        "texels:\n\n| gather res | rows | gathers | us per gather | texels/s, 1 thread | texels/s, 2 threads | "
+        "speed-up | every-texel bake s, 1 thread (estimate) | load average |\n"
+        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < 3; i++) {
-        int one[1] = {0}, two[2] = {0, steps[i]};
-        double cpu, cpu2, t1, t2;
+        int sets[2] = {0, steps[i]};
         fprintf(stderr, "rad_bench: lightmap at gather resolution %d ...\n", res[i]);
-        t1 = lm_rows(s, &a, res[i], steps[i], one, 1, &n1, &cpu);
-        t2 = lm_rows(s, &a, res[i], 2 * steps[i], two, 2, &n2, &cpu2);
+        lm_layout(sc, 0.0, &a);
+        lm_plan(&a);
+        t1 = lm_rows(s, &a, res[i], steps[i], one, 1, 0, &n1, &cpu);
+        lm_free(&a);
+        lm_layout(sc, 0.0, &a);
+        lm_plan(&a);
+        t2 = lm_rows(s, &a, res[i], 2 * steps[i], sets, 2, 0, &n2, &cpu2);
+        lm_free(&a);
         if (getloadavg(&load, 1) != 1) load = -1;
         out(rp, "| %d | 1 in %d | %ld | %.1f | %.0f | %.0f | %.2f | %.1f | %.2f |\n", res[i], steps[i], n1, 1e6 * cpu,
-            n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * total, load);
+            n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * covered, load);
     }
-    lm_free(&a);
     sc_destroy(s);
 }
 

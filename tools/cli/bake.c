@@ -67,13 +67,17 @@ static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
     return rc;
 }
 
-/* The texels on N threads (--threads), each with a gatherer of its own, by rows: the
- * same bits as one. 0, or -1 (a gather failed, no memory, no thread). */
+/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
+ * gatherer of its own, by rows: the same bits as one. 0, or -1 (a gather failed, no
+ * memory, no thread). */
 static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
 {
     texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long))};
-    int i, rc = j.gathers ? sc_gather_split(r->s, res, n, texel_rows, &j) : -1;
-    for (i = 0; j.gathers && i < n; i++) *gathers += j.gathers[i];
+    int i, rc = j.gathers ? 0 : -1;
+    while (rc == 0 && lm_plan(a) > 0) {
+        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
+        for (i = 0; i < n; i++) *gathers += j.gathers[i];
+    }
     free(j.gathers);
     return rc;
 }
@@ -90,8 +94,9 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     else if (o->stats)
-        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d on %d threads, %.2f s\n", a->size,
-               a->size, a->ncharts, a->texel, gathers, res, o->threads > 1 ? o->threads : 1, host_now() - t0);
+        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d (%d passes, tolerance %g) on %d "
+               "threads, %.2f s\n", a->size, a->size, a->ncharts, a->texel, gathers, res, a->pass - 1, a->tol,
+               o->threads > 1 ? o->threads : 1, host_now() - t0);
     return rc;
 }
 
@@ -113,7 +118,7 @@ static int bake_probes(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
 int bake_prepare(run_t *r)
 {
     const opts_t *o = r->o;
-    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0};
+    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, 0, o->lightmap_tol};
     char err[1024];
     struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;

@@ -102,6 +102,7 @@ typedef struct {
     const char *lightmap, *probe_file, *probes_out;
     char *probes_default;           /* scene name + .probes.json, when no --probes-out */
     int lightmap_size, gather_res, probe_dims[3], probes;
+    double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
 } opts_t;
 
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);

@@ -3,6 +3,7 @@
  */
 #include "cli.h"
 
+#include "bake/lightmap.h"
 #include "bake/probes.h"
 
 #include <errno.h>
@@ -218,6 +219,13 @@ static void opt_lightmap(opts_t *o, const char *opt, const char *val)
 
 static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
 
+static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (parse_list(val, &o->lightmap_tol, 1, 0) != 1 || !(o->lightmap_tol >= 0 && o->lightmap_tol <= 1))
+        die_usage("--lightmap-tol wants a number in [0, 1]", val);
+}
+
 static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
     o->gather_res = (int)parse_int(opt, val, 8, 1024);
@@ -309,6 +317,8 @@ static const option_t options[] = {
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
+    {"--lightmap-tol", NULL, "F",
+     "interpolate a lightmap block whose gathered corners agree\nwithin F (0.05); 0: gather every texel", opt_lightmap_tol},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
@@ -419,6 +429,7 @@ static void set_defaults(opts_t *o, int argc)
     o->max_shots = 1000000;
     o->threads = 1;
     o->coarse = -1; /* not given: cli_shot_settings */
+    o->lightmap_tol = LM_TOL;
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
     o->gint = calloc((size_t)argc, sizeof *o->gint);

@@ -280,7 +280,7 @@ static int vertex_gather(const sc_fgather *f, sc_gatherer *g, int si, int v, dou
     sc_vertex_pos(f->s, v, x);
     surface_point(f, si, x, p);
     if (f->grid) {
-        t = geom_back_ray(f->grid, f->polys, p, sf->u, sf->v, sf->elen, dir);
+        t = geom_back_ray(f->grid, f->polys, p, sf->u, sf->v, sf->elen, dir, NULL);
         if (t < HUGE_VAL)
             for (k = 0; k < 3; k++) p[k] += (t + f->margin) * dir[k];
     }
