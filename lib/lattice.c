@@ -117,6 +117,7 @@ static void lattice_setup(rad__lattice_t *lt)
     const unsigned n = lt->ncorner;
     int32_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
+    rad__grid_t g;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
      * limits), so S >= 10. */
@@ -129,10 +130,11 @@ static void lattice_setup(rad__lattice_t *lt)
         if (b > m) m = b;
         if (c > m) m = c;
     }
+    g = rad__grid_init(m, s);
     for (i = 0; i < n; i++) {
-        q[i][0] = (int32_t)rad__grid(corner[i].x, m, s);
-        q[i][1] = (int32_t)rad__grid(corner[i].y, m, s);
-        q[i][2] = (int32_t)rad__grid(corner[i].z, m, s);
+        q[i][0] = (int32_t)rad__grid(corner[i].x, &g);
+        q[i][1] = (int32_t)rad__grid(corner[i].y, &g);
+        q[i][2] = (int32_t)rad__grid(corner[i].z, &g);
     }
     lt->first = sf->first_element;
     lt->pu = sf->pu;

@@ -54,11 +54,12 @@ unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned
 static void crossing(const rad__cvert_t *in, const rad__cvert_t *out, rad_real_t din,
                      rad_real_t dout, rad__cvert_t *r)
 {
+    const rad__clip_t c = rad__clip_init(din, dout);
     unsigned k;
-    r->a = rad__clip_lerp(in->a, out->a, din, dout);
-    r->b = rad__clip_lerp(in->b, out->b, din, dout);
-    r->d = rad__clip_lerp(in->d, out->d, din, dout);
-    for (k = 0; k < 3; k++) r->c[k] = rad__clip_lerp(in->c[k], out->c[k], din, dout);
+    r->a = rad__clip_lerp(in->a, out->a, &c);
+    r->b = rad__clip_lerp(in->b, out->b, &c);
+    r->d = rad__clip_lerp(in->d, out->d, &c);
+    for (k = 0; k < 3; k++) r->c[k] = rad__clip_lerp(in->c[k], out->c[k], &c);
 }
 
 /* Sutherland-Hodgman against plane P: N vertices of SRC into DST; returns the count. */
