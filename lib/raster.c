@@ -153,8 +153,9 @@ static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, 
     int32_t x2 = v2->x - v0->x, y2 = v2->y - v0->y;
     int64_t gx = rad__sdiv64((rad__mul32(d1, y2) - rad__mul32(d2, y1)) * 65536, ar);
     int64_t gy = rad__sdiv64((rad__mul32(d2, x1) - rad__mul32(d1, x2)) * 65536, ar);
-    *val = ((uint64_t)v0->at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v0->x) +
-           (uint64_t)gy * (uint64_t)((int64_t)py - v0->y);
+    /* px - x0 and py - y0 within +-(2^15 + 8): rad__mulmod16's range */
+    *val = ((uint64_t)v0->at[k] << 16) + rad__mulmod16((uint64_t)gx, px - v0->x) +
+           rad__mulmod16((uint64_t)gy, py - v0->y);
     *sx = (uint64_t)gx * SUB;
     *sy = (uint64_t)gy * SUB;
 }

@@ -135,19 +135,28 @@ static inline uint64_t rad__mulu64_32(uint64_t x, uint32_t m)
 #endif
 }
 
-/* x * m for |m| < 2^16, the product within int64 (the caller's range). */
-static inline int64_t rad__mul16(int64_t x, int32_t m)
+/* x * m mod 2^64 for any x and |m| < 2^16. */
+static inline uint64_t rad__mulmod16(uint64_t x, int32_t m)
 {
 #if RAD__MUL_SPLIT
     /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves, p0 and
      * p1) and the high word's, of which only the low 32 bits reach the sum; the low
      * word's carry is rlo < p0. Then the sign. */
-    uint64_t ux = (uint64_t)x, r;
-    uint32_t lo = (uint32_t)ux, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
+    uint32_t lo = (uint32_t)x, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
     uint32_t p0 = (lo & 0xFFFFu) * um, p1 = (lo >> 16) * um, rlo = p0 + (p1 << 16);
-    uint32_t rhi = (uint32_t)(ux >> 32) * um + (p1 >> 16) + (rlo < p0);
-    r = (uint64_t)rhi << 32 | rlo;
-    return rad__s64(m < 0 ? 0u - r : r);
+    uint32_t rhi = (uint32_t)(x >> 32) * um + (p1 >> 16) + (rlo < p0);
+    uint64_t r = (uint64_t)rhi << 32 | rlo;
+    return m < 0 ? 0u - r : r;
+#else
+    return x * (uint64_t)(int64_t)m;
+#endif
+}
+
+/* x * m for |m| < 2^16, the product within int64 (the caller's range). */
+static inline int64_t rad__mul16(int64_t x, int32_t m)
+{
+#if RAD__MUL_SPLIT
+    return rad__s64(rad__mulmod16((uint64_t)x, m));
 #else
     return x * m;
 #endif
@@ -498,9 +507,7 @@ typedef struct {
 } rad__grid_t;
 static inline rad__grid_t rad__grid_init(rad_real_t m, unsigned s)
 {
-    rad__grid_t g;
-    g.m = m;
-    g.s = s;
+    rad__grid_t g = {m, s};
     return g;
 }
 static inline int64_t rad__grid(rad_real_t v, const rad__grid_t *g)
@@ -634,7 +641,8 @@ static inline rad__recip_t rad__recip(rad_real_t d)
  * <= 2^62. */
 static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
-    return num > 0 ? (int32_t)(((uint64_t)num * inv * scale + ((uint64_t)1 << 45)) >> 46) : 0;
+    return num > 0 ? (int32_t)((rad__mulu64_32(rad__mulu64_32(inv, (uint32_t)num), scale) + ((uint64_t)1 << 45)) >> 46)
+                   : 0;
 }
 /* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
 static inline uint32_t rad__depth(rad__recip_t inv)
@@ -646,17 +654,17 @@ static inline uint32_t rad__depth(rad__recip_t inv)
 /* b, area >= 0 and < 2^31: the product < 2^62. */
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
 {
-    return (rad_energy_t)(((uint64_t)b * (uint64_t)area + 32768u) >> 16);
+    return (rad_energy_t)((rad__mulu32((uint32_t)b, (uint32_t)area) + 32768u) >> 16);
 }
 /* 0 <= u < 2^46, f <= 2^30: (u * f) >> 30 without a 128-bit product. */
 static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f)
 {
-    uint64_t hi = (uint64_t)u >> 32, lo = (uint64_t)u & 0xFFFFFFFFu;
-    return (rad_energy_t)(((hi * f) << 2) + ((lo * f + (1u << 29)) >> 30));
+    uint32_t hi = (uint32_t)((uint64_t)u >> 32), lo = (uint32_t)u;
+    return (rad_energy_t)((rad__mulu32(hi, f) << 2) + ((rad__mulu32(lo, f) + (1u << 29)) >> 30));
 }
 static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 {
-    return (rad_energy_t)(((uint64_t)u * (uint32_t)rho + 32768u) >> 16);
+    return (rad_energy_t)((rad__mulu64_32((uint64_t)u, (uint32_t)rho) + 32768u) >> 16);
 }
 /* Radiosity of power 0 <= U < 2^47 spread over AREA (> 0). */
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
@@ -698,7 +706,7 @@ static inline uint32_t rad__ff_to_q30(rad_ff_t f)
 typedef uint64_t rad__gsum_t;
 static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b)
 {
-    return ((uint64_t)g * (uint64_t)(b > 0 ? b : 0) + 8192u) >> 14;
+    return (rad__mulu32(g, (uint32_t)(b > 0 ? b : 0)) + 8192u) >> 14;
 }
 static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
 {
@@ -735,7 +743,7 @@ static inline rad_ff_t rad__vweight(rad_real_t area)
 }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 {
-    return (rad_real_t)rad__udiv64((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u, wsum);
+    return (rad_real_t)rad__udiv64(rad__mulu32((uint32_t)(b > 0 ? b : 0), w) + wsum / 2u, wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i)
 {
