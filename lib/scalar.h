@@ -162,6 +162,14 @@ static inline int64_t rad__mul16(int64_t x, int32_t m)
 #endif
 }
 
+/* n 2^s mod 2^64, 0 <= s <= 31: in 32-bit words (a variable 64-bit shift is a library
+ * call on M0). */
+static inline uint64_t rad__shl64(uint64_t n, unsigned s)
+{
+    uint32_t hi = (uint32_t)(n >> 32), lo = (uint32_t)n;
+    return (uint64_t)(s ? hi << s | lo >> (32u - s) : hi) << 32 | (uint32_t)(lo << s);
+}
+
 /* The leading zero bits of d > 0, found in five halvings (16, 8, 4, 2, 1). */
 static inline unsigned rad__clz32(uint32_t d)
 {
@@ -208,8 +216,8 @@ static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
 static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
 {
     unsigned s = rad__clz32(d);
-    uint32_t u1 = (uint32_t)(n >> 32), u0 = (uint32_t)n, q1;
-    uint32_t u = s ? u1 << s | u0 >> (32u - s) : u1, lo = u0 << s;
+    uint64_t un = rad__shl64(n, s);
+    uint32_t u = (uint32_t)(un >> 32), lo = (uint32_t)un, q1;
     d <<= s;
     q1 = rad__udigit(&u, lo >> 16, d);
     return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
@@ -285,7 +293,7 @@ static inline uint32_t rad__udiv_inv(uint64_t n, const rad__udiv_inv_t *iv)
 #if RAD__MUL_SPLIT
     /* n 2^s < D 2^s 2^32 = d 2^32: fits, and u1 < d. <q1, q0> = (2^32 + v) u1 + u0 fits
      * 64 bits: 2^32 + v <= (2^64 - 1) / d, u1 <= d - 1 and (2^64 - 1) / d > 2^32 > u0. */
-    uint64_t u = n << iv->s, p = rad__mulu32(iv->v, (uint32_t)(u >> 32)) + u;
+    uint64_t u = rad__shl64(n, iv->s), p = rad__mulu32(iv->v, (uint32_t)(u >> 32)) + u;
     uint32_t q1 = (uint32_t)(p >> 32) + 1u, q0 = (uint32_t)p, r = (uint32_t)u - q1 * iv->d;
     if (r > q0) { /* mod 2^32: the candidate is one too large */
         q1--;
@@ -763,7 +771,7 @@ static inline rad__grid_t rad__grid_init(rad_real_t m, unsigned s)
 }
 static inline int64_t rad__grid(rad_real_t v, const rad__grid_t *g)
 {
-    return rad__div_round_inv((int64_t)v * ((int64_t)1 << g->s), &g->m);
+    return rad__div_round_inv(rad__s64(rad__shl64((uint64_t)(int64_t)v, g->s)), &g->m); /* v 2^s */
 }
 /* V times 2^N, -31 <= N <= 31: a shift, exact for N >= 0 (saturating, counted),
  * rounded to nearest for N < 0. */
