@@ -195,12 +195,23 @@ static inline unsigned rad__clz32(uint32_t d)
 }
 
 /* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
- * normalised V (top bit set), estimated from V's top half, then corrected: the
+ * normalised V (top bit set), estimated from V's top half VN1, then corrected: the
  * estimate is at most 2 too large (Knuth, TAOCP 4.3.1, Theorem B). Leaves the
- * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16. */
-static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
+ * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16.
+ * U / VN1 itself comes from REC = floor((2^31 - 1) / VN1) < 2^16 (shared by both digits:
+ * one 32-bit division, a library call on M0, instead of two): with U = 2^16 uh + ul,
+ * q = floor((uh REC + floor(ul REC / 2^16)) / 2^15) (the sum below 2^32) is at most
+ * U REC / 2^31 <= U / VN1, and at least U / VN1 - U / (2^31 VN1) - U / 2^31 - 2^-15 - 1
+ * > U / VN1 - 4: three increments at most make it floor(U / VN1), with rhat its
+ * remainder. */
+static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v, uint32_t rec)
 {
-    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu, q = *u / vn1, rhat = *u - q * vn1;
+    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu;
+    uint32_t q = ((*u >> 16) * rec + (((*u & 0xFFFFu) * rec) >> 16)) >> 15, rhat = *u - q * vn1;
+    while (rhat >= vn1) {
+        q++;
+        rhat -= vn1;
+    }
     while (q > 0xFFFFu || q * vn0 > (rhat << 16) + lo16) {
         q--;
         rhat += vn1;
@@ -211,16 +222,17 @@ static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
 }
 
 /* n / d for d > 0 and n / d < 2^32 (n >> 32 < d): long division by two 16-bit digits
- * with 32-bit divisions (Hacker's Delight's divlu), for targets where a 64-bit division
- * is a long library call. */
+ * (Hacker's Delight's divlu), for targets where a 64-bit division is a long library
+ * call. */
 static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
 {
     unsigned s = rad__clz32(d);
     uint64_t un = rad__shl64(n, s);
-    uint32_t u = (uint32_t)(un >> 32), lo = (uint32_t)un, q1;
+    uint32_t u = (uint32_t)(un >> 32), lo = (uint32_t)un, q1, rec;
     d <<= s;
-    q1 = rad__udigit(&u, lo >> 16, d);
-    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
+    rec = 0x7FFFFFFFu / (d >> 16);
+    q1 = rad__udigit(&u, lo >> 16, d, rec);
+    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d, rec);
 }
 
 /* n / d for d > 0: by rad__udiv64_32 where it applies on RAD__MUL_SPLIT targets. */
