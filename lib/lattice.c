@@ -596,10 +596,18 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
     z += xs;
     ids += xs;
     if (lt->nfam == 2) {
-        for (x = 0; x < n; x++, w += dw) {
+        /* The depth is bits 16..47 of W + x DW: stepped as those bits (wh) and the 16
+         * below them (wl, in its top half, so that their carry out is wl's wrap), all
+         * in 32 bits (on M0 the 64-bit sum and shift would take the registers). */
+        uint32_t wh = (uint32_t)(w >> 16), wl = (uint32_t)w << 16;
+        const uint32_t dh = (uint32_t)(dw >> 16), dl = (uint32_t)dw << 16;
+        for (x = 0; x < n; x++) {
+            uint32_t t = wl + dl;
             acc += steps[x];
             steps[x] = 0;
-            rad__depth_put(z, ids, x, (uint32_t)(w >> 16), acc);
+            rad__depth_put(z, ids, x, wh, acc);
+            wh += dh + (t < wl);
+            wl = t;
         }
     } else {
         uint32_t last = acc, id = tri_element(lt, acc);
