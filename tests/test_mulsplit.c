@@ -89,6 +89,23 @@ static void test_mul16(void **st)
     CHECK_INT_GT(n, 100000, "in-range draws of 200000");
 }
 
+/* rad__mulu64_32 is x * m mod 2^64 for any uint64 x and uint32 m (the energy and
+ * projection products), and rad__mulu32 the full product of two uint32. */
+static void test_mulu64_32(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 200000; i++) {
+        uint64_t x = rnd() >> (rnd() % 64u);
+        uint32_t m = (uint32_t)(rnd() >> (rnd() % 32u + 32u)), a = (uint32_t)rnd();
+        if (i < 4) x = i & 1 ? ~(uint64_t)0 : 0, m = i & 2 ? 0xFFFFFFFFu : 1u, a = 0xFFFFFFFFu;
+        CHECK_INT_EQ(rad__mulu64_32(x, m), x * m, "rad__mulu64_32(%llu, %lu)", (unsigned long long)x,
+                     (unsigned long)m);
+        CHECK_INT_EQ(rad__mulu32(a, m), (uint64_t)a * m, "rad__mulu32(%lu, %lu)", (unsigned long)a,
+                     (unsigned long)m);
+    }
+}
+
 /* rad__udiv64_32 is n / d for every n with n / d < 2^32: quotients and remainders at
  * their extremes (0, 2^32 - 1; 0, d - 1), divisors of every length. */
 static void test_udiv64_32(void **st)
@@ -224,7 +241,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
-        cmocka_unit_test(test_udiv64_32),
+        cmocka_unit_test(test_mulu64_32), cmocka_unit_test(test_udiv64_32),
         cmocka_unit_test(test_udiv_inv), cmocka_unit_test(test_div_round),
         cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
     };
