@@ -106,7 +106,7 @@ int rad__hemicube_init(rad_scene_t *s)
         s->pass_pixels = RAD_PIXELS_ALL(res);
     } else {
         band = pixels / res;
-        if (band > res) band = res;
+        if (band > 3u * res) band = 3u * res; /* a band may span faces */
         if (s->cfg.band_rows && band > s->cfg.band_rows) band = s->cfg.band_rows;
         if (band == 0) return RAD_ERR_WORK;
         s->band_rows = (uint16_t)band;

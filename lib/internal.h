@@ -45,12 +45,12 @@ typedef struct {
 } rad__frustum_t;
 
 /* A family of lattice lines (lattice.c): line k's plane through the cube's centre has
- * normal C0 + k C1 + k^2 C2 (the cube's axes x, y, z), k = 0..N, with K elements to a
- * patch across the lines. */
+ * normal C0 + k C1 + k^2 C2 (c[j], on the lattice's current axes: the cube's x, y, z,
+ * then a face's a, -b, d), k = 0..N, with K elements to a patch across the lines. */
 typedef struct {
     int64_t c[3][3];
-    int64_t o[3][3]; /* on the current face, coefficient j's E at pixel (x, y):
-                        o[j][0] + x o[j][1] + y o[j][2] */
+    int64_t o[3]; /* on the current face, coefficient j's E at pixel (x, y):
+                     o[j] + 2 x c[j][0] + 2 y c[j][1] */
     uint32_t n, k;
     uint32_t unit, coarse; /* quads: a fine and a coarse step's change of the element id */
     int32_t hint[2];       /* the last span's first and last cells on this face, or -1 */
@@ -63,9 +63,9 @@ typedef struct {
 
 /* A surface's lattice: 2 families (quad columns, rows) or 3 (triangle i, j, i + j);
  * element ids from FIRST, PU patches across a quad (a triangle's patch levels); seen
- * on a face of resolution RES whose axes a, b, d are the cube's AXIS (0 x, 1 y, 2 z)
- * times SIGN; from SF and its NCORNER corners CORNER (READY: 1 the families set up,
- * 2 and the face's coefficients). */
+ * on a face of resolution RES whose axes a, -b, d are the cube's AXIS (0 x, 1 y, 2 z)
+ * times SIGN (the cube's own axes before the first face); from SF and its NCORNER
+ * corners CORNER (READY: 1 the families set up, 2 and the face's coefficients). */
 typedef struct {
     rad__family_t fam[3];
     unsigned nfam, ncorner, ready;

@@ -92,20 +92,29 @@ static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const
     }
     cross(pm, rm, l);
     if (l[0] * far[0] + l[1] * far[1] + l[2] * far[2] < 0)
-        for (c = 0; c < 9; c++) f->c[c / 3][c % 3] = -f->c[c / 3][c % 3];
+        for (c = 0; c < 3; c++) { /* no c / 3, c % 3: calls on M0 */
+            f->c[0][c] = -f->c[0][c];
+            f->c[1][c] = -f->c[1][c];
+            f->c[2][c] = -f->c[2][c];
+        }
 }
 
 static void lattice_setup(rad__lattice_t *lt);
-static void face_setup(rad__lattice_t *lt);
+static void face_setup(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign);
 
 void rad__lattice_init(rad__lattice_t *lt, const rad_surface_t *sf, const rad_vec3_t *corner,
                        unsigned n, int32_t res)
 {
+    unsigned c;
     lt->sf = sf;
     lt->corner = corner;
     lt->ncorner = n;
     lt->res = res;
     lattice_setup(lt);
+    for (c = 0; c < 3; c++) { /* the families' coefficients are on the cube's axes */
+        lt->axis[c] = (unsigned char)c;
+        lt->sign[c] = 1;
+    }
     lt->ready = 1;
 }
 
@@ -117,6 +126,7 @@ static void lattice_setup(rad__lattice_t *lt)
     const unsigned n = lt->ncorner;
     int32_t q[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     rad_real_t m = RAD__EPS;
+    rad__grid_t g;
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
      * limits), so S >= 10. */
@@ -129,10 +139,11 @@ static void lattice_setup(rad__lattice_t *lt)
         if (b > m) m = b;
         if (c > m) m = c;
     }
+    g = rad__grid_init(m, s);
     for (i = 0; i < n; i++) {
-        q[i][0] = (int32_t)rad__grid(corner[i].x, m, s);
-        q[i][1] = (int32_t)rad__grid(corner[i].y, m, s);
-        q[i][2] = (int32_t)rad__grid(corner[i].z, m, s);
+        q[i][0] = (int32_t)rad__grid(corner[i].x, &g);
+        q[i][1] = (int32_t)rad__grid(corner[i].y, &g);
+        q[i][2] = (int32_t)rad__grid(corner[i].z, &g);
     }
     lt->first = sf->first_element;
     lt->pu = sf->pu;
@@ -158,36 +169,47 @@ static void lattice_setup(rad__lattice_t *lt)
 
 void rad__lattice_face(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned c;
-    for (c = 0; c < 3; c++) {
-        lt->axis[c] = (unsigned char)(axis[c] % 3u);
-        lt->sign[c] = sign[c] < 0 ? -1 : 1;
-    }
-    face_setup(lt);
+    face_setup(lt, axis, sign);
     lt->ready = 2;
 }
 
-/* The coefficients of LT's families on its face (rad__lattice_face's). */
-static void face_setup(rad__lattice_t *lt)
+/* The coefficients of LT's families on the face whose axes a, b, d are the cube's AXIS
+ * times SIGN, from those on LT's axes (the last face's, or the cube's). They are kept
+ * on the axes a, -b, d (x right and y down, as pixels go), so that E's changes along a
+ * row and a column, 2 c[j][0] and 2 c[j][1], need no negation: GCC makes a 64-bit
+ * product of -2 x, a library call on M0. */
+static void face_setup(rad__lattice_t *lt, const unsigned char *axis, const signed char *sign)
 {
-    unsigned f, j;
+    unsigned f, j, i, from[3], ax[3], src[3];
+    int flip[3];
     const int32_t res = lt->res;
+    /* The axes are a permutation, the signs +-1: new axis i is the cube's ax[i], which
+     * is old axis from[i], so the coefficients move over exactly. */
+    for (i = 0; i < 3; i++) {
+        ax[i] = axis[i] < 3u ? axis[i] : 2u; /* x, y or z (no % 3: a call on M0) */
+        from[lt->axis[i]] = i;
+    }
+    for (i = 0; i < 3; i++) {
+        src[i] = from[ax[i]];
+        flip[i] = ((sign[i] < 0) != (i == 1)) != (lt->sign[src[i]] < 0);
+    }
     for (f = 0; f < lt->nfam; f++) {
         rad__family_t *fm = &lt->fam[f];
         for (j = 0; j < 3; j++) {
-            /* The ray (2 x + 1 - res, res - 2 y - 1, res) on the face's axes a, b, d:
-             * within +-res <= 2^10 a component, so E at any pixel keeps the bound above,
-             * and each product is rad__mul16's. */
-            const int64_t *k = fm->c[j];
-            int64_t ca = negate_if(k[lt->axis[0]], lt->sign[0] < 0);
-            int64_t cb = negate_if(k[lt->axis[1]], lt->sign[1] < 0);
-            int64_t cd = negate_if(k[lt->axis[2]], lt->sign[2] < 0);
-            fm->o[j][0] = rad__mul16(ca, 1 - res) + rad__mul16(cb, res - 1) + rad__mul16(cd, res);
-            fm->o[j][1] = 2 * ca;
-            fm->o[j][2] = -2 * cb;
+            /* The ray (2 x + 1 - res, 2 y + 1 - res, res) on the axes a, -b, d: within
+             * +-res <= 2^10 a component, so E at any pixel keeps the bound above, and
+             * each product is rad__mul16's. */
+            int64_t *k = fm->c[j], old[3];
+            for (i = 0; i < 3; i++) old[i] = k[i];
+            for (i = 0; i < 3; i++) k[i] = negate_if(old[src[i]], flip[i]);
+            fm->o[j] = rad__mul16(k[0], 1 - res) + rad__mul16(k[1], 1 - res) + rad__mul16(k[2], res);
         }
         fm->hint[0] = fm->hint[1] = -1; /* no span yet on this face */
         fm->wk = -1;                    /* no walker yet */
+    }
+    for (i = 0; i < 3; i++) {
+        lt->axis[i] = (unsigned char)ax[i];
+        lt->sign[i] = (sign[i] < 0) != (i == 1) ? -1 : 1;
     }
 }
 
@@ -261,8 +283,8 @@ static void walk_start(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk
     unsigned j;
     for (j = 0; j < 3; j++) {
         /* pixel (xs, y) and the last, (xe - 1, y): x, y, span < res <= 2^10 */
-        de[j] = f->o[j][1];
-        e[j] = f->o[j][0] + rad__mul16(de[j], xs) + rad__mul16(f->o[j][2], y);
+        de[j] = 2 * f->c[j][0];
+        e[j] = f->o[j] + rad__mul16(de[j], xs) + rad__mul16(2 * f->c[j][1], y);
         last[j] = e[j] + rad__mul16(de[j], span);
     }
     w->i = f->hint[0] = search_from(e, f->n, f->hint[0]);
@@ -294,9 +316,9 @@ static void walker_init(rad__family_t *f, int32_t x, int32_t y, int32_t k)
     int64_t a[3], ox[3], oy[3];
     unsigned j;
     for (j = 0; j < 3; j++) {
-        ox[j] = f->o[j][1];
-        oy[j] = f->o[j][2];
-        a[j] = f->o[j][0] + rad__mul16(ox[j], x) + rad__mul16(oy[j], y);
+        ox[j] = 2 * f->c[j][0];
+        oy[j] = 2 * f->c[j][1];
+        a[j] = f->o[j] + rad__mul16(ox[j], x) + rad__mul16(oy[j], y);
     }
     f->w[0] = at(a, k);
     f->w[1] = a[1] + rad__mul16(a[2], 2 * k + 1);
@@ -311,19 +333,19 @@ static void walker_init(rad__family_t *f, int32_t x, int32_t y, int32_t k)
 }
 
 /* F's walker to pixel (X, Y): E, D and D2 are linear along rows and columns, and their
- * changes (w[3..6], and 2 o[2][1], 2 o[2][2] for D2) do not depend on the pixel. */
+ * changes (w[3..6], and 4 c[2][0], 4 c[2][1] for D2) do not depend on the pixel. */
 static void walker_move(rad__family_t *f, int32_t x, int32_t y)
 {
     int32_t dx = x - f->wx, dy = y - f->wy;
     if (dx) {
         f->w[0] += times(f->w[3], dx);
         f->w[1] += times(f->w[4], dx);
-        f->w[2] += times(2 * f->o[2][1], dx);
+        f->w[2] += times(4 * f->c[2][0], dx);
     }
     if (dy) {
         f->w[0] += times(f->w[5], dy);
         f->w[1] += times(f->w[6], dy);
-        f->w[2] += times(2 * f->o[2][2], dy);
+        f->w[2] += times(4 * f->c[2][1], dy);
     }
     f->wx = x;
     f->wy = y;
@@ -334,7 +356,7 @@ static void walker_move(rad__family_t *f, int32_t x, int32_t y)
  * along rows and columns alike. */
 static void walker_line(rad__family_t *f, int up)
 {
-    int64_t sd2 = 2 * f->o[2][1], yd2 = 2 * f->o[2][2];
+    int64_t sd2 = 4 * f->c[2][0], yd2 = 4 * f->c[2][1];
     if (up) {
         f->w[0] += f->w[1];
         f->w[1] += f->w[2];
@@ -391,12 +413,12 @@ static int mono_at(int64_t d, int64_t d2, int32_t k, uint32_t n)
 static void walk_start_walker(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk_t *w)
 {
     int32_t span = xe - 1 - xs, i;
-    int64_t sd2 = 2 * f->o[2][1], e, d, d2;
+    int64_t sd2 = 4 * f->c[2][0], e, d, d2;
     if (f->wk < 0) {
         int64_t a[3];
         unsigned j;
         for (j = 0; j < 3; j++)
-            a[j] = f->o[j][0] + rad__mul16(f->o[j][1], xs) + rad__mul16(f->o[j][2], y);
+            a[j] = f->o[j] + rad__mul16(2 * f->c[j][0], xs) + rad__mul16(2 * f->c[j][1], y);
         walker_init(f, xs, y, search(a, f->n));
     } else {
         walker_move(f, xs, y);
@@ -574,10 +596,18 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
     z += xs;
     ids += xs;
     if (lt->nfam == 2) {
-        for (x = 0; x < n; x++, w += dw) {
+        /* The depth is bits 16..47 of W + x DW: stepped as those bits (wh) and the 16
+         * below them (wl, in its top half, so that their carry out is wl's wrap), all
+         * in 32 bits (on M0 the 64-bit sum and shift would take the registers). */
+        uint32_t wh = (uint32_t)(w >> 16), wl = (uint32_t)w << 16;
+        const uint32_t dh = (uint32_t)(dw >> 16), dl = (uint32_t)dw << 16;
+        for (x = 0; x < n; x++) {
+            uint32_t t = wl + dl;
             acc += steps[x];
             steps[x] = 0;
-            rad__depth_put(z, ids, x, (uint32_t)(w >> 16), acc);
+            rad__depth_put(z, ids, x, wh, acc);
+            wh += dh + (t < wl);
+            wl = t;
         }
     } else {
         uint32_t last = acc, id = tri_element(lt, acc);

@@ -54,11 +54,12 @@ unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned
 static void crossing(const rad__cvert_t *in, const rad__cvert_t *out, rad_real_t din,
                      rad_real_t dout, rad__cvert_t *r)
 {
+    const rad__clip_t c = rad__clip_init(din, dout);
     unsigned k;
-    r->a = rad__clip_lerp(in->a, out->a, din, dout);
-    r->b = rad__clip_lerp(in->b, out->b, din, dout);
-    r->d = rad__clip_lerp(in->d, out->d, din, dout);
-    for (k = 0; k < 3; k++) r->c[k] = rad__clip_lerp(in->c[k], out->c[k], din, dout);
+    r->a = rad__clip_lerp(in->a, out->a, &c);
+    r->b = rad__clip_lerp(in->b, out->b, &c);
+    r->d = rad__clip_lerp(in->d, out->d, &c);
+    for (k = 0; k < 3; k++) r->c[k] = rad__clip_lerp(in->c[k], out->c[k], &c);
 }
 
 /* Sutherland-Hodgman against plane P: N vertices of SRC into DST; returns the count. */
@@ -152,8 +153,9 @@ static void attr_setup(const pvert_t *v0, const pvert_t *v1, const pvert_t *v2, 
     int32_t x2 = v2->x - v0->x, y2 = v2->y - v0->y;
     int64_t gx = rad__sdiv64((rad__mul32(d1, y2) - rad__mul32(d2, y1)) * 65536, ar);
     int64_t gy = rad__sdiv64((rad__mul32(d2, x1) - rad__mul32(d1, x2)) * 65536, ar);
-    *val = ((uint64_t)v0->at[k] << 16) + (uint64_t)gx * (uint64_t)((int64_t)px - v0->x) +
-           (uint64_t)gy * (uint64_t)((int64_t)py - v0->y);
+    /* px - x0 and py - y0 within +-(2^15 + 8): rad__mulmod16's range */
+    *val = ((uint64_t)v0->at[k] << 16) + rad__mulmod16((uint64_t)gx, px - v0->x) +
+           rad__mulmod16((uint64_t)gy, py - v0->y);
     *sx = (uint64_t)gx * SUB;
     *sy = (uint64_t)gy * SUB;
 }

@@ -69,6 +69,14 @@ static inline int64_t rad__shr_round(int64_t v, unsigned n)
 #endif
 #endif
 
+/* The product's core, inlined into its few callers on RAD__MUL_SPLIT targets even at -Os
+ * (as a call it costs the M0 more than its body). */
+#if RAD__MUL_SPLIT && defined(__GNUC__)
+#define RAD__ALWAYS_INLINE static inline __attribute__((always_inline))
+#else
+#define RAD__ALWAYS_INLINE static inline
+#endif
+
 /* Whether a 64-bit division is one instruction (64-bit targets), not a library call. */
 #ifndef RAD__DIV64
 #if UINTPTR_MAX > 0xFFFFFFFFu
@@ -84,23 +92,63 @@ static inline int64_t rad__s64(uint64_t u)
     return u >> 63 ? -(int64_t)~u - 1 : (int64_t)u;
 }
 
+/* a * b for any two uint32, below 2^64. */
+RAD__ALWAYS_INLINE uint64_t rad__mulu32(uint32_t a, uint32_t b)
+{
+#if RAD__MUL_SPLIT
+    /* hi 2^32 + lo from partial products of 16-bit halves: each is below 2^32, and so is
+     * each with a carry of at most 2^16 - 1 added (mid, mid2: (2^16 - 1)^2 + 2^16 - 1 <
+     * 2^32). */
+    uint32_t lo = (a & 0xFFFFu) * (b & 0xFFFFu);
+    uint32_t mid = (a >> 16) * (b & 0xFFFFu) + (lo >> 16);
+    uint32_t mid2 = (a & 0xFFFFu) * (b >> 16) + (mid & 0xFFFFu);
+    uint32_t hi = (a >> 16) * (b >> 16) + (mid >> 16) + (mid2 >> 16);
+    return (uint64_t)hi << 32 | (mid2 << 16) | (lo & 0xFFFFu);
+#else
+    return (uint64_t)a * b;
+#endif
+}
+
 /* a * b for any two int32: |a b| <= 2^62. */
 static inline int64_t rad__mul32(int32_t a, int32_t b)
 {
 #if RAD__MUL_SPLIT
-    /* The unsigned product hi 2^32 + lo of ua, ub: partial products of 16-bit halves
-     * are below 2^32, and so is each with a carry of at most 2^16 - 1 added (mid, mid2:
-     * (2^16 - 1)^2 + 2^16 - 1 < 2^32). A negative a is ua - 2^32 (b alike), so the
-     * signed product is the unsigned one less ub 2^32 and ua 2^32, mod 2^64. */
+    /* A negative a is ua - 2^32 (b alike), so the signed product is the unsigned one
+     * less ub 2^32 and ua 2^32, mod 2^64. */
     uint32_t ua = (uint32_t)a, ub = (uint32_t)b;
-    uint32_t lo = (ua & 0xFFFFu) * (ub & 0xFFFFu);
-    uint32_t mid = (ua >> 16) * (ub & 0xFFFFu) + (lo >> 16);
-    uint32_t mid2 = (ua & 0xFFFFu) * (ub >> 16) + (mid & 0xFFFFu);
-    uint32_t hi = (ua >> 16) * (ub >> 16) + (mid >> 16) + (mid2 >> 16);
-    hi -= (a < 0 ? ub : 0u) + (b < 0 ? ua : 0u);
-    return rad__s64((uint64_t)hi << 32 | (mid2 << 16) | (lo & 0xFFFFu));
+    uint64_t p = rad__mulu32(ua, ub);
+    uint32_t hi = (uint32_t)(p >> 32) - ((a < 0 ? ub : 0u) + (b < 0 ? ua : 0u));
+    return rad__s64((uint64_t)hi << 32 | (uint32_t)p);
 #else
     return (int64_t)a * b;
+#endif
+}
+
+/* x * m mod 2^64 for any uint64 x and uint32 m: the low word's product and the low 32
+ * bits of the high word's (the rest is past 2^64). */
+static inline uint64_t rad__mulu64_32(uint64_t x, uint32_t m)
+{
+#if RAD__MUL_SPLIT
+    return rad__mulu32((uint32_t)x, m) + ((uint64_t)((uint32_t)(x >> 32) * m) << 32);
+#else
+    return x * m;
+#endif
+}
+
+/* x * m mod 2^64 for any x and |m| < 2^16. */
+static inline uint64_t rad__mulmod16(uint64_t x, int32_t m)
+{
+#if RAD__MUL_SPLIT
+    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves, p0 and
+     * p1) and the high word's, of which only the low 32 bits reach the sum; the low
+     * word's carry is rlo < p0. Then the sign. */
+    uint32_t lo = (uint32_t)x, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
+    uint32_t p0 = (lo & 0xFFFFu) * um, p1 = (lo >> 16) * um, rlo = p0 + (p1 << 16);
+    uint32_t rhi = (uint32_t)(x >> 32) * um + (p1 >> 16) + (rlo < p0);
+    uint64_t r = (uint64_t)rhi << 32 | rlo;
+    return m < 0 ? 0u - r : r;
+#else
+    return x * (uint64_t)(int64_t)m;
 #endif
 }
 
@@ -108,18 +156,18 @@ static inline int64_t rad__mul32(int32_t a, int32_t b)
 static inline int64_t rad__mul16(int64_t x, int32_t m)
 {
 #if RAD__MUL_SPLIT
-    /* x * |m| mod 2^64 from three products below 2^32 (x's low word in halves, p0 and
-     * p1) and the high word's, of which only the low 32 bits reach the sum; the low
-     * word's carry is rlo < p0. Then the sign. */
-    uint64_t ux = (uint64_t)x, r;
-    uint32_t lo = (uint32_t)ux, um = m < 0 ? 0u - (uint32_t)m : (uint32_t)m;
-    uint32_t p0 = (lo & 0xFFFFu) * um, p1 = (lo >> 16) * um, rlo = p0 + (p1 << 16);
-    uint32_t rhi = (uint32_t)(ux >> 32) * um + (p1 >> 16) + (rlo < p0);
-    r = (uint64_t)rhi << 32 | rlo;
-    return rad__s64(m < 0 ? 0u - r : r);
+    return rad__s64(rad__mulmod16((uint64_t)x, m));
 #else
     return x * m;
 #endif
+}
+
+/* n 2^s mod 2^64, 0 <= s <= 31: in 32-bit words (a variable 64-bit shift is a library
+ * call on M0). */
+static inline uint64_t rad__shl64(uint64_t n, unsigned s)
+{
+    uint32_t hi = (uint32_t)(n >> 32), lo = (uint32_t)n;
+    return (uint64_t)(s ? hi << s | lo >> (32u - s) : hi) << 32 | (uint32_t)(lo << s);
 }
 
 /* The leading zero bits of d > 0, found in five halvings (16, 8, 4, 2, 1). */
@@ -147,12 +195,23 @@ static inline unsigned rad__clz32(uint32_t d)
 }
 
 /* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
- * normalised V (top bit set), estimated from V's top half, then corrected: the
+ * normalised V (top bit set), estimated from V's top half VN1, then corrected: the
  * estimate is at most 2 too large (Knuth, TAOCP 4.3.1, Theorem B). Leaves the
- * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16. */
-static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
+ * remainder in *U. The first test keeps q * vn0 below 2^32, the last rhat * 2^16.
+ * U / VN1 itself comes from REC = floor((2^31 - 1) / VN1) < 2^16 (shared by both digits:
+ * one 32-bit division, a library call on M0, instead of two): with U = 2^16 uh + ul,
+ * q = floor((uh REC + floor(ul REC / 2^16)) / 2^15) (the sum below 2^32) is at most
+ * U REC / 2^31 <= U / VN1, and at least U / VN1 - U / (2^31 VN1) - U / 2^31 - 2^-15 - 1
+ * > U / VN1 - 4: three increments at most make it floor(U / VN1), with rhat its
+ * remainder. */
+static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v, uint32_t rec)
 {
-    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu, q = *u / vn1, rhat = *u - q * vn1;
+    uint32_t vn1 = v >> 16, vn0 = v & 0xFFFFu;
+    uint32_t q = ((*u >> 16) * rec + (((*u & 0xFFFFu) * rec) >> 16)) >> 15, rhat = *u - q * vn1;
+    while (rhat >= vn1) {
+        q++;
+        rhat -= vn1;
+    }
     while (q > 0xFFFFu || q * vn0 > (rhat << 16) + lo16) {
         q--;
         rhat += vn1;
@@ -163,16 +222,17 @@ static inline uint32_t rad__udigit(uint32_t *u, uint32_t lo16, uint32_t v)
 }
 
 /* n / d for d > 0 and n / d < 2^32 (n >> 32 < d): long division by two 16-bit digits
- * with 32-bit divisions (Hacker's Delight's divlu), for targets where a 64-bit division
- * is a long library call. */
+ * (Hacker's Delight's divlu), for targets where a 64-bit division is a long library
+ * call. */
 static inline uint32_t rad__udiv64_32(uint64_t n, uint32_t d)
 {
     unsigned s = rad__clz32(d);
-    uint32_t u1 = (uint32_t)(n >> 32), u0 = (uint32_t)n, q1;
-    uint32_t u = s ? u1 << s | u0 >> (32u - s) : u1, lo = u0 << s;
+    uint64_t un = rad__shl64(n, s);
+    uint32_t u = (uint32_t)(un >> 32), lo = (uint32_t)un, q1, rec;
     d <<= s;
-    q1 = rad__udigit(&u, lo >> 16, d);
-    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d);
+    rec = 0x7FFFFFFFu / (d >> 16);
+    q1 = rad__udigit(&u, lo >> 16, d, rec);
+    return q1 << 16 | rad__udigit(&u, lo & 0xFFFFu, d, rec);
 }
 
 /* n / d for d > 0: by rad__udiv64_32 where it applies on RAD__MUL_SPLIT targets. */
@@ -205,6 +265,65 @@ static inline int64_t rad__div_round(int64_t num, int64_t den)
     uint64_t d = den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den;
     uint64_t q = rad__udiv64(n + d / 2u, d);
     return neg ? -(int64_t)q : (int64_t)q;
+}
+
+/* Division by an invariant: one divisor D (1 <= D < 2^32) of several quotients. On
+ * RAD__MUL_SPLIT targets its reciprocal is found once (one rad__udiv64_32) and each
+ * quotient then takes a product and two corrections (Moller and Granlund, "Improved
+ * division by invariant integers", IEEE Trans. Computers 60(2), 2011, Algorithm 4; its
+ * Theorem 2 is the proof): with D normalised to d = D 2^s (top bit set) and v =
+ * floor((2^64 - 1) / d) - 2^32, the quotient of <u1, u0> = n 2^s (u1 < d) by d, which is
+ * n / D, comes out exact. Elsewhere it is the plain division. NEG keeps D's sign for
+ * rad__div_round_inv. */
+typedef struct {
+    uint32_t den; /* D */
+    int neg;
+#if RAD__MUL_SPLIT
+    uint32_t d, v;
+    unsigned s;
+#endif
+} rad__udiv_inv_t;
+
+/* The divisor |DEN| (0 < |DEN| < 2^32), of DEN's sign. */
+static inline rad__udiv_inv_t rad__udiv_inv_init(int64_t den)
+{
+    rad__udiv_inv_t r;
+    r.neg = den < 0;
+    r.den = (uint32_t)(den < 0 ? (uint64_t)0 - (uint64_t)den : (uint64_t)den);
+#if RAD__MUL_SPLIT
+    r.s = rad__clz32(r.den);
+    r.d = r.den << r.s;
+    /* (2^64 - 1) - 2^32 d = (2^32 - 1 - d) 2^32 + 2^32 - 1, and 2^32 - 1 - d < d */
+    r.v = rad__udiv64_32((uint64_t)~r.d << 32 | 0xFFFFFFFFu, r.d);
+#endif
+    return r;
+}
+
+/* n / D for n / D < 2^32 (n >> 32 < D). */
+static inline uint32_t rad__udiv_inv(uint64_t n, const rad__udiv_inv_t *iv)
+{
+#if RAD__MUL_SPLIT
+    /* n 2^s < D 2^s 2^32 = d 2^32: fits, and u1 < d. <q1, q0> = (2^32 + v) u1 + u0 fits
+     * 64 bits: 2^32 + v <= (2^64 - 1) / d, u1 <= d - 1 and (2^64 - 1) / d > 2^32 > u0. */
+    uint64_t u = rad__shl64(n, iv->s), p = rad__mulu32(iv->v, (uint32_t)(u >> 32)) + u;
+    uint32_t q1 = (uint32_t)(p >> 32) + 1u, q0 = (uint32_t)p, r = (uint32_t)u - q1 * iv->d;
+    if (r > q0) { /* mod 2^32: the candidate is one too large */
+        q1--;
+        r += iv->d;
+    }
+    if (r >= iv->d) q1++; /* rare: one too small */
+    return q1;
+#else
+    return (uint32_t)(n / iv->den);
+#endif
+}
+
+/* rad__div_round(NUM, D) for |NUM| / |D| < 2^32 - 1, D's IV (rad__udiv_inv_init). */
+static inline int64_t rad__div_round_inv(int64_t num, const rad__udiv_inv_t *iv)
+{
+    uint64_t n = num < 0 ? (uint64_t)0 - (uint64_t)num : (uint64_t)num;
+    int64_t q = (int64_t)rad__udiv_inv(n + iv->den / 2u, iv);
+    return (num < 0) != iv->neg ? -q : q;
 }
 
 static inline rad_vec3_t rad__sub(rad_vec3_t a, rad_vec3_t b)
@@ -294,10 +413,20 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
     uint32_t n = q > 0.0f ? (uint32_t)q : 0u;
     return (float)n < q ? n + 1u : n > 0u ? n : 1u;
 }
-/* a + (b - a) * da / (da - db): the crossing of a clip plane, da and db of opposite sign. */
-static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
+/* a + (b - a) * da / (da - db): the crossing of a clip plane, da and db of opposite sign,
+ * for the CLIP of da and db (one for every coordinate of a crossing). */
+typedef struct {
+    rad_real_t t;
+} rad__clip_t;
+static inline rad__clip_t rad__clip_init(rad_real_t da, rad_real_t db)
 {
-    return a + (b - a) * (da / (da - db));
+    rad__clip_t c;
+    c.t = da / (da - db);
+    return c;
+}
+static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, const rad__clip_t *c)
+{
+    return a + (b - a) * c->t;
 }
 /* The reciprocal of a depth d >= RAD__NEAR, for projecting without dividing. */
 typedef float rad__recip_t;
@@ -390,10 +519,20 @@ static inline rad_real_t rad__from_int(int32_t i)
 {
     return (float)i;
 }
-/* V in [-M, M] as an integer in [-2^S, 2^S], rounded (S <= 23, M > 0). */
-static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
+/* V in [-M, M] as an integer in [-2^S, 2^S], rounded (S <= 23, M > 0), for the GRID of
+ * M and S (one for every coordinate of a lattice). */
+typedef struct {
+    float m;
+    unsigned s;
+} rad__grid_t;
+static inline rad__grid_t rad__grid_init(rad_real_t m, unsigned s)
 {
-    float q = v / m * (float)((int32_t)1 << s);
+    rad__grid_t g = {m, s};
+    return g;
+}
+static inline int64_t rad__grid(rad_real_t v, const rad__grid_t *g)
+{
+    float q = v / g->m * (float)((int32_t)1 << g->s);
     return (int64_t)(q < 0 ? q - 0.5f : q + 0.5f);
 }
 /* V times 2^N, -31 <= N <= 31: exact (a power of two), short of float's range. */
@@ -494,11 +633,23 @@ static inline uint32_t rad__ceil_div(rad_real_t a, rad_real_t b, uint32_t m)
     int64_t q = x > 0 ? (x + 1024 * d - 1) / (1024 * d) : 0;
     return q > 0 ? (uint32_t)q : 1u;
 }
-/* |a|, |b| < 2^26: the product fits int64 comfortably. */
-static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, rad_real_t da, rad_real_t db)
+/* |a|, |b| < 2^26: the product fits int64 comfortably, and da - db (opposite signs, so
+ * not 0) is below 2^32, as is the quotient, |b - a| at most. */
+typedef struct {
+    rad_real_t da;
+    rad__udiv_inv_t den;
+} rad__clip_t;
+static inline rad__clip_t rad__clip_init(rad_real_t da, rad_real_t db)
+{
+    rad__clip_t c;
+    c.da = da;
+    c.den = rad__udiv_inv_init((int64_t)da - db);
+    return c;
+}
+static inline rad_real_t rad__clip_lerp(rad_real_t a, rad_real_t b, const rad__clip_t *c)
 {
     if (a == b) return a; /* the quotient is 0 (a hemi-cube's colours): no division */
-    return a + (rad_real_t)rad__div_round(rad__mul32(b - a, da), (int64_t)da - db);
+    return a + (rad_real_t)rad__div_round_inv(rad__mul32(b - a, c->da), &c->den);
 }
 /* 2^46 / d for d in [RAD__NEAR, 2^26): below 2^38, with 2^-23 relative precision. */
 typedef uint64_t rad__recip_t;
@@ -510,7 +661,8 @@ static inline rad__recip_t rad__recip(rad_real_t d)
  * <= 2^62. */
 static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
-    return num > 0 ? (int32_t)(((uint64_t)num * inv * scale + ((uint64_t)1 << 45)) >> 46) : 0;
+    return num > 0 ? (int32_t)((rad__mulu64_32(rad__mulu64_32(inv, (uint32_t)num), scale) + ((uint64_t)1 << 45)) >> 46)
+                   : 0;
 }
 /* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
 static inline uint32_t rad__depth(rad__recip_t inv)
@@ -522,17 +674,17 @@ static inline uint32_t rad__depth(rad__recip_t inv)
 /* b, area >= 0 and < 2^31: the product < 2^62. */
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
 {
-    return (rad_energy_t)(((uint64_t)b * (uint64_t)area + 32768u) >> 16);
+    return (rad_energy_t)((rad__mulu32((uint32_t)b, (uint32_t)area) + 32768u) >> 16);
 }
 /* 0 <= u < 2^46, f <= 2^30: (u * f) >> 30 without a 128-bit product. */
 static inline rad_energy_t rad__energy_ff(rad_energy_t u, rad_ff_t f)
 {
-    uint64_t hi = (uint64_t)u >> 32, lo = (uint64_t)u & 0xFFFFFFFFu;
-    return (rad_energy_t)(((hi * f) << 2) + ((lo * f + (1u << 29)) >> 30));
+    uint32_t hi = (uint32_t)((uint64_t)u >> 32), lo = (uint32_t)u;
+    return (rad_energy_t)((rad__mulu32(hi, f) << 2) + ((rad__mulu32(lo, f) + (1u << 29)) >> 30));
 }
 static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 {
-    return (rad_energy_t)(((uint64_t)u * (uint32_t)rho + 32768u) >> 16);
+    return (rad_energy_t)((rad__mulu64_32((uint64_t)u, (uint32_t)rho) + 32768u) >> 16);
 }
 /* Radiosity of power 0 <= U < 2^47 spread over AREA (> 0). */
 static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
@@ -574,7 +726,7 @@ static inline uint32_t rad__ff_to_q30(rad_ff_t f)
 typedef uint64_t rad__gsum_t;
 static inline rad__gsum_t rad__gs_term(rad_ff_t g, rad_real_t b)
 {
-    return ((uint64_t)g * (uint64_t)(b > 0 ? b : 0) + 8192u) >> 14;
+    return (rad__mulu32(g, (uint32_t)(b > 0 ? b : 0)) + 8192u) >> 14;
 }
 static inline rad_real_t rad__gs_value(rad__gsum_t a, uint32_t *sat)
 {
@@ -611,15 +763,27 @@ static inline rad_ff_t rad__vweight(rad_real_t area)
 }
 static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 {
-    return (rad_real_t)rad__udiv64((uint64_t)(b > 0 ? b : 0) * w + wsum / 2u, wsum);
+    return (rad_real_t)rad__udiv64(rad__mulu32((uint32_t)(b > 0 ? b : 0), w) + wsum / 2u, wsum);
 }
 static inline rad_real_t rad__from_int(int32_t i)
 {
     return (rad_real_t)((uint32_t)i << 16);
 }
-static inline int64_t rad__grid(rad_real_t v, rad_real_t m, unsigned s)
+/* |v| <= m: the quotient is at most 2^S + 1/2 (S <= 23). */
+typedef struct {
+    rad__udiv_inv_t m;
+    unsigned s;
+} rad__grid_t;
+static inline rad__grid_t rad__grid_init(rad_real_t m, unsigned s)
 {
-    return rad__div_round((int64_t)v * ((int64_t)1 << s), m);
+    rad__grid_t g;
+    g.m = rad__udiv_inv_init(m);
+    g.s = s;
+    return g;
+}
+static inline int64_t rad__grid(rad_real_t v, const rad__grid_t *g)
+{
+    return rad__div_round_inv(rad__s64(rad__shl64((uint64_t)(int64_t)v, g->s)), &g->m); /* v 2^s */
 }
 /* V times 2^N, -31 <= N <= 31: a shift, exact for N >= 0 (saturating, counted),
  * rounded to nearest for N < 0. */

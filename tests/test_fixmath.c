@@ -212,7 +212,8 @@ static void test_projection_and_depth(void **st)
         int32_t a = (int32_t)(rnd() % (1u << 26)) - (1 << 25), b = (int32_t)(rnd() % (1u << 26)) - (1 << 25);
         int32_t da = (int32_t)(rnd() % (1u << 25)) + 1, db = -(int32_t)(rnd() % (1u << 25));
         double want = a + (double)(b - (double)a) * da / ((double)da - db);
-        CHECK_NEAR((double)rad__clip_lerp(a, b, da, db), want, 0.5 + 1e-6,
+        const rad__clip_t c = rad__clip_init(da, db);
+        CHECK_NEAR((double)rad__clip_lerp(a, b, &c), want, 0.5 + 1e-6,
                    "rad__clip_lerp(%ld, %ld, %ld, %ld)", (long)a, (long)b, (long)da, (long)db);
     }
 }

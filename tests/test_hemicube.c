@@ -193,13 +193,13 @@ static void test_bands_bit_exact(void **st)
     sc_poly p[12];
     char err[256];
     int n = box(p, -1, -1, -1, 1, 1, 1, 1), i, b;
-    static const int bands[] = {0, 1, 3, 16, 31};
+    static const int bands[] = {0, 1, 3, 16, 31, 48, 95}; /* past res 32: bands span faces */
     uint64_t ref = 0;
     (void)st;
     n += box(p + n, -0.3, -1, -0.3, 0.3, 0.2, 0.3, 0);
     for (i = 0; i < n; i++) set_mat(&p[i], 0.6, 0.5, 0.4, 0, 0, 0);
     set_mat(&p[1], 0.5, 0.5, 0.5, 1, 1, 1);
-    for (b = 0; b < 5; b++) {
+    for (b = 0; b < (int)(sizeof bands / sizeof bands[0]); b++) {
         sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32, .band_rows = bands[b]};
         sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
         assert_non_null(s);

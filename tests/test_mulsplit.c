@@ -89,6 +89,23 @@ static void test_mul16(void **st)
     CHECK_INT_GT(n, 100000, "in-range draws of 200000");
 }
 
+/* rad__mulu64_32 is x * m mod 2^64 for any uint64 x and uint32 m (the energy and
+ * projection products), and rad__mulu32 the full product of two uint32. */
+static void test_mulu64_32(void **st)
+{
+    size_t i;
+    (void)st;
+    for (i = 0; i < 200000; i++) {
+        uint64_t x = rnd() >> (rnd() % 64u);
+        uint32_t m = (uint32_t)(rnd() >> (rnd() % 32u + 32u)), a = (uint32_t)rnd();
+        if (i < 4) x = i & 1 ? ~(uint64_t)0 : 0, m = i & 2 ? 0xFFFFFFFFu : 1u, a = 0xFFFFFFFFu;
+        CHECK_INT_EQ(rad__mulu64_32(x, m), x * m, "rad__mulu64_32(%llu, %lu)", (unsigned long long)x,
+                     (unsigned long)m);
+        CHECK_INT_EQ(rad__mulu32(a, m), (uint64_t)a * m, "rad__mulu32(%lu, %lu)", (unsigned long)a,
+                     (unsigned long)m);
+    }
+}
+
 /* rad__udiv64_32 is n / d for every n with n / d < 2^32: quotients and remainders at
  * their extremes (0, 2^32 - 1; 0, d - 1), divisors of every length. */
 static void test_udiv64_32(void **st)
@@ -106,6 +123,38 @@ static void test_udiv64_32(void **st)
         n = (uint64_t)q * d + r;
         CHECK_INT_EQ(rad__udiv64_32(n, d), q, "rad__udiv64_32(%llu, %lu)", (unsigned long long)n,
                      (unsigned long)d);
+    }
+}
+
+/* rad__udiv_inv (a reciprocal and corrections: Moller and Granlund's division by an
+ * invariant) is n / d for every n with n / d < 2^32, divisors of every length and the
+ * extremes of both (d 1, 2^31, 2^32 - 1; quotient 0, 2^32 - 1; remainder 0, d - 1), and
+ * rad__div_round_inv is rad__div_round with either sign. */
+static void test_udiv_inv(void **st)
+{
+    static const uint32_t ds[] = {1u, 2u, 3u, 0x7FFFFFFFu, 0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
+    size_t i;
+    (void)st;
+    for (i = 0; i < 400000; i++) {
+        uint32_t d = i < 64 ? ds[i % 8u] : (uint32_t)(rnd() >> (rnd() % 32u + 32u)),
+                 q = (uint32_t)(rnd() >> (rnd() % 33u));
+        uint64_t r, n;
+        rad__udiv_inv_t iv;
+        int64_t num, den;
+        if (!d) d = 1;
+        if (i % 5 == 0) q = 0xFFFFFFFFu;
+        if (i % 7 == 0) q = 0;
+        r = i % 3 == 0 ? d - 1u : i % 11 == 0 ? 0u : rnd() % d;
+        n = (uint64_t)q * d + r;
+        iv = rad__udiv_inv_init(d);
+        CHECK_INT_EQ(rad__udiv_inv(n, &iv), q, "rad__udiv_inv(%llu, %lu)", (unsigned long long)n,
+                     (unsigned long)d);
+        if (q >= 0x7FFFFFFFu) continue; /* rad__div_round_inv's range: the quotient < 2^32 - 1 */
+        num = rnd() & 1 ? -(int64_t)n : (int64_t)n;
+        den = rnd() & 1 ? -(int64_t)d : (int64_t)d;
+        iv = rad__udiv_inv_init(den);
+        CHECK_INT_EQ(rad__div_round_inv(num, &iv), rad__div_round(num, den), "rad__div_round_inv(%lld, %lld)",
+                     (long long)num, (long long)den);
     }
 }
 
@@ -192,7 +241,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
-        cmocka_unit_test(test_udiv64_32), cmocka_unit_test(test_div_round),
+        cmocka_unit_test(test_mulu64_32), cmocka_unit_test(test_udiv64_32),
+        cmocka_unit_test(test_udiv_inv), cmocka_unit_test(test_div_round),
         cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
