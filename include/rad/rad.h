@@ -162,8 +162,7 @@ typedef struct {
  * address with RAD_ERR_ALIGN. The work buffer may start at any address: the core
  * starts its tables at the next multiple of 8, and RAD_WORK_BYTES counts the bytes
  * that may cost. Bytes per entry: sizeof(rad_surface_t) etc., which depend on
- * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets).
- */
+ * RAD_INDEX_BITS (ports/README.md has them for 16-bit indices on 32-bit targets). */
 typedef struct {
     rad_surface_t *surfaces;
     uint32_t max_surfaces;
