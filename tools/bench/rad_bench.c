@@ -1108,52 +1108,66 @@ static double thread_cpu(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-/* What two free cores could do, whatever the load: the scene solved to 0.001 through
- * the core's split shot on this one thread, both parts of each stage in turn, each
- * call timed on the thread's processor clock. Returns the serial time over the
- * critical path (the serial calls plus the longer part of each stage): the 2-thread
- * speed-up with no waiting and no other process. */
-static double parallel_bound(const bscene *sc, const sc_opts *o)
+/* The scene solved to 0.001 through the core's split shot in NP parts (1 or 2) on this
+ * one thread, each part of each stage in turn, each call timed on the thread's
+ * processor clock: into SERIAL the calls between the stages, into WORK every part's
+ * time, into CRIT the longer part of each stage. */
+static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double *serial, double *work,
+                        double *crit)
 {
     sc_solver *h = fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
     size_t bytes = RAD_PART_BYTES(s->cfg.res);
     void *bufs[2] = {malloc(bytes), malloc(bytes)};
-    double serial = 0, part[2][2] = {{0, 0}, {0, 0}}, t;
+    double t, q[2];
     uint32_t p;
-    unsigned k;
+    unsigned k, stage;
     if (!bufs[0] || !bufs[1]) exit(1);
+    *serial = *work = *crit = 0;
     for (;;) {
         t = thread_cpu();
         if (rad_shot_begin(s, RAD_REAL(0.001), &p) != 1) break;
-        serial += thread_cpu() - t;
-        for (k = 0; k < 2; k++) {
-            t = thread_cpu();
-            rad_shot_part(s, p, k, 2, bufs[k], bytes);
-            part[0][k] += thread_cpu() - t;
+        *serial += thread_cpu() - t;
+        for (stage = 0; stage < 2; stage++) {
+            if (stage) {
+                t = thread_cpu();
+                rad_shot_aim(s, p, bufs, np);
+                *serial += thread_cpu() - t;
+            }
+            q[1] = 0;
+            for (k = 0; k < np; k++) {
+                t = thread_cpu();
+                if (stage) rad_shot_receive_part(s, p, bufs, np, k);
+                else rad_shot_part(s, p, k, np, bufs[k], bytes);
+                q[k] = thread_cpu() - t;
+                *work += q[k];
+            }
+            *crit += q[0] > q[1] ? q[0] : q[1];
         }
         t = thread_cpu();
-        rad_shot_aim(s, p, bufs, 2);
-        serial += thread_cpu() - t;
-        for (k = 0; k < 2; k++) {
-            t = thread_cpu();
-            rad_shot_receive_part(s, p, bufs, 2, k);
-            part[1][k] += thread_cpu() - t;
-        }
-        t = thread_cpu();
-        rad_shot_end(s, p, bufs, 2);
-        serial += thread_cpu() - t;
+        rad_shot_end(s, p, bufs, np);
+        *serial += thread_cpu() - t;
     }
     free(bufs[0]);
     free(bufs[1]);
     sc_destroy(h);
-    t = serial + part[0][0] + part[0][1] + part[1][0] + part[1][1];
-    return t / (serial + (part[0][0] > part[0][1] ? part[0][0] : part[0][1]) +
-                (part[1][0] > part[1][1] ? part[1][0] : part[1][1]));
 }
 
-/* One scene solved on 1 and 2 threads, 3 times each: the medians. Exits if the two
- * results differ in a bit. */
+/* What two free cores could do, whatever the load: the one-part solve's time (the
+ * serial work) over the two-part solve's critical path (the calls between the stages
+ * plus the longer part of each stage). Cutting a shot in two costs work of its own
+ * (surfaces set up on both parts' faces, each part's elements merged from both
+ * parts' pixels), so this is below the two parts' own time over that path. SPLIT gets
+ * the two parts' work over the one part's. */
+static double parallel_bound(const bscene *sc, const sc_opts *o, double *split)
+{
+    double s1, w1, c1, s2, w2, c2;
+    split_times(sc, o, 1, &s1, &w1, &c1);
+    split_times(sc, o, 2, &s2, &w2, &c2);
+    *split = w2 / w1;
+    return (s1 + w1) / (s2 + c2);
+}
+
 static void parallel_times(const bscene *sc, const sc_opts *o, double *m1, double *m2)
 {
     double t1[3], t2[3];
@@ -1184,22 +1198,24 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
         "runs of whole patches' elements, each sum in the serial order: bit-exact with the serial solve, checked by "
         "tests/test_parallel.c), fixed build, to 0.001, median of 3, with the machine's load average (1 minute) "
         "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
-        "thread. The bound is what two free cores could give whatever the load: each stage's two parts timed "
-        "on one thread's processor clock, the serial time over the critical path (the calls between the "
-        "stages plus each stage's longer part); each scene at res 128 and at rad_cli's defaults (res 192, coarse "
-        "shots):\n\n| scene | settings | elements | 1 thread s | 2 threads s | speed-up | load average | bound |\n"
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "thread. The bound is what two free cores could give whatever the load: the solve in one part over the "
+        "critical path of the solve in two (the calls between the stages plus each stage's longer part), all "
+        "timed on one thread's processor clock; split is the two parts' work over the one part's (the surfaces "
+        "set up on both parts' faces, each part's elements merged from both parts' pixels). Each scene at res "
+        "128 and at rad_cli's defaults (res 192, coarse shots):\n\n| scene | settings | elements | 1 thread s | "
+        "2 threads s | speed-up | load average | split | bound |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         int k;
         if (scenes[i].big) continue; /* too long to repeat */
         for (k = 0; k < 2; k++) {
             sc_opts o = k ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
-            double m1, m2, load = -1;
+            double m1, m2, load = -1, split, bound;
             parallel_times(&scenes[i], &o, &m1, &m2);
             if (getloadavg(&load, 1) != 1) load = -1;
-            out(rp, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
-                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m1, m2, m1 / m2, load,
-                parallel_bound(&scenes[i], &o));
+            bound = parallel_bound(&scenes[i], &o, &split);
+            out(rp, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
+                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m1, m2, m1 / m2, load, split, bound);
         }
     }
 }
