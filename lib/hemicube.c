@@ -589,10 +589,11 @@ static canvas_t part_canvas(const rad_scene_t *s, void *buf)
 }
 
 /* Rendering cost of a row of the top face and of a side face, relative: a top row took
- * 1.3 times as long (processor time of two parts, on CornellBox-Original and the
- * bundled box, res 128: cut at equal rows, the part with the top face took 1.25 times
- * the other's). */
-#define TOP_ROW_COST  13u
+ * 1.6 times as long (processor time of two parts: cut at 1.3, the part with the top
+ * face took 1.11 to 1.19 times the other's on the bundled box and CornellBox-Original
+ * at res 128, 1.28 on CornellBox-Original at rad_cli's res 192 with coarse shots:
+ * top rows of 1.5 to 1.8). Where the cut falls never changes a bit. */
+#define TOP_ROW_COST  16u
 #define SIDE_ROW_COST 10u
 
 /* The row (of the 3 res, face after face) where cut K of NPARTS falls: at equal shares
