@@ -508,7 +508,7 @@ static void test_solution_colours(void **state)
                            "usemtl floor\nf 5/1 6/2 2/3 1/4\n"
                            "o lamp\nusemtl lamp\nf 9 10 11 12\n");
     assert_int_equal(obj_load(tmp_path("room.obj"), &sc, NULL, NULL, err, sizeof err), 0);
-    assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL), 3);
+    assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL, 1), 3);
     assert_int_equal(maps[3].borrowed, 1); /* w.png decoded once for two materials */
     assert_ptr_equal(maps[3].rgb, maps[0].rgb);
     assert_int_equal(maps[3].clamp, 1); /* with its own options */

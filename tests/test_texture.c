@@ -491,9 +491,9 @@ static void test_mtl_map_kd(void **state)
     assert_near(sc.materials[2].kd[0], OBJ_FALLBACK_KD, 0); /* a malformed map: grey */
     assert_near(sc.materials[3].kd[2], 0.4, 0);             /* keeps its Kd */
     /* Loading: the wood decodes; the missing file is one warning naming the MTL line and
-       the file, and grey. */
+       the file, and grey; decoded on 3 threads (two files), as on one. */
     w.n = 0;
-    assert_int_equal(tex_load_materials(&sc, maps, collect, &w), 1);
+    assert_int_equal(tex_load_materials(&sc, maps, collect, &w, 3), 1);
     assert_asymmetric(&maps[0]);
     assert_int_equal(maps[0].clamp, 1);
     assert_near(maps[0].scale[1], 3, 0);
@@ -547,7 +547,7 @@ static void load_textured(const char *name, textured *t)
     char err[512];
     assert_int_equal(obj_load(tmp_path(name), &t->sc, NULL, NULL, err, sizeof err), 0);
     assert_true(t->sc.nmaterials <= 8);
-    tex_load_materials(&t->sc, t->maps, NULL, NULL);
+    tex_load_materials(&t->sc, t->maps, NULL, NULL, 1);
     t->p = obj_to_polys_tex(&t->sc, t->maps, &t->n, NULL, NULL);
     assert_non_null(t->p);
 }

@@ -181,7 +181,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     maps = calloc((size_t)sc.nmaterials + 1, sizeof *maps);
     CHECK(maps != NULL);
-    tex_load_materials(&sc, maps, on_warning, &warnings);
+    tex_load_materials(&sc, maps, on_warning, &warnings, 1);
     CHECK(sc.nwarnings == warnings);
     check_export(&sc, maps, &warnings);
     for (i = 0; i < sc.nmaterials; i++) {

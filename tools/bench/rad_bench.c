@@ -1480,7 +1480,7 @@ static int write_kd_mtl(const char *dir, const char *obj)
     FILE *f;
     int n, i, m;
     if (obj_load(obj, &sc, NULL, NULL, path, sizeof path) < 0) return -1;
-    if (sc.nmaterials > TEX_MAPS + 1 || tex_load_materials(&sc, maps, NULL, NULL) != TEX_MAPS) {
+    if (sc.nmaterials > TEX_MAPS + 1 || tex_load_materials(&sc, maps, NULL, NULL, 1) != TEX_MAPS) {
         obj_free(&sc);
         return -1;
     }
@@ -1535,7 +1535,7 @@ static void tex_shots(const char *dir, texbench_t *tb)
         int n, m;
         snprintf(path, sizeof path, "%s/%s", dir, obj[v]);
         if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) continue;
-        if (v == 0) tex_load_materials(&sc, maps, NULL, NULL);
+        if (v == 0) tex_load_materials(&sc, maps, NULL, NULL, 1);
         p = v == 0 ? obj_to_polys_tex(&sc, maps, &n, NULL, NULL) : obj_to_polys(&sc, &n, NULL, NULL);
         if (v == 1)
             for (m = 0; p && m < n; m++) /* --no-textures: Kd 0 shows 0.5 grey (obj_map_fallback) */

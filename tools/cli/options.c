@@ -285,7 +285,7 @@ static const option_t options[] = {
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels and --gather's gathers too", opt_threads},
+    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels, --gather's gathers and textures too", opt_threads},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},

@@ -236,7 +236,7 @@ static int load_textures(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    if (tex_load_materials(&r->sc, r->maps, obj_warning, r->o) > 0) {
+    if (tex_load_materials(&r->sc, r->maps, obj_warning, r->o, r->o->threads) > 0) {
         r->ot.sc = &r->sc;
         r->ot.maps = r->maps;
     }

@@ -12,6 +12,7 @@
 #include "formats/file_io.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -635,38 +636,124 @@ static void warn_map(obj_material *m, const char *why, tex_warn_fn warn, void *c
     warn(ctx, msg);
 }
 
-/* An earlier material's image of the same file, or -1. */
-static int loaded_before(const obj_scene *sc, const tex_image *maps, int i)
+/* The first material whose map_Kd names the same file as material I's (I itself when
+ * none before does). */
+static int first_with_path(const obj_scene *sc, int i)
 {
     int j;
     for (j = 0; j < i; j++)
-        if (maps[j].rgb && !maps[j].borrowed &&
-            !strcmp(sc->materials[j].map_kd.path, sc->materials[i].map_kd.path))
+        if (sc->materials[j].map_kd.path && !strcmp(sc->materials[j].map_kd.path, sc->materials[i].map_kd.path))
             return j;
-    return -1;
+    return i;
 }
 
-int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx)
+/* The decoding of one file, for a thread: MAT the material that names it first. */
+typedef struct {
+    const char *path;
+    int mat, rc;
+    char err[768];
+} tex_job;
+
+typedef struct {
+    tex_job *jobs;
+    tex_image *maps;
+    int njobs, threads, rank;
+} tex_crew;
+
+static void *decode_jobs(void *arg)
 {
-    int i, j, loaded = 0;
+    const tex_crew *c = arg;
+    int k;
+    for (k = c->rank; k < c->njobs; k += c->threads) {
+        tex_job *j = &c->jobs[k];
+        j->rc = tex_load(j->path, &c->maps[j->mat], j->err, sizeof j->err);
+    }
+    return NULL;
+}
+
+/* Each job decoded, on THREADS threads (the files are independent; a thread that
+ * cannot start leaves its jobs to the calling thread). Returns -1 without memory. */
+static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
+{
+    tex_crew *c;
+    pthread_t *tid;
+    int t, n = threads < njobs ? threads : njobs, *started;
+    if (n < 1) n = 1;
+    c = calloc((size_t)n, sizeof *c);
+    tid = calloc((size_t)n, sizeof *tid);
+    started = calloc((size_t)n, sizeof *started);
+    if (!c || !tid || !started) {
+        free(c);
+        free(tid);
+        free(started);
+        return -1;
+    }
+    for (t = 0; t < n; t++) {
+        c[t].jobs = jobs;
+        c[t].maps = maps;
+        c[t].njobs = njobs;
+        c[t].threads = n;
+        c[t].rank = t;
+    }
+    for (t = 1; t < n; t++) started[t] = pthread_create(&tid[t], NULL, decode_jobs, &c[t]) == 0;
+    decode_jobs(&c[0]);
+    for (t = 1; t < n; t++) {
+        if (started[t]) pthread_join(tid[t], NULL);
+        else decode_jobs(&c[t]);
+    }
+    free(c);
+    free(tid);
+    free(started);
+    return 0;
+}
+
+int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads)
+{
+    tex_job *jobs = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *jobs);
+    int *job_of = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *job_of);
+    int i, njobs = 0, loaded = 0;
+    for (i = 0; i < sc->nmaterials; i++) empty(&maps[i]);
+    for (i = 0; jobs && job_of && i < sc->nmaterials; i++) {
+        const obj_material *m = &sc->materials[i];
+        int first = m->map_kd.path ? first_with_path(sc, i) : -1;
+        job_of[i] = first < 0 ? -1 : first < i ? job_of[first] : njobs;
+        if (first == i) {
+            jobs[njobs].path = m->map_kd.path;
+            jobs[njobs].mat = i;
+            njobs++;
+        }
+    }
+    if (!jobs || !job_of || decode_all(jobs, njobs, maps, threads) < 0) {
+        for (i = 0; i < sc->nmaterials; i++) tex_free(&maps[i]);
+        for (i = 0; i < sc->nmaterials; i++)
+            if (sc->materials[i].map_kd.path) {
+                sc->nwarnings++;
+                warn_map(&sc->materials[i], "out of memory", warn, ctx);
+            }
+        free(jobs);
+        free(job_of);
+        return 0;
+    }
+    /* In material order, as one thread would: the warnings, each a material's own line. */
     for (i = 0; i < sc->nmaterials; i++) {
         obj_material *m = &sc->materials[i];
-        char err[768];
-        empty(&maps[i]);
-        if (!m->map_kd.path)
-            continue;
-        if ((j = loaded_before(sc, maps, i)) >= 0) {
-            maps[i] = maps[j];
-            maps[i].borrowed = 1;
-        } else if (tex_load(m->map_kd.path, &maps[i], err, sizeof err)) {
+        const tex_job *j = job_of[i] >= 0 ? &jobs[job_of[i]] : NULL;
+        if (!j) continue;
+        if (j->rc) {
             sc->nwarnings++;
-            warn_map(m, err, warn, ctx);
+            warn_map(m, j->err, warn, ctx);
             continue;
+        }
+        if (j->mat != i) {
+            maps[i] = maps[j->mat];
+            maps[i].borrowed = 1;
         }
         maps[i].clamp = m->map_kd.clamp;
         memcpy(maps[i].offset, m->map_kd.offset, sizeof maps[i].offset);
         memcpy(maps[i].scale, m->map_kd.scale, sizeof maps[i].scale);
         loaded++;
     }
+    free(jobs);
+    free(job_of);
     return loaded;
 }

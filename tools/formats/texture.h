@@ -112,11 +112,14 @@ void tex_image_mean(const tex_image *t, double rgb[3]);
 void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
 
 /* Loads every material's map_Kd into maps[0 .. sc->nmaterials - 1] (maps[i].rgb NULL
- * when material i has none or it fails). Materials naming the same file share one
- * decoded image (the first one's; the others borrow it: free them all together, in any
- * order). A failure is one warning "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings) and obj_map_fallback on the
- * material. Returns the number of textures loaded. */
-int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx);
+ * when material i has none or it fails), the files decoded on THREADS threads (1 or
+ * less: the calling thread; the results and warnings are the same). Materials naming
+ * the same file share one decoded image (the first one's; the others borrow it: free
+ * them all together, in any order). A failure is one warning per material naming the
+ * file, "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings), in
+ * material order, and obj_map_fallback on the material. Returns the number of
+ * textures loaded. */
+int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads);
 
 #ifdef __cplusplus
 }
