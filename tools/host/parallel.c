@@ -5,8 +5,12 @@
  * for the whole solve and wait for each stage by spinning on a stage counter, not by
  * sleeping: a shot takes well under a millisecond, and waking a sleeping thread on an
  * idle core took as long as the shot itself on our 2-core VMs (two threads started for
- * each shot ran no faster than one). A worker that cannot start has its parts done by
- * the calling thread. The counters are GCC/clang __atomic builtins (acquire/release). */
+ * each shot ran no faster than one). Each stage's parts, one a thread, are claimed by
+ * whichever thread is free first: on a busy machine a worker may not run for a whole
+ * time slice, and the calling thread then does its part instead of waiting for it
+ * (waiting made a solve ten times slower than one thread beside another job). Which
+ * thread runs a part never changes its bits. A worker that cannot start leaves its
+ * part to the others. The counters are GCC/clang __atomic builtins (acquire/release). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
@@ -22,22 +26,18 @@
 #define MAX_THREADS 64
 
 /* What the workers share: the stage to run (STAGE counts them, odd to render, even
- * to receive; -1 tells the workers to leave), each part's buffer and the last stage
- * it finished. */
+ * to receive; -1 tells the workers to leave), each part's buffer, and for the stage in
+ * progress the next part to claim and the parts finished, each tagged with the stage
+ * in its high 32 bits (so that a worker late from an earlier stage claims nothing). */
 typedef struct {
     rad_scene_t *s;
     uint32_t patch;
     unsigned nparts;
     size_t bytes;
     void *bufs[MAX_THREADS];
-    int done[MAX_THREADS];
     int stage;
+    uint64_t claim, finished;
 } crew_t;
-
-typedef struct {
-    crew_t *crew;
-    unsigned part;
-} worker_t;
 
 static int load(const int *p) { return __atomic_load_n(p, __ATOMIC_ACQUIRE); }
 static void store(int *p, int v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
@@ -51,39 +51,52 @@ static void run_stage(crew_t *c, int stage, unsigned part)
         rad_shot_receive_part(c->s, c->patch, c->bufs, c->nparts, part);
 }
 
+/* Parts of stage STAGE, claimed one by one until none is left, or until the stage is
+ * over (CLAIM tagged with a later one). */
+static void claim_parts(crew_t *c, int stage)
+{
+    const uint64_t tag = (uint64_t)(uint32_t)stage << 32;
+    uint64_t t = __atomic_load_n(&c->claim, __ATOMIC_ACQUIRE);
+    for (;;) {
+        if ((t & ~0xFFFFFFFFull) != tag || (uint32_t)t >= c->nparts) return;
+        if (__atomic_compare_exchange_n(&c->claim, &t, t + 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+            run_stage(c, stage, (unsigned)(uint32_t)t);
+            __atomic_fetch_add(&c->finished, 1, __ATOMIC_RELEASE);
+            t = __atomic_load_n(&c->claim, __ATOMIC_ACQUIRE);
+        }
+    }
+}
+
 static void *work(void *arg)
 {
-    worker_t *w = arg;
-    crew_t *c = w->crew;
+    crew_t *c = arg;
     int seen = 0;
     for (;;) {
         int stage;
         while ((stage = load(&c->stage)) == seen) sched_yield();
         if (stage < 0) return NULL;
         seen = stage;
-        run_stage(c, stage, w->part);
-        store(&c->done[w->part], stage);
+        claim_parts(c, stage);
     }
 }
 
-/* Stage STAGE on every part: the workers' started, the calling thread's part 0 and the
- * parts of workers that could not start. */
-static void stage_all(crew_t *c, int stage, const int *started)
+/* Stage STAGE on every part, the calling thread claiming parts too, until every part
+ * is finished: a part a worker has not claimed when the calling thread is free is the
+ * calling thread's. */
+static void stage_all(crew_t *c, int stage)
 {
-    unsigned k;
+    const uint64_t tag = (uint64_t)(uint32_t)stage << 32;
+    __atomic_store_n(&c->finished, tag, __ATOMIC_RELAXED);
+    __atomic_store_n(&c->claim, tag, __ATOMIC_RELEASE);
     store(&c->stage, stage);
-    run_stage(c, stage, 0);
-    for (k = 1; k < c->nparts; k++) {
-        if (!started[k]) run_stage(c, stage, k);
-        else while (load(&c->done[k]) != stage) sched_yield();
-    }
+    claim_parts(c, stage);
+    while (__atomic_load_n(&c->finished, __ATOMIC_ACQUIRE) != tag + c->nparts) sched_yield();
 }
 
 int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     rad_scene_t *s = sc_core(h);
     crew_t c;
-    worker_t wk[MAX_THREADS];
     pthread_t tid[MAX_THREADS];
     int started[MAX_THREADS];
     rad_real_t t = RAD_REAL(tol);
@@ -98,20 +111,16 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
     c.nparts = (unsigned)threads;
     c.bytes = RAD_PART_BYTES(s->cfg.res);
     c.stage = 0;
+    c.claim = c.finished = 0;
     for (k = 0; k < threads; k++) {
         c.bufs[k] = malloc(c.bytes);
-        c.done[k] = 0;
         ok = ok && c.bufs[k];
     }
-    for (k = 1; k < threads && ok; k++) {
-        wk[k].crew = &c;
-        wk[k].part = (unsigned)k;
-        started[k] = pthread_create(&tid[k], NULL, work, &wk[k]) == 0;
-    }
+    for (k = 1; k < threads && ok; k++) started[k] = pthread_create(&tid[k], NULL, work, &c) == 0;
     while (ok && shots < max_shots && rad_shot_begin(s, t, &c.patch) == 1) {
-        stage_all(&c, 2 * shots + 1, started);
+        stage_all(&c, 2 * shots + 1);
         rad_shot_aim(s, c.patch, c.bufs, c.nparts);
-        stage_all(&c, 2 * shots + 2, started);
+        stage_all(&c, 2 * shots + 2);
         rad_shot_end(s, c.patch, c.bufs, c.nparts);
         shots++;
         if (progress && progress(ctx, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)))) break;
