@@ -411,14 +411,7 @@ void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)
 {
     so->res = o->res ? o->res : rows ? CLI_ROWS_RES : CLI_RES;
     so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : CLI_COARSE;
-    /* res / 8 made even, but not below 24 (a cube of 8 or 16 misses whole surfaces): a
-     * res of 24 or less never coarsens */
-    so->coarse_res = o->coarse_res;
-    if (!so->coarse_res) {
-        so->coarse_res = so->res / 16 * 2;
-        if (so->coarse_res < 24) so->coarse_res = 24;
-        if (so->coarse_res > so->res) so->coarse_res = so->res;
-    }
+    so->coarse_res = o->coarse_res ? o->coarse_res : CLI_COARSE_FLOOR(so->res);
 }
 
 static void set_defaults(opts_t *o, int argc)
