@@ -309,16 +309,16 @@ static int64_t times(int64_t v, int32_t m)
     return m == 1 ? v : m == -1 ? -v : m == 0 ? 0 : rad__mul16(v, m);
 }
 
-/* F's walker at line K of pixel (X, Y), from the coefficients (the values the
- * old-style start computes: at, and the differences in k, of each). */
-static void walker_init(rad__family_t *f, int32_t x, int32_t y, int32_t k)
+/* F's walker at line K of pixel (X, Y), whose coefficients are A, from them and their
+ * changes along a row and a column (the values the old-style start computes: at, and
+ * the differences in k, of each). */
+static void walker_init(rad__family_t *f, int32_t x, int32_t y, const int64_t *a, int32_t k)
 {
-    int64_t a[3], ox[3], oy[3];
+    int64_t ox[3], oy[3];
     unsigned j;
     for (j = 0; j < 3; j++) {
         ox[j] = 2 * f->c[j][0];
         oy[j] = 2 * f->c[j][1];
-        a[j] = f->o[j] + rad__mul16(ox[j], x) + rad__mul16(oy[j], y);
     }
     f->w[0] = at(a, k);
     f->w[1] = a[1] + rad__mul16(a[2], 2 * k + 1);
@@ -419,7 +419,7 @@ static void walk_start_walker(rad__family_t *f, int32_t y, int32_t xs, int32_t x
         unsigned j;
         for (j = 0; j < 3; j++)
             a[j] = f->o[j] + rad__mul16(2 * f->c[j][0], xs) + rad__mul16(2 * f->c[j][1], y);
-        walker_init(f, xs, y, search(a, f->n));
+        walker_init(f, xs, y, a, search(a, f->n));
     } else {
         walker_move(f, xs, y);
     }
