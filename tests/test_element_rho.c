@@ -13,6 +13,7 @@
 #include <cmocka.h>
 
 #include "check.h"
+#include "core_values.h"
 #include "rad/rad.h"
 
 #define NS 16
@@ -29,20 +30,6 @@ typedef struct {
     unsigned char work[RAD_WORK_BYTES(64, RAD_PIXELS_ALL(64), NV)];
     rad_scene_t s;
 } world_t;
-
-static rad_vec3_t V(double x, double y, double z)
-{
-    rad_vec3_t v;
-    v.x = RAD_REAL(x); v.y = RAD_REAL(y); v.z = RAD_REAL(z);
-    return v;
-}
-
-static rad_rgb_t C(double r, double g, double b)
-{
-    rad_rgb_t c;
-    c.r = RAD_REAL(r); c.g = RAD_REAL(g); c.b = RAD_REAL(b);
-    return c;
-}
 
 static world_t *world(double max_patch, double max_element)
 {
@@ -77,6 +64,18 @@ static rad_rgb_t pattern(uint32_t e)
 {
     static const double r[4][3] = {{0.2, 0.7, 0.4}, {0.9, 0.3, 0.6}, {0.5, 0.5, 0.1}, {0.05, 0.8, 0.95}};
     return C(r[e % 4][0], r[e % 4][1], r[e % 4][2]);
+}
+
+/* W's elements given reflectances of their own: UNIFORM for every one, or (NULL)
+ * pattern's. */
+static void own_reflectances(world_t *w, const rad_rgb_t *uniform)
+{
+    uint32_t e;
+    assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
+    for (e = 0; e < w->s.n_elements; e++) {
+        rad_rgb_t r = uniform ? *uniform : pattern(e);
+        assert_int_equal(rad_set_element_reflectance(&w->s, e, &r), RAD_OK);
+    }
 }
 
 static double ch(const rad_rgb_t *c, int k)
@@ -145,8 +144,7 @@ static void test_closed_box_uniform(void **st)
     int k;
     (void)st;
     box(w, &r02, &one);
-    assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
-    for (e = 0; e < w->s.n_elements; e++) assert_int_equal(rad_set_element_reflectance(&w->s, e, &r05), RAD_OK);
+    own_reflectances(w, &r05);
     assert_true(rad_shoot(&w->s, 100000, RAD_REAL(1e-4)) > 0);
     for (e = 0; e < w->s.n_elements; e++) {
         rad_rgb_t b;
@@ -181,11 +179,7 @@ static void test_closed_box_balance(void **st)
     int k;
     (void)st;
     box(w, &grey, &one);
-    assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
-    for (e = 0; e < w->s.n_elements; e++) {
-        rad_rgb_t r = pattern(e);
-        assert_int_equal(rad_set_element_reflectance(&w->s, e, &r), RAD_OK);
-    }
+    own_reflectances(w, NULL);
     assert_true(rad_shoot(&w->s, 100000, RAD_REAL(1e-4)) > 0);
     for (e = 0; e < w->s.n_elements; e++) {
         rad_rgb_t b, r = pattern(e);
@@ -220,11 +214,7 @@ static void test_ambient_part(void **st)
     int k;
     (void)st;
     box(w, &grey, &one);
-    assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
-    for (e = 0; e < w->s.n_elements; e++) {
-        rad_rgb_t r = pattern(e);
-        assert_int_equal(rad_set_element_reflectance(&w->s, e, &r), RAD_OK);
-    }
+    own_reflectances(w, NULL);
     assert_int_equal(rad_shoot(&w->s, 3, 0), 3);
     assert_int_equal(rad_ambient(&w->s, &amb), RAD_OK);
     CHECK_GT(ch(&amb, 0), 0.1, "ambient term after 3 shots of 96 lit patches");
@@ -258,8 +248,7 @@ static void test_gauss_seidel(void **st)
     uint32_t e;
     (void)st;
     box(w, &r02, &one);
-    assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
-    for (e = 0; e < w->s.n_elements; e++) assert_int_equal(rad_set_element_reflectance(&w->s, e, &r05), RAD_OK);
+    own_reflectances(w, &r05);
     CHECK_INT_EQ(rad_rows_compute(&w->s, &rows, NP), (int)w->s.n_patches, "rows stored");
     m = malloc(RAD_GS_ENTRIES(w->s.n_patches) * sizeof *m);
     assert_non_null(m);

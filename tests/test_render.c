@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include "check.h"
+#include "core_values.h"
 #include "rad/rad.h"
 
 #define W 64
@@ -22,13 +23,6 @@ static rad_vec3_t vx[1024];
 static unsigned char work[RAD_WORK_BYTES(16, RAD_PIXELS_ALL(16), 1024)];
 static rad_rgb_t vrgb[1024], fb[W * H];
 static uint32_t zb[W * H];
-
-static rad_vec3_t V(double x, double y, double z)
-{
-    rad_vec3_t v;
-    v.x = RAD_REAL(x); v.y = RAD_REAL(y); v.z = RAD_REAL(z);
-    return v;
-}
 
 static void setup(rad_scene_t *s)
 {

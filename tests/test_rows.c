@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "check.h"
+#include "core_values.h"
 #include "rad/rad.h"
 
 #define NS 32
@@ -28,20 +29,6 @@ typedef struct {
     unsigned char work[RAD_WORK_BYTES(64, RAD_PIXELS_ALL(64), NV)];
     rad_scene_t s;
 } world_t;
-
-static rad_vec3_t V(double x, double y, double z)
-{
-    rad_vec3_t v;
-    v.x = RAD_REAL(x); v.y = RAD_REAL(y); v.z = RAD_REAL(z);
-    return v;
-}
-
-static rad_rgb_t C(double r, double g, double b)
-{
-    rad_rgb_t c;
-    c.r = RAD_REAL(r); c.g = RAD_REAL(g); c.b = RAD_REAL(b);
-    return c;
-}
 
 /* A closed room 64 x 64 x 64 with a red and a green wall, a plate, and two lights
  * (surfaces 7 and 8) under the ceiling: the scale and brightness rad_cli gives every
