@@ -457,10 +457,15 @@ static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 {
     return u * rho;
 }
-static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
+typedef rad_real_t rad__area_div_t;
+static inline rad__area_div_t rad__area_div(rad_real_t area)
+{
+    return area;
+}
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area, uint32_t *sat)
 {
     (void)sat;
-    return u / area;
+    return u / *area;
 }
 static inline rad_real_t rad__energy_ratio(rad_energy_t num, rad_energy_t den)
 {
@@ -686,12 +691,23 @@ static inline rad_energy_t rad__energy_refl(rad_energy_t u, rad_real_t rho)
 {
     return (rad_energy_t)((rad__mulu64_32((uint64_t)u, (uint32_t)rho) + 32768u) >> 16);
 }
-/* Radiosity of power 0 <= U < 2^47 spread over AREA (> 0). */
-static inline rad_real_t rad__energy_to_rad(rad_energy_t u, rad_real_t area, uint32_t *sat)
+/* An element's area as rad__energy_to_rad divides by it, prepared once for its three
+ * channels: on RAD__MUL_SPLIT targets the reciprocal (rad__udiv_inv), one 64/32
+ * division where each channel took one. */
+typedef rad__udiv_inv_t rad__area_div_t;
+static inline rad__area_div_t rad__area_div(rad_real_t area)
 {
-    uint64_t a = (uint64_t)(area > 0 ? area : 1);
-    uint64_t q = rad__udiv64(((uint64_t)u << 16) + (a >> 1), a);
-    if (q > (uint64_t)INT32_MAX) {
+    return rad__udiv_inv_init(area > 0 ? area : 1);
+}
+/* Radiosity of power 0 <= U < 2^47 spread over AREA (rad__area_div's, of an area > 0),
+ * rounded: (U 2^16 + A / 2) / A, whose numerator is below 2^63. A quotient of 2^32 or
+ * more (n >> 32 >= A, outside rad__udiv_inv's range) saturates, as does one past
+ * INT32_MAX. */
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area, uint32_t *sat)
+{
+    uint64_t n = ((uint64_t)u << 16) + (area->den >> 1);
+    uint32_t q = n >> 32 < area->den ? rad__udiv_inv(n, area) : 0xFFFFFFFFu;
+    if (q > (uint32_t)INT32_MAX) {
         if (sat) (*sat)++;
         return INT32_MAX;
     }

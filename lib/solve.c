@@ -21,7 +21,8 @@
 /* Power RECV = rho * F * U reaching an element (computed on U's magnitude, with U's
  * sign), added to its radiosity and patch. */
 static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_real_t rho,
-                                 rad_real_t area, rad_real_t b, rad_energy_t *patch_unshot)
+                                 const rad__area_div_t *area, rad_real_t b,
+                                 rad_energy_t *patch_unshot)
 {
     rad_energy_t recv = rad__energy_refl(rad__energy_ff(rad__eabs(u), f), rho);
     rad_real_t db = rad__energy_to_rad(recv, area, sat);
@@ -203,11 +204,11 @@ static void receive_element(rad_scene_t *s, const rad_energy_t *u, uint32_t e, r
     rad_element_t *el = &s->pools.elements[e];
     const rad_rgb_t *rho = rad__element_rho(s, e);
     rad_energy_t *pu = s->pools.patches[el->patch].unshot;
-    rad_real_t a = el->area;
+    const rad__area_div_t a = rad__area_div(el->area);
     uint32_t sat = 0;
-    rad_real_t r = receive(&sat, u[0], f, rho->r, a, el->radiosity.r, &pu[0]);
-    rad_real_t g = receive(&sat, u[1], f, rho->g, a, el->radiosity.g, &pu[1]);
-    rad_real_t b = receive(&sat, u[2], f, rho->b, a, el->radiosity.b, &pu[2]);
+    rad_real_t r = receive(&sat, u[0], f, rho->r, &a, el->radiosity.r, &pu[0]);
+    rad_real_t g = receive(&sat, u[1], f, rho->g, &a, el->radiosity.g, &pu[1]);
+    rad_real_t b = receive(&sat, u[2], f, rho->b, &a, el->radiosity.b, &pu[2]);
     el->radiosity.r = r;
     el->radiosity.g = g;
     el->radiosity.b = b;

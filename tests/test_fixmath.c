@@ -167,7 +167,8 @@ static void test_energy_ops(void **st)
                          (u * (uint64_t)rho + 32768u) >> 16);
         {
             double want = ldexp((double)u, 16) / area;
-            rad_real_t b = rad__energy_to_rad((rad_energy_t)(u >> 2), area, &sat);
+            const rad__area_div_t ad = rad__area_div(area);
+            rad_real_t b = rad__energy_to_rad((rad_energy_t)(u >> 2), &ad, &sat);
             want = ldexp((double)(u >> 2), 16) / area;
             if (want < 2147483647.0)
                 CHECK_NEAR((double)b, want, 0.5 + want * 1e-15, "rad__energy_to_rad, area %ld",
@@ -177,7 +178,10 @@ static void test_energy_ops(void **st)
     }
     /* Saturation of radiosity is counted. */
     sat = 0;
-    assert_int_equal(rad__energy_to_rad((rad_energy_t)1 << 46, 1, &sat), INT32_MAX);
+    {
+        const rad__area_div_t one = rad__area_div(1);
+        assert_int_equal(rad__energy_to_rad((rad_energy_t)1 << 46, &one, &sat), INT32_MAX);
+    }
     assert_int_equal(sat, 1);
     assert_int_equal(rad__add_sat(INT32_MAX - 1, 5, &sat), INT32_MAX);
     assert_int_equal(sat, 2);

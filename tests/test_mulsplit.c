@@ -158,6 +158,40 @@ static void test_udiv_inv(void **st)
     }
 }
 
+/* rad__energy_to_rad through an element's prepared divisor (rad__area_div) is the
+ * rounded native quotient, and saturates, counted, exactly where it passes INT32_MAX:
+ * areas of every length, powers up to 2^47, quotients placed at INT32_MAX, 2^32 and
+ * either side of them (where the split path changes from rad__udiv_inv to the
+ * saturation). */
+static void test_energy_to_rad(void **st)
+{
+    static const uint64_t qs[] = {0u, 1u, 0x7FFFFFFEu, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu, 0x100000000u};
+    size_t i;
+    (void)st;
+    for (i = 0; i < 400000; i++) {
+        int32_t area = (int32_t)((rnd() >> (rnd() % 32u + 32u)) & 0x7FFFFFFFu); /* < 2^31 */
+        uint64_t u = rnd() >> (rnd() % 48u + 17u);                          /* < 2^47 */
+        uint64_t q, n;
+        uint32_t sat = 0, want_sat;
+        rad__area_div_t ad;
+        int32_t got, want;
+        if (!area) area = 1;
+        ad = rad__area_div(area);
+        if (i % 4 == 0) { /* a power whose quotient is one of qs, give or take rounding */
+            u = ((qs[i / 4 % 7u] * (uint64_t)area) >> 16) + rnd() % 3u;
+            if (u >> 47) u = ((uint64_t)1 << 47) - 1u;
+        }
+        n = (u << 16) + ((uint32_t)area >> 1);
+        q = n / (uint32_t)area;
+        want = q > 0x7FFFFFFFu ? INT32_MAX : (int32_t)q;
+        want_sat = q > 0x7FFFFFFFu;
+        got = rad__energy_to_rad((rad_energy_t)u, &ad, &sat);
+        CHECK_INT_EQ(got, want, "rad__energy_to_rad(%llu, area %ld)", (unsigned long long)u, (long)area);
+        CHECK_INT_EQ(sat, want_sat, "saturations of rad__energy_to_rad(%llu, area %ld)",
+                     (unsigned long long)u, (long)area);
+    }
+}
+
 /* A numerator and a non-zero denominator of any sign, magnitudes below 2^62 of every
  * length. */
 static void rnd_pair(int64_t *num, int64_t *den)
@@ -244,6 +278,7 @@ int main(void)
         cmocka_unit_test(test_mulu64_32), cmocka_unit_test(test_udiv64_32),
         cmocka_unit_test(test_udiv_inv), cmocka_unit_test(test_div_round),
         cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
+        cmocka_unit_test(test_energy_to_rad),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
