@@ -303,8 +303,10 @@ static void walk_start(rad__family_t *f, int32_t y, int32_t xs, int32_t xe, walk
 
 /* ---- the walker: a span's start cell and values by adds from the last span's ---- */
 
-/* V times M (|M| < 2^10): no product for the steps of one pixel or row. */
-static int64_t times(int64_t v, int32_t m)
+/* V times M (|M| < 2^10): no product for the steps of one pixel or row. Inlined on
+ * RAD__MUL_SPLIT targets: 119k calls in the M0 port test's solve, 60% of them by 0 or
+ * +-1, where the call cost more than the rest. */
+RAD__ALWAYS_INLINE int64_t times(int64_t v, int32_t m)
 {
     return m == 1 ? v : m == -1 ? -v : m == 0 ? 0 : rad__mul16(v, m);
 }
