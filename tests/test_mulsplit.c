@@ -126,6 +126,16 @@ static void test_udiv64_32(void **st)
     }
 }
 
+/* rad__rec16, the long division's digit reciprocal found without a division, is
+ * floor((2^31 - 1) / v) for every v in [2^15, 2^16). */
+static void test_rec16(void **st)
+{
+    uint32_t v;
+    (void)st;
+    for (v = 0x8000u; v <= 0xFFFFu; v++)
+        CHECK_INT_EQ(rad__rec16(v), 0x7FFFFFFFu / v, "rad__rec16(%lu)", (unsigned long)v);
+}
+
 /* rad__udiv_inv (a reciprocal and corrections: Moller and Granlund's division by an
  * invariant) is n / d for every n with n / d < 2^32, divisors of every length and the
  * extremes of both (d 1, 2^31, 2^32 - 1; quotient 0, 2^32 - 1; remainder 0, d - 1), and
@@ -278,7 +288,7 @@ int main(void)
         cmocka_unit_test(test_mulu64_32), cmocka_unit_test(test_udiv64_32),
         cmocka_unit_test(test_udiv_inv), cmocka_unit_test(test_div_round),
         cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
-        cmocka_unit_test(test_energy_to_rad),
+        cmocka_unit_test(test_energy_to_rad), cmocka_unit_test(test_rec16),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
