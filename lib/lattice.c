@@ -197,12 +197,13 @@ static void face_setup(rad__lattice_t *lt, const unsigned char *axis, const sign
         rad__family_t *fm = &lt->fam[f];
         for (j = 0; j < 3; j++) {
             /* The ray (2 x + 1 - res, 2 y + 1 - res, res) on the axes a, -b, d: within
-             * +-res <= 2^10 a component, so E at any pixel keeps the bound above, and
-             * each product is rad__mul16's. */
+             * +-res <= 2^10 a component, so E at any pixel keeps the bound above. At
+             * pixel (0, 0), (1 - res) (k0 + k1) + res k2 as one product: each
+             * coefficient times res fits (E's bound), so three of them summed do. */
             int64_t *k = fm->c[j], old[3];
             for (i = 0; i < 3; i++) old[i] = k[i];
             for (i = 0; i < 3; i++) k[i] = negate_if(old[src[i]], flip[i]);
-            fm->o[j] = rad__mul16(k[0], 1 - res) + rad__mul16(k[1], 1 - res) + rad__mul16(k[2], res);
+            fm->o[j] = k[0] + k[1] + rad__mul16(k[2] - k[0] - k[1], res);
         }
         fm->hint[0] = fm->hint[1] = -1; /* no span yet on this face */
         fm->wk = -1;                    /* no walker yet */

@@ -252,7 +252,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
         for (k = 0; k < 4; k++) span_edge(&ed[k], &lo, &hi);
         if (lo <= hi) {
             int32_t xs = x0 + lo, xe = x0 + hi + 1;
-            w = val[0] + sx[0] * (uint64_t)lo;
+            w = val[0] + rad__mulmod16(sx[0], lo); /* lo < 2^11 */
             pixels += (uint64_t)(xe - xs);
             if (t->rgb)
                 fill_rgb(t->z + row, t->rgb + row, xs, xe, w, val, sx, lo);
