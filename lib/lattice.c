@@ -60,23 +60,20 @@ static int64_t negate_if(int64_t v, int neg)
 }
 
 /* The family of lines k = 0..N joining (N - k) P0 + k P1 to (N - k) R0 + k R1, K
- * elements to a patch along it, oriented so that E_k >= 0 on P1's side. */
-static void family(rad__family_t *f, const int32_t *p0, const int32_t *p1, const int32_t *r0,
-                   const int32_t *r1, uint32_t n, uint32_t k, unsigned shift)
+ * elements to a patch along it, oriented so that E_k >= 0 on P1's side; X = P0 x R0,
+ * Y = P0 x R1 + P1 x R0, Z = P1 x R1 (lattice_setup's, which the families share). */
+static void family(rad__family_t *f, const int64_t *x, const int64_t *y, const int64_t *z,
+                   const int32_t *p0, const int32_t *p1, const int32_t *r0, const int32_t *r1,
+                   uint32_t n, uint32_t k, unsigned shift)
 {
-    int64_t x[3], y[3], y2[3], z[3], l[3];
+    int64_t l[3];
     int32_t pm[3], rm[3], far[3];
     const int32_t nn = (int32_t)n; /* < 2^12 */
     unsigned c;
     f->n = n;
     f->k = k;
     f->unit = f->coarse = 0;
-    cross(p0, r0, x);
-    cross(p0, r1, y);
-    cross(p1, r0, y2);
-    cross(p1, r1, z);
     for (c = 0; c < 3; c++) {
-        y[c] += y2[c];
         f->c[0][c] = rad__mul16(rad__mul16(x[c], nn), nn);
         f->c[1][c] = rad__mul16(y[c] - 2 * x[c], nn);
         f->c[2][c] = x[c] - y[c] + z[c];
@@ -148,10 +145,22 @@ static void lattice_setup(rad__lattice_t *lt)
     lt->first = sf->first_element;
     lt->pu = sf->pu;
     if (n == 4) {
-        /* Columns between Q0Q3 and Q1Q2, rows between Q0Q1 and Q3Q2. */
+        /* Columns between Q0Q3 and Q1Q2, rows between Q0Q1 and Q3Q2: of their eight
+         * cross products, two are shared (Q0 x Q2, and Q1 x Q3 = -Q3 x Q1). */
+        int64_t c03[3], c02[3], c13[3], c12[3], c01[3], c32[3], y0[3], y1[3];
+        cross(q[0], q[3], c03);
+        cross(q[0], q[2], c02);
+        cross(q[1], q[3], c13);
+        cross(q[1], q[2], c12);
+        cross(q[0], q[1], c01);
+        cross(q[3], q[2], c32);
+        for (i = 0; i < 3; i++) {
+            y0[i] = c02[i] + c13[i];
+            y1[i] = c02[i] - c13[i];
+        }
         lt->nfam = 2;
-        family(&lt->fam[0], q[0], q[1], q[3], q[2], sf->pu * sf->ku, sf->ku, shift);
-        family(&lt->fam[1], q[0], q[3], q[1], q[2], sf->pv * sf->kv, sf->kv, shift);
+        family(&lt->fam[0], c03, y0, c12, q[0], q[1], q[3], q[2], sf->pu * sf->ku, sf->ku, shift);
+        family(&lt->fam[1], c01, y1, c32, q[0], q[3], q[1], q[2], sf->pv * sf->kv, sf->kv, shift);
         /* id = first + (pj pu + pi) ku kv + b ku + a, for column pi ku + a, row pj kv + b */
         lt->fam[0].unit = 1u;
         lt->fam[0].coarse = (uint32_t)sf->ku * sf->kv;
@@ -160,10 +169,22 @@ static void lattice_setup(rad__lattice_t *lt)
     } else {
         /* T0 = (0, 0), T1 = (m, 0), T2 = (0, m), m = len: lines of constant i, j and
          * i + j. */
+        int64_t c01[3], c02[3], c12[3], y[3][3];
+        const int64_t zero[3] = {0, 0, 0};
+        /* Of the twelve cross products three are distinct: the others are a corner
+         * with itself (0) or these reversed. */
+        cross(q[0], q[1], c01);
+        cross(q[0], q[2], c02);
+        cross(q[1], q[2], c12);
+        for (i = 0; i < 3; i++) {
+            y[0][i] = c01[i] + c12[i]; /* Q0 x Q1 + Q1 x Q2 */
+            y[1][i] = c02[i] - c12[i]; /* Q0 x Q2 + Q2 x Q1 */
+            y[2][i] = c02[i] - c01[i]; /* Q0 x Q2 + Q1 x Q0 */
+        }
         lt->nfam = 3;
-        family(&lt->fam[0], q[0], q[1], q[2], q[1], len, sf->ku, shift);
-        family(&lt->fam[1], q[0], q[2], q[1], q[2], len, sf->ku, shift);
-        family(&lt->fam[2], q[0], q[1], q[0], q[2], len, sf->ku, shift);
+        family(&lt->fam[0], c02, y[0], zero, q[0], q[1], q[2], q[1], len, sf->ku, shift);
+        family(&lt->fam[1], c01, y[1], zero, q[0], q[2], q[1], q[2], len, sf->ku, shift);
+        family(&lt->fam[2], zero, y[2], c12, q[0], q[1], q[0], q[2], len, sf->ku, shift);
     }
 }
 
