@@ -2,11 +2,10 @@
 /* rad — the arithmetic behind the scalar shim that is too long to inline. */
 #include "scalar.h"
 
-/* In both builds: tables built in integers (gather.c) take square roots too. */
-uint64_t rad__isqrt64(uint64_t v)
+/* floor(sqrt(V)) for V < 2^32: bit by bit, two of V's bits a step, in 32-bit words. */
+static uint32_t isqrt32(uint32_t v)
 {
-    /* Bit by bit, two result bits per step: 32 iterations, no division. */
-    uint64_t r = 0, bit = (uint64_t)1 << 62;
+    uint32_t r = 0, bit = (uint32_t)1 << 30;
     while (bit > v) bit >>= 2;
     while (bit) {
         if (v >= r + bit) {
@@ -17,6 +16,39 @@ uint64_t rad__isqrt64(uint64_t v)
         bit >>= 2;
     }
     return r;
+}
+
+/* In both builds: tables built in integers (gather.c) take square roots too.
+ * V >= 2^32: S = isqrt32 of V's top 31 or 32 bits (V / 2^2k), so R0 = S 2^k <= sqrt(V)
+ * < (S + 1) 2^k, R0 within 2^-15 of the root. One Newton step, floor((R0 + floor(V /
+ * R0)) / 2), is never below floor(sqrt(V)) (integer Newton from any R0 > 0) and above
+ * it by at most (sqrt(V) - R0)^2 / (2 R0) + 1 < R0 2^-31 + 1 < 3; the loop takes off
+ * the rest. Below 2^62 (k <= 15) the quotient is below (S + 3) 2^15 < 2^32: one 64/32
+ * division (rad__udiv64_32 on RAD__MUL_SPLIT targets) where the bit-by-bit loop took
+ * 32 steps of 64-bit arithmetic, a thousand instructions on M0. Above 2^62, that loop. */
+uint64_t rad__isqrt64(uint64_t v)
+{
+    uint32_t hi = (uint32_t)(v >> 32);
+    if (hi == 0) return isqrt32((uint32_t)v);
+    if (hi >> 30 == 0) {
+        unsigned k = (33u - rad__clz32(hi)) >> 1; /* 2k = bits(hi) rounded up to even */
+        uint32_t r0 = isqrt32((uint32_t)(v >> 2u * k)) << k, r;
+        r = (uint32_t)(((uint64_t)r0 + rad__udiv64(v, r0)) >> 1);
+        while (rad__mulu32(r, r) > v) r--;
+        return r;
+    } else {
+        /* Bit by bit, two result bits per step: 32 iterations, no division. */
+        uint64_t r = 0, bit = (uint64_t)1 << 62;
+        while (bit) {
+            if (v >= r + bit) {
+                v -= r + bit;
+                r = (r >> 1) + bit;
+            } else
+                r >>= 1;
+            bit >>= 2;
+        }
+        return r;
+    }
 }
 
 #if !RAD_FLOAT

@@ -34,8 +34,14 @@ static void test_isqrt(void **st)
                                  0x3FFFFFFFFFFFFFFFull, 0x4000000000000000ull, 0xFFFFFFFFFFFFFFFFull};
     size_t i;
     (void)st;
-    for (i = 0; i < sizeof t / sizeof t[0] + 2000; i++) {
+    /* Random values of every length, and squares of random roots, one less and 2r more
+     * (floor(sqrt) changes between r^2 - 1 and r^2, and stays up to r^2 + 2r). */
+    for (i = 0; i < sizeof t / sizeof t[0] + 200000; i++) {
         uint64_t v = i < sizeof t / sizeof t[0] ? t[i] : rnd() >> (rnd() % 64);
+        if (i % 2 == 1) {
+            uint64_t root = rnd() >> (rnd() % 32 + 32);
+            v = root * root + (i % 3 == 0 ? (uint64_t)-1 : i % 3 == 1 ? 0 : 2 * root);
+        }
         uint64_t r = rad__isqrt64(v);
         /* floor(sqrt(v)) exactly: r^2 <= v < (r+1)^2, in 128 bits. */
         CHECK_THAT((u128)r * r <= v && (u128)(r + 1) * (r + 1) > v,
