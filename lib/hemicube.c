@@ -383,19 +383,20 @@ static int half_row_has(const uint32_t *bounds, uint32_t h, uint32_t e0, uint32_
 static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
                        uint32_t n, const uint32_t *bounds)
 {
-    uint32_t res = s->cube_res, q = res / 2u, i;
+    uint32_t res = s->cube_res, q = res / 2u, i, h;
     rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     if (q == 0) return; /* rad_init keeps res >= 8: for the analyzer, which cannot see it */
-    for (r = reg->row0; r < reg->row1; r++) {
+    /* h, the row's first half row: offsets are whole rows, so each row adds two */
+    for (r = reg->row0, h = reg->offset / q; r < reg->row1; r++, h += 2u) {
         uint32_t px = reg->offset + (uint32_t)(r - reg->row0) * res;
         const rad_index_t *ids = ibuf + px;
         const rad_ff_t *row = rad__dff_row(s->cube_top, s->cube_side, res, reg->face, (uint32_t)r);
         /* ids[i] - e0 wraps past N below E0 (and RAD_INDEX_NONE is above every range) */
-        if (half_row_has(bounds, px / q, e0, n))
+        if (half_row_has(bounds, h, e0, n))
             for (i = 0; i < q; i++)
                 if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[q - 1u - i];
-        if (half_row_has(bounds, px / q + 1u, e0, n))
+        if (half_row_has(bounds, h + 1u, e0, n))
             for (i = q; i < res; i++)
                 if ((uint32_t)(ids[i] - e0) < n) acc[ids[i]] += row[i - q];
     }
@@ -408,10 +409,10 @@ static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *
 static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const region_t *reg,
                             uint32_t *bounds)
 {
-    uint32_t q = s->cube_res / 2u, n = s->n_elements, px, i;
+    uint32_t q = s->cube_res / 2u, n = s->n_elements, px, i, h;
     uint32_t end = reg->offset + (uint32_t)(reg->row1 - reg->row0) * s->cube_res;
     if (q == 0) return; /* as in accumulate */
-    for (px = reg->offset; px < end; px += q) {
+    for (px = reg->offset, h = reg->offset / q; px < end; px += q, h++) {
         uint32_t lo = 0xFFFFFFFFu, hi = 0;
         for (i = px; i < px + q; i++) {
             uint32_t id = ids[i];
@@ -420,8 +421,8 @@ static void half_row_bounds(const rad_scene_t *s, const rad_index_t *ids, const 
                 hi = id > hi ? id : hi;
             }
         }
-        bounds[2u * (px / q)] = lo;
-        bounds[2u * (px / q) + 1u] = hi;
+        bounds[2u * h] = lo;
+        bounds[2u * h + 1u] = hi;
     }
 }
 

@@ -170,9 +170,10 @@ static inline uint64_t rad__shl64(uint64_t n, unsigned s)
     return (uint64_t)(s ? hi << s | lo >> (32u - s) : hi) << 32 | (uint32_t)(lo << s);
 }
 
-/* The leading zero bits of d > 0, found in five halvings (16, 8, 4, 2, 1). */
+/* The leading zero bits of d > 0: three halvings (16, 8, 4), then the top nibble's. */
 static inline unsigned rad__clz32(uint32_t d)
 {
+    static const unsigned char nibble[16] = {4, 3, 2, 2, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0};
     unsigned s = 0;
     if (d <= 0xFFFFu) {
         s = 16;
@@ -186,12 +187,7 @@ static inline unsigned rad__clz32(uint32_t d)
         s += 4;
         d <<= 4;
     }
-    if (d <= 0x3FFFFFFFu) {
-        s += 2;
-        d <<= 2;
-    }
-    if (d <= 0x7FFFFFFFu) s += 1;
-    return s;
+    return s + nibble[d >> 28];
 }
 
 /* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
