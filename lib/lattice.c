@@ -82,10 +82,10 @@ static void family(rad__family_t *f, const int64_t *x, const int64_t *y, const i
      * 17 bits a corner, so the triple product fits (the same sign as for every line
      * k < n, unless the surface is seen edge-on, where it covers next to no pixels). */
     for (c = 0; c < 3; c++) {
-        int64_t sp = (int64_t)p0[c] + p1[c], sr = (int64_t)r0[c] + r1[c];
-        pm[c] = (int32_t)(shift ? rad__shr_round(sp, shift) : sp);
-        rm[c] = (int32_t)(shift ? rad__shr_round(sr, shift) : sr);
-        far[c] = (int32_t)(shift ? rad__shr_round(p1[c], shift) : p1[c]);
+        int32_t sp = p0[c] + p1[c], sr = r0[c] + r1[c]; /* within +-2^23 */
+        pm[c] = shift ? rad__shr_round32(sp, shift) : sp;
+        rm[c] = shift ? rad__shr_round32(sr, shift) : sr;
+        far[c] = shift ? rad__shr_round32(p1[c], shift) : p1[c];
     }
     cross(pm, rm, l);
     if (l[0] * far[0] + l[1] * far[1] + l[2] * far[2] < 0)

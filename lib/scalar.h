@@ -56,6 +56,15 @@ static inline int64_t rad__shr_round(int64_t v, unsigned n)
     return (int64_t)(biased >> n) - (int64_t)((uint64_t)1 << (62 - n));
 }
 
+/* rad__shr_round for |v| < 2^30 and 1 <= n <= 30, in 32 bits (the 64-bit shift by a
+ * variable is a library call on M0): the same floor((v + 2^(n-1)) / 2^n), its bias 2^30
+ * a multiple of 2^n as 2^62 is. */
+static inline int32_t rad__shr_round32(int32_t v, unsigned n)
+{
+    uint32_t biased = (uint32_t)v + (1u << 30) + (1u << (n - 1));
+    return (int32_t)(biased >> n) - (int32_t)(1u << (30 - n));
+}
+
 /* Integer products, exact, in both builds. Targets without a 32 x 32 -> 64 bit
  * multiply (ARMv6-M, ARMv8-M baseline: Cortex-M0, M0+, M23 have a 32-bit MULS only)
  * build them inline from 32-bit products of 16-bit halves, instead of a call to

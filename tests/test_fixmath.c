@@ -67,6 +67,15 @@ static void test_shr_and_div_round(void **st)
                            "rad__div_round(%lld, %ld)", (long long)a, (long)edges[j]);
             }
         }
+    /* The 32-bit form is the 64-bit one over its whole range: |v| < 2^30, n in 1..30,
+     * halves (v = 2^(n-1) (2m + 1)) included. */
+    for (i = 0; i < 300000; i++) {
+        unsigned n = (unsigned)(i % 30u) + 1u;
+        int32_t v = (int32_t)(rnd() % (2u * 0x3FFFFFFFu + 1u)) - 0x3FFFFFFF;
+        if (i % 4 == 0) v = (int32_t)(((rnd() % (1u << (30u - n))) * 2u + 1u) << (n - 1u)) * (rnd() & 1 ? -1 : 1);
+        CHECK_INT_EQ(rad__shr_round32(v, n), rad__shr_round(v, n), "rad__shr_round32(%ld, %u)",
+                     (long)v, n);
+    }
 }
 
 static void test_dot_cross_mul(void **st)
