@@ -180,7 +180,7 @@ static void test_energy_to_rad(void **st)
     (void)st;
     for (i = 0; i < 400000; i++) {
         int32_t area = (int32_t)((rnd() >> (rnd() % 32u + 32u)) & 0x7FFFFFFFu); /* < 2^31 */
-        uint64_t u = rnd() >> (rnd() % 48u + 17u);                          /* < 2^47 */
+        uint64_t u = rnd() >> (rnd() % 47u + 17u);                          /* < 2^47 */
         uint64_t q, n;
         uint32_t sat = 0, want_sat;
         rad__area_div_t ad;
