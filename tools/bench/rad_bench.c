@@ -1152,39 +1152,55 @@ static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double 
     sc_destroy(h);
 }
 
-/* What two free cores could do, whatever the load: the one-part solve's time (the
- * serial work) over the two-part solve's critical path (the calls between the stages
+/* What two free cores could do, whatever the load: the serial solve's time (sc_solve,
+ * what one thread runs) over the two-part solve's critical path (the calls between the stages
  * plus the longer part of each stage). Cutting a shot in two costs work of its own
  * (surfaces set up on both parts' faces, each part's elements merged from both
  * parts' pixels), so this is below the two parts' own time over that path. SPLIT gets
  * the two parts' work over the one part's. */
 static double parallel_bound(const bscene *sc, const sc_opts *o, double *split)
 {
-    double s1, w1, c1, s2, w2, c2;
+    double s1, w1, c1, s2, w2, c2, plain;
+    sc_solver *h = fixed_solver(sc, sc->polys, o);
+    plain = thread_cpu();
+    sc_solve(h, 1000000, 0.001, NULL, NULL);
+    plain = thread_cpu() - plain;
+    sc_destroy(h);
     split_times(sc, o, 1, &s1, &w1, &c1);
     split_times(sc, o, 2, &s2, &w2, &c2);
     *split = w2 / w1;
-    return (s1 + w1) / (s2 + c2);
+    return plain / (s2 + c2);
 }
 
-static void parallel_times(const bscene *sc, const sc_opts *o, double *m1, double *m2)
+/* Medians of 3: into M0 the serial solve (sc_solve), M1 the split shot in one part
+ * (sc_solve_parallel on one thread), M2 in two parts on two threads. */
+static void parallel_times(const bscene *sc, const sc_opts *o, double *m0, double *m1, double *m2)
 {
-    double t1[3], t2[3];
+    double t[3], t1[3], t2[3];
     int rep;
     for (rep = 0; rep < 3; rep++) {
         sc_solver *a = fixed_solver(sc, sc->polys, o);
         sc_solver *b = fixed_solver(sc, sc->polys, o);
+        sc_solver *c = fixed_solver(sc, sc->polys, o);
         double t0;
+        t0 = host_now();
+        sc_solve(c, 1000000, 0.001, NULL, NULL);
+        t[rep] = host_now() - t0;
         t0 = host_now();
         sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
         t1[rep] = host_now() - t0;
         t0 = host_now();
         sc_solve_parallel(b, 2, 1000000, 0.001, NULL, NULL);
         t2[rep] = host_now() - t0;
-        if (sc_checksum(a) != sc_checksum(b)) { fprintf(stderr, "rad_bench: parallel result differs!\n"); exit(1); }
+        if (sc_checksum(a) != sc_checksum(b) || sc_checksum(a) != sc_checksum(c)) {
+            fprintf(stderr, "rad_bench: parallel result differs!\n");
+            exit(1);
+        }
         sc_destroy(a);
         sc_destroy(b);
+        sc_destroy(c);
     }
+    *m0 = median(t, 3);
     *m1 = median(t1, 3);
     *m2 = median(t2, 3);
 }
@@ -1197,24 +1213,27 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
         "runs of whole patches' elements, each sum in the serial order: bit-exact with the serial solve, checked by "
         "tests/test_parallel.c), fixed build, to 0.001, median of 3, with the machine's load average (1 minute) "
         "when each row was measured: the workers spin, so other processes on the cores slow them more than one "
-        "thread. The bound is what two free cores could give whatever the load: the solve in one part over the "
-        "critical path of the solve in two (the calls between the stages plus each stage's longer part), all "
-        "timed on one thread's processor clock; split is the two parts' work over the one part's (the surfaces "
-        "set up on both parts' faces, each part's elements merged from both parts' pixels). Each scene at res "
-        "128 and at rad_cli's defaults (res 192, coarse shots):\n\n| scene | settings | elements | 1 thread s | "
-        "2 threads s | speed-up | load average | split | bound |\n"
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "thread. Serial is the solve without parts (sc_solve: what one thread runs); one part is the split "
+        "shot's path on one thread (its item buffer's half-row bounds and merge cost work of their own); the "
+        "speed-up is serial over two threads. The bound is what two free cores could give whatever the load: "
+        "the serial solve over the critical path of the solve in two parts (the calls between the stages plus "
+        "each stage's longer part), all timed on one thread's processor clock; split is the two parts' work over "
+        "the one part's (the surfaces set up on both parts' faces, each part's elements merged from both parts' "
+        "pixels). Each scene at res 128 and at rad_cli's defaults (res 192, coarse shots):\n\n| scene | settings "
+        "| elements | serial s | one part s | 2 threads s | speed-up | load average | split | bound |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         int k;
         if (scenes[i].big) continue; /* too long to repeat */
         for (k = 0; k < 2; k++) {
             sc_opts o = k ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
-            double m1, m2, load = -1, split, bound;
-            parallel_times(&scenes[i], &o, &m1, &m2);
+            double m0, m1, m2, load = -1, split, bound;
+            parallel_times(&scenes[i], &o, &m0, &m1, &m2);
             if (getloadavg(&load, 1) != 1) load = -1;
             bound = parallel_bound(&scenes[i], &o, &split);
-            out(rp, "| %s | %s | %d | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
-                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m1, m2, m1 / m2, load, split, bound);
+            out(rp, "| %s | %s | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
+                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m0, m1, m2, m0 / m2, load, split,
+                bound);
         }
     }
 }
