@@ -1153,56 +1153,54 @@ static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double 
 }
 
 /* What two free cores could do, whatever the load: the serial solve's time (sc_solve,
- * what one thread runs) over the two-part solve's critical path (the calls between the stages
- * plus the longer part of each stage). Cutting a shot in two costs work of its own
+ * what one thread runs) over the two-part solve's critical path (the calls between the
+ * stages plus the longer part of each stage). Cutting a shot in two costs work of its own
  * (surfaces set up on both parts' faces, each part's elements merged from both
  * parts' pixels), so this is below the two parts' own time over that path. SPLIT gets
  * the two parts' work over the one part's. */
 static double parallel_bound(const bscene *sc, const sc_opts *o, double *split)
 {
-    double s1, w1, c1, s2, w2, c2, plain;
+    double s1, w1, c1, s2, w2, c2, serial;
     sc_solver *h = fixed_solver(sc, sc->polys, o);
-    plain = thread_cpu();
+    serial = thread_cpu();
     sc_solve(h, 1000000, 0.001, NULL, NULL);
-    plain = thread_cpu() - plain;
+    serial = thread_cpu() - serial;
     sc_destroy(h);
     split_times(sc, o, 1, &s1, &w1, &c1);
     split_times(sc, o, 2, &s2, &w2, &c2);
     *split = w2 / w1;
-    return plain / (s2 + c2);
+    return serial / (s2 + c2);
 }
 
-/* Medians of 3: into M0 the serial solve (sc_solve), M1 the split shot in one part
- * (sc_solve_parallel on one thread), M2 in two parts on two threads. */
-static void parallel_times(const bscene *sc, const sc_opts *o, double *m0, double *m1, double *m2)
+/* H solved to 0.001 on THREADS threads through the split shot, or (0) by sc_solve, the
+ * serial solve: wall seconds. */
+static double timed_solve(sc_solver *h, int threads)
 {
-    double t[3], t1[3], t2[3];
-    int rep;
+    double t0 = host_now();
+    if (threads) sc_solve_parallel(h, threads, 1000000, 0.001, NULL, NULL);
+    else sc_solve(h, 1000000, 0.001, NULL, NULL);
+    return host_now() - t0;
+}
+
+/* Medians of 3 into M[0] the serial solve, M[1] the split shot in one part (on one
+ * thread), M[2] in two parts on two threads; all three give the same bits. */
+static void parallel_times(const bscene *sc, const sc_opts *o, double m[3])
+{
+    double t[3][3];
+    int rep, k;
     for (rep = 0; rep < 3; rep++) {
-        sc_solver *a = fixed_solver(sc, sc->polys, o);
-        sc_solver *b = fixed_solver(sc, sc->polys, o);
-        sc_solver *c = fixed_solver(sc, sc->polys, o);
-        double t0;
-        t0 = host_now();
-        sc_solve(c, 1000000, 0.001, NULL, NULL);
-        t[rep] = host_now() - t0;
-        t0 = host_now();
-        sc_solve_parallel(a, 1, 1000000, 0.001, NULL, NULL);
-        t1[rep] = host_now() - t0;
-        t0 = host_now();
-        sc_solve_parallel(b, 2, 1000000, 0.001, NULL, NULL);
-        t2[rep] = host_now() - t0;
-        if (sc_checksum(a) != sc_checksum(b) || sc_checksum(a) != sc_checksum(c)) {
+        sc_solver *h[3];
+        for (k = 0; k < 3; k++) {
+            h[k] = fixed_solver(sc, sc->polys, o);
+            t[k][rep] = timed_solve(h[k], k);
+        }
+        if (sc_checksum(h[1]) != sc_checksum(h[0]) || sc_checksum(h[2]) != sc_checksum(h[0])) {
             fprintf(stderr, "rad_bench: parallel result differs!\n");
             exit(1);
         }
-        sc_destroy(a);
-        sc_destroy(b);
-        sc_destroy(c);
+        for (k = 0; k < 3; k++) sc_destroy(h[k]);
     }
-    *m0 = median(t, 3);
-    *m1 = median(t1, 3);
-    *m2 = median(t2, 3);
+    for (k = 0; k < 3; k++) m[k] = median(t[k], 3);
 }
 
 /* The parallel solve: the same shots, each shot's hemi-cube split over threads. */
@@ -1227,13 +1225,13 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
         if (scenes[i].big) continue; /* too long to repeat */
         for (k = 0; k < 2; k++) {
             sc_opts o = k ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
-            double m0, m1, m2, load = -1, split, bound;
-            parallel_times(&scenes[i], &o, &m0, &m1, &m2);
+            double m[3], load = -1, split, bound;
+            parallel_times(&scenes[i], &o, m);
             if (getloadavg(&load, 1) != 1) load = -1;
             bound = parallel_bound(&scenes[i], &o, &split);
             out(rp, "| %s | %s | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n", k ? "" : scenes[i].name,
-                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m0, m1, m2, m0 / m2, load, split,
-                bound);
+                k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m[0], m[1], m[2], m[0] / m[2], load,
+                split, bound);
         }
     }
 }
