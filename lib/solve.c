@@ -34,8 +34,9 @@ static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_
     return rad__add_sat(b, db, sat);
 }
 
-/* The ambient radiosity per channel (negative while more power is owed than held). */
-static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
+/* The ambient radiosity per channel (negative while more power is owed than held). NET,
+ * unless null, gets the net unshot power (net_unshot's sum, from the same pass). */
+static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat, rad_energy_t *net)
 {
     rad_energy_t area = 0, unshot[3] = {0, 0, 0}, rho[3] = {0, 0, 0};
     uint32_t p, c;
@@ -54,6 +55,7 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
         rad_real_t a = rad__mul(rad__energy_ratio(rad__eabs(unshot[c]), area), inter, sat);
         amb[c] = unshot[c] < 0 ? -a : a;
     }
+    if (net) *net = rad__esum(rad__esum(rad__eabs(unshot[0]), rad__eabs(unshot[1])), rad__eabs(unshot[2]));
 }
 
 /* Halvings after which overshooting stops (2^-16 of the estimate is below a Q16.16
@@ -76,33 +78,47 @@ static rad_energy_t overshoot(const rad_scene_t *s, const rad_patch_t *pt, const
     return amb[c] < 0 ? -over : over;
 }
 
-/* The ambient radiosity to overshoot by: 0 when shooting plainly. Returns how often
- * the estimate was clamped: not counted in stats.saturations, since the solution is
- * unharmed (the debt is what was shot), but a sign that the estimate is too high. */
-static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb)
+/* The ambient radiosity to overshoot by: 0 when shooting plainly (NET, unless null,
+ * then gets the net unshot power). Returns how often the estimate was clamped: not
+ * counted in stats.saturations, since the solution is unharmed (the debt is what was
+ * shot), but a sign that the estimate is too high. */
+static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb, rad_energy_t *net)
 {
     uint32_t sat = 0;
     amb[0] = amb[1] = amb[2] = 0;
-    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, &sat);
+    if (!(s->cfg.flags & RAD_NO_OVERSHOOT)) ambient(s, amb, &sat, net);
     return sat;
 }
 
 /* The patch whose shot moves the most power (its unshot power plus the overshoot, in
  * magnitude, summed over channels), or RAD_INDEX_NONE; TOTAL gets the magnitude of all
  * unshot power. Choosing by the shot, not by the unshot power alone, skips a patch
- * whose debt is just what it expects back: shooting it would move nothing. */
+ * whose debt is just what it expects back: shooting it would move nothing.
+ *
+ * A channel's overshoot is at most E = rad__energy(A, area), A the largest |AMB[c]|:
+ * rad__energy is monotone in its first argument, reflectances are below 1, halvings
+ * and the clamp only shrink it. So a patch's shot is at most the sum over channels of
+ * |unshot| + E, each term and sum rounded the same way as the shot's (monotone in both
+ * builds), and a patch whose bound is not above the best so far cannot be chosen: the
+ * choice is the full scan's, for two products a patch instead of six. */
 static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p, c, best = RAD_INDEX_NONE;
     rad_energy_t most = 0, sum = 0;
+    rad_real_t a = 0;
+    if (s->over_halvings < OVER_STOP)
+        for (c = 0; c < 3; c++) a = amb[c] > a ? amb[c] : -amb[c] > a ? -amb[c] : a;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
-        const rad_rgb_t *rho = rad__patch_rho(s, p);
+        const rad_energy_t u0 = rad__eabs(pt->unshot[0]), u1 = rad__eabs(pt->unshot[1]),
+                           u2 = rad__eabs(pt->unshot[2]);
+        const rad_energy_t e = a ? rad__energy(a, pt->area) : 0;
+        const rad_rgb_t *rho;
         rad_energy_t u = 0;
-        for (c = 0; c < 3; c++) {
-            sum = rad__esum(sum, rad__eabs(pt->unshot[c]));
-            u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
-        }
+        sum = rad__esum(rad__esum(rad__esum(sum, u0), u1), u2);
+        if ((u0 + e) + (u1 + e) + (u2 + e) <= most) continue;
+        rho = rad__patch_rho(s, p);
+        for (c = 0; c < 3; c++) u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
         if (u > most) {
             most = u;
             best = p;
@@ -110,22 +126,6 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     }
     *total = sum;
     return best;
-}
-
-/* The net unshot power: each channel's signed sum over the patches, in magnitude,
- * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
- * rho F the part of the shot that the scene reflects back, so plainly shot it falls
- * from the emitted power towards 0. Overshot, u carries the debt too; when the scene
- * returns what the estimate says, the sum still only shrinks, but an estimate far
- * above the return (1 - rho F near 1 on a debt that rho F never repays) throws it
- * past 0 to the other side, further each time. */
-static rad_energy_t net_unshot(const rad_scene_t *s)
-{
-    rad_energy_t net[3] = {0, 0, 0};
-    uint32_t p, c;
-    for (p = 0; p < s->n_patches; p++)
-        for (c = 0; c < 3; c++) net[c] = rad__esum(net[c], s->pools.patches[p].unshot[c]);
-    return rad__esum(rad__esum(rad__eabs(net[0]), rad__eabs(net[1])), rad__eabs(net[2]));
 }
 
 /* Overshooting's estimate of the power coming back, the ambient term, assumes that
@@ -136,20 +136,27 @@ static rad_energy_t net_unshot(const rad_scene_t *s)
  * shots undo each other for ever. Watched at every selection, the overshoot is halved
  * (stats.backoffs, and the watch starts again from here) when
  *   - the net unshot power exceeds twice the emitted power, or twice its value at the
- *     last back-off (the swing; a working estimate stays within 1x, see net_unshot),
+ *     last back-off (the swing; a working estimate stays within 1x, see below),
  *   - anything saturated since the last selection, CLAMPED included (the ambient term
  *     clamped, not counted in stats: the estimate beyond any radiosity),
  * and overshooting stops at once (OVER_STOP) when the unshot total has not fallen
  * below its lowest value for 4 selections a patch + 64 (the circle; twice the longest
  * wait of a bright closed box, whose first shots raise the total before it falls).
  * Plain shots never make the total grow. Where overshooting works none of these
- * triggers, so the bits are those of the solve without the watch. Returns 1 when it
- * backed off. */
-static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
+ * triggers, so the bits are those of the solve without the watch. NET is the net
+ * unshot power (ambient's). Returns 1 when it backed off.
+ *
+ * The net unshot power: each channel's signed sum over the patches, in magnitude,
+ * summed. Shooting u from a patch changes a channel's sum by -(1 - rho F) u, with
+ * rho F the part of the shot that the scene reflects back, so plainly shot it falls
+ * from the emitted power towards 0. Overshot, u carries the debt too; when the scene
+ * returns what the estimate says, the sum still only shrinks, but an estimate far
+ * above the return (1 - rho F near 1 on a debt that rho F never repays) throws it
+ * past 0 to the other side, further each time. */
+static int back_off(rad_scene_t *s, rad_energy_t total, rad_energy_t net, int clamped)
 {
     uint32_t window = s->n_patches < (1u << 28) ? 4u * s->n_patches + 64u : UINT32_MAX;
     int saturated = clamped || s->stats.saturations != s->over_sat, grown;
-    rad_energy_t net;
     s->over_sat = s->stats.saturations;
     if ((s->cfg.flags & RAD_NO_OVERSHOOT) || s->over_halvings >= OVER_STOP) return 0;
     if (total < s->over_low) {
@@ -158,7 +165,6 @@ static int back_off(rad_scene_t *s, rad_energy_t total, int clamped)
     } else if (s->over_wait < UINT32_MAX) {
         s->over_wait++;
     }
-    net = net_unshot(s);
     grown = net > rad__esum(s->over_net, s->over_net);
     if (!saturated && !grown && s->over_wait < window) return 0;
     s->over_halvings = grown || saturated ? s->over_halvings + 1u : OVER_STOP;
@@ -187,9 +193,10 @@ static void start_solving(rad_scene_t *s)
 static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p;
-    int clamped = shot_ambient(s, amb) != 0;
+    rad_energy_t net = 0;
+    int clamped = shot_ambient(s, amb, &net) != 0;
     p = select_shooter(s, amb, total);
-    if (p != RAD_INDEX_NONE && back_off(s, *total, clamped)) p = select_shooter(s, amb, total);
+    if (p != RAD_INDEX_NONE && back_off(s, *total, net, clamped)) p = select_shooter(s, amb, total);
     return p;
 }
 
@@ -331,7 +338,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
 
 void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat)
 {
-    ambient(s, amb, sat);
+    ambient(s, amb, sat, 0);
 }
 
 int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
@@ -339,7 +346,7 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
     rad_real_t amb[3];
     rad_rgb_t a;
     if (!s || !out) return RAD_ERR_ARG;
-    ambient(s, amb, &s->stats.saturations);
+    ambient(s, amb, &s->stats.saturations, 0);
     a.r = amb[0];
     a.g = amb[1];
     a.b = amb[2];
@@ -433,7 +440,7 @@ static void aim_parts(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigne
         s->stats.raster_calls += head(bufs, k)->calls;
         s->stats.raster_pixels += head(bufs, k)->pixels;
     }
-    shot_ambient(s, amb);
+    shot_ambient(s, amb, 0);
     aim(s, patch, amb, u);
     if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
     for (k = 0; k < nparts; k++) {
