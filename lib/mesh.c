@@ -520,6 +520,7 @@ void rad__patch_mean(rad_scene_t *s, uint32_t p)
     uint32_t e, end = (uint32_t)pt->first_element + pt->n_elements;
     rad_rgb_t *m = &s->element_rho[s->pools.max_elements + p];
     int same = 1;
+    s->amb_ok = 0;
     for (e = pt->first_element; e < end; e++) {
         const rad_element_t *el = &s->pools.elements[e];
         if (el->surface != pt->surface) continue;
@@ -687,6 +688,7 @@ void rad__freeze(rad_scene_t *s)
     rad__scale_power(s);
     /* the patches' means over their elements' areas at this scale */
     for (p = 0; s->element_rho && p < s->n_patches; p++) rad__patch_mean(s, p);
+    s->amb_ok = 0;
     s->solving = 1;
 }
 
@@ -795,6 +797,7 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
         return RAD_ERR_RANGE;
     if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
     if (reflectance) {
+        s->amb_ok = 0;
         s->pools.surfaces[surf].reflectance = *reflectance;
         element_rho_reset(s, &s->pools.surfaces[surf]);
     }

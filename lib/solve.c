@@ -34,21 +34,48 @@ static inline rad_real_t receive(uint32_t *sat, rad_energy_t u, rad_ff_t f, rad_
     return rad__add_sat(b, db, sat);
 }
 
-/* The ambient radiosity per channel (negative while more power is owed than held). NET,
- * unless null, gets the net unshot power (net_unshot's sum, from the same pass). */
-static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat, rad_energy_t *net)
+/* The sums over the patches of area and of reflectance times area, per channel, that
+ * the ambient term weighs the reflectance by. */
+static void area_sums(const rad_scene_t *s, rad_energy_t *area, rad_energy_t *rho)
 {
-    rad_energy_t area = 0, unshot[3] = {0, 0, 0}, rho[3] = {0, 0, 0};
-    uint32_t p, c;
+    uint32_t p;
+    *area = rho[0] = rho[1] = rho[2] = 0;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         const rad_rgb_t *r = rad__patch_rho(s, p);
-        area = rad__esum(area, rad__energy(RAD__ONE, pt->area));
+        *area = rad__esum(*area, rad__energy(RAD__ONE, pt->area));
         rho[0] = rad__esum(rho[0], rad__energy(r->r, pt->area));
         rho[1] = rad__esum(rho[1], rad__energy(r->g, pt->area));
         rho[2] = rad__esum(rho[2], rad__energy(r->b, pt->area));
-        for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], pt->unshot[c]);
     }
+}
+
+/* area_sums into the scene, for every shot's ambient term, and the largest patch area,
+ * for select_shooter: while solving the areas are frozen, and whatever changes a
+ * patch's reflectance clears amb_ok. */
+static void keep_area_sums(rad_scene_t *s)
+{
+    uint32_t p;
+    if (s->amb_ok) return;
+    area_sums(s, &s->amb_area, s->amb_rho);
+    s->amb_max_area = 0;
+    for (p = 0; p < s->n_patches; p++)
+        if (s->pools.patches[p].area > s->amb_max_area) s->amb_max_area = s->pools.patches[p].area;
+    s->amb_ok = 1;
+}
+
+/* The ambient radiosity per channel (negative while more power is owed than held). NET,
+ * unless null, gets the net unshot power (back_off's), from the same pass. */
+static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat, rad_energy_t *net)
+{
+    rad_energy_t area = s->amb_area, unshot[3] = {0, 0, 0}, rho[3];
+    uint32_t p, c;
+    if (s->solving && s->amb_ok)
+        for (c = 0; c < 3; c++) rho[c] = s->amb_rho[c];
+    else
+        area_sums(s, &area, rho);
+    for (p = 0; p < s->n_patches; p++)
+        for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], s->pools.patches[p].unshot[c]);
     /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
     for (c = 0; c < 3; c++) {
         rad_real_t inter = rad__div(RAD__ONE, RAD__ONE - rad__energy_ratio(rho[c], area), sat);
@@ -100,22 +127,31 @@ static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb, rad_energy_t
  * and the clamp only shrink it. So a patch's shot is at most the sum over channels of
  * |unshot| + E, each term and sum rounded the same way as the shot's (monotone in both
  * builds), and a patch whose bound is not above the best so far cannot be chosen: the
- * choice is the full scan's, for two products a patch instead of six. */
+ * choice is the full scan's, for two products a patch instead of six. E is at most
+ * rad__energy(A, the largest patch area) (amb_max_area, kept while solving), a bound
+ * that skips most patches without a product of their own. */
 static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p, c, best = RAD_INDEX_NONE;
     rad_energy_t most = 0, sum = 0;
     rad_real_t a = 0;
+    rad_energy_t emax;
     if (s->over_halvings < OVER_STOP)
         for (c = 0; c < 3; c++) a = amb[c] > a ? amb[c] : -amb[c] > a ? -amb[c] : a;
+    emax = a && s->amb_ok ? rad__energy(a, s->amb_max_area) : RAD__EMAX;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         const rad_energy_t u0 = rad__eabs(pt->unshot[0]), u1 = rad__eabs(pt->unshot[1]),
                            u2 = rad__eabs(pt->unshot[2]);
-        const rad_energy_t e = a ? rad__energy(a, pt->area) : 0;
         const rad_rgb_t *rho;
-        rad_energy_t u = 0;
+        rad_energy_t u = 0, e;
         sum = rad__esum(rad__esum(rad__esum(sum, u0), u1), u2);
+        if (a == 0) {
+            e = 0;
+        } else {
+            if ((u0 + emax) + (u1 + emax) + (u2 + emax) <= most) continue;
+            e = rad__energy(a, pt->area);
+        }
         if ((u0 + e) + (u1 + e) + (u2 + e) <= most) continue;
         rho = rad__patch_rho(s, p);
         for (c = 0; c < 3; c++) u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
@@ -194,7 +230,9 @@ static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *tota
 {
     uint32_t p;
     rad_energy_t net = 0;
-    int clamped = shot_ambient(s, amb, &net) != 0;
+    int clamped;
+    keep_area_sums(s);
+    clamped = shot_ambient(s, amb, &net) != 0;
     p = select_shooter(s, amb, total);
     if (p != RAD_INDEX_NONE && back_off(s, *total, net, clamped)) p = select_shooter(s, amb, total);
     return p;

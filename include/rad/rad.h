@@ -291,6 +291,12 @@ typedef struct {
     uint32_t over_wait;     /* shooter selections since over_low was lowered */
     uint32_t over_sat;      /* stats.saturations at the last selection */
     uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
+    /* the ambient term's sums over the patches of area and of reflectance times area,
+     * and the largest patch area (lib/solve.c), valid while solving when amb_ok:
+     * cleared by the freeze and by every change of a patch's reflectance */
+    rad_energy_t amb_area, amb_rho[3];
+    rad_real_t amb_max_area;
+    int amb_ok;
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
