@@ -68,12 +68,14 @@ static void keep_area_sums(rad_scene_t *s)
  * unless null, gets the net unshot power (back_off's), from the same pass. */
 static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat, rad_energy_t *net)
 {
-    rad_energy_t area = s->amb_area, unshot[3] = {0, 0, 0}, rho[3];
+    rad_energy_t area, unshot[3] = {0, 0, 0}, rho[3];
     uint32_t p, c;
-    if (s->solving && s->amb_ok)
+    if (s->solving && s->amb_ok) {
+        area = s->amb_area;
         for (c = 0; c < 3; c++) rho[c] = s->amb_rho[c];
-    else
+    } else {
         area_sums(s, &area, rho);
+    }
     for (p = 0; p < s->n_patches; p++)
         for (c = 0; c < 3; c++) unshot[c] = rad__esum(unshot[c], s->pools.patches[p].unshot[c]);
     /* ambient = (sum of unshot power / total area) / (1 - area-weighted reflectance) */
@@ -123,13 +125,13 @@ static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb, rad_energy_t
  * whose debt is just what it expects back: shooting it would move nothing.
  *
  * A channel's overshoot is at most E = rad__energy(A, area), A the largest |AMB[c]|:
- * rad__energy is monotone in its first argument, reflectances are below 1, halvings
- * and the clamp only shrink it. So a patch's shot is at most the sum over channels of
+ * rad__energy is monotone in both arguments, reflectances are below 1, halvings and
+ * the clamp only shrink it. So a patch's shot is at most the sum over channels of
  * |unshot| + E, each term and sum rounded the same way as the shot's (monotone in both
  * builds), and a patch whose bound is not above the best so far cannot be chosen: the
- * choice is the full scan's, for two products a patch instead of six. E is at most
- * rad__energy(A, the largest patch area) (amb_max_area, kept while solving), a bound
- * that skips most patches without a product of their own. */
+ * choice is the full scan's. E with the largest patch area (amb_max_area, kept while
+ * solving) rules most patches out without a product of their own; E with the patch's
+ * own area, most of the rest, before the six products of the overshoot. */
 static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p, c, best = RAD_INDEX_NONE;
@@ -138,7 +140,7 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
     rad_energy_t emax;
     if (s->over_halvings < OVER_STOP)
         for (c = 0; c < 3; c++) a = amb[c] > a ? amb[c] : -amb[c] > a ? -amb[c] : a;
-    emax = a && s->amb_ok ? rad__energy(a, s->amb_max_area) : RAD__EMAX;
+    emax = a && s->solving && s->amb_ok ? rad__energy(a, s->amb_max_area) : RAD__EMAX;
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         const rad_energy_t u0 = rad__eabs(pt->unshot[0]), u1 = rad__eabs(pt->unshot[1]),
