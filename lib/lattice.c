@@ -509,7 +509,7 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     const uint32_t k = fm->k;
     const int32_t n = xe - xs;
     int64_t v, u, wv, st, sd, sd2;
-    uint32_t unit, wrap, first, fi, q;
+    uint32_t unit, wrap, first, fi, q, left;
     int32_t i, p = 0;
     walk_t w;
     walk_start_walker(fm, y, xs, xe, &w);
@@ -535,6 +535,8 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
     wv = w.d2;
     sd2 = w.sd2;
     i = w.i;
+    /* lines to cross before the next patch edge: up from cell fi, k - fi; down, fi + 1 */
+    left = w.step > 0 ? k - fi : fi + 1u;
     while (i != w.end) {
         uint32_t wraps;
         if (st <= 0) { /* a line seen going backwards: crossed here or not at all */
@@ -547,8 +549,8 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
 #if RAD__DIV64
             /* v, u, wv at pixel 0; a negative quotient truncates to at most 0 */
             int64_t c = (-v + st - 1) / st;
-            p = c > p ? (int32_t)(c < n ? c : n) : p;
-            if (p >= n) break;
+            if (c >= n) break;
+            p = c > p ? (int32_t)c : p;
 #else
             while (v < 0) {
                 if (++p >= n) return first;
@@ -559,13 +561,8 @@ static uint32_t family_steps(rad__lattice_t *lt, unsigned f, int32_t y, int32_t 
 #endif
         }
         i += w.step;
-        if (w.step > 0) {
-            wraps = ++fi == k;
-            fi = wraps ? 0u : fi;
-        } else {
-            wraps = fi == 0u;
-            fi = wraps ? k - 1u : fi - 1u;
-        }
+        wraps = --left == 0u;
+        left = wraps ? k : left;
         steps[p] += wraps ? wrap : unit;
         v += u;
         u += wv;
