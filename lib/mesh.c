@@ -190,9 +190,17 @@ static rad_real_t max2(rad_real_t a, rad_real_t b)
 
 /* Emitters shoot from every element: direct light is the largest and most visible
  * term, and shooting it from many points (each hemi-cube turned differently) averages
- * the aliasing of any one cube, which a single shot from a big light leaves as blotches. */
+ * the aliasing of any one cube, which a single shot from a big light leaves as blotches.
+ *
+ * A triangle is cut into m^2 triangles like itself, m from its longest side l, but at
+ * most from s = 2 sqrt(AREA), the side of a square of four times its area: a sliver
+ * (4 mm by 4 m) cut by l alone would give (l / max_element)^2 elements for an area
+ * of a few, so a wall of 2,000 of them meshed into 1.15 million. With s its elements
+ * number about 4 AREA / max_element^2, as a quad's. s >= l whenever the triangle's
+ * height over its longest side is at least half that side (4 AREA = 2 l h >= l^2), so
+ * any triangle but a sliver is cut by l, as it always was. */
 static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, int emits,
-                      plan_t *p)
+                      rad_real_t area, plan_t *p)
 {
     static const plan_t zero = {0, 0, 0, 0, 0, 0, 0};
     rad_real_t me = cfg->max_element, mp = emits ? me : cfg->max_patch;
@@ -211,7 +219,9 @@ static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, 
         rad_real_t l =
             max2(rad__length(rad__sub(v[1], v[0])),
                  max2(rad__length(rad__sub(v[2], v[1])), rad__length(rad__sub(v[0], v[2]))));
+        rad_real_t s = 2 * rad__sqrt(area);
         uint32_t m;
+        if (s < l) l = s;
         p->pu = p->pv = rad__ceil_div(l, mp, 1);
         p->ku = p->kv = rad__ceil_div(l, me, p->pu);
         m = p->pu * p->ku;
@@ -240,7 +250,7 @@ static int plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n
     rc = check_polygon(v, n, (cfg->flags & RAD_SMALL_FACES) && !emits ? MIN_SMALL : MIN_AREA,
                        normal, area, why);
     if (rc < 0) return rc;
-    plan_mesh(cfg, v, n, emits, plan);
+    plan_mesh(cfg, v, n, emits, *area, plan);
     return RAD_OK;
 }
 

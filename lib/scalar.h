@@ -399,6 +399,11 @@ static inline rad_real_t rad__length(rad_vec3_t v)
 {
     return rad__fsqrt(rad__dot(v, v));
 }
+/* The square root of A >= 0 (an area: the side of a square of that area). */
+static inline rad_real_t rad__sqrt(rad_real_t a)
+{
+    return rad__fsqrt(a);
+}
 /* Unit vector of V; returns 0 for a zero vector. */
 static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
 {
@@ -636,6 +641,12 @@ static inline rad_real_t rad__length(rad_vec3_t v)
 {
     rad_vec3_t u;
     return (rad_real_t)rad__unit64(v.x, v.y, v.z, &u);
+}
+/* The square root of A >= 0 (an area: the side of a square of that area), rounded
+ * down: sqrt(a / 2^16) 2^16 = sqrt(a 2^16), below 2^24 for any a < 2^31. */
+static inline rad_real_t rad__sqrt(rad_real_t a)
+{
+    return (rad_real_t)rad__isqrt64((uint64_t)a << 16);
 }
 static inline int rad__normalize(rad_vec3_t v, rad_vec3_t *u)
 {

@@ -244,6 +244,29 @@ static void test_plan_problems(void **st)
     assert_int_equal(pl.elements, UINT32_MAX);
 }
 
+/* Triangles are cut by their longest side unless they are slivers: then by 2 sqrt(area)
+ * (lib/mesh.c, plan_mesh), so their element count follows their area as a quad's does.
+ * A 60 x 0.25 sliver at max_element 1 was 60^2 = 3,600 elements (a 65 KB wall of 2,000
+ * such meshed into 1.15 million); by its area 7.5, s = 2 sqrt(7.5) = 5.48: 2 patch
+ * levels (max_patch 4) of 3 element levels, 6^2 = 36. A triangle whose height is over
+ * half its longest side is cut as it always was: side 10, 3 patch levels of 4, 144. */
+static void test_plan_slivers(void **st)
+{
+    const rad_vec3_t sliver[3] = {V(0, 0, 0), V(60, 0, 0), V(60, 0.25, 0)};
+    const rad_vec3_t fat[3] = {V(0, 0, 0), V(10, 0, 0), V(5, 8.66, 0)};
+    const rad_config_t cfg = {.max_element = Q(1.0), .max_patch = Q(4.0)};
+    rad_plan_t a = {0}, b = {0};
+    (void)st;
+    assert_int_equal(rad_plan_polygon(&cfg, sliver, 3, &grey, NULL, &a), RAD_OK);
+    assert_int_equal(rad_plan_polygon(&cfg, fat, 3, &grey, NULL, &b), RAD_OK);
+    print_message("sliver 60 x 0.25: %u elements, %u patches (bound 36, 4; by its long side "
+                  "3600); triangle of side 10: %u elements (expected 144)\n",
+                  a.elements, a.patches, b.elements);
+    assert_true(a.elements <= 36u);
+    assert_true(a.patches <= 4u);
+    assert_int_equal(b.elements, 144u);
+}
+
 /* ---- alignment and the work buffer -------------------------------------------------- */
 
 /* Each pool one byte off its type's alignment: RAD_ERR_ALIGN, the scene not written. */
@@ -440,6 +463,7 @@ int main(void)
         cmocka_unit_test(test_abi_words),
         cmocka_unit_test(test_plan_matches_mesh),
         cmocka_unit_test(test_plan_problems),
+        cmocka_unit_test(test_plan_slivers),
         cmocka_unit_test(test_alignment_refused),
         cmocka_unit_test(test_work_any_alignment),
         cmocka_unit_test(test_band_fallback),
