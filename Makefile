@@ -41,6 +41,10 @@ PNG_LIBS   := $(shell pkg-config --libs libpng 2>/dev/null || echo -lpng)
 # stb_image (Debian libstb-dev) for textures: the system's library, see tools/formats/texture.c.
 STB_LIBS   := $(shell pkg-config --libs stb 2>/dev/null || echo -lstb)
 CMOCKA_LIBS := -lcmocka
+# assimp (Debian libassimp-dev) reads the scene formats other than OBJ when pkg-config
+# finds it; without it rad_cli reads .obj alone and says how to get the others.
+ASSIMP_CFLAGS := $(shell pkg-config --exists assimp 2>/dev/null && echo -DRAD_HAVE_ASSIMP $$(pkg-config --cflags assimp))
+ASSIMP_LIBS   := $(shell pkg-config --exists assimp 2>/dev/null && pkg-config --libs assimp)
 
 LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
@@ -87,19 +91,20 @@ $(BUILDDIR)/tools/float/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 $(BUILDDIR)/tools/%.o: tools/%.c $(TOOL_HDRS) $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) $(PNG_CFLAGS) -c $< -o $@
+$(BUILDDIR)/tools/formats/assimp_scene.o: TOOLFLAGS += $(ASSIMP_CFLAGS)
 $(LIBTOOLS): $(TOOL_OBJS)
 	@rm -f $@; $(AR) rcs $@ $^
 
 # rad_cli is one source set built twice: rad_cli (fixed) and rad_cli_float (the twin).
 CLI_SRCS   := $(wildcard tools/cli/*.c)
 $(BUILDDIR)/rad_cli: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/%.o) $(TWIN_FIXED) $(LIBTOOLS) $(LIBRAD)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) $(ASSIMP_LIBS) -lm -lpthread -o $@
 $(BUILDDIR)/rad_cli_float: $(CLI_SRCS:tools/%.c=$(BUILDDIR)/tools/float/%.o) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) $(ASSIMP_LIBS) -lm -lpthread -o $@
 
 # The benchmark: both builds of the core side by side (see tools/bench/rad_bench.c).
 $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF)
-	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
+	$(CC) $(OPT) $(CFLAGS_EXTRA) $^ $(PNG_LIBS) $(STB_LIBS) $(ASSIMP_LIBS) -lm -lpthread -o $@
 
 bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
@@ -110,7 +115,7 @@ bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 # (-DRAD_FLOAT=1, tests/float/*.o) is linked into the fixed one.
 $(BUILDDIR)/tests/%: tests/%.c $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
-	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) $(STB_LIBS) -lm -lpthread -o $@
+	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib $(PNG_CFLAGS) $< $(filter $(BUILDDIR)/tests/%.o,$^) $(TWIN_FIXED) $(TWIN_FLOAT) $(LIBTOOLS) $(LIBRAD) $(LIBRADF) $(CMOCKA_LIBS) $(PNG_LIBS) $(STB_LIBS) $(ASSIMP_LIBS) -lm -lpthread -o $@
 
 # test_adopt's caller compiled with the other index width than the library's (16 <-> 32).
 $(BUILDDIR)/tests/test_adopt: $(BUILDDIR)/tests/adopt_other_abi.o

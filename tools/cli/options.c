@@ -5,6 +5,7 @@
 
 #include "bake/lightmap.h"
 #include "bake/probes.h"
+#include "formats/assimp_scene.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -336,7 +337,10 @@ static void usage(FILE *f)
     size_t i;
     fprintf(f, "usage: " PROG " [options] scene.obj\n"
                "Solves the diffuse global illumination of an OBJ/MTL scene (hemi-cube radiosity,\n"
-               "progressive refinement) and renders it. Kd is reflectance, Ke emission.\n\n");
+               "progressive refinement) and renders it. Kd is reflectance, Ke emission.\n"
+               "Other formats (glTF .gltf/.glb, FBX, COLLADA .dae, 3DS, ...) are read through\n"
+               "assimp: %s.\n\n",
+            assimp_scene_available() ? "built in" : "not in this build (libassimp-dev, then make)");
     for (i = 0; i < NOPTIONS; i++) {
         const option_t *p = &options[i];
         const char *h = p->help;

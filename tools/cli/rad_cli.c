@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "formats/assimp_scene.h"
 #include "formats/file_io.h"
 #include "host/clock.h"
 #include "host/gltf_export.h"
@@ -249,7 +250,8 @@ static int load_step(run_t *r)
     opts_t *o = r->o;
     char err[1024];
     int i, emitters = 0;
-    if (obj_load(o->scene, &r->sc, o->quiet ? NULL : obj_warning, o, err, sizeof err) < 0) {
+    if ((assimp_scene_wants(o->scene) ? assimp_scene_load : obj_load)(
+            o->scene, &r->sc, o->quiet ? NULL : obj_warning, o, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }

@@ -1,0 +1,370 @@
+/* SPDX-License-Identifier: MIT */
+/* Scenes in other formats through assimp (tools/formats/assimp_scene.c).
+ *
+ * The test writes one room twice: as a glTF 2.0 file (.gltf, its buffer a data URI)
+ * whose meshes sit under nodes with translations, a scale and a mirror, and as the OBJ
+ * of the same faces with every transform applied by hand. The coordinates are
+ * multiples of 1/8 below 16, exact in glTF's float32 and in every transform's double
+ * products, so the two loaders must give the same faces and the same solve to the bit:
+ * the same element count and every element's radiosity equal. The mirrored node
+ * (scale -1 on x) must come out wound as the OBJ writes it, front side where the file
+ * put it. COLLADA and 3DS files written by assimp's own exporter from the OBJ
+ * (assimp-utils; skipped without it) load to the same area per material. A truncated
+ * file, a file with no meshes and a FIFO are refused with one line naming the file.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "formats/assimp_scene.h"
+#include "formats/obj.h"
+#include "host/obj_polys.h"
+#include "host/scene.h"
+#include "tmpdir.h"
+
+TMPDIR_GROUP("assimp")
+
+/* ---- the room ---------------------------------------------------------------------- */
+
+/* A mesh of a node: triangles on local vertices, one material. */
+typedef struct {
+    const char *node;
+    double t[3], s[3];   /* the node's translation and scale (no rotation) */
+    int material;        /* 0 wall, 1 lamp, 2 block */
+    int nv, nt;
+    float v[8][3];
+    unsigned short tri[12][3];
+} part_t;
+
+static const char *const mat_names[3] = {"wall", "lamp", "block"};
+static const double mat_kd[3][3] = {{0.75, 0.5, 0.25}, {0, 0, 0}, {0.5, 0.5, 0.5}};
+static const double mat_ke[3][3] = {{0, 0, 0}, {1, 0.75, 0.5}, {0, 0, 0}};
+
+/* The floor and ceiling and two walls of a 4 x 3 x 4 room (a box open on two sides),
+ * a lamp under the ceiling (a unit square scaled to 1 x 1 and moved up), and a block
+ * mirrored on x (its faces wound so that, mirrored, they face out). */
+static const part_t parts[3] = {
+    {"room", {0, 0, 0}, {1, 1, 1}, 0, 8, 8,
+     {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}, {-2, 3, -2}, {2, 3, -2}, {2, 3, 2}, {-2, 3, 2}},
+     {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {0, 4, 7}, {0, 7, 3}}},
+    {"lamp", {0.5, 2.875, 0.25}, {2, 1, 2}, 1, 4, 2,
+     {{-0.25, 0, -0.25}, {0.25, 0, -0.25}, {0.25, 0, 0.25}, {-0.25, 0, 0.25}},
+     {{0, 1, 2}, {0, 2, 3}}},
+    {"block", {-0.5, 0, 0.5}, {-1, 1, 1}, 2, 8, 10,
+     {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}},
+     /* outward as written; the mirror turns them inward and the loader back out */
+     {{4, 6, 5}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
+      {3, 0, 4}, {3, 4, 7}}},
+};
+
+static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+static void put_b64(FILE *f, const unsigned char *d, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i += 3) {
+        unsigned v = (unsigned)d[i] << 16 | (i + 1 < n ? (unsigned)d[i + 1] << 8 : 0) |
+                     (i + 2 < n ? d[i + 2] : 0);
+        fputc(b64[v >> 18 & 63], f);
+        fputc(b64[v >> 12 & 63], f);
+        fputc(i + 1 < n ? b64[v >> 6 & 63] : '=', f);
+        fputc(i + 2 < n ? b64[v & 63] : '=', f);
+    }
+}
+
+/* The glTF: one buffer (per part: positions, then indices padded to 4 bytes), a
+ * scene whose root node "house" holds the room and, under a node moved by (0, 0, 0)
+ * with no scale, the lamp and the block. */
+static void write_gltf(const char *path)
+{
+    unsigned char buf[4096];
+    size_t off[3][2], len = 0;
+    FILE *f = fopen(path, "w");
+    int i, k;
+    assert_non_null(f);
+    for (i = 0; i < 3; i++) {
+        off[i][0] = len;
+        memcpy(buf + len, parts[i].v, (size_t)parts[i].nv * 12);
+        len += (size_t)parts[i].nv * 12;
+        off[i][1] = len;
+        memcpy(buf + len, parts[i].tri, (size_t)parts[i].nt * 6);
+        len += ((size_t)parts[i].nt * 6 + 3) & ~(size_t)3;
+    }
+    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\n");
+    fprintf(f, "\"nodes\":[{\"name\":\"house\",\"mesh\":0,\"children\":[1]},"
+               "{\"name\":\"props\",\"translation\":[0,0,0],\"children\":[2,3]}");
+    for (i = 1; i < 3; i++)
+        fprintf(f, ",{\"name\":\"%s\",\"mesh\":%d,\"translation\":[%g,%g,%g],\"scale\":[%g,%g,%g]}",
+                parts[i].node, i, parts[i].t[0], parts[i].t[1], parts[i].t[2], parts[i].s[0],
+                parts[i].s[1], parts[i].s[2]);
+    fprintf(f, "],\n\"meshes\":[");
+    for (i = 0; i < 3; i++)
+        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"indices\":%d,"
+                   "\"material\":%d}]}",
+                i ? "," : "", 2 * i, 2 * i + 1, parts[i].material);
+    fprintf(f, "],\n\"materials\":[");
+    for (i = 0; i < 3; i++)
+        fprintf(f, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%g,%g,%g,1],"
+                   "\"metallicFactor\":0},\"emissiveFactor\":[%g,%g,%g]}",
+                i ? "," : "", mat_names[i], mat_kd[i][0], mat_kd[i][1], mat_kd[i][2],
+                mat_ke[i][0], mat_ke[i][1], mat_ke[i][2]);
+    fprintf(f, "],\n\"accessors\":[");
+    for (i = 0; i < 3; i++) {
+        float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
+        int v;
+        for (v = 0; v < parts[i].nv; v++)
+            for (k = 0; k < 3; k++) {
+                lo[k] = fminf(lo[k], parts[i].v[v][k]);
+                hi[k] = fmaxf(hi[k], parts[i].v[v][k]);
+            }
+        fprintf(f, "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\","
+                   "\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]},"
+                   "{\"bufferView\":%d,\"componentType\":5123,\"count\":%d,\"type\":\"SCALAR\"}",
+                i ? "," : "", 2 * i, parts[i].nv, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                2 * i + 1, 3 * parts[i].nt);
+    }
+    fprintf(f, "],\n\"bufferViews\":[");
+    for (i = 0; i < 3; i++)
+        fprintf(f, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d},"
+                   "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}",
+                i ? "," : "", off[i][0], parts[i].nv * 12, off[i][1], parts[i].nt * 6);
+    fprintf(f, "],\n\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
+               "base64,", len);
+    put_b64(f, buf, len);
+    fprintf(f, "\"}]}\n");
+    assert_int_equal(fclose(f), 0);
+}
+
+/* The same faces as an OBJ, each vertex moved by its node's scale then translation, a
+ * mirrored part's triangles written in reverse order (as the loader must turn them). */
+static void write_obj(const char *path, const char *mtl)
+{
+    FILE *f = fopen(path, "w"), *m = fopen(mtl, "w");
+    int i, v, t, base = 1;
+    assert_non_null(f);
+    assert_non_null(m);
+    for (i = 0; i < 3; i++)
+        fprintf(m, "newmtl %s\nKd %g %g %g\nKe %g %g %g\n", mat_names[i], mat_kd[i][0],
+                mat_kd[i][1], mat_kd[i][2], mat_ke[i][0], mat_ke[i][1], mat_ke[i][2]);
+    fprintf(f, "mtllib %s\n", strrchr(mtl, '/') + 1);
+    for (i = 0; i < 3; i++) {
+        const part_t *p = &parts[i];
+        const int mirror = p->s[0] * p->s[1] * p->s[2] < 0;
+        fprintf(f, "o %s\nusemtl %s\n", p->node, mat_names[p->material]);
+        for (v = 0; v < p->nv; v++)
+            fprintf(f, "v %.17g %.17g %.17g\n", p->v[v][0] * p->s[0] + p->t[0],
+                    p->v[v][1] * p->s[1] + p->t[1], p->v[v][2] * p->s[2] + p->t[2]);
+        for (t = 0; t < p->nt; t++) {
+            const unsigned short *q = p->tri[t];
+            if (mirror)
+                fprintf(f, "f %d %d %d\n", base + q[2], base + q[1], base + q[0]);
+            else
+                fprintf(f, "f %d %d %d\n", base + q[0], base + q[1], base + q[2]);
+        }
+        base += p->nv;
+    }
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(fclose(m), 0);
+}
+
+static sc_solver *solve(const obj_scene *sc, int *n_elements)
+{
+    sc_opts o;
+    sc_stats st;
+    char err[512];
+    int n;
+    sc_poly *p = obj_to_polys(sc, &n, NULL, NULL);
+    sc_solver *h;
+    assert_non_null(p);
+    memset(&o, 0, sizeof o);
+    o.res = 32;
+    o.max_element = 0.5;
+    h = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    free(p);
+    if (!h) fail_msg("sc_create: %s", err);
+    CHECK_INT_GT(sc_solve(h, 100000, 0.01, NULL, NULL), 0, "shots of the room's solve");
+    sc_get_stats(h, &st);
+    *n_elements = st.elements;
+    return h;
+}
+
+/* The glTF and the OBJ of one room: the same materials, faces, element count and, to
+ * the bit, the same radiosity on every element. */
+static void test_gltf_matches_obj(void **state)
+{
+    obj_scene a, b;
+    char err[512];
+    int i, k, ea, eb, differ = 0;
+    sc_solver *ha, *hb;
+    (void)state;
+    if (!assimp_scene_available()) {
+        print_message("rad built without assimp (libassimp-dev): skipped\n");
+        skip();
+    }
+    write_gltf(tmp_path("room.gltf"));
+    write_obj(tmp_path("room.obj"), tmp_path("room.mtl"));
+    if (assimp_scene_load(tmp_path("room.gltf"), &a, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
+    if (obj_load(tmp_path("room.obj"), &b, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    CHECK_INT_EQ(a.nfaces, b.nfaces, "faces of the glTF against the OBJ");
+    CHECK_INT_EQ(a.nmaterials, 3, "materials of the glTF");
+    for (i = 0; i < 3; i++) {
+        int j = obj_find_material(&a, mat_names[i]);
+        CHECK_INT_GE(j, 0, "glTF material %s found", mat_names[i]);
+        for (k = 0; k < 3; k++) {
+            CHECK_NEAR(a.materials[j].kd[k], mat_kd[i][k], 1e-7, "%s Kd[%d]", mat_names[i], k);
+            CHECK_NEAR(a.materials[j].ke[k], mat_ke[i][k], 1e-7, "%s Ke[%d]", mat_names[i], k);
+        }
+        CHECK_NEAR(a.materials[j].area, b.materials[obj_find_material(&b, mat_names[i])].area,
+                   1e-9, "area of %s", mat_names[i]);
+    }
+    for (i = 0; i < a.nfaces; i++) {
+        obj_vec3 na = obj_face_normal(&a, &a.faces[i]), nb = obj_face_normal(&b, &b.faces[i]);
+        CHECK_NEAR(na.x * nb.x + na.y * nb.y + na.z * nb.z,
+                   sqrt(na.x * na.x + na.y * na.y + na.z * na.z) *
+                       sqrt(nb.x * nb.x + nb.y * nb.y + nb.z * nb.z),
+                   1e-9, "face %d (node %s) faces the OBJ's way", i,
+                   a.faces[i].object >= 0 ? a.names[a.faces[i].object] : "?");
+    }
+    ha = solve(&a, &ea);
+    hb = solve(&b, &eb);
+    print_message("glTF %d faces, %d elements; OBJ %d faces, %d elements\n", a.nfaces, ea,
+                  b.nfaces, eb);
+    CHECK_INT_EQ(ea, eb, "elements of the glTF's solve against the OBJ's");
+    for (i = 0; i < ea; i++) {
+        double ra[3], rb[3];
+        sc_element_rgb(ha, i, 1, ra);
+        sc_element_rgb(hb, i, 1, rb);
+        for (k = 0; k < 3; k++) differ += ra[k] != rb[k];
+    }
+    CHECK_INT_EQ(differ, 0, "element channels whose radiosity differs between the two");
+    sc_destroy(ha);
+    sc_destroy(hb);
+    obj_free(&a);
+    obj_free(&b);
+}
+
+/* assimp's own exporter (assimp-utils) writes the OBJ as COLLADA and 3DS: each loads
+ * with the OBJ's area per material (3DS keeps 32-bit floats: 1e-6 of the room's 48). */
+static void test_exported_formats(void **state)
+{
+    static const char *const ext[] = {"dae", "3ds"};
+    unsigned e;
+    (void)state;
+    if (!assimp_scene_available() || system("command -v assimp >/dev/null 2>&1") != 0) {
+        print_message("assimp or assimp-utils missing: skipped\n");
+        skip();
+    }
+    write_obj(tmp_path("x.obj"), tmp_path("x.mtl"));
+    for (e = 0; e < 2; e++) {
+        char cmd[1024], out[64], err[512];
+        obj_scene a, b;
+        int i;
+        snprintf(out, sizeof out, "x.%s", ext[e]);
+        snprintf(cmd, sizeof cmd, "assimp export '%s' '%s' >/dev/null 2>&1", tmp_path("x.obj"),
+                 tmp_path(out));
+        CHECK_INT_EQ(system(cmd), 0, "assimp export to .%s", ext[e]);
+        if (assimp_scene_load(tmp_path(out), &a, NULL, NULL, err, sizeof err) < 0)
+            fail_msg("%s", err);
+        assert_int_equal(obj_load(tmp_path("x.obj"), &b, NULL, NULL, err, sizeof err), 0);
+        for (i = 0; i < 3; i++) {
+            int ja = obj_find_material(&a, mat_names[i]), jb = obj_find_material(&b, mat_names[i]);
+            double area = 0;
+            int f;
+            /* 3DS names materials as it likes: sum by the faces' Kd instead */
+            for (f = 0; f < a.nfaces; f++) {
+                const double *kd = a.materials[a.faces[f].material].kd;
+                if (fabs(kd[0] - mat_kd[i][0]) < 1e-6 && fabs(kd[1] - mat_kd[i][1]) < 1e-6 &&
+                    fabs(kd[2] - mat_kd[i][2]) < 1e-6)
+                    area += obj_face_area(&a, &a.faces[f]);
+            }
+            print_message(".%s: material %s (%d) area %.9g, the OBJ's %.9g\n", ext[e],
+                          mat_names[i], ja, area, b.materials[jb].area);
+            CHECK_NEAR(area, b.materials[jb].area, 1e-6 * 48, ".%s area of Kd %s", ext[e],
+                       mat_names[i]);
+        }
+        obj_free(&a);
+        obj_free(&b);
+    }
+}
+
+static void expect_refused(const char *path, const char *part)
+{
+    obj_scene sc;
+    char err[512];
+    int rc = assimp_scene_load(path, &sc, NULL, NULL, err, sizeof err);
+    print_message("%s: %d \"%s\"\n", path, rc, rc < 0 ? err : "");
+    CHECK_INT_EQ(rc, -1, "assimp_scene_load of a bad file");
+    CHECK_CONTAINS(err, path, "the error names the file");
+    CHECK_CONTAINS(err, part, "the error says what is wrong");
+    CHECK_LACKS(err, "\n", "the error is one line");
+    CHECK_INT_EQ(sc.nfaces, 0, "faces left in the scene");
+}
+
+/* Bad input: one line naming the file, nothing loaded. */
+static void test_bad_files(void **state)
+{
+    FILE *f;
+    char *text;
+    long n;
+    (void)state;
+    if (!assimp_scene_available()) {
+        expect_refused(tmp_path("none.gltf"), "libassimp-dev");
+        return;
+    }
+    write_gltf(tmp_path("whole.gltf"));
+    f = fopen(tmp_path("whole.gltf"), "r");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    rewind(f);
+    text = malloc((size_t)n);
+    assert_non_null(text);
+    assert_int_equal(fread(text, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    f = fopen(tmp_path("cut.gltf"), "w");
+    fwrite(text, 1, (size_t)n / 2, f);
+    fclose(f);
+    free(text);
+    expect_refused(tmp_path("cut.gltf"), "");
+    f = fopen(tmp_path("empty.gltf"), "w");
+    fputs("{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[]}],\"scene\":0}\n", f);
+    fclose(f);
+    expect_refused(tmp_path("empty.gltf"), "");
+    expect_refused(tmp_path("missing.glb"), "No such file");
+    assert_int_equal(mkfifo(tmp_path("fifo.glb"), 0600), 0);
+    expect_refused(tmp_path("fifo.glb"), "");
+}
+
+/* .obj in any case goes to the OBJ reader, every other name to assimp. */
+static void test_wants(void **state)
+{
+    (void)state;
+    CHECK_INT_EQ(assimp_scene_wants("a/b.obj"), 0, "a/b.obj to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("B.OBJ"), 0, "B.OBJ to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("a.glb"), 1, "a.glb to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("a.obj.fbx"), 1, "a.obj.fbx to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("dir.obj/scene"), 1, "dir.obj/scene to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("a.objx"), 1, "a.objx to assimp");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_wants),
+        cmocka_unit_test(test_gltf_matches_obj),
+        cmocka_unit_test(test_exported_formats),
+        cmocka_unit_test(test_bad_files),
+    };
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
+}

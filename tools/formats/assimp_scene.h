@@ -1,0 +1,55 @@
+/* SPDX-License-Identifier: MIT */
+/* assimp_scene — every scene format assimp reads (glTF 2.0 .gltf/.glb, FBX, COLLADA .dae,
+ * 3DS, PLY, ...) into the same obj_scene the OBJ reader fills, so the solve, the views,
+ * the bake and the exports take them unchanged. Built only where pkg-config finds assimp
+ * (Debian libassimp-dev: RAD_HAVE_ASSIMP); elsewhere assimp_scene_load refuses with a
+ * message saying how to get it. rad_cli reads .obj with its own reader (obj.h) and every
+ * other extension with this one.
+ *
+ * What is kept:
+ *   - every mesh of every node, its vertices moved by the node's transform and its
+ *     parents' (normals by the inverse transpose; a mirroring transform reverses the
+ *     faces' winding, so their front stays where the file put it); faces of fewer than
+ *     three vertices (points, lines) are left out and counted in unknown_statements;
+ *     each node's name is the faces' object name (obj_face.object);
+ *   - the first texture coordinate set (assimp gives it with v up, as OBJ) and the
+ *     normals;
+ *   - per material: the base colour (glTF baseColorFactor, else the diffuse colour) as
+ *     Kd, the base colour or diffuse texture as map_Kd (a file beside the scene; a
+ *     texture embedded in the file is not read yet: a warning, and the colour alone),
+ *     the emissive colour times its strength (KHR_materials_emissive_strength) as Ke,
+ *     in the units of an MTL's Ke. Names are the file's, made unique with "#N".
+ * Units are the file's: metres in glTF (its specification), metres in FBX (assimp
+ * converts from centimetres: AI_CONFIG_FBX_CONVERT_TO_M), as written in the others.
+ *
+ * Every file assimp opens (the scene, a .gltf's buffers, an .mtl) is read through
+ * file_io (fio_read_all: regular files only, at most FIO_LIMIT_OBJ bytes), so a FIFO,
+ * a device or a huge file is refused as for an OBJ. Errors are one line,
+ * "FILE: what is wrong" (assimp's own words after the file's name); warnings go to WARN
+ * in the OBJ reader's form.
+ */
+#ifndef RAD_TOOLS_ASSIMP_SCENE_H
+#define RAD_TOOLS_ASSIMP_SCENE_H
+
+#include <stddef.h>
+
+#include "formats/obj.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* 1 if this build reads other formats through assimp, else 0. */
+int assimp_scene_available(void);
+/* 1 if PATH is to be read by assimp_scene_load: its extension is not .obj (any case). */
+int assimp_scene_wants(const char *path);
+/* Loads PATH into *SC (cleared first) as described above. Returns 0, or -1 with the
+ * message in err and *SC empty. */
+int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
+                      size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
