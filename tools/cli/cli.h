@@ -87,6 +87,8 @@ typedef struct {
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
+    int allow_outside;              /* --allow-outside-paths: inputs outside the scene's
+                                       folder, --views outputs outside the current one */
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;

@@ -109,6 +109,7 @@ static void opt_height(opts_t *o, const char *opt, const char *val) { o->height 
 static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->exposure = parse_pos(opt, val); }
 static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
 static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
+static void opt_allow_outside(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->allow_outside = 1; }
 static void opt_ply_linear(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->ply_linear = 1; }
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
@@ -270,6 +271,10 @@ static const option_t options[] = {
      "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
      "arriving at each vertex, materials unlit with their textures", opt_gltf},
     {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
+    {"--allow-outside-paths", NULL, NULL,
+     "read mtllib and map_Kd files outside the scene's folder (by\n"
+     "default: a warning, and Kd), and let --views write outside\n"
+     "the current folder", opt_allow_outside},
     {"--gather", NULL, "RES",
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"

@@ -248,8 +248,10 @@ static int load_step(run_t *r)
 {
     opts_t *o = r->o;
     char err[1024];
+    obj_opts lo = {0};
     int i, emitters = 0;
-    if (obj_load(o->scene, &r->sc, o->quiet ? NULL : obj_warning, o, err, sizeof err) < 0) {
+    lo.allow_outside = o->allow_outside;
+    if (obj_load_opts(o->scene, &lo, &r->sc, o->quiet ? NULL : obj_warning, o, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }

@@ -182,6 +182,49 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen)
     return fp;
 }
 
+/* ---- where a path leads ---------------------------------------------------------- */
+
+char *fio_resolve(const char *path)
+{
+    const char *slash, *base;
+    char *dir, *real, *out;
+    size_t n;
+    if (!path || !*path)
+        return NULL;
+    if ((real = realpath(path, NULL)) != NULL)
+        return real;
+    slash = strrchr(path, '/');
+    base = slash ? slash + 1 : path;
+    if (!*base || !strcmp(base, ".") || !strcmp(base, ".."))
+        return NULL; /* a folder's name that does not resolve */
+    n = slash ? (size_t)(slash - path) + (slash == path) : 1;
+    if (!(dir = malloc(n + 1)))
+        return NULL;
+    memcpy(dir, slash ? path : ".", n);
+    dir[n] = '\0';
+    real = realpath(dir, NULL);
+    free(dir);
+    if (!real)
+        return NULL;
+    n = strlen(real);
+    if ((out = malloc(n + strlen(base) + 2)) != NULL)
+        sprintf(out, "%s%s%s", real, real[n - 1] == '/' ? "" : "/", base);
+    free(real);
+    return out;
+}
+
+int fio_within(const char *dir, const char *path)
+{
+    char *d = realpath(dir && *dir ? dir : ".", NULL), *p = fio_resolve(path);
+    size_t n = d ? strlen(d) : 0;
+    int rc = -1;
+    if (d && p) /* the root "/" holds everything; else DIR itself or DIR + '/' + ... */
+        rc = !strcmp(d, "/") || (!strncmp(p, d, n) && (p[n] == '\0' || p[n] == '/'));
+    free(d);
+    free(p);
+    return rc;
+}
+
 /* ---- outputs ------------------------------------------------------------------- */
 
 /* The name a regular file ST at PATH is replaced under: PATH itself, or the file a

@@ -74,6 +74,16 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen);
  * -1 with err. Writes nothing: the tools call it for every output before the solve. */
 int fio_check_out(const char *path, char *err, size_t errlen);
 
+/* Where PATH leads, as an absolute name without '.', '..' or symbolic links: realpath
+ * of PATH if it exists, else realpath of its folder joined to its last component (a file
+ * not yet written). malloc'd; NULL when neither resolves (the folder is missing). */
+char *fio_resolve(const char *path);
+
+/* 1 when PATH (resolved as fio_resolve) is DIR or lies under it (DIR resolved too,
+ * compared at a component boundary: /a/bc is not under /a/b), 0 when it is elsewhere,
+ * -1 when either cannot be resolved. */
+int fio_within(const char *dir, const char *path);
+
 typedef struct fio_out fio_out;
 
 /* Opens PATH for writing as above. Returns the writer, or NULL with err. */

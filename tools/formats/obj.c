@@ -31,6 +31,8 @@ typedef struct {
     char *err;
     size_t errlen;
     const char *basedir;  /* for mtllib; NULL: mtllib is ignored with a warning */
+    int allow_outside;    /* obj_opts: files outside basedir are read */
+    char *root;           /* basedir resolved (fio_resolve), for messages; lazily */
     const char *file;     /* file being parsed, for messages */
     long line;            /* first physical line of the current statement */
     int cur;              /* OBJ: material of the next faces; MTL: the one being defined */
@@ -93,6 +95,27 @@ static void warn(parser *p, const char *fmt, ...)
 static int line_int(const parser *p)
 {
     return p->line > INT_MAX ? INT_MAX : (int)p->line;
+}
+
+/* ---- the scene's folder -------------------------------------------------------- */
+
+/* Does PATH (a library or texture) leave the scene's folder, and may it not? A file
+   that does not resolve (missing) is not outside: its reader says it is missing. */
+static int outside(parser *p, const char *path)
+{
+    const char *dir = p->basedir && *p->basedir ? p->basedir : ".";
+    if (p->allow_outside || fio_within(dir, path) != 0)
+        return 0;
+    if (!p->root)
+        p->root = fio_resolve(dir);
+    return 1;
+}
+
+/* The warning for PATH outside the folder: WHAT it is, DOING instead. */
+static void warn_outside(parser *p, const char *what, const char *path, const char *doing)
+{
+    warn(p, "%s: %.300s is outside the scene's folder %.300s; %s; --allow-outside-paths reads it",
+         what, path, p->root ? p->root : p->basedir, doing);
 }
 
 /* ---- growing arrays ------------------------------------------------------------ */
@@ -661,6 +684,7 @@ static int parse_map_kd(parser *p, char *rest)
     }
     if (!(t->path = map_path(p, rest)))
         return fail(p, "out of memory");
+    t->outside = outside(p, t->path); /* warned of by finish, once Kd is known */
     return 0;
 }
 
@@ -735,6 +759,11 @@ static int load_mtl(parser *p, const char *name)
     size_t len;
     if (!path)
         return fail(p, "out of memory");
+    if (outside(p, path)) {
+        warn_outside(p, "mtllib", path, "library not read");
+        free(path);
+        return 0;
+    }
     if (read_mtl_text(p, name, path, &text, &len)) {
         free(path);
         return 0;
@@ -1007,9 +1036,21 @@ static void finish(parser *p)
         m->area += obj_face_area(sc, &sc->faces[i]);
         m->nfaces++;
     }
-    for (i = 0; i < sc->nmaterials; i++)
-        if (sc->materials[i].map_kd.line && !sc->materials[i].map_kd.path)
-            obj_map_fallback(&sc->materials[i]);
+    for (i = 0; i < sc->nmaterials; i++) {
+        obj_material *m = &sc->materials[i];
+        char doing[128];
+        if (m->map_kd.line && (!m->map_kd.path || m->map_kd.outside))
+            obj_map_fallback(m);
+        if (!m->map_kd.outside)
+            continue;
+        p->file = m->map_kd.mtl;
+        p->line = m->map_kd.line;
+        snprintf(doing, sizeof doing, "using Kd %.3g %.3g %.3g", m->kd[0], m->kd[1], m->kd[2]);
+        warn_outside(p, "map_Kd", m->map_kd.path, doing);
+        free(m->map_kd.path);
+        m->map_kd.path = NULL;
+        m->map_kd.outside = 0;
+    }
 }
 
 int obj_map_fallback(obj_material *m)
@@ -1022,12 +1063,15 @@ int obj_map_fallback(obj_material *m)
     return 1;
 }
 
-int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
-              obj_warn_fn warn_fn, void *ctx, char *err, size_t errlen)
+static int parse_text(const char *text, size_t len, const char *name, const char *basedir,
+                      const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
+                      size_t errlen)
 {
     parser p;
+    int rc = 0;
     memset(sc, 0, sizeof *sc);
     memset(&p, 0, sizeof p);
+    p.allow_outside = opts && opts->allow_outside;
     p.sc = sc;
     p.warn = warn_fn;
     p.ctx = ctx;
@@ -1040,10 +1084,18 @@ int obj_parse(const char *text, size_t len, const char *name, const char *basedi
     put_msg(err, errlen, "%s", "");
     if (each_statement(&p, text, len, obj_statement)) {
         obj_free(sc);
-        return -1;
+        rc = -1;
+    } else {
+        finish(&p);
     }
-    finish(&p);
-    return 0;
+    free(p.root);
+    return rc;
+}
+
+int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
+              obj_warn_fn warn_fn, void *ctx, char *err, size_t errlen)
+{
+    return parse_text(text, len, name, basedir, NULL, sc, warn_fn, ctx, err, errlen);
 }
 
 /* Directory part of path ("" for a bare name), for mtllib. */
@@ -1062,6 +1114,12 @@ static char *dir_of(const char *path)
 int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
              size_t errlen)
 {
+    return obj_load_opts(path, NULL, sc, warn_fn, ctx, err, errlen);
+}
+
+int obj_load_opts(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn,
+                  void *ctx, char *err, size_t errlen)
+{
     char *text, *dir;
     size_t len;
     int rc;
@@ -1074,7 +1132,7 @@ int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, ch
         put_msg(err, errlen, "%s: out of memory", path);
         return -1;
     }
-    rc = obj_parse(text, len, path, dir, sc, warn_fn, ctx, err, errlen);
+    rc = parse_text(text, len, path, dir, opts, sc, warn_fn, ctx, err, errlen);
     free(dir);
     free(text);
     return rc;
