@@ -67,10 +67,13 @@ static int exists(const char *path)
     return stat(path, &st) == 0;
 }
 
+/* The runs' standard input (a test may set it, and puts it back). */
+static const char *child_stdin = "/dev/null";
+
 /* The child: its outputs into files, a hang bounded, the disk "full" past FSIZE bytes. */
 static void child(const char *outp, const char *errp, long fsize, char **argv)
 {
-    int in = open("/dev/null", O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
+    int in = open(child_stdin, O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
         err = open(errp, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     if (in < 0 || out < 0 || err < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(126);
     if (fsize > 0) {
@@ -171,13 +174,83 @@ static void test_views_not_a_file(void **state)
     expect(&r, 1, line_of("rad_cli: %s: is a directory\n", tmpdir, NULL));
     done(&r);
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", "/dev/zero");
-    expect(&r, 1, "rad_cli: /dev/zero: larger than the limit of 16 MiB (16777216 bytes)\n");
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
     done(&r);
     assert_int_equal(mkfifo(fifo, 0600), 0);
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", fifo); /* no writer: must not block */
-    expect(&r, 1, line_of("rad_cli: %s: nothing to read (a FIFO with no writer, or an empty pipe)\n", fifo, NULL));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
     done(&r);
     CHECK_THAT(!exists(tmp_path("v.png")), "no image after the failed runs");
+}
+
+/* Inputs that are not regular files are refused before the solve, at once: the scene
+ * as a FIFO with no writer and with a writer waiting (it was waited on, then read), the
+ * scene, --probe-file and --load-ff as devices (/dev/zero was read to each limit). Only
+ * an explicit "-" reads standard input, and a scene from it needs -o. */
+static void test_inputs_not_regular(void **state)
+{
+    result_t r;
+    const char *fifo = tmp_path("scene.fifo");
+    char want[600], *obj;
+    pid_t writer;
+    int st;
+    (void)state;
+    unlink(fifo);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    RUN(&r, fifo, SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
+    done(&r);
+    writer = fork(); /* a writer waiting in its open, with a scene to give */
+    CHECK_INT_GE(writer, 0, "fork");
+    if (writer == 0) {
+        int fd;
+        signal(SIGPIPE, SIG_IGN);
+        alarm(HANG_S);
+        fd = open(fifo, O_WRONLY);
+        _exit(fd >= 0 && write(fd, "v 0 0 0\n", 8) >= 0 ? 0 : 1);
+    }
+    RUN(&r, fifo, SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
+    done(&r);
+    assert_int_equal(waitpid(writer, &st, 0), writer);
+    RUN(&r, "/dev/null", SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, "rad_cli: /dev/null: not a regular file (a character device or terminal)\n");
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--load-ff", "/dev/zero");
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("n.png")), "no image after the refused inputs");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--probe-file", "/dev/zero", "--probes-out", tmp_path("p.json"));
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
+    done(&r);
+    unlink(tmp_path("n.png"));
+    /* "-": the scene from standard input (here a file; its mtllib from the current folder) */
+    {
+        char *at, *text;
+        size_t n;
+        assert_int_equal(fio_read_all(CORNELL, FIO_LIMIT_TEXT, &obj, &n, want, sizeof want), 0);
+        at = strstr(obj, "mtllib cornell_box.mtl");
+        text = malloc(n + 32);
+        assert_non_null(at);
+        assert_non_null(text);
+        sprintf(text, "%.*smtllib examples/cornell_box.mtl%s", (int)(at - obj), obj, at + strlen("mtllib cornell_box.mtl"));
+        write_file(tmp_path("stdin.obj"), text);
+        free(text);
+        free(obj);
+    }
+    child_stdin = tmp_path("stdin.obj");
+    RUN(&r, "-", SMALL, "-o", tmp_path("stdin.png"));
+    expect(&r, 0, "");
+    CHECK_THAT(exists(tmp_path("stdin.png")), "the scene read from standard input is rendered");
+    done(&r);
+    RUN(&r, "-", SMALL);
+    child_stdin = "/dev/null";
+    snprintf(want, sizeof want, "rad_cli: a scene on standard input (-) has no name to name outputs after: give -o FILE\n");
+    CHECK_THAT(r.status == 2 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr %.200s", r.status, r.err);
+    done(&r);
+    RUN(&r, "-", SMALL, "-o", tmp_path("n.png")); /* standard input a device: refused */
+    expect(&r, 1, "rad_cli: -: standard input is a device: pipe or redirect a file into it\n");
+    done(&r);
 }
 
 /* The old reader took a line in 4,095-byte pieces: a longer '#' comment ran its tail as
@@ -606,6 +679,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_views_not_a_file),
+        cmocka_unit_test(test_inputs_not_regular),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

@@ -339,7 +339,7 @@ static const option_t options[] = {
 static void usage(FILE *f)
 {
     size_t i;
-    fprintf(f, "usage: " PROG " [options] scene.obj\n"
+    fprintf(f, "usage: " PROG " [options] scene.obj   (- reads the scene from standard input)\n"
                "Solves the diffuse global illumination of an OBJ/MTL scene (hemi-cube radiosity,\n"
                "progressive refinement) and renders it. Kd is reflectance, Ke emission.\n\n");
     for (i = 0; i < NOPTIONS; i++) {
@@ -397,6 +397,10 @@ static void check_combinations(opts_t *o)
 {
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (!strcmp(o->scene, "-") && o->nviews == 0 && !o->views_file)
+        die_usage("a scene on standard input (-) has no name to name outputs after: give -o FILE", NULL);
+    if (!strcmp(o->scene, "-") && (o->probes || o->probe_file) && !o->probes_out)
+        die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);

@@ -1124,9 +1124,10 @@ int obj_load_opts(const char *path, const obj_opts *opts, obj_scene *sc, obj_war
     size_t len;
     int rc;
     memset(sc, 0, sizeof *sc);
-    if (fio_read_all(path, FIO_LIMIT_OBJ, &text, &len, err, errlen) != 0)
+    if (path && !strcmp(path, "-") ? fio_read_stdin(FIO_LIMIT_OBJ, &text, &len, err, errlen)
+                                   : fio_read_all(path, FIO_LIMIT_OBJ, &text, &len, err, errlen))
         return -1;
-    dir = dir_of(path);
+    dir = dir_of(path); /* "-": "", the current folder */
     if (!dir) {
         free(text);
         put_msg(err, errlen, "%s: out of memory", path);

@@ -95,7 +95,8 @@ typedef struct {
     int allow_outside;
 } obj_opts;
 
-/* Loads PATH; mtllib paths are relative to the OBJ's directory. Files are read whole
+/* Loads PATH ("-": standard input, fio_read_stdin, whose folder is the current one);
+   mtllib paths are relative to the OBJ's directory. Files are read whole
    through fio_read_all (file_io.h): an OBJ of at most FIO_LIMIT_OBJ bytes, a library of
    at most FIO_LIMIT_MTL (larger, or unreadable: a warning, like a missing one). Lines
    end in LF, CRLF or CR; a leading UTF-8 byte order mark is skipped. Returns 0, or -1 with a
