@@ -818,6 +818,35 @@ static void test_mtllib_outside_folder(void **state)
     free(root);
 }
 
+/* ---- the memory budget --------------------------------------------------------- */
+
+/* 3 vertices and 100 faces "f 1 2 3" (824 bytes of text) under a budget of 2000 bytes:
+   the text, 24 bytes a vertex and 24 + 3 x 12 a face make 896 + 60 k after k faces,
+   over 2000 from the 19th face, line 22: refused there, before anything is parsed. */
+static void test_memory_budget(void **state)
+{
+    char text[1000];
+    size_t n = 0;
+    int i;
+    obj_scene sc;
+    (void)state;
+    n += (size_t)sprintf(text, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (i = 0; i < 100; i++)
+        n += (size_t)sprintf(text + n, "f 1 2 3\n");
+    assert_int_equal(n, 824);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2000", 1), 0);
+    expect_error_at(text, n, "mem.obj:22: loading the scene up to this line needs more than the memory budget of "
+                    "0.002 MB (19 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2060", 1), 0); /* one face more: line 23 */
+    expect_error_at(text, n, "mem.obj:23: loading the scene up to this line needs more than the memory budget of "
+                    "0.00206 MB (20 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "6896", 1), 0); /* 896 + 6000: all of it fits */
+    assert_int_equal(obj_parse(text, n, "mem.obj", NULL, &sc, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(sc.nfaces, 100);
+    obj_free(&sc);
+    unsetenv("RAD_MEMORY_BUDGET");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -843,6 +872,7 @@ int main(void)
         cmocka_unit_test(test_missing_obj),
         cmocka_unit_test(test_map_outside_folder),
         cmocka_unit_test(test_mtllib_outside_folder),
+        cmocka_unit_test(test_memory_budget),
     };
     return cmocka_run_group_tests_name("obj", tests, group_setup, group_teardown);
 }

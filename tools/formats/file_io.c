@@ -48,6 +48,16 @@ void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
     snprintf(err, errlen, "%s: %s", path ? path : "(null)", msg);
 }
 
+double fio_memory_budget(void)
+{
+    const char *env = getenv("RAD_MEMORY_BUDGET");
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    double v = env ? strtod(env, NULL) : 0;
+    if (v > 0)
+        return v;
+    return pages > 0 && size > 0 ? 0.5 * (double)pages * (double)size : 1073741824.0;
+}
+
 /* "64 MiB (67108864 bytes)" for a whole number of MiB, else "N bytes". */
 static void limit_text(char *out, size_t n, size_t limit)
 {

@@ -50,6 +50,13 @@ extern "C" {
 #define FIO_LIMIT_TEXT  (16u * 1024u * 1024u)   /* --views, --animate: 16 MiB */
 #define FIO_LIMIT_IMAGE (256u * 1024u * 1024u)  /* an image or texture file: 256 MiB */
 
+/* The memory the tools let one input take, in bytes: the environment's
+ * RAD_MEMORY_BUDGET (a number of bytes; how tests try the refusals with small figures)
+ * if set and positive, else half the physical memory (1 GiB when the system does not
+ * say). The OBJ loader checks its scene against it before parsing, the stored rows
+ * theirs before computing them. */
+double fio_memory_budget(void);
+
 /* "PATH: message" into err (NULL or errlen 0: nothing); the one form of every message
  * of the file format readers and writers. */
 void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)

@@ -510,6 +510,60 @@ static int each_statement(parser *p, const char *text, size_t len, statement_fn 
     return rc;
 }
 
+/* ---- the memory budget: a first, cheap pass --------------------------------------- */
+
+/* Bytes the parsed scene keeps for the physical line S (N bytes): a vertex or normal
+   (obj_vec3), a texture coordinate (obj_vec2), a face (obj_face) and its vertices (three
+   int indices each); *NF counts the faces. Other statements keep little (names,
+   materials: at most their own bytes, counted with the text). A face continued on the
+   next line counts the vertices of its first line: the estimate is a lower bound. */
+static double line_bytes(const char *s, size_t n, long *nf)
+{
+    size_t i = 0, k;
+    double b = 0;
+    while (i < n && is_space((unsigned char)s[i]))
+        i++;
+    for (k = i; k < n && !is_space((unsigned char)s[k]); k++)
+        ;
+    if (k - i == 1 && s[i] == 'v')
+        return sizeof(obj_vec3);
+    if (k - i == 2 && s[i] == 'v')
+        return s[i + 1] == 't' ? sizeof(obj_vec2) : s[i + 1] == 'n' ? sizeof(obj_vec3) : 0;
+    if (k - i != 1 || s[i] != 'f')
+        return 0;
+    (*nf)++;
+    b = sizeof(obj_face);
+    for (i = k; i < n && s[i] != '#'; i++)
+        if (!is_space((unsigned char)s[i]) && is_space((unsigned char)s[i - 1]))
+            b += 3 * sizeof(int);
+    return b;
+}
+
+/* Refuses, before anything is parsed, a text whose scene would take more than
+   fio_memory_budget: the text (kept while parsed) and what each line adds, summed line
+   by line, so the error names the line where the budget runs out. 0 or -1. */
+static int within_budget(parser *p, const char *text, size_t len)
+{
+    double budget = fio_memory_budget(), bytes = (double)len;
+    size_t pos = bom_length(text, len);
+    long line = 0, nf = 0;
+    while (pos < len) {
+        size_t eol, n = line_length(text + pos, len - pos, &eol);
+        line++;
+        bytes += line_bytes(text + pos, n, &nf);
+        pos += n + eol;
+        if (bytes > budget) {
+            p->line = line;
+            return fail(p, "loading the scene up to this line needs more than the memory budget of "
+                           "%.4g MB (%ld faces so far; %s): simplify or split the scene",
+                        budget / 1e6, nf,
+                        getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET"
+                                                    : "half the physical memory; RAD_MEMORY_BUDGET sets it");
+        }
+    }
+    return 0;
+}
+
 /* ---- MTL ----------------------------------------------------------------------- */
 
 static int parse_newmtl(parser *p, char *rest)
@@ -1082,7 +1136,7 @@ static int parse_text(const char *text, size_t len, const char *name, const char
     p.cur = -1;
     p.object = p.group = -1;
     put_msg(err, errlen, "%s", "");
-    if (each_statement(&p, text, len, obj_statement)) {
+    if (within_budget(&p, text, len) || each_statement(&p, text, len, obj_statement)) {
         obj_free(sc);
         rc = -1;
     } else {
