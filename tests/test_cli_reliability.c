@@ -268,7 +268,7 @@ static void test_views_long_comment(void **state)
              tmp_path("real.png"));
     write_file(path, text);
     free(text);
-    RUN(&r, CORNELL, SMALL, "--views", path);
+    RUN(&r, CORNELL, SMALL, "--views", path, "--allow-outside-paths"); /* outputs in /tmp */
     expect(&r, 0, "");
     CHECK_THAT(exists(tmp_path("real.png")), "the real view is written");
     CHECK_THAT(!exists(tmp_path("tail.png")), "the comment's tail is not a view");
@@ -290,6 +290,101 @@ static void test_views_long_comment(void **state)
 }
 
 /* ---- outputs checked before the solve ------------------------------------------ */
+
+/* A copy of PATH's bytes, to see that a refused run left it as it was. */
+static char *copy_of(const char *path)
+{
+    char *d, e[512];
+    size_t n;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &d, &n, e, sizeof e) < 0) fail_msg("%s", e);
+    return d;
+}
+
+/* Runs ARGS, which must be refused with exactly LINE, leaving INPUT (if any) as it was. */
+static void refused(const char *input, const char *line, const char *const *args)
+{
+    result_t r;
+    char *before = input ? copy_of(input) : NULL, *want = strdup(line);
+    assert_non_null(want);
+    run(&r, 0, args);
+    expect(&r, 1, want);
+    done(&r);
+    free(want);
+    if (before) {
+        char *after = copy_of(input);
+        CHECK_THAT(!strcmp(before, after), "%s is unchanged", input);
+        free(after);
+        free(before);
+    }
+}
+#define REFUSED(input, line, ...) refused((input), (line), (const char *const[]){__VA_ARGS__, NULL})
+
+/* Outputs that would write over an input of the run, or over each other, are refused
+ * before the solve, by file identity (a link, another spelling of the name, a file not
+ * yet written named twice); --views may write only under the current folder. */
+static void test_outputs_over_inputs(void **state)
+{
+    char obj[320], mtl[320], png[320], views[320], ff[320]; /* tmp_path's ring is reused */
+    unsigned char rgb[12] = {200, 10, 10, 10, 200, 10, 10, 10, 200, 200, 200, 200};
+    char e[512], text[1200], dotted[400];
+    result_t r;
+    (void)state;
+    strcpy(obj, tmp_path("tex.obj"));
+    strcpy(mtl, tmp_path("tex.mtl"));
+    strcpy(png, tmp_path("tex.png"));
+    strcpy(views, tmp_path("two.views"));
+    strcpy(ff, tmp_path("tex.ff"));
+    write_file(obj, "mtllib tex.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\n"
+                    "v -1 2 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+                    "f 5 6 7 8\n");
+    write_file(mtl, "newmtl floor\nKd 0.5 0.5 0.5\nmap_Kd tex.png\nnewmtl lamp\nKe 1 1 1\n");
+    assert_int_equal(img_write_as(png, "png", rgb, 2, 2, e, sizeof e), 0);
+    /* over the scene, its library and its texture (the same file under another name) */
+    REFUSED(obj, line_of("rad_cli: %s: --export-ply would write over the scene %s (the same file): give it another "
+                         "name\n", obj, obj), obj, SMALL, "-o", tmp_path("o.png"), "--export-ply", obj);
+    REFUSED(mtl, line_of("rad_cli: %s: --dump-radiosity would write over the scene's material library %s (the same "
+                         "file): give it another name\n", mtl, mtl), obj, SMALL, "-o", tmp_path("o.png"),
+            "--dump-radiosity", mtl);
+    snprintf(dotted, sizeof dotted, "%s/./tex.png", tmpdir);
+    snprintf(text, sizeof text, "rad_cli: %s: the image of -o would write over the texture of material 'floor' "
+             "(%s:3) %s (the same file): give it another name\n", dotted, mtl, png);
+    REFUSED(NULL, text, obj, SMALL, "-o", dotted);
+    assert_int_equal(symlink(obj, tmp_path("link.png")), 0); /* a link to the scene */
+    REFUSED(obj, line_of("rad_cli: %s: the image of -o would write over the scene %s (the same file): give it another "
+                         "name\n", tmp_path("link.png"), obj), obj, SMALL, "-o", tmp_path("link.png"));
+    /* over the --views file and a --load-ff file */
+    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n", tmp_path("v1.png"));
+    write_file(views, text);
+    REFUSED(views, line_of("rad_cli: %s: --export-gltf would write over the --views file %s (the same file): give it "
+                           "another name\n", views, views), obj, SMALL, "--views", views, "--allow-outside-paths",
+            "--export-gltf", views);
+    RUN(&r, obj, SMALL, "-o", tmp_path("o.png"), "--save-ff", ff);
+    expect(&r, 0, NULL);
+    done(&r);
+    REFUSED(NULL, line_of("rad_cli: %s: --dump-radiosity would write over the --load-ff file %s (the same file): give "
+                          "it another name\n", ff, ff), obj, SMALL, "-o", tmp_path("o2.png"), "--load-ff", ff,
+            "--dump-radiosity", ff);
+    /* outputs over each other: two views to one (new) file, -o and --lightmap */
+    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n0 1 3 0 1 0 %s/./v2.png\n", tmp_path("v2.png"), tmpdir);
+    write_file(views, text);
+    snprintf(dotted, sizeof dotted, "%s/./v2.png", tmpdir);
+    snprintf(text, sizeof text, "rad_cli: %s: the image of %s:1 (--views) and the image of %s:2 (--views) write the "
+             "same file: give one another name\n", dotted, views, views);
+    REFUSED(NULL, text, obj, SMALL, "--views", views, "--allow-outside-paths");
+    REFUSED(NULL, line_of("rad_cli: %s: the image of -o and --lightmap write the same file: give one another name\n",
+                          tmp_path("x.png"), NULL), obj, SMALL, "-o", tmp_path("x.png"), "--lightmap", tmp_path("x.png"));
+    /* --views outside the current folder (the tests run in the repository; /tmp is outside) */
+    snprintf(text, sizeof text, "# a view\n0 1 3 0 1 0 %s\n", tmp_path("v3.png"));
+    write_file(views, text);
+    REFUSED(NULL, line_of("rad_cli: %s:2: %s is outside the current folder; --allow-outside-paths writes it\n", views,
+                          tmp_path("v3.png")), obj, SMALL, "--views", views);
+    CHECK_THAT(!exists(tmp_path("x.png")) && !exists(tmp_path("v2.png")) && !exists(tmp_path("v3.png"))
+               && !exists(tmp_path("o2.png")), "no output of the refused runs");
+    RUN(&r, obj, SMALL, "--views", views, "--allow-outside-paths");
+    expect(&r, 0, NULL); /* a warning: the lamp faces down, the floor up, little lands */
+    CHECK_THAT(exists(tmp_path("v3.png")), "with the option the view is written");
+    done(&r);
+}
 
 /* A name of LEN bytes in the temporary folder ending in EXT. */
 static const char *long_name(size_t len, const char *ext)
@@ -680,6 +775,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_views_not_a_file),
         cmocka_unit_test(test_inputs_not_regular),
+        cmocka_unit_test(test_outputs_over_inputs),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

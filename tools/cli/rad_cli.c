@@ -193,11 +193,21 @@ static int read_text(const char *path, char **text, size_t *len)
     return 0;
 }
 
-static int add_file_view(void *ctx, const sc_camera *cam, const char *out)
+/* A view of the --views file: its output under the current folder unless
+ * --allow-outside-paths (a file from elsewhere must not write ~/.bashrc). */
+static int add_file_view(void *ctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen)
 {
     opts_t *o = ctx;
-    if (o->nviews >= MAX_VIEWS) return 1;
+    if (o->nviews >= MAX_VIEWS) {
+        snprintf(why, whylen, "too many views (%d)", MAX_VIEWS);
+        return 1;
+    }
+    if (!o->allow_outside && fio_within(".", out) == 0) {
+        snprintf(why, whylen, "%.300s is outside the current folder; --allow-outside-paths writes it", out);
+        return 1;
+    }
     add_view(o, cam, out);
+    o->views[o->nviews - 1].line = line;
     return 0;
 }
 
@@ -612,6 +622,7 @@ int main(int argc, char **argv)
         return CLI_EXIT_OK;
     }
     if (rc == 0) check_group_outputs(&o);
+    if (rc == 0) rc = check_collisions(&o, &r.sc);
     if (rc == 0) rc = build_step(&r);
     if (rc == 0) rc = bake_prepare(&r);
     if (rc == 0) rc = solve_step(&r);

@@ -803,6 +803,20 @@ static int read_mtl_text(parser *p, const char *name, const char *path, char **t
     return 1;
 }
 
+/* Adds PATH to the libraries read (sc->libs). 0 or -1 (out of memory). */
+static int keep_lib(parser *p, const char *path)
+{
+    obj_scene *sc = p->sc;
+    char **q = sc->nlibs < INT_MAX ? realloc(sc->libs, ((size_t)sc->nlibs + 1) * sizeof *q) : NULL;
+    if (!q)
+        return -1;
+    sc->libs = q;
+    if (!(q[sc->nlibs] = copy_string(path)))
+        return -1;
+    sc->nlibs++;
+    return 0;
+}
+
 /* Parses the library NAME, relative to the OBJ's folder; messages name it by path. */
 static int load_mtl(parser *p, const char *name)
 {
@@ -826,6 +840,8 @@ static int load_mtl(parser *p, const char *name)
     p->cur = -1;
     rc = each_statement(p, text, len, mtl_statement);
     free(text);
+    if (rc == 0 && keep_lib(p, path) < 0)
+        rc = fail(p, "out of memory");
     free(path);
     p->file = file;
     p->line = line;
@@ -1205,6 +1221,9 @@ void obj_free(obj_scene *sc)
     }
     for (i = 0; i < sc->nnames; i++)
         free(sc->names[i]);
+    for (i = 0; i < sc->nlibs; i++)
+        free(sc->libs[i]);
+    free(sc->libs);
     free(sc->names);
     free(sc->materials);
     free(sc->mat_index);

@@ -65,6 +65,7 @@ typedef struct {
     char **names; int nnames;        /* o and g names: an entry per statement that changes one */
     obj_face *faces; int nfaces;
     obj_material *materials; int nmaterials;
+    char **libs; int nlibs;          /* the material libraries read, as opened (joined paths) */
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
     int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
