@@ -289,6 +289,31 @@ static void test_views_long_comment(void **state)
     done(&r);
 }
 
+/* A --probe-file is read before the solve: a malformed one fails with its line and no
+ * solve (no image, no --stats: both came after the solve); points outside the scene's
+ * box are counted in one warning naming the first, before the solve's output. */
+static void test_probe_file_before_solve(void **state)
+{
+    result_t r;
+    char pf[320], want[800];
+    (void)state;
+    strcpy(pf, tmp_path("probes.txt"));
+    write_file(pf, "# probes\n-0.28 0.27 -0.28\n1 2\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"), "--stats");
+    expect(&r, 1, line_of("rad_cli: %s:3: a probe is three numbers, X Y Z\n", pf, NULL));
+    CHECK_THAT(!*r.out, "no --stats (no solve): stdout '%s'", r.out);
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("pr.png")) && !exists(tmp_path("pr.json")), "nothing written");
+    write_file(pf, "-0.28 0.27 -0.28\n-0.28 0.6 -0.28\n-0.1 0.1 -0.1\n-0.28 -0.01 -0.28\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"));
+    snprintf(want, sizeof want, "rad_cli: warning: %s: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
+             "-0.5592 to 0 0.5488 0), the first probe 2 at -0.28 0.6 -0.28: they see the scene from outside\n", pf);
+    CHECK_THAT(!strncmp(r.err, want, strlen(want)), "stderr starts\n%s\nwant\n%s", r.err, want);
+    done(&r);
+    unlink(tmp_path("pr.png"));
+    unlink(tmp_path("pr.json"));
+}
+
 /* ---- outputs checked before the solve ------------------------------------------ */
 
 /* A copy of PATH's bytes, to see that a refused run left it as it was. */
@@ -776,6 +801,7 @@ int main(void)
         cmocka_unit_test(test_views_not_a_file),
         cmocka_unit_test(test_inputs_not_regular),
         cmocka_unit_test(test_outputs_over_inputs),
+        cmocka_unit_test(test_probe_file_before_solve),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

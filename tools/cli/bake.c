@@ -3,6 +3,7 @@
  * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -39,6 +40,8 @@ struct bake_state {
     int n;
     lm_atlas atlas;
     int has_atlas;
+    double *pts; /* the probes' points (grid or --probe-file), read before the solve */
+    int npts;
 };
 
 char *probes_output(const char *scene)
@@ -100,19 +103,56 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     return rc;
 }
 
-static int bake_probes(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
+static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
 {
     const opts_t *o = r->o;
     char err[1024] = "";
-    int np = o->probes ? o->probe_dims[0] * o->probe_dims[1] * o->probe_dims[2] : 0, rc = -1;
-    double *pts = o->probes ? pr_grid_points(polys, n, o->probe_dims) : pr_read_points(o->probe_file, &np, err, sizeof err);
-    pr_probe *pr = pts ? malloc((size_t)np * sizeof *pr) : NULL;
-    if (pr && pr_bake(polys, n, pts, np, pr_gather, c, pr, err, sizeof err) == 0)
-        rc = pr_write_json(o->probes_out, pr, np, o->probes ? o->probe_dims : NULL, err, sizeof err);
+    int rc = -1;
+    pr_probe *pr = malloc((size_t)b->npts * sizeof *pr);
+    if (pr && pr_bake(b->polys, b->n, b->pts, b->npts, pr_gather, c, pr, err, sizeof err) == 0)
+        rc = pr_write_json(o->probes_out, pr, b->npts, o->probes ? o->probe_dims : NULL, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
-    free(pts);
     free(pr);
     return rc;
+}
+
+/* The probes' points, before the solve: a malformed --probe-file fails now, and points
+ * outside the box of the scene's polygons (they see it from outside: a file in other
+ * units, or of another scene) are counted in one warning naming the first. 0 or -1. */
+static int read_probes(run_t *r, struct bake_state *b)
+{
+    const opts_t *o = r->o;
+    char err[1024] = "";
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    int i, k, a, out = 0, first = -1;
+    if (o->probes) {
+        b->npts = o->probe_dims[0] * o->probe_dims[1] * o->probe_dims[2];
+        b->pts = pr_grid_points(b->polys, b->n, o->probe_dims);
+    } else {
+        b->pts = pr_read_points(o->probe_file, &b->npts, err, sizeof err);
+    }
+    if (!b->pts) {
+        fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
+        return -1;
+    }
+    for (i = 0; i < b->n; i++)
+        for (k = 0; k < b->polys[i].n; k++)
+            for (a = 0; a < 3; a++) {
+                lo[a] = fmin(lo[a], b->polys[i].v[k][a]);
+                hi[a] = fmax(hi[a], b->polys[i].v[k][a]);
+            }
+    for (i = 0; i < b->npts; i++) {
+        const double *p = &b->pts[3 * i];
+        if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) {
+            if (!out++) first = i;
+        }
+    }
+    if (out && !o->quiet)
+        fprintf(stderr, PROG ": warning: %s: %d of %d probes lie outside the scene's bounding box (%g %g %g to %g "
+                        "%g %g), the first probe %d at %g %g %g: they see the scene from outside\n",
+                o->probe_file, out, b->npts, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], first + 1, b->pts[3 * first],
+                b->pts[3 * first + 1], b->pts[3 * first + 2]);
+    return 0;
 }
 
 int bake_prepare(run_t *r)
@@ -133,7 +173,7 @@ int bake_prepare(run_t *r)
         return -1;
     }
     b->has_atlas = o->lightmap != NULL;
-    return 0;
+    return o->probes || o->probe_file ? read_probes(r, b) : 0;
 }
 
 int bake_step(run_t *r)
@@ -146,7 +186,7 @@ int bake_step(run_t *r)
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);
     if (rc == 0 && (o->probes || o->probe_file)) {
         c.g = sc_gatherer_new(r->s, res, 1);
-        rc = c.g ? bake_probes(r, b->polys, b->n, &c) : -1;
+        rc = c.g ? bake_probes(r, b, &c) : -1;
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
@@ -169,6 +209,7 @@ void bake_free(run_t *r)
 {
     if (!r->bake) return;
     if (r->bake->has_atlas) lm_free(&r->bake->atlas);
+    free(r->bake->pts);
     free(r->bake->polys);
     free(r->bake);
     r->bake = NULL;
