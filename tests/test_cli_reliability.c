@@ -314,6 +314,33 @@ static void test_probe_file_before_solve(void **state)
     unlink(tmp_path("pr.json"));
 }
 
+/* --lightmap-size: the atlas's memory said before it is laid out (38 bytes a texel:
+ * lm_atlas's arrays, 30, and lm_build's ring, 8: 64 x 64 texels are 0.155648 MB), and
+ * refused before the solve when over the memory budget (8192 x 8192: 2550.1 MB against
+ * a RAD_MEMORY_BUDGET of 1 GB). */
+static void test_lightmap_estimate(void **state)
+{
+    result_t r;
+    char lm[320];
+    (void)state;
+    strcpy(lm, tmp_path("lm.png"));
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "64");
+    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 64 x 64 texels, about 0.2 MB\n", "rad_cli's stderr");
+    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 16 charts, 2842 texels covered: at most 2842 gathers at res 32\n", "rad_cli's stderr");
+    expect(&r, 0, NULL);
+    done(&r);
+    unlink(lm);
+    unlink(tmp_path("lm_view.png"));
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "1e9", 1), 0);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "8192", "--stats");
+    unsetenv("RAD_MEMORY_BUDGET");
+    expect(&r, 1, line_of("rad_cli: %s: --lightmap-size 8192 needs about 2550.1 MB for its 8192 x 8192 texels, over "
+                          "the memory budget of 1000.0 MB (RAD_MEMORY_BUDGET): lower --lightmap-size\n", lm, NULL));
+    CHECK_THAT(!*r.out && !exists(lm) && !exists(tmp_path("lm_view.png")), "no solve, nothing written: stdout '%s'",
+               r.out);
+    done(&r);
+}
+
 /* ---- outputs checked before the solve ------------------------------------------ */
 
 /* A copy of PATH's bytes, to see that a refused run left it as it was. */
@@ -802,6 +829,7 @@ int main(void)
         cmocka_unit_test(test_inputs_not_regular),
         cmocka_unit_test(test_outputs_over_inputs),
         cmocka_unit_test(test_probe_file_before_solve),
+        cmocka_unit_test(test_lightmap_estimate),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

@@ -6,9 +6,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bake/lightmap.h"
 #include "bake/probes.h"
+#include "formats/file_io.h"
 #include "host/clock.h"
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
@@ -58,31 +60,63 @@ char *probes_output(const char *scene)
 typedef struct {
     lm_atlas *a;
     int ambient;
-    long *gathers; /* per thread */
+    long *gathers;     /* per thread */
+    int chunk, chunks; /* this call gathers the rows Y = CHUNK x threads + thread (mod CHUNKS x threads) */
 } texel_job;
 
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
     gather_ctx c = {g, j->ambient, 0};
-    int rc = lm_gather_rows(j->a, first, step, lm_gather, &c);
-    j->gathers[first] = c.gathers;
+    int rc = lm_gather_rows(j->a, j->chunk * step + first, step * j->chunks, lm_gather, &c);
+    j->gathers[first] += c.gathers;
     return rc;
 }
 
-/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
- * gatherer of its own, by rows: the same bits as one. 0, or -1 (a gather failed, no
- * memory, no thread). */
-static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
+/* Parts of a pass between two progress lines: a pass's rows in PROGRESS_CHUNKS sets. */
+#define PROGRESS_CHUNKS 16
+
+/* Progress of a bake of at most TOTAL gathers, one line on stderr at most every
+ * PROGRESS_SECONDS, and only to a terminal (a log or a test's capture stays the same
+ * from run to run). */
+#define PROGRESS_SECONDS 2.0
+
+static void progress(const opts_t *o, int pass, long done, long total, double t0, double *last)
 {
-    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long))};
+    double now = host_now(), rate = done > 0 ? (now - t0) / (double)done : 0;
+    if (o->quiet || !isatty(2) || now - *last < PROGRESS_SECONDS) return;
+    *last = now;
+    fprintf(stderr, PROG ": lightmap: pass %d, %ld of at most %ld texels gathered, %.0f s; at most %.0f s more\n", pass,
+            done, total, now - t0, rate * (double)(total - done));
+}
+
+/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
+ * gatherer of its own, by rows (in PROGRESS_CHUNKS sets of rows, a progress line
+ * between): the same bits as one. At most TOTAL texels are gathered. 0, or -1 (a
+ * gather failed, no memory, no thread). */
+static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long total, long *gathers)
+{
+    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), 0, 1};
+    if (!r->o->quiet && isatty(2)) j.chunks = PROGRESS_CHUNKS; /* else one call a pass, as before */
+    double t0 = host_now(), last = t0;
     int i, rc = j.gathers ? 0 : -1;
-    while (rc == 0 && lm_plan(a) > 0) {
-        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
-        for (i = 0; i < n; i++) *gathers += j.gathers[i];
-    }
+    while (rc == 0 && lm_plan(a) > 0)
+        for (j.chunk = 0; rc == 0 && j.chunk < j.chunks; j.chunk++) {
+            rc = sc_gather_split(r->s, res, n, texel_rows, &j);
+            for (*gathers = 0, i = 0; i < n; i++) *gathers += j.gathers[i];
+            progress(r->o, a->pass, *gathers, total, t0, &last);
+        }
     free(j.gathers);
     return rc;
+}
+
+/* Texels with a sample: what may be gathered. */
+static long covered_texels(const lm_atlas *a)
+{
+    size_t i, t = (size_t)a->size * a->size;
+    long n = 0;
+    for (i = 0; i < t; i++) n += !isnan(a->sample[2 * i]);
+    return n;
 }
 
 static int bake_lightmap(run_t *r, lm_atlas *a, int res)
@@ -90,8 +124,12 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     const opts_t *o = r->o;
     char err[1024];
     double t0 = host_now();
-    long gathers = 0;
-    int rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
+    long gathers = 0, total = covered_texels(a);
+    int rc;
+    if (!o->quiet)
+        fprintf(stderr, PROG ": lightmap: %d charts, %ld texels covered: at most %ld gathers at res %d\n", a->ncharts,
+                total, total, res);
+    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, total, &gathers);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
     else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
@@ -101,6 +139,32 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
                "threads, %.2f s\n", a->size, a->size, a->ncharts, a->texel, gathers, res, a->pass - 1, a->tol,
                o->threads > 1 ? o->threads : 1, host_now() - t0);
     return rc;
+}
+
+/* The atlas's memory for N x N texels: lm_atlas's arrays of N^2 entries and lm_build's
+ * ring of a size_t a texel (tools/bake/lightmap.c), the largest of its transients. */
+static double atlas_bytes(int n)
+{
+    const lm_atlas *a = NULL; /* for the sizes of its entries only */
+    size_t per = sizeof *a->owner + 2 * sizeof *a->sample + 3 * sizeof *a->rgb + sizeof *a->poly + sizeof *a->state +
+                 sizeof *a->block + sizeof(size_t);
+    return (double)n * n * (double)per;
+}
+
+/* The lightmap's memory said before it is allocated, and refused over the memory budget
+ * (fio_memory_budget: half the physical memory). 0 or -1. */
+static int lightmap_memory(const opts_t *o, int n)
+{
+    double bytes = atlas_bytes(n), budget = fio_memory_budget();
+    if (bytes > budget) {
+        fprintf(stderr, PROG ": %s: --lightmap-size %d needs about %.1f MB for its %d x %d texels, over the memory "
+                        "budget of %.1f MB (%s): lower --lightmap-size\n", o->lightmap, n, bytes / 1e6, n, n,
+                budget / 1e6, getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET" : "half the physical memory");
+        return -1;
+    }
+    if (!o->quiet)
+        fprintf(stderr, PROG ": lightmap: %d x %d texels, about %.1f MB\n", n, n, bytes / 1e6);
+    return 0;
 }
 
 static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
@@ -168,6 +232,7 @@ int bake_prepare(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
+    if (o->lightmap && lightmap_memory(o, lo.size) < 0) return -1;
     if (o->lightmap && lm_build(&b->atlas, b->polys, b->n, &lo, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
         return -1;
