@@ -304,10 +304,10 @@ static void test_probe_file_before_solve(void **state)
     CHECK_THAT(!*r.out, "no --stats (no solve): stdout '%s'", r.out);
     done(&r);
     CHECK_THAT(!exists(tmp_path("pr.png")) && !exists(tmp_path("pr.json")), "nothing written");
-    write_file(pf, "-0.28 0.27 -0.28\n-0.28 0.6 -0.28\n-0.1 0.1 -0.1\n-0.28 -0.01 -0.28\n");
+    write_file(pf, "-0.28 0.27 -0.28\n\n  # above the ceiling:\n-0.28 0.6 -0.28\n-0.1 0.1 -0.1\n-0.28 -0.01 -0.28\n");
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"));
-    snprintf(want, sizeof want, "rad_cli: warning: %s: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
-             "-0.5592 to 0 0.5488 0), the first probe 2 at -0.28 0.6 -0.28: they see the scene from outside\n", pf);
+    snprintf(want, sizeof want, "rad_cli: warning: %s:4: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
+             "-0.5592 to 0 0.5488 0), the first here, -0.28 0.6 -0.28: they see the scene from outside\n", pf);
     CHECK_THAT(!strncmp(r.err, want, strlen(want)), "stderr starts\n%s\nwant\n%s", r.err, want);
     done(&r);
     unlink(tmp_path("pr.png"));

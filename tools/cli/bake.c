@@ -180,6 +180,25 @@ static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
     return rc;
 }
 
+/* The line of PATH's probe K (0-based), the file read once more: probes.h's rule, each
+ * line that is not blank or a '#' comment holds one (pr_read_points checked them). 0
+ * when the file cannot be read again. */
+static int probe_line(const char *path, int k)
+{
+    char *data, *s;
+    size_t size;
+    int line = 1, found = 0;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &data, &size, NULL, 0) != 0) return 0;
+    for (s = data; !found && *s; line++) {
+        char *t = s + strspn(s, " \t\r");
+        if (*t && *t != '\n' && *t != '#' && k-- == 0) found = line;
+        s = strchr(s, '\n');
+        s = s ? s + 1 : data + size;
+    }
+    free(data);
+    return found;
+}
+
 /* The probes' points, before the solve: a malformed --probe-file fails now, and points
  * outside the box of the scene's polygons (they see it from outside: a file in other
  * units, or of another scene) are counted in one warning naming the first. 0 or -1. */
@@ -212,10 +231,10 @@ static int read_probes(run_t *r, struct bake_state *b)
         }
     }
     if (out && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s: %d of %d probes lie outside the scene's bounding box (%g %g %g to %g "
-                        "%g %g), the first probe %d at %g %g %g: they see the scene from outside\n",
-                o->probe_file, out, b->npts, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], first + 1, b->pts[3 * first],
-                b->pts[3 * first + 1], b->pts[3 * first + 2]);
+        fprintf(stderr, PROG ": warning: %s:%d: %d of %d probes lie outside the scene's bounding box (%g %g %g to %g "
+                        "%g %g), the first here, %g %g %g: they see the scene from outside\n",
+                o->probe_file, probe_line(o->probe_file, first), out, b->npts, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                b->pts[3 * first], b->pts[3 * first + 1], b->pts[3 * first + 2]);
     return 0;
 }
 
