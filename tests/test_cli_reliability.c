@@ -341,6 +341,55 @@ static void test_lightmap_estimate(void **state)
     done(&r);
 }
 
+/* Does the file PATH hold the N bytes of WHAT? */
+static int holds(const char *path, const char *what, size_t n)
+{
+    char *d, e[512];
+    size_t len, i;
+    int found = 0;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &d, &len, e, sizeof e) < 0) fail_msg("%s", e);
+    for (i = 0; !found && i + n <= len; i++) found = !memcmp(d + i, what, n);
+    free(d);
+    return found;
+}
+
+/* A scene whose map_Kd leaves its folder (../secret.png) no longer copies that file into
+ * its .glb (it was embedded byte for byte): one warning, the material's Kd; with
+ * --allow-outside-paths it is read and embedded as before. */
+static void test_texture_outside_not_embedded(void **state)
+{
+    unsigned char rgb[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    char obj[320], glb[320], secret[320], want[1200], e[512], *png, *root = fio_resolve(tmpdir);
+    size_t n;
+    result_t r;
+    (void)state;
+    assert_non_null(root);
+    strcpy(obj, tmp_path("room/room.obj"));
+    strcpy(glb, tmp_path("room.glb"));
+    strcpy(secret, tmp_path("secret.png"));
+    assert_int_equal(mkdir(tmp_path("room"), 0700), 0);
+    write_file(obj, "mtllib room.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv -1 2 1\nv 1 2 1\n"
+                    "v 1 2 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+                    "f 5 6 7 8\n");
+    write_file(tmp_path("room/room.mtl"), "newmtl floor\nKd 0 0 0\nmap_Kd ../secret.png\nnewmtl lamp\nKe 1 1 1\n");
+    assert_int_equal(img_write_as(secret, "png", rgb, 2, 2, e, sizeof e), 0);
+    assert_int_equal(fio_read_all(secret, FIO_LIMIT_TEXT, &png, &n, e, sizeof e), 0);
+    RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb);
+    snprintf(want, sizeof want, "rad_cli: warning: %s:3: map_Kd: %s/../secret.png is outside the scene's folder "
+             "%s/room; using Kd 0.5 0.5 0.5; --allow-outside-paths reads it\n", tmp_path("room/room.mtl"),
+             tmp_path("room"), root);
+    CHECK_THAT(r.status == 0 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr\n%s\nwant first\n%s", r.status,
+               r.err, want);
+    done(&r);
+    CHECK_THAT(!holds(glb, png, n), "%s does not hold the %zu bytes of %s", glb, n, secret);
+    RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb, "--allow-outside-paths");
+    expect(&r, 0, NULL);
+    done(&r);
+    CHECK_THAT(holds(glb, png, n), "with the option %s holds %s", glb, secret);
+    free(png);
+    free(root);
+}
+
 /* ---- outputs checked before the solve ------------------------------------------ */
 
 /* A copy of PATH's bytes, to see that a refused run left it as it was. */
@@ -830,6 +879,7 @@ int main(void)
         cmocka_unit_test(test_outputs_over_inputs),
         cmocka_unit_test(test_probe_file_before_solve),
         cmocka_unit_test(test_lightmap_estimate),
+        cmocka_unit_test(test_texture_outside_not_embedded),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

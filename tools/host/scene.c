@@ -965,7 +965,8 @@ static int within_memory(const struct sc_solver *h, double bytes, const char *wh
     double lim = memory_limit(h);
     if (bytes <= lim) return 0;
     snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what, bytes / 1e6, lim / 1e6,
-             h->mem_limit > 0 ? "" : " (half the physical memory)", fix);
+             h->mem_limit > 0 ? "" : getenv("RAD_MEMORY_BUDGET") ? " (RAD_MEMORY_BUDGET)" : " (half the physical memory)",
+             fix);
     return -1;
 }
 
