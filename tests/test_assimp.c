@@ -84,8 +84,9 @@ static void put_b64(FILE *f, const unsigned char *d, size_t n)
 
 /* The glTF: one buffer (per part: positions, then indices padded to 4 bytes), a
  * scene whose root node "house" holds the room and, under a node moved by (0, 0, 0)
- * with no scale, the lamp and the block. */
-static void write_gltf(const char *path)
+ * with no scale, the lamp and the block. The buffer is a data URI, or with BIN the
+ * file BIN (a path) named by URI. */
+static void write_gltf_bin(const char *path, const char *bin, const char *uri)
 {
     unsigned char buf[4096];
     size_t off[3][2], len = 0;
@@ -138,11 +139,24 @@ static void write_gltf(const char *path)
         fprintf(f, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d},"
                    "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}",
                 i ? "," : "", off[i][0], parts[i].nv * 12, off[i][1], parts[i].nt * 6);
-    fprintf(f, "],\n\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;"
-               "base64,", len);
-    put_b64(f, buf, len);
+    fprintf(f, "],\n\"buffers\":[{\"byteLength\":%zu,\"uri\":\"", len);
+    if (bin) {
+        FILE *b = fopen(bin, "wb");
+        assert_non_null(b);
+        assert_int_equal(fwrite(buf, 1, len, b), len);
+        assert_int_equal(fclose(b), 0);
+        fputs(uri, f);
+    } else {
+        fputs("data:application/octet-stream;base64,", f);
+        put_b64(f, buf, len);
+    }
     fprintf(f, "\"}]}\n");
     assert_int_equal(fclose(f), 0);
+}
+
+static void write_gltf(const char *path)
+{
+    write_gltf_bin(path, NULL, NULL);
 }
 
 /* The same faces as an OBJ, each vertex moved by its node's scale then translation, a
@@ -213,7 +227,7 @@ static void test_gltf_matches_obj(void **state)
     }
     write_gltf(tmp_path("room.gltf"));
     write_obj(tmp_path("room.obj"), tmp_path("room.mtl"));
-    if (assimp_scene_load(tmp_path("room.gltf"), &a, NULL, NULL, err, sizeof err) < 0)
+    if (assimp_scene_load(tmp_path("room.gltf"), NULL, &a, NULL, NULL, err, sizeof err) < 0)
         fail_msg("%s", err);
     if (obj_load(tmp_path("room.obj"), &b, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
     CHECK_INT_EQ(a.nfaces, b.nfaces, "faces of the glTF against the OBJ");
@@ -274,7 +288,7 @@ static void test_exported_formats(void **state)
         snprintf(cmd, sizeof cmd, "assimp export '%s' '%s' >/dev/null 2>&1", tmp_path("x.obj"),
                  tmp_path(out));
         CHECK_INT_EQ(system(cmd), 0, "assimp export to .%s", ext[e]);
-        if (assimp_scene_load(tmp_path(out), &a, NULL, NULL, err, sizeof err) < 0)
+        if (assimp_scene_load(tmp_path(out), NULL, &a, NULL, NULL, err, sizeof err) < 0)
             fail_msg("%s", err);
         assert_int_equal(obj_load(tmp_path("x.obj"), &b, NULL, NULL, err, sizeof err), 0);
         for (i = 0; i < 3; i++) {
@@ -302,7 +316,7 @@ static void expect_refused(const char *path, const char *part)
 {
     obj_scene sc;
     char err[512];
-    int rc = assimp_scene_load(path, &sc, NULL, NULL, err, sizeof err);
+    int rc = assimp_scene_load(path, NULL, &sc, NULL, NULL, err, sizeof err);
     print_message("%s: %d \"%s\"\n", path, rc, rc < 0 ? err : "");
     CHECK_INT_EQ(rc, -1, "assimp_scene_load of a bad file");
     CHECK_CONTAINS(err, path, "the error names the file");
@@ -346,6 +360,29 @@ static void test_bad_files(void **state)
     expect_refused(tmp_path("fifo.glb"), "");
 }
 
+/* A buffer outside the scene's folder (../room.bin) is refused unless allowed, as the
+ * OBJ reader refuses an outside mtllib; beside the scene it loads. */
+static void test_outside_paths(void **state)
+{
+    obj_scene sc;
+    obj_opts allow = {1};
+    char err[1024];
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    assert_int_equal(mkdir(tmp_path("in"), 0700), 0);
+    write_gltf_bin(tmp_path("in/out.gltf"), tmp_path("room.bin"), "../room.bin");
+    expect_refused(tmp_path("in/out.gltf"), "outside the scene's folder");
+    if (assimp_scene_load(tmp_path("in/out.gltf"), &allow, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("with allow_outside: %s", err);
+    CHECK_INT_EQ(sc.nfaces, 20, "faces of the room read through ../room.bin when allowed");
+    obj_free(&sc);
+    write_gltf_bin(tmp_path("in/in.gltf"), tmp_path("in/room.bin"), "room.bin");
+    if (assimp_scene_load(tmp_path("in/in.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("buffer beside the scene: %s", err);
+    CHECK_INT_EQ(sc.nfaces, 20, "faces of the room read through room.bin beside it");
+    obj_free(&sc);
+}
+
 /* .obj in any case goes to the OBJ reader, every other name to assimp. */
 static void test_wants(void **state)
 {
@@ -356,6 +393,7 @@ static void test_wants(void **state)
     CHECK_INT_EQ(assimp_scene_wants("a.obj.fbx"), 1, "a.obj.fbx to assimp");
     CHECK_INT_EQ(assimp_scene_wants("dir.obj/scene"), 1, "dir.obj/scene to assimp");
     CHECK_INT_EQ(assimp_scene_wants("a.objx"), 1, "a.objx to assimp");
+    CHECK_INT_EQ(assimp_scene_wants("-"), 0, "standard input to assimp");
 }
 
 int main(void)
@@ -365,6 +403,7 @@ int main(void)
         cmocka_unit_test(test_gltf_matches_obj),
         cmocka_unit_test(test_exported_formats),
         cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_outside_paths),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

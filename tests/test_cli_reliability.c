@@ -67,10 +67,13 @@ static int exists(const char *path)
     return stat(path, &st) == 0;
 }
 
+/* The runs' standard input (a test may set it, and puts it back). */
+static const char *child_stdin = "/dev/null";
+
 /* The child: its outputs into files, a hang bounded, the disk "full" past FSIZE bytes. */
 static void child(const char *outp, const char *errp, long fsize, char **argv)
 {
-    int in = open("/dev/null", O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
+    int in = open(child_stdin, O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
         err = open(errp, O_WRONLY | O_CREAT | O_TRUNC, 0600);
     if (in < 0 || out < 0 || err < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(126);
     if (fsize > 0) {
@@ -171,13 +174,83 @@ static void test_views_not_a_file(void **state)
     expect(&r, 1, line_of("rad_cli: %s: is a directory\n", tmpdir, NULL));
     done(&r);
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", "/dev/zero");
-    expect(&r, 1, "rad_cli: /dev/zero: larger than the limit of 16 MiB (16777216 bytes)\n");
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
     done(&r);
     assert_int_equal(mkfifo(fifo, 0600), 0);
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", fifo); /* no writer: must not block */
-    expect(&r, 1, line_of("rad_cli: %s: nothing to read (a FIFO with no writer, or an empty pipe)\n", fifo, NULL));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
     done(&r);
     CHECK_THAT(!exists(tmp_path("v.png")), "no image after the failed runs");
+}
+
+/* Inputs that are not regular files are refused before the solve, at once: the scene
+ * as a FIFO with no writer and with a writer waiting (it was waited on, then read), the
+ * scene, --probe-file and --load-ff as devices (/dev/zero was read to each limit). Only
+ * an explicit "-" reads standard input, and a scene from it needs -o. */
+static void test_inputs_not_regular(void **state)
+{
+    result_t r;
+    const char *fifo = tmp_path("scene.fifo");
+    char want[600], *obj;
+    pid_t writer;
+    int st;
+    (void)state;
+    unlink(fifo);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    RUN(&r, fifo, SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
+    done(&r);
+    writer = fork(); /* a writer waiting in its open, with a scene to give */
+    CHECK_INT_GE(writer, 0, "fork");
+    if (writer == 0) {
+        int fd;
+        signal(SIGPIPE, SIG_IGN);
+        alarm(HANG_S);
+        fd = open(fifo, O_WRONLY);
+        _exit(fd >= 0 && write(fd, "v 0 0 0\n", 8) >= 0 ? 0 : 1);
+    }
+    RUN(&r, fifo, SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
+    done(&r);
+    assert_int_equal(waitpid(writer, &st, 0), writer);
+    RUN(&r, "/dev/null", SMALL, "-o", tmp_path("n.png"));
+    expect(&r, 1, "rad_cli: /dev/null: not a regular file (a character device or terminal)\n");
+    done(&r);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--load-ff", "/dev/zero");
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("n.png")), "no image after the refused inputs");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--probe-file", "/dev/zero", "--probes-out", tmp_path("p.json"));
+    expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
+    done(&r);
+    unlink(tmp_path("n.png"));
+    /* "-": the scene from standard input (here a file; its mtllib from the current folder) */
+    {
+        char *at, *text;
+        size_t n;
+        assert_int_equal(fio_read_all(CORNELL, FIO_LIMIT_TEXT, &obj, &n, want, sizeof want), 0);
+        at = strstr(obj, "mtllib cornell_box.mtl");
+        text = malloc(n + 32);
+        assert_non_null(at);
+        assert_non_null(text);
+        sprintf(text, "%.*smtllib examples/cornell_box.mtl%s", (int)(at - obj), obj, at + strlen("mtllib cornell_box.mtl"));
+        write_file(tmp_path("stdin.obj"), text);
+        free(text);
+        free(obj);
+    }
+    child_stdin = tmp_path("stdin.obj");
+    RUN(&r, "-", SMALL, "-o", tmp_path("stdin.png"));
+    expect(&r, 0, "");
+    CHECK_THAT(exists(tmp_path("stdin.png")), "the scene read from standard input is rendered");
+    done(&r);
+    RUN(&r, "-", SMALL);
+    child_stdin = "/dev/null";
+    snprintf(want, sizeof want, "rad_cli: a scene on standard input (-) has no name to name outputs after: give -o FILE\n");
+    CHECK_THAT(r.status == 2 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr %.200s", r.status, r.err);
+    done(&r);
+    RUN(&r, "-", SMALL, "-o", tmp_path("n.png")); /* standard input a device: refused */
+    expect(&r, 1, "rad_cli: -: standard input is a device: pipe or redirect a file into it\n");
+    done(&r);
 }
 
 /* The old reader took a line in 4,095-byte pieces: a longer '#' comment ran its tail as
@@ -195,7 +268,7 @@ static void test_views_long_comment(void **state)
              tmp_path("real.png"));
     write_file(path, text);
     free(text);
-    RUN(&r, CORNELL, SMALL, "--views", path);
+    RUN(&r, CORNELL, SMALL, "--views", path, "--allow-outside-paths"); /* outputs in /tmp */
     expect(&r, 0, "");
     CHECK_THAT(exists(tmp_path("real.png")), "the real view is written");
     CHECK_THAT(!exists(tmp_path("tail.png")), "the comment's tail is not a view");
@@ -216,7 +289,203 @@ static void test_views_long_comment(void **state)
     done(&r);
 }
 
+/* A --probe-file is read before the solve: a malformed one fails with its line and no
+ * solve (no image, no --stats: both came after the solve); points outside the scene's
+ * box are counted in one warning naming the first, before the solve's output. */
+static void test_probe_file_before_solve(void **state)
+{
+    result_t r;
+    char pf[320], want[800];
+    (void)state;
+    strcpy(pf, tmp_path("probes.txt"));
+    write_file(pf, "# probes\n-0.28 0.27 -0.28\n1 2\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"), "--stats");
+    expect(&r, 1, line_of("rad_cli: %s:3: a probe is three numbers, X Y Z\n", pf, NULL));
+    CHECK_THAT(!*r.out, "no --stats (no solve): stdout '%s'", r.out);
+    done(&r);
+    CHECK_THAT(!exists(tmp_path("pr.png")) && !exists(tmp_path("pr.json")), "nothing written");
+    write_file(pf, "-0.28 0.27 -0.28\n\n  # above the ceiling:\n-0.28 0.6 -0.28\n-0.1 0.1 -0.1\n-0.28 -0.01 -0.28\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"));
+    snprintf(want, sizeof want, "rad_cli: warning: %s:4: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
+             "-0.5592 to 0 0.5488 0), the first here, -0.28 0.6 -0.28: they see the scene from outside\n", pf);
+    CHECK_THAT(!strncmp(r.err, want, strlen(want)), "stderr starts\n%s\nwant\n%s", r.err, want);
+    done(&r);
+    unlink(tmp_path("pr.png"));
+    unlink(tmp_path("pr.json"));
+}
+
+/* --lightmap-size: the atlas's memory said before it is laid out (38 bytes a texel:
+ * lm_atlas's arrays, 30, and lm_build's ring, 8: 64 x 64 texels are 0.155648 MB), and
+ * refused before the solve when over the memory budget (8192 x 8192: 2550.1 MB against
+ * a RAD_MEMORY_BUDGET of 1 GB). */
+static void test_lightmap_estimate(void **state)
+{
+    result_t r;
+    char lm[320];
+    (void)state;
+    strcpy(lm, tmp_path("lm.png"));
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "64");
+    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 64 x 64 texels, about 0.2 MB\n", "rad_cli's stderr");
+    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 16 charts, 2842 texels covered: at most 2842 gathers at res 32\n", "rad_cli's stderr");
+    expect(&r, 0, NULL);
+    done(&r);
+    unlink(lm);
+    unlink(tmp_path("lm_view.png"));
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "1e9", 1), 0);
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "8192", "--stats");
+    unsetenv("RAD_MEMORY_BUDGET");
+    expect(&r, 1, line_of("rad_cli: %s: --lightmap-size 8192 needs about 2550.1 MB for its 8192 x 8192 texels, over "
+                          "the memory budget of 1000.0 MB (RAD_MEMORY_BUDGET): lower --lightmap-size\n", lm, NULL));
+    CHECK_THAT(!*r.out && !exists(lm) && !exists(tmp_path("lm_view.png")), "no solve, nothing written: stdout '%s'",
+               r.out);
+    done(&r);
+}
+
+/* Does the file PATH hold the N bytes of WHAT? */
+static int holds(const char *path, const char *what, size_t n)
+{
+    char *d, e[512];
+    size_t len, i;
+    int found = 0;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &d, &len, e, sizeof e) < 0) fail_msg("%s", e);
+    for (i = 0; !found && i + n <= len; i++) found = !memcmp(d + i, what, n);
+    free(d);
+    return found;
+}
+
+/* A scene whose map_Kd leaves its folder (../secret.png) no longer copies that file into
+ * its .glb (it was embedded byte for byte): one warning, the material's Kd; with
+ * --allow-outside-paths it is read and embedded as before. */
+static void test_texture_outside_not_embedded(void **state)
+{
+    unsigned char rgb[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+    char obj[320], glb[320], secret[320], want[1200], e[512], *png, *root = fio_resolve(tmpdir);
+    size_t n;
+    result_t r;
+    (void)state;
+    assert_non_null(root);
+    strcpy(obj, tmp_path("room/room.obj"));
+    strcpy(glb, tmp_path("room.glb"));
+    strcpy(secret, tmp_path("secret.png"));
+    assert_int_equal(mkdir(tmp_path("room"), 0700), 0);
+    write_file(obj, "mtllib room.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv -1 2 1\nv 1 2 1\n"
+                    "v 1 2 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+                    "f 5 6 7 8\n");
+    write_file(tmp_path("room/room.mtl"), "newmtl floor\nKd 0 0 0\nmap_Kd ../secret.png\nnewmtl lamp\nKe 1 1 1\n");
+    assert_int_equal(img_write_as(secret, "png", rgb, 2, 2, e, sizeof e), 0);
+    assert_int_equal(fio_read_all(secret, FIO_LIMIT_TEXT, &png, &n, e, sizeof e), 0);
+    RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb);
+    snprintf(want, sizeof want, "rad_cli: warning: %s:3: map_Kd: %s/../secret.png is outside the scene's folder "
+             "%s/room; using Kd 0.5 0.5 0.5; --allow-outside-paths reads it\n", tmp_path("room/room.mtl"),
+             tmp_path("room"), root);
+    CHECK_THAT(r.status == 0 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr\n%s\nwant first\n%s", r.status,
+               r.err, want);
+    done(&r);
+    CHECK_THAT(!holds(glb, png, n), "%s does not hold the %zu bytes of %s", glb, n, secret);
+    RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb, "--allow-outside-paths");
+    expect(&r, 0, NULL);
+    done(&r);
+    CHECK_THAT(holds(glb, png, n), "with the option %s holds %s", glb, secret);
+    free(png);
+    free(root);
+}
+
 /* ---- outputs checked before the solve ------------------------------------------ */
+
+/* A copy of PATH's bytes, to see that a refused run left it as it was. */
+static char *copy_of(const char *path)
+{
+    char *d, e[512];
+    size_t n;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &d, &n, e, sizeof e) < 0) fail_msg("%s", e);
+    return d;
+}
+
+/* Runs ARGS, which must be refused with exactly LINE, leaving INPUT (if any) as it was. */
+static void refused(const char *input, const char *line, const char *const *args)
+{
+    result_t r;
+    char *before = input ? copy_of(input) : NULL, *want = strdup(line);
+    assert_non_null(want);
+    run(&r, 0, args);
+    expect(&r, 1, want);
+    done(&r);
+    free(want);
+    if (before) {
+        char *after = copy_of(input);
+        CHECK_THAT(!strcmp(before, after), "%s is unchanged", input);
+        free(after);
+        free(before);
+    }
+}
+#define REFUSED(input, line, ...) refused((input), (line), (const char *const[]){__VA_ARGS__, NULL})
+
+/* Outputs that would write over an input of the run, or over each other, are refused
+ * before the solve, by file identity (a link, another spelling of the name, a file not
+ * yet written named twice); --views may write only under the current folder. */
+static void test_outputs_over_inputs(void **state)
+{
+    char obj[320], mtl[320], png[320], views[320], ff[320]; /* tmp_path's ring is reused */
+    unsigned char rgb[12] = {200, 10, 10, 10, 200, 10, 10, 10, 200, 200, 200, 200};
+    char e[512], text[1200], dotted[400];
+    result_t r;
+    (void)state;
+    strcpy(obj, tmp_path("tex.obj"));
+    strcpy(mtl, tmp_path("tex.mtl"));
+    strcpy(png, tmp_path("tex.png"));
+    strcpy(views, tmp_path("two.views"));
+    strcpy(ff, tmp_path("tex.ff"));
+    write_file(obj, "mtllib tex.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\n"
+                    "v -1 2 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+                    "f 5 6 7 8\n");
+    write_file(mtl, "newmtl floor\nKd 0.5 0.5 0.5\nmap_Kd tex.png\nnewmtl lamp\nKe 1 1 1\n");
+    assert_int_equal(img_write_as(png, "png", rgb, 2, 2, e, sizeof e), 0);
+    /* over the scene, its library and its texture (the same file under another name) */
+    REFUSED(obj, line_of("rad_cli: %s: --export-ply would write over the scene %s (the same file): give it another "
+                         "name\n", obj, obj), obj, SMALL, "-o", tmp_path("o.png"), "--export-ply", obj);
+    REFUSED(mtl, line_of("rad_cli: %s: --dump-radiosity would write over the scene's material library %s (the same "
+                         "file): give it another name\n", mtl, mtl), obj, SMALL, "-o", tmp_path("o.png"),
+            "--dump-radiosity", mtl);
+    snprintf(dotted, sizeof dotted, "%s/./tex.png", tmpdir);
+    snprintf(text, sizeof text, "rad_cli: %s: the image of -o would write over the texture of material 'floor' "
+             "(%s:3) %s (the same file): give it another name\n", dotted, mtl, png);
+    REFUSED(NULL, text, obj, SMALL, "-o", dotted);
+    assert_int_equal(symlink(obj, tmp_path("link.png")), 0); /* a link to the scene */
+    REFUSED(obj, line_of("rad_cli: %s: the image of -o would write over the scene %s (the same file): give it another "
+                         "name\n", tmp_path("link.png"), obj), obj, SMALL, "-o", tmp_path("link.png"));
+    /* over the --views file and a --load-ff file */
+    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n", tmp_path("v1.png"));
+    write_file(views, text);
+    REFUSED(views, line_of("rad_cli: %s: --export-gltf would write over the --views file %s (the same file): give it "
+                           "another name\n", views, views), obj, SMALL, "--views", views, "--allow-outside-paths",
+            "--export-gltf", views);
+    RUN(&r, obj, SMALL, "-o", tmp_path("o.png"), "--save-ff", ff);
+    expect(&r, 0, NULL);
+    done(&r);
+    REFUSED(NULL, line_of("rad_cli: %s: --dump-radiosity would write over the --load-ff file %s (the same file): give "
+                          "it another name\n", ff, ff), obj, SMALL, "-o", tmp_path("o2.png"), "--load-ff", ff,
+            "--dump-radiosity", ff);
+    /* outputs over each other: two views to one (new) file, -o and --lightmap */
+    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n0 1 3 0 1 0 %s/./v2.png\n", tmp_path("v2.png"), tmpdir);
+    write_file(views, text);
+    snprintf(dotted, sizeof dotted, "%s/./v2.png", tmpdir);
+    snprintf(text, sizeof text, "rad_cli: %s: the image of %s:1 (--views) and the image of %s:2 (--views) write the "
+             "same file: give one another name\n", dotted, views, views);
+    REFUSED(NULL, text, obj, SMALL, "--views", views, "--allow-outside-paths");
+    REFUSED(NULL, line_of("rad_cli: %s: the image of -o and --lightmap write the same file: give one another name\n",
+                          tmp_path("x.png"), NULL), obj, SMALL, "-o", tmp_path("x.png"), "--lightmap", tmp_path("x.png"));
+    /* --views outside the current folder (the tests run in the repository; /tmp is outside) */
+    snprintf(text, sizeof text, "# a view\n0 1 3 0 1 0 %s\n", tmp_path("v3.png"));
+    write_file(views, text);
+    REFUSED(NULL, line_of("rad_cli: %s:2: %s is outside the current folder; --allow-outside-paths writes it\n", views,
+                          tmp_path("v3.png")), obj, SMALL, "--views", views);
+    CHECK_THAT(!exists(tmp_path("x.png")) && !exists(tmp_path("v2.png")) && !exists(tmp_path("v3.png"))
+               && !exists(tmp_path("o2.png")), "no output of the refused runs");
+    RUN(&r, obj, SMALL, "--views", views, "--allow-outside-paths");
+    expect(&r, 0, NULL); /* a warning: the lamp faces down, the floor up, little lands */
+    CHECK_THAT(exists(tmp_path("v3.png")), "with the option the view is written");
+    done(&r);
+}
 
 /* A name of LEN bytes in the temporary folder ending in EXT. */
 static const char *long_name(size_t len, const char *ext)
@@ -606,6 +875,11 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_views_not_a_file),
+        cmocka_unit_test(test_inputs_not_regular),
+        cmocka_unit_test(test_outputs_over_inputs),
+        cmocka_unit_test(test_probe_file_before_solve),
+        cmocka_unit_test(test_lightmap_estimate),
+        cmocka_unit_test(test_texture_outside_not_embedded),
         cmocka_unit_test(test_views_long_comment),
         cmocka_unit_test(test_long_names_refused_before_solve),
         cmocka_unit_test(test_camera_refused_before_solve),

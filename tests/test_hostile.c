@@ -986,6 +986,44 @@ static void test_cli_many_faces(void **st)
     unlink(tmp_path("many.png"));
 }
 
+/* Cost bombs from small files, refused before they cost: a scene over the memory
+ * budget at the line where the budget runs out (RAD_MEMORY_BUDGET: 1 MB against 2.1
+ * MB of parse for 30,000 faces), and more faces with an area than the solver holds
+ * elements (4,000,001 faces "f 1 2 3", 32 MB: refused after the parse, before the
+ * polygons; it took 3.3 GB at 100 MB to reach the same refusal). Nothing is written. */
+static void test_cli_cost_bombs(void **st)
+{
+    run_t r;
+    char want[600];
+    const char *obj = tmp_path("bomb.obj");
+    FILE *f;
+    long i, nf = RAD_INDEX_BITS == 16 ? 65535 : 4000001;
+    (void)st;
+    need_cli();
+    write_big_obj(obj, 30000, 30000); /* 24 + 60 bytes per line: over 1 MB within the faces */
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "1000000", 1), 0);
+    RUN(&r, obj, "-o", tmp_path("bomb.png"));
+    unsetenv("RAD_MEMORY_BUDGET");
+    CHECK_THAT(r.status == 1 && strstr(r.err, "needs more than the memory budget of 1 MB (") && strstr(r.err, "bomb.obj:"),
+               "exit %d, stderr %s", r.status, r.err);
+    run_free(&r);
+    CHECK_THAT(!file_exists(tmp_path("bomb.png")), "%s is not written", tmp_path("bomb.png"));
+    if (light()) return; /* 32 MB and a 270 MB parse: not under valgrind */
+    f = fopen(obj, "w");
+    assert_non_null(f);
+    setvbuf(f, NULL, _IOFBF, 1 << 20);
+    fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\n", f);
+    for (i = 0; i < nf; i++) fputs("f 1 2 3\n", f);
+    assert_int_equal(fclose(f), 0);
+    RUN(&r, obj, "-o", tmp_path("bomb.png"), "--quiet");
+    snprintf(want, sizeof want, "rad_cli: %s:%ld: face %ld with an area: more than the %ld elements the solver holds "
+             "(each face is at least one element): simplify or split the scene\n", obj, nf + 3, nf, nf - 1);
+    expect_cli(&r, 1, want);
+    run_free(&r);
+    CHECK_THAT(!file_exists(tmp_path("bomb.png")), "%s is not written", tmp_path("bomb.png"));
+    unlink(obj);
+}
+
 /* Outputs that cannot be written: refused before the solve, nothing left behind. */
 static void test_cli_unwritable_output(void **st)
 {
@@ -1041,6 +1079,7 @@ int main(void)
         cmocka_unit_test(test_cli_pools_full),
         cmocka_unit_test(test_cli_many_faces),
         cmocka_unit_test(test_cli_unwritable_output),
+        cmocka_unit_test(test_cli_cost_bombs),
     };
     return cmocka_run_group_tests_name("hostile", tests, group_setup, group_teardown);
 }

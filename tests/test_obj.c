@@ -10,10 +10,16 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
+#include "formats/file_io.h"
 #include "formats/obj.h"
+#include "tmpdir.h"
 #include "warnings.h"
+
+TMPDIR_GROUP("obj")
 
 #define DATA "tests/data/obj/"
 
@@ -707,6 +713,140 @@ static void test_missing_obj(void **state)
     assert_int_equal(obj_parse("f 1 2 3", 7, NULL, NULL, &sc, NULL, NULL, NULL, 0), -1);
 }
 
+/* ---- files outside the scene's folder ------------------------------------------- */
+
+static void put(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* TMP/scene/s.obj whose library s.mtl gives material m "map_Kd MAP" (Kd 0 0 0); TMP/x.png
+ * and TMP/out.mtl lie outside the scene's folder. Returns the OBJ's path. */
+static const char *outside_scene(const char *map, const char *mtllib)
+{
+    char text[600];
+    mkdir(tmp_path("scene"), 0700);
+    put(tmp_path("x.png"), "not read");
+    put(tmp_path("out.mtl"), "newmtl m\nKd 0.1 0.2 0.3\n");
+    snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n", mtllib);
+    put(tmp_path("scene/s.obj"), text);
+    snprintf(text, sizeof text, "newmtl m\nKd 0 0 0\nmap_Kd %s\n", map);
+    put(tmp_path("scene/s.mtl"), text);
+    return tmp_path("scene/s.obj");
+}
+
+/* Loads OBJ with ALLOW; the texture path it keeps (or NULL) in *PATH (malloc'd). */
+static void load_outside(const char *obj, int allow, obj_scene *sc)
+{
+    obj_opts o = {0};
+    o.allow_outside = allow;
+    memset(&seen, 0, sizeof seen);
+    assert_int_equal(obj_load_opts(obj, &o, sc, collect, &seen, err, sizeof err), 0);
+}
+
+/* A map_Kd that leaves the folder (WHERE: how, for messages): not kept, one warning
+ * naming the MTL line, the file, the folder and the option, the Kd fallback. */
+static void expect_refused_map(const char *map, const char *shown, const char *where)
+{
+    obj_scene sc;
+    char want[1200], *root = fio_resolve(tmpdir);
+    assert_non_null(root);
+    load_outside(outside_scene(map, "s.mtl"), 0, &sc);
+    snprintf(want, sizeof want, "%s:3: map_Kd: %s is outside the scene's folder %s/scene; using Kd 0.5 0.5 0.5; "
+             "--allow-outside-paths reads it", tmp_path("scene/s.mtl"), shown, root);
+    CHECK_THAT(sc.nmaterials == 1 && sc.materials[0].map_kd.path == NULL,
+               "%s: map_Kd kept as %s (want none)", where, sc.materials[0].map_kd.path);
+    assert_int_equal(seen.n, 1);
+    CHECK_THAT(!strcmp(seen.msg[0], want), "%s: warning\n  %s\nwant\n  %s", where, seen.msg[0], want);
+    assert_near(sc.materials[0].kd[0], OBJ_FALLBACK_KD, 0);
+    obj_free(&sc);
+    free(root);
+}
+
+static void test_map_outside_folder(void **state)
+{
+    char abs[400], shown[400];
+    obj_scene sc;
+    (void)state;
+    snprintf(shown, sizeof shown, "%s/../x.png", tmp_path("scene"));
+    expect_refused_map("../x.png", shown, "../");
+    snprintf(abs, sizeof abs, "%s", tmp_path("x.png"));
+    expect_refused_map(abs, abs, "an absolute path");
+    /* a link inside the folder that leads out of it */
+    unlink(tmp_path("scene/link.png"));
+    assert_int_equal(symlink(tmp_path("x.png"), tmp_path("scene/link.png")), 0);
+    snprintf(shown, sizeof shown, "%s/link.png", tmp_path("scene"));
+    expect_refused_map("link.png", shown, "a symbolic link");
+    /* a sibling folder whose name starts like the scene's: outside too */
+    mkdir(tmp_path("scenery"), 0700);
+    put(tmp_path("scenery/y.png"), "not read");
+    snprintf(shown, sizeof shown, "%s/../scenery/y.png", tmp_path("scene"));
+    expect_refused_map("../scenery/y.png", shown, "a sibling folder of the same prefix");
+    /* inside (through a '..' that comes back): kept, no warning */
+    load_outside(outside_scene("../scene/in.png", "s.mtl"), 0, &sc);
+    CHECK_THAT(sc.materials[0].map_kd.path != NULL, "../scene/in.png is inside: kept");
+    assert_int_equal(seen.n, 0);
+    obj_free(&sc);
+    /* --allow-outside-paths: kept as written, no warning, Kd as given */
+    load_outside(outside_scene("../x.png", "s.mtl"), 1, &sc);
+    snprintf(shown, sizeof shown, "%s/../x.png", tmp_path("scene"));
+    assert_string_equal(sc.materials[0].map_kd.path, shown);
+    assert_int_equal(seen.n, 0);
+    assert_near(sc.materials[0].kd[0], 0, 0);
+    obj_free(&sc);
+}
+
+static void test_mtllib_outside_folder(void **state)
+{
+    obj_scene sc;
+    char want[1200], *root = fio_resolve(tmpdir);
+    (void)state;
+    assert_non_null(root);
+    load_outside(outside_scene("in.png", "../out.mtl"), 0, &sc);
+    snprintf(want, sizeof want, "%s:1: mtllib: %s/../out.mtl is outside the scene's folder %s/scene; library not "
+             "read; --allow-outside-paths reads it", tmp_path("scene/s.obj"), tmp_path("scene"), root);
+    CHECK_THAT(seen.n >= 1 && !strcmp(seen.msg[0], want), "warning\n  %s\nwant\n  %s", seen.msg[0], want);
+    CHECK_THAT(!sc.materials[0].defined, "material m is not defined from the library outside");
+    obj_free(&sc);
+    load_outside(outside_scene("in.png", "../out.mtl"), 1, &sc);
+    assert_int_equal(seen.n, 0);
+    CHECK_THAT(sc.materials[0].defined && sc.materials[0].kd[2] == 0.3, "m read from ../out.mtl with the option");
+    obj_free(&sc);
+    free(root);
+}
+
+/* ---- the memory budget --------------------------------------------------------- */
+
+/* 3 vertices and 100 faces "f 1 2 3" (824 bytes of text) under a budget of 2000 bytes:
+   the text, 24 bytes a vertex and 24 + 3 x 12 a face make 896 + 60 k after k faces,
+   over 2000 from the 19th face, line 22: refused there, before anything is parsed. */
+static void test_memory_budget(void **state)
+{
+    char text[1000];
+    size_t n = 0;
+    int i;
+    obj_scene sc;
+    (void)state;
+    n += (size_t)sprintf(text, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (i = 0; i < 100; i++)
+        n += (size_t)sprintf(text + n, "f 1 2 3\n");
+    assert_int_equal(n, 824);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2000", 1), 0);
+    expect_error_at(text, n, "mem.obj:22: loading the scene up to this line needs more than the memory budget of "
+                    "0.002 MB (19 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2060", 1), 0); /* one face more: line 23 */
+    expect_error_at(text, n, "mem.obj:23: loading the scene up to this line needs more than the memory budget of "
+                    "0.00206 MB (20 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    assert_int_equal(setenv("RAD_MEMORY_BUDGET", "6896", 1), 0); /* 896 + 6000: all of it fits */
+    assert_int_equal(obj_parse(text, n, "mem.obj", NULL, &sc, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(sc.nfaces, 100);
+    obj_free(&sc);
+    unsetenv("RAD_MEMORY_BUDGET");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -730,6 +870,9 @@ int main(void)
         cmocka_unit_test(test_binary),
         cmocka_unit_test(test_long_lines),
         cmocka_unit_test(test_missing_obj),
+        cmocka_unit_test(test_map_outside_folder),
+        cmocka_unit_test(test_mtllib_outside_folder),
+        cmocka_unit_test(test_memory_budget),
     };
-    return cmocka_run_group_tests_name("obj", tests, NULL, NULL);
+    return cmocka_run_group_tests_name("obj", tests, group_setup, group_teardown);
 }

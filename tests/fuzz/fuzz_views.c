@@ -50,12 +50,14 @@ static void check_camera(const sc_camera *c)
     CHECK(c->fov_deg >= 8.0 && c->fov_deg <= 170.0);
 }
 
-static int on_view(void *vctx, const sc_camera *cam, const char *out)
+static int on_view(void *vctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen)
 {
     ctx_t *c = vctx;
     check_camera(cam);
     CHECK(out >= c->lo && out < c->hi && *out);
     CHECK(!strpbrk(out, " \t\r\n"));
+    CHECK(line > c->n);
+    snprintf(why, whylen, "too many views");
     return ++c->n > MAX_VIEWS; /* as rad_cli: too many views stop the parse */
 }
 

@@ -3,11 +3,14 @@
  * (tools/bake/probes.h), gathered from the solution through the glue's sc_gather. */
 #include "cli.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bake/lightmap.h"
 #include "bake/probes.h"
+#include "formats/file_io.h"
 #include "host/clock.h"
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
@@ -39,6 +42,8 @@ struct bake_state {
     int n;
     lm_atlas atlas;
     int has_atlas;
+    double *pts; /* the probes' points (grid or --probe-file), read before the solve */
+    int npts;
 };
 
 char *probes_output(const char *scene)
@@ -55,31 +60,63 @@ char *probes_output(const char *scene)
 typedef struct {
     lm_atlas *a;
     int ambient;
-    long *gathers; /* per thread */
+    long *gathers;     /* per thread */
+    int chunk, chunks; /* this call gathers the rows Y = CHUNK x threads + thread (mod CHUNKS x threads) */
 } texel_job;
 
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
     gather_ctx c = {g, j->ambient, 0};
-    int rc = lm_gather_rows(j->a, first, step, lm_gather, &c);
-    j->gathers[first] = c.gathers;
+    int rc = lm_gather_rows(j->a, j->chunk * step + first, step * j->chunks, lm_gather, &c);
+    j->gathers[first] += c.gathers;
     return rc;
 }
 
-/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
- * gatherer of its own, by rows: the same bits as one. 0, or -1 (a gather failed, no
- * memory, no thread). */
-static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
+/* Parts of a pass between two progress lines: a pass's rows in PROGRESS_CHUNKS sets. */
+#define PROGRESS_CHUNKS 16
+
+/* Progress of a bake of at most TOTAL gathers, one line on stderr at most every
+ * PROGRESS_SECONDS, and only to a terminal (a log or a test's capture stays the same
+ * from run to run). */
+#define PROGRESS_SECONDS 2.0
+
+static void progress(const opts_t *o, int pass, long done, long total, double t0, double *last)
 {
-    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long))};
+    double now = host_now(), rate = done > 0 ? (now - t0) / (double)done : 0;
+    if (o->quiet || !isatty(2) || now - *last < PROGRESS_SECONDS) return;
+    *last = now;
+    fprintf(stderr, PROG ": lightmap: pass %d, %ld of at most %ld texels gathered, %.0f s; at most %.0f s more\n", pass,
+            done, total, now - t0, rate * (double)(total - done));
+}
+
+/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
+ * gatherer of its own, by rows (in PROGRESS_CHUNKS sets of rows, a progress line
+ * between): the same bits as one. At most TOTAL texels are gathered. 0, or -1 (a
+ * gather failed, no memory, no thread). */
+static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long total, long *gathers)
+{
+    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), 0, 1};
+    if (!r->o->quiet && isatty(2)) j.chunks = PROGRESS_CHUNKS; /* else one call a pass, as before */
+    double t0 = host_now(), last = t0;
     int i, rc = j.gathers ? 0 : -1;
-    while (rc == 0 && lm_plan(a) > 0) {
-        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
-        for (i = 0; i < n; i++) *gathers += j.gathers[i];
-    }
+    while (rc == 0 && lm_plan(a) > 0)
+        for (j.chunk = 0; rc == 0 && j.chunk < j.chunks; j.chunk++) {
+            rc = sc_gather_split(r->s, res, n, texel_rows, &j);
+            for (*gathers = 0, i = 0; i < n; i++) *gathers += j.gathers[i];
+            progress(r->o, a->pass, *gathers, total, t0, &last);
+        }
     free(j.gathers);
     return rc;
+}
+
+/* Texels with a sample: what may be gathered. */
+static long covered_texels(const lm_atlas *a)
+{
+    size_t i, t = (size_t)a->size * a->size;
+    long n = 0;
+    for (i = 0; i < t; i++) n += !isnan(a->sample[2 * i]);
+    return n;
 }
 
 static int bake_lightmap(run_t *r, lm_atlas *a, int res)
@@ -87,8 +124,12 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     const opts_t *o = r->o;
     char err[1024];
     double t0 = host_now();
-    long gathers = 0;
-    int rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
+    long gathers = 0, total = covered_texels(a);
+    int rc;
+    if (!o->quiet)
+        fprintf(stderr, PROG ": lightmap: %d charts, %ld texels covered: at most %ld gathers at res %d\n", a->ncharts,
+                total, total, res);
+    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, total, &gathers);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
     else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
@@ -100,19 +141,101 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     return rc;
 }
 
-static int bake_probes(run_t *r, const sc_poly *polys, int n, gather_ctx *c)
+/* The atlas's memory for N x N texels: lm_atlas's arrays of N^2 entries and lm_build's
+ * ring of a size_t a texel (tools/bake/lightmap.c), the largest of its transients. */
+static double atlas_bytes(int n)
+{
+    const lm_atlas *a = NULL; /* for the sizes of its entries only */
+    size_t per = sizeof *a->owner + 2 * sizeof *a->sample + 3 * sizeof *a->rgb + sizeof *a->poly + sizeof *a->state +
+                 sizeof *a->block + sizeof(size_t);
+    return (double)n * n * (double)per;
+}
+
+/* The lightmap's memory said before it is allocated, and refused over the memory budget
+ * (fio_memory_budget: half the physical memory). 0 or -1. */
+static int lightmap_memory(const opts_t *o, int n)
+{
+    double bytes = atlas_bytes(n), budget = fio_memory_budget();
+    if (bytes > budget) {
+        fprintf(stderr, PROG ": %s: --lightmap-size %d needs about %.1f MB for its %d x %d texels, over the memory "
+                        "budget of %.1f MB (%s): lower --lightmap-size\n", o->lightmap, n, bytes / 1e6, n, n,
+                budget / 1e6, getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET" : "half the physical memory");
+        return -1;
+    }
+    if (!o->quiet)
+        fprintf(stderr, PROG ": lightmap: %d x %d texels, about %.1f MB\n", n, n, bytes / 1e6);
+    return 0;
+}
+
+static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
 {
     const opts_t *o = r->o;
     char err[1024] = "";
-    int np = o->probes ? o->probe_dims[0] * o->probe_dims[1] * o->probe_dims[2] : 0, rc = -1;
-    double *pts = o->probes ? pr_grid_points(polys, n, o->probe_dims) : pr_read_points(o->probe_file, &np, err, sizeof err);
-    pr_probe *pr = pts ? malloc((size_t)np * sizeof *pr) : NULL;
-    if (pr && pr_bake(polys, n, pts, np, pr_gather, c, pr, err, sizeof err) == 0)
-        rc = pr_write_json(o->probes_out, pr, np, o->probes ? o->probe_dims : NULL, err, sizeof err);
+    int rc = -1;
+    pr_probe *pr = malloc((size_t)b->npts * sizeof *pr);
+    if (pr && pr_bake(b->polys, b->n, b->pts, b->npts, pr_gather, c, pr, err, sizeof err) == 0)
+        rc = pr_write_json(o->probes_out, pr, b->npts, o->probes ? o->probe_dims : NULL, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
-    free(pts);
     free(pr);
     return rc;
+}
+
+/* The line of PATH's probe K (0-based), the file read once more: probes.h's rule, each
+ * line that is not blank or a '#' comment holds one (pr_read_points checked them). 0
+ * when the file cannot be read again. */
+static int probe_line(const char *path, int k)
+{
+    char *data, *s;
+    size_t size;
+    int line = 1, found = 0;
+    if (fio_read_all(path, FIO_LIMIT_TEXT, &data, &size, NULL, 0) != 0) return 0;
+    for (s = data; !found && *s; line++) {
+        char *t = s + strspn(s, " \t\r");
+        if (*t && *t != '\n' && *t != '#' && k-- == 0) found = line;
+        s = strchr(s, '\n');
+        s = s ? s + 1 : data + size;
+    }
+    free(data);
+    return found;
+}
+
+/* The probes' points, before the solve: a malformed --probe-file fails now, and points
+ * outside the box of the scene's polygons (they see it from outside: a file in other
+ * units, or of another scene) are counted in one warning naming the first. 0 or -1. */
+static int read_probes(run_t *r, struct bake_state *b)
+{
+    const opts_t *o = r->o;
+    char err[1024] = "";
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    int i, k, a, out = 0, first = -1;
+    if (o->probes) {
+        b->npts = o->probe_dims[0] * o->probe_dims[1] * o->probe_dims[2];
+        b->pts = pr_grid_points(b->polys, b->n, o->probe_dims);
+    } else {
+        b->pts = pr_read_points(o->probe_file, &b->npts, err, sizeof err);
+    }
+    if (!b->pts) {
+        fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
+        return -1;
+    }
+    for (i = 0; i < b->n; i++)
+        for (k = 0; k < b->polys[i].n; k++)
+            for (a = 0; a < 3; a++) {
+                lo[a] = fmin(lo[a], b->polys[i].v[k][a]);
+                hi[a] = fmax(hi[a], b->polys[i].v[k][a]);
+            }
+    for (i = 0; i < b->npts; i++) {
+        const double *p = &b->pts[3 * i];
+        if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) {
+            if (!out++) first = i;
+        }
+    }
+    if (out && !o->quiet)
+        fprintf(stderr, PROG ": warning: %s:%d: %d of %d probes lie outside the scene's bounding box (%g %g %g to %g "
+                        "%g %g), the first here, %g %g %g: they see the scene from outside\n",
+                o->probe_file, probe_line(o->probe_file, first), out, b->npts, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                b->pts[3 * first], b->pts[3 * first + 1], b->pts[3 * first + 2]);
+    return 0;
 }
 
 int bake_prepare(run_t *r)
@@ -128,12 +251,13 @@ int bake_prepare(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
+    if (o->lightmap && lightmap_memory(o, lo.size) < 0) return -1;
     if (o->lightmap && lm_build(&b->atlas, b->polys, b->n, &lo, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
         return -1;
     }
     b->has_atlas = o->lightmap != NULL;
-    return 0;
+    return o->probes || o->probe_file ? read_probes(r, b) : 0;
 }
 
 int bake_step(run_t *r)
@@ -146,7 +270,7 @@ int bake_step(run_t *r)
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);
     if (rc == 0 && (o->probes || o->probe_file)) {
         c.g = sc_gatherer_new(r->s, res, 1);
-        rc = c.g ? bake_probes(r, b->polys, b->n, &c) : -1;
+        rc = c.g ? bake_probes(r, b, &c) : -1;
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
@@ -169,6 +293,7 @@ void bake_free(run_t *r)
 {
     if (!r->bake) return;
     if (r->bake->has_atlas) lm_free(&r->bake->atlas);
+    free(r->bake->pts);
     free(r->bake->polys);
     free(r->bake);
     r->bake = NULL;

@@ -61,6 +61,7 @@ typedef struct {
     int has_cam;
     sc_camera cam;
     const char *out;
+    int line;                       /* its line in the --views file; 0: -o */
 } view_t;
 
 /* A light group: emitting materials solved together, mixed with an intensity. */
@@ -87,6 +88,8 @@ typedef struct {
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
+    int allow_outside;              /* --allow-outside-paths: inputs outside the scene's
+                                       folder, --views outputs outside the current one */
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
@@ -150,6 +153,10 @@ typedef struct {
 void parse_args(int argc, char **argv, opts_t *o);
 void die_usage(const char *msg, const char *arg);
 void add_view(opts_t *o, const sc_camera *cam, const char *out);
+/* The outputs of the run against its inputs (the scene, its libraries and textures,
+ * --views, --animate, --probe-file, --load-ff) and each other, by file identity:
+ * one line on stderr and -1 for the first that would write over another. */
+int check_collisions(const opts_t *o, const obj_scene *sc);
 void free_opts(opts_t *o);
 
 /* ---- views.c: parsers that take a buffer (the fuzz harness calls them) ---- */
@@ -160,9 +167,9 @@ int parse_list(const char *s, double *v, int n, int opt_last);
  * up or down. Returns 0 for a zero view direction or a field of view outside 8..170. */
 int set_camera(sc_camera *c, const double *v, int k);
 group_t *find_group(group_t *g, int n, const char *name, size_t len);
-/* Called for each view line: the camera and the output name (a string inside TEXT).
- * Nonzero stops the parse with that value. */
-typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out);
+/* Called for each view line: the camera, the output name (a string inside TEXT) and
+ * the line. Nonzero stops the parse: views_parse fails with "NAME:LINE: " + WHY. */
+typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen);
 /* --views: TEXT (LEN bytes, NUL after them, modified in place: output names point into
  * it) one view a line "EX EY EZ LX LY LZ [FOV] OUTPUT", '#' lines are comments to their
  * end. Returns the views, or -1 with "NAME:LINE: what" in err. */

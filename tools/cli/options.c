@@ -110,6 +110,7 @@ static void opt_height(opts_t *o, const char *opt, const char *val) { o->height 
 static void opt_exposure(opts_t *o, const char *opt, const char *val) { o->exposure = parse_pos(opt, val); }
 static void opt_no_ambient(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_ambient = 1; }
 static void opt_ply(opts_t *o, const char *opt, const char *val) { (void)opt, o->ply = val; }
+static void opt_allow_outside(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->allow_outside = 1; }
 static void opt_ply_linear(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->ply_linear = 1; }
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
@@ -271,6 +272,10 @@ static const option_t options[] = {
      "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
      "arriving at each vertex, materials unlit with their textures", opt_gltf},
     {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
+    {"--allow-outside-paths", NULL, NULL,
+     "read mtllib and map_Kd files outside the scene's folder (by\n"
+     "default: a warning, and Kd), and let --views write outside\n"
+     "the current folder", opt_allow_outside},
     {"--gather", NULL, "RES",
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
@@ -335,7 +340,7 @@ static const option_t options[] = {
 static void usage(FILE *f)
 {
     size_t i;
-    fprintf(f, "usage: " PROG " [options] scene.obj\n"
+    fprintf(f, "usage: " PROG " [options] scene.obj   (- reads the scene from standard input)\n"
                "Solves the diffuse global illumination of an OBJ/MTL scene (hemi-cube radiosity,\n"
                "progressive refinement) and renders it. Kd is reflectance, Ke emission.\n"
                "Other formats (glTF .gltf/.glb, FBX, COLLADA .dae, 3DS, ...) are read through\n"
@@ -396,6 +401,10 @@ static void check_combinations(opts_t *o)
 {
     if (!o->scene) die_usage("no scene given", NULL);
     if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (!strcmp(o->scene, "-") && o->nviews == 0 && !o->views_file)
+        die_usage("a scene on standard input (-) has no name to name outputs after: give -o FILE", NULL);
+    if (!strcmp(o->scene, "-") && (o->probes || o->probe_file) && !o->probes_out)
+        die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);

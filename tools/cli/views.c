@@ -136,10 +136,13 @@ int views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx
             snprintf(err, errlen, "%s:%d: expected EX EY EZ LX LY LZ [FOV] OUTPUT", name, ln);
             return -1;
         }
-        rc = add(ctx, &c, out);
-        if (rc) {
-            snprintf(err, errlen, "%s:%d: too many views (%d)", name, ln, MAX_VIEWS);
-            return -1;
+        {
+            char why[600] = "";
+            rc = add(ctx, &c, out, ln, why, sizeof why);
+            if (rc) {
+                snprintf(err, errlen, "%s:%d: %s", name, ln, why);
+                return -1;
+            }
         }
         n++;
     }

@@ -14,6 +14,7 @@
 int assimp_scene_wants(const char *path)
 {
     const char *dot = path ? strrchr(path, '.') : NULL;
+    if (path && !strcmp(path, "-")) return 0;
     if (!dot || strchr(dot, '/')) return 1;
     return !(tolower((unsigned char)dot[1]) == 'o' && tolower((unsigned char)dot[2]) == 'b' &&
              tolower((unsigned char)dot[3]) == 'j' && dot[4] == '\0');
@@ -26,9 +27,10 @@ int assimp_scene_available(void)
     return 0;
 }
 
-int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
-                      size_t errlen)
+int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
+                      void *ctx, char *err, size_t errlen)
 {
+    (void)opts;
     (void)warn;
     (void)ctx;
     memset(sc, 0, sizeof *sc);
@@ -103,11 +105,29 @@ static void mf_flush(struct aiFile *f)
     (void)f;
 }
 
-/* The first refusal of file_io, kept for the error message (assimp's own says only that
- * it could not open the file). */
+/* The scene's folder and whether files may come from outside it, and the first
+ * refusal, kept for the error message (assimp's own says only that it could not open
+ * the file). */
 typedef struct {
-    char why[512];
+    const char *scene;
+    char dir[4096];
+    int allow_outside;
+    char why[8800];
 } io_state;
+
+/* The folder of PATH with its slash ("dir/"), or "" for a bare name. */
+static size_t dir_len(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s ? (size_t)(s - path) + 1 : 0;
+}
+
+/* 1 when PATH leads out of the scene's folder and that is not allowed (a file that does
+ * not resolve is not outside: its reader says it is missing). */
+static int outside(const io_state *st, const char *path)
+{
+    return !st->allow_outside && fio_within(st->dir, path) == 0;
+}
 
 static struct aiFile *mf_open(struct aiFileIO *io, const char *path, const char *mode)
 {
@@ -116,10 +136,19 @@ static struct aiFile *mf_open(struct aiFileIO *io, const char *path, const char 
     mem_file *m;
     char err[512];
     if (!mode || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+')) return NULL;
+    if (outside(st, path)) {
+        if (!st->why[0])
+            snprintf(st->why, sizeof st->why,
+                     "%s: %s is outside the scene's folder %s; --allow-outside-paths reads it",
+                     st->scene, path, st->dir);
+        return NULL;
+    }
     f = calloc(1, sizeof *f);
     m = calloc(1, sizeof *m);
     if (!f || !m || fio_read_all(path, FIO_LIMIT_OBJ, &m->data, &m->size, err, sizeof err) < 0) {
-        if (f && m && !st->why[0]) snprintf(st->why, sizeof st->why, "%s", err);
+        if (f && m && !st->why[0]) /* err names PATH; the scene's name first if another */
+            snprintf(st->why, sizeof st->why, "%s%s%s", strcmp(path, st->scene) ? st->scene : "",
+                     strcmp(path, st->scene) ? ": " : "", err);
         free(f);
         free(m);
         return NULL;
@@ -339,14 +368,8 @@ static int get_rgb(const struct aiMaterial *m, const char *key, unsigned type, u
     return 1;
 }
 
-/* The folder of PATH with its slash ("dir/"), or "" for a bare name. */
-static size_t dir_len(const char *path)
-{
-    const char *s = strrchr(path, '/');
-    return s ? (size_t)(s - path) + 1 : 0;
-}
-
-static int add_material(build *b, const char *path, unsigned i, obj_warn_fn warn, void *ctx)
+static int add_material(build *b, const io_state *st, const char *path, unsigned i,
+                        obj_warn_fn warn, void *ctx)
 {
     const struct aiMaterial *m = b->ai->mMaterials[i];
     obj_scene *sc = b->sc;
@@ -401,15 +424,24 @@ static int add_material(build *b, const char *path, unsigned i, obj_warn_fn warn
         memcpy(om->map_kd.path, path, d);
         memcpy(om->map_kd.path + d, tex.data, t + 1);
     }
+    if (outside(st, om->map_kd.path)) {
+        obj_map_fallback(om);
+        warnf(warn, ctx, sc,
+              "%s: material %s: texture %s is outside the scene's folder %s; using its colour "
+              "%g %g %g; --allow-outside-paths reads it",
+              path, om->name, om->map_kd.path, st->dir, om->kd[0], om->kd[1], om->kd[2]);
+        free(om->map_kd.path);
+        om->map_kd.path = NULL;
+    }
     return 0;
 }
 
-int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
-                      size_t errlen)
+int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
+                      void *ctx, char *err, size_t errlen)
 {
     static const unsigned flags = aiProcess_ValidateDataStructure |
                                   aiProcess_JoinIdenticalVertices;
-    io_state st = {{0}};
+    io_state st;
     struct aiFileIO io = {mf_open, mf_close, NULL};
     struct aiPropertyStore *props;
     const struct aiScene *ai;
@@ -418,6 +450,17 @@ int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *c
     unsigned i;
     memset(sc, 0, sizeof *sc);
     memset(&b, 0, sizeof b);
+    memset(&st, 0, sizeof st);
+    st.scene = path;
+    st.allow_outside = opts && opts->allow_outside;
+    if (dir_len(path) >= sizeof st.dir) {
+        fio_err(err, errlen, path, "path too long");
+        return -1;
+    }
+    if (dir_len(path))
+        memcpy(st.dir, path, dir_len(path));
+    else
+        st.dir[0] = '.';
     io.UserData = (aiUserData)&st;
     props = aiCreatePropertyStore();
     if (!props) {
@@ -428,7 +471,7 @@ int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *c
     ai = aiImportFileExWithProperties(path, flags, &io, props);
     aiReleasePropertyStore(props);
     if (!ai) {
-        if (st.why[0] && err && errlen) /* file_io's words, which name the file */
+        if (st.why[0] && err && errlen) /* mf_open's words, which name the scene */
             snprintf(err, errlen, "%s", st.why);
         else if (!st.why[0])
             fio_err(err, errlen, path, "%s", aiGetErrorString());
@@ -459,7 +502,7 @@ int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *c
     for (i = 0; i < ai->mNumMaterials; i++) {
         if (!b.mat_of[i]) continue;
         b.mat_of[i] = sc->nmaterials;
-        if (add_material(&b, path, i, warn, ctx) < 0) goto nomem;
+        if (add_material(&b, &st, path, i, warn, ctx) < 0) goto nomem;
     }
     if (walk(&b, ai->mRootNode, &id, 0) < 0) goto nomem;
     aiReleaseImport(ai);

@@ -24,7 +24,8 @@
  *
  * Every file assimp opens (the scene, a .gltf's buffers, an .mtl) is read through
  * file_io (fio_read_all: regular files only, at most FIO_LIMIT_OBJ bytes), so a FIFO,
- * a device or a huge file is refused as for an OBJ. Errors are one line,
+ * a device or a huge file is refused as for an OBJ, and files outside the scene's
+ * folder are refused as the OBJ reader refuses them (obj_opts). Errors are one line,
  * "FILE: what is wrong" (assimp's own words after the file's name); warnings go to WARN
  * in the OBJ reader's form.
  */
@@ -41,12 +42,16 @@ extern "C" {
 
 /* 1 if this build reads other formats through assimp, else 0. */
 int assimp_scene_available(void);
-/* 1 if PATH is to be read by assimp_scene_load: its extension is not .obj (any case). */
+/* 1 if PATH is to be read by assimp_scene_load: its extension is not .obj (any case),
+ * and it is not "-" (standard input, which obj_load_opts reads as OBJ). */
 int assimp_scene_wants(const char *path);
-/* Loads PATH into *SC (cleared first) as described above. Returns 0, or -1 with the
- * message in err and *SC empty. */
-int assimp_scene_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
-                      size_t errlen);
+/* Loads PATH into *SC (cleared first) as described above, with obj_load_opts's OPTS
+ * (NULL: the defaults): unless opts->allow_outside, a file the scene names outside its
+ * folder (a buffer, a library: refused, the scene not loaded; a texture: a warning, and
+ * the material keeps its colour) is not read. Returns 0, or -1 with the message in err
+ * and *SC empty. */
+int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
+                      void *ctx, char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

@@ -48,6 +48,16 @@ void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
     snprintf(err, errlen, "%s: %s", path ? path : "(null)", msg);
 }
 
+double fio_memory_budget(void)
+{
+    const char *env = getenv("RAD_MEMORY_BUDGET");
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    double v = env ? strtod(env, NULL) : 0;
+    if (v > 0)
+        return v;
+    return pages > 0 && size > 0 ? 0.5 * (double)pages * (double)size : 1073741824.0;
+}
+
 /* "64 MiB (67108864 bytes)" for a whole number of MiB, else "N bytes". */
 static void limit_text(char *out, size_t n, size_t limit)
 {
@@ -59,8 +69,18 @@ static void limit_text(char *out, size_t n, size_t limit)
 
 /* ---- inputs -------------------------------------------------------------------- */
 
-/* Opens PATH without blocking (a FIFO with no writer), checks its kind, then restores
- * blocking reads. Returns the descriptor (*ST filled) or -1 with err. */
+/* What a file that is not regular is, for messages. */
+static const char *kind_of(mode_t m)
+{
+    return S_ISDIR(m) ? "is a directory" : S_ISFIFO(m) ? "not a regular file (a FIFO or pipe)"
+         : S_ISCHR(m) ? "not a regular file (a character device or terminal)"
+         : S_ISBLK(m) ? "not a regular file (a block device)"
+         : S_ISSOCK(m) ? "not a regular file (a socket)" : "not a regular file";
+}
+
+/* Opens PATH without blocking (a FIFO with no writer), refuses any kind but a regular
+ * file before a byte is read, then restores blocking reads. Returns the descriptor (*ST
+ * filled) or -1 with err. */
 static int open_in(const char *path, struct stat *st, char *err, size_t errlen)
 {
     int fd, fl;
@@ -75,10 +95,8 @@ static int open_in(const char *path, struct stat *st, char *err, size_t errlen)
     }
     if (fstat(fd, st) != 0) {
         fio_err(err, errlen, path, "cannot stat: %s", strerror(errno));
-    } else if (S_ISDIR(st->st_mode)) {
-        fio_err(err, errlen, path, "is a directory");
-    } else if (!S_ISREG(st->st_mode) && !S_ISFIFO(st->st_mode) && !S_ISCHR(st->st_mode)) {
-        fio_err(err, errlen, path, "not a file, pipe or character device");
+    } else if (!S_ISREG(st->st_mode)) {
+        fio_err(err, errlen, path, "%s", kind_of(st->st_mode));
     } else if ((fl = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) < 0) {
         fio_err(err, errlen, path, "cannot read: %s", strerror(errno));
     } else {
@@ -122,32 +140,26 @@ static long long read_fd(int fd, size_t limit, char **buf, size_t *cap)
     }
 }
 
-int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char *err,
-                 size_t errlen)
+/* Reads FD (of kind ST, named PATH in messages) as fio_read_all. */
+static int read_whole(int fd, const struct stat *st, const char *path, size_t limit, char **data,
+                      size_t *size, char *err, size_t errlen)
 {
-    struct stat st;
     char lim[64], *buf;
     size_t cap;
     long long n;
-    int fd;
-    *data = NULL;
-    *size = 0;
+    int fifo = S_ISFIFO(st->st_mode);
     limit = limit < SIZE_MAX / 2 ? limit : SIZE_MAX / 2; /* so that limit + 2 fits */
-    if ((fd = open_in(path, &st, err, errlen)) < 0)
-        return -1;
     limit_text(lim, sizeof lim, limit);
-    if (S_ISREG(st.st_mode) && (uintmax_t)st.st_size > limit) {
+    if (S_ISREG(st->st_mode) && (uintmax_t)st->st_size > limit) {
         fio_err(err, errlen, path, "larger than the limit of %s: %lld bytes", lim,
-                (long long)st.st_size);
-        close(fd);
+                (long long)st->st_size);
         return -1;
     }
     /* A regular file's size is known: one buffer, and one more read to see the end. */
-    cap = S_ISREG(st.st_mode) ? (size_t)st.st_size + 1 : READ_CHUNK;
+    cap = S_ISREG(st->st_mode) ? (size_t)st->st_size + 1 : READ_CHUNK;
     cap = cap > limit + 1 ? limit + 1 : cap;
     if (!(buf = malloc(cap + 1))) {
         fio_err(err, errlen, path, "out of memory for %zu bytes", cap);
-        close(fd);
         return -1;
     }
     n = read_fd(fd, limit, &buf, &cap);
@@ -155,10 +167,9 @@ int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char
         fio_err(err, errlen, path, "cannot read: %s", strerror(errno));
     else if ((size_t)n > limit)
         fio_err(err, errlen, path, "larger than the limit of %s", lim);
-    else if (n == 0 && S_ISFIFO(st.st_mode))
-        fio_err(err, errlen, path, "nothing to read (a FIFO with no writer, or an empty pipe)");
-    close(fd);
-    if (n < 0 || (size_t)n > limit || (n == 0 && S_ISFIFO(st.st_mode))) {
+    else if (n == 0 && fifo)
+        fio_err(err, errlen, path, "nothing to read (an empty pipe)");
+    if (n < 0 || (size_t)n > limit || (n == 0 && fifo)) {
         free(buf);
         return -1;
     }
@@ -166,6 +177,38 @@ int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char
     *data = buf;
     *size = (size_t)n;
     return 0;
+}
+
+int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char *err,
+                 size_t errlen)
+{
+    struct stat st;
+    int fd, rc;
+    *data = NULL;
+    *size = 0;
+    if ((fd = open_in(path, &st, err, errlen)) < 0)
+        return -1;
+    rc = read_whole(fd, &st, path, limit, data, size, err, errlen);
+    close(fd);
+    return rc;
+}
+
+int fio_read_stdin(size_t limit, char **data, size_t *size, char *err, size_t errlen)
+{
+    struct stat st;
+    *data = NULL;
+    *size = 0;
+    if (fstat(0, &st) != 0) {
+        fio_err(err, errlen, "-", "standard input: %s", strerror(errno));
+        return -1;
+    }
+    if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) { /* a terminal, /dev/zero, ... */
+        fio_err(err, errlen, "-", "standard input is %s: pipe or redirect a file into it",
+                isatty(0) ? "a terminal" : S_ISCHR(st.st_mode) ? "a device"
+                : S_ISDIR(st.st_mode) ? "a directory" : "not a file or pipe");
+        return -1;
+    }
+    return read_whole(0, &st, "-", limit, data, size, err, errlen);
 }
 
 FILE *fio_open_read(const char *path, char *err, size_t errlen)
@@ -180,6 +223,49 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen)
         close(fd);
     }
     return fp;
+}
+
+/* ---- where a path leads ---------------------------------------------------------- */
+
+char *fio_resolve(const char *path)
+{
+    const char *slash, *base;
+    char *dir, *real, *out;
+    size_t n;
+    if (!path || !*path)
+        return NULL;
+    if ((real = realpath(path, NULL)) != NULL)
+        return real;
+    slash = strrchr(path, '/');
+    base = slash ? slash + 1 : path;
+    if (!*base || !strcmp(base, ".") || !strcmp(base, ".."))
+        return NULL; /* a folder's name that does not resolve */
+    n = slash ? (size_t)(slash - path) + (slash == path) : 1;
+    if (!(dir = malloc(n + 1)))
+        return NULL;
+    memcpy(dir, slash ? path : ".", n);
+    dir[n] = '\0';
+    real = realpath(dir, NULL);
+    free(dir);
+    if (!real)
+        return NULL;
+    n = strlen(real);
+    if ((out = malloc(n + strlen(base) + 2)) != NULL)
+        sprintf(out, "%s%s%s", real, real[n - 1] == '/' ? "" : "/", base);
+    free(real);
+    return out;
+}
+
+int fio_within(const char *dir, const char *path)
+{
+    char *d = realpath(dir && *dir ? dir : ".", NULL), *p = fio_resolve(path);
+    size_t n = d ? strlen(d) : 0;
+    int rc = -1;
+    if (d && p) /* the root "/" holds everything; else DIR itself or DIR + '/' + ... */
+        rc = !strcmp(d, "/") || (!strncmp(p, d, n) && (p[n] == '\0' || p[n] == '/'));
+    free(d);
+    free(p);
+    return rc;
 }
 
 /* ---- outputs ------------------------------------------------------------------- */

@@ -3,12 +3,13 @@
  * input can hang or exhaust memory and no output can destroy what is not ours.
  *
  * Inputs: opened with O_NONBLOCK | O_NOCTTY (a FIFO with no writer cannot block the
- * open), then fstat'ed: a regular file is read whole if it is at most the caller's LIMIT
- * bytes (checked against st_size before anything is read, so a sparse 20 GB file costs
- * nothing); a FIFO, pipe or character device is read with O_NONBLOCK cleared, stopping
- * with an error past LIMIT bytes; a directory or any other kind is refused. A FIFO that
- * gives no byte at all (no writer: its end comes at once) is an error for fio_read_all,
- * "nothing to read"; an empty regular file is not.
+ * open), then fstat'ed: only a regular file is read, whole, if it is at most the
+ * caller's LIMIT bytes (checked against st_size before anything is read, so a sparse
+ * 20 GB file costs nothing); a FIFO, pipe, terminal, device, socket or directory is
+ * refused before a byte is read ("PATH: not a regular file (a FIFO or pipe)"), so that
+ * no input waits on a writer or streams until the limit. The one stream read is
+ * standard input, asked for by name (fio_read_stdin: rad_cli's scene "-"), never a
+ * terminal.
  *
  * Outputs: fio_out_open picks how, from what PATH is now:
  *   - a regular file or nothing yet: a temporary file beside the target (in the target's
@@ -49,6 +50,13 @@ extern "C" {
 #define FIO_LIMIT_TEXT  (16u * 1024u * 1024u)   /* --views, --animate: 16 MiB */
 #define FIO_LIMIT_IMAGE (256u * 1024u * 1024u)  /* an image or texture file: 256 MiB */
 
+/* The memory the tools let one input take, in bytes: the environment's
+ * RAD_MEMORY_BUDGET (a number of bytes; how tests try the refusals with small figures)
+ * if set and positive, else half the physical memory (1 GiB when the system does not
+ * say). The OBJ loader checks its scene against it before parsing, the stored rows
+ * theirs before computing them. */
+double fio_memory_budget(void);
+
 /* "PATH: message" into err (NULL or errlen 0: nothing); the one form of every message
  * of the file format readers and writers. */
 void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
@@ -57,13 +65,18 @@ void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
 #endif
     ;
 
-/* Reads the whole of PATH (at most LIMIT bytes) into a malloc'd buffer with a NUL
- * after the last byte (*DATA, *SIZE bytes without the NUL). Returns 0, or -1 with err
- * ("PATH: cannot open: No such file or directory", "PATH: is a directory", "PATH: larger
- * than the limit of 64 MiB (67108864 bytes)", with ": N bytes" after it for a regular
- * file); *DATA is NULL and nothing is to free on error. */
+/* Reads the whole of regular file PATH (at most LIMIT bytes) into a malloc'd buffer
+ * with a NUL after the last byte (*DATA, *SIZE bytes without the NUL). Returns 0, or -1
+ * with err ("PATH: cannot open: No such file or directory", "PATH: is a directory",
+ * "PATH: not a regular file (a FIFO or pipe)", "PATH: larger than the limit of 64 MiB
+ * (67108864 bytes): N bytes"); *DATA is NULL and nothing is to free on error. */
 int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char *err,
                  size_t errlen);
+
+/* Standard input read whole as fio_read_all reads a file, named "-" in messages: a
+ * regular file or a pipe (read to its end, at most LIMIT bytes; an empty pipe is
+ * "nothing to read"); anything else (a terminal, /dev/zero) is refused. 0, or -1 with err. */
+int fio_read_stdin(size_t limit, char **data, size_t *size, char *err, size_t errlen);
 
 /* Opens PATH for reading as above and returns a stdio stream (blocking mode restored),
  * or NULL with err. For readers that stream; the caller bounds what it reads. */
@@ -73,6 +86,16 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen);
  * name and the temporary name fit PATH_MAX and NAME_MAX, it is not a directory), else
  * -1 with err. Writes nothing: the tools call it for every output before the solve. */
 int fio_check_out(const char *path, char *err, size_t errlen);
+
+/* Where PATH leads, as an absolute name without '.', '..' or symbolic links: realpath
+ * of PATH if it exists, else realpath of its folder joined to its last component (a file
+ * not yet written). malloc'd; NULL when neither resolves (the folder is missing). */
+char *fio_resolve(const char *path);
+
+/* 1 when PATH (resolved as fio_resolve) is DIR or lies under it (DIR resolved too,
+ * compared at a component boundary: /a/bc is not under /a/b), 0 when it is elsewhere,
+ * -1 when either cannot be resolved. */
+int fio_within(const char *dir, const char *path);
 
 typedef struct fio_out fio_out;
 

@@ -31,6 +31,8 @@ typedef struct {
     char *err;
     size_t errlen;
     const char *basedir;  /* for mtllib; NULL: mtllib is ignored with a warning */
+    int allow_outside;    /* obj_opts: files outside basedir are read */
+    char *root;           /* basedir resolved (fio_resolve), for messages; lazily */
     const char *file;     /* file being parsed, for messages */
     long line;            /* first physical line of the current statement */
     int cur;              /* OBJ: material of the next faces; MTL: the one being defined */
@@ -93,6 +95,27 @@ static void warn(parser *p, const char *fmt, ...)
 static int line_int(const parser *p)
 {
     return p->line > INT_MAX ? INT_MAX : (int)p->line;
+}
+
+/* ---- the scene's folder -------------------------------------------------------- */
+
+/* Does PATH (a library or texture) leave the scene's folder, and may it not? A file
+   that does not resolve (missing) is not outside: its reader says it is missing. */
+static int outside(parser *p, const char *path)
+{
+    const char *dir = p->basedir && *p->basedir ? p->basedir : ".";
+    if (p->allow_outside || fio_within(dir, path) != 0)
+        return 0;
+    if (!p->root)
+        p->root = fio_resolve(dir);
+    return 1;
+}
+
+/* The warning for PATH outside the folder: WHAT it is, DOING instead. */
+static void warn_outside(parser *p, const char *what, const char *path, const char *doing)
+{
+    warn(p, "%s: %.300s is outside the scene's folder %.300s; %s; --allow-outside-paths reads it",
+         what, path, p->root ? p->root : p->basedir, doing);
 }
 
 /* ---- growing arrays ------------------------------------------------------------ */
@@ -487,6 +510,60 @@ static int each_statement(parser *p, const char *text, size_t len, statement_fn 
     return rc;
 }
 
+/* ---- the memory budget: a first, cheap pass --------------------------------------- */
+
+/* Bytes the parsed scene keeps for the physical line S (N bytes): a vertex or normal
+   (obj_vec3), a texture coordinate (obj_vec2), a face (obj_face) and its vertices (three
+   int indices each); *NF counts the faces. Other statements keep little (names,
+   materials: at most their own bytes, counted with the text). A face continued on the
+   next line counts the vertices of its first line: the estimate is a lower bound. */
+static double line_bytes(const char *s, size_t n, long *nf)
+{
+    size_t i = 0, k;
+    double b = 0;
+    while (i < n && is_space((unsigned char)s[i]))
+        i++;
+    for (k = i; k < n && !is_space((unsigned char)s[k]); k++)
+        ;
+    if (k - i == 1 && s[i] == 'v')
+        return sizeof(obj_vec3);
+    if (k - i == 2 && s[i] == 'v')
+        return s[i + 1] == 't' ? sizeof(obj_vec2) : s[i + 1] == 'n' ? sizeof(obj_vec3) : 0;
+    if (k - i != 1 || s[i] != 'f')
+        return 0;
+    (*nf)++;
+    b = sizeof(obj_face);
+    for (i = k; i < n && s[i] != '#'; i++)
+        if (!is_space((unsigned char)s[i]) && is_space((unsigned char)s[i - 1]))
+            b += 3 * sizeof(int);
+    return b;
+}
+
+/* Refuses, before anything is parsed, a text whose scene would take more than
+   fio_memory_budget: the text (kept while parsed) and what each line adds, summed line
+   by line, so the error names the line where the budget runs out. 0 or -1. */
+static int within_budget(parser *p, const char *text, size_t len)
+{
+    double budget = fio_memory_budget(), bytes = (double)len;
+    size_t pos = bom_length(text, len);
+    long line = 0, nf = 0;
+    while (pos < len) {
+        size_t eol, n = line_length(text + pos, len - pos, &eol);
+        line++;
+        bytes += line_bytes(text + pos, n, &nf);
+        pos += n + eol;
+        if (bytes > budget) {
+            p->line = line;
+            return fail(p, "loading the scene up to this line needs more than the memory budget of "
+                           "%.4g MB (%ld faces so far; %s): simplify or split the scene",
+                        budget / 1e6, nf,
+                        getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET"
+                                                    : "half the physical memory; RAD_MEMORY_BUDGET sets it");
+        }
+    }
+    return 0;
+}
+
 /* ---- MTL ----------------------------------------------------------------------- */
 
 static int parse_newmtl(parser *p, char *rest)
@@ -661,6 +738,7 @@ static int parse_map_kd(parser *p, char *rest)
     }
     if (!(t->path = map_path(p, rest)))
         return fail(p, "out of memory");
+    t->outside = outside(p, t->path); /* warned of by finish, once Kd is known */
     return 0;
 }
 
@@ -725,6 +803,20 @@ static int read_mtl_text(parser *p, const char *name, const char *path, char **t
     return 1;
 }
 
+/* Adds PATH to the libraries read (sc->libs). 0 or -1 (out of memory). */
+static int keep_lib(parser *p, const char *path)
+{
+    obj_scene *sc = p->sc;
+    char **q = sc->nlibs < INT_MAX ? realloc(sc->libs, ((size_t)sc->nlibs + 1) * sizeof *q) : NULL;
+    if (!q)
+        return -1;
+    sc->libs = q;
+    if (!(q[sc->nlibs] = copy_string(path)))
+        return -1;
+    sc->nlibs++;
+    return 0;
+}
+
 /* Parses the library NAME, relative to the OBJ's folder; messages name it by path. */
 static int load_mtl(parser *p, const char *name)
 {
@@ -735,6 +827,11 @@ static int load_mtl(parser *p, const char *name)
     size_t len;
     if (!path)
         return fail(p, "out of memory");
+    if (outside(p, path)) {
+        warn_outside(p, "mtllib", path, "library not read");
+        free(path);
+        return 0;
+    }
     if (read_mtl_text(p, name, path, &text, &len)) {
         free(path);
         return 0;
@@ -743,6 +840,8 @@ static int load_mtl(parser *p, const char *name)
     p->cur = -1;
     rc = each_statement(p, text, len, mtl_statement);
     free(text);
+    if (rc == 0 && keep_lib(p, path) < 0)
+        rc = fail(p, "out of memory");
     free(path);
     p->file = file;
     p->line = line;
@@ -1007,9 +1106,21 @@ static void finish(parser *p)
         m->area += obj_face_area(sc, &sc->faces[i]);
         m->nfaces++;
     }
-    for (i = 0; i < sc->nmaterials; i++)
-        if (sc->materials[i].map_kd.line && !sc->materials[i].map_kd.path)
-            obj_map_fallback(&sc->materials[i]);
+    for (i = 0; i < sc->nmaterials; i++) {
+        obj_material *m = &sc->materials[i];
+        char doing[128];
+        if (m->map_kd.line && (!m->map_kd.path || m->map_kd.outside))
+            obj_map_fallback(m);
+        if (!m->map_kd.outside)
+            continue;
+        p->file = m->map_kd.mtl;
+        p->line = m->map_kd.line;
+        snprintf(doing, sizeof doing, "using Kd %.3g %.3g %.3g", m->kd[0], m->kd[1], m->kd[2]);
+        warn_outside(p, "map_Kd", m->map_kd.path, doing);
+        free(m->map_kd.path);
+        m->map_kd.path = NULL;
+        m->map_kd.outside = 0;
+    }
 }
 
 int obj_map_fallback(obj_material *m)
@@ -1022,12 +1133,15 @@ int obj_map_fallback(obj_material *m)
     return 1;
 }
 
-int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
-              obj_warn_fn warn_fn, void *ctx, char *err, size_t errlen)
+static int parse_text(const char *text, size_t len, const char *name, const char *basedir,
+                      const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
+                      size_t errlen)
 {
     parser p;
+    int rc = 0;
     memset(sc, 0, sizeof *sc);
     memset(&p, 0, sizeof p);
+    p.allow_outside = opts && opts->allow_outside;
     p.sc = sc;
     p.warn = warn_fn;
     p.ctx = ctx;
@@ -1038,12 +1152,20 @@ int obj_parse(const char *text, size_t len, const char *name, const char *basedi
     p.cur = -1;
     p.object = p.group = -1;
     put_msg(err, errlen, "%s", "");
-    if (each_statement(&p, text, len, obj_statement)) {
+    if (within_budget(&p, text, len) || each_statement(&p, text, len, obj_statement)) {
         obj_free(sc);
-        return -1;
+        rc = -1;
+    } else {
+        finish(&p);
     }
-    finish(&p);
-    return 0;
+    free(p.root);
+    return rc;
+}
+
+int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
+              obj_warn_fn warn_fn, void *ctx, char *err, size_t errlen)
+{
+    return parse_text(text, len, name, basedir, NULL, sc, warn_fn, ctx, err, errlen);
 }
 
 /* Directory part of path ("" for a bare name), for mtllib. */
@@ -1062,19 +1184,26 @@ static char *dir_of(const char *path)
 int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
              size_t errlen)
 {
+    return obj_load_opts(path, NULL, sc, warn_fn, ctx, err, errlen);
+}
+
+int obj_load_opts(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn,
+                  void *ctx, char *err, size_t errlen)
+{
     char *text, *dir;
     size_t len;
     int rc;
     memset(sc, 0, sizeof *sc);
-    if (fio_read_all(path, FIO_LIMIT_OBJ, &text, &len, err, errlen) != 0)
+    if (path && !strcmp(path, "-") ? fio_read_stdin(FIO_LIMIT_OBJ, &text, &len, err, errlen)
+                                   : fio_read_all(path, FIO_LIMIT_OBJ, &text, &len, err, errlen))
         return -1;
-    dir = dir_of(path);
+    dir = dir_of(path); /* "-": "", the current folder */
     if (!dir) {
         free(text);
         put_msg(err, errlen, "%s: out of memory", path);
         return -1;
     }
-    rc = obj_parse(text, len, path, dir, sc, warn_fn, ctx, err, errlen);
+    rc = parse_text(text, len, path, dir, opts, sc, warn_fn, ctx, err, errlen);
     free(dir);
     free(text);
     return rc;
@@ -1092,6 +1221,9 @@ void obj_free(obj_scene *sc)
     }
     for (i = 0; i < sc->nnames; i++)
         free(sc->names[i]);
+    for (i = 0; i < sc->nlibs; i++)
+        free(sc->libs[i]);
+    free(sc->libs);
     free(sc->names);
     free(sc->materials);
     free(sc->mat_index);

@@ -31,6 +31,8 @@ typedef struct {
     double offset[2];   /* texture coordinates used: (u, v) * scale + offset */
     double scale[2];
     int clamp;          /* 1: coordinates clamped to [0, 1]; 0: wrapped (repeat) */
+    int outside;        /* internal to obj.c: PATH leaves the scene's folder (then NULL by
+                           the end of the load, with a warning) */
 } obj_map;
 
 typedef struct {
@@ -63,6 +65,7 @@ typedef struct {
     char **names; int nnames;        /* o and g names: an entry per statement that changes one */
     obj_face *faces; int nfaces;
     obj_material *materials; int nmaterials;
+    char **libs; int nlibs;          /* the material libraries read, as opened (joined paths) */
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
     int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
@@ -82,7 +85,19 @@ typedef void (*obj_warn_fn)(void *ctx, const char *msg); /* msg is "FILE:LINE: t
 /* Name of the material given to faces that come before any usemtl. */
 #define OBJ_DEFAULT_MATERIAL "(default)"
 
-/* Loads PATH; mtllib paths are relative to the OBJ's directory. Files are read whole
+/* What obj_load_opts may do beyond obj_load's defaults (all 0: obj_load). */
+typedef struct {
+    /* 1: mtllib and map_Kd files may lie outside the scene's folder (the OBJ's folder).
+       0: such a file, after '..' and symbolic links are resolved, is not read: a warning
+       "MTL:LINE: map_Kd: PATH is outside the scene's folder DIR; using Kd R G B;
+       --allow-outside-paths reads it" and the material keeps its Kd (obj_map_fallback),
+       or for mtllib "... library not read ...". A scene's files cannot then pull in
+       ~/.ssh/id_rsa through a texture embedded in an exported .glb. */
+    int allow_outside;
+} obj_opts;
+
+/* Loads PATH ("-": standard input, fio_read_stdin, whose folder is the current one);
+   mtllib paths are relative to the OBJ's directory. Files are read whole
    through fio_read_all (file_io.h): an OBJ of at most FIO_LIMIT_OBJ bytes, a library of
    at most FIO_LIMIT_MTL (larger, or unreadable: a warning, like a missing one). Lines
    end in LF, CRLF or CR; a leading UTF-8 byte order mark is skipped. Returns 0, or -1 with a
@@ -90,8 +105,11 @@ typedef void (*obj_warn_fn)(void *ctx, const char *msg); /* msg is "FILE:LINE: t
    scene is left empty (nothing to free, but obj_free is safe). warn may be NULL. */
 int obj_load(const char *path, obj_scene *sc, obj_warn_fn warn, void *ctx, char *err,
              size_t errlen);
+/* obj_load with OPTS (NULL: the defaults). */
+int obj_load_opts(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
+                  void *ctx, char *err, size_t errlen);
 /* Same from memory (for fuzzing and tests); name is used in messages; basedir for mtllib
-   (may be NULL: then mtllib is a warning). text may hold any bytes (NUL is an error). */
+   and the folder files must stay in (may be NULL: then mtllib is a warning). text may hold any bytes (NUL is an error). */
 int obj_parse(const char *text, size_t len, const char *name, const char *basedir, obj_scene *sc,
               obj_warn_fn warn, void *ctx, char *err, size_t errlen);
 void obj_free(obj_scene *sc);

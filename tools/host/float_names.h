@@ -14,6 +14,7 @@
 #define sc_solution scf_solution
 #define sc_create scf_create
 #define sc_destroy scf_destroy
+#define sc_element_limit scf_element_limit
 #define sc_solve scf_solve
 #define sc_solve_started scf_solve_started
 #define sc_set_memory_limit scf_set_memory_limit

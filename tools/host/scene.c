@@ -9,9 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "formats/ff_file.h"
+#include "formats/file_io.h"
 #include "rad/rad.h"
 
 
@@ -539,8 +539,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             return NULL;
         }
     }
-    limit = o->max_elements > 0 ? o->max_elements : 4000000L;
-    if (limit > (long)RAD_INDEX_NONE - 1) limit = (long)RAD_INDEX_NONE - 1; /* 65534 with 16-bit indices */
+    limit = sc_element_limit(o);
     w.warn = warn; w.ctx = ctx; w.emitted = 0;
     for (;;) {
         int i, added, rc = RAD_OK;
@@ -579,6 +578,12 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     free(same);
     sc_destroy(h);
     return NULL;
+}
+
+long sc_element_limit(const sc_opts *o)
+{
+    long limit = o->max_elements > 0 ? o->max_elements : 4000000L;
+    return limit > (long)RAD_INDEX_NONE - 1 ? (long)RAD_INDEX_NONE - 1 : limit; /* 65534 with 16-bit indices */
 }
 
 void sc_destroy(sc_solver *h)
@@ -946,13 +951,11 @@ void sc_set_memory_limit(sc_solver *h, double bytes)
     h->mem_limit = bytes > 0 ? bytes : 0;
 }
 
-/* The memory limit in bytes: the one set, else half the physical memory (1 GiB when
- * the system does not say). */
+/* The memory limit in bytes: the one set, else fio_memory_budget (half the physical
+ * memory). */
 static double memory_limit(const struct sc_solver *h)
 {
-    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    if (h->mem_limit > 0) return h->mem_limit;
-    return pages > 0 && size > 0 ? 0.5 * (double)pages * (double)size : 1073741824.0;
+    return h->mem_limit > 0 ? h->mem_limit : fio_memory_budget();
 }
 
 /* Refuses (-1 with err) WHAT needing BYTES over the memory limit; the fix is named. */
@@ -962,7 +965,8 @@ static int within_memory(const struct sc_solver *h, double bytes, const char *wh
     double lim = memory_limit(h);
     if (bytes <= lim) return 0;
     snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what, bytes / 1e6, lim / 1e6,
-             h->mem_limit > 0 ? "" : " (half the physical memory)", fix);
+             h->mem_limit > 0 ? "" : getenv("RAD_MEMORY_BUDGET") ? " (RAD_MEMORY_BUDGET)" : " (half the physical memory)",
+             fix);
     return -1;
 }
 

@@ -73,6 +73,9 @@ typedef struct {
 
 typedef struct sc_solver sc_solver;
 typedef struct sc_solution sc_solution;
+/* The most elements sc_create makes under O: o->max_elements, or 4,000,000, at most
+ * what the core's indices count (65534 with RAD_INDEX_BITS 16). */
+long sc_element_limit(const sc_opts *o);
 /* Builds the scene; NULL with a message in err on failure. */
 sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn,
                        void *ctx, char *err, size_t errlen);

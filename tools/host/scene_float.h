@@ -16,6 +16,7 @@ typedef struct scf_gatherer scf_gatherer;
 scf_solver *scf_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
     char *err, size_t errlen);
 void scf_destroy(scf_solver *s);
+long scf_element_limit(const sc_opts *o);
 int scf_solve(scf_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
 void scf_solve_started(scf_solver *s, double tol);
 void scf_set_memory_limit(scf_solver *s, double bytes);
