@@ -17,11 +17,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/wait.h>
+
 #include <cmocka.h>
 
 #include "check.h"
 #include "tmpdir.h"
 #include "bake/lightmap.h"
+#include "formats/file_io.h"
 #include "formats/obj.h"
 #include "host/fgather.h"
 #include "host/obj_polys.h"
@@ -279,6 +282,182 @@ static void test_float_twin_backs(void **state)
     scene_free(&t);
 }
 
+/* ---- winding against vn, and --two-sided ------------------------------------------ */
+
+/* Runs build/rad_cli on OBJ (in the temporary directory) with ARGS, --quiet-free so that
+ * warnings show, stderr into *ERR (malloc'd); returns the exit status. */
+static int cli(const char *obj, const char *args, char **err)
+{
+    char cmd[2048];
+    size_t len;
+    int st;
+    snprintf(cmd, sizeof cmd, "build/rad_cli %s --res 32 --tol 0.01 -o %s %s 2> %s", tmp_path(obj),
+             tmp_path("out.png"), args, tmp_path("cli.err"));
+    st = system(cmd);
+    if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static char *read_text(const char *path)
+{
+    char *text = NULL;
+    size_t len;
+    CHECK_INT_EQ(fio_read_all(path, 1u << 24, &text, &len, NULL, 0), 0, "%s read back", path);
+    return text;
+}
+
+/* A closed unit box lit by a lamp under its ceiling, every face's vn pointing into the
+ * room. BOX_WRONG winds the ceiling, the four walls and the lamp outwards (against
+ * their vn; the floor agrees), BOX_RIGHT winds every face into the room, each written
+ * as BOX_WRONG's reversed. 5 walls and the lamp: 5.04 of 6.04 units of area, 83.4%. */
+#define BOX_HEAD                                                                              \
+    "mtllib box.mtl\n"                                                                        \
+    "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"                    \
+    "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"                          \
+    "vn 0 1 0\nvn 0 -1 0\nvn 1 0 0\nvn -1 0 0\nvn 0 0 1\nvn 0 0 -1\nusemtl grey\nf 1//1 4//1 3//1 2//1\n"
+static const char box_wrong[] = BOX_HEAD "f 8//2 7//2 6//2 5//2\nf 4//3 8//3 5//3 1//3\nf 6//4 7//4 3//4 2//4\n"
+                                         "f 5//5 6//5 2//5 1//5\nf 3//6 7//6 8//6 4//6\n"
+                                         "usemtl lamp\nf 12//2 11//2 10//2 9//2\n";
+static const char box_right[] = BOX_HEAD "f 5//2 6//2 7//2 8//2\nf 1//3 5//3 8//3 4//3\nf 2//4 3//4 7//4 6//4\n"
+                                         "f 1//5 2//5 6//5 5//5\nf 4//6 8//6 7//6 3//6\n"
+                                         "usemtl lamp\nf 9//2 10//2 11//2 12//2\n";
+static const char box_mtl[] = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n";
+
+/* The box wound against its vn lights as the box wound right, to the bit (each turned
+ * face is the right one's corners in the same order): the same --dump-radiosity file,
+ * every element lit; and rad_cli says how many faces it turned and their share of the
+ * area. Before, the room's inside was the walls' backs: black. */
+static void test_winding_by_normals(void **state)
+{
+    char *err = NULL, *wrong, *right, args[512];
+    const char *line;
+    int rows = 0, lit = 0;
+    (void)state;
+    write_file(tmp_path("box.mtl"), box_mtl);
+    write_file(tmp_path("wrong.obj"), box_wrong);
+    write_file(tmp_path("right.obj"), box_right);
+    snprintf(args, sizeof args, "--dump-radiosity %s", tmp_path("right.csv"));
+    CHECK_INT_EQ(cli("right.obj", args, &err), 0, "exit status on the box wound right (%s)", err ? err : "");
+    CHECK_LACKS(err, "wound against", "no faces turned in the box wound right");
+    free(err);
+    snprintf(args, sizeof args, "--dump-radiosity %s", tmp_path("wrong.csv"));
+    CHECK_INT_EQ(cli("wrong.obj", args, &err), 0, "exit status on the box wound against its vn (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "6 faces (83.4% of the area) were wound against their vn normals and were flipped",
+                   "the warning");
+    free(err);
+    wrong = read_text(tmp_path("wrong.csv"));
+    right = read_text(tmp_path("right.csv"));
+    for (line = strchr(right, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
+        const char *c = line + 1;
+        int k;
+        for (k = 0; k < 7 && c; k++) c = strchr(c + 1, ','); /* to r, g, b */
+        lit += c && strtod(c + 1, NULL) > 0.0;
+        rows++;
+    }
+    /* all but the ceiling above the lamp, in its shadow (the lamp is 0.01 below it) */
+    CHECK_INT_GE(lit, rows - rows / 20, "elements lit in the box wound right, of %d", rows);
+    CHECK_INT_EQ(strcmp(wrong, right), 0, "the box wound against its vn gives the right one's --dump-radiosity");
+    printf("winding against vn: 6 faces turned (83.4%% of the area); %d elements (%d lit) the same as the box wound "
+           "right\n",
+           rows, lit);
+    free(wrong);
+    free(right);
+}
+
+/* A one-sided panel facing up between a red lamp above and a blue one below. With
+ * --two-sided (obj_two_sided, as rad_cli does) each side is a face: the top receives
+ * only red, the bottom only blue, and the lightmap's charts of the two sides mirror
+ * each other: their mean E within 1% (the scene is its own mirror image through the
+ * panel's plane, but for the cube's turns and rounding: measured equal to 5 digits). Before,
+ * the panel had no bottom: the blue light passed its back. */
+static const char panel2_obj[] = "mtllib panel2.mtl\n"
+                                 "v -0.5 0 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 0 -0.5\n"
+                                 "v -0.25 1 -0.25\nv 0.25 1 -0.25\nv 0.25 1 0.25\nv -0.25 1 0.25\n"
+                                 "v -0.25 -1 -0.25\nv -0.25 -1 0.25\nv 0.25 -1 0.25\nv 0.25 -1 -0.25\n"
+                                 "usemtl grey\nf 1 2 3 4\nusemtl red\nf 5 6 7 8\nusemtl blue\nf 9 10 11 12\n";
+static const char panel2_mtl[] = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl red\nKd 0 0 0\nKe 10 0 0\n"
+                                 "newmtl blue\nKd 0 0 0\nKe 0 0 10\n";
+
+static void test_two_sided(void **state)
+{
+    obj_scene sc;
+    sc_poly *p;
+    sc_solver *s;
+    sc_gatherer *g;
+    sc_opts o;
+    lm_atlas a;
+    lm_opts lo = {64, 0.0, 0, LM_TOL};
+    char err[512] = "", *cerr = NULL, args[512], *csv;
+    const char *line;
+    double sum[2][3] = {{0}}, rel;
+    int n, x, y, cnt[2] = {0, 0}, lit[2] = {0, 0};
+    (void)state;
+    write_file(tmp_path("panel2.obj"), panel2_obj);
+    write_file(tmp_path("panel2.mtl"), panel2_mtl);
+    /* rad_cli's elements (without the ambient term, which mixes every lamp's colour) */
+    snprintf(args, sizeof args, "--two-sided --no-ambient --dump-radiosity %s", tmp_path("two.csv"));
+    CHECK_INT_EQ(cli("panel2.obj", args, &cerr), 0, "exit status with --two-sided (%s)", cerr ? cerr : "");
+    free(cerr);
+    csv = read_text(tmp_path("two.csv"));
+    for (line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
+        double v[7];
+        const char *c = strchr(line + 1, ',');
+        int k;
+        c = c ? strchr(c + 1, ',') : NULL; /* past the surface */
+        c = c ? strchr(c + 1, ',') : NULL; /* past the material */
+        for (k = 0; k < 7 && c; k++) {
+            v[k] = strtod(c + 1, NULL);
+            c = strchr(c + 1, ',');
+        }
+        if (k < 7 || v[2] != 0.0) continue; /* cy: the panel's elements */
+        if (v[4] > 0 && v[6] == 0) lit[0]++;
+        if (v[6] > 0 && v[4] == 0) lit[1]++;
+    }
+    free(csv);
+    CHECK_INT_GT(lit[0], 0, "rad_cli --two-sided: panel elements lit red alone");
+    CHECK_INT_EQ(lit[1], lit[0], "rad_cli --two-sided: panel elements lit blue alone, as many as red");
+    /* the lightmap of both sides */
+    if (obj_load(tmp_path("panel2.obj"), &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    CHECK_INT_EQ(obj_two_sided(&sc), 0, "obj_two_sided");
+    CHECK_INT_EQ(sc.nfaces, 6, "faces after obj_two_sided");
+    p = obj_to_polys(&sc, &n, NULL, NULL);
+    assert_non_null(p);
+    memset(&o, 0, sizeof o);
+    o.res = 128;
+    s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    if (!s) fail_msg("sc_create: %s", err);
+    CHECK_INT_GT(sc_solve(s, 100000, 1e-4, NULL, NULL), 0, "shots");
+    g = sc_gatherer_new(s, GATHER_RES, 0);
+    assert_non_null(g);
+    CHECK_INT_EQ(lm_build(&a, p, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_EQ(lm_bake(&a, gather_cb, g), 0, "lm_bake");
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            size_t at = (size_t)y * a.size + x;
+            double q[3];
+            int side, k;
+            if (!lm_texel_point(&a, x, y, q) || (p[a.poly[at]].tag != 0 && p[a.poly[at]].tag != 3)) continue;
+            side = p[a.poly[at]].tag == 3;
+            CHECK_EQ(a.rgb[3 * at + (side ? 0 : 2)], 0.0, "texel %d,%d of the panel's %s: the other lamp's channel",
+                     x, y, side ? "bottom" : "top");
+            for (k = 0; k < 3; k++) sum[side][k] += a.rgb[3 * at + k];
+            cnt[side]++;
+        }
+    CHECK_INT_GT(cnt[0], 100, "texels of the panel's top");
+    CHECK_INT_EQ(cnt[1], cnt[0], "texels of the panel's bottom, as many as the top's");
+    rel = fabs(sum[0][0] - sum[1][2]) / sum[0][0];
+    CHECK_LE(rel, 0.01, "the top's mean red %.5f against the bottom's mean blue %.5f", sum[0][0] / cnt[0],
+             sum[1][2] / cnt[1]);
+    printf("--two-sided panel: %d elements lit on each side; lightmap %d texels a side, mean red on top %.5f, "
+           "blue below %.5f (%.3f%% apart, bound 1%%)\n",
+           lit[0], cnt[0], sum[0][0] / cnt[0], sum[1][2] / cnt[1], 100.0 * rel);
+    lm_free(&a);
+    sc_gatherer_free(g);
+    sc_destroy(s);
+    free(p);
+    obj_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -286,6 +465,8 @@ int main(void)
         cmocka_unit_test(test_fgather_backs),
         cmocka_unit_test(test_probe_backs),
         cmocka_unit_test(test_float_twin_backs),
+        cmocka_unit_test(test_winding_by_normals),
+        cmocka_unit_test(test_two_sided),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -87,6 +87,7 @@ typedef struct {
     const char *ply, *csv, *views_file;
     const char *gltf;               /* --export-gltf */
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
+    int two_sided;                  /* --two-sided: every face doubled, back to back */
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;

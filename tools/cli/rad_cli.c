@@ -244,6 +244,25 @@ static int load_textures(run_t *r)
 }
 
 /* The scene and everything that names its materials. 1: done (--list-materials). */
+/* Faces wound against their vn turned round (warned with the count), or with
+ * --two-sided every face doubled back to back (both sides there: nothing to turn). */
+static int orient_faces(run_t *r)
+{
+    const opts_t *o = r->o;
+    double area = 0.0;
+    int n;
+    if (o->two_sided) {
+        if (obj_two_sided(&r->sc) == 0) return 0;
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    n = obj_orient_by_normals(&r->sc, &area);
+    if (n > 0 && !o->quiet)
+        fprintf(stderr, PROG ": warning: %s: %d faces (%.1f%% of the area) were wound against their vn normals and were "
+                        "flipped (a face is lit on one side; --two-sided lights both)\n", o->scene, n, 100.0 * area);
+    return 0;
+}
+
 static int load_step(run_t *r)
 {
     opts_t *o = r->o;
@@ -254,6 +273,7 @@ static int load_step(run_t *r)
         return -1;
     }
     r->have_scene = 1;
+    if (orient_faces(r) < 0) return -1;
     if (apply_emit(o, &r->sc) < 0) return -1;
     if (!o->no_textures && !o->list && load_textures(r) < 0) return -1;
     for (i = 0; o->no_textures && i < r->sc.nmaterials; i++)
