@@ -299,13 +299,16 @@ typedef struct {
 /* One pass of a cube: its centre C and frame, the regions drawn, and the surface not
  * drawn (the shooter's own; any value past the last surface: none), nor those joined
  * to patch GROUP (the shooter's group, rad_join_polygon, which stands for one flat
- * patch: from its centre off a curved group's faces it would light itself). */
+ * patch: from its centre off a curved group's faces it would light itself). BACKS:
+ * surfaces seen from behind are drawn as occluders that show nothing (a gather's
+ * cube), else left out (a shot's). */
 typedef struct {
     rad_vec3_t c;
     const rad_vec3_t *frame;
     const region_t *reg;
     unsigned nreg;
     uint32_t skip, group;
+    int backs;
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
@@ -333,13 +336,18 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
     rad_vec3_t loc[4];
     rad__cvert_t cvt[4];
     rad__lattice_t lat;
-    unsigned i, r, n = rad__surface_corners(s, sf, k), grid = sf->n_elements > 1, front = 0;
+    unsigned i, r, n = rad__surface_corners(s, sf, k), grid, front = 0;
+    rad_index_t id;
 
-    /* Facing away at every corner (a quad may be planar only within rounding):
-     * invisible. */
+    /* Facing away at every corner (a quad may be planar only within rounding): seen
+     * from behind. Radiosity is one-sided, so its back is black; a gather's cube draws
+     * it as an opaque occluder showing nothing (ids RAD_INDEX_NONE), so that a point
+     * under a panel lit from above is in its shadow as the lamp's shots left it. */
     for (i = 0; i < n; i++)
         front |= rad__dot_unit(rad__sub(ps->c, s->pools.vertices[k[i]]), sf->normal) > 0;
-    if (!front) return;
+    if (!front && !ps->backs) return;
+    grid = front && sf->n_elements > 1;
+    id = front ? (rad_index_t)rad__group_element(s, sf, sf->first_element) : RAD_INDEX_NONE;
     for (i = 0; i < n; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
         uint32_t code;
@@ -364,8 +372,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
             t.lat = &lat;
         }
         for (i = 0; i < n; i++) face_vertex(f, loc[i], &cvt[i]);
-        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F,
-                  (rad_index_t)rad__group_element(s, sf, sf->first_element));
+        rad__draw(cv->st, &t, &fr, cvt, n, (any >> (5 * f)) & 0x1F, id);
     }
 }
 
@@ -494,6 +501,7 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     ps.nreg = nreg;
     ps.skip = pt->surface;
     ps.group = p;
+    ps.backs = 0;
     render_view(s, cv, &ps);
 }
 
@@ -532,6 +540,7 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     ps.nreg = 1;
     ps.skip = e->skip;
     ps.group = UINT32_MAX;
+    ps.backs = 1;
     clear_region(&cv, &reg);
     render_view(s, &cv, &ps);
 }

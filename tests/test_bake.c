@@ -782,6 +782,59 @@ static void test_cli_bake(void **state)
     free(three);
 }
 
+/* Progress: with RAD_PROGRESS_DELAY=0 (progress.h: the delay before a stage shows,
+ * 1 s by default) a bake prints lines for the solve, each lightmap pass and the view's
+ * gathers, with the fraction done and an ETA; --quiet prints none of them, nor does a
+ * delay longer than the run. --stats times every stage asked for. */
+static int cli_progress(const char *env, const char *args, char **err, char **out)
+{
+    char cmd[2048];
+    size_t len;
+    int st;
+    snprintf(cmd, sizeof cmd,
+             "%s build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --width 64 --height 64 -o %s %s > %s 2> %s",
+             env, tmp_path("cli.png"), args, tmp_path("cli.out"), tmp_path("cli.err"));
+    st = system(cmd);
+    if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
+    if (fio_read_all(tmp_path("cli.out"), 1u << 20, out, &len, NULL, 0) != 0) *out = NULL;
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* A bake with ENV and MORE arguments shows no progress (WHY: when). */
+static void no_progress(const char *env, const char *more, const char *why)
+{
+    char args[1024], *err = NULL, *out = NULL;
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 %s", tmp_path("lm.hdr"), more);
+    CHECK_INT_EQ(cli_progress(env, args, &err, &out), 0, "exit status %s", why);
+    CHECK_LACKS(err, "solving", "stderr %s", why);
+    CHECK_LACKS(err, "lightmap pass", "stderr %s", why);
+    CHECK_LACKS(err, "gathering", "stderr %s", why);
+    free(err);
+    free(out);
+}
+
+static void test_cli_progress(void **state)
+{
+    char args[1024], *err = NULL, *out = NULL;
+    const char *lm = tmp_path("lm.hdr");
+    (void)state;
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --stats --export-gltf %s --dump-radiosity %s",
+             lm, tmp_path("p.glb"), tmp_path("p.csv"));
+    CHECK_INT_EQ(cli_progress("RAD_PROGRESS_DELAY=0", args, &err, &out), 0, "exit status (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "rad_cli: solving ", "the solve's progress");
+    CHECK_CONTAINS(err, "rad_cli: lightmap pass 1 ", "the first lightmap pass's progress");
+    CHECK_CONTAINS(err, "rad_cli: gathering the view ", "the view's gathers' progress");
+    CHECK_CONTAINS(err, ", ETA ", "an ETA");
+    CHECK_CONTAINS(out, "  lightmap ", "--stats' time of the lightmap");
+    CHECK_CONTAINS(out, "  gltf ", "--stats' time of the glTF export");
+    CHECK_CONTAINS(out, "  csv ", "--stats' time of the CSV");
+    printf("progress at delay 0: %d lines on stderr\n", count_of(err, "\n"));
+    free(err);
+    free(out);
+    no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet");
+    no_progress("RAD_PROGRESS_DELAY=1000", "", "when no stage runs for the delay");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -797,6 +850,7 @@ int main(void)
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
         cmocka_unit_test(test_cli_bake),
+        cmocka_unit_test(test_cli_progress),
     };
     return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);
 }

@@ -582,7 +582,8 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
  * factor F of each pixel (summing to exactly 1 over the cube) times the radiosity B of
  * the element it sees (rad_element_radiosity's value with FLAGS: RAD_SHADE_AMBIENT
  * adds reflectance times the ambient term, worked out on each call, a pass over the
- * patches; at least 0), with no element seen counting as black. An element of
+ * patches; at least 0), with no element seen counting as black and a surface seen
+ * from behind drawn as an opaque black occluder (radiosity is one-sided). An element of
  * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
  * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
  * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the

@@ -6,7 +6,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "bake/lightmap.h"
 #include "bake/probes.h"
@@ -14,26 +13,42 @@
 #include "host/clock.h"
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
+#include "progress.h"
 
 #define GATHER_RES 32 /* the gathers' resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
 
+/* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
+ * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. */
 typedef struct {
     sc_gatherer *g;
     int ambient;
     long gathers;
+    progress_t *pg;
+    double total;
+    const char *unit;
 } gather_ctx;
+
+#define PROGRESS_EVERY 64
+
+static void gathered(gather_ctx *c)
+{
+    char detail[96];
+    if (++c->gathers % PROGRESS_EVERY || !c->pg) return;
+    snprintf(detail, sizeof detail, "%ld of %.0f %s", c->gathers, c->total, c->unit);
+    progress_update(c->pg, c->gathers / c->total, detail);
+}
 
 static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
     gather_ctx *c = ctx;
-    c->gathers++;
+    gathered(c);
     return sc_gather(c->g, p, n, c->ambient, rgb);
 }
 
 static int pr_gather(void *ctx, const double p[3], double sh[9][3])
 {
     gather_ctx *c = ctx;
-    c->gathers++;
+    gathered(c);
     return sc_gather_sh(c->g, p, c->ambient, sh);
 }
 
@@ -60,52 +75,44 @@ char *probes_output(const char *scene)
 typedef struct {
     lm_atlas *a;
     int ambient;
-    long *gathers;     /* per thread */
-    int chunk, chunks; /* this call gathers the rows Y = CHUNK x threads + thread (mod CHUNKS x threads) */
+    long *gathers; /* per thread */
+    progress_t *pg;
+    double share; /* a thread's share of the pass's texels */
 } texel_job;
 
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
-    gather_ctx c = {g, j->ambient, 0};
-    int rc = lm_gather_rows(j->a, j->chunk * step + first, step * j->chunks, lm_gather, &c);
-    j->gathers[first] += c.gathers;
+    gather_ctx c = {g, j->ambient, 0, NULL, 0.0, "texels"};
+    int rc;
+    if (first == 0) {
+        c.pg = j->pg;
+        c.total = j->share;
+    }
+    rc = lm_gather_rows(j->a, first, step, lm_gather, &c);
+    j->gathers[first] = c.gathers;
     return rc;
 }
 
-/* Parts of a pass between two progress lines: a pass's rows in PROGRESS_CHUNKS sets. */
-#define PROGRESS_CHUNKS 16
-
-/* Progress of a bake of at most TOTAL gathers, one line on stderr at most every
- * PROGRESS_SECONDS, and only to a terminal (a log or a test's capture stays the same
- * from run to run). */
-#define PROGRESS_SECONDS 2.0
-
-static void progress(const opts_t *o, int pass, long done, long total, double t0, double *last)
-{
-    double now = host_now(), rate = done > 0 ? (now - t0) / (double)done : 0;
-    if (o->quiet || !isatty(2) || now - *last < PROGRESS_SECONDS) return;
-    *last = now;
-    fprintf(stderr, PROG ": lightmap: pass %d, %ld of at most %ld texels gathered, %.0f s; at most %.0f s more\n", pass,
-            done, total, now - t0, rate * (double)(total - done));
-}
-
 /* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
- * gatherer of its own, by rows (in PROGRESS_CHUNKS sets of rows, a progress line
- * between): the same bits as one. At most TOTAL texels are gathered. 0, or -1 (a
- * gather failed, no memory, no thread). */
-static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long total, long *gathers)
+ * gatherer of its own, by rows: the same bits as one; each pass a stage of progress
+ * (how many passes there will be depends on what they gather). 0, or -1 (a gather
+ * failed, no memory, no thread). */
+static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
 {
-    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), 0, 1};
-    if (!r->o->quiet && isatty(2)) j.chunks = PROGRESS_CHUNKS; /* else one call a pass, as before */
-    double t0 = host_now(), last = t0;
+    progress_t pg;
+    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), &pg, 0.0};
+    char what[64];
+    long count;
     int i, rc = j.gathers ? 0 : -1;
-    while (rc == 0 && lm_plan(a) > 0)
-        for (j.chunk = 0; rc == 0 && j.chunk < j.chunks; j.chunk++) {
-            rc = sc_gather_split(r->s, res, n, texel_rows, &j);
-            for (*gathers = 0, i = 0; i < n; i++) *gathers += j.gathers[i];
-            progress(r->o, a->pass, *gathers, total, t0, &last);
-        }
+    while (rc == 0 && (count = lm_plan(a)) > 0) {
+        snprintf(what, sizeof what, "lightmap pass %d", a->pass);
+        progress_begin(&pg, what, r->o->quiet);
+        j.share = (double)count / n;
+        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
+        for (i = 0; i < n; i++) *gathers += j.gathers[i];
+        progress_end(&pg);
+    }
     free(j.gathers);
     return rc;
 }
@@ -129,7 +136,7 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     if (!o->quiet)
         fprintf(stderr, PROG ": lightmap: %d charts, %ld texels covered: at most %ld gathers at res %d\n", a->ncharts,
                 total, total, res);
-    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, total, &gathers);
+    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
     else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
@@ -173,8 +180,14 @@ static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
     char err[1024] = "";
     int rc = -1;
     pr_probe *pr = malloc((size_t)b->npts * sizeof *pr);
+    progress_t pg;
+    progress_begin(&pg, "probes", o->quiet);
+    c->pg = &pg;
+    c->total = b->npts;
+    c->unit = "probes";
     if (pr && pr_bake(b->polys, b->n, b->pts, b->npts, pr_gather, c, pr, err, sizeof err) == 0)
         rc = pr_write_json(o->probes_out, pr, b->npts, o->probes ? o->probe_dims : NULL, err, sizeof err);
+    progress_end(&pg);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
     free(pr);
     return rc;
@@ -265,15 +278,19 @@ int bake_step(run_t *r)
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
     int rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0};
+    gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL};
+    double t = host_now();
     if (!b) return 0;
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);
+    r->t_lightmap = host_now() - t;
+    t = host_now();
     if (rc == 0 && (o->probes || o->probe_file)) {
         c.g = sc_gatherer_new(r->s, res, 1);
         rc = c.g ? bake_probes(r, b, &c) : -1;
         if (!c.g) fprintf(stderr, PROG ": out of memory for a gather of resolution %d\n", res);
         sc_gatherer_free(c.g);
     }
+    r->t_probes = host_now() - t;
     return rc;
 }
 
@@ -282,10 +299,12 @@ int bake_export_gltf(run_t *r, gltf_warn_fn warn)
     const opts_t *o = r->o;
     char err[1024];
     int rc;
+    double t = host_now();
     if (!o->gltf || !r->bake || !r->bake->has_atlas) return 0;
     rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, &r->bake->atlas, o->gltf,
                                  warn, (void *)o, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
+    r->t_gltf = host_now() - t;
     return rc;
 }
 

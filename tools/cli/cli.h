@@ -7,7 +7,7 @@
  *
  * Files: options.c (the option table, --help from it), views.c (the --views and
  * --animate parsers, on a buffer), rad_cli.c (main: load, build, solve, outputs),
- * solve.c (the solves and their progress), outputs.c (images, PLY, CSV, output and
+ * solve.c (the solves), progress.c (every long stage's progress and ETA), outputs.c (images, PLY, CSV, output and
  * camera checks), balance.c (where the emitted light goes), bake.c (lightmaps and
  * probes from the solution, tools/bake/).
  */
@@ -90,6 +90,7 @@ typedef struct {
     int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
     int allow_outside;              /* --allow-outside-paths: inputs outside the scene's
                                        folder, --views outputs outside the current one */
+    int two_sided;                  /* --two-sided: every face doubled, back to back */
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
@@ -143,6 +144,7 @@ typedef struct {
     int unconverged;                /* solves that stopped at the limit above --tol */
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
+    double t_vertices, t_csv, t_ply, t_gltf, t_lightmap, t_probes; /* --stats: the outputs' stages */
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
     struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */

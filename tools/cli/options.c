@@ -115,6 +115,7 @@ static void opt_ply_linear(opts_t *o, const char *opt, const char *val) { (void)
 static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o->csv = val; }
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
 static void opt_no_textures(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_textures = 1; }
+static void opt_two_sided(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->two_sided = 1; }
 
 static void opt_res(opts_t *o, const char *opt, const char *val)
 {
@@ -276,6 +277,9 @@ static const option_t options[] = {
      "read mtllib and map_Kd files outside the scene's folder (by\n"
      "default: a warning, and Kd), and let --views write outside\n"
      "the current folder", opt_allow_outside},
+    {"--two-sided", NULL, NULL,
+     "every face lit on both sides: two one-sided faces back to back\n"
+     "(by default a face has one side, its winding's or its vn's)", opt_two_sided},
     {"--gather", NULL, "RES",
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"

@@ -14,6 +14,7 @@
 #include "host/clock.h"
 #include "host/ply_export.h"
 #include "host/tex_render.h"
+#include "progress.h"
 
 const char *ext_of(const char *path)
 {
@@ -167,7 +168,12 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     size_t npix = (size_t)o->width * o->height;
     int rc;
     if (ot->fg) {
+        progress_t pg;
+        progress_begin(&pg, "gathering the view", o->quiet);
+        sc_fgather_progress(ot->fg, progress_fraction, &pg);
         rc = sc_fgather_render(ot->fg, cam, o->width, o->height, ot->img, &ot->gathers, err, sizeof err);
+        sc_fgather_progress(ot->fg, NULL, NULL);
+        progress_end(&pg);
         if (rc == 0 && ot->maps) rc = sc_texture_detail(s, ot->sc, ot->maps, cam, o->width, o->height, ot->img, err, sizeof err);
     } else if (ot->maps) {
         rc = sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height, ot->img, err, sizeof err);

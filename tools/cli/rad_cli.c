@@ -17,6 +17,7 @@
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
 #include "host/tex_render.h"
+#include "progress.h"
 
 /* ---- load: the scene, --emit, the light groups, the views and frames ------------- */
 
@@ -255,6 +256,25 @@ static int load_textures(run_t *r)
 }
 
 /* The scene and everything that names its materials. 1: done (--list-materials). */
+/* Faces wound against their vn turned round (warned with the count), or with
+ * --two-sided every face doubled back to back (both sides there: nothing to turn). */
+static int orient_faces(run_t *r)
+{
+    const opts_t *o = r->o;
+    double area = 0.0;
+    int n;
+    if (o->two_sided) {
+        if (obj_two_sided(&r->sc) == 0) return 0;
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    n = obj_orient_by_normals(&r->sc, &area);
+    if (n > 0 && !o->quiet)
+        fprintf(stderr, PROG ": warning: %s: %d faces (%.1f%% of the area) were wound against their vn normals and were "
+                        "flipped (a face is lit on one side; --two-sided lights both)\n", o->scene, n, 100.0 * area);
+    return 0;
+}
+
 static int load_step(run_t *r)
 {
     opts_t *o = r->o;
@@ -268,6 +288,7 @@ static int load_step(run_t *r)
         return -1;
     }
     r->have_scene = 1;
+    if (orient_faces(r) < 0) return -1;
     if (apply_emit(o, &r->sc) < 0) return -1;
     if (!o->no_textures && !o->list && load_textures(r) < 0) return -1;
     for (i = 0; o->no_textures && i < r->sc.nmaterials; i++)
@@ -442,9 +463,24 @@ static int render_each_group(run_t *r)
     return rc;
 }
 
+/* --gather's vertices for --export-ply and --export-gltf, once, with progress. */
+static int gather_vertices(run_t *r)
+{
+    progress_t pg;
+    int rc;
+    progress_begin(&pg, "gathering vertices", r->o->quiet);
+    sc_fgather_progress(r->ot.fg, progress_fraction, &pg);
+    rc = sc_fgather_vertices(r->ot.fg, NULL, NULL);
+    sc_fgather_progress(r->ot.fg, NULL, NULL);
+    r->t_vertices = progress_end(&pg);
+    if (rc < 0) fprintf(stderr, PROG ": out of memory for the final gather\n");
+    return rc;
+}
+
 static int output_step(run_t *r)
 {
     const opts_t *o = r->o;
+    double t;
     int i, rc = 0;
     r->ot.img = malloc((size_t)o->width * o->height * 3 * sizeof *r->ot.img);
     r->ot.rgb8 = malloc((size_t)o->width * o->height * 3);
@@ -460,14 +496,21 @@ static int output_step(run_t *r)
     else if (o->each_group) rc = render_each_group(r);
     else
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
+    if (rc == 0 && r->ot.fg && (o->ply || o->gltf)) rc = gather_vertices(r);
+    t = host_now();
     if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
+    r->t_csv = host_now() - t;
+    t = host_now();
     if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
+    r->t_ply = host_now() - t;
+    t = host_now();
     if (rc == 0 && o->gltf && !o->lightmap) { /* with a lightmap: after the bake */
         char err[1024];
         rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, o->gltf, obj_warning,
                             (void *)o, err, sizeof err);
         if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     }
+    r->t_gltf = host_now() - t;
     return rc < 0 ? -1 : 0;
 }
 
@@ -494,6 +537,23 @@ static void print_rows_stats(const run_t *r)
     if (o->gauss_seidel && rst.matrix_bytes) printf("gauss-seidel matrix %zu bytes\n", rst.matrix_bytes);
 }
 
+/* Every stage's time on one line: those of the outputs asked for after the views'. */
+static void print_times(const run_t *r)
+{
+    const opts_t *o = r->o;
+    printf("time: load %.3fs  mesh %.3fs", r->t_load - r->t0, r->t_mesh - r->t_load);
+    if (r->rows_mode) printf("  rows %.3fs", r->t_rows);
+    printf("  solve %.3fs  render %.3fs  write %.3fs", r->t_solve - r->t_mesh - r->t_rows, r->ot.t_render,
+           r->ot.t_write);
+    if (r->ot.fg && (o->ply || o->gltf)) printf("  vertex gathers %.3fs", r->t_vertices);
+    if (o->csv) printf("  csv %.3fs", r->t_csv);
+    if (o->ply) printf("  ply %.3fs", r->t_ply);
+    if (o->lightmap) printf("  lightmap %.3fs", r->t_lightmap);
+    if (o->probes || o->probe_file) printf("  probes %.3fs", r->t_probes);
+    if (o->gltf) printf("  gltf %.3fs", r->t_gltf);
+    printf("\n");
+}
+
 static void print_stats(const run_t *r)
 {
     const opts_t *o = r->o;
@@ -516,12 +576,7 @@ static void print_stats(const run_t *r)
     if (r->landing >= 0)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);
-    if (r->rows_mode)
-        printf("time: load %.3fs  mesh %.3fs  rows %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", r->t_load - r->t0,
-               r->t_mesh - r->t_load, r->t_rows, r->t_solve - r->t_mesh - r->t_rows, r->ot.t_render, r->ot.t_write);
-    else
-        printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", r->t_load - r->t0,
-               r->t_mesh - r->t_load, r->t_solve - r->t_mesh, r->ot.t_render, r->ot.t_write);
+    print_times(r);
     printf("memory: pools %zu bytes, work buffer %zu bytes\n", st->pool_bytes, st->work_bytes);
 }
 

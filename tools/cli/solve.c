@@ -1,17 +1,17 @@
 /* SPDX-License-Identifier: MIT */
 /* rad_cli's solves: shooting, or visibility once (the rows) and then shooting or
- * Gauss-Seidel from the rows, each light group alone; progress bars on a terminal.
+ * Gauss-Seidel from the rows, each light group alone; their progress (progress.h).
  */
 #include "cli.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "host/clock.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
+#include "progress.h"
 
 #define GS_MAX_SWEEPS 1000
 
@@ -24,50 +24,35 @@
 #define TOL_SLACK(f) (0.5 / 65536.0)
 #endif
 
+/* The solve's progress: the unshot fraction on a log scale, from 1 (nothing shot) down
+ * to the tolerance. */
 typedef struct {
-    double start, last, tol;
-    int tty;
-} progress_t;
+    progress_t p;
+    double tol;
+} solve_progress;
 
 static int progress(void *ctx, int shots, double unshot)
 {
-    progress_t *p = ctx;
-    double t = host_now();
-    if (p->tty && t - p->last >= 0.1) {
-        /* Progress on a log scale: from 1 (nothing shot) down to the tolerance. */
-        double frac = unshot > 0 && p->tol > 0 ? log(unshot) / log(p->tol) : 1.0;
-        int bar = frac < 0 ? 0 : frac > 1 ? 30 : (int)(30.0 * frac);
-        fprintf(stderr, "\rsolving [%.*s%*s] shots %d  unshot %.5f  %.1fs ", bar, "##############################",
-                30 - bar, "", shots, unshot, t - p->start);
-        p->last = t;
-    }
+    solve_progress *sp = ctx;
+    char detail[96];
+    snprintf(detail, sizeof detail, "shots %d  unshot %.5f", shots, unshot);
+    progress_update(&sp->p, unshot > 0 && sp->tol > 0 ? log(unshot) / log(sp->tol) : 1.0, detail);
     return 0;
 }
 
 static int rows_progress(void *ctx, int rows, int total)
 {
-    progress_t *p = ctx;
-    double t = host_now();
-    if (p->tty && (t - p->last >= 0.1 || rows == total)) {
-        int bar = total ? (int)(30.0 * rows / total) : 30;
-        fprintf(stderr, "\rform factors [%.*s%*s] rows %d/%d  %.1fs ", bar, "##############################",
-                30 - bar, "", rows, total, t - p->start);
-        p->last = t;
-    }
+    solve_progress *sp = ctx;
+    char detail[64];
+    snprintf(detail, sizeof detail, "rows %d/%d", rows, total);
+    progress_update(&sp->p, total ? (double)rows / total : 1.0, detail);
     return 0;
 }
 
-static void progress_start(progress_t *pg, const opts_t *o)
+static void progress_start(solve_progress *pg, const opts_t *o, const char *what)
 {
-    pg->start = pg->last = host_now();
-    pg->last -= 1.0;
-    pg->tty = !o->quiet && isatty(2);
+    progress_begin(&pg->p, what, o->quiet);
     pg->tol = o->tol;
-}
-
-static void progress_clear(const progress_t *pg)
-{
-    if (pg->tty) fprintf(stderr, "\r%70s\r", "");
 }
 
 /* A progressive solve of SHOTS shots that stopped at --max-shots above --tol. */
@@ -79,25 +64,24 @@ static void check_converged(run_t *r, int shots)
 }
 
 /* Shooting with hemi-cubes; threads split each shot's cube by rows: the same bits. */
-static void solve_shoot(run_t *r, progress_t *pg)
+static void solve_shoot(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
-    sc_progress_fn fn = pg->tty ? progress : NULL;
     int shots = -1;
-    if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, fn, pg);
-    if (shots < 0) shots = sc_solve(r->s, o->max_shots, o->tol, fn, pg);
+    if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, progress, pg);
+    if (shots < 0) shots = sc_solve(r->s, o->max_shots, o->tol, progress, pg);
     r->work = shots;
     check_converged(r, shots);
 }
 
 /* Solves from the rows with the chosen solver; returns shots or sweeps, or -1. */
-static int solve_rows(run_t *r, progress_t *pg)
+static int solve_rows(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     char err[512];
     int n;
     if (!o->gauss_seidel) {
-        n = sc_rows_solve(r->s, o->max_shots, o->tol, pg->tty ? progress : NULL, pg);
+        n = sc_rows_solve(r->s, o->max_shots, o->tol, progress, pg);
         check_converged(r, n);
         return n;
     }
@@ -108,14 +92,14 @@ static int solve_rows(run_t *r, progress_t *pg)
 }
 
 /* Visibility once: every patch's row, loaded or rendered (then saved). */
-static int rows_step(run_t *r, progress_t *pg)
+static int rows_step(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     char err[1024];
     int rc = o->gauss_seidel && sc_gauss_seidel_check(r->s, err, sizeof err) < 0 ? -1 /* before any row */
              : o->load_ff ? sc_rows_load(r->s, o->load_ff, err, sizeof err)
-                          : sc_rows_compute(r->s, pg->tty ? rows_progress : NULL, pg, err, sizeof err);
-    progress_clear(pg);
+                          : sc_rows_compute(r->s, rows_progress, pg, err, sizeof err);
+    progress_end(&pg->p);
     if (rc < 0) {
         fprintf(stderr, PROG ": %s%s%s\n", o->load_ff ? "" : o->scene, o->load_ff ? "" : ": ", err);
         return -1;
@@ -159,7 +143,7 @@ static int light_group(run_t *r, int g)
 }
 
 /* Each group alone (the other emitters dark), kept aside, then the run's mix. */
-static int solve_groups(run_t *r, progress_t *pg)
+static int solve_groups(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     int g, n = o->ngroups ? o->ngroups : 1;
@@ -185,9 +169,9 @@ static int solve_groups(run_t *r, progress_t *pg)
 
 int solve_step(run_t *r)
 {
-    progress_t pg;
+    solve_progress pg;
     int rc = 0;
-    progress_start(&pg, r->o);
+    progress_start(&pg, r->o, r->rows_mode ? "form factors" : "solving");
     if (!r->rows_mode) {
         solve_shoot(r, &pg);
     } else {
@@ -195,11 +179,11 @@ int solve_step(run_t *r)
         sc_get_stats(r->s, &r->st);
         r->raster_before_solve = r->st.raster_calls;
         r->t_rows = host_now() - r->t_mesh;
-        progress_start(&pg, r->o);
+        progress_start(&pg, r->o, "solving");
         if (!r->groups_mode) rc = (r->work = solve_rows(r, &pg)) < 0 ? -1 : 0;
         else rc = solve_groups(r, &pg);
     }
-    progress_clear(&pg);
+    progress_end(&pg.p);
     r->t_solve = host_now();
     sc_get_stats(r->s, &r->st);
     return rc;

@@ -81,6 +81,8 @@ struct sc_fgather {
     double extent, lo[3], lift, margin;
     double *ve; /* per vertex: E, once gathered */
     unsigned char *vok;
+    sc_fraction_fn progress; /* and its context: sc_fgather_progress */
+    void *pctx;
 };
 
 typedef struct {
@@ -241,6 +243,19 @@ sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, i
     return f;
 }
 
+void sc_fgather_progress(sc_fgather *f, sc_fraction_fn fn, void *ctx)
+{
+    f->progress = fn;
+    f->pctx = ctx;
+}
+
+/* Thread FIRST's progress, DONE of TOTAL of its own items: the calling thread's (0)
+ * stands for all. */
+static void report(const sc_fgather *f, int first, double done, double total)
+{
+    if (first == 0 && f->progress && total > 0) f->progress(f->pctx, done / total);
+}
+
 void sc_fgather_free(sc_fgather *f)
 {
     if (!f) return;
@@ -304,6 +319,7 @@ static int vertex_rows(void *ctx, sc_gatherer *g, int first, int step)
         for (v = c->first_vertex; v < c->first_vertex + c->n_vertices; v++, k++)
             if (k % step == first && !f->sf[si].emits)
                 f->vok[v] = vertex_gather(f, g, si, (int)v, &f->ve[3 * v]) == 0;
+        report(f, first, (double)k, (double)f->nvert);
     }
     return 0;
 }
@@ -476,12 +492,17 @@ static int render_rows(void *ctx, sc_gatherer *g, int first, int step)
     rjob_t *j = ctx;
     long *count = &j->gathers[first];
     int gx, gy, ncx = j->nx > 1 ? j->nx - 1 : 1, ncy = j->ny > 1 ? j->ny - 1 : 1;
+    /* the grid's gathers, every FG_GRID^2-th pixel, as the first tenth */
     if (j->phase == 0) {
-        for (gy = first; gy < j->ny; gy += step)
+        for (gy = first; gy < j->ny; gy += step) {
             for (gx = 0; gx < j->nx; gx++) pixel_gather(j, g, grid_x(j, gx), grid_y(j, gy), count);
+            report(j->f, first, 0.1 * gy, j->ny);
+        }
     } else {
-        for (gy = first; gy < ncy; gy += step)
+        for (gy = first; gy < ncy; gy += step) {
             for (gx = 0; gx < ncx; gx++) cell(j, g, gx, gy, count);
+            report(j->f, first, 0.1 * ncy + 0.9 * gy, ncy);
+        }
     }
     return 0;
 }

@@ -46,6 +46,11 @@ typedef struct sc_fgather sc_fgather;
 sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, int threads, int ambient);
 void sc_fgather_free(sc_fgather *f);
 
+/* Progress of the gathers that follow: FN(CTX, fraction done, 0..1) from the calling
+ * thread now and then (its own share of the work standing for the whole); NULL: none. */
+typedef int (*sc_fraction_fn)(void *ctx, double frac);
+void sc_fgather_progress(sc_fgather *f, sc_fraction_fn fn, void *ctx);
+
 /* The light arriving at every core vertex (E, radiosity units: a surface of reflectance
  * rho shows rho E), gathered once and kept: into E (3 a vertex, stats.vertices) and
  * OK[v] 1 where it was gathered (0: an emitter's vertex, or a gather that failed: the
@@ -72,6 +77,7 @@ typedef int (*scf_split_fn)(void *ctx, scf_gatherer *g, int first, int step);
 int scf_gather_split(scf_solver *s, int res, int threads, scf_split_fn fn, void *ctx);
 scf_fgather *scf_fgather_new(scf_solver *s, const sc_poly *polys, int n, int res, int threads, int ambient);
 void scf_fgather_free(scf_fgather *f);
+void scf_fgather_progress(scf_fgather *f, sc_fraction_fn fn, void *ctx);
 int scf_fgather_vertices(scf_fgather *f, const double **e, const unsigned char **ok);
 int scf_vertex_colours(scf_solver *s, scf_fgather *f, int ambient, double *rgb);
 int scf_fgather_render(scf_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers, char *err,

@@ -67,6 +67,7 @@
 #define sc_fgather scf_fgather
 #define sc_fgather_new scf_fgather_new
 #define sc_fgather_free scf_fgather_free
+#define sc_fgather_progress scf_fgather_progress
 #define sc_fgather_vertices scf_fgather_vertices
 #define sc_vertex_colours scf_vertex_colours
 #define sc_fgather_render scf_fgather_render

@@ -2,6 +2,7 @@
 /* rad host glue: OBJ faces to the core's polygons (see obj_polys.h). */
 #include "host/obj_polys.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -130,4 +131,95 @@ int obj_match_material(void *ctx, int tag)
 {
     const obj_material_match *m = ctx;
     return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
+}
+
+/* Reverses face FC's corners: positions, texture coordinates and normals together. */
+static void reverse_face(obj_scene *sc, const obj_face *fc)
+{
+    int i, j;
+    for (i = fc->first, j = fc->first + fc->count - 1; i < j; i++, j--) {
+        int t = sc->indices[i];
+        sc->indices[i] = sc->indices[j];
+        sc->indices[j] = t;
+        if (sc->uv_indices) {
+            t = sc->uv_indices[i];
+            sc->uv_indices[i] = sc->uv_indices[j];
+            sc->uv_indices[j] = t;
+        }
+        if (sc->normal_indices) {
+            t = sc->normal_indices[i];
+            sc->normal_indices[i] = sc->normal_indices[j];
+            sc->normal_indices[j] = t;
+        }
+    }
+}
+
+int obj_orient_by_normals(obj_scene *sc, double *area)
+{
+    double total = 0.0, turned = 0.0;
+    int f, k, n = 0;
+    for (f = 0; f < sc->nfaces; f++) {
+        const obj_face *fc = &sc->faces[f];
+        obj_vec3 g = obj_face_normal(sc, fc);
+        double a = 0.5 * sqrt(g.x * g.x + g.y * g.y + g.z * g.z);
+        int with = 0, against = 0;
+        total += a;
+        for (k = 0; sc->normal_indices && k < fc->count; k++) {
+            int ni = sc->normal_indices[fc->first + k];
+            double d;
+            if (ni < 0) continue;
+            with++;
+            d = sc->normals[ni].x * g.x + sc->normals[ni].y * g.y + sc->normals[ni].z * g.z;
+            against += d < 0;
+        }
+        if (2 * against > with) {
+            reverse_face(sc, fc);
+            turned += a;
+            n++;
+        }
+    }
+    if (area) *area = total > 0.0 ? turned / total : 0.0;
+    return n;
+}
+
+int obj_two_sided(obj_scene *sc)
+{
+    int nf = sc->nfaces, ni = sc->nindices, nn = sc->nnormals, f, k;
+    int has_uv = sc->uv_indices != NULL, has_n = sc->normal_indices != NULL; /* NULL: none (a scene by hand) */
+    obj_face *faces;
+    int *ix, *uv, *nx;
+    obj_vec3 *normals;
+    if (nf > INT_MAX / 2 || ni > INT_MAX / 2 || nn > INT_MAX / 2) return -1;
+    faces = realloc(sc->faces, 2 * (size_t)nf * sizeof *faces + 1);
+    if (faces) sc->faces = faces;
+    ix = realloc(sc->indices, 2 * (size_t)ni * sizeof *ix + 1);
+    if (ix) sc->indices = ix;
+    uv = realloc(sc->uv_indices, 2 * (size_t)ni * sizeof *uv + 1);
+    if (uv) sc->uv_indices = uv;
+    nx = realloc(sc->normal_indices, 2 * (size_t)ni * sizeof *nx + 1);
+    if (nx) sc->normal_indices = nx;
+    normals = realloc(sc->normals, 2 * (size_t)nn * sizeof *normals + 1);
+    if (normals) sc->normals = normals;
+    if (!faces || !ix || !uv || !nx || !normals) return -1; /* grown, but the counts stay */
+    for (k = 0; k < nn; k++) {
+        normals[nn + k].x = -normals[k].x;
+        normals[nn + k].y = -normals[k].y;
+        normals[nn + k].z = -normals[k].z;
+    }
+    for (k = 0; k < ni; k++) {
+        if (!has_uv) uv[k] = -1;
+        if (!has_n) nx[k] = -1;
+        ix[ni + k] = ix[k];
+        uv[ni + k] = uv[k];
+        nx[ni + k] = nx[k] < 0 ? -1 : nn + nx[k];
+    }
+    for (f = 0; f < nf; f++) {
+        faces[nf + f] = faces[f];
+        faces[nf + f].first += ni;
+        reverse_face(sc, &faces[nf + f]);
+    }
+    sc->nfaces = 2 * nf;
+    sc->nindices = 2 * ni;
+    sc->nnormals = 2 * nn;
+    return 0;
 }

@@ -27,6 +27,23 @@ sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *
 sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
                           obj_poly_warn_fn warn, void *ctx);
 
+/* Faces wound against their vertex normals turned round. A face is one-sided: it
+ * receives and shows light on the side its winding faces (counter-clockwise). A face
+ * most of whose corners with a vn (more than half of them) have a vn against its
+ * geometric (Newell) normal, vn . n < 0, has its corners reversed (positions, vt and
+ * vn together: each triangle of a larger face then turns with it). Faces without vn
+ * are left as they are. Returns the count turned; *AREA (may be NULL) their share of
+ * the scene's face area, 0..1. */
+int obj_orient_by_normals(obj_scene *sc, double *area);
+
+/* Two-sided faces: face F + N (N the faces before the call) becomes a copy of face F
+ * with its corners reversed and its vn negated (new normals appended), so that both
+ * sides of every face receive and show light as two one-sided faces back to back,
+ * each with an element mesh, a lightmap chart and glTF faces of its own. Materials'
+ * areas and face counts are left as the input's. 0, or -1 out of memory (the scene
+ * unchanged). */
+int obj_two_sided(obj_scene *sc);
+
 /* The polygons of one material, for sc_set_surfaces: a tag (an OBJ face index, as
  * obj_to_polys sets it) matches when its face has material MATERIAL. */
 typedef struct {
