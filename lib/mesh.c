@@ -104,6 +104,7 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
     if (scene_bytes != sizeof(rad_scene_t) || index_bytes != sizeof(rad_index_t) ||
         is_float != RAD_FLOAT)
         return RAD_ERR_ABI;
+    if (s) s->live = 0; /* refused by every call unless this succeeds */
     if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
         !pools->vertices || !pools->work)
         return RAD_ERR_ARG;
@@ -119,6 +120,9 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
         if (rc < 0) return rc;
         if ((z.cfg.flags & RAD_NO_BANDS) && z.band_rows) return RAD_ERR_WORK;
     }
+    z.shot_patch = RAD_INDEX_NONE;
+    z.live = RAD__LIVE;
+    z.self = s;
     *s = z;
     return RAD_OK;
 }
@@ -703,7 +707,8 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     const char *why;
     int rc;
 
-    if (!s || !args_ok(v, n)) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!args_ok(v, n)) return RAD_ERR_ARG;
     if (s->solving) return RAD_ERR_STATE;
     rc = plan_polygon(&s->cfg, v, n, reflectance, emission, &normal, &area, &plan, &why);
     if (rc < 0) return rc;
@@ -745,7 +750,8 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
     uint32_t p;
     int rc;
 
-    if (!s || !args_ok(v, n) || !(s->cfg.flags & RAD_SMALL_FACES)) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!args_ok(v, n) || !(s->cfg.flags & RAD_SMALL_FACES)) return RAD_ERR_ARG;
     if (s->solving || s->n_patches == 0) return RAD_ERR_STATE;
     p = s->n_patches - 1u;
     first = &s->pools.surfaces[s->pools.patches[p].surface];
@@ -792,7 +798,8 @@ static int grouped(const rad_scene_t *s, uint32_t surf)
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission)
 {
-    if (!s || surf >= s->n_surfaces) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (surf >= s->n_surfaces) return RAD_ERR_ARG;
     if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
         return RAD_ERR_RANGE;
     if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
@@ -808,7 +815,8 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
 int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
 {
     uint32_t i;
-    if (!s || !rho) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!rho) return RAD_ERR_ARG;
     if (!aligned(rho, offsetof(align_rgb_t, t))) return RAD_ERR_ALIGN;
     if (s->solving || s->element_rho) return RAD_ERR_STATE;
     s->element_rho = rho;
@@ -818,7 +826,8 @@ int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
 
 int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *reflectance)
 {
-    if (!s || !reflectance || e >= s->n_elements) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!reflectance || e >= s->n_elements) return RAD_ERR_ARG;
     if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
     if (!s->element_rho) return RAD_ERR_STATE;
     s->element_rho[e] = *reflectance;
@@ -828,7 +837,8 @@ int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *ref
 
 int rad_restart(rad_scene_t *s)
 {
-    if (!s) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    s->shot_patch = RAD_INDEX_NONE;
     s->power_shift = (int8_t)pick_power_shift(s); /* new emissions may need another */
     start_all(s);
     s->solving = 0;

@@ -120,7 +120,8 @@ typedef struct {
 #define RAD_ERR_RANGE      (-3) /* coordinate, reflectance or emission out of range */
 #define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
-#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting) */
+#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting), or a
+                                   * scene rad_init has not set up (rad_scene_t.live) */
 #define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
 #define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
 #define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
@@ -261,6 +262,14 @@ typedef struct {
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
 typedef struct {
+    /* Set by a successful rad_init: a marker word and the scene's own address. Every
+     * call refuses (RAD_ERR_STATE) a scene without them: never initialised, its
+     * rad_init failed, or a copy at another address. */
+    uint32_t live;
+    const void *self;
+    /* the shot between rad_shot_begin and rad_shot_end: its patch (RAD_INDEX_NONE: no
+     * shot begun) and serial number, which the part buffers record */
+    uint32_t shot_patch, shot_serial;
     rad_config_t cfg;
     rad_pools_t pools;
     rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
@@ -309,7 +318,8 @@ typedef struct {
  * layout than the library: another RAD_INDEX_BITS or RAD_FLOAT, or a rad.h whose
  * rad_scene_t differs (the macro passes what the caller's compiler saw, so a program
  * that would index its pools with the wrong strides gets an error code, not a crash).
- * On any error S is not written. */
+ * On any other error only S's marker (rad_scene_t.live) is written: cleared, so that
+ * every call refuses S (RAD_ERR_STATE) until a rad_init succeeds. */
 #define rad_init(s, pools, cfg) \
     rad_init_abi((s), (pools), (cfg), sizeof(rad_scene_t), (unsigned)sizeof(rad_index_t), RAD_FLOAT)
 int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
@@ -416,9 +426,13 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * only, so parts may run at once; rad_shot_end sums the parts' pixels in order and
  * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
- * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
+ * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument, and RAD_ERR_STATE
+ * for a PATCH other than the one rad_shot_begin picked (none once the shot ended or the
+ * scene was shot, restarted or solved otherwise since), or for BUFS that are not its
+ * NPARTS parts, each rendered by rad_shot_part for this shot as part K of NPARTS at
+ * BUFS[K] (a buffer records its shot, part and count). */
 #define RAD_PART_BYTES(res)                   \
-    (48u + (size_t)(res) * sizeof(uint32_t) + \
+    (56u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
@@ -504,11 +518,14 @@ typedef struct {
 /* Stores the rows of up to COUNT more patches (spread the work over frames by calling
  * again); freezes the geometry. Set n_rows = 0 before the first call. Returns the
  * number of rows added (0 once every patch has its row), RAD_ERR_FULL when the next
- * row does not fit (nothing of it is kept), RAD_ERR_ARG (max_rows < patches). */
+ * row does not fit (nothing of it is kept), RAD_ERR_ARG (max_rows < patches, or rows
+ * stored so far that rad_rows_shoot would refuse). */
 int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count);
 
 /* rad_shoot through the stored rows instead of hemi-cubes. Returns the shots, or
- * RAD_ERR_STATE when not every patch has its row yet. */
+ * RAD_ERR_STATE when not every patch has its row yet, or RAD_ERR_ARG for rows that
+ * are not this scene's (offsets not rising within max_entries, an element id beyond
+ * the scene's elements: checked in a pass over the entries before anything changes). */
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
 
 /* The 1985 paper's full-matrix solve: Gauss-Seidel on the patch radiosities
@@ -518,7 +535,8 @@ int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, r
  * gives every element its radiosity. Sweeps until no patch's radiosity changes by
  * more than TOL of itself (plus one LSB), or MAX_ITER sweeps. MATRIX holds RAD_GS_ENTRIES(patches)
  * entries; at most 16384 patches. Returns the sweeps done, or RAD_ERR_ARG (matrix too
- * small, too many patches) or RAD_ERR_STATE (rows missing). */
+ * small, too many patches, rows as rad_rows_shoot refuses) or RAD_ERR_STATE (rows
+ * missing). */
 #define RAD_GS_ENTRIES(patches) ((size_t)(patches) * (patches) + 3u * (size_t)(patches))
 int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
                           uint32_t max_iter, rad_real_t tol);
