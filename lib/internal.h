@@ -241,11 +241,11 @@ rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf);
 /* The ambient radiosity per channel in the core's scale (solve.c). */
 void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat);
 
-/* rad_scene_t.live of a scene rad_init set up (with self, its own address). */
-#define RAD__LIVE 0x7261644cu
+/* Whether rad_init set S up: its self is its own address (no zeroed or copied
+ * struct, and no garbage short of its own address, holds that). */
 static inline int rad__live(const rad_scene_t *s)
 {
-    return s->live == RAD__LIVE && s->self == (const void *)s;
+    return s->self == (const void *)s;
 }
 /* The first check of every public call taking scene S: RAD_ERR_ARG when S is null,
  * RAD_ERR_STATE when rad_init has not set it up. */

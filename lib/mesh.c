@@ -104,7 +104,7 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
     if (scene_bytes != sizeof(rad_scene_t) || index_bytes != sizeof(rad_index_t) ||
         is_float != RAD_FLOAT)
         return RAD_ERR_ABI;
-    if (s) s->live = 0; /* refused by every call unless this succeeds */
+    if (s) s->self = 0; /* refused by every call unless this succeeds */
     if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
         !pools->vertices || !pools->work)
         return RAD_ERR_ARG;
@@ -121,7 +121,6 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
         if ((z.cfg.flags & RAD_NO_BANDS) && z.band_rows) return RAD_ERR_WORK;
     }
     z.shot_patch = RAD_INDEX_NONE;
-    z.live = RAD__LIVE;
     z.self = s;
     *s = z;
     return RAD_OK;

@@ -121,7 +121,7 @@ typedef struct {
 #define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
 #define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting), or a
-                                   * scene rad_init has not set up (rad_scene_t.live) */
+                                   * scene rad_init has not set up (rad_scene_t.self) */
 #define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
 #define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
 #define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
@@ -262,24 +262,25 @@ typedef struct {
 
 /* The solver. Fields are read-only for the caller; set them only through the API. */
 typedef struct {
-    /* Set by a successful rad_init: a marker word and the scene's own address. Every
-     * call refuses (RAD_ERR_STATE) a scene without them: never initialised, its
-     * rad_init failed, or a copy at another address. */
-    uint32_t live;
-    const void *self;
-    /* the shot between rad_shot_begin and rad_shot_end: its patch (RAD_INDEX_NONE: no
-     * shot begun) and serial number, which the part buffers record */
-    uint32_t shot_patch, shot_serial;
     rad_config_t cfg;
     rad_pools_t pools;
     rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
+    /* the shot between rad_shot_begin and rad_shot_end: its patch (RAD_INDEX_NONE: no
+     * shot begun) and serial number (shot_serial, below), which part buffers record */
+    uint32_t shot_patch;
     rad_energy_t emitted; /* total emitted power, all channels */
     /* The core's scale (see the top of this file): coordinates are the caller's times
      * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
      * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
     int8_t length_shift, power_shift;
+    uint16_t shot_serial;
+    /* The scene's own address, set by a successful rad_init (cleared first). Every call
+     * refuses (RAD_ERR_STATE) a scene without it: never initialised, its rad_init
+     * failed, or a copy at another address. (These three fields fill padding: the
+     * scene is no larger on 32-bit targets, where a Cortex-M0's 16 KB has no room.) */
+    const void *self;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -318,7 +319,7 @@ typedef struct {
  * layout than the library: another RAD_INDEX_BITS or RAD_FLOAT, or a rad.h whose
  * rad_scene_t differs (the macro passes what the caller's compiler saw, so a program
  * that would index its pools with the wrong strides gets an error code, not a crash).
- * On any other error only S's marker (rad_scene_t.live) is written: cleared, so that
+ * On any other error only S's marker (rad_scene_t.self) is written: cleared, so that
  * every call refuses S (RAD_ERR_STATE) until a rad_init succeeds. */
 #define rad_init(s, pools, cfg) \
     rad_init_abi((s), (pools), (cfg), sizeof(rad_scene_t), (unsigned)sizeof(rad_index_t), RAD_FLOAT)
