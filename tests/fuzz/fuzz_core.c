@@ -362,6 +362,7 @@ static int setup(reader_t *r, ctx_t *c)
     rc = rad_init(&c->s, &c->pools, (f & 8) ? NULL : &cfg);
     CHECK(rc == RAD_OK || is_err(rc));
     if (rc != RAD_OK) {
+        before.self = 0; /* a failed rad_init clears the marker alone (rad.h) */
         CHECK(memcmp(&before, &c->s, sizeof before) == 0);
         return -1;
     }
