@@ -65,6 +65,7 @@ int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, r
     int rc;
     RAD__CHECK_SCENE(s);
     if ((rc = rows_ready(s, rows)) < 0) return rc;
+    s->shot_patch = RAD_INDEX_NONE; /* as rad_shoot */
     return rad__shoot(s, rows, max_shots, tol);
 }
 

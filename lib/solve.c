@@ -347,7 +347,6 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
-    s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
     rad__freeze(s);
     start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
@@ -365,6 +364,7 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     RAD__CHECK_SCENE(s);
     if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
+    s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
     return rad__shoot(s, 0, max_shots, tol);
 }
 
