@@ -38,6 +38,23 @@ int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
     return RAD_OK;
 }
 
+int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_energy_t *area)
+{
+    const rad_element_t *el;
+    RAD__CHECK_SCENE(s);
+    if (e >= s->n_elements) return RAD_ERR_ARG;
+    el = &s->pools.elements[e];
+    if (centre) {
+        static const uint32_t one[4] = {1, 1, 1, 1};
+        rad_vec3_t c[4];
+        unsigned k, n = rad__nverts(el);
+        for (k = 0; k < n; k++) c[k] = s->pools.vertices[el->v[k]];
+        *centre = rad__scale2_vec(rad__wavg(c, one, n, n), -s->length_shift, &s->stats.saturations);
+    }
+    if (area) *area = rad__area_scale(el->area, -s->length_shift);
+    return RAD_OK;
+}
+
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
 {
     rad_rgb_t amb;

@@ -122,8 +122,11 @@ static void test_init_errors(void **st)
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.res = RAD_MAX_RES + 2;
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_element = Q(1.0 / 32);         /* below 1/16 */
+    c = cfg; c.max_element = -1;                  /* below one LSB */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_element = 1; c.max_patch = 0;  /* one LSB: any unit is the caller's */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
+    assert_int_equal(s.cfg.max_patch, 4);
     c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.flags = 2;                         /* no such flag */
@@ -132,8 +135,11 @@ static void test_init_errors(void **st)
      * formed (it overflowed in the fixed build: found by fuzz_core). */
     c = cfg; c.max_patch = 0; c.max_element = -Q(16384.0);
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0);
+    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0) + 1; /* 2 RAD_INPUT_LIMIT */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0); /* the default patch: the most */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
+    assert_int_equal(s.cfg.max_patch, Q(16384.0));
     /* Work: the table and accumulators fit, but not one row of a face. */
     p = g.p; p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_WORK);
@@ -166,10 +172,10 @@ static void test_add_errors(void **st)
     assert_int_equal(rad_add_polygon(&s, NULL, 4, NULL, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_add_polygon(&s, ok, 2, NULL, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_add_polygon(&s, ok, 5, NULL, NULL), RAD_ERR_ARG);
-    /* Coordinates: 64.0 is the limit, one LSB more is out. */
-    v[0] = V(63, 0, 0); v[1] = V(64, 0, 0); v[2] = V(63, 1, 0);
+    /* Coordinates: RAD_INPUT_LIMIT (8192.0) is the limit, one LSB more is out. */
+    v[0] = V(8184, 0, 0); v[1] = V(8192, 0, 0); v[2] = V(8184, 8, 0);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), 0);
-    memcpy(v, ok, sizeof v); v[1].y = Q(64.0) + 1;
+    memcpy(v, ok, sizeof v); v[1].y = Q(8192.0) + 1;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
     memcpy(v, ok, sizeof v); v[0].z = INT32_MIN;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
@@ -199,6 +205,20 @@ static void test_add_errors(void **st)
     v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
     CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0,
                  "rad_add_polygon of a bow-tie quad: an error");
+    /* Far out, a polygon is measured at its own scale (2^-7 at 8192, rad.h): a
+     * triangle of area 0.5 there is 2^-15 square units, below 1/4096. */
+    v[0] = V(8000, 0, 0); v[1] = V(8001, 0, 0); v[2] = V(8000, 1, 0);
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
+    /* A lattice of more than 32768 elements a side: no pool holds it. */
+    {
+        rad_config_t fine = cfg;
+        rad_plan_t plan = {0};
+        fine.max_element = 1; /* 2^-16 units: 65536 elements along the unit quad's side */
+        fine.max_patch = 0;
+        CHECK_INT_EQ(rad_plan_polygon(&fine, ok, 4, NULL, NULL, &plan), RAD_ERR_FULL,
+                     "rad_plan_polygon of a unit quad at 2^-16 a side");
+        CHECK_CONTAINS(plan.problem, "32768", "rad_plan_polygon's problem");
+    }
     /* Nothing was added by any of these, except the in-range triangle above. */
     assert_int_equal(s.n_surfaces, 1);
     /* A slightly bent quad (1/200 of its side) is accepted as planar. */

@@ -11,8 +11,9 @@
  *
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
- *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
+ *                 The caller's coordinates lie within +-RAD_INPUT_LIMIT (8192.0), in any
+ *                 unit; the core keeps them within +-RAD_COORD_LIMIT (64.0), where every
+ *                 area (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
@@ -22,20 +23,30 @@
  *                 owing power, which its later receipts pay back.
  *   form factors  Q2.30 in uint32 (internal): the delta form factor table of a
  *                 hemi-cube sums to exactly 2^30.
- * Rounding is to nearest everywhere; no operation relies on signed overflow or on
- * right shifts of negative numbers.
+ * Rounding is to nearest everywhere but where coordinates scale down (below: rounded
+ * down); no operation relies on signed overflow or on right shifts of negative numbers.
  *
- * Scale: results do not depend on the caller's units or emission scale. When the
- * geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
+ * Scale: results do not depend on the caller's units or emission scale. A scene beyond
+ * +-RAD_COORD_LIMIT is kept at 2^length_shift of the caller's coordinates (-7..-1, the
+ * largest that fits it within the limit, rounded down: a scene of 500 units, as a room
+ * in centimetres, at 2^-3), lowered as polygons that need it are added (each polygon
+ * is checked at its own such scale: degenerate, planar, area at least 1/4096 there;
+ * rounding down composes, so the order of the polygons does not matter). Otherwise,
+ * when the geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
  * re-meshes it with coordinates times 2^length_shift (the largest into (16, 32]), and
  * when a solve starts it scales radiosity and power by 2^power_shift (a brightest
  * emission channel below 128 into (128, 256]): powers of two, so coordinates scale
  * exactly. Radiosity does not depend on geometry scale and is linear in emission, so
  * outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
- * caller's units, and rad_render takes its camera in them; RAD_SHADE_SCALED keeps the
- * core's scale (a dim scene's solution with all 16 fraction bits). The pools' geometry
- * (vertices, patch centres, areas) and rad_element_t.radiosity are in the core's scale.
- * stats.small_elements counts the elements whose area stays small even so.
+ * caller's units, and rad_render and rad_gather take points in them; RAD_SHADE_SCALED
+ * keeps the core's scale (a dim scene's solution with all 16 fraction bits). The pools'
+ * geometry (vertices, patch centres, areas) and rad_element_t.radiosity are in the
+ * core's scale; rad_element_geometry gives an element's centre and area in the
+ * caller's units. stats.small_elements counts the elements whose area stays small even
+ * so. Limits: the caller's coordinates within +-8192 units, kept to 2^-16 of a unit
+ * below +-64 and to 2^-16 of (the scene's extent / 64) above it (a room of 5000 mm: to
+ * 1/512 mm), and a polygon's area at least 1/4096 at its own scale (at 8192 units out:
+ * 4 square units, 2^-24 of the extent squared).
  *
  * Every function returns int: 0 or a non-negative count on success, a negative
  * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
@@ -103,7 +114,8 @@ typedef uint32_t rad_index_t;
 #define RAD_INDEX_NONE 0xFFFFFFFFu
 #endif
 
-#define RAD_COORD_LIMIT    64   /* |coordinate| <= 64.0 units */
+#define RAD_COORD_LIMIT    64   /* |coordinate| <= 64.0 units at the core's scale */
+#define RAD_INPUT_LIMIT    8192 /* |coordinate| <= 8192.0 of the caller's units */
 #define RAD_EMISSION_LIMIT 4096 /* emission <= 4096.0 per channel */
 
 typedef struct {
@@ -190,8 +202,11 @@ typedef struct {
 
 /* ---- configuration (zero means default) ---------------------------------------- */
 typedef struct {
-    rad_real_t max_patch;   /* longest patch edge; default 16.0 units */
-    rad_real_t max_element; /* longest element edge; default 4.0 units */
+    rad_real_t max_patch;   /* longest patch edge, in the caller's units: max_element..
+                             * 2 RAD_INPUT_LIMIT; default 4 max_element (at most that) */
+    rad_real_t max_element; /* longest element edge, in the caller's units: 2^-16..
+                             * 2 RAD_INPUT_LIMIT; default 4.0 (set it for the scene's
+                             * units: a polygon's lattice has at most 32768 a side) */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
     uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
@@ -338,7 +353,8 @@ typedef struct {
  * (n = max(elements, vertices)) before rad_init. Counts saturate at UINT32_MAX. Returns
  * RAD_OK, or the error rad_add_polygon would return for it (RAD_ERR_ARG, RAD_ERR_RANGE,
  * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR) with the counts unchanged and PLAN->problem
- * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after
+ * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"; RAD_ERR_FULL for
+ * a lattice of more than 32768 elements a side): after
  * rad_add_polygon fails, the same call tells which value was out of range. */
 int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
                      const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan);
@@ -469,6 +485,14 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 /* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
  * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
+
+/* Element E's centre (the mean of its vertices) into CENTRE and its area into AREA
+ * (as rad_energy_t: Q16.16 in int64 in the fixed build, so that the caller's area may
+ * pass 32768 square units), both in the caller's units, converted from the core's
+ * scale (exact where the core scaled up; to within the core's rounding, 2^-16 of a
+ * unit at its scale, where it scaled down). Either may be NULL. Returns RAD_OK or
+ * RAD_ERR_ARG. */
+int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_energy_t *area);
 
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
  * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
