@@ -125,7 +125,8 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
                      int sh, int flags, rad__eye_t *e)
 {
     uint32_t sat = 0;
-    if (!s || !g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
+    RAD__CHECK_SCENE(s);
+    if (!g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
         return RAD_ERR_ARG;
     if (!s->solving) return RAD_ERR_STATE;
     e->c = rad__scale2_vec(*point, s->length_shift, &sat);

@@ -571,14 +571,15 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
 /* ---- one shot's hemi-cube in parts, for threads in the caller ------------------ */
 
 /* A part's buffer: its head, a row of id steps, then depth and ids laid out as all
- * five faces. RAD_PART_BYTES counts 48 bytes for the head. */
-typedef char
-    rad__part_head_fits[sizeof(rad__part_head_t) <= 48u && sizeof(rad__part_head_t) % 8u == 0 ? 1
-                                                                                              : -1];
+ * five faces. RAD_PART_BYTES counts RAD__PART_HEAD bytes for the head. */
+typedef char rad__part_head_fits[sizeof(rad__part_head_t) <= RAD__PART_HEAD &&
+                                         RAD__PART_HEAD % 8u == 0 && RAD_PART_BYTES(0) == RAD__PART_HEAD
+                                     ? 1
+                                     : -1];
 
 static uint32_t *part_steps(void *buf)
 {
-    return (uint32_t *)(void *)((unsigned char *)buf + 48);
+    return (uint32_t *)(void *)((unsigned char *)buf + RAD__PART_HEAD);
 }
 static uint32_t *part_z(const rad_scene_t *s, void *buf)
 {
@@ -640,6 +641,9 @@ int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned npa
     for (r = 0; r < nreg; r++) half_row_bounds(s, cv.ids, &reg[r], cv.z);
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
+    h->shot = s->shot_serial;
+    h->part = part;
+    h->nparts = nparts;
     h->state = RAD__PART_RENDERED;
     return (int)st.raster_calls;
 }

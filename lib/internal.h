@@ -204,12 +204,17 @@ typedef struct {
     uint32_t calls, state;
     uint64_t pixels;
     rad_energy_t u[3];
-    uint32_t saturations, pad;
+    uint32_t saturations;
+    uint32_t shot;         /* rad_scene_t.shot_serial of the shot it was rendered for */
+    uint32_t part, nparts; /* rad_shot_part's */
 } rad__part_head_t;
-#define RAD__PART_RENDERED 0u
-#define RAD__PART_AIMED    1u
-#define RAD__PART_RECEIVED 2u
-#define RAD__PART_SHOT     3u
+#define RAD__PART_HEAD 56u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
+/* States are words a zeroed or unwritten buffer is unlikely to hold, so that a part
+ * never rendered is told from one rendered (rad_shot_end returns RAD_ERR_STATE). */
+#define RAD__PART_RENDERED 0x72610001u
+#define RAD__PART_AIMED    0x72610002u
+#define RAD__PART_RECEIVED 0x72610003u
+#define RAD__PART_SHOT     0x72610004u
 
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
  * cube's rows into BUF (RAD_PART_BYTES); merging the elements [E0, E1) fills s->acc
@@ -235,6 +240,20 @@ void rad__freeze(rad_scene_t *s);
 rad_rgb_t rad__emission(rad_scene_t *s, const rad_surface_t *sf);
 /* The ambient radiosity per channel in the core's scale (solve.c). */
 void rad__ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat);
+
+/* Whether rad_init set S up: its self is its own address (no zeroed or copied
+ * struct, and no garbage short of its own address, holds that). */
+static inline int rad__live(const rad_scene_t *s)
+{
+    return s->self == (const void *)s;
+}
+/* The first check of every public call taking scene S: RAD_ERR_ARG when S is null,
+ * RAD_ERR_STATE when rad_init has not set it up. */
+#define RAD__CHECK_SCENE(s)                     \
+    do {                                        \
+        if (!(s)) return RAD_ERR_ARG;           \
+        if (!rad__live(s)) return RAD_ERR_STATE; \
+    } while (0)
 
 /* Channel K (0 r, 1 g, 2 b) of C. */
 static inline rad_real_t rad__channel(const rad_rgb_t *c, unsigned k)

@@ -12,7 +12,14 @@
 
 #define MIN_AREA       RAD__Q(1.0 / 4096.0)  /* smallest surface accepted, in units^2 */
 #define MIN_SMALL      RAD__Q(1.0 / 65536.0) /* with RAD_SMALL_FACES, for reflectors (rad.h) */
-#define MIN_ELEMENT    RAD__Q(1.0 / 16.0)    /* smallest max_element setting */
+#define MIN_ELEMENT    RAD__Q(1.0 / 65536.0) /* smallest max_element setting: 1 LSB */
+#define MAX_SETTING    RAD__Q(2 * RAD_INPUT_LIMIT) /* largest max_element, max_patch */
+/* Elements along a polygon's side: lattices of up to 2^15 a side keep every count of
+ * rad_surface_t in 16-bit indices and the vertex count, (2^15 + 1)^2, in 32 bits. */
+#define MAX_SIDE       32768u
+/* The geometry's shift while it is added: down to 2^-7, for coordinates of up to
+ * RAD_INPUT_LIMIT (2^13) within RAD_COORD_LIMIT (2^6). */
+#define MIN_LENGTH_SHIFT (-7)
 /* A group's area grows by less than MIN_AREA a join: below this it cannot overflow. */
 #define MAX_GROUP_AREA RAD__Q(16384.0)
 
@@ -50,11 +57,12 @@ static int resolve_config(rad_config_t *c, const char **why)
         return RAD_ERR_ARG;
     /* Checked before the default patch size is derived from it: 4 * max_element of an
      * out-of-range value would overflow. */
-    *why = "max_element outside 1/16..2 RAD_COORD_LIMIT";
-    if (!in_range(c->max_element, MIN_ELEMENT, RAD__Q(2 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
-    if (c->max_patch == 0) c->max_patch = 4 * c->max_element;
-    *why = "max_patch outside max_element..4 RAD_COORD_LIMIT";
-    if (!in_range(c->max_patch, c->max_element, RAD__Q(4 * RAD_COORD_LIMIT))) return RAD_ERR_ARG;
+    *why = "max_element outside 2^-16..2 RAD_INPUT_LIMIT";
+    if (!in_range(c->max_element, MIN_ELEMENT, MAX_SETTING)) return RAD_ERR_ARG;
+    if (c->max_patch == 0)
+        c->max_patch = c->max_element <= MAX_SETTING / 4 ? 4 * c->max_element : MAX_SETTING;
+    *why = "max_patch outside max_element..2 RAD_INPUT_LIMIT";
+    if (!in_range(c->max_patch, c->max_element, MAX_SETTING)) return RAD_ERR_ARG;
     return RAD_OK;
 }
 
@@ -104,6 +112,7 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
     if (scene_bytes != sizeof(rad_scene_t) || index_bytes != sizeof(rad_index_t) ||
         is_float != RAD_FLOAT)
         return RAD_ERR_ABI;
+    if (s) s->self = 0; /* refused by every call unless this succeeds */
     if (!s || !pools || !pools->surfaces || !pools->patches || !pools->elements ||
         !pools->vertices || !pools->work)
         return RAD_ERR_ARG;
@@ -119,6 +128,8 @@ int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *c
         if (rc < 0) return rc;
         if ((z.cfg.flags & RAD_NO_BANDS) && z.band_rows) return RAD_ERR_WORK;
     }
+    z.shot_patch = RAD_INDEX_NONE;
+    z.self = s;
     *s = z;
     return RAD_OK;
 }
@@ -130,18 +141,60 @@ static int vec_eq(rad_vec3_t a, rad_vec3_t b)
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
 
-/* Normal and area (at least MIN) of polygon V (3 or 4 vertices), or a negative
- * RAD_ERR_* with *WHY. */
-static int check_polygon(const rad_vec3_t *v, unsigned n, rad_real_t min, rad_vec3_t *normal,
+static rad_real_t larger_abs(rad_real_t m, rad_real_t v)
+{
+    if (v < 0) v = -v;
+    return v > m ? v : m;
+}
+
+/* The largest coordinate magnitude of the N points V. */
+static rad_real_t points_extent(const rad_vec3_t *v, unsigned n)
+{
+    rad_real_t m = 0;
+    unsigned i;
+    for (i = 0; i < n; i++) m = larger_abs(larger_abs(larger_abs(m, v[i].x), v[i].y), v[i].z);
+    return m;
+}
+
+/* The largest shift in MIN_LENGTH_SHIFT..0 that takes magnitude M within
+ * RAD_COORD_LIMIT (M <= RAD_INPUT_LIMIT). */
+static int fit_shift(rad_real_t m)
+{
+    int g = 0;
+    while (g > MIN_LENGTH_SHIFT && rad__scale2(m, g, 0) > RAD__Q(RAD_COORD_LIMIT)) g--;
+    return g;
+}
+
+/* Point V times 2^G: exact upwards, rounded down (rad__floor2) downwards. */
+static rad_vec3_t scale_point(rad_vec3_t v, int g)
+{
+    if (g >= 0) return rad__scale2_vec(v, g, 0);
+    v.x = rad__floor2(v.x, (unsigned)-g);
+    v.y = rad__floor2(v.y, (unsigned)-g);
+    v.z = rad__floor2(v.z, (unsigned)-g);
+    return v;
+}
+
+/* Normal and area (at least MIN) of polygon V (3 or 4 vertices, the caller's, within
+ * +-RAD_INPUT_LIMIT), measured at the polygon's own scale (its coordinates times
+ * 2^fit_shift: the caller's within +-RAD_COORD_LIMIT), or a negative RAD_ERR_* with
+ * *WHY. */
+static int check_polygon(const rad_vec3_t *in, unsigned n, rad_real_t min, rad_vec3_t *normal,
                          rad_real_t *area, const char **why)
 {
-    const rad_real_t lim = RAD__Q(RAD_COORD_LIMIT);
+    const rad_real_t lim = RAD__Q(RAD_INPUT_LIMIT);
+    rad_vec3_t v[4];
     unsigned i;
+    int g;
     for (i = 0; i < n; i++) {
-        *why = "coordinate beyond +-RAD_COORD_LIMIT";
-        if (!in_range(v[i].x, -lim, lim) || !in_range(v[i].y, -lim, lim) ||
-            !in_range(v[i].z, -lim, lim))
+        *why = "coordinate beyond +-RAD_INPUT_LIMIT";
+        if (!in_range(in[i].x, -lim, lim) || !in_range(in[i].y, -lim, lim) ||
+            !in_range(in[i].z, -lim, lim))
             return RAD_ERR_RANGE;
+    }
+    g = fit_shift(points_extent(in, n));
+    for (i = 0; i < n; i++) v[i] = scale_point(in[i], g);
+    for (i = 0; i < n; i++) {
         *why = "two consecutive vertices equal";
         if (vec_eq(v[i], v[(i + 1) % n])) return RAD_ERR_DEGENERATE;
     }
@@ -198,9 +251,10 @@ static rad_real_t max2(rad_real_t a, rad_real_t b)
  * of a few, so a wall of 2,000 of them meshed into 1.15 million. With s its elements
  * number about 4 AREA / max_element^2, as a quad's. s >= l whenever the triangle's
  * height over its longest side is at least half that side (4 AREA = 2 l h >= l^2), so
- * any triangle but a sliver is cut by l, as it always was. */
-static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, int emits,
-                      rad_real_t area, plan_t *p)
+ * any triangle but a sliver is cut by l, as it always was. Returns 0 when a side would
+ * need more than MAX_SIDE elements, else 1. */
+static int plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, int emits,
+                     rad_real_t area, plan_t *p)
 {
     static const plan_t zero = {0, 0, 0, 0, 0, 0, 0};
     rad_real_t me = cfg->max_element, mp = emits ? me : cfg->max_patch;
@@ -212,6 +266,7 @@ static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, 
         p->pv = rad__ceil_div(lv, mp, 1);
         p->ku = rad__ceil_div(lu, me, p->pu);
         p->kv = rad__ceil_div(lv, me, p->pv);
+        if ((uint64_t)p->pu * p->ku > MAX_SIDE || (uint64_t)p->pv * p->kv > MAX_SIDE) return 0;
         p->patches = p->pu * p->pv;
         p->elements = p->patches * p->ku * p->kv;
         p->vertices = (p->pu * p->ku + 1u) * (p->pv * p->kv + 1u);
@@ -224,11 +279,13 @@ static void plan_mesh(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n, 
         if (s < l) l = s;
         p->pu = p->pv = rad__ceil_div(l, mp, 1);
         p->ku = p->kv = rad__ceil_div(l, me, p->pu);
+        if ((uint64_t)p->pu * p->ku > MAX_SIDE) return 0;
         m = p->pu * p->ku;
         p->patches = p->pu * p->pu;
         p->elements = m * m;
         p->vertices = (m + 1u) * (m + 2u) / 2u;
     }
+    return 1;
 }
 
 static int args_ok(const rad_vec3_t *v, unsigned n)
@@ -250,7 +307,9 @@ static int plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n
     rc = check_polygon(v, n, (cfg->flags & RAD_SMALL_FACES) && !emits ? MIN_SMALL : MIN_AREA,
                        normal, area, why);
     if (rc < 0) return rc;
-    plan_mesh(cfg, v, n, emits, *area, plan);
+    *why = "more than 32768 elements along a side (max_element, max_patch)";
+    if (!plan_mesh(cfg, v, n, emits, *area, plan)) return RAD_ERR_FULL;
+    *why = "";
     return RAD_OK;
 }
 
@@ -593,12 +652,6 @@ static int pick_shift(rad_real_t v, rad_real_t target, int lo, int hi)
     return n;
 }
 
-static rad_real_t larger_abs(rad_real_t m, rad_real_t v)
-{
-    if (v < 0) v = -v;
-    return v > m ? v : m;
-}
-
 /* The largest coordinate magnitude, in the caller's units: every vertex is a convex
  * combination of its surface's corners, which are the caller's own vertices times
  * 2^length_shift exactly (the lattice's weights at a corner are den, 0, 0...). */
@@ -642,7 +695,7 @@ static void remesh(rad_scene_t *s, int g)
         plan_t p = {0, 0, 0, 0, 0, 0, 0};
         rad_vec3_t c[4];
         unsigned j, n = rad__surface_corners(s, sf, k);
-        for (j = 0; j < n; j++) c[j] = rad__scale2_vec(s->pools.vertices[k[j]], d, 0);
+        for (j = 0; j < n; j++) c[j] = scale_point(s->pools.vertices[k[j]], d);
         p.pu = sf->pu;
         p.pv = sf->pv;
         p.ku = sf->ku;
@@ -680,7 +733,10 @@ static int pick_power_shift(const rad_scene_t *s)
 void rad__scale_geometry(rad_scene_t *s)
 {
     uint32_t e, small = 0;
-    set_scale(s, pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT), s->power_shift);
+    /* a scene beyond +-RAD_COORD_LIMIT was fitted within it as it was added */
+    int g = s->length_shift < 0 ? s->length_shift
+                                : pick_shift(extent(s), SCALE_HALF, 0, MAX_LENGTH_SHIFT);
+    set_scale(s, g, s->power_shift);
     for (e = 0; e < s->n_elements; e++) small += s->pools.elements[e].area < SMALL_AREA;
     s->stats.small_elements = small;
 }
@@ -702,18 +758,31 @@ void rad__freeze(rad_scene_t *s)
     s->solving = 1;
 }
 
+/* The length shift for adding polygon V (N vertices) to S: the scene's while it is
+ * below 0 (the scene fitted within +-RAD_COORD_LIMIT as it was added), else 0 (the
+ * caller's units, as the scene was added), and lower where V needs it (fit_shift).
+ * The shift only falls while polygons are added, and coordinates scale down by
+ * rounding down, so the geometry does not depend on the order of the polygons. */
+static int add_shift(const rad_scene_t *s, const rad_vec3_t *v, unsigned n)
+{
+    int g = fit_shift(points_extent(v, n));
+    return s->length_shift < g ? s->length_shift : g;
+}
+
 int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission)
 {
     static const rad_rgb_t black = {0, 0, 0};
     rad_surface_t *sf;
-    rad_vec3_t normal;
+    rad_vec3_t normal, c[4];
     rad_real_t area;
     plan_t plan;
     const char *why;
-    int rc;
+    unsigned k;
+    int rc, g;
 
-    if (!s || !args_ok(v, n)) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!args_ok(v, n)) return RAD_ERR_ARG;
     if (s->solving) return RAD_ERR_STATE;
     rc = plan_polygon(&s->cfg, v, n, reflectance, emission, &normal, &area, &plan, &why);
     if (rc < 0) return rc;
@@ -723,7 +792,9 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
         !fits(s->n_vertices, plan.vertices, s->pools.max_vertices))
         return RAD_ERR_FULL;
 
-    set_scale(s, 0, 0); /* new polygons come in the caller's units (after a restart) */
+    g = add_shift(s, v, n);
+    set_scale(s, g, 0);
+    for (k = 0; k < n; k++) c[k] = scale_point(v[k], g);
     sf = &s->pools.surfaces[s->n_surfaces];
     sf->normal = normal;
     sf->reflectance = reflectance ? *reflectance : black;
@@ -735,7 +806,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
     sf->pv = (rad_index_t)plan.pv;
     sf->ku = (rad_index_t)plan.ku;
     sf->kv = (rad_index_t)plan.kv;
-    mesh_surface(s, s->n_surfaces, v, n, &plan);
+    mesh_surface(s, s->n_surfaces, c, n, &plan);
     sf->n_patches = (rad_index_t)(s->n_patches - sf->first_patch);
     sf->n_elements = (rad_index_t)(s->n_elements - sf->first_element);
     sf->n_vertices = (rad_index_t)(s->n_vertices - sf->first_vertex);
@@ -748,14 +819,16 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
 {
     static const rad_rgb_t black = {0, 0, 0};
     rad_surface_t *sf, *first;
-    rad_vec3_t normal;
+    rad_vec3_t normal, c[4];
     rad_real_t area;
     plan_t plan;
     const char *why;
     uint32_t p;
-    int rc;
+    unsigned k;
+    int rc, g;
 
-    if (!s || !args_ok(v, n) || !(s->cfg.flags & RAD_SMALL_FACES)) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!args_ok(v, n) || !(s->cfg.flags & RAD_SMALL_FACES)) return RAD_ERR_ARG;
     if (s->solving || s->n_patches == 0) return RAD_ERR_STATE;
     p = s->n_patches - 1u;
     first = &s->pools.surfaces[s->pools.patches[p].surface];
@@ -769,7 +842,9 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
         !fits(s->n_vertices, n, s->pools.max_vertices))
         return RAD_ERR_FULL;
 
-    set_scale(s, 0, 0); /* as rad_add_polygon: the caller's units */
+    g = add_shift(s, v, n); /* as rad_add_polygon */
+    set_scale(s, g, 0);
+    for (k = 0; k < n; k++) c[k] = scale_point(v[k], g);
     sf = &s->pools.surfaces[s->n_surfaces];
     sf->normal = normal;
     sf->reflectance = reflectance ? *reflectance : black;
@@ -779,7 +854,7 @@ int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_
     sf->first_element = (rad_index_t)s->n_elements;
     sf->first_vertex = (rad_index_t)s->n_vertices;
     sf->pu = sf->pv = sf->ku = sf->kv = 1;
-    mesh_joined(s, s->n_surfaces, v, n, p);
+    mesh_joined(s, s->n_surfaces, c, n, p);
     sf->n_elements = 1;
     sf->n_vertices = (rad_index_t)n;
     element_rho_reset(s, sf);
@@ -802,7 +877,8 @@ static int grouped(const rad_scene_t *s, uint32_t surf)
 int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
                     const rad_rgb_t *emission)
 {
-    if (!s || surf >= s->n_surfaces) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (surf >= s->n_surfaces) return RAD_ERR_ARG;
     if (!rgb_ok(reflectance, RAD__ONE, 1) || !rgb_ok(emission, RAD__Q(RAD_EMISSION_LIMIT), 0))
         return RAD_ERR_RANGE;
     if (rgb_any(emission) && grouped(s, surf)) return RAD_ERR_RANGE;
@@ -818,7 +894,8 @@ int rad_set_surface(rad_scene_t *s, uint32_t surf, const rad_rgb_t *reflectance,
 int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
 {
     uint32_t i;
-    if (!s || !rho) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!rho) return RAD_ERR_ARG;
     if (!aligned(rho, offsetof(align_rgb_t, t))) return RAD_ERR_ALIGN;
     if (s->solving || s->element_rho) return RAD_ERR_STATE;
     s->element_rho = rho;
@@ -828,7 +905,8 @@ int rad_use_element_reflectance(rad_scene_t *s, rad_rgb_t *rho)
 
 int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *reflectance)
 {
-    if (!s || !reflectance || e >= s->n_elements) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!reflectance || e >= s->n_elements) return RAD_ERR_ARG;
     if (!rgb_ok(reflectance, RAD__ONE, 1)) return RAD_ERR_RANGE;
     if (!s->element_rho) return RAD_ERR_STATE;
     s->element_rho[e] = *reflectance;
@@ -838,7 +916,8 @@ int rad_set_element_reflectance(rad_scene_t *s, uint32_t e, const rad_rgb_t *ref
 
 int rad_restart(rad_scene_t *s)
 {
-    if (!s) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    s->shot_patch = RAD_INDEX_NONE;
     s->power_shift = (int8_t)pick_power_shift(s); /* new emissions may need another */
     start_all(s);
     s->solving = 0;

@@ -9,12 +9,27 @@ rad_ff_t rad_ff_from_code(uint16_t code)
     return rad__ff_from_q30(rad__ff_decode(code));
 }
 
+/* Whether the first N rows of ROWS are rows of scene S: offsets from 0, rising, within
+ * max_entries, and every id one of S's elements (a pass over the entries). */
+static int rows_valid(const rad_scene_t *s, const rad_rows_t *rows, uint32_t n)
+{
+    uint32_t p, i;
+    if (rows->start[0] != 0) return 0;
+    for (p = 0; p < n; p++)
+        if (rows->start[p + 1] < rows->start[p] || rows->start[p + 1] > rows->max_entries) return 0;
+    for (i = 0; i < rows->start[n]; i++)
+        if (rows->ids[i] >= s->n_elements) return 0;
+    return 1;
+}
+
 int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
 {
     uint32_t done = 0;
-    if (!s || !rows || !rows->start || !rows->ids || !rows->ffs || rows->max_rows < s->n_patches ||
+    RAD__CHECK_SCENE(s);
+    if (!rows || !rows->start || !rows->ids || !rows->ffs || rows->max_rows < s->n_patches ||
         rows->n_rows > s->n_patches)
         return RAD_ERR_ARG;
+    if (rows->n_rows > 0 && !rows_valid(s, rows, rows->n_rows)) return RAD_ERR_ARG;
     rad__freeze(s); /* rows describe this geometry: no more polygons */
     if (rows->n_rows == 0) rows->start[0] = 0;
     while (done < count && rows->n_rows < s->n_patches) {
@@ -36,15 +51,21 @@ int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count)
     return (int)done;
 }
 
+/* RAD_OK for the rows of every patch of S, RAD_ERR_STATE while rows are missing,
+ * RAD_ERR_ARG for rows that are not S's (rows_valid). */
 static int rows_ready(const rad_scene_t *s, const rad_rows_t *rows)
 {
-    return rows && rows->start && rows->ids && rows->ffs && rows->n_rows == s->n_patches;
+    if (!rows || !rows->start || !rows->ids || !rows->ffs) return RAD_ERR_ARG;
+    if (rows->n_rows != s->n_patches) return RAD_ERR_STATE;
+    return rows_valid(s, rows, rows->n_rows) ? RAD_OK : RAD_ERR_ARG;
 }
 
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
-    if (!s || !rows) return RAD_ERR_ARG;
-    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    int rc;
+    RAD__CHECK_SCENE(s);
+    if ((rc = rows_ready(s, rows)) < 0) return rc;
+    s->shot_patch = RAD_INDEX_NONE; /* as rad_shoot */
     return rad__shoot(s, rows, max_shots, tol);
 }
 
@@ -87,11 +108,14 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
 {
     uint32_t np, k, it, e;
     rad_real_t *b;
-    if (!s || !rows || !matrix) return RAD_ERR_ARG;
+    int rc;
+    RAD__CHECK_SCENE(s);
+    if (!rows || !matrix) return RAD_ERR_ARG;
     np = s->n_patches;
     /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
-    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    if ((rc = rows_ready(s, rows)) < 0) return rc;
+    s->shot_patch = RAD_INDEX_NONE;
     rad__freeze(s);
     rad__scale_power(s); /* for the emissions now: this solve starts from them alone */
     assemble(s, rows, matrix);
@@ -147,7 +171,8 @@ int rad_mix(rad_scene_t *s, const rad_rgb_t *const *groups, const rad_rgb_t *int
             uint32_t n_groups, rad_rgb_t *out)
 {
     uint32_t e, g, *sat;
-    if (!s || !groups || !intensity || !out) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!groups || !intensity || !out) return RAD_ERR_ARG;
     for (g = 0; g < n_groups; g++)
         if (!groups[g]) return RAD_ERR_ARG;
     sat = &s->stats.saturations;

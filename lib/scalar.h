@@ -590,6 +590,17 @@ static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
     for (; n < 0; n++) f *= 0.5f;
     return v * f;
 }
+/* V times 2^-N, 0 <= N <= 16, rounded down (exact in float). */
+static inline rad_real_t rad__floor2(rad_real_t v, unsigned n)
+{
+    return rad__scale2(v, -(int)n, 0);
+}
+/* Area A (units^2) times 2^(2N), -16 <= N <= 16, in energy's format (the caller's
+ * area, which may pass rad_real_t's range). */
+static inline rad_energy_t rad__area_scale(rad_real_t a, int n)
+{
+    return rad__scale2(a, 2 * n, 0);
+}
 /* (a U + b V) / c: U turned toward V by the angle whose cosine is a / c. */
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {
@@ -854,6 +865,19 @@ static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
 {
     if (n < 0) return (rad_real_t)rad__shr_round(v, (unsigned)-n);
     return rad__sat32((int64_t)v * ((int64_t)1 << n), sat);
+}
+/* floor(V / 2^N), 0 <= N <= 16: rounding down composes (floor(floor(v / a) / b) =
+ * floor(v / ab)), so a scale reached in steps is the scale reached at once. */
+static inline rad_real_t rad__floor2(rad_real_t v, unsigned n)
+{
+    return v >= 0 ? v >> n : -(rad_real_t)(((uint32_t)-(int64_t)v + (1u << n) - 1u) >> n);
+}
+/* Area A (Q16.16) times 2^(2N), -16 <= N <= 16, as Q16.16 in int64 (exact upwards,
+ * rounded to nearest downwards). */
+static inline rad_energy_t rad__area_scale(rad_real_t a, int n)
+{
+    if (n < 0) return rad__shr_round(a, (unsigned)(-2 * n));
+    return (rad_energy_t)a * ((int64_t)1 << (2 * n));
 }
 static inline rad_vec3_t rad__turn(rad_vec3_t u, rad_vec3_t v, int a, int b, int c)
 {

@@ -32,8 +32,26 @@ static rad_rgb_t to_caller(rad_scene_t *s, int flags, rad_rgb_t b)
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
 {
     rad_rgb_t amb;
-    if (!s || !out || e >= s->n_elements) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!out || e >= s->n_elements) return RAD_ERR_ARG;
     *out = to_caller(s, flags, display(s, e, shade_ambient(s, flags, &amb)));
+    return RAD_OK;
+}
+
+int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_energy_t *area)
+{
+    const rad_element_t *el;
+    RAD__CHECK_SCENE(s);
+    if (e >= s->n_elements) return RAD_ERR_ARG;
+    el = &s->pools.elements[e];
+    if (centre) {
+        static const uint32_t one[4] = {1, 1, 1, 1};
+        rad_vec3_t c[4];
+        unsigned k, n = rad__nverts(el);
+        for (k = 0; k < n; k++) c[k] = s->pools.vertices[el->v[k]];
+        *centre = rad__scale2_vec(rad__wavg(c, one, n, n), -s->length_shift, &s->stats.saturations);
+    }
+    if (area) *area = rad__area_scale(el->area, -s->length_shift);
     return RAD_OK;
 }
 
@@ -43,7 +61,8 @@ int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
     const rad_rgb_t *pamb;
     rad_ff_t *wsum;
     uint32_t e, v, k;
-    if (!s || !out || n < s->n_vertices) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!out || n < s->n_vertices) return RAD_ERR_ARG;
     pamb = shade_ambient(s, flags, &amb);
     /* Two passes over the elements: the weight sums per vertex (in the accumulator
      * scratch, sized for max(elements, vertices)), then each element's share. */
@@ -116,7 +135,8 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     rad_real_t kx, ky;
     uint32_t e, i, sat = 0;
 
-    if (!s || !vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
+    RAD__CHECK_SCENE(s);
+    if (!vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
         h > RAD_MAX_RASTER)
         return RAD_ERR_ARG;
     /* The camera in the core's scale (exact: a shift; saturation is out of range). */

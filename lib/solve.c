@@ -362,8 +362,9 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
-    if (!s) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
     if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
+    s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
     return rad__shoot(s, 0, max_shots, tol);
 }
 
@@ -371,7 +372,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
 {
     static const rad_real_t none[3] = {0, 0, 0};
     rad_energy_t total;
-    if (!s) return 0;
+    if (!s || !rad__live(s)) return 0;
     select_shooter(s, none, &total);
     return rad__energy_ratio(total, s->emitted);
 }
@@ -385,7 +386,8 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 {
     rad_real_t amb[3];
     rad_rgb_t a;
-    if (!s || !out) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!out) return RAD_ERR_ARG;
     ambient(s, amb, &s->stats.saturations, 0);
     a.r = amb[0];
     a.g = amb[1];
@@ -397,7 +399,8 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out)
 int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out)
 {
     uint32_t e;
-    if (!s || !out || p >= s->n_patches) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!out || p >= s->n_patches) return RAD_ERR_ARG;
     if (!s->solving) rad__scale_geometry(s); /* the row the solver will use */
     rad__hemicube(s, p);
     for (e = 0; e < s->n_elements; e++) out[e] = s->acc[e];
@@ -409,7 +412,9 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     rad_energy_t total;
     rad_real_t amb[3];
     uint32_t p;
-    if (!s || !patch) return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!patch) return RAD_ERR_ARG;
+    s->shot_patch = RAD_INDEX_NONE;
     if (s->emitted == 0) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
@@ -417,6 +422,8 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
     shot_level(s, p, total);
+    s->shot_patch = p;
+    s->shot_serial++; /* buffers rendered for an earlier shot are stale */
     *patch = p;
     return 1;
 }
@@ -424,9 +431,11 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
                   size_t bytes)
 {
-    if (!s || !buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
+    RAD__CHECK_SCENE(s);
+    if (!buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
+    if (patch != s->shot_patch) return RAD_ERR_STATE;
     return rad__cube_part(s, patch, part, nparts, buf);
 }
 
@@ -436,14 +445,20 @@ static rad__part_head_t *head(void *const *bufs, unsigned k)
     return (rad__part_head_t *)bufs[k];
 }
 
-/* The checks of rad_shot_aim, _receive_part and _end. */
+/* The checks of rad_shot_aim, _receive_part and _end: the arguments, then the shot
+ * begun for PATCH, and BUFS its NPARTS parts in order, rendered for it. */
 static int shot_args(const rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts)
 {
     unsigned k;
-    if (!s || !bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0)
-        return RAD_ERR_ARG;
+    RAD__CHECK_SCENE(s);
+    if (!bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++)
-        if (!bufs[k]) return RAD_ERR_ARG;
+        if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
+    if (patch != s->shot_patch) return RAD_ERR_STATE;
+    for (k = 0; k < nparts; k++) {
+        const rad__part_head_t *h = (const rad__part_head_t *)bufs[k];
+        if (h->shot != s->shot_serial || h->part != k || h->nparts != nparts) return RAD_ERR_STATE;
+    }
     return RAD_OK;
 }
 
@@ -548,5 +563,6 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
         s->stats.saturations += h->saturations;
         h->state = RAD__PART_SHOT;
     }
+    s->shot_patch = RAD_INDEX_NONE;
     return 1;
 }

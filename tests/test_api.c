@@ -6,6 +6,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
@@ -121,8 +122,11 @@ static void test_init_errors(void **st)
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.res = RAD_MAX_RES + 2;
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_element = Q(1.0 / 32);         /* below 1/16 */
+    c = cfg; c.max_element = -1;                  /* below one LSB */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_element = 1; c.max_patch = 0;  /* one LSB: any unit is the caller's */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
+    assert_int_equal(s.cfg.max_patch, 4);
     c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     c = cfg; c.flags = 2;                         /* no such flag */
@@ -131,8 +135,11 @@ static void test_init_errors(void **st)
      * formed (it overflowed in the fixed build: found by fuzz_core). */
     c = cfg; c.max_patch = 0; c.max_element = -Q(16384.0);
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0);
+    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0) + 1; /* 2 RAD_INPUT_LIMIT */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
+    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0); /* the default patch: the most */
+    assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
+    assert_int_equal(s.cfg.max_patch, Q(16384.0));
     /* Work: the table and accumulators fit, but not one row of a face. */
     p = g.p; p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_WORK);
@@ -165,10 +172,10 @@ static void test_add_errors(void **st)
     assert_int_equal(rad_add_polygon(&s, NULL, 4, NULL, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_add_polygon(&s, ok, 2, NULL, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_add_polygon(&s, ok, 5, NULL, NULL), RAD_ERR_ARG);
-    /* Coordinates: 64.0 is the limit, one LSB more is out. */
-    v[0] = V(63, 0, 0); v[1] = V(64, 0, 0); v[2] = V(63, 1, 0);
+    /* Coordinates: RAD_INPUT_LIMIT (8192.0) is the limit, one LSB more is out. */
+    v[0] = V(8184, 0, 0); v[1] = V(8192, 0, 0); v[2] = V(8184, 8, 0);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), 0);
-    memcpy(v, ok, sizeof v); v[1].y = Q(64.0) + 1;
+    memcpy(v, ok, sizeof v); v[1].y = Q(8192.0) + 1;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
     memcpy(v, ok, sizeof v); v[0].z = INT32_MIN;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
@@ -198,6 +205,20 @@ static void test_add_errors(void **st)
     v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
     CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0,
                  "rad_add_polygon of a bow-tie quad: an error");
+    /* Far out, a polygon is measured at its own scale (2^-7 at 8192, rad.h): a
+     * triangle of area 0.5 there is 2^-15 square units, below 1/4096. */
+    v[0] = V(8000, 0, 0); v[1] = V(8001, 0, 0); v[2] = V(8000, 1, 0);
+    assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
+    /* A lattice of more than 32768 elements a side: no pool holds it. */
+    {
+        rad_config_t fine = cfg;
+        rad_plan_t plan = {0};
+        fine.max_element = 1; /* 2^-16 units: 65536 elements along the unit quad's side */
+        fine.max_patch = 0;
+        CHECK_INT_EQ(rad_plan_polygon(&fine, ok, 4, NULL, NULL, &plan), RAD_ERR_FULL,
+                     "rad_plan_polygon of a unit quad at 2^-16 a side");
+        CHECK_CONTAINS(plan.problem, "32768", "rad_plan_polygon's problem");
+    }
     /* Nothing was added by any of these, except the in-range triangle above. */
     assert_int_equal(s.n_surfaces, 1);
     /* A slightly bent quad (1/200 of its side) is accepted as planar. */
@@ -476,6 +497,230 @@ static void test_dirty_buffers(void **st)
     }
 }
 
+/* Every call taking a scene, on scene S: how many of them refused it with RAD_ERR_STATE
+ * (printed one by one; rad_unshot_fraction, which returns a value, counts when 0). The
+ * arguments are otherwise valid for a scene with at least one patch and element. */
+static int refused_calls(rad_scene_t *s, const char *what)
+{
+    static rad_rgb_t rho[NE + NP], vrgb[NV], fb[4 * 4], groups0[NE], out[NE];
+    static rad_ff_t ff[NE], matrix[RAD_GS_ENTRIES(4)];
+    static uint32_t zb[4 * 4], start[NP + 1];
+    static rad_index_t ids[4];
+    static uint16_t ffs[4];
+    static unsigned char gwork[RAD_GATHER_SH_BYTES(8)];
+    static uint64_t part_mem[RAD_PART_BYTES(32) / 8 + 1];
+    rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}, pt = V(0, 0, 0), up = V(0, 1, 0);
+    rad_camera_t cam = {.eye = {0, 0, Q(3)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
+                        .tan_half_fov = Q(1.0)};
+    rad_rows_t rows = {start, ids, ffs, NP, 4, 0};
+    const rad_rgb_t *gr[1] = {groups0};
+    void *bufs[1] = {part_mem};
+    rad_gather_t g, gs;
+    rad_rgb_t c;
+    uint32_t patch = 0;
+    int rc[26], n = 0, k, refused = 0;
+    assert_int_equal(rad_gather_init(&g, 8, 0, gwork, sizeof gwork), RAD_OK);
+    rc[n++] = rad_add_polygon(s, tri, 3, &grey, NULL);
+    rc[n++] = rad_join_polygon(s, tri, 3, &grey);
+    rc[n++] = rad_set_surface(s, 0, &grey, NULL);
+    rc[n++] = rad_use_element_reflectance(s, rho);
+    rc[n++] = rad_set_element_reflectance(s, 0, &grey);
+    rc[n++] = rad_restart(s);
+    rc[n++] = rad_shoot(s, 1, 0);
+    rc[n++] = rad_shot_begin(s, 0, &patch);
+    rc[n++] = rad_shot_part(s, 0, 0, 1, part_mem, sizeof part_mem);
+    rc[n++] = rad_shot_aim(s, 0, bufs, 1);
+    rc[n++] = rad_shot_receive_part(s, 0, bufs, 1, 0);
+    rc[n++] = rad_shot_end(s, 0, bufs, 1);
+    rc[n++] = rad_ambient(s, &c);
+    rc[n++] = rad_element_radiosity(s, 0, 0, &c);
+    rc[n++] = rad_shade_vertices(s, 0, vrgb, NV);
+    rc[n++] = rad_render(s, vrgb, &cam, fb, zb, 4, 4);
+    rc[n++] = rad_form_factors(s, 0, ff);
+    rc[n++] = rad_rows_compute(s, &rows, 1);
+    rc[n++] = rad_rows_shoot(s, &rows, 1, 0);
+    rc[n++] = rad_rows_gauss_seidel(s, &rows, matrix, RAD_GS_ENTRIES(4), 1, 0);
+    rc[n++] = rad_mix(s, gr, &grey, 1, out);
+    rc[n++] = rad_gather(s, &g, &pt, &up, RAD_INDEX_NONE, 0, &c);
+    assert_int_equal(rad_gather_init(&gs, 8, RAD_GATHER_SH, gwork, sizeof gwork), RAD_OK);
+    rc[n++] = rad_gather_sh(s, &gs, &pt, RAD_INDEX_NONE, 0, vrgb);
+    rc[n++] = rad_unshot_fraction(s) == 0 ? RAD_ERR_STATE : 1;
+    for (k = 0; k < n; k++) {
+        if (rc[k] != RAD_ERR_STATE) printf("%s: call %d returned %d\n", what, k, rc[k]);
+        refused += rc[k] == RAD_ERR_STATE;
+    }
+    printf("%s: %d of %d calls refused with RAD_ERR_STATE\n", what, refused, n);
+    return refused;
+}
+
+/* A scene rad_init never set up (memory of 0x00, 0xA5, 0xFF), one whose rad_init
+ * failed (fresh, and a working scene initialised again with a bad setting), and a copy
+ * of a working scene at another address: every call refuses each with RAD_ERR_STATE
+ * and leaves the pools untouched (rad_add_polygon divided by zero on such a scene). */
+static void test_scene_not_set_up(void **st)
+{
+    static const unsigned char fill[3] = {0x00, 0xA5, 0xFF};
+    guarded_t g;
+    rad_scene_t *s = malloc(sizeof *s), *copy = malloc(sizeof *copy);
+    rad_config_t bad = cfg;
+    int k;
+    (void)st;
+    assert_non_null(s);
+    assert_non_null(copy);
+    bad.res = 31;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    for (k = 0; k < 3; k++) {
+        memset(s, fill[k], sizeof *s);
+        s->pools = g.p; /* pools as a caller might have left them: never written */
+        CHECK_INT_EQ(refused_calls(s, "never initialised"), 24,
+                     "calls refusing a scene of bytes 0x%02X never initialised", fill[k]);
+    }
+    memset(s, 0xA5, sizeof *s);
+    assert_int_equal(rad_init(s, &g.p, &bad), RAD_ERR_ARG);
+    CHECK_INT_EQ(refused_calls(s, "init failed"), 24, "calls refusing a scene whose rad_init failed");
+    assert_int_equal(rad_init(s, &g.p, &cfg), RAD_OK);
+    add_cube(s);
+    assert_int_equal(rad_shoot(s, 5, 0), 5);
+    memcpy(copy, s, sizeof *s);
+    CHECK_INT_EQ(refused_calls(copy, "a copy"), 24, "calls refusing a copy of a working scene");
+    assert_int_equal(rad_init(s, &g.p, &bad), RAD_ERR_ARG);
+    CHECK_INT_EQ(refused_calls(s, "re-init failed"), 24,
+                 "calls refusing a working scene after a failed rad_init");
+    pools_check(&g);
+    pools_free(&g);
+    free(s);
+    free(copy);
+}
+
+/* Stored rows that are not the scene's: an element id beyond its elements, offsets
+ * falling or beyond max_entries. rad_rows_shoot and Gauss-Seidel refuse them
+ * (RAD_ERR_ARG) before changing anything, rad_rows_compute refuses to go on from them;
+ * today they read and wrote past the element pool. */
+static void test_rows_refused(void **st)
+{
+    static rad_ff_t matrix[RAD_GS_ENTRIES(NP)];
+    guarded_t g;
+    rad_scene_t s;
+    rad_rows_t rows;
+    uint64_t before;
+    uint32_t n, i, max = 16384;
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    add_cube(&s);
+    rows.start = malloc((NP + 1) * sizeof *rows.start);
+    rows.ids = malloc(max * sizeof *rows.ids);
+    rows.ffs = malloc(max * sizeof *rows.ffs);
+    rows.max_rows = NP;
+    rows.max_entries = max;
+    rows.n_rows = 0;
+    assert_non_null(rows.start); assert_non_null(rows.ids); assert_non_null(rows.ffs);
+    assert_int_equal(rad_rows_compute(&s, &rows, 2), 2);
+    /* resuming from a stored offset beyond max_entries: would write past ids */
+    i = rows.start[2];
+    rows.start[2] = max + 1;
+    assert_int_equal(rad_rows_compute(&s, &rows, 1), RAD_ERR_ARG);
+    rows.start[2] = i;
+    assert_int_equal(rad_rows_compute(&s, &rows, NP), (int)s.n_patches - 2);
+    n = rows.start[s.n_patches];
+    printf("rows: %u patches, %u entries, %u elements\n", (unsigned)s.n_patches, (unsigned)n,
+           (unsigned)s.n_elements);
+    before = checksum(&s);
+    for (i = 0; i < 4; i++) {
+        uint32_t at = i == 0 ? 0 : i == 1 ? n - 1 : n / 2, keep = rows.ids[at];
+        rows.ids[at] = (rad_index_t)(i == 3 ? RAD_INDEX_NONE : s.n_elements + i);
+        CHECK_INT_EQ(rad_rows_shoot(&s, &rows, 10, 0), RAD_ERR_ARG,
+                     "rad_rows_shoot with entry %u's id %u of %u elements", (unsigned)at,
+                     (unsigned)rows.ids[at], (unsigned)s.n_elements);
+        CHECK_INT_EQ(rad_rows_gauss_seidel(&s, &rows, matrix, RAD_GS_ENTRIES(NP), 10, 0),
+                     RAD_ERR_ARG, "Gauss-Seidel with entry %u's id %u", (unsigned)at,
+                     (unsigned)rows.ids[at]);
+        rows.ids[at] = (rad_index_t)keep;
+    }
+    i = rows.start[3];
+    rows.start[3] = rows.start[4] + 1; /* falling */
+    CHECK_INT_EQ(rad_rows_shoot(&s, &rows, 10, 0), RAD_ERR_ARG, "rad_rows_shoot, offsets falling");
+    rows.start[3] = i;
+    rows.start[s.n_patches] = max + 1; /* beyond the entries */
+    CHECK_INT_EQ(rad_rows_shoot(&s, &rows, 10, 0), RAD_ERR_ARG,
+                 "rad_rows_shoot, last offset beyond max_entries");
+    rows.start[s.n_patches] = n;
+    assert_int_equal(checksum(&s), before); /* nothing shot */
+    assert_int_equal(s.stats.shots, 0);
+    assert_int_equal(rad_rows_shoot(&s, &rows, 10, 0), 10);
+    pools_check(&g);
+    pools_free(&g);
+    free(rows.start); free(rows.ids); free(rows.ffs);
+}
+
+/* rad_shot_end (and rad_shot_aim, _receive_part, _part) out of order: RAD_ERR_STATE
+ * as rad.h says, the scene unchanged. Today rad_shot_end shot with any of these. */
+static void test_shot_end_misuse(void **st)
+{
+    enum { PARTS = 2 };
+    guarded_t g;
+    rad_scene_t s;
+    size_t bytes = RAD_PART_BYTES(32);
+    void *bufs[PARTS], *mixed[PARTS], *zero;
+    uint32_t p, other, shots;
+    uint64_t before;
+    unsigned k;
+    (void)st;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    add_cube(&s);
+    for (k = 0; k < PARTS; k++) assert_non_null(bufs[k] = calloc(1, bytes));
+    assert_non_null(zero = calloc(1, bytes));
+    /* no shot begun: zeroed buffers */
+    assert_int_equal(rad_shot_end(&s, 0, bufs, PARTS), RAD_ERR_STATE);
+    assert_int_equal(rad_shot_part(&s, 0, 0, PARTS, bufs[0], bytes), RAD_ERR_STATE);
+    assert_int_equal(rad_shot_begin(&s, 0, &p), 1);
+    other = p == 0 ? 1u : 0u;
+    before = checksum(&s);
+    shots = s.stats.shots;
+    /* parts never rendered */
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    assert_int_equal(rad_shot_aim(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    /* only part 0 rendered */
+    CHECK_INT_GE(rad_shot_part(&s, p, 0, PARTS, bufs[0], bytes), 0, "part 0");
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    /* another patch than the one begun: refused at render and at the end */
+    assert_int_equal(rad_shot_part(&s, other, 1, PARTS, bufs[1], bytes), RAD_ERR_STATE);
+    CHECK_INT_GE(rad_shot_part(&s, p, 1, PARTS, bufs[1], bytes), 0, "part 1");
+    assert_int_equal(rad_shot_end(&s, other, bufs, PARTS), RAD_ERR_STATE);
+    assert_int_equal(rad_shot_aim(&s, other, bufs, PARTS), RAD_ERR_STATE);
+    /* the same part twice, parts swapped, or fewer parts than rendered */
+    mixed[0] = bufs[0]; mixed[1] = bufs[0];
+    assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
+    mixed[0] = bufs[1]; mixed[1] = bufs[0];
+    assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
+    assert_int_equal(rad_shot_end(&s, p, bufs, 1), RAD_ERR_STATE);
+    mixed[0] = bufs[0]; mixed[1] = zero;
+    assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
+    assert_int_equal(checksum(&s), before);
+    assert_int_equal(s.stats.shots, shots);
+    /* the right call shoots, once */
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), 1);
+    assert_int_equal(s.stats.shots, shots + 1);
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    /* buffers of an earlier shot of the same patch, after a new begin */
+    before = checksum(&s);
+    assert_int_equal(rad_shot_begin(&s, 0, &p), 1);
+    for (k = 0; k < PARTS; k++) CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
+    assert_int_equal(rad_shot_begin(&s, 0, &p), 1); /* begun again: those parts are stale */
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    /* and a serial shot in between voids the shot begun */
+    for (k = 0; k < PARTS; k++) CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
+    assert_int_equal(rad_shoot(&s, 1, 0), 1);
+    assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
+    CHECK_INT_EQ(s.stats.shots, shots + 2, "shots: one in parts, one serial");
+    assert_int_not_equal(checksum(&s), before);
+    for (k = 0; k < PARTS; k++) free(bufs[k]);
+    free(zero);
+    pools_check(&g);
+    pools_free(&g);
+}
+
 static void test_strerror(void **st)
 {
     int k;
@@ -499,6 +744,9 @@ int main(void)
         cmocka_unit_test(test_saturation_counted),
         cmocka_unit_test(test_overshoot_debt),
         cmocka_unit_test(test_dirty_buffers),
+        cmocka_unit_test(test_scene_not_set_up),
+        cmocka_unit_test(test_rows_refused),
+        cmocka_unit_test(test_shot_end_misuse),
         cmocka_unit_test(test_strerror),
     };
     return cmocka_run_group_tests_name("api", tests, NULL, NULL);

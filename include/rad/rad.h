@@ -11,8 +11,9 @@
  *
  * Numbers (fixed build; the float twin, RAD_FLOAT=1, uses float for each):
  *   rad_real_t    Q16.16 in int32: coordinates, lengths, areas, reflectance, radiosity.
- *                 Coordinates must lie within +-RAD_COORD_LIMIT (64.0): then every area
- *                 (<= 128^2 * sqrt 2 = 23170) and every difference fits.
+ *                 The caller's coordinates lie within +-RAD_INPUT_LIMIT (8192.0), in any
+ *                 unit; the core keeps them within +-RAD_COORD_LIMIT (64.0), where every
+ *                 area (<= 128^2 * sqrt 2 = 23170) and every difference fits.
  *                 Reflectance in [0, 1) (at most 65535/65536). Emission in
  *                 [0, RAD_EMISSION_LIMIT] (4096.0). Radiosity saturates at 32767.99:
  *                 every clamp is counted in rad_scene_t.stats.saturations.
@@ -22,20 +23,30 @@
  *                 owing power, which its later receipts pay back.
  *   form factors  Q2.30 in uint32 (internal): the delta form factor table of a
  *                 hemi-cube sums to exactly 2^30.
- * Rounding is to nearest everywhere; no operation relies on signed overflow or on
- * right shifts of negative numbers.
+ * Rounding is to nearest everywhere but where coordinates scale down (below: rounded
+ * down); no operation relies on signed overflow or on right shifts of negative numbers.
  *
- * Scale: results do not depend on the caller's units or emission scale. When the
- * geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
+ * Scale: results do not depend on the caller's units or emission scale. A scene beyond
+ * +-RAD_COORD_LIMIT is kept at 2^length_shift of the caller's coordinates (-7..-1, the
+ * largest that fits it within the limit, rounded down: a scene of 500 units, as a room
+ * in centimetres, at 2^-3), lowered as polygons that need it are added (each polygon
+ * is checked at its own such scale: degenerate, planar, area at least 1/4096 there;
+ * rounding down composes, so the order of the polygons does not matter). Otherwise,
+ * when the geometry is first used (the first shot, rad_rows_compute, rad_form_factors), the core
  * re-meshes it with coordinates times 2^length_shift (the largest into (16, 32]), and
  * when a solve starts it scales radiosity and power by 2^power_shift (a brightest
  * emission channel below 128 into (128, 256]): powers of two, so coordinates scale
  * exactly. Radiosity does not depend on geometry scale and is linear in emission, so
  * outputs (rad_element_radiosity, rad_shade_vertices, rad_ambient) come back in the
- * caller's units, and rad_render takes its camera in them; RAD_SHADE_SCALED keeps the
- * core's scale (a dim scene's solution with all 16 fraction bits). The pools' geometry
- * (vertices, patch centres, areas) and rad_element_t.radiosity are in the core's scale.
- * stats.small_elements counts the elements whose area stays small even so.
+ * caller's units, and rad_render and rad_gather take points in them; RAD_SHADE_SCALED
+ * keeps the core's scale (a dim scene's solution with all 16 fraction bits). The pools'
+ * geometry (vertices, patch centres, areas) and rad_element_t.radiosity are in the
+ * core's scale; rad_element_geometry gives an element's centre and area in the
+ * caller's units. stats.small_elements counts the elements whose area stays small even
+ * so. Limits: the caller's coordinates within +-8192 units, kept to 2^-16 of a unit
+ * below +-64 and to 2^-16 of (the scene's extent / 64) above it (a room of 5000 mm: to
+ * 1/512 mm), and a polygon's area at least 1/4096 at its own scale (at 8192 units out:
+ * 4 square units, 2^-24 of the extent squared).
  *
  * Every function returns int: 0 or a non-negative count on success, a negative
  * RAD_ERR_* on failure. After any error the scene is unchanged and still valid.
@@ -103,7 +114,8 @@ typedef uint32_t rad_index_t;
 #define RAD_INDEX_NONE 0xFFFFFFFFu
 #endif
 
-#define RAD_COORD_LIMIT    64   /* |coordinate| <= 64.0 units */
+#define RAD_COORD_LIMIT    64   /* |coordinate| <= 64.0 units at the core's scale */
+#define RAD_INPUT_LIMIT    8192 /* |coordinate| <= 8192.0 of the caller's units */
 #define RAD_EMISSION_LIMIT 4096 /* emission <= 4096.0 per channel */
 
 typedef struct {
@@ -120,7 +132,8 @@ typedef struct {
 #define RAD_ERR_RANGE      (-3) /* coordinate, reflectance or emission out of range */
 #define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
-#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting) */
+#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting), or a
+                                   * scene rad_init has not set up (rad_scene_t.self) */
 #define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
 #define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
 #define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
@@ -189,8 +202,11 @@ typedef struct {
 
 /* ---- configuration (zero means default) ---------------------------------------- */
 typedef struct {
-    rad_real_t max_patch;   /* longest patch edge; default 16.0 units */
-    rad_real_t max_element; /* longest element edge; default 4.0 units */
+    rad_real_t max_patch;   /* longest patch edge, in the caller's units: max_element..
+                             * 2 RAD_INPUT_LIMIT; default 4 max_element (at most that) */
+    rad_real_t max_element; /* longest element edge, in the caller's units: 2^-16..
+                             * 2 RAD_INPUT_LIMIT; default 4.0 (set it for the scene's
+                             * units: a polygon's lattice has at most 32768 a side) */
     uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
     uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
@@ -266,11 +282,20 @@ typedef struct {
     rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
     int solving;          /* set by the first shot: geometry is frozen */
+    /* the shot between rad_shot_begin and rad_shot_end: its patch (RAD_INDEX_NONE: no
+     * shot begun) and serial number (shot_serial, below), which part buffers record */
+    uint32_t shot_patch;
     rad_energy_t emitted; /* total emitted power, all channels */
     /* The core's scale (see the top of this file): coordinates are the caller's times
      * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
      * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
     int8_t length_shift, power_shift;
+    uint16_t shot_serial;
+    /* The scene's own address, set by a successful rad_init (cleared first). Every call
+     * refuses (RAD_ERR_STATE) a scene without it: never initialised, its rad_init
+     * failed, or a copy at another address. (These three fields fill padding: the
+     * scene is no larger on 32-bit targets, where a Cortex-M0's 16 KB has no room.) */
+    const void *self;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -309,7 +334,8 @@ typedef struct {
  * layout than the library: another RAD_INDEX_BITS or RAD_FLOAT, or a rad.h whose
  * rad_scene_t differs (the macro passes what the caller's compiler saw, so a program
  * that would index its pools with the wrong strides gets an error code, not a crash).
- * On any error S is not written. */
+ * On any other error only S's marker (rad_scene_t.self) is written: cleared, so that
+ * every call refuses S (RAD_ERR_STATE) until a rad_init succeeds. */
 #define rad_init(s, pools, cfg) \
     rad_init_abi((s), (pools), (cfg), sizeof(rad_scene_t), (unsigned)sizeof(rad_index_t), RAD_FLOAT)
 int rad_init_abi(rad_scene_t *s, const rad_pools_t *pools, const rad_config_t *cfg,
@@ -327,7 +353,8 @@ typedef struct {
  * (n = max(elements, vertices)) before rad_init. Counts saturate at UINT32_MAX. Returns
  * RAD_OK, or the error rad_add_polygon would return for it (RAD_ERR_ARG, RAD_ERR_RANGE,
  * RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR) with the counts unchanged and PLAN->problem
- * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"): after
+ * naming the cause (e.g. "emission outside [0, RAD_EMISSION_LIMIT]"; RAD_ERR_FULL for
+ * a lattice of more than 32768 elements a side): after
  * rad_add_polygon fails, the same call tells which value was out of range. */
 int rad_plan_polygon(const rad_config_t *cfg, const rad_vec3_t *v, unsigned n,
                      const rad_rgb_t *reflectance, const rad_rgb_t *emission, rad_plan_t *plan);
@@ -416,9 +443,13 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * only, so parts may run at once; rad_shot_end sums the parts' pixels in order and
  * shoots. The result is bit for bit that of rad_shoot, in both builds. Needs the work
  * buffer to hold all five faces (band_rows 0): else RAD_ERR_STATE. BUF: 8-aligned,
- * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument. */
+ * RAD_PART_BYTES(res). Each returns RAD_ERR_ARG on a bad argument, and RAD_ERR_STATE
+ * for a PATCH other than the one rad_shot_begin picked (none once the shot ended or the
+ * scene was shot, restarted or solved otherwise since), or for BUFS that are not its
+ * NPARTS parts, each rendered by rad_shot_part for this shot as part K of NPARTS at
+ * BUFS[K] (a buffer records its shot, part and count). */
 #define RAD_PART_BYTES(res)                   \
-    (48u + (size_t)(res) * sizeof(uint32_t) + \
+    (56u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
@@ -454,6 +485,14 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 /* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
  * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
 int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out);
+
+/* Element E's centre (the mean of its vertices) into CENTRE and its area into AREA
+ * (as rad_energy_t: Q16.16 in int64 in the fixed build, so that the caller's area may
+ * pass 32768 square units), both in the caller's units, converted from the core's
+ * scale (exact where the core scaled up; to within the core's rounding, 2^-16 of a
+ * unit at its scale, where it scaled down). Either may be NULL. Returns RAD_OK or
+ * RAD_ERR_ARG. */
+int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_energy_t *area);
 
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
  * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
@@ -504,11 +543,14 @@ typedef struct {
 /* Stores the rows of up to COUNT more patches (spread the work over frames by calling
  * again); freezes the geometry. Set n_rows = 0 before the first call. Returns the
  * number of rows added (0 once every patch has its row), RAD_ERR_FULL when the next
- * row does not fit (nothing of it is kept), RAD_ERR_ARG (max_rows < patches). */
+ * row does not fit (nothing of it is kept), RAD_ERR_ARG (max_rows < patches, or rows
+ * stored so far that rad_rows_shoot would refuse). */
 int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count);
 
 /* rad_shoot through the stored rows instead of hemi-cubes. Returns the shots, or
- * RAD_ERR_STATE when not every patch has its row yet. */
+ * RAD_ERR_STATE when not every patch has its row yet, or RAD_ERR_ARG for rows that
+ * are not this scene's (offsets not rising within max_entries, an element id beyond
+ * the scene's elements: checked in a pass over the entries before anything changes). */
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
 
 /* The 1985 paper's full-matrix solve: Gauss-Seidel on the patch radiosities
@@ -518,7 +560,8 @@ int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, r
  * gives every element its radiosity. Sweeps until no patch's radiosity changes by
  * more than TOL of itself (plus one LSB), or MAX_ITER sweeps. MATRIX holds RAD_GS_ENTRIES(patches)
  * entries; at most 16384 patches. Returns the sweeps done, or RAD_ERR_ARG (matrix too
- * small, too many patches) or RAD_ERR_STATE (rows missing). */
+ * small, too many patches, rows as rad_rows_shoot refuses) or RAD_ERR_STATE (rows
+ * missing). */
 #define RAD_GS_ENTRIES(patches) ((size_t)(patches) * (patches) + 3u * (size_t)(patches))
 int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
                           uint32_t max_iter, rad_real_t tol);

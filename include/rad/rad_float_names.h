@@ -14,6 +14,7 @@
 #define rad_unshot_fraction   radf_unshot_fraction
 #define rad_ambient           radf_ambient
 #define rad_element_radiosity radf_element_radiosity
+#define rad_element_geometry  radf_element_geometry
 #define rad_shade_vertices    radf_shade_vertices
 #define rad_render            radf_render
 #define rad_restart           radf_restart

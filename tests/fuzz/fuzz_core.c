@@ -362,6 +362,7 @@ static int setup(reader_t *r, ctx_t *c)
     rc = rad_init(&c->s, &c->pools, (f & 8) ? NULL : &cfg);
     CHECK(rc == RAD_OK || is_err(rc));
     if (rc != RAD_OK) {
+        before.self = 0; /* a failed rad_init clears the marker alone (rad.h) */
         CHECK(memcmp(&before, &c->s, sizeof before) == 0);
         return -1;
     }
@@ -594,15 +595,16 @@ static void op_parallel(reader_t *r, ctx_t *c)
         rc = rad_shot_part(&c->s, patch, k, nparts, bufs[k], bytes);
         snap_same(&sn, &c->s); /* parts only read the scene */
         snap_free(&sn);
-        if (rc < 0) { CHECK(rc == RAD_ERR_ARG); ok = 0; }
-        else CHECK(!short_buf && !(f & 8) && patch < c->s.n_patches); /* short or misaligned: refused */
+        /* short or misaligned: RAD_ERR_ARG; another patch than the one begun: _STATE */
+        if (rc < 0) { CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE); ok = 0; }
+        else CHECK(!short_buf && !(f & 8) && patch == c->s.shot_patch);
     }
     if (ok) {
         unsigned n = (f & 0x10) ? 1u + u8(r) % nparts : nparts;
         snap_take(&sn, &c->s);
         rc = rad_shot_end(&c->s, patch, bufs, n);
         if (rc < 0) {
-            CHECK(rc == RAD_ERR_ARG);
+            CHECK(rc == RAD_ERR_STATE && n != nparts); /* fewer parts than rendered */
             snap_same(&sn, &c->s);
         } else {
             CHECK(rc == 1 && c->s.stats.shots == shots + 1u);
