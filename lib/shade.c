@@ -37,6 +37,17 @@ int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
     return RAD_OK;
 }
 
+int rad_shade_elements(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
+{
+    rad_rgb_t amb;
+    const rad_rgb_t *pamb;
+    uint32_t e;
+    if (!s || !out || n < s->n_elements) return RAD_ERR_ARG;
+    pamb = shade_ambient(s, flags, &amb); /* once: a pass over the patches */
+    for (e = 0; e < s->n_elements; e++) out[e] = to_caller(s, flags, display(s, e, pamb));
+    return (int)s->n_elements;
+}
+
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
 {
     rad_rgb_t amb;

@@ -789,6 +789,129 @@ static void test_lightmap(void **state)
     obj_free(&sc);
 }
 
+/* ---- cost: linear in the elements --------------------------------------------- */
+
+/* NAME: a floor of N x N unit-grid quads (one element each at max_element 2) under a
+   lamp. */
+static void write_grid(const char *name, int n)
+{
+    FILE *f = fopen(tmp_path(name), "wb");
+    int i, j;
+    assert_non_null(f);
+    fprintf(f, "mtllib grid.mtl\n");
+    for (j = 0; j <= n; j++)
+        for (i = 0; i <= n; i++)
+            fprintf(f, "v %g 0 %g\n", 4.0 * i / n - 2, 2 - 4.0 * j / n);
+    fprintf(f, "usemtl floor\n");
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1;
+            fprintf(f, "f %d %d %d %d\n", a, a + 1, a + n + 2, a + n + 1);
+        }
+    fprintf(f, "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\nusemtl lamp\n"
+               "f %d %d %d %d\n", (n + 1) * (n + 1) + 1, (n + 1) * (n + 1) + 2, (n + 1) * (n + 1) + 3,
+            (n + 1) * (n + 1) + 4);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* The export's cost: the ambient term (a pass over every patch) is computed once per
+   export, not once per corner, so the export of a grid of 4N faces makes as many core
+   passes as one of N (a quadratic export made one per face corner: 4 x 64 + 4 and
+   4 x 256 + 4 here). Counted, not timed: sc_stats.ambient_terms counts the core calls
+   that compute it. sc_shade_elements, which the export uses, gives sc_element_rgb's
+   values bit for bit. */
+static void test_linear_export(void **state)
+{
+    static const int sides[2] = { 8, 16 };
+    int t;
+    (void)state;
+    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    for (t = 0; t < 2; t++) {
+        obj_scene sc;
+        sc_poly *polys;
+        sc_solver *s;
+        sc_opts o = {.max_element = 2, .max_patch = 2, .res = 32};
+        sc_stats st;
+        char err[600], name[32];
+        double *rgb;
+        unsigned long before;
+        int n, e, k;
+        snprintf(name, sizeof name, "grid%d.obj", sides[t]);
+        write_grid(name, sides[t]);
+        assert_int_equal(obj_load(tmp_path(name), &sc, NULL, NULL, err, sizeof err), 0);
+        polys = obj_to_polys(&sc, &n, NULL, NULL);
+        s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+        assert_non_null(s);
+        sc_solve(s, 20, 1e-3, NULL, NULL);
+        sc_get_stats(s, &st);
+        assert_int_equal(st.elements, sides[t] * sides[t] + 1);
+        before = st.ambient_terms;
+        assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("grid.glb"), NULL, NULL, err,
+                                        sizeof err),
+                         0);
+        sc_get_stats(s, &st);
+        print_message("export of %d elements: the ambient term computed %lu times (bound 1)\n", st.elements,
+                      st.ambient_terms - before);
+        assert_int_equal(st.ambient_terms - before, 1);
+        rgb = malloc(3 * (size_t)st.elements * sizeof *rgb);
+        assert_non_null(rgb);
+        assert_int_equal(sc_shade_elements(s, 1, rgb), 0);
+        for (e = 0; e < st.elements; e++) {
+            double one[3];
+            sc_element_rgb(s, e, 1, one);
+            for (k = 0; k < 3; k++)
+                assert_true(one[k] == rgb[3 * e + k]);
+        }
+        free(rgb);
+        sc_destroy(s);
+        free(polys);
+        obj_free(&sc);
+    }
+}
+
+/* rad_cli --stats times the exports and counts the ambient terms they had computed:
+   one each (--dump-radiosity and --export-gltf) for N and for 4N faces. */
+static void test_cli_export_stats(void **state)
+{
+    static const int sides[2] = { 8, 16 };
+    char cmd[2048], *out, *line;
+    int t;
+    (void)state;
+    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    for (t = 0; t < 2; t++) {
+        FILE *f;
+        double tc = -1, tg = -1;
+        unsigned long terms = 0;
+        long len;
+        char name[32];
+        snprintf(name, sizeof name, "cgrid%d.obj", sides[t]);
+        write_grid(name, sides[t]);
+        snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --stats --res 32 --max-element 2 --max-patch 2 "
+                 "--width 16 --height 16 -o '%s' --dump-radiosity '%s' --export-gltf '%s' > '%s'",
+                 tmp_path(name), tmp_path("cgrid.png"), tmp_path("cgrid.csv"), tmp_path("cgrid.glb"),
+                 tmp_path("cgrid.txt"));
+        assert_int_equal(system(cmd), 0);
+        f = fopen(tmp_path("cgrid.txt"), "rb");
+        assert_non_null(f);
+        fseek(f, 0, SEEK_END);
+        len = ftell(f);
+        rewind(f);
+        out = calloc((size_t)len + 1, 1);
+        assert_non_null(out);
+        assert_int_equal(fread(out, 1, (size_t)len, f), (size_t)len);
+        fclose(f);
+        line = strstr(out, "\nexports:");
+        if (!line || sscanf(line, "\nexports:  dump-radiosity %lfs  export-gltf %lfs  (ambient term computed %lu",
+                            &tc, &tg, &terms) != 3)
+            fail_msg("no exports line in rad_cli --stats:\n%s", out);
+        print_message("rad_cli, %d faces: dump-radiosity %.3fs, export-gltf %.3fs, ambient term computed %lu "
+                      "times (bound 2)\n", sides[t] * sides[t] + 1, tc, tg, terms);
+        assert_true(tc >= 0 && tg >= 0);
+        assert_int_equal(terms, 2);
+        free(out);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -797,6 +920,8 @@ int main(void)
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_cli),
         cmocka_unit_test(test_lightmap),
+        cmocka_unit_test(test_linear_export),
+        cmocka_unit_test(test_cli_export_stats),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

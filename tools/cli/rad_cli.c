@@ -424,14 +424,9 @@ static int output_step(run_t *r)
     else if (o->each_group) rc = render_each_group(r);
     else
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
-    if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
+    if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st, &r->ot);
     if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
-    if (rc == 0 && o->gltf && !o->lightmap) { /* with a lightmap: after the bake */
-        char err[1024];
-        rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, o->gltf, obj_warning,
-                            (void *)o, err, sizeof err);
-        if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
-    }
+    if (rc == 0 && o->gltf && !o->lightmap) rc = write_gltf(r, NULL, obj_warning); /* else after the bake */
     return rc < 0 ? -1 : 0;
 }
 
@@ -486,6 +481,7 @@ static void print_stats(const run_t *r)
     else
         printf("time: load %.3fs  mesh %.3fs  solve %.3fs  render %.3fs  write %.3fs\n", r->t_load - r->t0,
                r->t_mesh - r->t_load, r->t_solve - r->t_mesh, r->ot.t_render, r->ot.t_write);
+    print_export_stats(o, &r->ot);
     printf("memory: pools %zu bytes, work buffer %zu bytes\n", st->pool_bytes, st->work_bytes);
 }
 

@@ -20,6 +20,7 @@ static int emits(const double *e)
 typedef struct {
     int *start, *elements; /* the elements of face f: elements[start[f] .. start[f + 1]) */
     const double **emit;   /* per face: its polygons' emission, NULL if it has none */
+    double *erg;           /* per element: sc_shade_elements' radiosity (3 each) */
     const double *ve;      /* per core vertex: the light arriving, gathered (NULL: none) */
     const unsigned char *vok;
     double tol;            /* distance within which a corner is an element's vertex */
@@ -36,7 +37,11 @@ static int index_faces(sc_solver *s, const obj_scene *sc, const sc_poly *polys, 
     fx->elements = malloc(((size_t)st.elements + 1) * sizeof *fx->elements);
     fx->emit = calloc((size_t)sc->nfaces + 1, sizeof *fx->emit);
     fill = calloc((size_t)sc->nfaces + 1, sizeof *fill);
-    if (!fx->start || !fx->elements || !fx->emit || !fill) {
+    fx->erg = malloc(((size_t)st.elements + 1) * 3 * sizeof *fx->erg);
+    /* The radiosities at once: the ambient term is one pass over the patches, so a
+       call per corner made the export O(corners x patches). */
+    if (!fx->start || !fx->elements || !fx->emit || !fill || !fx->erg ||
+        sc_shade_elements(s, 1, fx->erg) != 0) {
         free(fill);
         return -1;
     }
@@ -102,7 +107,7 @@ static void arriving(sc_solver *s, const faces_index *fx, int e, const double *e
         memcpy(out, &fx->ve[3 * near], 3 * sizeof *out);
         return;
     }
-    sc_element_rgb(s, e, 1, out);
+    memcpy(out, &fx->erg[3 * (size_t)e], 3 * sizeof *out);
     sc_element_rho(s, e, rho); /* the element's own, where it has one */
     for (k = 0; k < 3 && !lamp; k++)
         out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
@@ -163,6 +168,7 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
     free(fx.start);
     free(fx.elements);
     free((void *)fx.emit);
+    free(fx.erg);
     return rc;
 }
 
