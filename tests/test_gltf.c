@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +24,8 @@
 #include "host/obj_polys.h"
 #include "tmpdir.h"
 #include "assimp.h"
+#include "check.h"
+#include "gltf_validate.h"
 
 TMPDIR_GROUP("gltf")
 
@@ -331,6 +334,53 @@ static int check_structure(const glb *g)
     return tris;
 }
 
+/* Primitive PR's attribute NAME: its float data (3 a vertex for VEC3) and vertex count
+   into *N; NULL if the primitive has none. */
+static const unsigned char *attribute(const glb *g, int pr, const char *name, int *n)
+{
+    const jparser *p = &g->j;
+    int a = j_at(p, j_get(p, g->root, "accessors"), (int)j_num(p, j_get(p, pr, "attributes"), name, -1));
+    int v = j_at(p, j_get(p, g->root, "bufferViews"), (int)j_num(p, a, "bufferView", -1));
+    *n = (int)j_num(p, a, "count", 0);
+    return a >= 0 && v >= 0 ? g->bin + (size_t)j_num(p, v, "byteOffset", 0) : NULL;
+}
+
+/* Every primitive of G: COLOR_0 in [0, 1] and, where below 1, COLOR_0 x colorScale (the
+   extras of its material) = _LIGHT within float rounding (2^-23 relative, a division
+   and two roundings to float: 4 ulps). Returns the largest _LIGHT value met. */
+static double check_colours(const glb *g)
+{
+    const jparser *p = &g->j;
+    int meshes = j_get(p, g->root, "meshes"), mats = j_get(p, g->root, "materials"), m, k, i;
+    double top = 0;
+    for (m = 0; m < j_count(p, meshes); m++) {
+        int prims = j_get(p, j_at(p, meshes, m), "primitives");
+        for (k = 0; k < j_count(p, prims); k++) {
+            int pr = j_at(p, prims, k), nc = 0, nl = 0;
+            int mat = j_at(p, mats, (int)j_num(p, pr, "material", -1));
+            double scale = j_num(p, j_get(p, mat, "extras"), "colorScale", -1);
+            const unsigned char *c = attribute(g, pr, "COLOR_0", &nc), *l = attribute(g, pr, "_LIGHT", &nl);
+            assert_non_null(c);
+            assert_non_null(l);
+            assert_int_equal(nc, nl);
+            CHECK_THAT(scale >= 1, "material %d's colorScale %g, at least 1", (int)j_num(p, pr, "material", -1),
+                       scale);
+            for (i = 0; i < 3 * nc; i++) {
+                double cv = f32(c + 4 * i), lv = f32(l + 4 * i);
+                top = fmax(top, lv);
+                CHECK_THAT(cv >= 0 && cv <= 1, "COLOR_0 value %d = %.9g, in [0, 1]", i, cv);
+                if (cv < 1)
+                    CHECK_THAT(fabs(cv * scale - lv) <= 4 * FLT_EPSILON * fmax(lv, 1e-30),
+                               "COLOR_0 %.9g x colorScale %.9g = _LIGHT %.9g", cv, scale, lv);
+                else
+                    CHECK_THAT(lv >= scale * (1 - 4 * FLT_EPSILON), "_LIGHT %.9g where COLOR_0 is 1: at least "
+                               "the scale %.9g", lv, scale);
+            }
+        }
+    }
+    return top;
+}
+
 /* ---- helpers: scenes -------------------------------------------------------------- */
 
 static void write_text(const char *name, const char *text)
@@ -339,6 +389,21 @@ static void write_text(const char *name, const char *text)
     assert_non_null(f);
     fputs(text, f);
     assert_int_equal(fclose(f), 0);
+}
+
+/* The OBJ NAME loaded into SC, its polygons into *POLYS (*N), solved with O to TOL in at
+   most SHOTS shots. */
+static sc_solver *solved(const char *name, obj_scene *sc, sc_poly **polys, int *n, const sc_opts *o, int shots,
+                         double tol)
+{
+    char err[600];
+    sc_solver *s;
+    assert_int_equal(obj_load(tmp_path(name), sc, NULL, NULL, err, sizeof err), 0);
+    *polys = obj_to_polys(sc, n, NULL, NULL);
+    s = sc_create(*polys, *n, o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, shots, tol, NULL, NULL);
+    return s;
 }
 
 static void collect(void *ctx, const char *msg)
@@ -397,14 +462,16 @@ static void test_structure(void **state)
         assert_int_equal(j_count(p, j_get(p, g.root, "materials")), 1);
     }
     free_glb(&g);
+    gltf_validates(tmp_path("s.glb"));
     assimp_reads(tmp_path("s.glb"));
     obj_free(&sc);
 }
 
 /* A closed box whose walls all emit E and reflect rho: B = E / (1 - rho) everywhere
    (the closed form of tools/reference) up to the hemi-cube's error per element;
-   emitting faces carry B in COLOR_0, an area-weighted mean of elements' B, so every
-   vertex colour lies within the elements' range and near the closed form. A textured lamp-lit room: COLOR_0 finite and positive, the
+   emitting faces carry B in _LIGHT, an area-weighted mean of elements' B, so every
+   vertex's lies within the elements' range and near the closed form; COLOR_0 is it
+   over the scale, in [0, 1] (check_colours). A textured lamp-lit room: COLOR_0 finite and positive, the
    texture embedded as PNG, a TGA one left out with a warning. */
 static void test_solution_colours(void **state)
 {
@@ -423,11 +490,7 @@ static void test_solution_colours(void **state)
                           "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
                           "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
                           "f 1 2 3 4\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n");
-    assert_int_equal(obj_load(tmp_path("box.obj"), &sc, NULL, NULL, err, sizeof err), 0);
-    polys = obj_to_polys(&sc, &n, NULL, NULL);
-    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
-    assert_non_null(s);
-    sc_solve(s, 100000, 1e-5, NULL, NULL);
+    s = solved("box.obj", &sc, &polys, &n, &o, 100000, 1e-5);
     assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("box.glb"), NULL, NULL, err,
                                     sizeof err),
                      0);
@@ -437,7 +500,7 @@ static void test_solution_colours(void **state)
         const jparser *p = &g.j;
         int accs = j_get(p, g.root, "accessors"), views = j_get(p, g.root, "bufferViews");
         int pr = j_at(p, j_get(p, j_at(p, j_get(p, g.root, "meshes"), 0), "primitives"), 0);
-        int ca = j_at(p, accs, (int)j_num(p, j_get(p, pr, "attributes"), "COLOR_0", -1));
+        int ca = j_at(p, accs, (int)j_num(p, j_get(p, pr, "attributes"), "_LIGHT", -1));
         int cv = j_at(p, views, (int)j_num(p, ca, "bufferView", -1)), nv = (int)j_num(p, ca, "count", 0);
         const unsigned char *d = g.bin + (size_t)j_num(p, cv, "byteOffset", 0);
         const double want[3] = { 1 / 0.5, 2 / 0.5, 3 / 0.5 };
@@ -459,12 +522,19 @@ static void test_solution_colours(void **state)
             /* a mean of elements' values, stored as float (2^-24 relative) */
             assert_true(c >= lo[i % 3] * (1 - 1e-6) && c <= hi[i % 3] * (1 + 1e-6));
         }
-        print_message("closed glowing box: COLOR_0 against E / (1 - rho), worst %.3g%% (elements "
+        print_message("closed glowing box: _LIGHT against E / (1 - rho), worst %.3g%% (elements "
                       "%.4f to %.4f of %.1f)\n", 100 * worst, lo[0], hi[0], want[0]);
         /* The elements' own spread about the closed form is the hemi-cube's aliasing
            (README: elements' form factors within 4.9% at res 512): measured -2.4% to
            +1.6% here at res 64, so 5% bounds it with the reason stated. */
         assert_true(worst <= 0.05);
+        /* every face emits: the scale is the brightest channel, about 6 / (1 - 0.5) here,
+           which a vertex of one corner stores as a float (2^-24 relative) */
+        {
+            double top = check_colours(&g), scale = j_num(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0),
+                                                                    "extras"), "colorScale", -1);
+            CHECK_NEAR(top, scale, scale * FLT_EPSILON, "the brightest _LIGHT value against colorScale");
+        }
         { /* an emitter's base colour is 1: COLOR_0 carries its radiosity */
             int f = j_get(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
                           "baseColorFactor");
@@ -473,6 +543,7 @@ static void test_solution_colours(void **state)
         }
     }
     free_glb(&g);
+    gltf_validates(tmp_path("box.glb"));
     sc_destroy(s);
     free(polys);
     obj_free(&sc);
@@ -547,6 +618,7 @@ static void test_solution_colours(void **state)
         }
     }
     free_glb(&g);
+    gltf_validates(tmp_path("room.glb"));
     assimp_reads(tmp_path("room.glb"));
     for (i = 0; i < sc.nmaterials; i++)
         tex_free(&maps[i]);
@@ -623,6 +695,7 @@ static void test_cli(void **state)
     assert_int_equal(check_structure(&g), 12);
     assert_int_equal(j_count(&g.j, j_get(&g.j, g.root, "images")), 1);
     free_glb(&g);
+    gltf_validates(tmp_path("c.glb"));
     assimp_reads(tmp_path("c.glb"));
     {
         double t = mean_of(tmp_path("c_tex.png")), p = mean_of(tmp_path("c_plain.png"));
@@ -716,16 +789,12 @@ static void test_lightmap(void **state)
                          "usemtl lamp\no lamp\nf 9 10 11 12\n"
                          "usemtl red\no block\nf 20//1 19//1 15//1 16//1\nf 13//1 16//1 15//1 14//1\n"
                          "f 17//1 18//1 19//1 20//1\nf 13//1 17//1 20//1 16//1\nf 14//1 15//1 19//1 18//1\n");
-    assert_int_equal(obj_load(tmp_path("lm.obj"), &sc, NULL, NULL, err, sizeof err), 0);
-    polys = obj_to_polys(&sc, &n, NULL, NULL);
-    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
-    assert_non_null(s);
-    sc_solve(s, 100000, 1e-3, NULL, NULL);
+    s = solved("lm.obj", &sc, &polys, &n, &o, 100000, 1e-3);
     gt = sc_gatherer_new(s, 16, 0);
     assert_non_null(gt);
     assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
     assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
-    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, tmp_path("lm.glb"), NULL,
+    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, NULL, tmp_path("lm.glb"), NULL,
                                              NULL, err, sizeof err),
                      0);
     read_glb(tmp_path("lm.glb"), &g);
@@ -781,6 +850,7 @@ static void test_lightmap(void **state)
     assert_true(worst <= bound);
     img_free(&im);
     free_glb(&g);
+    gltf_validates(tmp_path("lm.glb"));
     assimp_reads(tmp_path("lm.glb"));
     lm_free(&a);
     sc_gatherer_free(gt);
@@ -825,7 +895,7 @@ static void test_linear_export(void **state)
     static const int sides[2] = { 8, 16 };
     int t;
     (void)state;
-    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
     for (t = 0; t < 2; t++) {
         obj_scene sc;
         sc_poly *polys;
@@ -838,11 +908,7 @@ static void test_linear_export(void **state)
         int n, e, k;
         snprintf(name, sizeof name, "grid%d.obj", sides[t]);
         write_grid(name, sides[t]);
-        assert_int_equal(obj_load(tmp_path(name), &sc, NULL, NULL, err, sizeof err), 0);
-        polys = obj_to_polys(&sc, &n, NULL, NULL);
-        s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
-        assert_non_null(s);
-        sc_solve(s, 20, 1e-3, NULL, NULL);
+        s = solved(name, &sc, &polys, &n, &o, 20, 1e-3);
         sc_get_stats(s, &st);
         assert_int_equal(st.elements, sides[t] * sides[t] + 1);
         before = st.ambient_terms;
@@ -853,6 +919,7 @@ static void test_linear_export(void **state)
         print_message("export of %d elements: the ambient term computed %lu times (bound 1)\n", st.elements,
                       st.ambient_terms - before);
         assert_int_equal(st.ambient_terms - before, 1);
+        gltf_validates(tmp_path("grid.glb"));
         rgb = malloc(3 * (size_t)st.elements * sizeof *rgb);
         assert_non_null(rgb);
         assert_int_equal(sc_shade_elements(s, 1, rgb), 0);
@@ -877,11 +944,12 @@ static void test_cli_export_stats(void **state)
     char cmd[2048], *out, *line;
     int t;
     (void)state;
-    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
     for (t = 0; t < 2; t++) {
         FILE *f;
-        double tc = -1, tg = -1;
+        double tc = -1, tg = -1, scale = 0;
         unsigned long terms = 0;
+        glb g;
         long len;
         char name[32];
         snprintf(name, sizeof name, "cgrid%d.obj", sides[t]);
@@ -901,15 +969,114 @@ static void test_cli_export_stats(void **state)
         assert_int_equal(fread(out, 1, (size_t)len, f), (size_t)len);
         fclose(f);
         line = strstr(out, "\nexports:");
-        if (!line || sscanf(line, "\nexports:  dump-radiosity %lfs  export-gltf %lfs  (ambient term computed %lu",
-                            &tc, &tg, &terms) != 3)
+        if (!line || sscanf(line, "\nexports:  dump-radiosity %lfs  export-gltf %lfs (COLOR_0 scale %lf)  "
+                            "(ambient term computed %lu", &tc, &tg, &scale, &terms) != 4)
             fail_msg("no exports line in rad_cli --stats:\n%s", out);
-        print_message("rad_cli, %d faces: dump-radiosity %.3fs, export-gltf %.3fs, ambient term computed %lu "
-                      "times (bound 2)\n", sides[t] * sides[t] + 1, tc, tg, terms);
+        print_message("rad_cli, %d faces: dump-radiosity %.3fs, export-gltf %.3fs (COLOR_0 scale %g), ambient "
+                      "term computed %lu times (bound 2)\n", sides[t] * sides[t] + 1, tc, tg, scale, terms);
         assert_true(tc >= 0 && tg >= 0);
         assert_int_equal(terms, 2);
+        /* --stats gives the scale the file's materials carry */
+        read_glb(tmp_path("cgrid.glb"), &g);
+        { /* --stats prints 6 digits: within half a unit of the 6th */
+            double want = j_num(&g.j, j_get(&g.j, j_at(&g.j, j_get(&g.j, g.root, "materials"), 0), "extras"),
+                                "colorScale", -1);
+            CHECK_THAT(want > 1, "a lamp of 40 lights the floor above 1: colorScale %g", want);
+            CHECK_NEAR(scale, want, 5e-6 * want, "--stats' COLOR_0 scale against the file's colorScale");
+        }
+        check_colours(&g);
+        free_glb(&g);
+        gltf_validates(tmp_path("cgrid.glb"));
         free(out);
     }
+}
+
+/* ---- the validator catches broken files --------------------------------------- */
+
+/* G's file with N bytes at AT replaced by BYTES, written to NAME: the validator must
+   refuse it, naming WHAT. */
+static void broken(const glb *g, const char *name, size_t at, const void *bytes, size_t n, const char *what)
+{
+    unsigned char *d = malloc(g->size);
+    FILE *f = fopen(tmp_path(name), "wb");
+    assert_true(d && f && at + n <= g->size);
+    memcpy(d, g->file, g->size);
+    memcpy(d + at, bytes, n);
+    assert_int_equal(fwrite(d, 1, g->size, f), g->size);
+    assert_int_equal(fclose(f), 0);
+    free(d);
+    gltf_refused(tmp_path(name), what);
+}
+
+/* Where TEXT first occurs in G's JSON chunk, as a file offset. */
+static size_t json_at(const glb *g, const char *text)
+{
+    size_t i, n = strlen(text), end = 20 + u32(g->file + 12);
+    for (i = 20; i + n <= end; i++)
+        if (!memcmp(g->file + i, text, n))
+            return i;
+    fail_msg("'%s' not in the JSON", text);
+    return 0;
+}
+
+/* tests/gltf_validate.py passes the files the writer makes (every test above) and
+   refuses each of them broken in one way: the header, a chunk, an index, a value. */
+static void test_validator(void **state)
+{
+    static const float two = 2.0f, far = 1e6f;
+    static const unsigned char big[4] = { 0x00, 0xff, 0xff, 0xff };
+    obj_scene sc;
+    sc_poly *polys;
+    sc_solver *s;
+    sc_opts o = {.max_element = 0.5, .res = 32};
+    char err[600];
+    glb g;
+    int n, nv;
+    size_t at;
+    const unsigned char *d;
+    (void)state;
+    if (gltf_validator("/dev/null") < 0)
+        skip();
+    write_text("v.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 9 9 9\n");
+    write_text("v.obj", "mtllib v.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
+                        "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\n"
+                        "usemtl wall\nf 4 3 2 1\nusemtl lamp\nf 5 6 7 8\n");
+    s = solved("v.obj", &sc, &polys, &n, &o, 1000, 1e-3);
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("v.glb"), NULL, NULL, err, sizeof err),
+                     0);
+    gltf_validates(tmp_path("v.glb"));
+    read_glb(tmp_path("v.glb"), &g);
+    broken(&g, "magic.glb", 0, "gltf", 4, "bad magic");
+    broken(&g, "version.glb", 4, "\1\0\0\0", 4, "GLB version 1");
+    broken(&g, "length.glb", 8, "\0\0\0\0", 4, "header length 0");
+    broken(&g, "chunk.glb", 16, "BIN\0", 4, "the first chunk is not JSON");
+    broken(&g, "chunklen.glb", 12, "\1\0\0\0", 4, "not a multiple of 4");
+    broken(&g, "mode.glb", json_at(&g, "\"mode\":4") + 7, "9", 1, "mode 9");
+    broken(&g, "material.glb", json_at(&g, "\"material\":1") + 11, "7", 1, "material = 7 out of range");
+    broken(&g, "asset.glb", json_at(&g, "\"version\""), "\"vexsion\"", 9, "asset.version missing");
+    broken(&g, "unlit.glb", json_at(&g, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") + 19, "X", 1,
+           "not in extensionsUsed");
+    broken(&g, "factor.glb", json_at(&g, "\"metallicFactor\":0") + 17, "2", 1, "metallicFactor");
+    {
+        const jparser *p = &g.j;
+        int pr = j_at(p, j_get(p, j_at(p, j_get(p, g.root, "meshes"), 0), "primitives"), 0);
+        int ia = j_at(p, j_get(p, g.root, "accessors"), (int)j_num(p, pr, "indices", -1));
+        d = attribute(&g, pr, "COLOR_0", &nv);
+        assert_non_null(d);
+        broken(&g, "colour.glb", (size_t)(d - g.file), &two, 4, "outside [0, 1]");
+        d = attribute(&g, pr, "POSITION", &nv);
+        broken(&g, "position.glb", (size_t)(d - g.file), &far, 4, "(3.6.2.5)");
+        d = attribute(&g, pr, "NORMAL", &nv);
+        broken(&g, "normal.glb", (size_t)(d - g.file), &two, 4, "not unit length");
+        at = (size_t)(g.bin - g.file) +
+             (size_t)j_num(p, j_at(p, j_get(p, g.root, "bufferViews"), (int)j_num(p, ia, "bufferView", -1)),
+                           "byteOffset", 0);
+        broken(&g, "index.glb", at, big, 4, "indices >= the vertex count");
+    }
+    free_glb(&g);
+    sc_destroy(s);
+    free(polys);
+    obj_free(&sc);
 }
 
 int main(void)
@@ -922,6 +1089,7 @@ int main(void)
         cmocka_unit_test(test_lightmap),
         cmocka_unit_test(test_linear_export),
         cmocka_unit_test(test_cli_export_stats),
+        cmocka_unit_test(test_validator),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

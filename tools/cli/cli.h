@@ -122,6 +122,7 @@ typedef struct {
     double t_render, t_write;
     double t_csv, t_gltf;   /* --dump-radiosity's and --export-gltf's writes (--stats) */
     unsigned long export_ambient; /* the ambient terms they had the core compute */
+    double gltf_scale;      /* the light one unit of the .glb's COLOR_0 stands for */
 } out_t;
 
 /* One run's state, from step to step (rad_cli.c's main). */

@@ -263,8 +263,8 @@ int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
     char err[1024];
     double t = host_now();
     unsigned long before = ambient_terms(r->s);
-    int rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm, r->o->gltf, warn,
-                                     (void *)r->o, err, sizeof err);
+    int rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm,
+                                     &r->ot.gltf_scale, r->o->gltf, warn, (void *)r->o, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     r->ot.t_gltf += host_now() - t;
     r->ot.export_ambient += ambient_terms(r->s) - before;
@@ -276,7 +276,7 @@ void print_export_stats(const opts_t *o, const out_t *ot)
     if (!o->csv && !o->gltf) return;
     printf("exports:");
     if (o->csv) printf("  dump-radiosity %.3fs", ot->t_csv);
-    if (o->gltf) printf("  export-gltf %.3fs", ot->t_gltf);
+    if (o->gltf) printf("  export-gltf %.3fs (COLOR_0 scale %.6g)", ot->t_gltf, ot->gltf_scale);
     printf("  (ambient term computed %lu times)\n", ot->export_ambient);
 }
 

@@ -448,6 +448,8 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     if (w->in->corner_uv1)
         write_uv1(w, pv, "TEXCOORD_1", p);
     if (w->in->corner_rgb) {
+        double scale = w->in->color_scale > 0 ? w->in->color_scale : 1;
+        int light;
         at = w->bin.n;
         for (i = 0; i < pv->nverts; i++) {
             double rgb[3];
@@ -455,8 +457,16 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
             for (k = 0; k < 3; k++)
                 put_f32(&w->bin, rgb[k]);
         }
+        light = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
+        at = w->bin.n;
+        for (i = 0; i < pv->nverts; i++) {
+            double rgb[3];
+            vertex_colour(w->in, pv->c + pv->first[i], pv->first[i + 1] - pv->first[i], rgb);
+            for (k = 0; k < 3; k++) /* NaN fails both tests: 0 */
+                put_f32(&w->bin, rgb[k] / scale < 1 ? (rgb[k] / scale > 0 ? rgb[k] / scale : 0) : 1);
+        }
         acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
-        putf(p, ",\"COLOR_0\":%d", acc);
+        putf(p, ",\"COLOR_0\":%d,\"_LIGHT\":%d", acc, light);
     }
     put_text(p, "}");
 }
@@ -671,6 +681,20 @@ static int image_before(const writer *w, int m)
     return -1;
 }
 
+/* Material M's extras: COLOR_0's scale, and the lightmap LM (-1: none) if it uses it. */
+static void extras(const writer *w, buf *j, int m, int lm)
+{
+    int lit = lm >= 0 && (!w->in->lightmap_use || w->in->lightmap_use[m]);
+    if (!w->in->corner_rgb && !lit)
+        return;
+    put_text(j, ",\"extras\":{");
+    if (w->in->corner_rgb)
+        putf(j, "\"colorScale\":%.9g%s", w->in->color_scale > 0 ? w->in->color_scale : 1.0, lit ? "," : "");
+    if (lit)
+        putf(j, "\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}", lm, w->in->lightmap_scale);
+    put_text(j, "}");
+}
+
 /* Materials, textures and samplers (one each per textured material), images (one per
    file, embedded once). */
 static void write_materials(writer *w, buf *j)
@@ -710,9 +734,7 @@ static void write_materials(writer *w, buf *j)
             putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
         put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1},"
                "\"extensions\":{\"KHR_materials_unlit\":{}}");
-        if (lm >= 0 && (!w->in->lightmap_use || w->in->lightmap_use[m]))
-            putf(j, ",\"extras\":{\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}}", lm,
-                 w->in->lightmap_scale);
+        extras(w, j, m, lm);
         put_text(j, "}");
     }
     put_text(j, "]");

@@ -11,8 +11,12 @@
  * (their vn, else the face's unit normal) and the same material. Attributes: POSITION
  * (with min and max), NORMAL (unit), TEXCOORD_0 (the MTL's -s / -o applied, v flipped
  * to glTF's top-left origin; (0, 0) for a corner without one) when the primitive has
- * texture coordinates, COLOR_0 (linear float RGB) when the caller gives corner colours:
- * a welded vertex's colour is the weighted mean of its corners', TEXCOORD_1 when the
+ * texture coordinates, COLOR_0 and _LIGHT when the caller gives corner colours: a welded
+ * vertex's colour is the weighted mean of its corners', _LIGHT (float VEC3, an
+ * application-specific attribute) that linear light as given, COLOR_0 (float VEC3) it
+ * divided by the caller's scale and clamped to [0, 1] (glTF 2.0 3.7.2.1: COLOR_n
+ * values are in [0, 1]), the scale in every material's extras as "colorScale"
+ * (COLOR_0 x colorScale = _LIGHT where COLOR_0 < 1), TEXCOORD_1 when the
  * caller gives a lightmap UV per corner (see gltf_input). Materials: the
  * caller's baseColorFactor, baseColorTexture when the caller gives the texture file
  * (PNG or JPEG, embedded in the binary chunk; other formats are left out with a warning
@@ -42,6 +46,8 @@ typedef struct {
        area they stand for; NULL: equal). NULL colours: no COLOR_0. */
     const double *corner_rgb;
     const double *corner_weight;
+    /* The light one unit of COLOR_0 stands for (<= 0: 1). */
+    double color_scale;
     /* sc->nmaterials x 3: each material's baseColorFactor (NULL: Kd). */
     const double *base_color;
     /* sc->nmaterials texture file paths (NULL, or a NULL entry: no texture). The

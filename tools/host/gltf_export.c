@@ -172,6 +172,32 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
     return rc;
 }
 
+/* COLOR_0's scale: the largest channel of the light at the corners of faces that do
+   not emit (of every face when all emit), at least 1. An emitter brighter than that
+   shows white; _LIGHT keeps its value. */
+static double colour_scale(const obj_scene *sc, const sc_poly *polys, int n, const double *rgb)
+{
+    unsigned char *lamp = calloc((size_t)sc->nfaces + 1, 1);
+    double top[2] = { 1, 1 }; /* [0]: faces that do not emit, [1]: every face */
+    int f, i, k, lit = 0;
+    if (!lamp)
+        return 1; /* no memory: COLOR_0 clamped at 1 instead */
+    for (i = 0; i < n; i++)
+        lamp[polys[i].tag] |= emits(polys[i].emit);
+    for (f = 0; f < sc->nfaces; f++) {
+        lit |= !lamp[f];
+        for (i = sc->faces[f].first; i < sc->faces[f].first + sc->faces[f].count; i++)
+            for (k = 0; k < 3; k++) {
+                double v = rgb[3 * (size_t)i + k];
+                top[1] = v > top[1] ? v : top[1];
+                if (!lamp[f])
+                    top[0] = v > top[0] ? v : top[0];
+            }
+    }
+    free(lamp);
+    return top[lit ? 0 : 1];
+}
+
 /* Material M's baseColorFactor (see sc_export_gltf). */
 static void base_colour(const obj_material *m, int textured, double c[3])
 {
@@ -210,13 +236,13 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
                    const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
                    void *ctx, char *err, size_t errlen)
 {
-    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, path, warn, ctx, err, errlen);
+    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, NULL, path, warn, ctx, err, errlen);
 }
 
 int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                             const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
-                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
-                            size_t errlen)
+                            double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
+                            char *err, size_t errlen)
 {
     double *uv = lm ? malloc(2 * ((size_t)sc->nindices + 1) * sizeof *uv) : NULL;
     unsigned char *use = lm ? malloc((size_t)sc->nmaterials + 1) : NULL, *png = NULL;
@@ -238,6 +264,9 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
         in.sc = sc;
         in.corner_rgb = rgb;
         in.corner_weight = weight;
+        in.color_scale = colour_scale(sc, polys, n, rgb);
+        if (color_scale)
+            *color_scale = in.color_scale;
         in.base_color = base;
         in.texture = tex;
         in.warn = warn;
