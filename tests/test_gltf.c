@@ -471,8 +471,9 @@ static void test_structure(void **state)
    (the closed form of tools/reference) up to the hemi-cube's error per element;
    emitting faces carry B in _LIGHT, an area-weighted mean of elements' B, so every
    vertex's lies within the elements' range and near the closed form; COLOR_0 is it
-   over the scale, in [0, 1] (check_colours). A textured lamp-lit room: COLOR_0 finite and positive, the
-   texture embedded as PNG, a TGA one left out with a warning. */
+   over the scale, in [0, 1] (check_colours). A textured lamp-lit room: the PNG
+   texture embedded as it is, a TGA one re-encoded as PNG (test_bmp_texture checks the
+   pixels), no warning. */
 static void test_solution_colours(void **state)
 {
     obj_scene sc;
@@ -591,7 +592,7 @@ static void test_solution_colours(void **state)
     assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("room.glb"), collect,
                                     &warnings, err, sizeof err),
                      0);
-    assert_int_equal(warnings, 1); /* the TGA */
+    assert_int_equal(warnings, 0); /* the TGA is embedded too */
     read_glb(tmp_path("room.glb"), &g);
     assert_int_equal(check_structure(&g), 14);
     {
@@ -599,12 +600,13 @@ static void test_solution_colours(void **state)
         int imgs = j_get(p, g.root, "images"), mats = j_get(p, g.root, "materials");
         int pbr0 = j_get(p, j_at(p, mats, 0), "pbrMetallicRoughness");
         int pbr1 = j_get(p, j_at(p, mats, 1), "pbrMetallicRoughness");
-        assert_int_equal(j_count(p, imgs), 1); /* embedded once for two materials */
-        assert_int_equal(j_count(p, j_get(p, g.root, "textures")), 2);
-        assert_int_equal(j_num(p, j_at(p, j_get(p, g.root, "samplers"), 1), "wrapS", 0), 33071);
+        assert_int_equal(j_count(p, imgs), 2); /* w.png once for two materials, the TGA */
+        assert_int_equal(j_count(p, j_get(p, g.root, "textures")), 3);
+        assert_int_equal(j_num(p, j_at(p, j_get(p, g.root, "samplers"), 2), "wrapS", 0), 33071);
         assert_true(j_str_is(p, j_get(p, j_at(p, imgs, 0), "mimeType"), "image/png"));
+        assert_true(j_str_is(p, j_get(p, j_at(p, imgs, 1), "mimeType"), "image/png"));
         assert_true(j_get(p, pbr0, "baseColorTexture") >= 0);
-        assert_int_equal(j_get(p, pbr1, "baseColorTexture"), -1);
+        assert_true(j_get(p, pbr1, "baseColorTexture") >= 0);
         assert_true(j_get(p, j_get(p, j_at(p, mats, 2), "extensions"), "KHR_materials_unlit") >= 0);
         {
             /* The embedded image is the file, byte for byte. */
@@ -735,11 +737,11 @@ static void image_lookup(const img_t *im, const double xy[2], double scale, doub
         }
 }
 
-/* The embedded lightmap (images[0], PNG) decoded into IM through a file of its own. */
-static void embedded_image(const glb *g, img_t *im)
+/* The embedded image I (PNG) decoded into IM through a file of its own. */
+static void embedded_image(const glb *g, int i, img_t *im)
 {
     const jparser *p = &g->j;
-    int img = j_at(p, j_get(p, g->root, "images"), 0);
+    int img = j_at(p, j_get(p, g->root, "images"), i);
     int v = j_at(p, j_get(p, g->root, "bufferViews"), (int)j_num(p, img, "bufferView", -1));
     char err[600];
     FILE *f = fopen(tmp_path("lm_embedded.png"), "wb");
@@ -799,7 +801,7 @@ static void test_lightmap(void **state)
                      0);
     read_glb(tmp_path("lm.glb"), &g);
     check_structure(&g);
-    embedded_image(&g, &im);
+    embedded_image(&g, 0, &im); /* the lightmap's */
     assert_int_equal(im.w, 64);
     assert_int_equal(im.h, 64);
     {
@@ -1079,6 +1081,106 @@ static void test_validator(void **state)
     obj_free(&sc);
 }
 
+/* ---- textures glTF cannot carry: re-encoded ------------------------------------ */
+
+static void put_le(unsigned char *d, uint32_t v, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        d[i] = (unsigned char)(v >> (8 * i));
+}
+
+/* A BMP map_Kd (3 x 2, 24-bit, rows bottom-up and padded to 4 bytes, as BMP stores
+   them) is embedded as image/png, and that PNG decodes to the BMP's pixels exactly
+   (8-bit sRGB both, PNG lossless). */
+static void test_bmp_texture(void **state)
+{
+    static const unsigned char want[2][3][3] = { /* row 0 at the top, RGB */
+        { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 } },
+        { { 10, 20, 30 }, { 200, 150, 100 }, { 255, 255, 255 } } };
+    unsigned char bmp[54 + 2 * 12];
+    obj_scene sc;
+    sc_poly *polys;
+    sc_solver *s;
+    sc_opts o = {.max_element = 0.5, .res = 32};
+    tex_image maps[2];
+    char err[600];
+    img_t im;
+    glb g;
+    FILE *f;
+    int n, x, y, k, warnings = 0, img;
+    (void)state;
+    memset(bmp, 0, sizeof bmp);
+    bmp[0] = 'B';
+    bmp[1] = 'M';
+    put_le(bmp + 2, sizeof bmp, 4);
+    put_le(bmp + 10, 54, 4);
+    put_le(bmp + 14, 40, 4);
+    put_le(bmp + 18, 3, 4);
+    put_le(bmp + 22, 2, 4);
+    put_le(bmp + 26, 1, 2);
+    put_le(bmp + 28, 24, 2);
+    put_le(bmp + 34, 2 * 12, 4);
+    for (y = 0; y < 2; y++) /* the file's first row is the image's bottom one */
+        for (x = 0; x < 3; x++)
+            for (k = 0; k < 3; k++)
+                bmp[54 + 12 * (1 - y) + 3 * x + k] = want[y][x][2 - k]; /* BGR */
+    f = fopen(tmp_path("t.bmp"), "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(bmp, 1, sizeof bmp, f), sizeof bmp);
+    assert_int_equal(fclose(f), 0);
+    write_text("bmp.mtl", "newmtl floor\nKd 0 0 0\nmap_Kd t.bmp\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("bmp.obj", "mtllib bmp.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
+                          "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\n"
+                          "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                          "usemtl floor\nf 4/1 3/2 2/3 1/4\nusemtl lamp\nf 5 6 7 8\n");
+    assert_int_equal(obj_load(tmp_path("bmp.obj"), &sc, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL, 1), 1);
+    polys = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
+    s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    sc_solve(s, 1000, 1e-3, NULL, NULL);
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("bmp.glb"), collect, &warnings, err,
+                                    sizeof err),
+                     0);
+    assert_int_equal(warnings, 0);
+    gltf_validates(tmp_path("bmp.glb"));
+    assimp_reads(tmp_path("bmp.glb"));
+    read_glb(tmp_path("bmp.glb"), &g);
+    {
+        const jparser *p = &g.j;
+        int bt = j_get(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
+                       "baseColorTexture");
+        int tex = j_at(p, j_get(p, g.root, "textures"), (int)j_num(p, bt, "index", -1));
+        assert_true(bt >= 0 && tex >= 0);
+        img = (int)j_num(p, tex, "source", -1);
+    }
+    embedded_image(&g, img, &im); /* image/png, decoded */
+    assert_int_equal(im.w, 3);
+    assert_int_equal(im.h, 2);
+    for (y = 0; y < 2; y++)
+        for (x = 0; x < 3; x++)
+            for (k = 0; k < 3; k++)
+                CHECK_INT_EQ(im.rgb[3 * (3 * y + x) + k], want[y][x][k], "embedded PNG texel (%d, %d) channel %d "
+                             "against the BMP's", x, y, k);
+    print_message("BMP map_Kd: embedded as image/png, its 3 x 2 texels the BMP's\n");
+    { /* the validator refuses an image whose bytes are not its mimeType's */
+        const jparser *p = &g.j;
+        int v = j_at(p, j_get(p, g.root, "bufferViews"),
+                     (int)j_num(p, j_at(p, j_get(p, g.root, "images"), img), "bufferView", -1));
+        broken(&g, "notpng.glb", (size_t)(g.bin - g.file) + (size_t)j_num(p, v, "byteOffset", 0), "BM", 2,
+               "are not image/png");
+        broken(&g, "source.glb", json_at(&g, "\"source\":0") + 9, "5", 1, "source = 5 out of range");
+    }
+    img_free(&im);
+    free_glb(&g);
+    for (k = 0; k < sc.nmaterials; k++)
+        tex_free(&maps[k]);
+    sc_destroy(s);
+    free(polys);
+    obj_free(&sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1090,6 +1192,7 @@ int main(void)
         cmocka_unit_test(test_linear_export),
         cmocka_unit_test(test_cli_export_stats),
         cmocka_unit_test(test_validator),
+        cmocka_unit_test(test_bmp_texture),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

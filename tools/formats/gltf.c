@@ -9,6 +9,7 @@
 #include "formats/gltf.h"
 
 #include "formats/file_io.h"
+#include "formats/image.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -634,6 +635,28 @@ static int embed_bytes(writer *w, const void *data, size_t size)
     return w->nviews++;
 }
 
+/* Material M's decoded texture encoded as PNG, embedded; its bufferView, or -1 with
+   MSG. */
+static int embed_as_png(writer *w, int m, char *msg, size_t n)
+{
+    const tex_image *t = w->in->texture_image ? &w->in->texture_image[m] : NULL;
+    unsigned char *png;
+    size_t size;
+    char err[600];
+    int view;
+    if (!t || !t->rgb) {
+        snprintf(msg, n, "%s: neither PNG nor JPEG and not decoded, left out of the glTF", w->in->texture[m]);
+        return -1;
+    }
+    if (img_encode_png(t->rgb, t->w, t->h, &png, &size, err, sizeof err)) {
+        snprintf(msg, n, "%s: %s, left out of the glTF", w->in->texture[m], err);
+        return -1;
+    }
+    view = embed_bytes(w, png, size);
+    free(png);
+    return view;
+}
+
 /* Embeds material M's texture file; returns its bufferView or -1 (warned). */
 static int embed_image(writer *w, int m, const char **mime)
 {
@@ -642,9 +665,11 @@ static int embed_image(writer *w, int m, const char **mime)
     if (fio_read_all(w->in->texture[m], FIO_LIMIT_IMAGE, &data, &size, err, sizeof err)) {
         snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
     } else if (!(*mime = image_mime((const unsigned char *)data, size))) {
-        snprintf(msg, sizeof msg, "%s: neither PNG nor JPEG, left out of the glTF",
-                 w->in->texture[m]);
+        int view = embed_as_png(w, m, msg, sizeof msg);
         free(data);
+        *mime = "image/png";
+        if (view >= 0)
+            return view;
     } else {
         int view = embed_bytes(w, data, size);
         free(data);

@@ -19,8 +19,9 @@
  * (COLOR_0 x colorScale = _LIGHT where COLOR_0 < 1), TEXCOORD_1 when the
  * caller gives a lightmap UV per corner (see gltf_input). Materials: the
  * caller's baseColorFactor, baseColorTexture when the caller gives the texture file
- * (PNG or JPEG, embedded in the binary chunk; other formats are left out with a warning
- * and the factor alone stays), KHR_materials_unlit (the colours are lighting already
+ * (PNG or JPEG embedded in the binary chunk as they are; another format, such as BMP or
+ * TGA, re-encoded as PNG from the caller's decoded image; without one it is left out
+ * with a warning and the factor alone stays), KHR_materials_unlit (the colours are lighting already
  * computed). Names are JSON-escaped; bytes that are not UTF-8 become '?'.
  *
  * Layout: the 12-byte header, a JSON chunk padded with spaces and a BIN chunk padded
@@ -33,6 +34,7 @@
 #include <stddef.h>
 
 #include "formats/obj.h"
+#include "formats/texture.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,6 +55,9 @@ typedef struct {
     /* sc->nmaterials texture file paths (NULL, or a NULL entry: no texture). The
        sampler wraps (REPEAT) unless the material's map_kd.clamp. */
     const char *const *texture;
+    /* sc->nmaterials decoded textures (NULL, or an entry without rgb: none): a texture
+       file neither PNG nor JPEG is embedded as these pixels encoded as PNG. */
+    const tex_image *texture_image;
     gltf_warn_fn warn;
     void *ctx;
     /* sc->nindices x 2: each face corner's lightmap UV, glTF's convention ([0, 1], origin

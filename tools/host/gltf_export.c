@@ -269,6 +269,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
             *color_scale = in.color_scale;
         in.base_color = base;
         in.texture = tex;
+        in.texture_image = maps;
         in.warn = warn;
         in.ctx = ctx;
         if (lm && lightmap_input(lm, sc, uv, use, &png, &in, why, sizeof why) != 0)
