@@ -754,6 +754,40 @@ static void embedded_image(const glb *g, int i, img_t *im)
     assert_int_equal(img_read(tmp_path("lm_embedded.png"), im, err, sizeof err), 0);
 }
 
+/* Blender (Debian blender), when installed, imports PATH with its own glTF importer
+   and shows the image "lightmap" on the second UV map through the Emission of MATERIALS
+   materials, at an Emission Strength of SCALE (tests/blender_lightmap.py); skipped
+   with a message when it is not installed. */
+static void blender_shows_lightmap(const char *path, int materials, double scale)
+{
+    char cmd[1200], line[256] = "";
+    FILE *f;
+    int n = -1;
+    double strength = -1;
+    if (system("command -v blender >/dev/null 2>&1") != 0) {
+        print_message("blender not installed (Debian blender): its import check skipped\n");
+        return;
+    }
+    snprintf(cmd, sizeof cmd, "blender -b --factory-startup --python-exit-code 1 --python "
+             "tests/blender_lightmap.py -- '%s' > '%s' 2>&1", path, tmp_path("blender.txt"));
+    if (system(cmd) != 0) {
+        snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("blender.txt"));
+        if (system(cmd)) {
+        }
+        fail_msg("blender could not import %s", path);
+    }
+    f = fopen(tmp_path("blender.txt"), "rb");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "lightmap: %d %lf", &n, &strength) == 2)
+            break;
+    fclose(f);
+    print_message("blender: %d materials show the lightmap as emission, strength %.6g\n", n, strength);
+    CHECK_INT_EQ(n, materials, "materials blender shows the lightmap on (emission, second UV map)");
+    /* the script rounds to 5 decimals; Blender keeps a float */
+    CHECK_NEAR(strength, scale, 1e-5 + scale * FLT_EPSILON, "blender's Emission Strength against the scale");
+}
+
 /* A lit room with a block (12 charts) baked into a 64 x 64 atlas and exported with it:
    every primitive has TEXCOORD_1 with one UV per vertex, inside [0, 1] and within its
    accessor's min and max; every material that does not emit names the lightmap in its
@@ -817,6 +851,30 @@ static void test_lightmap(void **state)
             assert_int_equal(j_num(p, lm, "texCoord", -1), 1);
             assert_int_equal(j_num(p, lm, "index", -1), 0);
             scale = j_num(p, lm, "scale", -1);
+            { /* where importers look: emissive = lightmap x Kd x scale on a black base */
+                static const double kd[2][3] = { { 0.6, 0.5, 0.4 }, { 0.7, 0.1, 0.1 } };
+                int mat = j_at(p, mats, m), et = j_get(p, mat, "emissiveTexture");
+                int ef = j_get(p, mat, "emissiveFactor"), ext = j_get(p, mat, "extensions");
+                int bc = j_get(p, j_get(p, mat, "pbrMetallicRoughness"), "baseColorFactor");
+                assert_int_equal(j_num(p, et, "index", -1), 0);
+                assert_int_equal(j_num(p, et, "texCoord", -1), 1);
+                assert_int_equal(j_get(p, ext, "KHR_materials_unlit"), -1);
+                CHECK_EQ(j_num(p, j_get(p, ext, "KHR_materials_emissive_strength"), "emissiveStrength", -1), scale,
+                         "material %d: emissiveStrength against the lightmap's scale", m);
+                for (k = 0; k < 3; k++) {
+                    CHECK_EQ(p->n[j_at(p, bc, k)].num, 0, "material %d: baseColorFactor[%d]", m, k);
+                    CHECK_NEAR(p->n[j_at(p, ef, k)].num, kd[m][k], 1e-9, "material %d: emissiveFactor[%d], Kd",
+                               m, k);
+                }
+            }
+        }
+        {
+            int used = j_get(p, g.root, "extensionsUsed");
+            assert_int_equal(j_count(p, used), 2); /* the lamp stays unlit */
+            assert_true(j_str_is(p, j_at(p, used, 0), "KHR_materials_unlit"));
+            assert_true(j_str_is(p, j_at(p, used, 1), "KHR_materials_emissive_strength"));
+            assert_true(j_get(p, j_get(p, j_at(p, mats, 2), "extensions"), "KHR_materials_unlit") >= 0);
+            assert_int_equal(j_get(p, j_at(p, mats, 2), "emissiveTexture"), -1);
         }
         assert_true(scale > 0);
         bound = scale * 0.5 * (2.4 / 1.055) / 255;
@@ -854,6 +912,7 @@ static void test_lightmap(void **state)
     free_glb(&g);
     gltf_validates(tmp_path("lm.glb"));
     assimp_reads(tmp_path("lm.glb"));
+    blender_shows_lightmap(tmp_path("lm.glb"), 2, scale);
     lm_free(&a);
     sc_gatherer_free(gt);
     sc_destroy(s);
@@ -995,9 +1054,17 @@ static void test_cli_export_stats(void **state)
 
 /* ---- the validator catches broken files --------------------------------------- */
 
-/* G's file with N bytes at AT replaced by BYTES, written to NAME: the validator must
-   refuse it, naming WHAT. */
-static void broken(const glb *g, const char *name, size_t at, const void *bytes, size_t n, const char *what)
+/* Broken files and what the validator must say of each (gltf_refused). */
+typedef struct {
+    char path[16][600];
+    const char *path_of[16], *what[16];
+    int n;
+} breaks;
+
+/* G's file with N bytes at AT replaced by BYTES, written to NAME, which the validator
+   must refuse naming WHAT: added to B. */
+static void broken(breaks *b, const glb *g, const char *name, size_t at, const void *bytes, size_t n,
+                   const char *what)
 {
     unsigned char *d = malloc(g->size);
     FILE *f = fopen(tmp_path(name), "wb");
@@ -1007,7 +1074,10 @@ static void broken(const glb *g, const char *name, size_t at, const void *bytes,
     assert_int_equal(fwrite(d, 1, g->size, f), g->size);
     assert_int_equal(fclose(f), 0);
     free(d);
-    gltf_refused(tmp_path(name), what);
+    assert_true(b->n < 16);
+    snprintf(b->path[b->n], sizeof b->path[0], "%s", tmp_path(name));
+    b->path_of[b->n] = b->path[b->n];
+    b->what[b->n++] = what;
 }
 
 /* Where TEXT first occurs in G's JSON chunk, as a file offset. */
@@ -1037,8 +1107,11 @@ static void test_validator(void **state)
     size_t at;
     const unsigned char *d;
     (void)state;
-    if (gltf_validator("/dev/null") < 0)
+    static breaks b;
+    const char *null = "/dev/null";
+    if (gltf_validator(&null, 1) < 0)
         skip();
+    b.n = 0;
     write_text("v.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 9 9 9\n");
     write_text("v.obj", "mtllib v.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
                         "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\n"
@@ -1048,33 +1121,34 @@ static void test_validator(void **state)
                      0);
     gltf_validates(tmp_path("v.glb"));
     read_glb(tmp_path("v.glb"), &g);
-    broken(&g, "magic.glb", 0, "gltf", 4, "bad magic");
-    broken(&g, "version.glb", 4, "\1\0\0\0", 4, "GLB version 1");
-    broken(&g, "length.glb", 8, "\0\0\0\0", 4, "header length 0");
-    broken(&g, "chunk.glb", 16, "BIN\0", 4, "the first chunk is not JSON");
-    broken(&g, "chunklen.glb", 12, "\1\0\0\0", 4, "not a multiple of 4");
-    broken(&g, "mode.glb", json_at(&g, "\"mode\":4") + 7, "9", 1, "mode 9");
-    broken(&g, "material.glb", json_at(&g, "\"material\":1") + 11, "7", 1, "material = 7 out of range");
-    broken(&g, "asset.glb", json_at(&g, "\"version\""), "\"vexsion\"", 9, "asset.version missing");
-    broken(&g, "unlit.glb", json_at(&g, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") + 19, "X", 1,
+    broken(&b, &g, "magic.glb", 0, "gltf", 4, "bad magic");
+    broken(&b, &g, "version.glb", 4, "\1\0\0\0", 4, "GLB version 1");
+    broken(&b, &g, "length.glb", 8, "\0\0\0\0", 4, "header length 0");
+    broken(&b, &g, "chunk.glb", 16, "BIN\0", 4, "the first chunk is not JSON");
+    broken(&b, &g, "chunklen.glb", 12, "\1\0\0\0", 4, "not a multiple of 4");
+    broken(&b, &g, "mode.glb", json_at(&g, "\"mode\":4") + 7, "9", 1, "mode 9");
+    broken(&b, &g, "material.glb", json_at(&g, "\"material\":1") + 11, "7", 1, "material = 7 out of range");
+    broken(&b, &g, "asset.glb", json_at(&g, "\"version\""), "\"vexsion\"", 9, "asset.version missing");
+    broken(&b, &g, "unlit.glb", json_at(&g, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") + 19, "X", 1,
            "not in extensionsUsed");
-    broken(&g, "factor.glb", json_at(&g, "\"metallicFactor\":0") + 17, "2", 1, "metallicFactor");
+    broken(&b, &g, "factor.glb", json_at(&g, "\"metallicFactor\":0") + 17, "2", 1, "metallicFactor");
     {
         const jparser *p = &g.j;
         int pr = j_at(p, j_get(p, j_at(p, j_get(p, g.root, "meshes"), 0), "primitives"), 0);
         int ia = j_at(p, j_get(p, g.root, "accessors"), (int)j_num(p, pr, "indices", -1));
         d = attribute(&g, pr, "COLOR_0", &nv);
         assert_non_null(d);
-        broken(&g, "colour.glb", (size_t)(d - g.file), &two, 4, "outside [0, 1]");
+        broken(&b, &g, "colour.glb", (size_t)(d - g.file), &two, 4, "outside [0, 1]");
         d = attribute(&g, pr, "POSITION", &nv);
-        broken(&g, "position.glb", (size_t)(d - g.file), &far, 4, "(3.6.2.5)");
+        broken(&b, &g, "position.glb", (size_t)(d - g.file), &far, 4, "(3.6.2.5)");
         d = attribute(&g, pr, "NORMAL", &nv);
-        broken(&g, "normal.glb", (size_t)(d - g.file), &two, 4, "not unit length");
+        broken(&b, &g, "normal.glb", (size_t)(d - g.file), &two, 4, "not unit length");
         at = (size_t)(g.bin - g.file) +
              (size_t)j_num(p, j_at(p, j_get(p, g.root, "bufferViews"), (int)j_num(p, ia, "bufferView", -1)),
                            "byteOffset", 0);
-        broken(&g, "index.glb", at, big, 4, "indices >= the vertex count");
+        broken(&b, &g, "index.glb", at, big, 4, "indices >= the vertex count");
     }
+    gltf_refused(b.path_of, b.what, b.n);
     free_glb(&g);
     sc_destroy(s);
     free(polys);
@@ -1165,12 +1239,14 @@ static void test_bmp_texture(void **state)
                              "against the BMP's", x, y, k);
     print_message("BMP map_Kd: embedded as image/png, its 3 x 2 texels the BMP's\n");
     { /* the validator refuses an image whose bytes are not its mimeType's */
+        static breaks b;
         const jparser *p = &g.j;
         int v = j_at(p, j_get(p, g.root, "bufferViews"),
                      (int)j_num(p, j_at(p, j_get(p, g.root, "images"), img), "bufferView", -1));
-        broken(&g, "notpng.glb", (size_t)(g.bin - g.file) + (size_t)j_num(p, v, "byteOffset", 0), "BM", 2,
+        broken(&b, &g, "notpng.glb", (size_t)(g.bin - g.file) + (size_t)j_num(p, v, "byteOffset", 0), "BM", 2,
                "are not image/png");
-        broken(&g, "source.glb", json_at(&g, "\"source\":0") + 9, "5", 1, "source = 5 out of range");
+        broken(&b, &g, "source.glb", json_at(&g, "\"source\":0") + 9, "5", 1, "source = 5 out of range");
+        gltf_refused(b.path_of, b.what, b.n);
     }
     img_free(&im);
     free_glb(&g);

@@ -706,10 +706,24 @@ static int image_before(const writer *w, int m)
     return -1;
 }
 
+/* Material M is shown by the lightmap (gltf_input's lightmap_use). */
+static int lit_by_lightmap(const gltf_input *in, int m)
+{
+    return in->lightmap_png && (!in->lightmap_use || in->lightmap_use[m]);
+}
+
+/* Three factors C, each in [0, 1] (NaN: 0), comma-separated. */
+static void put_factors(buf *j, const double *c)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        putf(j, "%s%.9g", k ? "," : "", isfinite(c[k]) && c[k] > 0 ? (c[k] < 1 ? c[k] : 1.0) : 0.0);
+}
+
 /* Material M's extras: COLOR_0's scale, and the lightmap LM (-1: none) if it uses it. */
 static void extras(const writer *w, buf *j, int m, int lm)
 {
-    int lit = lm >= 0 && (!w->in->lightmap_use || w->in->lightmap_use[m]);
+    int lit = lm >= 0 && lit_by_lightmap(w->in, m);
     if (!w->in->corner_rgb && !lit)
         return;
     put_text(j, ",\"extras\":{");
@@ -726,7 +740,7 @@ static void write_materials(writer *w, buf *j)
 {
     const obj_scene *sc = w->in->sc;
     buf tex = { 0 }, img = { 0 }, smp = { 0 };
-    int m, k, n = 0, nimg = 0, lm;
+    int m, n = 0, nimg = 0, lm;
     for (m = 0; m < sc->nmaterials; m++) {
         const char *mime = NULL;
         int has = w->in->texture && w->in->texture[m], image = has ? image_before(w, m) : -1;
@@ -748,17 +762,25 @@ static void write_materials(writer *w, buf *j)
     lm = lightmap_texture(w, n, nimg, &tex, &img, &smp);
     put_text(j, ",\"materials\":[");
     for (m = 0; m < sc->nmaterials; m++) {
+        static const double black[3] = { 0, 0, 0 };
         const double *c = w->in->base_color ? w->in->base_color + 3 * m : sc->materials[m].kd;
+        int lit = lm >= 0 && lit_by_lightmap(w->in, m);
         put_text(j, m ? ",{\"name\":" : "{\"name\":");
         put_string(j, sc->materials[m].name);
         put_text(j, ",\"pbrMetallicRoughness\":{\"baseColorFactor\":[");
-        for (k = 0; k < 3; k++)
-            putf(j, "%.9g,", isfinite(c[k]) && c[k] > 0 ? (c[k] < 1 ? c[k] : 1.0) : 0.0);
-        put_text(j, "1]");
+        put_factors(j, lit ? black : c);
+        put_text(j, ",1]");
         if (w->image_of[m] >= 0)
             putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
-        put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1},"
-               "\"extensions\":{\"KHR_materials_unlit\":{}}");
+        put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1}");
+        if (lit) { /* the light leaving: lightmap x emissiveStrength (its scale) x factor */
+            putf(j, ",\"emissiveTexture\":{\"index\":%d,\"texCoord\":1},\"emissiveFactor\":[", lm);
+            put_factors(j, w->in->lightmap_factor ? w->in->lightmap_factor + 3 * m : c);
+            putf(j, "],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%.9g}}",
+                 w->in->lightmap_scale);
+        } else {
+            put_text(j, ",\"extensions\":{\"KHR_materials_unlit\":{}}");
+        }
         extras(w, j, m, lm);
         put_text(j, "}");
     }
@@ -795,8 +817,16 @@ static void free_writer(writer *w)
 static void write_json(writer *w, buf *j)
 {
     int i;
-    put_text(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"rad\"},"
-           "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"scene\":0,\"scenes\":[{");
+    int lit = 0, unlit = 0;
+    for (i = 0; i < w->in->sc->nmaterials; i++) {
+        lit |= lit_by_lightmap(w->in, i);
+        unlit |= !lit_by_lightmap(w->in, i);
+    }
+    put_text(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"rad\"}");
+    if (lit || unlit)
+        putf(j, ",\"extensionsUsed\":[%s%s%s]", unlit ? "\"KHR_materials_unlit\"" : "", lit && unlit ? "," : "",
+             lit ? "\"KHR_materials_emissive_strength\"" : "");
+    put_text(j, ",\"scene\":0,\"scenes\":[{");
     if (w->nmeshes) {
         put_text(j, "\"nodes\":[");
         for (i = 0; i < w->nmeshes; i++)

@@ -67,11 +67,18 @@ typedef struct {
     /* The lightmap, PNG bytes embedded as an image with a texture (CLAMP_TO_EDGE,
        LINEAR), and the light a texel stands for: SCALE times its sRGB-decoded value.
        A material whose LIGHTMAP_USE flag is set (NULL: every one) names it in its
-       extras: "lightmap": {"index": texture, "texCoord": 1, "scale": SCALE}. */
+       extras: "lightmap": {"index": texture, "texCoord": 1, "scale": SCALE}, and shows
+       it where importers look (Blender, three.js, Godot, glTFast): not unlit, a black
+       baseColorFactor (its texture kept), emissiveTexture the lightmap on TEXCOORD_1,
+       emissiveFactor LIGHTMAP_FACTOR, KHR_materials_emissive_strength SCALE: the light
+       leaving, reflectance x light arriving. */
     const unsigned char *lightmap_png;
     size_t lightmap_png_size;
     double lightmap_scale;
     const unsigned char *lightmap_use;
+    /* sc->nmaterials x 3: the emissiveFactor of the materials the lightmap shows (NULL:
+       their base colour). */
+    const double *lightmap_factor;
 } gltf_input;
 
 /* Writes the scene IN to PATH as .glb. Returns 0, or -1 with a one-line message

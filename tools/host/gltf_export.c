@@ -212,20 +212,32 @@ static void base_colour(const obj_material *m, int textured, double c[3])
 }
 
 /* The lightmap's part of IN from atlas LM: TEXCOORD_1 per corner into UV (2 per corner),
-   the PNG into *PNG, the lightmap named by every material that does not emit (USE).
-   0, or -1 with err. */
-static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, double *uv, unsigned char *use,
-                          unsigned char **png, gltf_input *in, char *err, size_t errlen)
+   the PNG into *PNG, the lightmap shown by every material that does not emit (USE)
+   with its reflectance as the emissive factor (FACTOR, 3 a material): Kd, or with a
+   texture the mean of its texels' (tex_reflectance). 0, or -1 with err. */
+static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, const tex_image *maps, double *uv,
+                          unsigned char *use, double *factor, unsigned char **png, gltf_input *in, char *err,
+                          size_t errlen)
 {
+    static const double one[3] = { 1, 1, 1 };
     int m;
-    if (!uv || !use || lm_corner_uvs(lm, sc, uv) != 0) {
+    if (!uv || !use || !factor || lm_corner_uvs(lm, sc, uv) != 0) {
         snprintf(err, errlen, "out of memory for the lightmap's UVs");
         return -1;
     }
     if (lm_png(lm, png, &in->lightmap_png_size, &in->lightmap_scale, err, errlen) != 0)
         return -1;
-    for (m = 0; m < sc->nmaterials; m++)
+    for (m = 0; m < sc->nmaterials; m++) {
+        double mean[3];
         use[m] = !emits(sc->materials[m].ke);
+        if (maps && maps[m].rgb) {
+            tex_image_mean(&maps[m], mean);
+            tex_reflectance(sc->materials[m].kd, mean, factor + 3 * m);
+        } else {
+            tex_reflectance(one, sc->materials[m].kd, factor + 3 * m);
+        }
+    }
+    in->lightmap_factor = factor;
     in->corner_uv1 = uv;
     in->lightmap_png = *png;
     in->lightmap_use = use;
@@ -246,6 +258,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
 {
     double *uv = lm ? malloc(2 * ((size_t)sc->nindices + 1) * sizeof *uv) : NULL;
     unsigned char *use = lm ? malloc((size_t)sc->nmaterials + 1) : NULL, *png = NULL;
+    double *factor = lm ? malloc(3 * ((size_t)sc->nmaterials + 1) * sizeof *factor) : NULL;
     char why[600] = "";
     size_t corners = (size_t)sc->nindices + 1, mats = (size_t)sc->nmaterials + 1;
     double *rgb = malloc(3 * corners * sizeof *rgb), *weight = malloc(corners * sizeof *weight);
@@ -272,7 +285,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
         in.texture_image = maps;
         in.warn = warn;
         in.ctx = ctx;
-        if (lm && lightmap_input(lm, sc, uv, use, &png, &in, why, sizeof why) != 0)
+        if (lm && lightmap_input(lm, sc, maps, uv, use, factor, &png, &in, why, sizeof why) != 0)
             snprintf(err, errlen, "%s: %s", path, why);
         else
             rc = gltf_write(path, &in, err, errlen);
@@ -281,6 +294,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
     }
     free(uv);
     free(use);
+    free(factor);
     free(png);
     free(rgb);
     free(weight);
