@@ -1,57 +1,52 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """gltf_validate.py FILE.glb ... -- checks binary glTF 2.0 files against the MUST rules
-of the glTF 2.0 specification (Khronos, version 2.0.1) that rad's writer touches, with
-the Python standard library only (Debian has no Khronos validator). Prints one line
-"FILE: what is wrong" per error and exits 1 if any file has one, else 0.
+of the glTF 2.0 specification (Khronos, version 2.0.1) that rad's writer can break, with
+the Python standard library only (Debian packages no Khronos validator). Prints one
+line "FILE: what is wrong (section)" per error; exits 1 if any file has one, else 0.
 
-Rules checked (section numbers of the specification):
-  4.4.2    GLB header: magic "glTF", version 2, length equal to the file's size.
-  4.4.3    Chunks: 4-byte aligned starts and lengths; the first chunk JSON, at most one
-           BIN chunk and only second; nothing after the chunks; JSON padded with spaces
-           (0x20), BIN with zeros is not required (not checked).
-  4.4.3.2  The BIN chunk is buffer 0, which has no uri; its byteLength <= the chunk's
-           length <= byteLength + 3.
-  3.2      The JSON is UTF-8 (no BOM) and an object.
-  5.2      asset and asset.version are present, version "2.0" (MAJOR.MINOR).
-  3.12     extensionsRequired is a subset of extensionsUsed; every extension named in a
-           material is in extensionsUsed.
-  5.x      Every index reference is in range: scene, scenes[].nodes, nodes[].mesh and
-           children, primitives' attributes, indices and material, accessors'
-           bufferView, bufferViews' buffer, images' bufferView, textures' sampler and
-           source, every textureInfo's index. Arrays defined at the root are not empty.
-  3.6.2.1  Accessors: componentType one of 5120, 5121, 5122, 5123, 5125, 5126; type one
-           of SCALAR, VEC2, VEC3, VEC4, MAT2, MAT3, MAT4; count >= 1; normalized only for
-           integer types; min and max, when present, have one value per component.
-  3.6.2.4  Data alignment: accessor.byteOffset and bufferView.byteOffset + accessor's
-           are multiples of the component size; byteStride, when defined, a multiple of
-           the component size; the accessor fits its bufferView: byteOffset + stride x
-           (count - 1) + element size <= bufferView.byteLength.
-  3.6.2.2  Float accessor values are finite (no NaN or infinity).
-  3.6.2.5  min and max, when present, are the data's (floats compared as float32).
-  3.6.1    bufferViews: byteLength >= 1, byteOffset + byteLength <= the buffer's
-           byteLength; byteStride 4..252 and a multiple of 4; target 34962 or 34963.
-  3.7.2.1  Primitives: attributes not empty; POSITION VEC3 float with min and max;
-           NORMAL VEC3 float, unit length (within 5e-4, as the Khronos validator);
-           TEXCOORD_n VEC2 float (finite) or normalized unsigned byte/short; COLOR_n
-           VEC3/VEC4, float values in [0, 1], or normalized unsigned byte/short;
-           TEXCOORD_n and COLOR_n numbered from 0 without gaps; other semantics
-           application-specific, so beginning with "_"; every attribute of a primitive
-           has the same count; vertex attribute elements 4-byte aligned.
-  3.7.2.1  indices: SCALAR, unsigned byte/short/int, its bufferView without byteStride,
-           every value < the vertex count and not the type's largest value (primitive
-           restart); mode 0..6; mode 4 (triangles) a multiple of 3 indices.
-  3.8.3    Materials: baseColorFactor 4 numbers in [0, 1]; metallicFactor and
-           roughnessFactor in [0, 1]; emissiveFactor 3 numbers in [0, 1]; alphaMode
-           OPAQUE, MASK or BLEND; textureInfo.texCoord >= 0 and the primitives using the
-           material have that TEXCOORD_n. KHR_materials_emissive_strength:
-           emissiveStrength >= 0.
-  3.8.4    Textures: sampler and source in range; samplers' magFilter 9728/9729,
-           minFilter 9728/9729/9984..9987, wrapS/wrapT 33071/33648/10497.
-  3.9      Images: exactly one of uri and bufferView; with bufferView a mimeType of
-           image/png or image/jpeg, and the bytes start with that format's signature.
-  3.5      Nodes: each node the child of at most one node, no cycles; a scene's nodes
-           are roots.
+Rules checked (the specification's section numbers; "5" is its JSON schema):
+  4.4.2    Header: magic "glTF", version 2, length the file's size.
+  4.4.3    Chunks: lengths multiples of 4, inside the file, nothing after the last; the
+           first JSON, at most one BIN and only second. 4.4.3.2: the JSON padded with
+           spaces (0x20); 4.4.3.3: the BIN with zeros (after buffers[0].byteLength).
+  2.7      The JSON is UTF-8 without a BOM, an object.
+  3.2      asset.version present, "MAJOR.MINOR", major 2.
+  3.12     extensionsRequired within extensionsUsed; every extension a material uses
+           in extensionsUsed.
+  3.3, 5   Every index in range (scene, scenes[].nodes, nodes[].mesh and children,
+           primitives' attributes, indices and material, accessors' bufferView,
+           bufferViews' buffer, images' bufferView, textures' sampler and source, every
+           textureInfo's index); arrays at the root not empty.
+  3.6.1.1  bufferViews: byteLength >= 1, inside their buffer; byteStride 4..252, a
+           multiple of 4; target 34962 or 34963.
+  3.6.1.2  The BIN chunk is buffers[0], without a uri; a buffer without one needs it;
+           byteLength <= the chunk's length <= byteLength + 3.
+  3.6.2.1  Accessors: componentType, type, count >= 1; min/max one value a component.
+  3.6.2.2  Float values finite (no NaN, no infinity).
+  3.6.2.4  accessor.byteOffset and bufferView.byteOffset + accessor.byteOffset
+           multiples of the component size, byteStride too; the accessor inside its
+           view: byteOffset + stride x (count - 1) + element size <= byteLength.
+  3.6.2.5  min and max, when given, are the data's (floats compared as float32).
+  3.7.2.1  Primitives: attributes not empty, of one count, 4-byte aligned; POSITION
+           VEC3 float with min and max; NORMAL VEC3 float, unit (within 5e-4, the
+           Khronos validator's); TEXCOORD_n VEC2 float or normalized unsigned
+           byte/short; COLOR_n VEC3/VEC4 float or normalized unsigned byte/short, and
+           every COLOR_0 component in [0, 1]; TEXCOORD_n and COLOR_n numbered from 0
+           without gaps; other semantics start with "_" and are not unsigned int;
+           indices SCALAR unsigned, their view without byteStride, each < the vertex
+           count and not the type's largest value; mode 0..6, triangles in threes.
+  3.8.2    Textures' sampler and source in range.
+  3.8.3    Images: a uri or a bufferView; with a bufferView a mimeType (image/png or
+           image/jpeg) that the bytes match (their signature).
+  3.8.4, 5 Samplers: magFilter 9728/9729, minFilter 9728/9729/9984..9987, wraps
+           33071/33648/10497.
+  3.9, 5   Materials: baseColorFactor 4 and emissiveFactor 3 numbers in [0, 1];
+           metallicFactor, roughnessFactor in [0, 1]; alphaMode OPAQUE/MASK/BLEND; a
+           textureInfo's texCoord >= 0, a TEXCOORD_n every primitive using it has;
+           KHR_materials_emissive_strength's emissiveStrength >= 0.
+  3.5.1    A scene's nodes are roots; 3.5.2: each node has at most one parent, no
+           cycles.
 """
 import json
 import math
@@ -107,13 +102,15 @@ class Checker:
         self.check(len(bins) <= 1, "%d BIN chunks (4.4.3: at most one)" % len(bins))
         self.check(not bins or bins[0] == 1, "the BIN chunk is not the second (4.4.3)")
         text = chunks[0][1]
-        self.check(not text.startswith(b"\xef\xbb\xbf"), "JSON chunk starts with a BOM (3.2)")
+        self.check(not text.startswith(b"\xef\xbb\xbf"), "JSON chunk starts with a BOM (2.7)")
+        end = text.rstrip(b" ")
+        self.check(end.endswith(b"}") or end.endswith(b"]") or not end, "JSON chunk padded with other bytes than spaces (4.4.3.2)")
         try:
             doc = json.loads(text.decode("utf-8"))
         except (UnicodeDecodeError, ValueError) as e:
-            self.err("JSON chunk is not UTF-8 JSON (3.2): %s" % e)
+            self.err("JSON chunk is not UTF-8 JSON (2.7): %s" % e)
             return None, None
-        if not self.check(isinstance(doc, dict), "JSON is not an object (3.2)"):
+        if not self.check(isinstance(doc, dict), "JSON is not an object (2.7)"):
             return None, None
         return doc, (chunks[1][1] if len(chunks) > 1 and chunks[1][0] == 0x004E4942 else None)
 
@@ -121,7 +118,7 @@ class Checker:
     def array(self, doc, key):
         v = doc.get(key, [])
         if key in doc:
-            self.check(isinstance(v, list) and len(v) >= 1, "'%s' must be a non-empty array (5.x)" % key)
+            self.check(isinstance(v, list) and len(v) >= 1, "'%s' must be a non-empty array (5: the schema's minItems)" % key)
         return v if isinstance(v, list) else []
 
     def ref(self, value, arr, what):
@@ -138,11 +135,11 @@ class Checker:
     # ---- the document -------------------------------------------------------------
     def document(self, doc, bin_chunk):
         asset = doc.get("asset")
-        if self.check(isinstance(asset, dict) and "version" in asset, "asset.version missing (5.2)"):
+        if self.check(isinstance(asset, dict) and "version" in asset, "asset.version missing (3.2)"):
             v = asset["version"]
             self.check(isinstance(v, str) and len(v.split(".")) == 2 and all(p.isdigit() for p in v.split(".")),
-                       "asset.version %r is not MAJOR.MINOR (5.2)" % v)
-            self.check(v.split(".")[0] == "2", "asset.version %r is not glTF 2 (5.2)" % v)
+                       "asset.version %r is not MAJOR.MINOR (3.2)" % v)
+            self.check(v.split(".")[0] == "2", "asset.version %r is not glTF 2 (3.2)" % v)
         used = doc.get("extensionsUsed", [])
         for e in doc.get("extensionsRequired", []):
             self.check(e in used, "extensionsRequired %r not in extensionsUsed (3.12)" % e)
@@ -161,9 +158,10 @@ class Checker:
             n = b.get("byteLength")
             self.check(isinstance(n, int) and n >= 1, "buffers[%d].byteLength %r must be >= 1" % (i, n))
             if i == 0 and "uri" not in b:
-                if self.check(bin_chunk is not None, "buffers[0] has no uri and the file no BIN chunk (4.4.3.2)"):
-                    self.check(isinstance(n, int) and n <= len(bin_chunk) <= n + 3,
-                               "buffers[0].byteLength %r against the BIN chunk's %d bytes (4.4.3.2)" % (n, len(bin_chunk)))
+                if self.check(bin_chunk is not None, "buffers[0] has no uri and the file no BIN chunk (3.6.1.2)"):
+                    if self.check(isinstance(n, int) and n <= len(bin_chunk) <= n + 3,
+                                  "buffers[0].byteLength %r against the BIN chunk's %d bytes (3.6.1.2)" % (n, len(bin_chunk))):
+                        self.check(not bin_chunk[n:].strip(b"\0"), "BIN chunk padded with other bytes than zeros (4.4.3.3)")
             else:
                 self.check("uri" in b, "buffers[%d] has no uri (only buffer 0 may be the BIN chunk)" % i)
 
@@ -172,17 +170,17 @@ class Checker:
             if not self.ref(v.get("buffer"), a["buffers"], "bufferViews[%d].buffer" % i):
                 continue
             off, n = v.get("byteOffset", 0), v.get("byteLength")
-            self.check(isinstance(n, int) and n >= 1, "bufferViews[%d].byteLength %r must be >= 1 (3.6.1)" % (i, n))
+            self.check(isinstance(n, int) and n >= 1, "bufferViews[%d].byteLength %r must be >= 1 (3.6.1.1)" % (i, n))
             self.check(isinstance(off, int) and off >= 0, "bufferViews[%d].byteOffset %r" % (i, off))
             if isinstance(n, int) and isinstance(off, int):
                 bl = a["buffers"][v["buffer"]].get("byteLength", 0)
-                self.check(off + n <= bl, "bufferViews[%d] bytes %d..%d past its buffer's %d (3.6.1)" % (i, off, off + n, bl))
+                self.check(off + n <= bl, "bufferViews[%d] bytes %d..%d past its buffer's %d (3.6.1.1)" % (i, off, off + n, bl))
             if "byteStride" in v:
                 s = v["byteStride"]
                 self.check(isinstance(s, int) and 4 <= s <= 252 and s % 4 == 0,
-                           "bufferViews[%d].byteStride %r: 4..252, a multiple of 4 (3.6.1)" % (i, s))
+                           "bufferViews[%d].byteStride %r: 4..252, a multiple of 4 (3.6.1.1)" % (i, s))
             if "target" in v:
-                self.check(v["target"] in (34962, 34963), "bufferViews[%d].target %r (3.6.1)" % (i, v["target"]))
+                self.check(v["target"] in (34962, 34963), "bufferViews[%d].target %r (3.6.1.1)" % (i, v["target"]))
 
     def accessors(self, a, bin_chunk):
         """Each accessor's values as a list of tuples (None when unreadable)."""
@@ -286,6 +284,7 @@ class Checker:
                         self.check(not out, "%s has %d values outside [0, 1], e.g. %r (3.7.2.1)" % (w, len(out), out[:1]))
             else:
                 self.check(sem.startswith("_"), "%s: application-specific semantics must start with '_' (3.7.2.1)" % w)
+                self.check(ct != 5125, "%s: an application-specific semantic of unsigned int (3.7.2.1)" % w)
         for base, ns in sets.items():
             self.check(sorted(ns) == list(range(len(ns))), "%s: %s_n not numbered 0..%d without gaps (3.7.2.1)" % (what, base, len(ns) - 1))
         self.check(len(counts) == 1, "%s: attributes of different counts %s (3.7.2.1)" % (what, sorted(counts, key=str)))
@@ -314,19 +313,19 @@ class Checker:
             return
         self.ref(info.get("index"), a["textures"], what + ".index")
         tc = info.get("texCoord", 0)
-        if self.check(isinstance(tc, int) and tc >= 0, "%s.texCoord %r must be >= 0 (3.8.3)" % (what, tc)):
+        if self.check(isinstance(tc, int) and tc >= 0, "%s.texCoord %r must be >= 0 (3.9)" % (what, tc)):
             for prim, have in self.material_uses.get(m, []):
-                self.check(tc in have, "%s uses %s, which has no TEXCOORD_%d (3.8.3)" % (prim, what, tc))
+                self.check(tc in have, "%s uses %s, which has no TEXCOORD_%d (3.9)" % (prim, what, tc))
 
     def materials(self, a, used):
         for m, mat in enumerate(a["materials"]):
             w = "materials[%d]" % m
             pbr = mat.get("pbrMetallicRoughness", {})
             if "baseColorFactor" in pbr:
-                self.numbers(pbr["baseColorFactor"], 4, 0, 1, w + ".baseColorFactor (3.8.3)")
+                self.numbers(pbr["baseColorFactor"], 4, 0, 1, w + ".baseColorFactor (3.9)")
             for k in ("metallicFactor", "roughnessFactor"):
                 if k in pbr:
-                    self.numbers([pbr[k]], 1, 0, 1, "%s.%s (3.8.3)" % (w, k))
+                    self.numbers([pbr[k]], 1, 0, 1, "%s.%s (3.9)" % (w, k))
             for k in ("baseColorTexture", "metallicRoughnessTexture"):
                 if k in pbr:
                     self.texture_info(a, "%s.pbrMetallicRoughness.%s" % (w, k), pbr[k], m)
@@ -334,8 +333,8 @@ class Checker:
                 if k in mat:
                     self.texture_info(a, "%s.%s" % (w, k), mat[k], m)
             if "emissiveFactor" in mat:
-                self.numbers(mat["emissiveFactor"], 3, 0, 1, w + ".emissiveFactor (3.8.3)")
-            self.check(mat.get("alphaMode", "OPAQUE") in ("OPAQUE", "MASK", "BLEND"), "%s.alphaMode (3.8.3)" % w)
+                self.numbers(mat["emissiveFactor"], 3, 0, 1, w + ".emissiveFactor (3.9)")
+            self.check(mat.get("alphaMode", "OPAQUE") in ("OPAQUE", "MASK", "BLEND"), "%s.alphaMode (3.9)" % w)
             for e, body in mat.get("extensions", {}).items():
                 self.check(e in used, "%s uses extension %s, not in extensionsUsed (3.12)" % (w, e))
                 if e == "KHR_materials_emissive_strength":
@@ -358,16 +357,16 @@ class Checker:
     def images(self, a, bin_chunk):
         for i, img in enumerate(a["images"]):
             w = "images[%d]" % i
-            if not self.check(("uri" in img) != ("bufferView" in img), "%s needs exactly one of uri and bufferView (3.9)" % w):
+            if not self.check(("uri" in img) != ("bufferView" in img), "%s needs exactly one of uri and bufferView (3.8.3)" % w):
                 continue
             if "bufferView" not in img:
                 continue
             mime = img.get("mimeType")
-            self.check(mime in SIGNATURES, "%s.mimeType %r with a bufferView: image/png or image/jpeg (3.9)" % (w, mime))
+            self.check(mime in SIGNATURES, "%s.mimeType %r with a bufferView: image/png or image/jpeg (3.8.3)" % (w, mime))
             if self.ref(img["bufferView"], a["bufferViews"], w + ".bufferView") and bin_chunk is not None and mime in SIGNATURES:
                 v = a["bufferViews"][img["bufferView"]]
                 head = bin_chunk[v.get("byteOffset", 0):v.get("byteOffset", 0) + len(SIGNATURES[mime])]
-                self.check(head == SIGNATURES[mime], "%s's bytes are not %s (3.9)" % (w, mime))
+                self.check(head == SIGNATURES[mime], "%s's bytes are not %s (3.8.3)" % (w, mime))
 
     def nodes(self, doc, a):
         parent = {}
@@ -376,20 +375,20 @@ class Checker:
                 self.ref(node["mesh"], a["meshes"], "nodes[%d].mesh" % n)
             for c in node.get("children", []):
                 if self.ref(c, a["nodes"], "nodes[%d].children" % n):
-                    self.check(c not in parent, "nodes[%d] has two parents (3.5)" % c)
+                    self.check(c not in parent, "nodes[%d] has two parents (3.5.2)" % c)
                     parent[c] = n
         for n in range(len(a["nodes"])):
             seen, x = set(), n
             while x in parent and x not in seen:
                 seen.add(x)
                 x = parent[x]
-            self.check(x not in seen, "nodes[%d] is in a cycle (3.5)" % n)
+            self.check(x not in seen, "nodes[%d] is in a cycle (3.5.2)" % n)
         if "scene" in doc:
             self.ref(doc["scene"], a["scenes"], "scene")
         for s, scene in enumerate(a["scenes"]):
             for n in scene.get("nodes", []):
                 if self.ref(n, a["nodes"], "scenes[%d].nodes" % s):
-                    self.check(n not in parent, "scenes[%d] lists nodes[%d], which is not a root (3.5)" % (s, n))
+                    self.check(n not in parent, "scenes[%d] lists nodes[%d], which is not a root (3.5.1)" % (s, n))
 
 
 def validate(path):
