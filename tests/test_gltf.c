@@ -945,56 +945,104 @@ static void write_grid(const char *name, int n)
     assert_int_equal(fclose(f), 0);
 }
 
+/* One build of the glue (sc_ fixed, scf_ the float twin) behind one set of calls. */
+typedef struct {
+    const char *name;
+    void *(*create)(const sc_poly *polys, int n, const sc_opts *o);
+    void (*destroy)(void *s);
+    void (*stats)(void *s, sc_stats *st);
+    int (*export_glb)(void *s, const obj_scene *sc, const sc_poly *polys, int n, const char *path);
+    int (*shade_all)(void *s, double *rgb);
+    void (*shade_one)(void *s, int e, double rgb[3]);
+} twin_ops;
+
+static void *fx_create(const sc_poly *p, int n, const sc_opts *o)
+{
+    sc_solver *s = sc_create(p, n, o, NULL, NULL, NULL, 0);
+    if (s)
+        sc_solve(s, 20, 1e-3, NULL, NULL);
+    return s;
+}
+static void fx_destroy(void *s) { sc_destroy(s); }
+static void fx_stats(void *s, sc_stats *st) { sc_get_stats(s, st); }
+static int fx_export(void *s, const obj_scene *sc, const sc_poly *p, int n, const char *path)
+{
+    return sc_export_gltf(s, sc, p, n, NULL, NULL, path, NULL, NULL, NULL, 0);
+}
+static int fx_all(void *s, double *rgb) { return sc_shade_elements(s, 1, rgb); }
+static void fx_one(void *s, int e, double rgb[3]) { sc_element_rgb(s, e, 1, rgb); }
+static void *fl_create(const sc_poly *p, int n, const sc_opts *o)
+{
+    scf_solver *s = scf_create(p, n, o, NULL, NULL, NULL, 0);
+    if (s)
+        scf_solve(s, 20, 1e-3, NULL, NULL);
+    return s;
+}
+static void fl_destroy(void *s) { scf_destroy(s); }
+static void fl_stats(void *s, sc_stats *st) { scf_get_stats(s, st); }
+static int fl_export(void *s, const obj_scene *sc, const sc_poly *p, int n, const char *path)
+{
+    return scf_export_gltf(s, sc, p, n, NULL, NULL, path, NULL, NULL, NULL, 0);
+}
+static int fl_all(void *s, double *rgb) { return scf_shade_elements(s, 1, rgb); }
+static void fl_one(void *s, int e, double rgb[3]) { scf_element_rgb(s, e, 1, rgb); }
+
 /* The export's cost: the ambient term (a pass over every patch) is computed once per
    export, not once per corner, so the export of a grid of 4N faces makes as many core
-   passes as one of N (a quadratic export made one per face corner: 4 x 64 + 4 and
-   4 x 256 + 4 here). Counted, not timed: sc_stats.ambient_terms counts the core calls
+   passes as one of N (a quadratic export made one per face corner: 4 x 65 and
+   4 x 257 here). Counted, not timed: sc_stats.ambient_terms counts the core calls
    that compute it. sc_shade_elements, which the export uses, gives sc_element_rgb's
-   values bit for bit. */
+   values bit for bit; in both builds of the glue. */
 static void test_linear_export(void **state)
 {
     static const int sides[2] = { 8, 16 };
-    int t;
+    static const twin_ops twins[2] = {
+        { "fixed", fx_create, fx_destroy, fx_stats, fx_export, fx_all, fx_one },
+        { "float", fl_create, fl_destroy, fl_stats, fl_export, fl_all, fl_one } };
+    int t, b;
     (void)state;
     write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
-    for (t = 0; t < 2; t++) {
-        obj_scene sc;
-        sc_poly *polys;
-        sc_solver *s;
-        sc_opts o = {.max_element = 2, .max_patch = 2, .res = 32};
-        sc_stats st;
-        char err[600], name[32];
-        double *rgb;
-        unsigned long before;
-        int n, e, k;
-        snprintf(name, sizeof name, "grid%d.obj", sides[t]);
-        write_grid(name, sides[t]);
-        s = solved(name, &sc, &polys, &n, &o, 20, 1e-3);
-        sc_get_stats(s, &st);
-        assert_int_equal(st.elements, sides[t] * sides[t] + 1);
-        before = st.ambient_terms;
-        assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("grid.glb"), NULL, NULL, err,
-                                        sizeof err),
-                         0);
-        sc_get_stats(s, &st);
-        print_message("export of %d elements: the ambient term computed %lu times (bound 1)\n", st.elements,
-                      st.ambient_terms - before);
-        assert_int_equal(st.ambient_terms - before, 1);
-        gltf_validates(tmp_path("grid.glb"));
-        rgb = malloc(3 * (size_t)st.elements * sizeof *rgb);
-        assert_non_null(rgb);
-        assert_int_equal(sc_shade_elements(s, 1, rgb), 0);
-        for (e = 0; e < st.elements; e++) {
-            double one[3];
-            sc_element_rgb(s, e, 1, one);
-            for (k = 0; k < 3; k++)
-                assert_true(one[k] == rgb[3 * e + k]);
+    for (t = 0; t < 2; t++)
+        for (b = 0; b < 2; b++) {
+            const twin_ops *w = &twins[b];
+            obj_scene sc;
+            sc_poly *polys;
+            sc_opts o = {.max_element = 2, .max_patch = 2, .res = 32};
+            sc_stats st;
+            char err[600], name[32];
+            double *rgb;
+            unsigned long before;
+            int n, e, k;
+            void *s;
+            snprintf(name, sizeof name, "grid%d.obj", sides[t]);
+            write_grid(name, sides[t]);
+            assert_int_equal(obj_load(tmp_path(name), &sc, NULL, NULL, err, sizeof err), 0);
+            polys = obj_to_polys(&sc, &n, NULL, NULL);
+            s = w->create(polys, n, &o);
+            assert_non_null(s);
+            w->stats(s, &st);
+            assert_int_equal(st.elements, sides[t] * sides[t] + 1);
+            before = st.ambient_terms;
+            assert_int_equal(w->export_glb(s, &sc, polys, n, tmp_path("grid.glb")), 0);
+            w->stats(s, &st);
+            print_message("%s export of %d elements: the ambient term computed %lu times (bound 1)\n", w->name,
+                          st.elements, st.ambient_terms - before);
+            assert_int_equal(st.ambient_terms - before, 1);
+            gltf_validates(tmp_path("grid.glb"));
+            rgb = malloc(3 * (size_t)st.elements * sizeof *rgb);
+            assert_non_null(rgb);
+            assert_int_equal(w->shade_all(s, rgb), 0);
+            for (e = 0; e < st.elements; e++) {
+                double one[3];
+                w->shade_one(s, e, one);
+                for (k = 0; k < 3; k++)
+                    assert_true(one[k] == rgb[3 * e + k]);
+            }
+            free(rgb);
+            w->destroy(s);
+            free(polys);
+            obj_free(&sc);
         }
-        free(rgb);
-        sc_destroy(s);
-        free(polys);
-        obj_free(&sc);
-    }
 }
 
 /* rad_cli --stats times the exports and counts the ambient terms they had computed:

@@ -51,8 +51,10 @@ typedef struct {
     int skipped_emitters;           /* emitting polygons skipped (each warned) */
     int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
                                        shown from the light around them */
-    unsigned long ambient_terms;    /* core calls that computed the ambient term (each a
-                                       pass over the patches): exports make one */
+    unsigned long ambient_terms;    /* shading calls (sc_element_rgb, sc_shade,
+                                       sc_shade_elements, sc_render, sc_keep) that had the
+                                       core compute the ambient term, a pass over the
+                                       patches each: an export makes one */
 } sc_stats;
 
 typedef struct {
