@@ -21,8 +21,9 @@
  * caller's baseColorFactor, baseColorTexture when the caller gives the texture file
  * (PNG or JPEG embedded in the binary chunk as they are; another format, such as BMP or
  * TGA, re-encoded as PNG from the caller's decoded image; without one it is left out
- * with a warning and the factor alone stays), KHR_materials_unlit (the colours are lighting already
- * computed). Names are JSON-escaped; bytes that are not UTF-8 become '?'.
+ * with a warning and the factor alone stays), KHR_materials_unlit (the colours are
+ * lighting already computed; the materials a lightmap shows are lit by emission
+ * instead: gltf_input). Names are JSON-escaped; bytes that are not UTF-8 become '?'.
  *
  * Layout: the 12-byte header, a JSON chunk padded with spaces and a BIN chunk padded
  * with zeros, both to 4 bytes; every bufferView starts at a multiple of 4 in the BIN
