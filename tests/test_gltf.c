@@ -1045,6 +1045,87 @@ static void test_linear_export(void **state)
         }
 }
 
+/* The corners' search (sorted vertices, gltf_export.c's face_search) finds what a scan
+   of every element of the face finds: on a 40-gon floor meshed into hundreds of
+   elements under a lamp, each corner's light is the area-weighted mean, over the
+   face's elements with a vertex within 1e-5 of the extent of it, of their radiosity
+   over their reflectance (the rule in gltf_export.h), computed here by that scan, to
+   the last bit (the same terms summed in the same element order). */
+static void test_corner_search(void **state)
+{
+    obj_scene sc;
+    sc_poly *polys;
+    sc_solver *s;
+    sc_opts o = {.max_element = 0.3, .res = 32};
+    sc_stats st;
+    char text[4096];
+    double *rgb, *weight, tol;
+    size_t at;
+    int n, c, e, k, matched = 0, most = 0;
+    (void)state;
+    at = (size_t)snprintf(text, sizeof text, "mtllib grid.mtl\n");
+    for (c = 0; c < 40; c++)
+        at += (size_t)snprintf(text + at, sizeof text - at, "v %.6f 0 %.6f\n", 2 * cos(c * 6.283185307179586 / 40),
+                               -2 * sin(c * 6.283185307179586 / 40));
+    at += (size_t)snprintf(text + at, sizeof text - at, "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"
+                                                        "usemtl floor\nf");
+    for (c = 0; c < 40; c++)
+        at += (size_t)snprintf(text + at, sizeof text - at, " %d", c + 1);
+    snprintf(text + at, sizeof text - at, "\nusemtl lamp\nf 41 42 43 44\n");
+    write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
+    write_text("ngon.obj", text);
+    s = solved("ngon.obj", &sc, &polys, &n, &o, 200, 1e-3);
+    sc_get_stats(s, &st);
+    rgb = malloc(3 * (size_t)sc.nindices * sizeof *rgb);
+    weight = malloc((size_t)sc.nindices * sizeof *weight);
+    assert_true(rgb && weight);
+    assert_int_equal(sc_corner_light(s, &sc, polys, n, rgb, weight), 0);
+    tol = 1e-5 * 4; /* the floor's extent, 4 across */
+    for (c = 0; c < sc.faces[0].count; c++) {
+        const obj_vec3 *p = &sc.verts[sc.indices[sc.faces[0].first + c]];
+        double sum[3] = { 0, 0, 0 }, area = 0;
+        int hits = 0;
+        for (e = 0; e < st.elements; e++) {
+            int v[4], nv, j, near = 0;
+            double b[3], rho[3], a;
+            if (sc_element_tag(s, e) != 0)
+                continue;
+            nv = sc_element_vertices(s, e, v);
+            for (j = 0; j < nv; j++) {
+                double q[3];
+                sc_vertex_pos(s, v[j], q);
+                near |= (q[0] - p->x) * (q[0] - p->x) + (q[1] - p->y) * (q[1] - p->y) +
+                            (q[2] - p->z) * (q[2] - p->z) <= tol * tol;
+            }
+            if (!near)
+                continue;
+            sc_element_rgb(s, e, 1, b);
+            sc_element_rho(s, e, rho);
+            a = sc_element_area(s, e);
+            for (k = 0; k < 3; k++)
+                sum[k] += a * (rho[k] > 0 ? b[k] / rho[k] : 0);
+            area += a;
+            hits++;
+        }
+        CHECK_INT_GE(hits, 1, "corner %d of the 40-gon: elements with a vertex there", c);
+        most = hits > most ? hits : most;
+        for (k = 0; k < 3; k++)
+            CHECK_THAT(rgb[3 * (sc.faces[0].first + c) + k] == sum[k] / area,
+                       "corner %d channel %d: %.17g, the scan's %.17g", c, k,
+                       rgb[3 * (sc.faces[0].first + c) + k], sum[k] / area);
+        CHECK_THAT(weight[sc.faces[0].first + c] == area, "corner %d: weight %.17g, the scan's %.17g", c,
+                   weight[sc.faces[0].first + c], area);
+        matched++;
+    }
+    print_message("40-gon of %d elements: %d corners as the scan finds them (up to %d elements a corner)\n",
+                  st.elements, matched, most);
+    free(rgb);
+    free(weight);
+    sc_destroy(s);
+    free(polys);
+    obj_free(&sc);
+}
+
 /* rad_cli --stats times the exports and counts the ambient terms they had computed:
    one each (--dump-radiosity and --export-gltf) for N and for 4N faces. */
 static void test_cli_export_stats(void **state)
@@ -1314,6 +1395,7 @@ int main(void)
         cmocka_unit_test(test_cli),
         cmocka_unit_test(test_lightmap),
         cmocka_unit_test(test_linear_export),
+        cmocka_unit_test(test_corner_search),
         cmocka_unit_test(test_cli_export_stats),
         cmocka_unit_test(test_validator),
         cmocka_unit_test(test_bmp_texture),

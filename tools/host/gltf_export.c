@@ -113,27 +113,92 @@ static void arriving(sc_solver *s, const faces_index *fx, int e, const double *e
         out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
 }
 
-static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, int f, int c,
+/* The vertices of one face's elements sorted by x, for the corners to look up: a corner
+   finds the elements with a vertex within the tolerance in O(log m + hits), where a
+   scan of the face's m elements per corner made a face of many corners and elements
+   O(corners x m). */
+typedef struct {
+    double p[3];
+    int slot; /* the element's place in faces_index.elements */
+} face_vertex;
+
+typedef struct {
+    face_vertex *v;
+    int n;
+    int *hit;  /* the slots a corner matched */
+    int *mark; /* per slot of the face (slot - start): the last corner that matched it, + 1 */
+} face_search;
+
+static int cmp_x(const void *a, const void *b)
+{
+    double x = ((const face_vertex *)a)->p[0], y = ((const face_vertex *)b)->p[0];
+    return (x > y) - (x < y);
+}
+
+static int cmp_int(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+/* FS for face F: its elements' vertices, sorted by x; marks cleared. */
+static void face_vertices(sc_solver *s, const faces_index *fx, int f, face_search *fs)
+{
+    int i, k;
+    fs->n = 0;
+    for (i = fx->start[f]; i < fx->start[f + 1]; i++) {
+        int v[4], nv = sc_element_vertices(s, fx->elements[i], v);
+        for (k = 0; k < nv; k++) {
+            sc_vertex_pos(s, v[k], fs->v[fs->n].p);
+            fs->v[fs->n++].slot = i;
+        }
+        fs->mark[i - fx->start[f]] = 0;
+    }
+    qsort(fs->v, (size_t)fs->n, sizeof *fs->v, cmp_x);
+}
+
+/* Corner C of face F: the area-weighted mean of the light arriving at the face's
+   elements with a vertex within fx->tol of it, summed in the face's element order, or
+   the nearest element's when none has. */
+static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, face_search *fs, int f, int c,
                    double *rgb, double *weight)
 {
     const obj_vec3 *v = &sc->verts[sc->indices[c]];
     const double p[3] = { v->x, v->y, v->z };
     double sum[3] = { 0, 0, 0 }, area = 0, best = HUGE_VAL, h[3];
-    int i, k, nearest = -1;
-    for (i = fx->start[f]; i < fx->start[f + 1]; i++) {
-        int e = fx->elements[i];
+    int i, j, k, lo = 0, hi = fs->n, nhit = 0, nearest = -1;
+    while (lo < hi) { /* the first vertex at x >= p.x - tol */
+        int mid = lo + (hi - lo) / 2;
+        if (fs->v[mid].p[0] < p[0] - fx->tol)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (j = lo; j < fs->n && fs->v[j].p[0] <= p[0] + fx->tol; j++) {
+        double d = 0;
+        int *m = &fs->mark[fs->v[j].slot - fx->start[f]];
+        for (k = 0; k < 3; k++)
+            d += (fs->v[j].p[k] - p[k]) * (fs->v[j].p[k] - p[k]);
+        if (d <= fx->tol * fx->tol && *m != c + 1) {
+            *m = c + 1;
+            fs->hit[nhit++] = fs->v[j].slot;
+        }
+    }
+    qsort(fs->hit, (size_t)nhit, sizeof *fs->hit, cmp_int);
+    for (i = 0; i < nhit; i++) {
+        int e = fx->elements[fs->hit[i]];
+        double a = sc_element_area(s, e);
+        arriving(s, fx, e, fx->emit[f], p, h);
+        for (k = 0; k < 3; k++)
+            sum[k] += a * h[k];
+        area += a;
+    }
+    for (i = fx->start[f]; !(area > 0) && i < fx->start[f + 1]; i++) { /* none: the nearest */
         int nv = 0;
-        double d = vertex_distance(s, e, p, &nv);
+        double d = vertex_distance(s, fx->elements[i], p, &nv);
         if (d < best) {
             best = d;
-            nearest = e;
-        }
-        if (d <= fx->tol * fx->tol) {
-            double a = sc_element_area(s, e);
-            arriving(s, fx, e, fx->emit[f], p, h);
-            for (k = 0; k < 3; k++)
-                sum[k] += a * h[k];
-            area += a;
+            nearest = fx->elements[i];
         }
     }
     if (!(area > 0) && nearest >= 0) {
@@ -157,14 +222,26 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
                        double *rgb, double *weight)
 {
     faces_index fx;
-    int f, k, rc;
+    face_search fs;
+    int f, k, rc, most = 0;
     memset(&fx, 0, sizeof fx);
     rc = index_faces(s, sc, polys, n, &fx);
     if (rc == 0 && fg) rc = sc_fgather_vertices(fg, &fx.ve, &fx.vok);
     fx.tol = match_tolerance(sc);
     for (f = 0; rc == 0 && f < sc->nfaces; f++)
+        most = fx.start[f + 1] - fx.start[f] > most ? fx.start[f + 1] - fx.start[f] : most;
+    fs.v = malloc((4 * (size_t)most + 1) * sizeof *fs.v);
+    fs.hit = malloc(((size_t)most + 1) * sizeof *fs.hit);
+    fs.mark = malloc(((size_t)most + 1) * sizeof *fs.mark);
+    if (!fs.v || !fs.hit || !fs.mark) rc = -1;
+    for (f = 0; rc == 0 && f < sc->nfaces; f++) {
+        face_vertices(s, &fx, f, &fs);
         for (k = 0; k < sc->faces[f].count; k++)
-            corner(s, sc, &fx, f, sc->faces[f].first + k, rgb, weight);
+            corner(s, sc, &fx, &fs, f, sc->faces[f].first + k, rgb, weight);
+    }
+    free(fs.v);
+    free(fs.hit);
+    free(fs.mark);
     free(fx.start);
     free(fx.elements);
     free((void *)fx.emit);
