@@ -55,6 +55,18 @@ int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_ene
     return RAD_OK;
 }
 
+int rad_shade_elements(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
+{
+    rad_rgb_t amb;
+    const rad_rgb_t *pamb;
+    uint32_t e;
+    RAD__CHECK_SCENE(s);
+    if (!out || n < s->n_elements) return RAD_ERR_ARG;
+    pamb = shade_ambient(s, flags, &amb); /* once: a pass over the patches */
+    for (e = 0; e < s->n_elements; e++) out[e] = to_caller(s, flags, display(s, e, pamb));
+    return (int)s->n_elements;
+}
+
 int rad_shade_vertices(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n)
 {
     rad_rgb_t amb;

@@ -497,9 +497,13 @@ static void test_dirty_buffers(void **st)
     }
 }
 
+/* The public calls refused_calls makes, each on a scene that must be refused. */
+#define CALLS 26
+
 /* Every call taking a scene, on scene S: how many of them refused it with RAD_ERR_STATE
  * (printed one by one; rad_unshot_fraction, which returns a value, counts when 0). The
  * arguments are otherwise valid for a scene with at least one patch and element. */
+
 static int refused_calls(rad_scene_t *s, const char *what)
 {
     static rad_rgb_t rho[NE + NP], vrgb[NV], fb[4 * 4], groups0[NE], out[NE];
@@ -518,7 +522,7 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rad_gather_t g, gs;
     rad_rgb_t c;
     uint32_t patch = 0;
-    int rc[26], n = 0, k, refused = 0;
+    int rc[CALLS], n = 0, k, refused = 0;
     assert_int_equal(rad_gather_init(&g, 8, 0, gwork, sizeof gwork), RAD_OK);
     rc[n++] = rad_add_polygon(s, tri, 3, &grey, NULL);
     rc[n++] = rad_join_polygon(s, tri, 3, &grey);
@@ -535,6 +539,8 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rc[n++] = rad_ambient(s, &c);
     rc[n++] = rad_element_radiosity(s, 0, 0, &c);
     rc[n++] = rad_shade_vertices(s, 0, vrgb, NV);
+    rc[n++] = rad_shade_elements(s, 0, vrgb, NV);
+    rc[n++] = rad_element_geometry(s, 0, NULL, NULL);
     rc[n++] = rad_render(s, vrgb, &cam, fb, zb, 4, 4);
     rc[n++] = rad_form_factors(s, 0, ff);
     rc[n++] = rad_rows_compute(s, &rows, 1);
@@ -572,19 +578,19 @@ static void test_scene_not_set_up(void **st)
     for (k = 0; k < 3; k++) {
         memset(s, fill[k], sizeof *s);
         s->pools = g.p; /* pools as a caller might have left them: never written */
-        CHECK_INT_EQ(refused_calls(s, "never initialised"), 24,
+        CHECK_INT_EQ(refused_calls(s, "never initialised"), CALLS,
                      "calls refusing a scene of bytes 0x%02X never initialised", fill[k]);
     }
     memset(s, 0xA5, sizeof *s);
     assert_int_equal(rad_init(s, &g.p, &bad), RAD_ERR_ARG);
-    CHECK_INT_EQ(refused_calls(s, "init failed"), 24, "calls refusing a scene whose rad_init failed");
+    CHECK_INT_EQ(refused_calls(s, "init failed"), CALLS, "calls refusing a scene whose rad_init failed");
     assert_int_equal(rad_init(s, &g.p, &cfg), RAD_OK);
     add_cube(s);
     assert_int_equal(rad_shoot(s, 5, 0), 5);
     memcpy(copy, s, sizeof *s);
-    CHECK_INT_EQ(refused_calls(copy, "a copy"), 24, "calls refusing a copy of a working scene");
+    CHECK_INT_EQ(refused_calls(copy, "a copy"), CALLS, "calls refusing a copy of a working scene");
     assert_int_equal(rad_init(s, &g.p, &bad), RAD_ERR_ARG);
-    CHECK_INT_EQ(refused_calls(s, "re-init failed"), 24,
+    CHECK_INT_EQ(refused_calls(s, "re-init failed"), CALLS,
                  "calls refusing a working scene after a failed rad_init");
     pools_check(&g);
     pools_free(&g);

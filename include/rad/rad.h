@@ -494,6 +494,12 @@ int rad_element_radiosity(rad_scene_t *s, uint32_t e, int flags, rad_rgb_t *out)
  * RAD_ERR_ARG. */
 int rad_element_geometry(rad_scene_t *s, uint32_t e, rad_vec3_t *centre, rad_energy_t *area);
 
+/* Every element's radiosity, rad_element_radiosity's values bit for bit, into OUT
+ * (N >= n_elements entries) with the ambient term computed once: O(elements + patches)
+ * where a call per element is O(elements x patches). Returns the number of elements
+ * written, or RAD_ERR_ARG. */
+int rad_shade_elements(rad_scene_t *s, int flags, rad_rgb_t *out, uint32_t n);
+
 /* Vertex radiosity for Gouraud shading: each vertex gets the area-weighted mean of the
  * elements of its surface that share it, in the caller's units unless RAD_SHADE_SCALED.
  * OUT holds N >= n_vertices entries. Uses the work buffer's accumulators as scratch.

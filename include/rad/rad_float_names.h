@@ -16,6 +16,7 @@
 #define rad_element_radiosity radf_element_radiosity
 #define rad_element_geometry  radf_element_geometry
 #define rad_shade_vertices    radf_shade_vertices
+#define rad_shade_elements    radf_shade_elements
 #define rad_render            radf_render
 #define rad_restart           radf_restart
 #define rad_set_surface       radf_set_surface

@@ -296,16 +296,8 @@ int bake_step(run_t *r)
 
 int bake_export_gltf(run_t *r, gltf_warn_fn warn)
 {
-    const opts_t *o = r->o;
-    char err[1024];
-    int rc;
-    double t = host_now();
-    if (!o->gltf || !r->bake || !r->bake->has_atlas) return 0;
-    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, &r->bake->atlas, o->gltf,
-                                 warn, (void *)o, err, sizeof err);
-    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
-    r->t_gltf = host_now() - t;
-    return rc;
+    if (!r->o->gltf || !r->bake || !r->bake->has_atlas) return 0;
+    return write_gltf(r, &r->bake->atlas, warn);
 }
 
 void bake_free(run_t *r)

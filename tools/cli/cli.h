@@ -28,6 +28,7 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/fgather.h"
+#include "host/gltf_export.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */
@@ -123,6 +124,9 @@ typedef struct {
     sc_fgather *fg;         /* --gather: views and vertex exports by gathering, else NULL */
     long gathers;           /* the views' gathers */
     double t_render, t_write;
+    double t_csv, t_gltf;   /* --dump-radiosity's and --export-gltf's writes (--stats) */
+    unsigned long export_ambient; /* the ambient terms they had the core compute */
+    double gltf_scale;      /* the light one unit of the .glb's COLOR_0 stands for */
 } out_t;
 
 /* One run's state, from step to step (rad_cli.c's main). */
@@ -144,7 +148,7 @@ typedef struct {
     int unconverged;                /* solves that stopped at the limit above --tol */
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
-    double t_vertices, t_csv, t_ply, t_gltf, t_lightmap, t_probes; /* --stats: the outputs' stages */
+    double t_vertices, t_ply, t_lightmap, t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
     struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */
@@ -204,7 +208,15 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
 /* Renders every view and frame once, small, before the solve: a camera the core refuses
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int check_cameras(sc_solver *s, const opts_t *o);
-int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st);
+/* --dump-radiosity: a row per element, the radiosities from sc_shade_elements (the
+ * ambient term computed once); its time added to OT's t_csv. 0 or -1 (said). */
+int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot);
+/* --export-gltf: the .glb of the input's meshes (sc_export_gltf_lightmap, with the
+ * lightmap LM or NULL); WARN gets the writer's warnings; its time added to t_gltf.
+ * 0 or -1 (said). */
+int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn);
+/* --stats: the exports' line (times), when any was written. */
+void print_export_stats(const opts_t *o, const out_t *ot);
 /* --export-ply: the meshed scene, its vertex colours from sc_vertex_colours (gathered
  * with FG when --gather is given), 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear)
  * binary float radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */

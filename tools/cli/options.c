@@ -270,8 +270,10 @@ static const option_t options[] = {
     {"--dump-radiosity", NULL, "FILE",
      "one CSV row per element:\nelement,surface,material,area,cx,cy,cz,r,g,b", opt_csv},
     {"--export-gltf", NULL, "FILE",
-     "glTF 2.0 binary (.glb) of the input's meshes: COLOR_0 the light\n"
-     "arriving at each vertex, materials unlit with their textures", opt_gltf},
+     "glTF 2.0 binary (.glb) of the input's meshes: _LIGHT the light\n"
+     "arriving at each vertex, COLOR_0 it over a scale into [0, 1] (the\n"
+     "scale in the materials' extras and --stats), materials unlit with\n"
+     "their textures", opt_gltf},
     {"--no-textures", NULL, NULL, "ignore map_Kd: Kd alone, in the solve and the views", opt_no_textures},
     {"--allow-outside-paths", NULL, NULL,
      "read mtllib and map_Kd files outside the scene's folder (by\n"

@@ -198,20 +198,27 @@ int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char 
     return 0;
 }
 
-static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+static unsigned long ambient_terms(sc_solver *s)
+{
+    sc_stats st;
+    sc_get_stats(s, &st);
+    return st.ambient_terms;
+}
+
+/* The rows, the radiosities from sc_shade_elements (RGB, 3 an element). */
+static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, const double *rgb, const sc_stats *st)
 {
     int e;
     fprintf(f, "element,surface,material,area,cx,cy,cz,r,g,b\n");
     for (e = 0; e < st->elements; e++) {
-        double c[3], rgb[3];
+        double c[3];
         int tag = sc_element_tag(s, e);
         const char *name = sc->materials[sc->faces[tag].material].name, *q;
         sc_element_centroid(s, e, c);
-        sc_element_rgb(s, e, ambient, rgb);
         fprintf(f, "%d,%d,\"", e, tag);
         for (q = name; *q; q++) fprintf(f, *q == '"' ? "\"\"" : "%c", *q);
-        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1], c[2], rgb[0], rgb[1],
-                rgb[2]);
+        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1], c[2], rgb[3 * e],
+                rgb[3 * e + 1], rgb[3 * e + 2]);
     }
 }
 
@@ -238,13 +245,44 @@ static int out_commit(fio_out *fo)
     return 0;
 }
 
-int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st)
+int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot)
 {
+    double t = host_now();
+    unsigned long before = ambient_terms(s);
     fio_out *fo;
-    FILE *f = out_open(path, &fo);
-    if (!f) return -1;
-    csv_rows(f, s, sc, ambient, st);
-    return out_commit(fo);
+    FILE *f;
+    double *rgb = malloc(((size_t)st->elements + 1) * 3 * sizeof *rgb);
+    int rc = -1;
+    if (!rgb || sc_shade_elements(s, ambient, rgb) != 0) fprintf(stderr, PROG ": %s: out of memory\n", path);
+    else if ((f = out_open(path, &fo)) != NULL) {
+        csv_rows(f, s, sc, rgb, st);
+        rc = out_commit(fo);
+    }
+    free(rgb);
+    ot->t_csv += host_now() - t;
+    ot->export_ambient += ambient_terms(s) - before;
+    return rc;
+}
+
+int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
+{
+    char err[1024];
+    double t = host_now();
+    unsigned long before = ambient_terms(r->s);
+    int rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm,
+                                     &r->ot.gltf_scale, r->o->gltf, warn, (void *)r->o, err, sizeof err);
+    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
+    r->ot.t_gltf += host_now() - t;
+    r->ot.export_ambient += ambient_terms(r->s) - before;
+    return rc < 0 ? -1 : 0;
+}
+
+void print_export_stats(const opts_t *o, const out_t *ot)
+{
+    if (!o->csv && !o->gltf) return;
+    printf("exports:");
+    if (o->gltf) printf("  COLOR_0 scale %.6g", ot->gltf_scale);
+    printf("  ambient term computed %lu times (their times: the time line)\n", ot->export_ambient);
 }
 
 /* The vertex colours are sc_vertex_colours': each core vertex's radiosity (Gouraud), or

@@ -497,20 +497,11 @@ static int output_step(run_t *r)
     else
         for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && r->ot.fg && (o->ply || o->gltf)) rc = gather_vertices(r);
-    t = host_now();
-    if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st);
-    r->t_csv = host_now() - t;
+    if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st, &r->ot);
     t = host_now();
     if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
     r->t_ply = host_now() - t;
-    t = host_now();
-    if (rc == 0 && o->gltf && !o->lightmap) { /* with a lightmap: after the bake */
-        char err[1024];
-        rc = sc_export_gltf(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, o->gltf, obj_warning,
-                            (void *)o, err, sizeof err);
-        if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
-    }
-    r->t_gltf = host_now() - t;
+    if (rc == 0 && o->gltf && !o->lightmap) rc = write_gltf(r, NULL, obj_warning); /* else after the bake */
     return rc < 0 ? -1 : 0;
 }
 
@@ -546,11 +537,11 @@ static void print_times(const run_t *r)
     printf("  solve %.3fs  render %.3fs  write %.3fs", r->t_solve - r->t_mesh - r->t_rows, r->ot.t_render,
            r->ot.t_write);
     if (r->ot.fg && (o->ply || o->gltf)) printf("  vertex gathers %.3fs", r->t_vertices);
-    if (o->csv) printf("  csv %.3fs", r->t_csv);
+    if (o->csv) printf("  csv %.3fs", r->ot.t_csv);
     if (o->ply) printf("  ply %.3fs", r->t_ply);
     if (o->lightmap) printf("  lightmap %.3fs", r->t_lightmap);
     if (o->probes || o->probe_file) printf("  probes %.3fs", r->t_probes);
-    if (o->gltf) printf("  gltf %.3fs", r->t_gltf);
+    if (o->gltf) printf("  gltf %.3fs", r->ot.t_gltf);
     printf("\n");
 }
 
@@ -577,6 +568,7 @@ static void print_stats(const run_t *r)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);
     print_times(r);
+    print_export_stats(o, &r->ot);
     printf("memory: pools %zu bytes, work buffer %zu bytes\n", st->pool_bytes, st->work_bytes);
 }
 

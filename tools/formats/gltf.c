@@ -9,6 +9,7 @@
 #include "formats/gltf.h"
 
 #include "formats/file_io.h"
+#include "formats/image.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -448,6 +449,8 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     if (w->in->corner_uv1)
         write_uv1(w, pv, "TEXCOORD_1", p);
     if (w->in->corner_rgb) {
+        double scale = w->in->color_scale > 0 ? w->in->color_scale : 1;
+        int light;
         at = w->bin.n;
         for (i = 0; i < pv->nverts; i++) {
             double rgb[3];
@@ -455,8 +458,16 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
             for (k = 0; k < 3; k++)
                 put_f32(&w->bin, rgb[k]);
         }
+        light = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
+        at = w->bin.n;
+        for (i = 0; i < pv->nverts; i++) {
+            double rgb[3];
+            vertex_colour(w->in, pv->c + pv->first[i], pv->first[i + 1] - pv->first[i], rgb);
+            for (k = 0; k < 3; k++) /* NaN fails both tests: 0 */
+                put_f32(&w->bin, rgb[k] / scale < 1 ? (rgb[k] / scale > 0 ? rgb[k] / scale : 0) : 1);
+        }
         acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
-        putf(p, ",\"COLOR_0\":%d", acc);
+        putf(p, ",\"COLOR_0\":%d,\"_LIGHT\":%d", acc, light);
     }
     put_text(p, "}");
 }
@@ -624,6 +635,28 @@ static int embed_bytes(writer *w, const void *data, size_t size)
     return w->nviews++;
 }
 
+/* Material M's decoded texture encoded as PNG, embedded; its bufferView, or -1 with
+   MSG. */
+static int embed_as_png(writer *w, int m, char *msg, size_t n)
+{
+    const tex_image *t = w->in->texture_image ? &w->in->texture_image[m] : NULL;
+    unsigned char *png;
+    size_t size;
+    char err[600];
+    int view;
+    if (!t || !t->rgb) {
+        snprintf(msg, n, "%s: neither PNG nor JPEG and not decoded, left out of the glTF", w->in->texture[m]);
+        return -1;
+    }
+    if (img_encode_png(t->rgb, t->w, t->h, &png, &size, err, sizeof err)) {
+        snprintf(msg, n, "%s: %s, left out of the glTF", w->in->texture[m], err);
+        return -1;
+    }
+    view = embed_bytes(w, png, size);
+    free(png);
+    return view;
+}
+
 /* Embeds material M's texture file; returns its bufferView or -1 (warned). */
 static int embed_image(writer *w, int m, const char **mime)
 {
@@ -632,9 +665,11 @@ static int embed_image(writer *w, int m, const char **mime)
     if (fio_read_all(w->in->texture[m], FIO_LIMIT_IMAGE, &data, &size, err, sizeof err)) {
         snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
     } else if (!(*mime = image_mime((const unsigned char *)data, size))) {
-        snprintf(msg, sizeof msg, "%s: neither PNG nor JPEG, left out of the glTF",
-                 w->in->texture[m]);
+        int view = embed_as_png(w, m, msg, sizeof msg);
         free(data);
+        *mime = "image/png";
+        if (view >= 0)
+            return view;
     } else {
         int view = embed_bytes(w, data, size);
         free(data);
@@ -671,13 +706,41 @@ static int image_before(const writer *w, int m)
     return -1;
 }
 
+/* Material M is shown by the lightmap (gltf_input's lightmap_use). */
+static int lit_by_lightmap(const gltf_input *in, int m)
+{
+    return in->lightmap_png && (!in->lightmap_use || in->lightmap_use[m]);
+}
+
+/* Three factors C, each in [0, 1] (NaN: 0), comma-separated. */
+static void put_factors(buf *j, const double *c)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        putf(j, "%s%.9g", k ? "," : "", isfinite(c[k]) && c[k] > 0 ? (c[k] < 1 ? c[k] : 1.0) : 0.0);
+}
+
+/* Material M's extras: COLOR_0's scale, and the lightmap LM (-1: none) if it uses it. */
+static void extras(const writer *w, buf *j, int m, int lm)
+{
+    int lit = lm >= 0 && lit_by_lightmap(w->in, m);
+    if (!w->in->corner_rgb && !lit)
+        return;
+    put_text(j, ",\"extras\":{");
+    if (w->in->corner_rgb)
+        putf(j, "\"colorScale\":%.9g%s", w->in->color_scale > 0 ? w->in->color_scale : 1.0, lit ? "," : "");
+    if (lit)
+        putf(j, "\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}", lm, w->in->lightmap_scale);
+    put_text(j, "}");
+}
+
 /* Materials, textures and samplers (one each per textured material), images (one per
    file, embedded once). */
 static void write_materials(writer *w, buf *j)
 {
     const obj_scene *sc = w->in->sc;
     buf tex = { 0 }, img = { 0 }, smp = { 0 };
-    int m, k, n = 0, nimg = 0, lm;
+    int m, n = 0, nimg = 0, lm;
     for (m = 0; m < sc->nmaterials; m++) {
         const char *mime = NULL;
         int has = w->in->texture && w->in->texture[m], image = has ? image_before(w, m) : -1;
@@ -699,20 +762,26 @@ static void write_materials(writer *w, buf *j)
     lm = lightmap_texture(w, n, nimg, &tex, &img, &smp);
     put_text(j, ",\"materials\":[");
     for (m = 0; m < sc->nmaterials; m++) {
+        static const double black[3] = { 0, 0, 0 };
         const double *c = w->in->base_color ? w->in->base_color + 3 * m : sc->materials[m].kd;
+        int lit = lm >= 0 && lit_by_lightmap(w->in, m);
         put_text(j, m ? ",{\"name\":" : "{\"name\":");
         put_string(j, sc->materials[m].name);
         put_text(j, ",\"pbrMetallicRoughness\":{\"baseColorFactor\":[");
-        for (k = 0; k < 3; k++)
-            putf(j, "%.9g,", isfinite(c[k]) && c[k] > 0 ? (c[k] < 1 ? c[k] : 1.0) : 0.0);
-        put_text(j, "1]");
+        put_factors(j, lit ? black : c);
+        put_text(j, ",1]");
         if (w->image_of[m] >= 0)
             putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
-        put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1},"
-               "\"extensions\":{\"KHR_materials_unlit\":{}}");
-        if (lm >= 0 && (!w->in->lightmap_use || w->in->lightmap_use[m]))
-            putf(j, ",\"extras\":{\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}}", lm,
+        put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1}");
+        if (lit) { /* the light leaving: lightmap x emissiveStrength (its scale) x factor */
+            putf(j, ",\"emissiveTexture\":{\"index\":%d,\"texCoord\":1},\"emissiveFactor\":[", lm);
+            put_factors(j, w->in->lightmap_factor ? w->in->lightmap_factor + 3 * m : c);
+            putf(j, "],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%.9g}}",
                  w->in->lightmap_scale);
+        } else {
+            put_text(j, ",\"extensions\":{\"KHR_materials_unlit\":{}}");
+        }
+        extras(w, j, m, lm);
         put_text(j, "}");
     }
     put_text(j, "]");
@@ -748,8 +817,16 @@ static void free_writer(writer *w)
 static void write_json(writer *w, buf *j)
 {
     int i;
-    put_text(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"rad\"},"
-           "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"scene\":0,\"scenes\":[{");
+    int lit = 0, unlit = 0;
+    for (i = 0; i < w->in->sc->nmaterials; i++) {
+        lit |= lit_by_lightmap(w->in, i);
+        unlit |= !lit_by_lightmap(w->in, i);
+    }
+    put_text(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"rad\"}");
+    if (lit || unlit)
+        putf(j, ",\"extensionsUsed\":[%s%s%s]", unlit ? "\"KHR_materials_unlit\"" : "", lit && unlit ? "," : "",
+             lit ? "\"KHR_materials_emissive_strength\"" : "");
+    put_text(j, ",\"scene\":0,\"scenes\":[{");
     if (w->nmeshes) {
         put_text(j, "\"nodes\":[");
         for (i = 0; i < w->nmeshes; i++)

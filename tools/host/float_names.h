@@ -30,6 +30,7 @@
 #define sc_element_vertices scf_element_vertices
 #define sc_vertex_pos scf_vertex_pos
 #define sc_shade scf_shade
+#define sc_shade_elements scf_shade_elements
 #define sc_render scf_render
 #define sc_render_values scf_render_values
 #define sc_form_factors scf_form_factors

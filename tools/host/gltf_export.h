@@ -29,8 +29,10 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
                        double *rgb, double *weight);
 
 /* Writes PATH (.glb) from the solved S of SC's POLYS (N) with the textures MAPS
- * (tex_load_materials; NULL: none): COLOR_0 from sc_corner_light_fg with FG (NULL:
- * the elements'); a material's
+ * (tex_load_materials; NULL: none): _LIGHT the light from sc_corner_light_fg with FG
+ * (NULL: the elements'), COLOR_0 that over a scale (gltf.h): the largest channel at
+ * the corners of faces that do not emit (of every face when all emit), at least 1, so
+ * that only emitters brighter than the lit surfaces clamp; a material's
  * baseColorFactor is 1 where it emits (COLOR_0 is then its radiosity), else Kd, or 1
  * for a texture with Kd 0 (texture.h's rule), each at most TEX_RHO_MAX; its
  * baseColorTexture is its map_Kd file when MAPS holds it. Warnings (a texture left out)
@@ -41,11 +43,12 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
 
 /* sc_export_gltf with the lightmap LM (NULL: none) baked over POLYS: TEXCOORD_1 each
  * corner's place on the atlas (lm_corner_uvs), the atlas embedded as PNG (lm_png) and
- * named in the extras of every material that does not emit (gltf_input). */
+ * named in the extras of every material that does not emit (gltf_input); COLOR_0's
+ * scale into *COLOR_SCALE (NULL: not wanted). */
 int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                             const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
-                            const char *path, gltf_warn_fn warn, void *ctx, char *err,
-                            size_t errlen);
+                            double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
+                            char *err, size_t errlen);
 
 #ifndef RAD_HOST_FLOAT_NAMES
 int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
@@ -57,8 +60,8 @@ int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, in
                     void *ctx, char *err, size_t errlen);
 int scf_export_gltf_lightmap(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                              const tex_image *maps, scf_fgather *fg, const lm_atlas *lm,
-                             const char *path, gltf_warn_fn warn, void *ctx, char *err,
-                             size_t errlen);
+                             double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
+                             char *err, size_t errlen);
 #endif
 
 #endif

@@ -45,6 +45,7 @@ struct sc_solver {
     double *area;               /* per surface: its area from its vertices, in core units^2 */
     int n_tiny;
     rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
+    unsigned long ambient_terms; /* sc_stats.ambient_terms */
 };
 
 typedef struct {
@@ -625,6 +626,7 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
     const rad_pools_t *p = &h->pools;
     memset(st, 0, sizeof *st);
     st->surfaces = (int)h->s.n_surfaces;
+    st->ambient_terms = h->ambient_terms;
     st->patches = (int)h->s.n_patches;
     st->elements = (int)h->s.n_elements;
     st->vertices = (int)h->s.n_vertices;
@@ -656,9 +658,12 @@ static void rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
     o[2] = RAD_TO_DOUBLE(c->b) / h->escale;
 }
 
-static int shade_flags(const struct sc_solver *h, int ambient)
+/* The core's flags for AMBIENT; each call with the term is a computation of it. */
+static int shade_flags(struct sc_solver *h, int ambient)
 {
-    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
+    int f = ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
+    h->ambient_terms += f != 0;
+    return f;
 }
 
 void sc_element_rgb(sc_solver *h, int e, int ambient, double rgb[3])
@@ -757,6 +762,17 @@ static rad_rgb_t *shade_core(struct sc_solver *h, int ambient)
     rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v);
     if (v) rad_shade_vertices(&h->s, shade_flags(h, ambient), v, h->s.n_vertices);
     return v;
+}
+
+int sc_shade_elements(sc_solver *h, int ambient, double *rgb)
+{
+    rad_rgb_t *c = malloc((h->s.n_elements ? h->s.n_elements : 1) * sizeof *c);
+    uint32_t e;
+    if (!c) return -1;
+    rad_shade_elements(&h->s, shade_flags(h, ambient), c, h->s.n_elements);
+    for (e = 0; e < h->s.n_elements; e++) rgb_out(h, &c[e], &rgb[3 * e]);
+    free(c);
+    return 0;
 }
 
 int sc_shade(sc_solver *h, int ambient, double *rgb)
@@ -1198,13 +1214,12 @@ struct sc_solution {
 
 sc_solution *sc_keep(sc_solver *h, int ambient)
 {
-    uint32_t n = h->s.n_elements, e;
+    uint32_t n = h->s.n_elements;
     struct sc_solution *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
     if (!k) return NULL;
     k->n = n;
     k->escale = h->escale;
-    for (e = 0; e < n; e++)
-        rad_element_radiosity(&h->s, e, ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0, &k->rgb[e]);
+    rad_shade_elements(&h->s, shade_flags(h, ambient), k->rgb, n);
     return k;
 }
 

@@ -51,6 +51,10 @@ typedef struct {
     int skipped_emitters;           /* emitting polygons skipped (each warned) */
     int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
                                        shown from the light around them */
+    unsigned long ambient_terms;    /* shading calls (sc_element_rgb, sc_shade,
+                                       sc_shade_elements, sc_render, sc_keep) that had the
+                                       core compute the ambient term, a pass over the
+                                       patches each: an export makes one */
 } sc_stats;
 
 typedef struct {
@@ -102,6 +106,9 @@ void sc_element_rho(sc_solver *s, int e, double rho[3]);
 /* Vertex ids of element e (3 or 4, returned). */
 int sc_element_vertices(sc_solver *s, int e, int v[4]);
 void sc_vertex_pos(sc_solver *s, int v, double p[3]);
+/* Every element's sc_element_rgb (the same values) into RGB (3 an element), the
+ * ambient term computed once (rad_shade_elements). 0, or -1 when out of memory. */
+int sc_shade_elements(sc_solver *s, int ambient, double *rgb);
 /* Gouraud vertex colours (caller units), n >= stats.vertices entries of 3. */
 int sc_shade(sc_solver *s, int ambient, double *rgb);
 /* Renders w x h linear RGB (caller units, row 0 at top); 0 or -1 with err. */

@@ -31,6 +31,7 @@ void scf_element_rho(scf_solver *s, int e, double rho[3]);
 int scf_element_vertices(scf_solver *s, int e, int v[4]);
 void scf_vertex_pos(scf_solver *s, int v, double p[3]);
 int scf_shade(scf_solver *s, int ambient, double *rgb);
+int scf_shade_elements(scf_solver *s, int ambient, double *rgb);
 int scf_render(scf_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
     size_t errlen);
 int scf_render_values(scf_solver *s, const sc_camera *cam, const double *values, int w, int h,
