@@ -383,6 +383,68 @@ static void test_outside_paths(void **state)
     obj_free(&sc);
 }
 
+/* glTF's KHR_lights_punctual: a point light moved by its node, a spot and a sun turned
+ * by theirs to point down (a quarter turn about x takes the light's -z to -y), colour
+ * times intensity, the spot's half angles as given. */
+static void test_gltf_lights(void **state)
+{
+    static const char text[] =
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":["
+        "{\"type\":\"point\",\"color\":[1,0.5,0.25],\"intensity\":5},"
+        "{\"type\":\"spot\",\"intensity\":7,\"spot\":{\"innerConeAngle\":0.3,\"outerConeAngle\":0.6}},"
+        "{\"type\":\"directional\",\"intensity\":3}]}},"
+        "\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2,3]}],\"nodes\":["
+        "{\"name\":\"bulb\",\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+        "{\"name\":\"lamp\",\"translation\":[0,2,0],\"rotation\":[-0.70710678,0,0,0.70710678],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+        "{\"name\":\"sun\",\"rotation\":[-0.70710678,0,0,0.70710678],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}},{\"name\":\"m\",\"mesh\":0}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+        "\"min\":[0,0,0],\"max\":[1,1,0]}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+        "\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
+        "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}]}";
+    static const struct {
+        int type;
+        double pos[3], dir[3], rgb[3], cos_outer, cos_inner;
+    } want[3] = {{OBJ_LIGHT_POINT, {1, 2, 3}, {0, 0, -1}, {5, 2.5, 1.25}, 0, 0},
+                 {OBJ_LIGHT_SPOT, {0, 2, 0}, {0, -1, 0}, {7, 7, 7}, 0.82533561, 0.95533649},
+                 {OBJ_LIGHT_SUN, {0, 0, 0}, {0, -1, 0}, {3, 3, 3}, 0, 0}};
+    obj_scene sc;
+    char err[512];
+    FILE *f;
+    int i, k;
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    f = fopen(tmp_path("lights.gltf"), "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+    if (assimp_scene_load(tmp_path("lights.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
+    CHECK_INT_EQ(sc.nlights, 3, "lights read from KHR_lights_punctual");
+    for (i = 0; i < 3; i++) {
+        const obj_light *l = &sc.lights[i];
+        print_message("light %d %s: type %d at %g %g %g toward %g %g %g, %g %g %g, cone %g %g\n", i,
+                      l->name, l->type, l->pos[0], l->pos[1], l->pos[2], l->dir[0], l->dir[1],
+                      l->dir[2], l->rgb[0], l->rgb[1], l->rgb[2], l->cos_outer, l->cos_inner);
+        CHECK_INT_EQ(l->type, want[i].type, "light %d's type", i);
+        for (k = 0; k < 3; k++) {
+            /* float32 in the file, a rotation of 0.70710678: 1e-6 */
+            CHECK_NEAR(l->pos[k], want[i].pos[k], 1e-6, "light %d position[%d]", i, k);
+            if (l->type != OBJ_LIGHT_POINT)
+                CHECK_NEAR(l->dir[k], want[i].dir[k], 1e-6, "light %d direction[%d]", i, k);
+            CHECK_NEAR(l->rgb[k], want[i].rgb[k], 1e-6, "light %d colour x intensity[%d]", i, k);
+        }
+        if (l->type == OBJ_LIGHT_SPOT) {
+            CHECK_NEAR(l->cos_outer, want[i].cos_outer, 1e-6, "spot's cos(outer half angle 0.6)");
+            CHECK_NEAR(l->cos_inner, want[i].cos_inner, 1e-6, "spot's cos(inner half angle 0.3)");
+        }
+    }
+    obj_free(&sc);
+}
+
 /* .obj in any case goes to the OBJ reader, every other name to assimp. */
 static void test_wants(void **state)
 {
@@ -404,6 +466,7 @@ int main(void)
         cmocka_unit_test(test_exported_formats),
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_outside_paths),
+        cmocka_unit_test(test_gltf_lights),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -4,6 +4,7 @@
 
 #include <ctype.h>
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,13 +12,20 @@
 
 #include "formats/file_io.h"
 
-int assimp_scene_wants(const char *path)
+/* 1 if PATH ends in "." EXT, in any case. */
+static int has_ext(const char *path, const char *ext)
 {
     const char *dot = path ? strrchr(path, '.') : NULL;
-    if (path && !strcmp(path, "-")) return 0;
-    if (!dot || strchr(dot, '/')) return 1;
-    return !(tolower((unsigned char)dot[1]) == 'o' && tolower((unsigned char)dot[2]) == 'b' &&
-             tolower((unsigned char)dot[3]) == 'j' && dot[4] == '\0');
+    size_t i;
+    if (!dot || strchr(dot, '/')) return 0;
+    for (i = 0; ext[i]; i++)
+        if (tolower((unsigned char)dot[1 + i]) != ext[i]) return 0;
+    return dot[1 + i] == '\0';
+}
+
+int assimp_scene_wants(const char *path)
+{
+    return !(path && !strcmp(path, "-")) && !has_ext(path, "obj");
 }
 
 #ifndef RAD_HAVE_ASSIMP
@@ -177,6 +185,8 @@ static void mf_close(struct aiFileIO *io, struct aiFile *f)
 typedef struct {
     obj_scene *sc;
     const struct aiScene *ai;
+    int half_angles;  /* spot cones given as half angles (glTF), else full (assimp's rule) */
+    char *placed;     /* per assimp light: placed by its node */
     int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces;
     int *mat_of; /* assimp material -> obj material */
 } build;
@@ -324,6 +334,45 @@ static int add_name(build *b, const struct aiString *s)
     return sc->nnames++;
 }
 
+/* Assimp light I placed by transform T (of its node, or the identity) into the scene's
+ * next entry; a light of another kind (ambient, area) is left out, counted. */
+static int add_light(build *b, unsigned i, const xform *t)
+{
+    const struct aiLight *l = b->ai->mLights[i];
+    obj_light *o = &b->sc->lights[b->sc->nlights];
+    const struct aiVector3D *p = &l->mPosition, *d = &l->mDirection;
+    double len, half = b->half_angles ? 1.0 : 0.5;
+    int k;
+    b->placed[i] = 1;
+    memset(o, 0, sizeof *o);
+    o->type = l->mType == aiLightSource_DIRECTIONAL ? OBJ_LIGHT_SUN
+            : l->mType == aiLightSource_POINT       ? OBJ_LIGHT_POINT
+            : l->mType == aiLightSource_SPOT        ? OBJ_LIGHT_SPOT
+                                                    : 0;
+    if (!o->type) {
+        b->sc->unknown_statements++;
+        return 0;
+    }
+    for (k = 0; k < 3; k++) {
+        o->pos[k] = t->m[k][0] * p->x + t->m[k][1] * p->y + t->m[k][2] * p->z + t->m[k][3];
+        o->dir[k] = t->m[k][0] * d->x + t->m[k][1] * d->y + t->m[k][2] * d->z;
+    }
+    len = sqrt(o->dir[0] * o->dir[0] + o->dir[1] * o->dir[1] + o->dir[2] * o->dir[2]);
+    for (k = 0; k < 3; k++) o->dir[k] = len > 0 ? o->dir[k] / len : (k == 2 ? -1.0 : 0.0);
+    o->rgb[0] = l->mColorDiffuse.r;
+    o->rgb[1] = l->mColorDiffuse.g;
+    o->rgb[2] = l->mColorDiffuse.b;
+    if (o->type == OBJ_LIGHT_SPOT) {
+        o->cos_outer = cos(half * l->mAngleOuterCone);
+        o->cos_inner = cos(half * l->mAngleInnerCone);
+        if (o->cos_inner < o->cos_outer) o->cos_inner = o->cos_outer;
+    }
+    o->name = dup_str(l->mName.data);
+    if (!o->name) return -1;
+    b->sc->nlights++;
+    return 0;
+}
+
 /* Depth first from NODE with its parents' transform T; DEPTH bounds a cyclic or absurd
  * hierarchy (assimp's validation refuses cycles; this is belt and braces). */
 static int walk(build *b, const struct aiNode *node, const xform *parent, int depth)
@@ -336,6 +385,10 @@ static int walk(build *b, const struct aiNode *node, const xform *parent, int de
         object = add_name(b, &node->mName);
         if (object == -2) return -1;
     }
+    for (i = 0; i < b->ai->mNumLights; i++) /* a light is placed by the node of its name */
+        if (!b->placed[i] && !strcmp(b->ai->mLights[i]->mName.data, node->mName.data) &&
+            add_light(b, i, &t) < 0)
+            return -1;
     for (i = 0; i < node->mNumMeshes; i++) {
         unsigned mi = node->mMeshes[i];
         if (mi >= b->ai->mNumMeshes || add_mesh(b, b->ai->mMeshes[mi], &t, object) < 0) return -1;
@@ -484,6 +537,10 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
     }
     b.sc = sc;
     b.ai = ai;
+    b.half_angles = has_ext(path, "gltf") || has_ext(path, "glb");
+    b.placed = calloc(ai->mNumLights + 1u, 1);
+    sc->lights = calloc(ai->mNumLights + 1u, sizeof *sc->lights);
+    if (!b.placed || !sc->lights) goto nomem;
     b.mat_of = calloc(ai->mNumMaterials ? ai->mNumMaterials : 1, sizeof *b.mat_of);
     sc->materials = calloc(ai->mNumMaterials ? ai->mNumMaterials : 1, sizeof *sc->materials);
     if (!b.mat_of || !sc->materials) goto nomem;
@@ -505,8 +562,11 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
         if (add_material(&b, &st, path, i, warn, ctx) < 0) goto nomem;
     }
     if (walk(&b, ai->mRootNode, &id, 0) < 0) goto nomem;
+    for (i = 0; i < ai->mNumLights; i++) /* no node of its name: as the file gives it */
+        if (!b.placed[i] && add_light(&b, i, &id) < 0) goto nomem;
     aiReleaseImport(ai);
     free(b.mat_of);
+    free(b.placed);
     for (i = 0; i < (unsigned)sc->nfaces; i++)
         sc->materials[sc->faces[i].material].area += obj_face_area(sc, &sc->faces[i]);
     if (sc->nfaces == 0) {
@@ -518,6 +578,7 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
 nomem:
     aiReleaseImport(ai);
     free(b.mat_of);
+    free(b.placed);
     obj_free(sc);
     fio_err(err, errlen, path, "out of memory, or more than %d vertices or indices",
             INT_MAX / 2);

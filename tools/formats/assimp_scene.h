@@ -19,6 +19,13 @@
  *     texture embedded in the file is not read yet: a warning, and the colour alone),
  *     the emissive colour times its strength (KHR_materials_emissive_strength) as Ke,
  *     in the units of an MTL's Ke. Names are the file's, made unique with "#N".
+ *   - the file's lights (glTF's KHR_lights_punctual, FBX, COLLADA, 3DS): directional,
+ *     point and spot, placed by the node of their name, colour times intensity (glTF:
+ *     candela for point and spot, lux for directional, taken as the units of Ke, whose
+ *     exitance is then lux), a spot's cone from its half angles (glTF) or its full
+ *     angles halved (assimp's rule for the other formats); ambient and area lights are
+ *     left out and counted in unknown_statements. A glTF light's range is not used:
+ *     light falls off as 1 / r^2.
  * Units are the file's: metres in glTF (its specification), metres in FBX (assimp
  * converts from centimetres: AI_CONFIG_FBX_CONVERT_TO_M), as written in the others.
  *

@@ -1221,6 +1221,9 @@ void obj_free(obj_scene *sc)
     }
     for (i = 0; i < sc->nnames; i++)
         free(sc->names[i]);
+    for (i = 0; i < sc->nlights; i++)
+        free(sc->lights[i].name);
+    free(sc->lights);
     for (i = 0; i < sc->nlibs; i++)
         free(sc->libs[i]);
     free(sc->libs);

@@ -55,6 +55,22 @@ typedef struct {
     int group;      /* index into names of the current 'g', -1 before any */
 } obj_face;
 
+/* A light of the scene file that is not a surface (OBJ has none; glTF's
+ * KHR_lights_punctual, FBX, COLLADA and 3DS lights through assimp_scene.h), in the
+ * file's units and placed in the scene by its node: TYPE OBJ_LIGHT_SUN (RGB its
+ * irradiance on a plane facing it), OBJ_LIGHT_POINT or OBJ_LIGHT_SPOT (RGB its
+ * intensity per steradian); DIR the way its light travels; a spot's cone by the cosines
+ * of its outer and inner half angles. */
+#define OBJ_LIGHT_SUN   1
+#define OBJ_LIGHT_POINT 2
+#define OBJ_LIGHT_SPOT  3
+typedef struct {
+    int type;
+    char *name;
+    double pos[3], dir[3], rgb[3];
+    double cos_outer, cos_inner;
+} obj_light;
+
 typedef struct {
     obj_vec3 *verts; int nverts;
     int *indices; int nindices;      /* 0-based indices into verts, already resolved */
@@ -66,6 +82,7 @@ typedef struct {
     obj_face *faces; int nfaces;
     obj_material *materials; int nmaterials;
     char **libs; int nlibs;          /* the material libraries read, as opened (joined paths) */
+    obj_light *lights; int nlights;  /* the file's lights (none from an OBJ) */
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
     int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
