@@ -1129,6 +1129,174 @@ static void test_unusual_maps(void **state)
     tex_free(&t);
 }
 
+/* ---- tests: tiling and degenerate footprints never fail -------------------------------- */
+
+/* A 64 x 64 map black for x < 32, a warm grey beyond: wide black areas, and the wrap's
+   seam at u = 0 runs from grey to black. */
+static void half_black(tex_image *t)
+{
+    unsigned char rgb[64 * 64 * 3];
+    int i;
+    for (i = 0; i < 64 * 64; i++) {
+        rgb[3 * i] = (unsigned char)(i % 64 < 32 ? 0 : 200);
+        rgb[3 * i + 1] = (unsigned char)(i % 64 < 32 ? 0 : 180);
+        rgb[3 * i + 2] = (unsigned char)(i % 64 < 32 ? 0 : 150);
+    }
+    make_texture("half_black.png", rgb, 64, 64, t);
+}
+
+/* Each channel of a mean inside [0, 1]: a convex combination of texels. */
+static void expect_mean_in_range(const double c[3], const char *what, int i)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        if (!(c[k] >= 0 && c[k] <= 1))
+            fail_msg("%s %d: channel %d = %.17g, outside [0, 1]", what, i, k, c[k]);
+}
+
+/* A floor tiled as DCC tools export it (u, v from -2.6 to 3.6) cut in 24 x 24 elements,
+   as quads and as triangle pairs (16.5 texels across: past 16, the lines' path), against
+   each element's footprint moved by whole periods into the 0..1 layout, and against it
+   moved 10^6 periods. The same texels in the same order, so only the coordinates'
+   rounding differs: u - floor(u) to 2^-52 at the 0..1 layout's 1 (x 64 texels, x the
+   bilinear texture's steepest slope, 1 a texel: 1.4e-14) plus the row sums' rounding
+   (some 10^3 terms below 1: 1e-13): bound 1e-12. At 10^6 periods u is known to
+   2^-33 (1.2e-10, 7.5e-9 texel): bound 1e-7. Today's row sums went below 0 over the
+   black columns across the seam, which the core refuses ("reflectance must be finite
+   and >= 0"). */
+static void test_tiled_floor(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    tex_image t;
+    double worst = 0, worst_far = 0;
+    int i, j, k, tri, n = 0;
+    (void)state;
+    half_black(&t);
+    for (j = 0; j < 24; j++)
+        for (i = 0; i < 24; i++)
+            for (tri = 0; tri < 3; tri++) {
+                double u0 = -2.6 + 6.2 * i / 24, u1 = -2.6 + 6.2 * (i + 1) / 24;
+                double v0 = -2.6 + 6.2 * j / 24, v1 = -2.6 + 6.2 * (j + 1) / 24, a[3], b[3], c[3];
+                double su = floor(u0), sv = floor(v0);
+                obj_vec2 uv[4] = { { u0, v0 }, { u1, v0 }, { u1, v1 }, { u0, v1 } }, one[4], far[4];
+                const obj_vec2 *feet[3] = { uv, one, far };
+                int nc = tri ? 3 : 4, f;
+                if (tri == 2) { /* the other half of the cell */
+                    uv[1] = uv[2];
+                    uv[2] = uv[3];
+                }
+                for (k = 0; k < 4; k++) {
+                    one[k].u = uv[k].u - su;
+                    one[k].v = uv[k].v - sv;
+                    far[k].u = one[k].u + 1e6;
+                    far[k].v = one[k].v - 1e6;
+                }
+                for (f = 0; f < 3; f++)
+                    tex_polygon_mean(&t, pos, feet[f], nc, NULL, f == 0 ? a : f == 1 ? b : c);
+                expect_mean_in_range(a, "tiled element", n);
+                expect_mean_in_range(c, "element 10^6 periods off", n);
+                for (k = 0; k < 3; k++) {
+                    worst = fmax(worst, fabs(a[k] - b[k]));
+                    worst_far = fmax(worst_far, fabs(c[k] - b[k]));
+                }
+                n++;
+            }
+    print_message("tiled floor, %d elements: off the 0..1 layout by %.3g at most, 10^6 periods off by %.3g\n",
+                  n, worst, worst_far);
+    CHECK_LE(worst, 1e-12, "tiled element against its 0..1 footprint");
+    CHECK_LE(worst_far, 1e-7, "element 10^6 periods off against its 0..1 footprint");
+    tex_free(&t);
+}
+
+/* Footprints of no area: two equal vt (a real level's door), three equal, three on a
+   line, each short and long (300 texels along v: past the lines' threshold), as
+   triangles and in quads: the mean of the texture along the segment, inside the
+   texels' range; a point gives the texel sample there. A triangle 0.01 texel wide and
+   17 .. 4,000 texels tall over the black half (across the seam and not) is black: 0
+   to rounding, never below. Today the lines divided rounding by rounding (-0.58, 4.4). */
+static void test_degenerate_footprints(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    tex_image t;
+    double c[3], s[3], worst_tall = 0;
+    int i, k;
+    (void)state;
+    half_black(&t);
+    for (i = 0; i < 400; i++) {
+        double u = -3 + 0.0173 * i, v = 2 - 0.031 * i, len = i % 2 ? 300.0 / 64 : 0.05;
+        obj_vec2 two[4] = { { u, v }, { u, v }, { u + 0.01 * i / 400, v + len }, { u, v + len } };
+        obj_vec2 line3[3] = { { u, v }, { u + 0.1, v + len }, { u + 0.2, v + 2 * len } };
+        obj_vec2 point[3] = { { u, v }, { u, v }, { u, v } };
+        tex_triangle_mean(&t, two, c);
+        expect_mean_in_range(c, "two equal vt", i);
+        tex_polygon_mean(&t, pos, two, 4, NULL, c);
+        expect_mean_in_range(c, "quad with two equal vt", i);
+        tex_triangle_mean(&t, line3, c);
+        expect_mean_in_range(c, "vt on a line", i);
+        tex_triangle_mean(&t, point, c);
+        tex_sample(&t, u, v, s);
+        for (k = 0; k < 3; k++)
+            CHECK_NEAR(c[k], s[k], 0, "three equal vt against the sample there, footprint %d", i);
+    }
+    for (i = 0; i < 200; i++) { /* black columns: x 0 .. 31 wrap to the seam at u = 0 */
+        double x = 1.5 + 0.13 * i, h = 17 + 20 * i, v = -1 + 0.37 * i;
+        obj_vec2 tall[3] = { { x / 64, v }, { (x + 0.01) / 64, v }, { (x + 0.01) / 64, v + h / 64 } };
+        obj_vec2 seam[3] = { { -0.5 / 64, v }, { 0.5 / 64, v }, { 0.5 / 64, v + h / 64 } };
+        tex_triangle_mean(&t, tall, c);
+        expect_mean_in_range(c, "tall black triangle", i);
+        for (k = 0; k < 3; k++)
+            worst_tall = fmax(worst_tall, c[k]);
+        tex_triangle_mean(&t, seam, c);
+        expect_mean_in_range(c, "tall triangle on the seam", i);
+    }
+    print_message("tall black triangles: mean at most %.3g\n", worst_tall);
+    CHECK_LE(worst_tall, 1e-12, "tall triangle over black texels (rounding of sums below 4,000)");
+    tex_free(&t);
+}
+
+/* The user's room: a floor of two triangles tiled from -2.6 to 3.6 over the half-black
+   map, elements of 0.3 (the scene 4 wide): every element gets a reflectance (today the
+   call failed with "element N: reflectance must be finite and >= 0"), the black half's
+   within 2^-16 of 0. */
+static void test_tiled_room(void **state)
+{
+    sc_opts o = { 0, 0.3, 64, 0, 0, 0, 0, 0 };
+    tex_image t;
+    textured x;
+    sc_solver *s;
+    sc_stats st;
+    char err[512];
+    int set, e, k;
+    (void)state;
+    half_black(&t);
+    tex_free(&t);
+    write_text("tiled.mtl", "newmtl floor\nKd 0 0 0\nmap_Kd half_black.png\nnewmtl wall\nKd 0.6 0.6 0.6\n"
+                            "newmtl light\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("tiled.obj", "mtllib tiled.mtl\nv 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 0 3 0\nv 4 3 0\n"
+                            "v 4 3 4\nv 0 3 4\nv 1.5 2.99 1.5\nv 2.5 2.99 1.5\nv 2.5 2.99 2.5\nv 1.5 2.99 2.5\n"
+                            "vt -2.6 -2.6\nvt 3.6 -2.6\nvt 3.6 3.6\nvt -2.6 3.6\nusemtl floor\n"
+                            "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nusemtl wall\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\n"
+                            "f 3 4 8 7\nf 4 1 5 8\nusemtl light\nf 9 10 11 12\n");
+    load_textured("tiled.obj", &x);
+    s = sc_create(x.p, x.n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    set = sc_texture_elements(s, &x.sc, x.maps, err, sizeof err);
+    if (set < 0)
+        fail_msg("sc_texture_elements: %s", err);
+    sc_get_stats(s, &st);
+    print_message("tiled room: %d floor elements given their footprint's reflectance\n", set);
+    CHECK_INT_GT(set, 100, "floor elements with their own reflectance");
+    for (e = 0; e < st.elements; e++) {
+        double rho[3];
+        sc_element_rho(s, e, rho);
+        expect_mean_in_range(rho, "element reflectance", e);
+        for (k = 0; k < 3; k++)
+            CHECK_LE(rho[k], TEX_RHO_MAX, "element %d reflectance", e);
+    }
+    sc_destroy(s);
+    free_textured(&x);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1140,7 +1308,8 @@ int main(void)
         cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
         cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
         cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
-        cmocka_unit_test(test_rect_mean),
+        cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
+        cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

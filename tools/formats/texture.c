@@ -412,10 +412,20 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
     int i, k;
     for (i = 0; i < 3; i++) {
         x[i] = (uv[i].u * t->scale[0] + t->offset[0]) * t->w - 0.5;
-        y[i] = ys[i] = (1.0 - (uv[i].v * t->scale[1] + t->offset[1])) * t->h - 0.5;
+        y[i] = (1.0 - (uv[i].v * t->scale[1] + t->offset[1])) * t->h - 0.5;
         if (!(fabs(x[i]) < 1e15 && fabs(y[i]) < 1e15))
             return -1;
     }
+    if (!t->clamp) { /* whole periods off, so that the row integrals' sums stay small */
+        double qx = floor(fmin(x[0], fmin(x[1], x[2])) / t->w) * t->w;
+        double qy = floor(fmin(y[0], fmin(y[1], y[2])) / t->h) * t->h;
+        for (i = 0; i < 3; i++) {
+            x[i] -= qx;
+            y[i] -= qy;
+        }
+    }
+    for (i = 0; i < 3; i++)
+        ys[i] = y[i];
     qsort(ys, 3, sizeof ys[0], cmp_double);
     if (!t->row_sums || !(ys[2] - ys[0] > 0 && ys[2] - ys[0] <= MEAN_MAX_ROWS))
         return -1;
@@ -436,6 +446,35 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
     return 0;
 }
 
+/* Twice the area of the triangle UV in texels (NaN for UVs whose differences are). */
+static double uv_area2(const tex_image *t, const obj_vec2 uv[3])
+{
+    double au = (uv[1].u - uv[0].u) * t->scale[0] * t->w, av = (uv[1].v - uv[0].v) * t->scale[1] * t->h;
+    double bu = (uv[2].u - uv[0].u) * t->scale[0] * t->w, bv = (uv[2].v - uv[0].v) * t->scale[1] * t->h;
+    return fabs(au * bv - av * bu);
+}
+
+/* A triangle of UV thinner than SLIVER times its longest edge (twice its area below
+   SLIVER longest^2), two equal vt among them, maps its face onto a segment or a point
+   of the texture: the lines would divide sums by a length that is rounding (measured:
+   means of -2.4 and 4.4 over a black and white map). The sampler's centroids lie on
+   that segment, spread as the face's area is: the mean along it, and at a point the
+   texel there. */
+#define SLIVER 1e-6
+
+/* Every mean is a convex combination of texels, each in [0, 1], so a value outside is
+   rounding's (the row sums' differences: -4e-15 measured over black texels across the
+   wrap's seam, which the core refuses as a negative reflectance): kept to [0, 1]. NaN
+   (UVs whose differences overflow) takes the sample at corner 0. Nothing here fails. */
+static void settle(const tex_image *t, const obj_vec2 *uv, double rgb[3])
+{
+    int k;
+    if (isnan(rgb[0]) || isnan(rgb[1]) || isnan(rgb[2]))
+        tex_sample(t, uv[0].u, uv[0].v, rgb);
+    for (k = 0; k < 3; k++)
+        rgb[k] = rgb[k] > 0 ? rgb[k] < 1 ? rgb[k] : 1 : 0;
+}
+
 /* Splitting each edge in n splits the triangle into n^2 congruent triangles: n(n+1)/2
    pointing like it, with centroids at barycentric ((i + 1/3) / n, (j + 1/3) / n), and
    n(n-1)/2 pointing the other way, centroids at ((i + 2/3) / n, (j + 2/3) / n). Equal
@@ -443,9 +482,12 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
 {
     int n = divisions(t, uv), i, j, k, up;
-    double sum[3] = { 0, 0, 0 };
-    if (4 * footprint(t, uv) > TEX_MEAN_MAX_DIV && mean_by_lines(t, uv, rgb) == 0)
+    double sum[3] = { 0, 0, 0 }, longest = footprint(t, uv);
+    if (4 * longest > TEX_MEAN_MAX_DIV && !(uv_area2(t, uv) <= SLIVER * longest * longest) &&
+        mean_by_lines(t, uv, rgb) == 0) {
+        settle(t, uv, rgb);
         return;
+    }
     for (up = 0; up < 2; up++)
         for (i = 0; i < n; i++)
             for (j = 0; j + i < n - up; j++) {
@@ -458,6 +500,7 @@ void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
             }
     for (k = 0; k < 3; k++)
         rgb[k] = sum[k] / ((double)n * n);
+    settle(t, uv, rgb);
 }
 
 static double tri_area(const double a[3], const double b[3], const double c[3])
@@ -561,9 +604,11 @@ static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo
     if (fabs(x[1] - x[3]) <= 1e-9 * (x1 - x0))
         return -1; /* 1 and 3 the same corner */
     if (!t->clamp) { /* whole periods off: the row integrals need none of their own */
-        double q = floor(x0 / t->w) * t->w;
+        double q = floor(x0 / t->w) * t->w, qy = floor(y0 / t->h) * t->h;
         x0 -= q;
         x1 -= q;
+        y0 -= qy;
+        y1 -= qy;
     }
     for (j = floor(y0); j <= floor(y1) + 1; j++)
         wsum += tent_below(y1 - j) - tent_below(y0 - j);
@@ -573,6 +618,7 @@ static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo
     rect_edge(t, y0, y1, x1, memo, g1);
     for (k = 0; k < 3; k++)
         rgb[k] = (g1[k] - g0[k]) / (wsum * (x1 - x0));
+    settle(t, uv, rgb);
     return 0;
 }
 
@@ -598,6 +644,7 @@ void tex_polygon_mean(const tex_image *t, const double (*pos)[3], const obj_vec2
     }
     for (k = 0; k < 3; k++)
         rgb[k] /= total;
+    settle(t, uv, rgb);
 }
 
 void tex_image_mean(const tex_image *t, double rgb[3])

@@ -82,7 +82,12 @@ void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
  * triangle). Larger: integrated exactly along lines of constant v, two a texel row,
  * from the row sums (a sampling lattice coarser than the texels would beat with any
  * period of the image); the sampler again if they are missing or the footprint spans
- * more than 65,536 texel rows. */
+ * more than 65,536 texel rows, and for a footprint of no area (two or three equal vt,
+ * vt on a line: thinner than 1e-6 of its longest edge), whose samples then lie along
+ * its segment (at a point: the texel sample there). Never fails: every mean (here and
+ * in tex_polygon_mean) is finite and in [0, 1], as a convex combination of texels is;
+ * wrapped coordinates are moved by whole periods first, so u, v of +-1e6 or negative
+ * give the 0..1 layout's mean. */
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
 /* Values tex_polygon_mean keeps for the elements of a lattice, which share edges: a
  * caller's, of any content at first (it clears itself for another image). */
