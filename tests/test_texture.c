@@ -98,6 +98,8 @@ static double srgb_reference(double c)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+static void expect_refused(const char *path, const char *what);
+
 /* ---- tests: decoding ----------------------------------------------------------- */
 
 static void assert_asymmetric(const tex_image *t)
@@ -117,7 +119,8 @@ static void assert_asymmetric(const tex_image *t)
                 }
 }
 
-/* PNG and PPM, and a PNG named .jpg: decoded by content, texel for texel. */
+/* PNG, and a PNG named .jpg: decoded by content, texel for texel; PPM refused (not a
+   format textures ship in: test_formats). */
 static void test_decode_asymmetric(void **state)
 {
     unsigned char rgb[AW * AH * 3];
@@ -134,9 +137,8 @@ static void test_decode_asymmetric(void **state)
     tex_free(&t);
     assert_null(t.rgb);
     tex_free(&t); /* idempotent */
-    make_texture("a.ppm", rgb, AW, AH, &t);
-    assert_asymmetric(&t);
-    tex_free(&t);
+    assert_int_equal(img_write(tmp_path("a.ppm"), rgb, AW, AH, NULL, 0), 0);
+    expect_refused(tmp_path("a.ppm"), "not a PNG, JPEG, BMP or TGA image (format: PNM)");
     png = read_bytes(tmp_path("a.png"), &n);
     write_bytes(tmp_path("png_named.jpg"), png, n);
     free(png);
@@ -371,7 +373,7 @@ static void test_hostile_images(void **state)
     write_bytes(tmp_path("zero.png"), "", 0);
     expect_refused(tmp_path("zero.png"), "empty file");
     write_bytes(tmp_path("text.png"), "newmtl x\nKd 1 1 1\n", 18);
-    expect_refused(tmp_path("text.png"), "not an image");
+    expect_refused(tmp_path("text.png"), "not a PNG, JPEG, BMP or TGA image (format: unknown)");
     expect_refused(tmp_path("missing.png"), "No such file");
     expect_refused(tmpdir, "is a directory");
 }
@@ -1297,6 +1299,124 @@ static void test_tiled_room(void **state)
     free_textured(&x);
 }
 
+/* ---- tests: the formats accepted ------------------------------------------------------- */
+
+/* 4 x 3 texels, texel (x, y) (row 0 at the top) = (50 x + 20, 70 y + 10, 200 - 30 x). */
+static void texel_bytes(int x, int y, unsigned char c[3])
+{
+    c[0] = (unsigned char)(50 * x + 20);
+    c[1] = (unsigned char)(70 * y + 10);
+    c[2] = (unsigned char)(200 - 30 * x);
+}
+
+static void expect_accepted(const char *name, const unsigned char *d, size_t n)
+{
+    tex_image t;
+    char err[512];
+    int x, y;
+    write_bytes(tmp_path(name), d, n);
+    if (tex_load(tmp_path(name), &t, err, sizeof err))
+        fail_msg("%s refused: %s", name, err);
+    assert_int_equal(t.w, 4);
+    assert_int_equal(t.h, 3);
+    for (y = 0; y < 3; y++)
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3];
+            texel_bytes(x, y, c);
+            expect_texel(&t, x, y, c, name);
+        }
+    tex_free(&t);
+}
+
+static void expect_refused_bytes(const char *name, const void *d, size_t n, const char *what)
+{
+    write_bytes(tmp_path(name), d, n);
+    expect_refused(tmp_path(name), what);
+}
+
+/* Only PNG, JPEG, BMP and TGA reach stb_image, recognised by their bytes; a BMP or TGA
+   (plain and RLE) must hold the pixels its header declares, a JPEG reach its end
+   marker. Today a 16-bit PGM crashed stb_image 2.27, a truncated HDR hung it, and a
+   header-only BMP or cut TGA came out black with no warning. */
+static void test_formats(void **state)
+{
+    static const char pgm16[] = "P5\n2 1\n65535\n\x12\x34\x56\x78";
+    static const char hdr[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 8\n\x02\x02\x00";
+    static const char gif[] = "GIF89a\x04\x00\x03\x00\x80\x00\x00";
+    static const char psd[] = "8BPS\x00\x01\x00\x00\x00\x00\x00\x00\x00\x03";
+    unsigned char bmp[54 + 3 * 16], tga[18 + 36], rle[18 + 3 * 4 * 4], jpg[160];
+    size_t nr = 18, nj = 0;
+    int x, y, k;
+    tex_image t;
+    char err[512];
+    (void)state;
+    expect_refused_bytes("deep.pgm", pgm16, sizeof pgm16 - 1, "not a PNG, JPEG, BMP or TGA image (format: PNM)");
+    expect_refused_bytes("cut.hdr", hdr, sizeof hdr - 1, "(format: Radiance HDR)");
+    expect_refused_bytes("a.gif", gif, sizeof gif - 1, "(format: GIF)");
+    expect_refused_bytes("a.psd", psd, sizeof psd - 1, "(format: PSD)");
+
+    /* BMP: 24 bits, bottom-up rows of 12 bytes (4-byte aligned already), BGR */
+    memset(bmp, 0, sizeof bmp);
+    bmp[0] = 'B', bmp[1] = 'M', bmp[2] = (unsigned char)sizeof bmp, bmp[10] = 54, bmp[14] = 40;
+    bmp[18] = 4, bmp[22] = 3, bmp[26] = 1, bmp[28] = 24;
+    for (y = 0; y < 3; y++)
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3], *p = bmp + 54 + 12 * (2 - y) + 3 * x;
+            texel_bytes(x, y, c);
+            p[0] = c[2], p[1] = c[1], p[2] = c[0];
+        }
+    expect_accepted("ok.bmp", bmp, 54 + 36);
+    expect_refused_bytes("header_only.bmp", bmp, 54, "truncated: its header implies 90 bytes, the file holds 54");
+    expect_refused_bytes("cut.bmp", bmp, 80, "truncated: its header implies 90 bytes, the file holds 80");
+
+    /* TGA type 2: 24 bits, bottom-up (descriptor 0), BGR */
+    memset(tga, 0, sizeof tga);
+    tga[2] = 2, tga[12] = 4, tga[14] = 3, tga[16] = 24;
+    memcpy(rle, tga, 18);
+    rle[2] = 10;
+    for (y = 0; y < 3; y++) {
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3], *p = tga + 18 + 12 * (2 - y) + 3 * x;
+            texel_bytes(x, y, c);
+            p[0] = c[2], p[1] = c[1], p[2] = c[0];
+        }
+    }
+    for (y = 0; y < 3; y++) { /* RLE: a raw packet of 4 a file row (texels all differ) */
+        rle[nr++] = 3;
+        memcpy(rle + nr, tga + 18 + 12 * y, 12);
+        nr += 12;
+    }
+    expect_accepted("ok.tga", tga, sizeof tga);
+    expect_accepted("ok_rle.tga", rle, nr);
+    expect_refused_bytes("header_only.tga", tga, 18, "truncated: its header implies 54 bytes, the file holds 18");
+    expect_refused_bytes("cut.tga", tga, 40, "truncated");
+    expect_refused_bytes("cut_rle.tga", rle, nr - 5, "truncated");
+    tga[1] = 1; /* a colour map type without a map: not a TGA this strict reading takes */
+    expect_refused_bytes("odd.tga", tga, sizeof tga, "(format: unknown)");
+
+    /* JPEG: 8 x 8 grey, baseline, one DC category-7 code of 80 (quantiser 1: grey 138) */
+    {
+        static const unsigned char head[] = { 0xff, 0xd8, 0xff, 0xdb, 0x00, 0x43, 0x00 };
+        static const unsigned char tail[] = {
+            0xff, 0xc0, 0x00, 0x0b, 0x08, 0x00, 0x08, 0x00, 0x08, 0x01, 0x01, 0x11, 0x00,
+            0xff, 0xc4, 0x00, 0x14, 0x00, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x07,
+            0xff, 0xc4, 0x00, 0x14, 0x10, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x00,
+            0xff, 0xda, 0x00, 0x08, 0x01, 0x01, 0x00, 0x00, 0x3f, 0x00, 0x50, 0x7f, 0xff, 0xd9 };
+        memcpy(jpg, head, sizeof head);
+        memset(jpg + sizeof head, 1, 64);
+        memcpy(jpg + sizeof head + 64, tail, sizeof tail);
+        nj = sizeof head + 64 + sizeof tail;
+    }
+    write_bytes(tmp_path("grey.jpg"), jpg, nj);
+    if (tex_load(tmp_path("grey.jpg"), &t, err, sizeof err))
+        fail_msg("grey.jpg refused: %s", err);
+    assert_int_equal(t.w, 8);
+    for (k = 0; k < 3; k++)
+        CHECK_INT_EQ(t.rgb[k], 138, "JPEG grey texel, channel %d", k);
+    tex_free(&t);
+    expect_refused_bytes("cut.jpg", jpg, nj - 4, "truncated: no end-of-image marker");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1310,6 +1430,7 @@ int main(void)
         cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
         cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
         cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
+        cmocka_unit_test(test_formats),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

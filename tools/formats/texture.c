@@ -41,6 +41,130 @@ static const char *reason(char out[32])
 
 static void build_row_sums(tex_image *t);
 
+/* ---- the formats accepted -------------------------------------------------------------
+   stb_image 2.27 (Debian's) crashes on a 16-bit PGM and loops forever on a truncated
+   .hdr (CVE-2021-42716, CVE-2021-42715), and fills what a truncated BMP or TGA lacks
+   with zeros (black walls, no word). So only PNG, JPEG, BMP and TGA reach it, each
+   recognised here from its bytes, and a file must hold what its header implies: for
+   uncompressed BMP and TGA the pixel bytes, for RLE TGA every packet (walked), for
+   JPEG the segments up to the end-of-image marker (walked; the entropy-coded data
+   cannot hold one). PNG needs no more: its chunks and zlib stream are checked by stb
+   (a cut file fails to decode). stb then sees only data its format test recognises
+   first: PNG, JPEG and BMP by their magic, TGA by byte 1 (colour map type) 0 or 1,
+   which no other format stb knows starts with. */
+
+enum { FMT_PNG = 1, FMT_JPEG, FMT_BMP, FMT_TGA };
+
+static unsigned le16(const unsigned char *p)
+{
+    return p[0] | (unsigned)p[1] << 8;
+}
+
+static unsigned long le32(const unsigned char *p)
+{
+    return le16(p) | (unsigned long)le16(p + 2) << 16;
+}
+
+/* What a refused file seems to be, for the message. */
+static const char *other_format(const unsigned char *d, size_t n)
+{
+    if (n >= 4 && !memcmp(d, "GIF8", 4)) return "GIF";
+    if (n >= 4 && !memcmp(d, "8BPS", 4)) return "PSD";
+    if (n >= 2 && !memcmp(d, "#?", 2)) return "Radiance HDR";
+    if (n >= 2 && d[0] == 'P' && d[1] >= '1' && d[1] <= '7') return "PNM";
+    if (n >= 4 && !memcmp(d, "S\x80\xf6\x34", 4)) return "Softimage PIC";
+    return "unknown";
+}
+
+/* A TGA header, strictly (TGA has no magic): colour-mapped types with a map of 8-bit
+   indices, true colour of 15, 16, 24 or 32 bits, grey of 8 or 16, no interleaving. */
+static int tga_header(const unsigned char *d, size_t n)
+{
+    unsigned cmtype, type, cmlen, cmbits, bits;
+    if (n < 18)
+        return 0;
+    cmtype = d[1], type = d[2], cmlen = le16(d + 5), cmbits = d[7], bits = d[16];
+    if (le16(d + 12) < 1 || le16(d + 14) < 1 || (d[17] & 0xc0) || (d[17] & 15) > 8)
+        return 0;
+    if (type == 1 || type == 9)
+        return cmtype == 1 && le16(d + 3) == 0 && cmlen >= 1 && bits == 8 &&
+               (cmbits == 15 || cmbits == 16 || cmbits == 24 || cmbits == 32);
+    if (cmtype != 0 || le16(d + 3) || cmlen || cmbits)
+        return 0;
+    if (type == 2 || type == 10)
+        return bits == 15 || bits == 16 || bits == 24 || bits == 32;
+    return (type == 3 || type == 11) && (bits == 8 || bits == 16);
+}
+
+static int sniff(const unsigned char *d, size_t n)
+{
+    if (n >= 8 && !memcmp(d, "\x89PNG\r\n\x1a\n", 8)) return FMT_PNG;
+    if (n >= 3 && d[0] == 0xff && d[1] == 0xd8 && d[2] == 0xff) return FMT_JPEG;
+    if (n >= 2 && d[0] == 'B' && d[1] == 'M') return FMT_BMP;
+    return tga_header(d, n) ? FMT_TGA : 0;
+}
+
+/* Is the JPEG whole: marker segments by their lengths, entropy-coded data to the next
+   marker (0xff 0x00 is a stuffed byte, 0xff 0xd0-d7 a restart), up to end-of-image? */
+static const char *jpeg_whole(const unsigned char *d, size_t n)
+{
+    size_t i = 2;
+    for (;;) {
+        unsigned m;
+        while (i < n && d[i] == 0xff && i + 1 < n && d[i + 1] == 0xff)
+            i++; /* fill bytes */
+        if (i + 1 >= n)
+            return "truncated: no end-of-image marker";
+        if (d[i] != 0xff)
+            return "corrupt: a marker expected";
+        m = d[i + 1];
+        if (m == 0xd9)
+            return NULL;
+        if (m == 0x01 || (m >= 0xd0 && m <= 0xd7)) {
+            i += 2;
+            continue;
+        }
+        if (i + 4 > n || (size_t)((d[i + 2] << 8 | d[i + 3]) + 2) > n - i)
+            return "truncated within a segment";
+        i += (size_t)(d[i + 2] << 8 | d[i + 3]) + 2;
+        if (m == 0xda)
+            while (i + 1 < n && !(d[i] == 0xff && d[i + 1] != 0 && !(d[i + 1] >= 0xd0 && d[i + 1] <= 0xd7)))
+                i++;
+    }
+}
+
+/* Does the BMP or TGA hold what its header implies (W x H texels, from stb_image's
+   header read)? NULL, or what is wrong. Sizes in 64 bits: W, H < 2^15 here. */
+static const char *holds_pixels(int fmt, const unsigned char *d, size_t n, int w, int h, char why[96])
+{
+    unsigned long long need;
+    if (fmt == FMT_BMP) {
+        unsigned long dib = n >= 18 ? le32(d + 14) : 0, comp = dib >= 40 && n >= 34 ? le32(d + 30) : 0;
+        unsigned bits = dib == 12 ? (n >= 26 ? le16(d + 24) : 0) : (n >= 30 ? le16(d + 28) : 0);
+        if (comp != 0 && comp != 3)
+            return "BMP compression other than none or bit fields";
+        need = le32(d + 10) + ((unsigned long long)w * bits + 31) / 32 * 4 * (unsigned long long)h;
+    } else if (fmt == FMT_TGA) {
+        unsigned px = (d[16] + 7u) / 8;
+        unsigned long long at = 18ull + d[0] + le16(d + 5) * ((d[7] + 7ull) / 8), left = (unsigned long long)w * h;
+        if (d[2] < 9)
+            need = at + left * px;
+        else { /* RLE: a packet's header, then one pixel (run) or count pixels (raw) */
+            while (left > 0 && at < n) {
+                unsigned long long c = (d[at] & 0x7fu) + 1u;
+                at += 1 + (d[at] & 0x80 ? 1 : c) * px;
+                left -= c < left ? c : left;
+            }
+            need = left ? (unsigned long long)n + 1 : at;
+        }
+    } else
+        return fmt == FMT_JPEG ? jpeg_whole(d, n) : NULL;
+    if (need <= n)
+        return NULL;
+    snprintf(why, 96, "truncated: its header implies %llu bytes, the file holds %zu", need, n);
+    return why;
+}
+
 static void empty(tex_image *t)
 {
     memset(t, 0, sizeof *t);
@@ -50,11 +174,17 @@ static void empty(tex_image *t)
 int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
                char *err, size_t errlen)
 {
-    int w, h, comp;
-    char what[160], why[32];
+    int w, h, comp, fmt;
+    char what[160], why[32], why2[96];
+    const char *bad;
     empty(out);
     if (size == 0 || size > (size_t)0x7fffffff) {
         put_err(err, errlen, name, size ? "larger than 2 GiB" : "empty file");
+        return -1;
+    }
+    if (!(fmt = sniff(data, size))) {
+        snprintf(what, sizeof what, "not a PNG, JPEG, BMP or TGA image (format: %s)", other_format(data, size));
+        put_err(err, errlen, name, what);
         return -1;
     }
     if (!stbi_info_from_memory(data, (int)size, &w, &h, &comp)) {
@@ -66,6 +196,10 @@ int tex_decode(const unsigned char *data, size_t size, const char *name, tex_ima
         snprintf(what, sizeof what, "declares %d x %d texels, more than the limit of %ld", w,
                  h, TEX_MAX_PIXELS);
         put_err(err, errlen, name, what);
+        return -1;
+    }
+    if ((bad = holds_pixels(fmt, data, size, w, h, why2)) != NULL) {
+        put_err(err, errlen, name, bad);
         return -1;
     }
     out->rgb = stbi_load_from_memory(data, (int)size, &out->w, &out->h, &comp, 3);

@@ -6,7 +6,7 @@
  * FIO_LIMIT_IMAGE bytes), stbi_info_from_memory reads the declared size from the header,
  * and an image of more than TEX_MAX_PIXELS is refused without being decoded (a
  * decompression bomb declares a huge size in a small file). The format comes from the
- * content, never from the file name. Pixels are kept as the file's 8-bit sRGB (3 bytes a
+ * content (PNG, JPEG, BMP, TGA only: tex_decode), never from the file name. Pixels are kept as the file's 8-bit sRGB (3 bytes a
  * texel) and decoded to linear on sampling, through the IEC 61966-2-1 formula.
  *
  * Coordinates: (u, v) = (0, 0) is the image's bottom-left corner, (1, 1) its top-right
@@ -59,8 +59,13 @@ typedef struct {
 
 typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
 
-/* Decodes SIZE bytes of any format stb_image reads (PNG, JPEG, BMP, TGA, GIF, PSD, HDR
- * as 8-bit, PNM) into *out, as 8-bit RGB (alpha dropped, grey expanded, 16-bit reduced).
+/* Decodes SIZE bytes of PNG, JPEG, BMP or TGA into *out, as 8-bit RGB (alpha dropped,
+ * grey expanded, 16-bit reduced). The format is recognised from the bytes before stb_image
+ * sees them (PNG, JPEG, BMP by magic; TGA by a strict header check: colour-mapped with
+ * 8-bit indices, true colour 15/16/24/32 bits, grey 8/16); anything else (GIF, PSD, HDR,
+ * PNM: stb_image 2.27 crashes or hangs on some) is refused naming the format it seems to
+ * be. A BMP or TGA must hold the bytes its header implies (RLE TGA: every packet,
+ * walked), a JPEG its segments up to the end-of-image marker; else "truncated: ...".
  * NAME is used in messages. Returns 0, or -1 with err and *out empty. */
 int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
                char *err, size_t errlen);
