@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "formats/image.h"
@@ -1417,6 +1418,98 @@ static void test_formats(void **state)
     expect_refused_bytes("cut.jpg", jpg, nj - 4, "truncated: no end-of-image marker");
 }
 
+/* ---- tests: one decode a file, one budget a scene, names ignoring case --------------- */
+
+/* Loads the scene NAME (a triangle a material) and its maps into MAPS, warnings into W. */
+static void load_maps(const char *name, obj_scene *sc, tex_image *maps, int nmax, warnings *w)
+{
+    char err[512];
+    assert_int_equal(obj_load(tmp_path(name), sc, NULL, NULL, err, sizeof err), 0);
+    assert_true(sc->nmaterials <= nmax);
+    tex_load_materials(sc, maps, collect, w, 2);
+}
+
+static void free_maps(obj_scene *sc, tex_image *maps)
+{
+    int i;
+    for (i = 0; i < sc->nmaterials; i++)
+        tex_free(&maps[i]);
+    obj_free(sc);
+}
+
+/* One file named four ways (a.png, ./a.png, sub/../a.png, a symbolic link to it) is
+   decoded once: the four maps share one pixels pointer (today: four decodes, four
+   copies: a 423 KB PNG of 4 x 2^24 texels took 1 GB a spelling). That PNG is now
+   refused before decoding, by its side; and a scene's maps past TEX_BUDGET are refused
+   unread: four PNGs each declaring 16384 x 4096 texels in 100 bytes (288 MiB decoded:
+   192 of texels, 96 of row sums): the first three are charged (and fail to decode:
+   their pixels are missing), the fourth is over the budget. */
+static void test_map_identity_and_budget(void **state)
+{
+    static const char *const names[4] = { "a.png", "./a.png", "sub/../a.png", "link.png" };
+    unsigned char rgb[AW * AH * 3], *png;
+    char text[1024];
+    size_t used = 0, n;
+    obj_scene sc;
+    tex_image maps[4];
+    warnings w = { 0 };
+    int i;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(mkdir(tmp_path("ids"), 0700), 0);
+    assert_int_equal(mkdir(tmp_path("ids/sub"), 0700), 0);
+    assert_int_equal(img_write(tmp_path("ids/a.png"), rgb, AW, AH, NULL, 0), 0);
+    assert_int_equal(symlink("a.png", tmp_path("ids/link.png")), 0);
+    for (i = 0; i < 4; i++)
+        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl m%d\nKd 0 0 0\nmap_Kd %s\n", i, names[i]);
+    write_text("ids/m.mtl", text);
+    write_text("ids/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                            "usemtl m0\nf 1/1 2/1 3/1\nusemtl m1\nf 1/1 2/1 3/1\n"
+                            "usemtl m2\nf 1/1 2/1 3/1\nusemtl m3\nf 1/1 2/1 3/1\n");
+    load_maps("ids/s.obj", &sc, maps, 4, &w);
+    CHECK_INT_EQ(w.n, 0, "warnings loading one file named four ways");
+    for (i = 1; i < 4; i++) {
+        CHECK_THAT(maps[i].rgb == maps[0].rgb, "%s shares a.png's decoded pixels", names[i]);
+        CHECK_INT_EQ(maps[i].borrowed, 1, "%s borrowed", names[i]);
+    }
+    assert_asymmetric(&maps[3]);
+    free_maps(&sc, maps);
+
+    png = read_bytes(tmp_path("ids/a.png"), &n);
+    put_be32(png + 16, 4);
+    put_be32(png + 20, 1u << 24);
+    write_bytes(tmp_path("ids/tall.png"), png, n);
+    expect_refused(tmp_path("ids/tall.png"), "declares 4 x 16777216 texels, beyond the limits of 16384 a side");
+    put_be32(png + 16, 16384);
+    put_be32(png + 20, 4096);
+    used = 0;
+    for (i = 0; i < 4; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "ids/big%d.png", i);
+        png[30] = (unsigned char)i; /* distinct files (the IHDR's CRC, which stb ignores) */
+        write_bytes(tmp_path(name), png, n);
+        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl b%d\nKd 0.1 0.2 0.3\nmap_Kd big%d.png\n", i, i);
+    }
+    free(png);
+    write_text("ids/big.mtl", text);
+    write_text("ids/big.obj", "mtllib big.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                              "usemtl b0\nf 1/1 2/1 3/1\nusemtl b1\nf 1/1 2/1 3/1\n"
+                              "usemtl b2\nf 1/1 2/1 3/1\nusemtl b3\nf 1/1 2/1 3/1\n");
+    memset(&w, 0, sizeof w);
+    load_maps("ids/big.obj", &sc, maps, 4, &w);
+    for (i = 0; i < w.n && i < 4; i++)
+        print_message("%s\n", w.msg[i]);
+    CHECK_INT_EQ(w.n, 4, "warnings for four maps that cannot be used");
+    for (i = 0; i < 3; i++)
+        CHECK_CONTAINS(w.msg[i], "cannot decode", "map %d, within the budget", i);
+    CHECK_CONTAINS(w.msg[3], "16384 x 4096 texels need 288 MiB, over what is left of the scene's texture budget",
+                   "the fourth map");
+    CHECK_CONTAINS(w.msg[3], "; using Kd 0.1 0.2 0.3", "the fourth map's fallback");
+    for (i = 0; i < 4; i++)
+        assert_null(maps[i].rgb);
+    free_maps(&sc, maps);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1430,7 +1523,7 @@ int main(void)
         cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
         cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
         cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
-        cmocka_unit_test(test_formats),
+        cmocka_unit_test(test_formats),           cmocka_unit_test(test_map_identity_and_budget),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -17,6 +17,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
 
 #include <stb/stb_image.h>
 
@@ -171,13 +173,20 @@ static void empty(tex_image *t)
     t->scale[0] = t->scale[1] = 1.0;
 }
 
-int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
-               char *err, size_t errlen)
+/* What decoding a W x H map keeps: its 8-bit RGB and its row sums (build_row_sums). */
+static double map_bytes(int w, int h)
 {
-    int w, h, comp, fmt;
+    return 3.0 * w * h + 3.0 * sizeof(double) * h * ((double)(w / TEX_ROW_BLOCK) + 2);
+}
+
+/* Everything tex_decode checks before decoding: 0 with the declared size in *W, *H, or
+   -1 with err. */
+static int probe(const unsigned char *data, size_t size, const char *name, int *w, int *h, char *err,
+                 size_t errlen)
+{
+    int comp, fmt;
     char what[160], why[32], why2[96];
     const char *bad;
-    empty(out);
     if (size == 0 || size > (size_t)0x7fffffff) {
         put_err(err, errlen, name, size ? "larger than 2 GiB" : "empty file");
         return -1;
@@ -187,21 +196,32 @@ int tex_decode(const unsigned char *data, size_t size, const char *name, tex_ima
         put_err(err, errlen, name, what);
         return -1;
     }
-    if (!stbi_info_from_memory(data, (int)size, &w, &h, &comp)) {
+    if (!stbi_info_from_memory(data, (int)size, w, h, &comp)) {
         snprintf(what, sizeof what, "not an image stb_image reads (%s)", reason(why));
         put_err(err, errlen, name, what);
         return -1;
     }
-    if (w < 1 || h < 1 || (long)w > TEX_MAX_PIXELS / h) {
-        snprintf(what, sizeof what, "declares %d x %d texels, more than the limit of %ld", w,
-                 h, TEX_MAX_PIXELS);
+    if (*w < 1 || *h < 1 || *w > TEX_MAX_SIDE || *h > TEX_MAX_SIDE || (long)*w > TEX_MAX_PIXELS / *h) {
+        snprintf(what, sizeof what, "declares %d x %d texels, beyond the limits of %d a side and %ld in all",
+                 *w, *h, TEX_MAX_SIDE, TEX_MAX_PIXELS);
         put_err(err, errlen, name, what);
         return -1;
     }
-    if ((bad = holds_pixels(fmt, data, size, w, h, why2)) != NULL) {
+    if ((bad = holds_pixels(fmt, data, size, *w, *h, why2)) != NULL) {
         put_err(err, errlen, name, bad);
         return -1;
     }
+    return 0;
+}
+
+int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
+               char *err, size_t errlen)
+{
+    int w, h, comp;
+    char what[160], why[32];
+    empty(out);
+    if (probe(data, size, name, &w, &h, err, errlen))
+        return -1;
     out->rgb = stbi_load_from_memory(data, (int)size, &out->w, &out->h, &comp, 3);
     if (!out->rgb || out->w != w || out->h != h) {
         snprintf(what, sizeof what, "cannot decode (%s)",
@@ -817,21 +837,16 @@ static void warn_map(obj_material *m, const char *why, tex_warn_fn warn, void *c
     warn(ctx, msg);
 }
 
-/* The first material whose map_Kd names the same file as material I's (I itself when
- * none before does). */
-static int first_with_path(const obj_scene *sc, int i)
-{
-    int j;
-    for (j = 0; j < i; j++)
-        if (sc->materials[j].map_kd.path && !strcmp(sc->materials[j].map_kd.path, sc->materials[i].map_kd.path))
-            return j;
-    return i;
-}
-
-/* The decoding of one file, for a thread: MAT the material that names it first. */
+/* The decoding of one file, for a thread: MAT the material that names it first; DATA
+ * its bytes (read and checked by probe on the calling thread), NULL once RC is set. */
 typedef struct {
     const char *path;
     int mat, rc;
+    char *data;
+    size_t size;
+    dev_t dev;
+    ino_t ino;
+    int known; /* dev, ino set (stat succeeded) */
     char err[768];
 } tex_job;
 
@@ -847,11 +862,15 @@ static void *decode_jobs(void *arg)
     int k;
     for (k = c->rank; k < c->njobs; k += c->threads) {
         tex_job *j = &c->jobs[k];
-        j->rc = tex_load(j->path, &c->maps[j->mat], j->err, sizeof j->err);
+        if (!j->data)
+            continue;
+        j->rc = tex_decode((const unsigned char *)j->data, j->size, j->path, &c->maps[j->mat], j->err,
+                           sizeof j->err);
+        free(j->data);
+        j->data = NULL;
     }
     return NULL;
 }
-
 /* Each job decoded, on THREADS threads (the files are independent; a thread that
  * cannot start leaves its jobs to the calling thread). Returns -1 without memory. */
 static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
@@ -888,24 +907,56 @@ static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
     return 0;
 }
 
+/* The job for material I's map: an earlier one naming the same file (the same device
+ * and inode, whatever the spelling: ./a.png, a.png, a link; the same string when stat
+ * fails), or a new one, read and probed here in material order so that the budget
+ * (*SPENT of TEX_BUDGET bytes) is charged alike on any number of threads. */
+static int job_for(const obj_material *m, tex_job *jobs, int *njobs, int i, double *spent)
+{
+    struct stat st;
+    tex_job *j = &jobs[*njobs];
+    int k, w, h;
+    double cost;
+    memset(j, 0, sizeof *j);
+    j->path = m->map_kd.path;
+    j->mat = i;
+    j->known = stat(j->path, &st) == 0;
+    j->dev = j->known ? st.st_dev : 0;
+    j->ino = j->known ? st.st_ino : 0;
+    for (k = 0; k < *njobs; k++)
+        if (j->known ? jobs[k].known && jobs[k].dev == j->dev && jobs[k].ino == j->ino
+                     : !jobs[k].known && !strcmp(jobs[k].path, j->path))
+            return k;
+    (*njobs)++;
+    if (fio_read_all(j->path, FIO_LIMIT_IMAGE, &j->data, &j->size, j->err, sizeof j->err) ||
+        probe((const unsigned char *)j->data, j->size, j->path, &w, &h, j->err, sizeof j->err)) {
+        j->rc = -1;
+    } else if ((cost = map_bytes(w, h) + (double)j->size) > TEX_BUDGET - *spent) {
+        snprintf(j->err, sizeof j->err, "%s: %d x %d texels need %.0f MiB, over what is left of the scene's "
+                 "texture budget (%.0f of %.0f MiB, TEX_BUDGET)", j->path, w, h, cost / 1048576,
+                 (TEX_BUDGET - *spent) / 1048576, TEX_BUDGET / 1048576.0);
+        j->rc = -1;
+    } else
+        *spent += cost;
+    if (j->rc) {
+        free(j->data);
+        j->data = NULL;
+    }
+    return *njobs - 1;
+}
+
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads)
 {
     tex_job *jobs = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *jobs);
     int *job_of = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *job_of);
     int i, njobs = 0, loaded = 0;
+    double spent = 0;
     for (i = 0; i < sc->nmaterials; i++) empty(&maps[i]);
-    for (i = 0; jobs && job_of && i < sc->nmaterials; i++) {
-        const obj_material *m = &sc->materials[i];
-        int first = m->map_kd.path ? first_with_path(sc, i) : -1;
-        job_of[i] = first < 0 ? -1 : first < i ? job_of[first] : njobs;
-        if (first == i) {
-            jobs[njobs].path = m->map_kd.path;
-            jobs[njobs].mat = i;
-            njobs++;
-        }
-    }
+    for (i = 0; jobs && job_of && i < sc->nmaterials; i++)
+        job_of[i] = sc->materials[i].map_kd.path ? job_for(&sc->materials[i], jobs, &njobs, i, &spent) : -1;
     if (!jobs || !job_of || decode_all(jobs, njobs, maps, threads) < 0) {
         for (i = 0; i < sc->nmaterials; i++) tex_free(&maps[i]);
+        for (i = 0; jobs && i < njobs; i++) free(jobs[i].data);
         for (i = 0; i < sc->nmaterials; i++)
             if (sc->materials[i].map_kd.path) {
                 sc->nwarnings++;

@@ -37,6 +37,13 @@ extern "C" {
 /* Largest image decoded: 2^26 texels (8192 x 8192), 192 MiB as 8-bit RGB; stb_image
  * needs about as much again while it decodes. */
 #define TEX_MAX_PIXELS (1L << 26)
+/* Longest side decoded: 16384 texels (a 4 x 2^24 PNG of 423 KB took 1 GB, its row sums
+ * mostly: 48 bytes a row however narrow). */
+#define TEX_MAX_SIDE 16384
+/* What one scene's maps may take together: each distinct file's bytes while it decodes
+ * plus its decoded texels (3 bytes) and row sums (1.5 bytes a texel + 48 a row),
+ * 1 GiB: three maps of 8192 x 8192. A map past what is left is refused unread. */
+#define TEX_BUDGET (1024.0 * 1024 * 1024)
 /* Largest reflectance a texel gives: the core's largest below 1 (Q16.16). */
 #define TEX_RHO_MAX (65535.0 / 65536.0)
 /* A triangle's mean is taken over at most TEX_MEAN_MAX_DIV^2 samples (see
@@ -124,11 +131,14 @@ void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
 /* Loads every material's map_Kd into maps[0 .. sc->nmaterials - 1] (maps[i].rgb NULL
  * when material i has none or it fails), the files decoded on THREADS threads (1 or
  * less: the calling thread; the results and warnings are the same). Materials naming
- * the same file share one decoded image (the first one's; the others borrow it: free
- * them all together, in any order). A failure is one warning per material naming the
- * file, "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings), in
- * material order, and obj_map_fallback on the material. Returns the number of
- * textures loaded. */
+ * the same file (the same device and inode, however spelt: ./a.png, a.png, a link)
+ * share one decoded image (the first one's; the others borrow it: free them all
+ * together, in any order). The files are read and their headers checked in material
+ * order first, each charged to the scene's TEX_BUDGET: a map past what is left is
+ * refused undecoded. A
+ * failure is one warning per material naming the file, "MTL:LINE: map_Kd: FILE: reason;
+ * using Kd R G B" (counted in sc->nwarnings), in material order, and obj_map_fallback
+ * on the material. Returns the number of textures loaded. */
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads);
 
 #ifdef __cplusplus
