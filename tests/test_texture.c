@@ -1510,6 +1510,40 @@ static void test_map_identity_and_budget(void **state)
     free_maps(&sc, maps);
 }
 
+/* map_Kd names Wood.PNG, the folder holds wood.png: that file is used, with one warning
+   saying so (Windows exports on a case-sensitive file system; today: missing, Kd). A
+   name matching nothing still falls back. */
+static void test_map_case(void **state)
+{
+    unsigned char rgb[AW * AH * 3];
+    char want[1024];
+    obj_scene sc;
+    tex_image maps[2];
+    warnings w = { 0 };
+    int n;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(mkdir(tmp_path("case"), 0700), 0);
+    assert_int_equal(mkdir(tmp_path("case/tex"), 0700), 0);
+    assert_int_equal(img_write(tmp_path("case/tex/wood.png"), rgb, AW, AH, NULL, 0), 0);
+    write_text("case/m.mtl", "newmtl wood\nKd 0 0 0\nmap_Kd tex/Wood.PNG\nnewmtl none\nKd 0 0 0\nmap_Kd tex/Oak.png\n");
+    write_text("case/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                             "usemtl wood\nf 1/1 2/1 3/1\nusemtl none\nf 1/1 2/1 3/1\n");
+    load_maps("case/s.obj", &sc, maps, 2, &w);
+    for (n = 0; n < w.n && n < 4; n++)
+        print_message("%s\n", w.msg[n]);
+    CHECK_INT_EQ(w.n, 2, "warnings: the case match and the missing oak");
+    snprintf(want, sizeof want, "%s:3: map_Kd: %s: no such file; using %s (the name differs in case)",
+             tmp_path("case/m.mtl"), tmp_path("case/tex/Wood.PNG"), tmp_path("case/tex/wood.png"));
+    assert_string_equal(w.msg[0], want);
+    CHECK_CONTAINS(w.msg[1], "Oak.png: cannot open", "the name that matches nothing");
+    assert_non_null(maps[0].rgb);
+    assert_asymmetric(&maps[0]);
+    assert_string_equal(sc.materials[0].map_kd.path, tmp_path("case/tex/wood.png"));
+    assert_null(maps[1].rgb);
+    free_maps(&sc, maps);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1524,6 +1558,7 @@ int main(void)
         cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
         cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
         cmocka_unit_test(test_formats),           cmocka_unit_test(test_map_identity_and_budget),
+        cmocka_unit_test(test_map_case),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -17,8 +17,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
+#include <dirent.h>
+#include <errno.h>
 
 #include <stb/stb_image.h>
 
@@ -907,16 +910,57 @@ static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
     return 0;
 }
 
+/* PATH, which does not exist: the entry of its folder whose name is PATH's last part
+ * but for case (the first in byte order if several), as a new string; NULL if none. */
+static char *case_match(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    size_t dirlen = slash ? (size_t)(slash - path) : 0;
+    char *dir = slash ? malloc(dirlen + 2) : NULL, *best = NULL, *out = NULL;
+    DIR *d;
+    struct dirent *e;
+    if (slash && !dir)
+        return NULL;
+    if (dir) { /* "/x.png": the root */
+        memcpy(dir, path, dirlen ? dirlen : 1);
+        dir[dirlen ? dirlen : 1] = '\0';
+    }
+    d = opendir(dir ? dir : ".");
+    free(dir);
+    while (d && (e = readdir(d)) != NULL)
+        if (!strcasecmp(e->d_name, base) && (!best || strcmp(e->d_name, best) < 0)) {
+            free(best);
+            best = malloc(strlen(e->d_name) + 1);
+            if (best)
+                strcpy(best, e->d_name);
+        }
+    if (d)
+        closedir(d);
+    if (best && (out = malloc(dirlen + strlen(best) + 2)) != NULL)
+        snprintf(out, dirlen + strlen(best) + 2, "%.*s%s%s", (int)dirlen, path, slash ? "/" : "", best);
+    free(best);
+    return out;
+}
+
 /* The job for material I's map: an earlier one naming the same file (the same device
  * and inode, whatever the spelling: ./a.png, a.png, a link; the same string when stat
  * fails), or a new one, read and probed here in material order so that the budget
  * (*SPENT of TEX_BUDGET bytes) is charged alike on any number of threads. */
-static int job_for(const obj_material *m, tex_job *jobs, int *njobs, int i, double *spent)
+static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *spent, char *note,
+                   size_t notelen)
 {
     struct stat st;
     tex_job *j = &jobs[*njobs];
     int k, w, h;
     double cost;
+    char *alt;
+    note[0] = '\0';
+    if (stat(m->map_kd.path, &st) != 0 && errno == ENOENT && (alt = case_match(m->map_kd.path)) != NULL) {
+        snprintf(note, notelen, "%s:%d: map_Kd: %s: no such file; using %s (the name differs in case)",
+                 m->map_kd.mtl, m->map_kd.line, m->map_kd.path, alt);
+        free(m->map_kd.path);
+        m->map_kd.path = alt;
+    }
     memset(j, 0, sizeof *j);
     j->path = m->map_kd.path;
     j->mat = i;
@@ -952,8 +996,18 @@ int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *c
     int i, njobs = 0, loaded = 0;
     double spent = 0;
     for (i = 0; i < sc->nmaterials; i++) empty(&maps[i]);
-    for (i = 0; jobs && job_of && i < sc->nmaterials; i++)
-        job_of[i] = sc->materials[i].map_kd.path ? job_for(&sc->materials[i], jobs, &njobs, i, &spent) : -1;
+    for (i = 0; jobs && job_of && i < sc->nmaterials; i++) {
+        char note[1024];
+        job_of[i] = -1;
+        if (!sc->materials[i].map_kd.path)
+            continue;
+        job_of[i] = job_for(&sc->materials[i], jobs, &njobs, i, &spent, note, sizeof note);
+        if (note[0]) {
+            sc->nwarnings++;
+            if (warn)
+                warn(ctx, note);
+        }
+    }
     if (!jobs || !job_of || decode_all(jobs, njobs, maps, threads) < 0) {
         for (i = 0; i < sc->nmaterials; i++) tex_free(&maps[i]);
         for (i = 0; jobs && i < njobs; i++) free(jobs[i].data);

@@ -135,7 +135,9 @@ void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
  * share one decoded image (the first one's; the others borrow it: free them all
  * together, in any order). The files are read and their headers checked in material
  * order first, each charged to the scene's TEX_BUDGET: a map past what is left is
- * refused undecoded. A
+ * refused undecoded. A name that does not exist is matched ignoring case in its folder
+ * (the file found replaces map_kd.path, with one warning "MTL:LINE: map_Kd: FILE: no
+ * such file; using FOUND (the name differs in case)", counted in sc->nwarnings). A
  * failure is one warning per material naming the file, "MTL:LINE: map_Kd: FILE: reason;
  * using Kd R G B" (counted in sc->nwarnings), in material order, and obj_map_fallback
  * on the material. Returns the number of textures loaded. */
