@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "formats/image.h"
@@ -98,6 +99,8 @@ static double srgb_reference(double c)
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
 }
 
+static void expect_refused(const char *path, const char *what);
+
 /* ---- tests: decoding ----------------------------------------------------------- */
 
 static void assert_asymmetric(const tex_image *t)
@@ -117,7 +120,8 @@ static void assert_asymmetric(const tex_image *t)
                 }
 }
 
-/* PNG and PPM, and a PNG named .jpg: decoded by content, texel for texel. */
+/* PNG, and a PNG named .jpg: decoded by content, texel for texel; PPM refused (not a
+   format textures ship in: test_formats). */
 static void test_decode_asymmetric(void **state)
 {
     unsigned char rgb[AW * AH * 3];
@@ -134,9 +138,8 @@ static void test_decode_asymmetric(void **state)
     tex_free(&t);
     assert_null(t.rgb);
     tex_free(&t); /* idempotent */
-    make_texture("a.ppm", rgb, AW, AH, &t);
-    assert_asymmetric(&t);
-    tex_free(&t);
+    assert_int_equal(img_write(tmp_path("a.ppm"), rgb, AW, AH, NULL, 0), 0);
+    expect_refused(tmp_path("a.ppm"), "not a PNG, JPEG, BMP or TGA image (format: PNM)");
     png = read_bytes(tmp_path("a.png"), &n);
     write_bytes(tmp_path("png_named.jpg"), png, n);
     free(png);
@@ -371,7 +374,7 @@ static void test_hostile_images(void **state)
     write_bytes(tmp_path("zero.png"), "", 0);
     expect_refused(tmp_path("zero.png"), "empty file");
     write_bytes(tmp_path("text.png"), "newmtl x\nKd 1 1 1\n", 18);
-    expect_refused(tmp_path("text.png"), "not an image");
+    expect_refused(tmp_path("text.png"), "not a PNG, JPEG, BMP or TGA image (format: unknown)");
     expect_refused(tmp_path("missing.png"), "No such file");
     expect_refused(tmpdir, "is a directory");
 }
@@ -1129,6 +1132,418 @@ static void test_unusual_maps(void **state)
     tex_free(&t);
 }
 
+/* ---- tests: tiling and degenerate footprints never fail -------------------------------- */
+
+/* A 64 x 64 map black for x < 32, a warm grey beyond: wide black areas, and the wrap's
+   seam at u = 0 runs from grey to black. */
+static void half_black(tex_image *t)
+{
+    unsigned char rgb[64 * 64 * 3];
+    int i;
+    for (i = 0; i < 64 * 64; i++) {
+        rgb[3 * i] = (unsigned char)(i % 64 < 32 ? 0 : 200);
+        rgb[3 * i + 1] = (unsigned char)(i % 64 < 32 ? 0 : 180);
+        rgb[3 * i + 2] = (unsigned char)(i % 64 < 32 ? 0 : 150);
+    }
+    make_texture("half_black.png", rgb, 64, 64, t);
+}
+
+/* Each channel of a mean inside [0, 1]: a convex combination of texels. */
+static void expect_mean_in_range(const double c[3], const char *what, int i)
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        if (!(c[k] >= 0 && c[k] <= 1))
+            fail_msg("%s %d: channel %d = %.17g, outside [0, 1]", what, i, k, c[k]);
+}
+
+/* A floor tiled as DCC tools export it (u, v from -2.6 to 3.6) cut in 24 x 24 elements,
+   as quads and as triangle pairs (16.5 texels across: past 16, the lines' path), against
+   each element's footprint moved by whole periods into the 0..1 layout, and against it
+   moved 10^6 periods. The same texels in the same order, so only the coordinates'
+   rounding differs: u - floor(u) to 2^-52 at the 0..1 layout's 1 (x 64 texels, x the
+   bilinear texture's steepest slope, 1 a texel: 1.4e-14) plus the row sums' rounding
+   (some 10^3 terms below 1: 1e-13): bound 1e-12. At 10^6 periods u is known to
+   2^-33 (1.2e-10, 7.5e-9 texel): bound 1e-7. Today's row sums went below 0 over the
+   black columns across the seam, which the core refuses ("reflectance must be finite
+   and >= 0"). */
+static void test_tiled_floor(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    tex_image t;
+    double worst = 0, worst_far = 0;
+    int i, j, k, tri, n = 0;
+    (void)state;
+    half_black(&t);
+    for (j = 0; j < 24; j++)
+        for (i = 0; i < 24; i++)
+            for (tri = 0; tri < 3; tri++) {
+                double u0 = -2.6 + 6.2 * i / 24, u1 = -2.6 + 6.2 * (i + 1) / 24;
+                double v0 = -2.6 + 6.2 * j / 24, v1 = -2.6 + 6.2 * (j + 1) / 24, a[3], b[3], c[3];
+                double su = floor(u0), sv = floor(v0);
+                obj_vec2 uv[4] = { { u0, v0 }, { u1, v0 }, { u1, v1 }, { u0, v1 } }, one[4], far[4];
+                const obj_vec2 *feet[3] = { uv, one, far };
+                int nc = tri ? 3 : 4, f;
+                if (tri == 2) { /* the other half of the cell */
+                    uv[1] = uv[2];
+                    uv[2] = uv[3];
+                }
+                for (k = 0; k < 4; k++) {
+                    one[k].u = uv[k].u - su;
+                    one[k].v = uv[k].v - sv;
+                    far[k].u = one[k].u + 1e6;
+                    far[k].v = one[k].v - 1e6;
+                }
+                for (f = 0; f < 3; f++)
+                    tex_polygon_mean(&t, pos, feet[f], nc, NULL, f == 0 ? a : f == 1 ? b : c);
+                expect_mean_in_range(a, "tiled element", n);
+                expect_mean_in_range(c, "element 10^6 periods off", n);
+                for (k = 0; k < 3; k++) {
+                    worst = fmax(worst, fabs(a[k] - b[k]));
+                    worst_far = fmax(worst_far, fabs(c[k] - b[k]));
+                }
+                n++;
+            }
+    print_message("tiled floor, %d elements: off the 0..1 layout by %.3g at most, 10^6 periods off by %.3g\n",
+                  n, worst, worst_far);
+    CHECK_LE(worst, 1e-12, "tiled element against its 0..1 footprint");
+    CHECK_LE(worst_far, 1e-7, "element 10^6 periods off against its 0..1 footprint");
+    tex_free(&t);
+}
+
+/* Footprints of no area: two equal vt (a real level's door), three equal, three on a
+   line, each short and long (300 texels along v: past the lines' threshold), as
+   triangles and in quads: the mean of the texture along the segment, inside the
+   texels' range; a point gives the texel sample there. A triangle 0.01 texel wide and
+   17 .. 4,000 texels tall over the black half (across the seam and not) is black: 0
+   to rounding, never below. Today the lines divided rounding by rounding (-0.58, 4.4). */
+static void test_degenerate_footprints(void **state)
+{
+    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    tex_image t;
+    double c[3], s[3], worst_tall = 0;
+    int i, k;
+    (void)state;
+    half_black(&t);
+    for (i = 0; i < 400; i++) {
+        double u = -3 + 0.0173 * i, v = 2 - 0.031 * i, len = i % 2 ? 300.0 / 64 : 0.05;
+        obj_vec2 two[4] = { { u, v }, { u, v }, { u + 0.01 * i / 400, v + len }, { u, v + len } };
+        obj_vec2 line3[3] = { { u, v }, { u + 0.1, v + len }, { u + 0.2, v + 2 * len } };
+        obj_vec2 point[3] = { { u, v }, { u, v }, { u, v } };
+        tex_triangle_mean(&t, two, c);
+        expect_mean_in_range(c, "two equal vt", i);
+        tex_polygon_mean(&t, pos, two, 4, NULL, c);
+        expect_mean_in_range(c, "quad with two equal vt", i);
+        tex_triangle_mean(&t, line3, c);
+        expect_mean_in_range(c, "vt on a line", i);
+        tex_triangle_mean(&t, point, c);
+        tex_sample(&t, u, v, s);
+        for (k = 0; k < 3; k++)
+            CHECK_NEAR(c[k], s[k], 0, "three equal vt against the sample there, footprint %d", i);
+    }
+    for (i = 0; i < 200; i++) { /* black columns: x 0 .. 31 wrap to the seam at u = 0 */
+        double x = 1.5 + 0.13 * i, h = 17 + 20 * i, v = -1 + 0.37 * i;
+        obj_vec2 tall[3] = { { x / 64, v }, { (x + 0.01) / 64, v }, { (x + 0.01) / 64, v + h / 64 } };
+        obj_vec2 seam[3] = { { -0.5 / 64, v }, { 0.5 / 64, v }, { 0.5 / 64, v + h / 64 } };
+        tex_triangle_mean(&t, tall, c);
+        expect_mean_in_range(c, "tall black triangle", i);
+        for (k = 0; k < 3; k++)
+            worst_tall = fmax(worst_tall, c[k]);
+        tex_triangle_mean(&t, seam, c);
+        expect_mean_in_range(c, "tall triangle on the seam", i);
+    }
+    print_message("tall black triangles: mean at most %.3g\n", worst_tall);
+    CHECK_LE(worst_tall, 1e-12, "tall triangle over black texels (rounding of sums below 4,000)");
+    tex_free(&t);
+}
+
+/* The user's room: a floor of two triangles tiled from -2.6 to 3.6 over the half-black
+   map, elements of 0.3 (the scene 4 wide): every element gets a reflectance (today the
+   call failed with "element N: reflectance must be finite and >= 0"), the black half's
+   within 2^-16 of 0. */
+static void test_tiled_room(void **state)
+{
+    sc_opts o = { 0, 0.3, 64, 0, 0, 0, 0, 0 };
+    tex_image t;
+    textured x;
+    sc_solver *s;
+    sc_stats st;
+    char err[512];
+    int set, e, k;
+    (void)state;
+    half_black(&t);
+    tex_free(&t);
+    write_text("tiled.mtl", "newmtl floor\nKd 0 0 0\nmap_Kd half_black.png\nnewmtl wall\nKd 0.6 0.6 0.6\n"
+                            "newmtl light\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("tiled.obj", "mtllib tiled.mtl\nv 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 0 3 0\nv 4 3 0\n"
+                            "v 4 3 4\nv 0 3 4\nv 1.5 2.99 1.5\nv 2.5 2.99 1.5\nv 2.5 2.99 2.5\nv 1.5 2.99 2.5\n"
+                            "vt -2.6 -2.6\nvt 3.6 -2.6\nvt 3.6 3.6\nvt -2.6 3.6\nusemtl floor\n"
+                            "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nusemtl wall\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\n"
+                            "f 3 4 8 7\nf 4 1 5 8\nusemtl light\nf 9 10 11 12\n");
+    load_textured("tiled.obj", &x);
+    s = sc_create(x.p, x.n, &o, NULL, NULL, err, sizeof err);
+    assert_non_null(s);
+    set = sc_texture_elements(s, &x.sc, x.maps, err, sizeof err);
+    if (set < 0)
+        fail_msg("sc_texture_elements: %s", err);
+    sc_get_stats(s, &st);
+    print_message("tiled room: %d floor elements given their footprint's reflectance\n", set);
+    CHECK_INT_GT(set, 100, "floor elements with their own reflectance");
+    for (e = 0; e < st.elements; e++) {
+        double rho[3];
+        sc_element_rho(s, e, rho);
+        expect_mean_in_range(rho, "element reflectance", e);
+        for (k = 0; k < 3; k++)
+            CHECK_LE(rho[k], TEX_RHO_MAX, "element %d reflectance", e);
+    }
+    sc_destroy(s);
+    free_textured(&x);
+}
+
+/* ---- tests: the formats accepted ------------------------------------------------------- */
+
+/* 4 x 3 texels, texel (x, y) (row 0 at the top) = (50 x + 20, 70 y + 10, 200 - 30 x). */
+static void texel_bytes(int x, int y, unsigned char c[3])
+{
+    c[0] = (unsigned char)(50 * x + 20);
+    c[1] = (unsigned char)(70 * y + 10);
+    c[2] = (unsigned char)(200 - 30 * x);
+}
+
+static void expect_accepted(const char *name, const unsigned char *d, size_t n)
+{
+    tex_image t;
+    char err[512];
+    int x, y;
+    write_bytes(tmp_path(name), d, n);
+    if (tex_load(tmp_path(name), &t, err, sizeof err))
+        fail_msg("%s refused: %s", name, err);
+    assert_int_equal(t.w, 4);
+    assert_int_equal(t.h, 3);
+    for (y = 0; y < 3; y++)
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3];
+            texel_bytes(x, y, c);
+            expect_texel(&t, x, y, c, name);
+        }
+    tex_free(&t);
+}
+
+static void expect_refused_bytes(const char *name, const void *d, size_t n, const char *what)
+{
+    write_bytes(tmp_path(name), d, n);
+    expect_refused(tmp_path(name), what);
+}
+
+/* Only PNG, JPEG, BMP and TGA reach stb_image, recognised by their bytes; a BMP or TGA
+   (plain and RLE) must hold the pixels its header declares, a JPEG reach its end
+   marker. Today a 16-bit PGM crashed stb_image 2.27, a truncated HDR hung it, and a
+   header-only BMP or cut TGA came out black with no warning. */
+static void test_formats(void **state)
+{
+    static const char pgm16[] = "P5\n2 1\n65535\n\x12\x34\x56\x78";
+    static const char hdr[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 8\n\x02\x02\x00";
+    static const char gif[] = "GIF89a\x04\x00\x03\x00\x80\x00\x00";
+    static const char psd[] = "8BPS\x00\x01\x00\x00\x00\x00\x00\x00\x00\x03";
+    unsigned char bmp[54 + 3 * 16], tga[18 + 36], rle[18 + 3 * 4 * 4], jpg[160];
+    size_t nr = 18, nj = 0;
+    int x, y, k;
+    tex_image t;
+    char err[512];
+    (void)state;
+    expect_refused_bytes("deep.pgm", pgm16, sizeof pgm16 - 1, "not a PNG, JPEG, BMP or TGA image (format: PNM)");
+    expect_refused_bytes("cut.hdr", hdr, sizeof hdr - 1, "(format: Radiance HDR)");
+    expect_refused_bytes("a.gif", gif, sizeof gif - 1, "(format: GIF)");
+    expect_refused_bytes("a.psd", psd, sizeof psd - 1, "(format: PSD)");
+
+    /* BMP: 24 bits, bottom-up rows of 12 bytes (4-byte aligned already), BGR */
+    memset(bmp, 0, sizeof bmp);
+    bmp[0] = 'B', bmp[1] = 'M', bmp[2] = (unsigned char)sizeof bmp, bmp[10] = 54, bmp[14] = 40;
+    bmp[18] = 4, bmp[22] = 3, bmp[26] = 1, bmp[28] = 24;
+    for (y = 0; y < 3; y++)
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3], *p = bmp + 54 + 12 * (2 - y) + 3 * x;
+            texel_bytes(x, y, c);
+            p[0] = c[2], p[1] = c[1], p[2] = c[0];
+        }
+    expect_accepted("ok.bmp", bmp, 54 + 36);
+    expect_refused_bytes("header_only.bmp", bmp, 54, "truncated: its header implies 90 bytes, the file holds 54");
+    expect_refused_bytes("cut.bmp", bmp, 80, "truncated: its header implies 90 bytes, the file holds 80");
+
+    /* TGA type 2: 24 bits, bottom-up (descriptor 0), BGR */
+    memset(tga, 0, sizeof tga);
+    tga[2] = 2, tga[12] = 4, tga[14] = 3, tga[16] = 24;
+    memcpy(rle, tga, 18);
+    rle[2] = 10;
+    for (y = 0; y < 3; y++) {
+        for (x = 0; x < 4; x++) {
+            unsigned char c[3], *p = tga + 18 + 12 * (2 - y) + 3 * x;
+            texel_bytes(x, y, c);
+            p[0] = c[2], p[1] = c[1], p[2] = c[0];
+        }
+    }
+    for (y = 0; y < 3; y++) { /* RLE: a raw packet of 4 a file row (texels all differ) */
+        rle[nr++] = 3;
+        memcpy(rle + nr, tga + 18 + 12 * y, 12);
+        nr += 12;
+    }
+    expect_accepted("ok.tga", tga, sizeof tga);
+    expect_accepted("ok_rle.tga", rle, nr);
+    expect_refused_bytes("header_only.tga", tga, 18, "truncated: its header implies 54 bytes, the file holds 18");
+    expect_refused_bytes("cut.tga", tga, 40, "truncated");
+    expect_refused_bytes("cut_rle.tga", rle, nr - 5, "truncated");
+    tga[1] = 1; /* a colour map type without a map: not a TGA this strict reading takes */
+    expect_refused_bytes("odd.tga", tga, sizeof tga, "(format: unknown)");
+
+    /* JPEG: 8 x 8 grey, baseline, one DC category-7 code of 80 (quantiser 1: grey 138) */
+    {
+        static const unsigned char head[] = { 0xff, 0xd8, 0xff, 0xdb, 0x00, 0x43, 0x00 };
+        static const unsigned char tail[] = {
+            0xff, 0xc0, 0x00, 0x0b, 0x08, 0x00, 0x08, 0x00, 0x08, 0x01, 0x01, 0x11, 0x00,
+            0xff, 0xc4, 0x00, 0x14, 0x00, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x07,
+            0xff, 0xc4, 0x00, 0x14, 0x10, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x00,
+            0xff, 0xda, 0x00, 0x08, 0x01, 0x01, 0x00, 0x00, 0x3f, 0x00, 0x50, 0x7f, 0xff, 0xd9 };
+        memcpy(jpg, head, sizeof head);
+        memset(jpg + sizeof head, 1, 64);
+        memcpy(jpg + sizeof head + 64, tail, sizeof tail);
+        nj = sizeof head + 64 + sizeof tail;
+    }
+    write_bytes(tmp_path("grey.jpg"), jpg, nj);
+    if (tex_load(tmp_path("grey.jpg"), &t, err, sizeof err))
+        fail_msg("grey.jpg refused: %s", err);
+    assert_int_equal(t.w, 8);
+    for (k = 0; k < 3; k++)
+        CHECK_INT_EQ(t.rgb[k], 138, "JPEG grey texel, channel %d", k);
+    tex_free(&t);
+    expect_refused_bytes("cut.jpg", jpg, nj - 4, "truncated: no end-of-image marker");
+}
+
+/* ---- tests: one decode a file, one budget a scene, names ignoring case --------------- */
+
+/* Loads the scene NAME (a triangle a material) and its maps into MAPS, warnings into W. */
+static void load_maps(const char *name, obj_scene *sc, tex_image *maps, int nmax, warnings *w)
+{
+    char err[512];
+    assert_int_equal(obj_load(tmp_path(name), sc, NULL, NULL, err, sizeof err), 0);
+    assert_true(sc->nmaterials <= nmax);
+    tex_load_materials(sc, maps, collect, w, 2);
+}
+
+static void free_maps(obj_scene *sc, tex_image *maps)
+{
+    int i;
+    for (i = 0; i < sc->nmaterials; i++)
+        tex_free(&maps[i]);
+    obj_free(sc);
+}
+
+/* One file named four ways (a.png, ./a.png, sub/../a.png, a symbolic link to it) is
+   decoded once: the four maps share one pixels pointer (today: four decodes, four
+   copies: a 423 KB PNG of 4 x 2^24 texels took 1 GB a spelling). That PNG is now
+   refused before decoding, by its side; and a scene's maps past TEX_BUDGET are refused
+   unread: four PNGs each declaring 16384 x 4096 texels in 100 bytes (288 MiB decoded:
+   192 of texels, 96 of row sums): the first three are charged (and fail to decode:
+   their pixels are missing), the fourth is over the budget. */
+static void test_map_identity_and_budget(void **state)
+{
+    static const char *const names[4] = { "a.png", "./a.png", "sub/../a.png", "link.png" };
+    unsigned char rgb[AW * AH * 3], *png;
+    char text[1024];
+    size_t used = 0, n;
+    obj_scene sc;
+    tex_image maps[4];
+    warnings w = { 0 };
+    int i;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(mkdir(tmp_path("ids"), 0700), 0);
+    assert_int_equal(mkdir(tmp_path("ids/sub"), 0700), 0);
+    assert_int_equal(img_write(tmp_path("ids/a.png"), rgb, AW, AH, NULL, 0), 0);
+    assert_int_equal(symlink("a.png", tmp_path("ids/link.png")), 0);
+    for (i = 0; i < 4; i++)
+        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl m%d\nKd 0 0 0\nmap_Kd %s\n", i, names[i]);
+    write_text("ids/m.mtl", text);
+    write_text("ids/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                            "usemtl m0\nf 1/1 2/1 3/1\nusemtl m1\nf 1/1 2/1 3/1\n"
+                            "usemtl m2\nf 1/1 2/1 3/1\nusemtl m3\nf 1/1 2/1 3/1\n");
+    load_maps("ids/s.obj", &sc, maps, 4, &w);
+    CHECK_INT_EQ(w.n, 0, "warnings loading one file named four ways");
+    for (i = 1; i < 4; i++) {
+        CHECK_THAT(maps[i].rgb == maps[0].rgb, "%s shares a.png's decoded pixels", names[i]);
+        CHECK_INT_EQ(maps[i].borrowed, 1, "%s borrowed", names[i]);
+    }
+    assert_asymmetric(&maps[3]);
+    free_maps(&sc, maps);
+
+    png = read_bytes(tmp_path("ids/a.png"), &n);
+    put_be32(png + 16, 4);
+    put_be32(png + 20, 1u << 24);
+    write_bytes(tmp_path("ids/tall.png"), png, n);
+    expect_refused(tmp_path("ids/tall.png"), "declares 4 x 16777216 texels, beyond the limits of 16384 a side");
+    put_be32(png + 16, 16384);
+    put_be32(png + 20, 4096);
+    used = 0;
+    for (i = 0; i < 4; i++) {
+        char name[64];
+        snprintf(name, sizeof name, "ids/big%d.png", i);
+        png[30] = (unsigned char)i; /* distinct files (the IHDR's CRC, which stb ignores) */
+        write_bytes(tmp_path(name), png, n);
+        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl b%d\nKd 0.1 0.2 0.3\nmap_Kd big%d.png\n", i, i);
+    }
+    free(png);
+    write_text("ids/big.mtl", text);
+    write_text("ids/big.obj", "mtllib big.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                              "usemtl b0\nf 1/1 2/1 3/1\nusemtl b1\nf 1/1 2/1 3/1\n"
+                              "usemtl b2\nf 1/1 2/1 3/1\nusemtl b3\nf 1/1 2/1 3/1\n");
+    memset(&w, 0, sizeof w);
+    load_maps("ids/big.obj", &sc, maps, 4, &w);
+    for (i = 0; i < w.n && i < 4; i++)
+        print_message("%s\n", w.msg[i]);
+    CHECK_INT_EQ(w.n, 4, "warnings for four maps that cannot be used");
+    for (i = 0; i < 3; i++)
+        CHECK_CONTAINS(w.msg[i], "cannot decode", "map %d, within the budget", i);
+    CHECK_CONTAINS(w.msg[3], "16384 x 4096 texels need 288 MiB, over what is left of the scene's texture budget",
+                   "the fourth map");
+    CHECK_CONTAINS(w.msg[3], "; using Kd 0.1 0.2 0.3", "the fourth map's fallback");
+    for (i = 0; i < 4; i++)
+        assert_null(maps[i].rgb);
+    free_maps(&sc, maps);
+}
+
+/* map_Kd names Wood.PNG, the folder holds wood.png: that file is used, with one warning
+   saying so (Windows exports on a case-sensitive file system; today: missing, Kd). A
+   name matching nothing still falls back. */
+static void test_map_case(void **state)
+{
+    unsigned char rgb[AW * AH * 3];
+    char want[1024];
+    obj_scene sc;
+    tex_image maps[2];
+    warnings w = { 0 };
+    int n;
+    (void)state;
+    asymmetric(rgb);
+    assert_int_equal(mkdir(tmp_path("case"), 0700), 0);
+    assert_int_equal(mkdir(tmp_path("case/tex"), 0700), 0);
+    assert_int_equal(img_write(tmp_path("case/tex/wood.png"), rgb, AW, AH, NULL, 0), 0);
+    write_text("case/m.mtl", "newmtl wood\nKd 0 0 0\nmap_Kd tex/Wood.PNG\nnewmtl none\nKd 0 0 0\nmap_Kd tex/Oak.png\n");
+    write_text("case/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
+                             "usemtl wood\nf 1/1 2/1 3/1\nusemtl none\nf 1/1 2/1 3/1\n");
+    load_maps("case/s.obj", &sc, maps, 2, &w);
+    for (n = 0; n < w.n && n < 4; n++)
+        print_message("%s\n", w.msg[n]);
+    CHECK_INT_EQ(w.n, 2, "warnings: the case match and the missing oak");
+    snprintf(want, sizeof want, "%s:3: map_Kd: %s: no such file; using %s (the name differs in case)",
+             tmp_path("case/m.mtl"), tmp_path("case/tex/Wood.PNG"), tmp_path("case/tex/wood.png"));
+    assert_string_equal(w.msg[0], want);
+    CHECK_CONTAINS(w.msg[1], "Oak.png: cannot open", "the name that matches nothing");
+    assert_non_null(maps[0].rgb);
+    assert_asymmetric(&maps[0]);
+    assert_string_equal(sc.materials[0].map_kd.path, tmp_path("case/tex/wood.png"));
+    assert_null(maps[1].rgb);
+    free_maps(&sc, maps);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1140,7 +1555,10 @@ int main(void)
         cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
         cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
         cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
-        cmocka_unit_test(test_rect_mean),
+        cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
+        cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
+        cmocka_unit_test(test_formats),           cmocka_unit_test(test_map_identity_and_budget),
+        cmocka_unit_test(test_map_case),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -12,7 +12,8 @@
  * never crashes, each warning is one line, a loaded texture is 1..TEX_MAX_PIXELS texels
  * with pixels, a material whose map_Kd failed keeps a Kd that is not all zero, and the
  * mean of every loaded texture over a triangle, and a sample, are finite values in
- * [0, 1]. tex_decode on the raw bytes agrees with the file load. gltf_write exports the
+ * [0, 1]. tex_decode on the raw bytes agrees with the file load, and accepts only PNG,
+ * JPEG, BMP and TGA. gltf_write exports the
  * scene with the loaded textures (material names from the MTL, escaped; images
  * embedded or left out with a warning): it succeeds, and the file starts with the GLB
  * header and its declared length is the file's.
@@ -145,6 +146,9 @@ static void check_decode(const uint8_t *tex, size_t n, int loaded_ok)
         CHECK((rc == 0) == (loaded_ok == 1));
     if (rc)
         CHECK(t.rgb == NULL && strchr(err, '\n') == NULL && err[0]);
+    else /* only PNG, JPEG, BMP and TGA (byte 1, its colour map type, 0 or 1) reach stb */
+        CHECK((n >= 8 && !memcmp(tex, "\x89PNG", 4)) || (n >= 3 && tex[0] == 0xff && tex[1] == 0xd8) ||
+              (n >= 2 && tex[0] == 'B' && tex[1] == 'M') || (n >= 18 && tex[1] <= 1));
     tex_free(&t);
 }
 

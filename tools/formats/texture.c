@@ -17,6 +17,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include <dirent.h>
+#include <errno.h>
 
 #include <stb/stb_image.h>
 
@@ -41,10 +46,175 @@ static const char *reason(char out[32])
 
 static void build_row_sums(tex_image *t);
 
+/* ---- the formats accepted -------------------------------------------------------------
+   stb_image 2.27 (Debian's) crashes on a 16-bit PGM and loops forever on a truncated
+   .hdr (CVE-2021-42716, CVE-2021-42715), and fills what a truncated BMP or TGA lacks
+   with zeros (black walls, no word). So only PNG, JPEG, BMP and TGA reach it, each
+   recognised here from its bytes, and a file must hold what its header implies: for
+   uncompressed BMP and TGA the pixel bytes, for RLE TGA every packet (walked), for
+   JPEG the segments up to the end-of-image marker (walked; the entropy-coded data
+   cannot hold one). PNG needs no more: its chunks and zlib stream are checked by stb
+   (a cut file fails to decode). stb then sees only data its format test recognises
+   first: PNG, JPEG and BMP by their magic, TGA by byte 1 (colour map type) 0 or 1,
+   which no other format stb knows starts with. */
+
+enum { FMT_PNG = 1, FMT_JPEG, FMT_BMP, FMT_TGA };
+
+static unsigned le16(const unsigned char *p)
+{
+    return p[0] | (unsigned)p[1] << 8;
+}
+
+static unsigned long le32(const unsigned char *p)
+{
+    return le16(p) | (unsigned long)le16(p + 2) << 16;
+}
+
+/* What a refused file seems to be, for the message. */
+static const char *other_format(const unsigned char *d, size_t n)
+{
+    if (n >= 4 && !memcmp(d, "GIF8", 4)) return "GIF";
+    if (n >= 4 && !memcmp(d, "8BPS", 4)) return "PSD";
+    if (n >= 2 && !memcmp(d, "#?", 2)) return "Radiance HDR";
+    if (n >= 2 && d[0] == 'P' && d[1] >= '1' && d[1] <= '7') return "PNM";
+    if (n >= 4 && !memcmp(d, "S\x80\xf6\x34", 4)) return "Softimage PIC";
+    return "unknown";
+}
+
+/* A TGA header, strictly (TGA has no magic): colour-mapped types with a map of 8-bit
+   indices, true colour of 15, 16, 24 or 32 bits, grey of 8 or 16, no interleaving. */
+static int tga_header(const unsigned char *d, size_t n)
+{
+    unsigned cmtype, type, cmlen, cmbits, bits;
+    if (n < 18)
+        return 0;
+    cmtype = d[1], type = d[2], cmlen = le16(d + 5), cmbits = d[7], bits = d[16];
+    if (le16(d + 12) < 1 || le16(d + 14) < 1 || (d[17] & 0xc0) || (d[17] & 15) > 8)
+        return 0;
+    if (type == 1 || type == 9)
+        return cmtype == 1 && le16(d + 3) == 0 && cmlen >= 1 && bits == 8 &&
+               (cmbits == 15 || cmbits == 16 || cmbits == 24 || cmbits == 32);
+    if (cmtype != 0 || le16(d + 3) || cmlen || cmbits)
+        return 0;
+    if (type == 2 || type == 10)
+        return bits == 15 || bits == 16 || bits == 24 || bits == 32;
+    return (type == 3 || type == 11) && (bits == 8 || bits == 16);
+}
+
+static int sniff(const unsigned char *d, size_t n)
+{
+    if (n >= 8 && !memcmp(d, "\x89PNG\r\n\x1a\n", 8)) return FMT_PNG;
+    if (n >= 3 && d[0] == 0xff && d[1] == 0xd8 && d[2] == 0xff) return FMT_JPEG;
+    if (n >= 2 && d[0] == 'B' && d[1] == 'M') return FMT_BMP;
+    return tga_header(d, n) ? FMT_TGA : 0;
+}
+
+/* Is the JPEG whole: marker segments by their lengths, entropy-coded data to the next
+   marker (0xff 0x00 is a stuffed byte, 0xff 0xd0-d7 a restart), up to end-of-image? */
+static const char *jpeg_whole(const unsigned char *d, size_t n)
+{
+    size_t i = 2;
+    for (;;) {
+        unsigned m;
+        while (i < n && d[i] == 0xff && i + 1 < n && d[i + 1] == 0xff)
+            i++; /* fill bytes */
+        if (i + 1 >= n)
+            return "truncated: no end-of-image marker";
+        if (d[i] != 0xff)
+            return "corrupt: a marker expected";
+        m = d[i + 1];
+        if (m == 0xd9)
+            return NULL;
+        if (m == 0x01 || (m >= 0xd0 && m <= 0xd7)) {
+            i += 2;
+            continue;
+        }
+        if (i + 4 > n || (size_t)((d[i + 2] << 8 | d[i + 3]) + 2) > n - i)
+            return "truncated within a segment";
+        i += (size_t)(d[i + 2] << 8 | d[i + 3]) + 2;
+        if (m == 0xda)
+            while (i + 1 < n && !(d[i] == 0xff && d[i + 1] != 0 && !(d[i + 1] >= 0xd0 && d[i + 1] <= 0xd7)))
+                i++;
+    }
+}
+
+/* Does the BMP or TGA hold what its header implies (W x H texels, from stb_image's
+   header read)? NULL, or what is wrong. Sizes in 64 bits: W, H < 2^15 here. */
+static const char *holds_pixels(int fmt, const unsigned char *d, size_t n, int w, int h, char why[96])
+{
+    unsigned long long need;
+    if (fmt == FMT_BMP) {
+        unsigned long dib = n >= 18 ? le32(d + 14) : 0, comp = dib >= 40 && n >= 34 ? le32(d + 30) : 0;
+        unsigned bits = dib == 12 ? (n >= 26 ? le16(d + 24) : 0) : (n >= 30 ? le16(d + 28) : 0);
+        if (comp != 0 && comp != 3)
+            return "BMP compression other than none or bit fields";
+        need = le32(d + 10) + ((unsigned long long)w * bits + 31) / 32 * 4 * (unsigned long long)h;
+    } else if (fmt == FMT_TGA) {
+        unsigned px = (d[16] + 7u) / 8;
+        unsigned long long at = 18ull + d[0] + le16(d + 5) * ((d[7] + 7ull) / 8), left = (unsigned long long)w * h;
+        if (d[2] < 9)
+            need = at + left * px;
+        else { /* RLE: a packet's header, then one pixel (run) or count pixels (raw) */
+            while (left > 0 && at < n) {
+                unsigned long long c = (d[at] & 0x7fu) + 1u;
+                at += 1 + (d[at] & 0x80 ? 1 : c) * px;
+                left -= c < left ? c : left;
+            }
+            need = left ? (unsigned long long)n + 1 : at;
+        }
+    } else
+        return fmt == FMT_JPEG ? jpeg_whole(d, n) : NULL;
+    if (need <= n)
+        return NULL;
+    snprintf(why, 96, "truncated: its header implies %llu bytes, the file holds %zu", need, n);
+    return why;
+}
+
 static void empty(tex_image *t)
 {
     memset(t, 0, sizeof *t);
     t->scale[0] = t->scale[1] = 1.0;
+}
+
+/* What decoding a W x H map keeps: its 8-bit RGB and its row sums (build_row_sums). */
+static double map_bytes(int w, int h)
+{
+    return 3.0 * w * h + 3.0 * sizeof(double) * h * ((double)(w / TEX_ROW_BLOCK) + 2);
+}
+
+/* Everything tex_decode checks before decoding: 0 with the declared size in *W, *H, or
+   -1 with err. */
+static int probe(const unsigned char *data, size_t size, const char *name, int *w, int *h, char *err,
+                 size_t errlen)
+{
+    int comp, fmt;
+    char what[160], why[32], why2[96];
+    const char *bad;
+    if (size == 0 || size > (size_t)0x7fffffff) {
+        put_err(err, errlen, name, size ? "larger than 2 GiB" : "empty file");
+        return -1;
+    }
+    if (!(fmt = sniff(data, size))) {
+        snprintf(what, sizeof what, "not a PNG, JPEG, BMP or TGA image (format: %s)", other_format(data, size));
+        put_err(err, errlen, name, what);
+        return -1;
+    }
+    if (!stbi_info_from_memory(data, (int)size, w, h, &comp)) {
+        snprintf(what, sizeof what, "not an image stb_image reads (%s)", reason(why));
+        put_err(err, errlen, name, what);
+        return -1;
+    }
+    if (*w < 1 || *h < 1 || *w > TEX_MAX_SIDE || *h > TEX_MAX_SIDE || (long)*w > TEX_MAX_PIXELS / *h) {
+        snprintf(what, sizeof what, "declares %d x %d texels, beyond the limits of %d a side and %ld in all",
+                 *w, *h, TEX_MAX_SIDE, TEX_MAX_PIXELS);
+        put_err(err, errlen, name, what);
+        return -1;
+    }
+    if ((bad = holds_pixels(fmt, data, size, *w, *h, why2)) != NULL) {
+        put_err(err, errlen, name, bad);
+        return -1;
+    }
+    return 0;
 }
 
 int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
@@ -53,21 +223,8 @@ int tex_decode(const unsigned char *data, size_t size, const char *name, tex_ima
     int w, h, comp;
     char what[160], why[32];
     empty(out);
-    if (size == 0 || size > (size_t)0x7fffffff) {
-        put_err(err, errlen, name, size ? "larger than 2 GiB" : "empty file");
+    if (probe(data, size, name, &w, &h, err, errlen))
         return -1;
-    }
-    if (!stbi_info_from_memory(data, (int)size, &w, &h, &comp)) {
-        snprintf(what, sizeof what, "not an image stb_image reads (%s)", reason(why));
-        put_err(err, errlen, name, what);
-        return -1;
-    }
-    if (w < 1 || h < 1 || (long)w > TEX_MAX_PIXELS / h) {
-        snprintf(what, sizeof what, "declares %d x %d texels, more than the limit of %ld", w,
-                 h, TEX_MAX_PIXELS);
-        put_err(err, errlen, name, what);
-        return -1;
-    }
     out->rgb = stbi_load_from_memory(data, (int)size, &out->w, &out->h, &comp, 3);
     if (!out->rgb || out->w != w || out->h != h) {
         snprintf(what, sizeof what, "cannot decode (%s)",
@@ -412,10 +569,20 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
     int i, k;
     for (i = 0; i < 3; i++) {
         x[i] = (uv[i].u * t->scale[0] + t->offset[0]) * t->w - 0.5;
-        y[i] = ys[i] = (1.0 - (uv[i].v * t->scale[1] + t->offset[1])) * t->h - 0.5;
+        y[i] = (1.0 - (uv[i].v * t->scale[1] + t->offset[1])) * t->h - 0.5;
         if (!(fabs(x[i]) < 1e15 && fabs(y[i]) < 1e15))
             return -1;
     }
+    if (!t->clamp) { /* whole periods off, so that the row integrals' sums stay small */
+        double qx = floor(fmin(x[0], fmin(x[1], x[2])) / t->w) * t->w;
+        double qy = floor(fmin(y[0], fmin(y[1], y[2])) / t->h) * t->h;
+        for (i = 0; i < 3; i++) {
+            x[i] -= qx;
+            y[i] -= qy;
+        }
+    }
+    for (i = 0; i < 3; i++)
+        ys[i] = y[i];
     qsort(ys, 3, sizeof ys[0], cmp_double);
     if (!t->row_sums || !(ys[2] - ys[0] > 0 && ys[2] - ys[0] <= MEAN_MAX_ROWS))
         return -1;
@@ -436,6 +603,35 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
     return 0;
 }
 
+/* Twice the area of the triangle UV in texels (NaN for UVs whose differences are). */
+static double uv_area2(const tex_image *t, const obj_vec2 uv[3])
+{
+    double au = (uv[1].u - uv[0].u) * t->scale[0] * t->w, av = (uv[1].v - uv[0].v) * t->scale[1] * t->h;
+    double bu = (uv[2].u - uv[0].u) * t->scale[0] * t->w, bv = (uv[2].v - uv[0].v) * t->scale[1] * t->h;
+    return fabs(au * bv - av * bu);
+}
+
+/* A triangle of UV thinner than SLIVER times its longest edge (twice its area below
+   SLIVER longest^2), two equal vt among them, maps its face onto a segment or a point
+   of the texture: the lines would divide sums by a length that is rounding (measured:
+   means of -2.4 and 4.4 over a black and white map). The sampler's centroids lie on
+   that segment, spread as the face's area is: the mean along it, and at a point the
+   texel there. */
+#define SLIVER 1e-6
+
+/* Every mean is a convex combination of texels, each in [0, 1], so a value outside is
+   rounding's (the row sums' differences: -4e-15 measured over black texels across the
+   wrap's seam, which the core refuses as a negative reflectance): kept to [0, 1]. NaN
+   (UVs whose differences overflow) takes the sample at corner 0. Nothing here fails. */
+static void settle(const tex_image *t, const obj_vec2 *uv, double rgb[3])
+{
+    int k;
+    if (isnan(rgb[0]) || isnan(rgb[1]) || isnan(rgb[2]))
+        tex_sample(t, uv[0].u, uv[0].v, rgb);
+    for (k = 0; k < 3; k++)
+        rgb[k] = rgb[k] > 0 ? rgb[k] < 1 ? rgb[k] : 1 : 0;
+}
+
 /* Splitting each edge in n splits the triangle into n^2 congruent triangles: n(n+1)/2
    pointing like it, with centroids at barycentric ((i + 1/3) / n, (j + 1/3) / n), and
    n(n-1)/2 pointing the other way, centroids at ((i + 2/3) / n, (j + 2/3) / n). Equal
@@ -443,9 +639,12 @@ static int mean_by_lines(const tex_image *t, const obj_vec2 uv[3], double rgb[3]
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
 {
     int n = divisions(t, uv), i, j, k, up;
-    double sum[3] = { 0, 0, 0 };
-    if (4 * footprint(t, uv) > TEX_MEAN_MAX_DIV && mean_by_lines(t, uv, rgb) == 0)
+    double sum[3] = { 0, 0, 0 }, longest = footprint(t, uv);
+    if (4 * longest > TEX_MEAN_MAX_DIV && !(uv_area2(t, uv) <= SLIVER * longest * longest) &&
+        mean_by_lines(t, uv, rgb) == 0) {
+        settle(t, uv, rgb);
         return;
+    }
     for (up = 0; up < 2; up++)
         for (i = 0; i < n; i++)
             for (j = 0; j + i < n - up; j++) {
@@ -458,6 +657,7 @@ void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3])
             }
     for (k = 0; k < 3; k++)
         rgb[k] = sum[k] / ((double)n * n);
+    settle(t, uv, rgb);
 }
 
 static double tri_area(const double a[3], const double b[3], const double c[3])
@@ -561,9 +761,11 @@ static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo
     if (fabs(x[1] - x[3]) <= 1e-9 * (x1 - x0))
         return -1; /* 1 and 3 the same corner */
     if (!t->clamp) { /* whole periods off: the row integrals need none of their own */
-        double q = floor(x0 / t->w) * t->w;
+        double q = floor(x0 / t->w) * t->w, qy = floor(y0 / t->h) * t->h;
         x0 -= q;
         x1 -= q;
+        y0 -= qy;
+        y1 -= qy;
     }
     for (j = floor(y0); j <= floor(y1) + 1; j++)
         wsum += tent_below(y1 - j) - tent_below(y0 - j);
@@ -573,6 +775,7 @@ static int mean_of_rect(const tex_image *t, const obj_vec2 uv[4], tex_memo *memo
     rect_edge(t, y0, y1, x1, memo, g1);
     for (k = 0; k < 3; k++)
         rgb[k] = (g1[k] - g0[k]) / (wsum * (x1 - x0));
+    settle(t, uv, rgb);
     return 0;
 }
 
@@ -598,6 +801,7 @@ void tex_polygon_mean(const tex_image *t, const double (*pos)[3], const obj_vec2
     }
     for (k = 0; k < 3; k++)
         rgb[k] /= total;
+    settle(t, uv, rgb);
 }
 
 void tex_image_mean(const tex_image *t, double rgb[3])
@@ -636,21 +840,16 @@ static void warn_map(obj_material *m, const char *why, tex_warn_fn warn, void *c
     warn(ctx, msg);
 }
 
-/* The first material whose map_Kd names the same file as material I's (I itself when
- * none before does). */
-static int first_with_path(const obj_scene *sc, int i)
-{
-    int j;
-    for (j = 0; j < i; j++)
-        if (sc->materials[j].map_kd.path && !strcmp(sc->materials[j].map_kd.path, sc->materials[i].map_kd.path))
-            return j;
-    return i;
-}
-
-/* The decoding of one file, for a thread: MAT the material that names it first. */
+/* The decoding of one file, for a thread: MAT the material that names it first; DATA
+ * its bytes (read and checked by probe on the calling thread), NULL once RC is set. */
 typedef struct {
     const char *path;
     int mat, rc;
+    char *data;
+    size_t size;
+    dev_t dev;
+    ino_t ino;
+    int known; /* dev, ino set (stat succeeded) */
     char err[768];
 } tex_job;
 
@@ -666,11 +865,15 @@ static void *decode_jobs(void *arg)
     int k;
     for (k = c->rank; k < c->njobs; k += c->threads) {
         tex_job *j = &c->jobs[k];
-        j->rc = tex_load(j->path, &c->maps[j->mat], j->err, sizeof j->err);
+        if (!j->data)
+            continue;
+        j->rc = tex_decode((const unsigned char *)j->data, j->size, j->path, &c->maps[j->mat], j->err,
+                           sizeof j->err);
+        free(j->data);
+        j->data = NULL;
     }
     return NULL;
 }
-
 /* Each job decoded, on THREADS threads (the files are independent; a thread that
  * cannot start leaves its jobs to the calling thread). Returns -1 without memory. */
 static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
@@ -707,24 +910,107 @@ static int decode_all(tex_job *jobs, int njobs, tex_image *maps, int threads)
     return 0;
 }
 
+/* PATH, which does not exist: the entry of its folder whose name is PATH's last part
+ * but for case (the first in byte order if several), as a new string; NULL if none. */
+static char *case_match(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    size_t dirlen = slash ? (size_t)(slash - path) : 0;
+    char *dir = slash ? malloc(dirlen + 2) : NULL, *best = NULL, *out = NULL;
+    DIR *d;
+    struct dirent *e;
+    if (slash && !dir)
+        return NULL;
+    if (dir) { /* "/x.png": the root */
+        memcpy(dir, path, dirlen ? dirlen : 1);
+        dir[dirlen ? dirlen : 1] = '\0';
+    }
+    d = opendir(dir ? dir : ".");
+    free(dir);
+    while (d && (e = readdir(d)) != NULL)
+        if (!strcasecmp(e->d_name, base) && (!best || strcmp(e->d_name, best) < 0)) {
+            free(best);
+            best = malloc(strlen(e->d_name) + 1);
+            if (best)
+                strcpy(best, e->d_name);
+        }
+    if (d)
+        closedir(d);
+    if (best && (out = malloc(dirlen + strlen(best) + 2)) != NULL)
+        snprintf(out, dirlen + strlen(best) + 2, "%.*s%s%s", (int)dirlen, path, slash ? "/" : "", best);
+    free(best);
+    return out;
+}
+
+/* The job for material I's map: an earlier one naming the same file (the same device
+ * and inode, whatever the spelling: ./a.png, a.png, a link; the same string when stat
+ * fails), or a new one, read and probed here in material order so that the budget
+ * (*SPENT of TEX_BUDGET bytes) is charged alike on any number of threads. */
+static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *spent, char *note,
+                   size_t notelen)
+{
+    struct stat st;
+    tex_job *j = &jobs[*njobs];
+    int k, w, h;
+    double cost;
+    char *alt;
+    note[0] = '\0';
+    if (stat(m->map_kd.path, &st) != 0 && errno == ENOENT && (alt = case_match(m->map_kd.path)) != NULL) {
+        snprintf(note, notelen, "%s:%d: map_Kd: %s: no such file; using %s (the name differs in case)",
+                 m->map_kd.mtl, m->map_kd.line, m->map_kd.path, alt);
+        free(m->map_kd.path);
+        m->map_kd.path = alt;
+    }
+    memset(j, 0, sizeof *j);
+    j->path = m->map_kd.path;
+    j->mat = i;
+    j->known = stat(j->path, &st) == 0;
+    j->dev = j->known ? st.st_dev : 0;
+    j->ino = j->known ? st.st_ino : 0;
+    for (k = 0; k < *njobs; k++)
+        if (j->known ? jobs[k].known && jobs[k].dev == j->dev && jobs[k].ino == j->ino
+                     : !jobs[k].known && !strcmp(jobs[k].path, j->path))
+            return k;
+    (*njobs)++;
+    if (fio_read_all(j->path, FIO_LIMIT_IMAGE, &j->data, &j->size, j->err, sizeof j->err) ||
+        probe((const unsigned char *)j->data, j->size, j->path, &w, &h, j->err, sizeof j->err)) {
+        j->rc = -1;
+    } else if ((cost = map_bytes(w, h) + (double)j->size) > TEX_BUDGET - *spent) {
+        snprintf(j->err, sizeof j->err, "%s: %d x %d texels need %.0f MiB, over what is left of the scene's "
+                 "texture budget (%.0f of %.0f MiB, TEX_BUDGET)", j->path, w, h, cost / 1048576,
+                 (TEX_BUDGET - *spent) / 1048576, TEX_BUDGET / 1048576.0);
+        j->rc = -1;
+    } else
+        *spent += cost;
+    if (j->rc) {
+        free(j->data);
+        j->data = NULL;
+    }
+    return *njobs - 1;
+}
+
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads)
 {
     tex_job *jobs = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *jobs);
     int *job_of = calloc((size_t)(sc->nmaterials > 0 ? sc->nmaterials : 1), sizeof *job_of);
     int i, njobs = 0, loaded = 0;
+    double spent = 0;
     for (i = 0; i < sc->nmaterials; i++) empty(&maps[i]);
     for (i = 0; jobs && job_of && i < sc->nmaterials; i++) {
-        const obj_material *m = &sc->materials[i];
-        int first = m->map_kd.path ? first_with_path(sc, i) : -1;
-        job_of[i] = first < 0 ? -1 : first < i ? job_of[first] : njobs;
-        if (first == i) {
-            jobs[njobs].path = m->map_kd.path;
-            jobs[njobs].mat = i;
-            njobs++;
+        char note[1024];
+        job_of[i] = -1;
+        if (!sc->materials[i].map_kd.path)
+            continue;
+        job_of[i] = job_for(&sc->materials[i], jobs, &njobs, i, &spent, note, sizeof note);
+        if (note[0]) {
+            sc->nwarnings++;
+            if (warn)
+                warn(ctx, note);
         }
     }
     if (!jobs || !job_of || decode_all(jobs, njobs, maps, threads) < 0) {
         for (i = 0; i < sc->nmaterials; i++) tex_free(&maps[i]);
+        for (i = 0; jobs && i < njobs; i++) free(jobs[i].data);
         for (i = 0; i < sc->nmaterials; i++)
             if (sc->materials[i].map_kd.path) {
                 sc->nwarnings++;

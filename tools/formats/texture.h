@@ -6,7 +6,7 @@
  * FIO_LIMIT_IMAGE bytes), stbi_info_from_memory reads the declared size from the header,
  * and an image of more than TEX_MAX_PIXELS is refused without being decoded (a
  * decompression bomb declares a huge size in a small file). The format comes from the
- * content, never from the file name. Pixels are kept as the file's 8-bit sRGB (3 bytes a
+ * content (PNG, JPEG, BMP, TGA only: tex_decode), never from the file name. Pixels are kept as the file's 8-bit sRGB (3 bytes a
  * texel) and decoded to linear on sampling, through the IEC 61966-2-1 formula.
  *
  * Coordinates: (u, v) = (0, 0) is the image's bottom-left corner, (1, 1) its top-right
@@ -37,6 +37,13 @@ extern "C" {
 /* Largest image decoded: 2^26 texels (8192 x 8192), 192 MiB as 8-bit RGB; stb_image
  * needs about as much again while it decodes. */
 #define TEX_MAX_PIXELS (1L << 26)
+/* Longest side decoded: 16384 texels (a 4 x 2^24 PNG of 423 KB took 1 GB, its row sums
+ * mostly: 48 bytes a row however narrow). */
+#define TEX_MAX_SIDE 16384
+/* What one scene's maps may take together: each distinct file's bytes while it decodes
+ * plus its decoded texels (3 bytes) and row sums (1.5 bytes a texel + 48 a row),
+ * 1 GiB: three maps of 8192 x 8192. A map past what is left is refused unread. */
+#define TEX_BUDGET (1024.0 * 1024 * 1024)
 /* Largest reflectance a texel gives: the core's largest below 1 (Q16.16). */
 #define TEX_RHO_MAX (65535.0 / 65536.0)
 /* A triangle's mean is taken over at most TEX_MEAN_MAX_DIV^2 samples (see
@@ -59,8 +66,13 @@ typedef struct {
 
 typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
 
-/* Decodes SIZE bytes of any format stb_image reads (PNG, JPEG, BMP, TGA, GIF, PSD, HDR
- * as 8-bit, PNM) into *out, as 8-bit RGB (alpha dropped, grey expanded, 16-bit reduced).
+/* Decodes SIZE bytes of PNG, JPEG, BMP or TGA into *out, as 8-bit RGB (alpha dropped,
+ * grey expanded, 16-bit reduced). The format is recognised from the bytes before stb_image
+ * sees them (PNG, JPEG, BMP by magic; TGA by a strict header check: colour-mapped with
+ * 8-bit indices, true colour 15/16/24/32 bits, grey 8/16); anything else (GIF, PSD, HDR,
+ * PNM: stb_image 2.27 crashes or hangs on some) is refused naming the format it seems to
+ * be. A BMP or TGA must hold the bytes its header implies (RLE TGA: every packet,
+ * walked), a JPEG its segments up to the end-of-image marker; else "truncated: ...".
  * NAME is used in messages. Returns 0, or -1 with err and *out empty. */
 int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
                char *err, size_t errlen);
@@ -82,7 +94,12 @@ void tex_sample(const tex_image *t, double u, double v, double rgb[3]);
  * triangle). Larger: integrated exactly along lines of constant v, two a texel row,
  * from the row sums (a sampling lattice coarser than the texels would beat with any
  * period of the image); the sampler again if they are missing or the footprint spans
- * more than 65,536 texel rows. */
+ * more than 65,536 texel rows, and for a footprint of no area (two or three equal vt,
+ * vt on a line: thinner than 1e-6 of its longest edge), whose samples then lie along
+ * its segment (at a point: the texel sample there). Never fails: every mean (here and
+ * in tex_polygon_mean) is finite and in [0, 1], as a convex combination of texels is;
+ * wrapped coordinates are moved by whole periods first, so u, v of +-1e6 or negative
+ * give the 0..1 layout's mean. */
 void tex_triangle_mean(const tex_image *t, const obj_vec2 uv[3], double rgb[3]);
 /* Values tex_polygon_mean keeps for the elements of a lattice, which share edges: a
  * caller's, of any content at first (it clears itself for another image). */
@@ -114,11 +131,16 @@ void tex_reflectance(const double kd[3], const double texel[3], double rho[3]);
 /* Loads every material's map_Kd into maps[0 .. sc->nmaterials - 1] (maps[i].rgb NULL
  * when material i has none or it fails), the files decoded on THREADS threads (1 or
  * less: the calling thread; the results and warnings are the same). Materials naming
- * the same file share one decoded image (the first one's; the others borrow it: free
- * them all together, in any order). A failure is one warning per material naming the
- * file, "MTL:LINE: map_Kd: FILE: reason; using Kd R G B" (counted in sc->nwarnings), in
- * material order, and obj_map_fallback on the material. Returns the number of
- * textures loaded. */
+ * the same file (the same device and inode, however spelt: ./a.png, a.png, a link)
+ * share one decoded image (the first one's; the others borrow it: free them all
+ * together, in any order). The files are read and their headers checked in material
+ * order first, each charged to the scene's TEX_BUDGET: a map past what is left is
+ * refused undecoded. A name that does not exist is matched ignoring case in its folder
+ * (the file found replaces map_kd.path, with one warning "MTL:LINE: map_Kd: FILE: no
+ * such file; using FOUND (the name differs in case)", counted in sc->nwarnings). A
+ * failure is one warning per material naming the file, "MTL:LINE: map_Kd: FILE: reason;
+ * using Kd R G B" (counted in sc->nwarnings), in material order, and obj_map_fallback
+ * on the material. Returns the number of textures loaded. */
 int tex_load_materials(obj_scene *sc, tex_image *maps, tex_warn_fn warn, void *ctx, int threads);
 
 #ifdef __cplusplus
