@@ -27,7 +27,10 @@
 
 #include "check.h"
 #include "formats/assimp_scene.h"
+#include "formats/file_io.h"
+#include "formats/image.h"
 #include "formats/obj.h"
+#include "formats/texture.h"
 #include "host/obj_polys.h"
 #include "host/scene.h"
 #include "tmpdir.h"
@@ -445,6 +448,91 @@ static void test_gltf_lights(void **state)
     obj_free(&sc);
 }
 
+/* 1 if the N bytes at D hold the text PART. */
+static int holds(const char *d, size_t n, const char *part)
+{
+    size_t i, m = strlen(part);
+    for (i = 0; i + m <= n; i++)
+        if (!memcmp(d + i, part, m)) return 1;
+    return 0;
+}
+
+/* A texture the glTF holds in its buffer (an image with a bufferView, as .glb files
+ * carry them): read from there, decoded to the file's texels (a 4 x 2 image of eight
+ * different colours, so a flip or a swap shows), and embedded again by --export-gltf
+ * as a PNG although no file of that name exists. */
+static void test_embedded_texture(void **state)
+{
+    static const unsigned char rgb[4 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 0,
+                                                 0, 255, 255, 255, 0, 255, 128, 128, 128, 10, 20, 30};
+    static const float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    static const float uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    static const unsigned short idx[6] = {0, 1, 2, 0, 2, 3};
+    unsigned char *png, buf[2048];
+    size_t npng, len = 0;
+    obj_scene sc;
+    tex_image maps[1];
+    char err[512], cmd[1024];
+    FILE *f;
+    int i;
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    assert_int_equal(img_encode_png(rgb, 4, 2, &png, &npng, err, sizeof err), 0);
+    assert_true(npng + 120 < sizeof buf);
+    memcpy(buf, pos, 48);
+    memcpy(buf + 48, uv, 32);
+    memcpy(buf + 80, idx, 12);
+    memcpy(buf + 92, png, npng);
+    len = 92 + npng;
+    f = fopen(tmp_path("tex.gltf"), "w");
+    assert_non_null(f);
+    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+               "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+               "{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,\"material\":0}]}],"
+               "\"materials\":[{\"name\":\"tiles\",\"pbrMetallicRoughness\":{\"baseColorTexture\":"
+               "{\"index\":0}}}],\"textures\":[{\"source\":0}],"
+               "\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"}],"
+               "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+               "\"min\":[0,0,0],\"max\":[1,1,0]},{\"bufferView\":1,\"componentType\":5126,\"count\":4,"
+               "\"type\":\"VEC2\"},{\"bufferView\":2,\"componentType\":5123,\"count\":6,"
+               "\"type\":\"SCALAR\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},"
+               "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":80,"
+               "\"byteLength\":12},{\"buffer\":0,\"byteOffset\":92,\"byteLength\":%zu}],"
+               "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,",
+            npng, len);
+    put_b64(f, buf, len);
+    fprintf(f, "\"}]}\n");
+    assert_int_equal(fclose(f), 0);
+    free(png);
+    if (assimp_scene_load(tmp_path("tex.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
+    CHECK_INT_EQ(sc.nmaterials, 1, "materials");
+    assert_non_null(sc.materials[0].map_kd.data);
+    print_message("embedded map: %s, %zu bytes (the PNG's %zu)\n", sc.materials[0].map_kd.path,
+                  sc.materials[0].map_kd.size, npng);
+    CHECK_INT_EQ(sc.materials[0].map_kd.size, npng, "bytes of the embedded texture");
+    CHECK_INT_EQ(tex_load_materials(&sc, maps, NULL, NULL, 1), 1, "textures decoded");
+    CHECK_INT_EQ(maps[0].w, 4, "its width");
+    CHECK_INT_EQ(maps[0].h, 2, "its height");
+    for (i = 0; i < 24; i++) CHECK_INT_EQ(maps[0].rgb[i], rgb[i], "byte %d of the texels", i);
+    tex_free(&maps[0]);
+    obj_free(&sc);
+    /* --export-gltf embeds it again, as a PNG, with no file of its name to copy */
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli '%s' --quiet --res 16 --width 8 --height 8 -o '%s' "
+             "--export-gltf '%s'",
+             tmp_path("tex.gltf"), tmp_path("tex.png"), tmp_path("tex.glb"));
+    CHECK_INT_EQ(system(cmd), 0, "rad_cli on the glTF with an embedded texture");
+    {
+        char *d;
+        size_t n;
+        assert_int_equal(fio_read_all(tmp_path("tex.glb"), 1 << 20, &d, &n, err, sizeof err), 0);
+        CHECK_THAT(holds(d, n, "image/png"), "an image/png in the exported .glb");
+        CHECK_THAT(holds(d, n, "\x89PNG"), "PNG bytes in the exported .glb");
+        free(d);
+    }
+}
+
 /* .obj in any case goes to the OBJ reader, every other name to assimp. */
 static void test_wants(void **state)
 {
@@ -467,6 +555,7 @@ int main(void)
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_outside_paths),
         cmocka_unit_test(test_gltf_lights),
+        cmocka_unit_test(test_embedded_texture),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

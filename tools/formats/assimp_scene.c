@@ -421,6 +421,47 @@ static int get_rgb(const struct aiMaterial *m, const char *key, unsigned type, u
     return 1;
 }
 
+/* The embedded texture a material's texture name TEX means: "*N" (glTF, and what
+ * assimp names others), or the file name an embedded texture keeps (FBX); -1: a file. */
+static int embedded(const build *b, const struct aiString *tex)
+{
+    unsigned i;
+    if (tex->data[0] == '*') {
+        char *end;
+        long n = strtol(tex->data + 1, &end, 10);
+        return *end == '\0' && end > tex->data + 1 && n >= 0 && n < (long)b->ai->mNumTextures ? (int)n : -2;
+    }
+    for (i = 0; i < b->ai->mNumTextures; i++)
+        if (b->ai->mTextures[i]->mFilename.length && !strcmp(b->ai->mTextures[i]->mFilename.data, tex->data))
+            return (int)i;
+    return -1;
+}
+
+/* Material OM's map from embedded texture K (-2: a "*N" past the file's textures): its
+ * bytes copied, named "SCENE/texture K (embedded)" (a path under a file: never a file
+ * that could be read instead). A texture of raw texels, not a file's bytes, is not read:
+ * a warning, and the colour. 0, or -1 without memory. */
+static int embed_map(build *b, obj_material *om, const char *path, int k, obj_warn_fn warn, void *ctx)
+{
+    const struct aiTexture *t = k >= 0 ? b->ai->mTextures[k] : NULL;
+    size_t n = strlen(path) + 40;
+    if (!t || t->mHeight != 0) {
+        obj_map_fallback(om);
+        warnf(warn, ctx, b->sc, "%s: material %s: %s; using its colour %g %g %g", path, om->name,
+              t ? "its embedded texture holds raw texels, which rad does not read"
+                : "its texture names none of the file's embedded textures",
+              om->kd[0], om->kd[1], om->kd[2]);
+        return 0;
+    }
+    om->map_kd.path = malloc(n);
+    om->map_kd.data = malloc(t->mWidth ? t->mWidth : 1);
+    if (!om->map_kd.path || !om->map_kd.data) return -1;
+    snprintf(om->map_kd.path, n, "%s/texture %d (embedded)", path, k);
+    memcpy(om->map_kd.data, t->pcData, t->mWidth);
+    om->map_kd.size = t->mWidth;
+    return 0;
+}
+
 static int add_material(build *b, const io_state *st, const char *path, unsigned i,
                         obj_warn_fn warn, void *ctx)
 {
@@ -463,13 +504,7 @@ static int add_material(build *b, const io_state *st, const char *path, unsigned
     om->map_kd.mtl = dup_str(path); /* messages name the scene; line 1: the map exists */
     om->map_kd.line = 1;
     if (!om->map_kd.mtl) return -1;
-    if (tex.data[0] == '*' || tex.length == 0) {
-        warnf(warn, ctx, sc,
-              "%s: material %s: its base colour texture is embedded in the file, which rad "
-              "does not read yet; using its colour %g %g %g",
-              path, om->name, om->kd[0], om->kd[1], om->kd[2]);
-        return 0;
-    }
+    if (embedded(b, &tex) >= 0) return embed_map(b, om, path, embedded(b, &tex), warn, ctx);
     {
         size_t d = tex.data[0] == '/' ? 0 : dir_len(path), t = strlen(tex.data);
         om->map_kd.path = malloc(d + t + 1);

@@ -15,10 +15,12 @@
  *   - the first texture coordinate set (assimp gives it with v up, as OBJ) and the
  *     normals;
  *   - per material: the base colour (glTF baseColorFactor, else the diffuse colour) as
- *     Kd, the base colour or diffuse texture as map_Kd (a file beside the scene; a
- *     texture embedded in the file is not read yet: a warning, and the colour alone),
- *     the emissive colour times its strength (KHR_materials_emissive_strength) as Ke,
- *     in the units of an MTL's Ke. Names are the file's, made unique with "#N".
+ *     Kd, the base colour or diffuse texture as map_Kd (a file beside the scene, or the
+ *     bytes of an image the file holds: obj_map.data, named "SCENE/texture N
+ *     (embedded)"; raw texels are not read: a warning, and the colour),
+ *     the emissive colour times its intensity where the importer gives one (assimp
+ *     5.2 reads no KHR_materials_emissive_strength: a glTF's emission is at most 1)
+ *     as Ke, in the units of an MTL's Ke. Names are the file's, made unique with "#N".
  *   - the file's lights (glTF's KHR_lights_punctual, FBX, COLLADA, 3DS): directional,
  *     point and spot, placed by the node of their name, colour times intensity (glTF:
  *     candela for point and spot, lux for directional, taken as the units of Ke, whose

@@ -663,7 +663,16 @@ static int embed_image(writer *w, int m, const char **mime)
     char *data, err[600], msg[800];
     size_t size;
     if (fio_read_all(w->in->texture[m], FIO_LIMIT_IMAGE, &data, &size, err, sizeof err)) {
-        snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
+        /* no file to copy (a texture the scene file held): the decoded image as PNG */
+        const tex_image *t = w->in->texture_image ? &w->in->texture_image[m] : NULL;
+        if (t && t->rgb) {
+            int view = embed_as_png(w, m, msg, sizeof msg);
+            *mime = "image/png";
+            if (view >= 0)
+                return view;
+        } else {
+            snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
+        }
     } else if (!(*mime = image_mime((const unsigned char *)data, size))) {
         int view = embed_as_png(w, m, msg, sizeof msg);
         free(data);

@@ -1218,6 +1218,7 @@ void obj_free(obj_scene *sc)
         free(sc->materials[i].name);
         free(sc->materials[i].map_kd.path);
         free(sc->materials[i].map_kd.mtl);
+        free(sc->materials[i].map_kd.data);
     }
     for (i = 0; i < sc->nnames; i++)
         free(sc->names[i]);

@@ -33,6 +33,10 @@ typedef struct {
     int clamp;          /* 1: coordinates clamped to [0, 1]; 0: wrapped (repeat) */
     int outside;        /* internal to obj.c: PATH leaves the scene's folder (then NULL by
                            the end of the load, with a warning) */
+    unsigned char *data; /* the image's bytes when the scene file holds them (a glTF's or
+                            FBX's embedded texture, assimp_scene.h): PATH then only names
+                            it, "SCENE#N" for messages and sharing; NULL: PATH is a file */
+    size_t size;
 } obj_map;
 
 typedef struct {

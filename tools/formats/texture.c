@@ -946,6 +946,21 @@ static char *case_match(const char *path)
  * and inode, whatever the spelling: ./a.png, a.png, a link; the same string when stat
  * fails), or a new one, read and probed here in material order so that the budget
  * (*SPENT of TEX_BUDGET bytes) is charged alike on any number of threads. */
+/* The bytes of M's map into J (as fio_read_all gives them, a NUL after): a copy of the
+ * ones the scene file held, else its file's. 0, or -1 with J's err. */
+static int read_map(const obj_material *m, tex_job *j)
+{
+    if (!m->map_kd.data) return fio_read_all(j->path, FIO_LIMIT_IMAGE, &j->data, &j->size, j->err, sizeof j->err);
+    if (!(j->data = malloc(m->map_kd.size + 1))) {
+        snprintf(j->err, sizeof j->err, "%s: out of memory", j->path);
+        return -1;
+    }
+    memcpy(j->data, m->map_kd.data, m->map_kd.size);
+    j->data[m->map_kd.size] = '\0';
+    j->size = m->map_kd.size;
+    return 0;
+}
+
 static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *spent, char *note,
                    size_t notelen)
 {
@@ -955,7 +970,8 @@ static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *sp
     double cost;
     char *alt;
     note[0] = '\0';
-    if (stat(m->map_kd.path, &st) != 0 && errno == ENOENT && (alt = case_match(m->map_kd.path)) != NULL) {
+    if (!m->map_kd.data && stat(m->map_kd.path, &st) != 0 && errno == ENOENT &&
+        (alt = case_match(m->map_kd.path)) != NULL) {
         snprintf(note, notelen, "%s:%d: map_Kd: %s: no such file; using %s (the name differs in case)",
                  m->map_kd.mtl, m->map_kd.line, m->map_kd.path, alt);
         free(m->map_kd.path);
@@ -964,7 +980,7 @@ static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *sp
     memset(j, 0, sizeof *j);
     j->path = m->map_kd.path;
     j->mat = i;
-    j->known = stat(j->path, &st) == 0;
+    j->known = !m->map_kd.data && stat(j->path, &st) == 0; /* embedded: shared by name */
     j->dev = j->known ? st.st_dev : 0;
     j->ino = j->known ? st.st_ino : 0;
     for (k = 0; k < *njobs; k++)
@@ -972,8 +988,7 @@ static int job_for(obj_material *m, tex_job *jobs, int *njobs, int i, double *sp
                      : !jobs[k].known && !strcmp(jobs[k].path, j->path))
             return k;
     (*njobs)++;
-    if (fio_read_all(j->path, FIO_LIMIT_IMAGE, &j->data, &j->size, j->err, sizeof j->err) ||
-        probe((const unsigned char *)j->data, j->size, j->path, &w, &h, j->err, sizeof j->err)) {
+    if (read_map(m, j) || probe((const unsigned char *)j->data, j->size, j->path, &w, &h, j->err, sizeof j->err)) {
         j->rc = -1;
     } else if ((cost = map_bytes(w, h) + (double)j->size) > TEX_BUDGET - *spent) {
         snprintf(j->err, sizeof j->err, "%s: %d x %d texels need %.0f MiB, over what is left of the scene's "
