@@ -91,7 +91,7 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     np = s->n_patches;
     /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
-    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    if (!rows_ready(s, rows) || s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     rad__freeze(s);
     rad__scale_power(s); /* for the emissions now: this solve starts from them alone */
     assemble(s, rows, matrix);

@@ -347,7 +347,12 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
+    int lit;
+    if (rows && s->n_lights) return RAD_ERR_STATE; /* rows do not take lights yet */
     rad__freeze(s);
+    lit = rad__lights_shoot(s, max_shots); /* before any patch: their power joins emitted */
+    if (lit < 0) return lit;
+    done = (uint32_t)lit;
     start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
@@ -363,7 +368,8 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     if (!s) return RAD_ERR_ARG;
-    if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
+    /* nothing can be shot: the scene stays open */
+    if (s->emitted == 0 && !rad__lights_pending(s)) return 0;
     return rad__shoot(s, 0, max_shots, tol);
 }
 
@@ -372,6 +378,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
     static const rad_real_t none[3] = {0, 0, 0};
     rad_energy_t total;
     if (!s) return 0;
+    if (rad__lights_pending(s)) return RAD__ONE; /* none of a light's power has gone */
     select_shooter(s, none, &total);
     return rad__energy_ratio(total, s->emitted);
 }
@@ -409,10 +416,13 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     rad_energy_t total;
     rad_real_t amb[3];
     uint32_t p;
+    int lit;
     if (!s || !patch) return RAD_ERR_ARG;
-    if (s->emitted == 0) return 0; /* as rad_shoot */
+    if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
+    lit = rad__lights_shoot(s, UINT32_MAX); /* as rad_shoot, here all at once */
+    if (lit < 0) return lit;
     start_solving(s);
     p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;
