@@ -1370,9 +1370,19 @@ static double csv_mean_red(const char *path, double *area_out)
  * stored rows are refused. */
 static void test_lights(void **state)
 {
+    static const struct {
+        const char *opt, *val, *more, *says;
+    } bad[] = {
+        {"--sun", "0,0,0,1,1,1", NULL, "--sun wants DX,DY,DZ,R,G,B"},
+        {"--sun", "0,-1,0,1,1,1,0.5", NULL, "angular radius"},
+        {"--point", "0,4,0,-1,1,1", NULL, "--point wants X,Y,Z,R,G,B"},
+        {"--spot", "0,4,0,0,-1,0,1,1,1,200", NULL, "ANGLE"},
+        {"--point", "0,4,0,1,1,1", "--save-ff", "stored form factors"},
+    };
     run_t r;
     double area, mean, t = 60 * 3.14159265358979323846 / 180, want;
     char sun[96];
+    size_t k;
     (void)state;
     need(FIXED);
     write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
@@ -1407,27 +1417,13 @@ static void test_lights(void **state)
     run_free(&r);
     CHECK_LE(csv_mean_red(tmp_path("spot.csv"), &area), 0, "the floor behind a spot's cone");
 
-    RUN(&r, FIXED, "--sun", "0,0,0,1,1,1", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "--sun wants DX,DY,DZ,R,G,B", "a zero sun direction");
-    run_free(&r);
-    RUN(&r, FIXED, "--sun", "0,-1,0,1,1,1,0.5", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "angular radius", "a sun's angle");
-    run_free(&r);
-    RUN(&r, FIXED, "--point", "0,4,0,-1,1,1", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "--point wants X,Y,Z,R,G,B", "a negative intensity");
-    run_free(&r);
-    RUN(&r, FIXED, "--spot", "0,4,0,0,-1,0,1,1,1,200", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "ANGLE", "a spot's angle of 200");
-    run_free(&r);
-    RUN(&r, FIXED, "--point", "0,4,0,1,1,1", "--save-ff", tmp_path("x.ff"), "-o", tmp_path("x.png"),
-        tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "stored form factors", "lights with --save-ff");
-    run_free(&r);
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        RUN(&r, FIXED, bad[k].opt, bad[k].val, bad[k].more ? bad[k].more : "--quiet", bad[k].more ? tmp_path("x.ff") : "--quiet",
+            "-o", tmp_path("x.png"), tmp_path("floor.obj"));
+        expect_status(&r, 2);
+        CHECK_CONTAINS(r.err, bad[k].says, "rad_cli %s %s", bad[k].opt, bad[k].val);
+        run_free(&r);
+    }
     RUN(&r, FIXED, "--point", "0,100,0,1,1,1", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
     expect_status(&r, 1);
     CHECK_CONTAINS(r.err, "light 1: its position lies beyond", "a point light far outside");

@@ -103,32 +103,31 @@ static rad_vec3_t vec(const double *p)
     return v;
 }
 
+/* W's pools and a work buffer at WRES under configuration C, and with LIGHTS its
+ * lights' array of 4. */
+static int world_init(world_t *w, const rad_config_t *c, int lights)
+{
+    rad_pools_t p = {.surfaces = w->surf, .max_surfaces = NS, .patches = w->patch, .max_patches = NP,
+                     .elements = w->elem, .max_elements = NE, .vertices = w->vert, .max_vertices = NV,
+                     .work = w->work, .work_bytes = sizeof w->work};
+    int rc = rad_init(&w->s, &p, c);
+    return rc == RAD_OK && lights ? rad_use_lights(&w->s, w->lights, 4) : rc;
+}
+
 int TW(scene_light)(const tscene *sc, tres *r)
 {
     world_t *w = calloc(1, sizeof *w);
-    rad_pools_t p;
     rad_config_t c;
     rad_rgb_t rho;
     double ls;
     int i, k, rc;
     if (!w) return -100;
     memset(r, 0, sizeof *r);
-    p.surfaces = w->surf;
-    p.max_surfaces = NS;
-    p.patches = w->patch;
-    p.max_patches = NP;
-    p.elements = w->elem;
-    p.max_elements = NE;
-    p.vertices = w->vert;
-    p.max_vertices = NV;
-    p.work = w->work;
-    p.work_bytes = sizeof w->work;
     memset(&c, 0, sizeof c);
     c.max_element = RAD_REAL(sc->max_element);
     c.max_patch = RAD_REAL(4 * sc->max_element);
     c.res = (uint16_t)sc->res;
-    rc = rad_init(&w->s, &p, &c);
-    if (rc == RAD_OK) rc = rad_use_lights(&w->s, w->lights, 4);
+    rc = world_init(w, &c, 1);
     rho.r = rho.g = rho.b = RAD_REAL(sc->rho);
     for (i = 0; i < sc->npolys && rc >= 0; i++) {
         rad_vec3_t v[4];
@@ -538,16 +537,12 @@ static void test_twin(void **state)
 static void test_api(void **state)
 {
     static world_t w;
-    rad_pools_t p;
     rad_config_t c = {0};
     rad_light_t l, arr[2];
     rad_rows_t rows;
     (void)state;
     memset(&w, 0, sizeof w);
-    p.surfaces = w.surf; p.max_surfaces = NS; p.patches = w.patch; p.max_patches = NP;
-    p.elements = w.elem; p.max_elements = NE; p.vertices = w.vert; p.max_vertices = NV;
-    p.work = w.work; p.work_bytes = sizeof w.work;
-    CHECK_INT_EQ(rad_init(&w.s, &p, &c), RAD_OK, "init");
+    CHECK_INT_EQ(world_init(&w, &c, 0), RAD_OK, "init");
     memset(&l, 0, sizeof l);
     l.type = RAD_LIGHT_SUN;
     l.direction.y = RAD_REAL(-1);
