@@ -270,8 +270,8 @@ static int load_step(run_t *r)
     for (i = 0; i < r->sc.nmaterials; i++)
         if (emits(&r->sc.materials[i])) emitters++;
     if (!emitters && !o->nlights && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s: no material emits light (Ke) and no --sun, --point or --spot, so "
-                        "the image is black; set one with --emit NAME=R,G,B (--list-materials shows them)\n",
+        fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; set one with "
+                        "--emit NAME=R,G,B (--list-materials shows them), or add --sun, --point or --spot\n",
                 o->scene);
     if (r->groups_mode && resolve_groups(r) < 0) return -1;
     if (o->animate && read_frames(o) < 0) return -1;
