@@ -10,25 +10,29 @@
  *
  * Point and spot: a whole cube at the light (six R x R faces, R = the light's res).
  * A pixel of a face at (a, b, 1), a and b its centre's odd lattice numbers over R,
- * has the solid angle dw ~ c^3 dA, c = 1 / sqrt(a^2 + b^2 + 1); the table holds one
- * quadrant of c^3, in integers in both builds, scaled so that each quadrant sums to
- * exactly 2^26 (a face's quadrant is 1/24 of the sphere): the sphere's 24 quadrants
- * sum to 1.5 2^30, standing for 4 pi, so U = 4 pi I / 1.5 and a pixel gives I dw. A
+ * has the solid angle dw ~ c^3 dA, c = 1 / sqrt(a^2 + b^2 + 1); its weight is c^3, in
+ * integers in both builds, scaled so that each quadrant of a face sums to exactly 2^26
+ * (a face's quadrant is 1/24 of the sphere): the sphere's 24 quadrants sum to
+ * 1.5 2^30, standing for 4 pi, so U = 4 pi I / 1.5 and a pixel gives I dw. A
  * spot's pixel weighs that times its falloff at the pixel centre's direction. The
  * cube is turned by the rotation of rows (2, 3, 6) / 7, (3, -6, 2) / 7, (6, 2, -3) / 7:
  * no scene axis lies along a face's rows or columns, where walls along the axes would
  * alias by half a pixel along their whole length.
  *
- * Sun: an orthographic R x R item buffer over the square (side 2 h) that every
- * surface corner projects into across the light's direction, each pixel of area
- * (2 h / R)^2: U = E (2 h)^2 and a pixel's fraction 1 / R^2. The rasterizer draws it
- * as a face whose vertices all lie at depth h (a / h is then the place across the
- * window, exactly), testing depth by the nearness to the sun (frustum ORTHO).
+ * Sun: an orthographic item buffer over the square (side 2 h) that every surface
+ * corner projects into across the light's direction, in K x K tiles of W x W pixels
+ * (W the scene's res, or R when smaller; K = R / W rounded up), each pixel of area
+ * (2 h / K W)^2: U = E (2 h)^2 and a pixel's fraction 1 / (K W)^2. The rasterizer draws
+ * a tile as a face whose vertices all lie at depth h / K (a / (h / K) is then the
+ * place across the tile, exactly), testing depth by the nearness to the sun (frustum
+ * ORTHO); the tiles' half widths times K make h, so they meet exactly.
  *
- * Both render in bands of rows in the depth and item buffers of the work buffer (a
- * row of id steps and the point light's table at the depth buffer's start), so the
- * result does not depend on the buffer's size; R is lowered (halved, at least 8) only
- * when not even one row fits beside them.
+ * Both render in bands of rows in the depth and item buffers of the work buffer, so the
+ * result does not depend on the buffer's size, with the scene's row of id steps; a
+ * point light's face wider than the scene's res keeps a row of its own at the depth
+ * buffer's start, and its R is lowered (halved, at least the scene's res) when not
+ * even one row fits beside it. Weights are worked out a pixel at a time (no table): a
+ * light shoots once.
  */
 #include "internal.h"
 
@@ -63,17 +67,19 @@ static uint32_t wanted_res(const rad_scene_t *s, const rad_light_t *l)
     return 4u * r < RAD_MAX_RES ? 4u * r : RAD_MAX_RES;
 }
 
-/* Words of the depth buffer a light of type TYPE at resolution R takes before its
- * first row: a row of id steps, and a point light's quadrant table. */
-static uint32_t head_words(unsigned type, uint32_t r)
+/* Words of the depth buffer a raster of resolution R takes before its first row: a
+ * row of id steps when the scene's (res entries) is too short. */
+static uint32_t head_words(const rad_scene_t *s, uint32_t r)
 {
-    return r + (type == RAD_LIGHT_SUN ? 0u : (r / 2u) * (r / 2u));
+    return r > s->cfg.res ? r : 0u;
 }
 
-/* R, halved (kept even, at least 8) until its head and one row fit the buffers. */
-static uint32_t fitted_res(const rad_scene_t *s, unsigned type, uint32_t r)
+/* R, halved (kept even, at least the scene's res, which always fits) until its head
+ * and one row fit the buffers. */
+static uint32_t fitted_res(const rad_scene_t *s, uint32_t r)
 {
-    while (r > 8u && head_words(type, r) + r > s->pass_pixels) r = r / 4u * 2u < 8u ? 8u : r / 4u * 2u;
+    while (r > s->cfg.res && head_words(s, r) + r > s->pass_pixels)
+        r = r / 4u * 2u < s->cfg.res ? s->cfg.res : r / 4u * 2u;
     return r;
 }
 
@@ -103,7 +109,6 @@ int rad_add_light(rad_scene_t *s, const rad_light_t *l)
     if (l->type == RAD_LIGHT_SPOT &&
         !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
         return RAD_ERR_RANGE;
-    if (head_words(l->type, 8u) + 8u > s->pass_pixels) return RAD_ERR_WORK;
     if (s->n_lights >= s->max_lights) return RAD_ERR_FULL;
     s->lights[s->n_lights] = *l;
     return (int)s->n_lights++;
@@ -122,13 +127,16 @@ typedef struct {
     uint32_t res;
     rad_vec3_t c, frame[3];
     rad_real_t u0, v0, h, far;
+    rad_real_t uc, vc, hw; /* sun: the whole window's centre and half width */
+    uint32_t tiles;        /* sun: the window in TILES x TILES squares of res pixels */
     unsigned face;
+    uint64_t sum;     /* point: a quadrant's sum of c^3 (pixel_weight) */
+    uint32_t deficit; /* and the units its entries' rounding down lost */
 } view_t;
 
-/* The buffers of a band: id steps (R, zero), the point light's table, then the rows. */
+/* The buffers of a band: id steps (R, zero), the rows' depths and ids. */
 typedef struct {
     uint32_t *steps, *z;
-    rad_ff_t *table;
     rad_index_t *ids;
     uint32_t rows;
 } bufs_t;
@@ -221,26 +229,6 @@ static rad_real_t falloff(const rad_light_t *l, rad_real_t c)
     return rad__mul(t, t, 0);
 }
 
-/* The weight of pixel (X, Y) of the face drawn: a sun's one count, a point's solid
- * angle, a spot's that times its falloff toward the pixel centre (AXIS: the spot's
- * axis on the face's axes a, b, d). */
-static rad_ff_t weight(const view_t *v, const bufs_t *b, const rad_vec3_t *axis, uint32_t x,
-                       uint32_t y)
-{
-    const int32_t r = (int32_t)v->res;
-    uint32_t q = v->res / 2u, i = x < q ? q - 1u - x : x - q, j = y < q ? q - 1u - y : y - q;
-    rad_ff_t w;
-    rad_vec3_t d;
-    if (v->ortho) return rad__ff_from_q30(1u);
-    w = b->table[(size_t)j * q + i];
-    if (v->l->type != RAD_LIGHT_SPOT) return w;
-    d.x = rad__div(rad__from_int(2 * (int32_t)x + 1 - r), rad__from_int(r), 0);
-    d.y = rad__div(rad__from_int(r - 1 - 2 * (int32_t)y), rad__from_int(r), 0);
-    d.z = RAD__ONE;
-    return rad__ff_scale(w, falloff(v->l, rad__div(rad__dot(d, *axis), rad__length(d), 0)),
-                         RAD__ONE, 0);
-}
-
 /* c^3 of quadrant pixel (I, J) of a face of resolution R, c = R / sqrt(A^2 + B^2 + R^2)
  * for its centre's odd numbers A = 2 I + 1, B = 2 J + 1: in Q31, c from c^2 in Q40. */
 static uint64_t pixel_c3(uint32_t r, uint32_t i, uint32_t j)
@@ -250,18 +238,42 @@ static uint64_t pixel_c3(uint32_t r, uint32_t i, uint32_t j)
     return (((c * c) >> 31) * c) >> 31;
 }
 
-/* The point light's quadrant table: c^3 scaled so that it sums to exactly 2^26 (each
- * entry rounded down, the deficit given back one unit an entry), in both builds. */
-static void solid_angles(uint32_t r, rad_ff_t *t)
+/* The point light's weights: entry k = j q + i of a quadrant is c^3 times 2^26 over the
+ * quadrant's sum, rounded down, plus 1 for the first DEFICIT entries, so that each
+ * quadrant sums to exactly 2^26 (Q2.30), in both builds. */
+static void weight_sums(view_t *v)
 {
-    uint32_t q = r / 2u, n = q * q, k;
-    uint64_t sum = 0, got = 0;
-    for (k = 0; k < n; k++) sum += pixel_c3(r, k % q, k / q);
-    for (k = 0; k < n; k++) got += (pixel_c3(r, k % q, k / q) << 26) / sum;
-    for (k = 0; k < n; k++) {
-        uint64_t w = (pixel_c3(r, k % q, k / q) << 26) / sum + (k < ((uint64_t)1 << 26) - got);
-        t[k] = rad__ff_from_q30((uint32_t)w);
-    }
+    uint32_t q = v->res / 2u, n = q * q, k;
+    uint64_t got = 0;
+    v->sum = 0;
+    for (k = 0; k < n; k++) v->sum += pixel_c3(v->res, k % q, k / q);
+    for (k = 0; k < n; k++) got += (pixel_c3(v->res, k % q, k / q) << 26) / v->sum;
+    v->deficit = (uint32_t)(((uint64_t)1 << 26) - got);
+}
+
+static rad_ff_t pixel_weight(const view_t *v, uint32_t i, uint32_t j)
+{
+    uint32_t k = j * (v->res / 2u) + i;
+    return rad__ff_from_q30((uint32_t)((pixel_c3(v->res, i, j) << 26) / v->sum + (k < v->deficit)));
+}
+
+/* The weight of pixel (X, Y) of the face drawn: a sun's one count, a point's solid
+ * angle, a spot's that times its falloff toward the pixel centre (AXIS: the spot's
+ * axis on the face's axes a, b, d). */
+static rad_ff_t weight(const view_t *v, const rad_vec3_t *axis, uint32_t x, uint32_t y)
+{
+    const int32_t r = (int32_t)v->res;
+    uint32_t q = v->res / 2u, i = x < q ? q - 1u - x : x - q, j = y < q ? q - 1u - y : y - q;
+    rad_ff_t w;
+    rad_vec3_t d;
+    if (v->ortho) return rad__ff_from_q30(1u);
+    w = pixel_weight(v, i, j);
+    if (v->l->type != RAD_LIGHT_SPOT) return w;
+    d.x = rad__div(rad__from_int(2 * (int32_t)x + 1 - r), rad__from_int(r), 0);
+    d.y = rad__div(rad__from_int(r - 1 - 2 * (int32_t)y), rad__from_int(r), 0);
+    d.z = RAD__ONE;
+    return rad__ff_scale(w, falloff(v->l, rad__div(rad__dot(d, *axis), rad__length(d), 0)),
+                         RAD__ONE, 0);
 }
 
 /* Rows Y0..Y1-1 of the face drawn: cleared, every surface drawn, each pixel's weight
@@ -291,14 +303,53 @@ static void band(rad_scene_t *s, const view_t *v, const bufs_t *b, const rad_vec
     for (i = 0; i < s->n_surfaces; i++) draw_surface(s, v, &t, &fr, &s->pools.surfaces[i]);
     for (y = y0, i = 0; y < y1; y++)
         for (x = 0; x < r; x++, i++)
-            if (b->ids[i] < s->n_elements) s->acc[b->ids[i]] += weight(v, b, axis, x, y);
+            if (b->ids[i] < s->n_elements) s->acc[b->ids[i]] += weight(v, axis, x, y);
 }
 
-/* Every face of V's view (one for a sun, six for a point) in bands of B's rows. */
+/* The sun's frame (its direction the third axis, turned as a patch's cube) and
+ * window: the square about the centre of the corners' projections, of half width HW
+ * (the tiles' half width times their count, so that the tiles meet exactly; at least
+ * RAD__NEAR a tile: the frustum's near plane), and the largest depth. */
+static void sun_view(const rad_scene_t *s, view_t *v)
+{
+    rad_vec3_t dir, lo = {0, 0, 0}, hi = {0, 0, 0};
+    rad_real_t du, dv, ht;
+    uint32_t i;
+    rad__normalize(v->l->direction, &dir);
+    rad__cube_frame(dir, 0, v->frame);
+    for (i = 0; i < s->n_vertices; i++) {
+        rad_vec3_t p = on_frame(v, s->pools.vertices[i]);
+        if (i == 0 || p.x < lo.x) lo.x = p.x;
+        if (i == 0 || p.y < lo.y) lo.y = p.y;
+        if (i == 0 || p.z < lo.z) lo.z = p.z;
+        if (i == 0 || p.x > hi.x) hi.x = p.x;
+        if (i == 0 || p.y > hi.y) hi.y = p.y;
+        if (i == 0 || p.z > hi.z) hi.z = p.z;
+    }
+    v->uc = lo.x + (hi.x - lo.x) / 2;
+    v->vc = lo.y + (hi.y - lo.y) / 2;
+    du = hi.x - v->uc;
+    dv = hi.y - v->vc;
+    /* a tile's half width, rounded up (the centre's rounding, the division's) */
+    ht = rad__div(du > dv ? du : dv, rad__from_int((int32_t)v->tiles), 0) + 4 * RAD__EPS;
+    v->h = ht < RAD__NEAR ? RAD__NEAR : ht;
+    v->hw = v->h * (int32_t)v->tiles; /* exact: under 2^7 units */
+    v->far = hi.z;
+}
+
+/* Tile T of the sun's window (row after row from its top left) as the view drawn. */
+static void sun_tile(view_t *v, uint32_t t)
+{
+    int32_t tu = (int32_t)(t % v->tiles), tv = (int32_t)(t / v->tiles);
+    v->u0 = v->uc - v->hw + v->h * (2 * tu + 1);
+    v->v0 = v->vc + v->hw - v->h * (2 * tv + 1);
+}
+
+/* Every face of V's view (a sun's tiles, a point's six faces) in bands of B's rows. */
 static void render(rad_scene_t *s, view_t *v, const bufs_t *b)
 {
     unsigned nface = v->ortho ? 1u : 6u, k;
-    uint32_t y;
+    uint32_t y, t, ntiles = v->ortho ? v->tiles * v->tiles : 1u;
     rad_vec3_t axis = {0, 0, 0}, ax;
     if (v->l->type == RAD_LIGHT_SPOT) {
         rad__normalize(v->l->direction, &ax);
@@ -315,8 +366,11 @@ static void render(rad_scene_t *s, view_t *v, const bufs_t *b)
             axis.y = f[1];
             axis.z = f[2];
         }
-        for (y = 0; y < v->res; y += b->rows)
-            band(s, v, b, &axis, y, y + b->rows < v->res ? y + b->rows : v->res);
+        for (t = 0; t < ntiles; t++) {
+            if (v->ortho) sun_tile(v, t);
+            for (y = 0; y < v->res; y += b->rows)
+                band(s, v, b, &axis, y, y + b->rows < v->res ? y + b->rows : v->res);
+        }
     }
 }
 
@@ -338,34 +392,6 @@ static rad_energy_t energy_shift(rad_energy_t e, int n, uint32_t *sat)
 /* 4 pi / 1.5: the power of unit intensity over the cube's weights (1.5 2^30 in all). */
 #define SPHERE_POWER RAD__Q(8.377580409572781)
 
-/* The sun's frame (its direction the third axis, turned as a patch's cube) and
- * window: the square about the centre of the corners' projections, half width H
- * (at least RAD__NEAR: the frustum's near plane), and the largest depth. */
-static void sun_view(const rad_scene_t *s, view_t *v)
-{
-    rad_vec3_t dir, lo = {0, 0, 0}, hi = {0, 0, 0};
-    rad_real_t du, dv;
-    uint32_t i;
-    rad__normalize(v->l->direction, &dir);
-    rad__cube_frame(dir, 0, v->frame);
-    for (i = 0; i < s->n_vertices; i++) {
-        rad_vec3_t p = on_frame(v, s->pools.vertices[i]);
-        if (i == 0 || p.x < lo.x) lo.x = p.x;
-        if (i == 0 || p.y < lo.y) lo.y = p.y;
-        if (i == 0 || p.z < lo.z) lo.z = p.z;
-        if (i == 0 || p.x > hi.x) hi.x = p.x;
-        if (i == 0 || p.y > hi.y) hi.y = p.y;
-        if (i == 0 || p.z > hi.z) hi.z = p.z;
-    }
-    v->u0 = lo.x + (hi.x - lo.x) / 2;
-    v->v0 = lo.y + (hi.y - lo.y) / 2;
-    du = hi.x - v->u0;
-    dv = hi.y - v->v0;
-    v->h = (du > dv ? du : dv) + 4 * RAD__EPS; /* the centre's rounding */
-    if (v->h < RAD__NEAR) v->h = RAD__NEAR;
-    v->far = hi.z;
-}
-
 /* The power of light L's whole raster per channel, in the core's scale, into U. */
 static void light_power(rad_scene_t *s, const view_t *v, rad_energy_t *u)
 {
@@ -373,9 +399,9 @@ static void light_power(rad_scene_t *s, const view_t *v, rad_energy_t *u)
     unsigned c;
     for (c = 0; c < 3; c++) {
         rad_real_t i = rad__channel(&l->intensity, c);
-        if (v->ortho) { /* E (2 h)^2, h below 2^7: (2 h)^2 as a product of energies */
-            rad_energy_t e = rad__energy(i, 2 * v->h);
-            u[c] = energy_shift(rad__energy_refl(e, 2 * v->h), s->power_shift, &s->stats.saturations);
+        if (v->ortho) { /* E (2 hw)^2, hw below 2^7: (2 hw)^2 as a product of energies */
+            rad_energy_t e = rad__energy(i, 2 * v->hw);
+            u[c] = energy_shift(rad__energy_refl(e, 2 * v->hw), s->power_shift, &s->stats.saturations);
         } else { /* lengths scale by 2^length_shift, so I by its square: E stays */
             u[c] = energy_shift(rad__energy(i, SPHERE_POWER), 2 * s->length_shift + s->power_shift,
                                 &s->stats.saturations);
@@ -401,14 +427,16 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
     uint32_t e, head, nn;
     v.l = l;
     v.ortho = l->type == RAD_LIGHT_SUN;
-    v.res = fitted_res(s, l->type, wanted_res(s, l));
-    head = head_words(l->type, v.res);
-    b.steps = s->zbuf;
-    b.table = (rad_ff_t *)(void *)(s->zbuf + v.res);
+    v.res = v.ortho ? s->cfg.res : fitted_res(s, wanted_res(s, l));
+    v.tiles = 1;
+    if (v.ortho && wanted_res(s, l) <= v.res) v.res = wanted_res(s, l);
+    if (v.ortho) v.tiles = (wanted_res(s, l) + v.res - 1u) / v.res;
+    head = head_words(s, v.res);
+    b.steps = head ? s->zbuf : s->steps;
     b.z = s->zbuf + head;
     b.ids = s->ibuf;
     b.rows = (s->pass_pixels - head) / v.res;
-    for (e = 0; e < v.res; e++) b.steps[e] = 0; /* every span leaves it zero */
+    for (e = 0; e < head; e++) b.steps[e] = 0; /* every span leaves it zero */
     if (v.ortho) {
         sun_view(s, &v);
     } else {
@@ -420,16 +448,16 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
             v.frame[k].y = RAD_REAL_RATIO(turn7[k][1], 7);
             v.frame[k].z = RAD_REAL_RATIO(turn7[k][2], 7);
         }
-        solid_angles(v.res, b.table);
+        weight_sums(&v);
     }
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     render(s, &v, &b);
     light_power(s, &v, u);
-    nn = v.res * v.res;
+    nn = v.res * v.tiles * v.res * v.tiles;
     for (e = 0; e < s->n_elements; e++) {
         rad_ff_t f = s->acc[e];
         if (!(f > 0)) continue;
-        if (v.ortho) /* the pixel count over R^2, in Q2.30 (R^2 <= 2^22) */
+        if (v.ortho) /* the pixel count over all the tiles' (< 2^22), in Q2.30 */
             f = rad__ff_from_q30(
                 (uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
         rad__receive(s, u, e, f);

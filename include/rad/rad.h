@@ -626,9 +626,10 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *   - a point or spot light renders a whole cube (six faces of RES^2 pixels) at its
  *     position; a pixel of solid angle dw (its delta solid angle, the cube's quadrant
  *     sums exact) gives the element it sees I dw of power (times the spot's falloff);
- *   - a sun renders an orthographic item buffer of RES x RES pixels over the square
- *     that the scene's corners project to, across its direction; a pixel of area a
- *     (perpendicular to the light) gives the element it sees E a.
+ *   - a sun renders an orthographic item buffer of about RES x RES pixels (in tiles
+ *     of the scene's res) over the square that the scene's corners project to,
+ *     across its direction; a pixel of area a (perpendicular to the light) gives the
+ *     element it sees E a.
  * Surfaces are one-sided: an element receives only on its front (the side its normal
  * points to), and a face turned away from the light does not shadow either. Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
@@ -645,7 +646,11 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
 struct rad_light_s {
     uint16_t type; /* RAD_LIGHT_* */
     uint16_t res;  /* 0: default (point, spot: the scene's res; sun: 4 res, at most
-                    * RAD_MAX_RES); else even, 8..RAD_MAX_RES */
+                    * RAD_MAX_RES); else even, 8..RAD_MAX_RES. A sun's raster is
+                    * K x K tiles of the scene's res, K = RES / res rounded up; a point
+                    * light's face above the scene's res needs 2 RES pixels a pass in
+                    * the work buffer (rad_scene_t.pass_pixels), else RES is halved
+                    * down to res */
     rad_vec3_t position;  /* point, spot: where it is, within +-RAD_COORD_LIMIT in the
                            * caller's units and in the core's scale (rad_shoot) */
     rad_vec3_t direction; /* sun, spot: the way its light travels (a sun straight
