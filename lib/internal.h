@@ -30,6 +30,7 @@
 #define rad__patch_mean      radf__patch_mean
 #define rad__lights_shoot    radf__lights_shoot
 #define rad__lights_peak     radf__lights_peak
+#define rad__lights_solve    radf__lights_solve
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -46,7 +47,7 @@ typedef struct {
  * depth tested is then the vertex attribute c[0] (nearness, larger is nearer) in
  * place of 1 / d, and is linear on the screen as an orthographic depth is. */
 typedef struct {
-    int half, ortho;
+    unsigned char half, ortho; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
     int width, height;
 } rad__frustum_t;
 
@@ -190,6 +191,9 @@ static inline int rad__lights_pending(const rad_scene_t *s)
 }
 int rad__lights_shoot(rad_scene_t *s, uint32_t max);
 rad_real_t rad__lights_peak(const rad_scene_t *s);
+/* rad_shoot while lights are pending: they shoot (each a shot of MAX_SHOTS), then
+ * patches as rad__shoot (returns the shots, or the error). */
+int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* Progressive refinement through hemi-cubes (ROWS null) or stored rows. */
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);

@@ -88,8 +88,9 @@ int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max)
     if (!s || !lights || max == 0) return RAD_ERR_ARG;
     if (s->lights || s->solving) return RAD_ERR_STATE;
     s->lights = lights;
-    s->max_lights = max;
-    s->n_lights = s->lights_shot = 0;
+    s->max_lights = (uint16_t)(max < 65535u ? max : 65535u); /* more than 65535: as many */
+    s->n_lights = 0;
+    s->lights_shot = 0;
     return RAD_OK;
 }
 
@@ -477,6 +478,16 @@ int rad__lights_shoot(rad_scene_t *s, uint32_t max)
             return RAD_ERR_RANGE;
     for (; n < max && rad__lights_pending(s); n++) shoot_light(s, &s->lights[s->lights_shot++]);
     return (int)n;
+}
+
+int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+{
+    int lit, rest;
+    rad__freeze(s);
+    lit = rad__lights_shoot(s, max_shots); /* before any patch: their power joins emitted */
+    if (lit < 0 || (uint32_t)lit >= max_shots) return lit;
+    rest = rad__shoot(s, 0, max_shots - (uint32_t)lit, tol);
+    return rest < 0 ? rest : lit + rest;
 }
 
 /* The irradiance of point light L at the nearest plane of a surface it faces, in the

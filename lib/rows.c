@@ -44,7 +44,7 @@ static int rows_ready(const rad_scene_t *s, const rad_rows_t *rows)
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     if (!s || !rows) return RAD_ERR_ARG;
-    if (!rows_ready(s, rows)) return RAD_ERR_STATE;
+    if (!rows_ready(s, rows) || s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     return rad__shoot(s, rows, max_shots, tol);
 }
 

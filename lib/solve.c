@@ -347,12 +347,7 @@ static void shoot_patch(rad_scene_t *s, uint32_t p, const rad_real_t *amb, const
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     uint32_t done = 0;
-    int lit;
-    if (rows && s->n_lights) return RAD_ERR_STATE; /* rows do not take lights yet */
     rad__freeze(s);
-    lit = rad__lights_shoot(s, max_shots); /* before any patch: their power joins emitted */
-    if (lit < 0) return lit;
-    done = (uint32_t)lit;
     start_solving(s);
     while (done < max_shots && done < (uint32_t)INT32_MAX) {
         rad_energy_t total;
@@ -368,8 +363,9 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     if (!s) return RAD_ERR_ARG;
-    /* nothing can be shot: the scene stays open */
-    if (s->emitted == 0 && !rad__lights_pending(s)) return 0;
+    /* lights first (light.c: a call of its own, which keeps this frame as it was) */
+    if (rad__lights_pending(s)) return rad__lights_solve(s, max_shots, tol);
+    if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
     return rad__shoot(s, 0, max_shots, tol);
 }
 

@@ -274,6 +274,12 @@ typedef struct {
      * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
      * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
     int8_t length_shift, power_shift;
+    /* lights (rad_use_lights): the caller's array of max_lights, n_lights added; the
+     * first lights_shot of them have shot since the solution last started (here and
+     * after cube_built: in the layout's gaps, so that 32-bit targets' scenes keep
+     * their size) */
+    uint16_t n_lights;
+    rad_light_t *lights;
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -288,6 +294,7 @@ typedef struct {
     rad_ff_t *cube_top, *cube_side;
     uint16_t cube_res;
     uint16_t cube_built; /* the coarse level whose tables are built, 0: none */
+    uint16_t max_lights, lights_shot; /* (see n_lights) */
     /* overshooting's back-off (lib/solve.c), reset before the first shot */
     rad_energy_t over_low;  /* lowest unshot total since the last back-off */
     rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
@@ -300,10 +307,6 @@ typedef struct {
     rad_energy_t amb_area, amb_rho[3];
     rad_real_t amb_max_area;
     int amb_ok;
-    /* lights (rad_use_lights): the caller's array of max_lights, n_lights added; the
-     * first lights_shot of them have shot since the solution last started */
-    rad_light_t *lights;
-    uint32_t max_lights, n_lights, lights_shot;
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
@@ -665,8 +668,8 @@ struct rad_light_s {
 };
 
 /* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then
- * on). Returns RAD_OK, RAD_ERR_ARG (NULL, MAX 0) or RAD_ERR_STATE (an array is in use
- * already, or shooting started). */
+ * on; at most 65535 are used). Returns RAD_OK, RAD_ERR_ARG (NULL, MAX 0) or
+ * RAD_ERR_STATE (an array is in use already, or shooting started). */
 int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max);
 
 /* Adds a copy of LIGHT to the scene's array; it shoots at the start of the next solve
