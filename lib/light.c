@@ -25,7 +25,9 @@
  * (2 h / K W)^2: U = E (2 h)^2 and a pixel's fraction 1 / (K W)^2. The rasterizer draws
  * a tile as a face whose vertices all lie at depth h / K (a / (h / K) is then the
  * place across the tile, exactly), testing depth by the nearness to the sun (frustum
- * ORTHO); the tiles' half widths times K make h, so they meet exactly.
+ * ORTHO); the tiles' half widths times K make h, so they meet exactly. A sun with an
+ * angular radius shoots 16 times, each with E / 16 from one direction of its disc
+ * (a fixed pattern, symmetric about its centre), which gives shadows penumbrae.
  *
  * Both render in bands of rows in the depth and item buffers of the work buffer, so the
  * result does not depend on the buffer's size, with the scene's row of id steps; a
@@ -110,6 +112,7 @@ int rad_add_light(rad_scene_t *s, const rad_light_t *l)
     if (l->type == RAD_LIGHT_SPOT &&
         !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
         return RAD_ERR_RANGE;
+    if (l->type == RAD_LIGHT_SUN && !(l->radius >= 0 && l->radius <= RAD__Q(0.25))) return RAD_ERR_RANGE;
     if (s->n_lights >= s->max_lights) return RAD_ERR_FULL;
     s->lights[s->n_lights] = *l;
     return (int)s->n_lights++;
@@ -124,6 +127,7 @@ int rad_add_light(rad_scene_t *s, const rad_light_t *l)
  *        largest depth FAR along it, from which nearness is measured. */
 typedef struct {
     const rad_light_t *l;
+    rad_vec3_t dir; /* sun: the direction of this shot (one of its disc's, radius > 0) */
     int ortho;
     uint32_t res;
     rad_vec3_t c, frame[3];
@@ -316,7 +320,7 @@ static void sun_view(const rad_scene_t *s, view_t *v)
     rad_vec3_t dir, lo = {0, 0, 0}, hi = {0, 0, 0};
     rad_real_t du, dv, ht;
     uint32_t i;
-    rad__normalize(v->l->direction, &dir);
+    dir = v->dir;
     rad__cube_frame(dir, 0, v->frame);
     for (i = 0; i < s->n_vertices; i++) {
         rad_vec3_t p = on_frame(v, s->pools.vertices[i]);
@@ -418,14 +422,44 @@ static int light_position(const rad_scene_t *s, const rad_light_t *l, rad_vec3_t
     return !sat && vec_ok(c);
 }
 
-/* Light L's shot: its raster's weights into s->acc, then every element that sees it
- * receives its share, and the power arriving joins the emitted power. */
+/* The sun's disc: 8 points of Vogel's spiral over the unit disc (radius
+ * sqrt((k + 1/2) / 8), angle k times the golden angle) and their opposites, in Q16. */
+#define SUN_SAMPLES 16u
+static const int32_t disc[8][2] = {{16384, 0},       {-20925, 19169}, {3203, -36495},
+                                   {26375, 34401},   {-48401, -8561}, {45849, -29166},
+                                   {-15336, 57048},  {-29247, -56313}};
+
+/* View V's shot, each channel's power divided by PARTS: its raster's weights into
+ * s->acc, then every element that sees it receives its share, and the power arriving
+ * joins the emitted power. */
+static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t parts)
+{
+    rad_energy_t u[3], got = 0;
+    uint32_t e, c, nn = v->res * v->tiles * v->res * v->tiles;
+    if (v->ortho) sun_view(s, v);
+    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    render(s, v, b);
+    light_power(s, v, u);
+    for (c = 0; c < 3; c++) u[c] /= (rad_energy_t)parts;
+    for (e = 0; e < s->n_elements; e++) {
+        rad_ff_t f = s->acc[e];
+        if (!(f > 0)) continue;
+        if (v->ortho) /* the pixel count over all the tiles' (< 2^22), in Q2.30 */
+            f = rad__ff_from_q30(
+                (uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
+        rad__receive(s, u, e, f);
+        got = rad__esum(got, rad__energy_ff(u[0], f) + rad__energy_ff(u[1], f) +
+                                 rad__energy_ff(u[2], f));
+    }
+    s->emitted = rad__esum(s->emitted, got);
+}
+
+/* Light L's shot (a sun of some radius: one a direction of its disc). */
 static void shoot_light(rad_scene_t *s, const rad_light_t *l)
 {
     view_t v;
     bufs_t b;
-    rad_energy_t u[3], got = 0;
-    uint32_t e, head, nn;
+    uint32_t e, head;
     v.l = l;
     v.ortho = l->type == RAD_LIGHT_SUN;
     v.res = v.ortho ? s->cfg.res : fitted_res(s, wanted_res(s, l));
@@ -438,9 +472,7 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
     b.ids = s->ibuf;
     b.rows = (s->pass_pixels - head) / v.res;
     for (e = 0; e < head; e++) b.steps[e] = 0; /* every span leaves it zero */
-    if (v.ortho) {
-        sun_view(s, &v);
-    } else {
+    if (!v.ortho) {
         static const signed char turn7[3][3] = {{2, 3, 6}, {3, -6, 2}, {6, 2, -3}};
         unsigned k;
         light_position(s, l, &v.c);
@@ -450,22 +482,27 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
             v.frame[k].z = RAD_REAL_RATIO(turn7[k][2], 7);
         }
         weight_sums(&v);
+        shoot_view(s, &v, &b, 1);
+    } else if (l->radius == 0) {
+        rad__normalize(l->direction, &v.dir);
+        shoot_view(s, &v, &b, 1);
+    } else {
+        rad_vec3_t d0, f[3];
+        uint32_t k;
+        rad__normalize(l->direction, &d0);
+        rad__cube_frame(d0, 0, f);
+        for (k = 0; k < SUN_SAMPLES; k++) { /* d0 + radius (x f0 + y f1) */
+            const int32_t sg = k < SUN_SAMPLES / 2u ? 1 : -1;
+            rad_real_t x = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][0], 65536), 0);
+            rad_real_t y = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][1], 65536), 0);
+            rad_vec3_t d;
+            d.x = d0.x + rad__mul(x, f[0].x, 0) + rad__mul(y, f[1].x, 0);
+            d.y = d0.y + rad__mul(x, f[0].y, 0) + rad__mul(y, f[1].y, 0);
+            d.z = d0.z + rad__mul(x, f[0].z, 0) + rad__mul(y, f[1].z, 0);
+            rad__normalize(d, &v.dir);
+            shoot_view(s, &v, &b, SUN_SAMPLES);
+        }
     }
-    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
-    render(s, &v, &b);
-    light_power(s, &v, u);
-    nn = v.res * v.tiles * v.res * v.tiles;
-    for (e = 0; e < s->n_elements; e++) {
-        rad_ff_t f = s->acc[e];
-        if (!(f > 0)) continue;
-        if (v.ortho) /* the pixel count over all the tiles' (< 2^22), in Q2.30 */
-            f = rad__ff_from_q30(
-                (uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
-        rad__receive(s, u, e, f);
-        got = rad__esum(got, rad__energy_ff(u[0], f) + rad__energy_ff(u[1], f) +
-                                 rad__energy_ff(u[2], f));
-    }
-    s->emitted = rad__esum(s->emitted, got);
     s->cube_built = 0; /* a coarse cube's tables lay in the depth buffer */
 }
 

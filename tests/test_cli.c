@@ -1374,7 +1374,7 @@ static void test_lights(void **state)
         const char *opt, *val, *more, *says;
     } bad[] = {
         {"--sun", "0,0,0,1,1,1", NULL, "--sun wants DX,DY,DZ,R,G,B"},
-        {"--sun", "0,-1,0,1,1,1,0.5", NULL, "angular radius"},
+        {"--sun", "0,-1,0,1,1,1,20", NULL, "angular radius"},
         {"--point", "0,4,0,-1,1,1", NULL, "--point wants X,Y,Z,R,G,B"},
         {"--spot", "0,4,0,0,-1,0,1,1,1,200", NULL, "ANGLE"},
         {"--point", "0,4,0,1,1,1", "--save-ff", "stored form factors"},
@@ -1399,6 +1399,17 @@ static void test_lights(void **state)
                   100 * (mean / want - 1));
     CHECK_NEAR(area, 256, 0.01, "the floor's area");
     CHECK_NEAR(mean, want, want * 0.0062, "the floor's mean radiosity under --sun");
+
+    /* with an angular radius of 5 degrees: its directions tilt by up to 5 degrees, so
+     * cos t loses at most 1 - cos 5 = 0.38% more */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", "0,-1,0,2,2,2,5", "--dump-radiosity",
+        tmp_path("disc.csv"), "-o", tmp_path("disc.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    mean = csv_mean_red(tmp_path("disc.csv"), &area);
+    print_message("--sun of angular radius 5 degrees: mean radiosity %.6f, rho E %.6f (%+.3f%%)\n", mean, 1.0,
+                  100 * (mean - 1));
+    CHECK_NEAR(mean, 1.0 - 0.0019, 0.0062 + 0.0019, "the floor's mean radiosity under a --sun of radius 5 degrees");
 
     RUN(&r, FIXED, "--width", "16", "--height", "16", "--point", "0,4,0,10,10,10", "--dump-radiosity",
         tmp_path("point.csv"), "-o", tmp_path("point.png"), tmp_path("floor.obj"));

@@ -51,7 +51,7 @@ typedef struct {
 } tpoly;
 typedef struct {
     int type, res;
-    double pos[3], dir[3], i[3], cos_outer, cos_inner;
+    double pos[3], dir[3], i[3], cos_outer, cos_inner, radius;
 } tlight;
 typedef struct {
     int res;                /* the scene's hemi-cube res */
@@ -149,6 +149,7 @@ int TW(scene_light)(const tscene *sc, tres *r)
         l.intensity.b = RAD_REAL(t->i[2]);
         l.cos_outer = RAD_REAL(t->cos_outer);
         l.cos_inner = RAD_REAL(t->cos_inner);
+        l.radius = RAD_REAL(t->radius);
         rc = rad_add_light(&w->s, &l);
     }
     if (rc < 0) {
@@ -250,7 +251,7 @@ static void test_sun_plane(void **state)
     for (a = 0; a < sizeof angles / sizeof angles[0]; a++) {
         double t = angles[a] * PI / 180, total = 0, want, px, worst = 0;
         tpoly pl = ground(0, 0, 0, 16, 1);
-        tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0};
+        tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
         tscene sc = {64, 1.0, rho, &pl, 1, &sun, 1, 0, 0};
         double dir[3] = {sin(t), -cos(t), 0}, pproj, aproj;
         int e;
@@ -290,7 +291,7 @@ static void test_box_shadow(void **state)
     const double e0 = 50.0, rho = 0.5, t = 30 * PI / 180, s = 4;
     tpoly p[6];
     double dir[3] = {sin(t), -cos(t), 0}, px, got = 0, lit, shadow, err;
-    tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0};
+    tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
     tscene sc = {64, 1.0, rho, p, 6, &sun, 1, 0, 0};
     int e, dark = 0;
     (void)state;
@@ -380,7 +381,7 @@ static void test_point_plane(void **state)
     const int r = 512;
     /* the face's axis meets the ground at (4, 0, 8 / 3) */
     tpoly pl = ground(4, 0, 8.0 / 3, 3, 1);
-    tlight pt = {RAD_LIGHT_POINT, r, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0};
+    tlight pt = {RAD_LIGHT_POINT, r, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
     tscene sc = {64, 1.0, rho, &pl, 1, &pt, 1, 0, 0};
     double worst = 0, worst_rel = 0, tot = 0, tot_want = 0, s2 = 0;
     int e;
@@ -426,8 +427,8 @@ static void test_spot_cone(void **state)
     const double i0 = 200.0, rho = 0.5, co = cos(30 * PI / 180), ci = cos(20 * PI / 180);
     const double lp[3] = {0, 8, 0};
     tpoly pl = ground(0, 0, 0, 16, 1);
-    tlight sp = {RAD_LIGHT_SPOT, 256, {0, 8, 0}, {0, -1, 0}, {i0, i0, i0}, co, ci};
-    tlight pt = {RAD_LIGHT_POINT, 256, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0};
+    tlight sp = {RAD_LIGHT_SPOT, 256, {0, 8, 0}, {0, -1, 0}, {i0, i0, i0}, co, ci, 0};
+    tlight pt = {RAD_LIGHT_POINT, 256, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
     tscene sc = {64, 1.0, rho, &pl, 1, &sp, 1, 0, 0};
     double px = 2.0 / 256; /* a face pixel's angle, at most */
     int e, outside = 0, inside = 0;
@@ -470,8 +471,8 @@ static void test_one_sided(void **state)
 {
     const double e0 = 80.0, rho = 0.5;
     tpoly p[2];
-    tlight sun = {RAD_LIGHT_SUN, 512, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0};
-    tlight pt = {RAD_LIGHT_POINT, 128, {0, -4, 0}, {0, 0, 0}, {e0, e0, e0}, 0, 0};
+    tlight sun = {RAD_LIGHT_SUN, 512, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, 0};
+    tlight pt = {RAD_LIGHT_POINT, 128, {0, -4, 0}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
     tscene sc = {64, 2.0, rho, p, 2, &sun, 1, 0, 0};
     int e, lower = 0;
     (void)state;
@@ -507,8 +508,8 @@ static void test_twin(void **state)
 {
     const double t = 40 * PI / 180, rho = 0.6;
     tpoly p[3];
-    tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0},
-                   {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9}};
+    tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0.05},
+                   {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9, 0}};
     tscene sc = {64, 1.0, rho, p, 3, l, 2, 40, 0};
     double sf = 0, sx = 0, worst = 0, px, dir[3];
     int e;
@@ -538,13 +539,72 @@ static void test_twin(void **state)
     CHECK_NEAR(sx, sf, sf * 5e-4, "the total power against the twin");
 }
 
+/* A sun of angular radius atan 1/4 straight down over a ground half under a roof at
+ * height 8, the roof's edge along z at x = 0: its 16 directions (rad.h) shift the
+ * shadow's edge by at most 8 x 1/4 x 0.97 = 1.95, in opposite pairs, so the ground
+ * is dark for x < -1.95, fully lit for x > 1.95 (E times the directions' mean cosine
+ * c), in between partly, and in all gets E c times its area less the roof's shadow,
+ * 16 x 16 (the shifts cancel), within the coverage bound of its outline and the
+ * shadow's edge, 1e-4 for the rounding of the directions (Q16 cosines). */
+static void test_sun_radius(void **state)
+{
+    static const double disc[8][2] = {{16384, 0},      {-20925, 19169}, {3203, -36495},  {26375, 34401},
+                                      {-48401, -8561}, {45849, -29166}, {-15336, 57048}, {-29247, -56313}};
+    const double e0 = 40, rho = 0.5, rad = 0.25;
+    tpoly p[2];
+    tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, rad};
+    tscene sc = {64, 1.0, rho, p, 2, &sun, 1, 0, 0};
+    /* the window: at most the diameter of the scene's projection (40 x 40, tilted by
+     * up to 1/4 either way: 2 x 8 / 4 more) over R */
+    const double px = sqrt(2.0) * (40 + 4) / 1024;
+    double c = 0, got = 0, want, err, worst = 0;
+    int e, k, dark = 0, lit = 0, part = 0;
+    (void)state;
+    p[0] = (tpoly){{{-16, 0, -8}, {-16, 0, 8}, {16, 0, 8}, {16, 0, -8}}, 4};
+    p[1] = (tpoly){{{-24, 8, -20}, {-24, 8, 20}, {0, 8, 20}, {0, 8, -20}}, 4};
+    for (k = 0; k < 8; k++) c += 2 / sqrt(1 + rad * rad * (disc[k][0] * disc[k][0] + disc[k][1] * disc[k][1]) /
+                                              65536.0 / 65536.0) / 16;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot");
+    for (e = 0; e < res_fixed.n; e++) {
+        double x0 = 1e9, x1 = -1e9, ee = irradiance(&res_fixed, e, rho);
+        if (res_fixed.poly[e] != 0) continue;
+        for (k = 0; k < 4; k++) {
+            x0 = fmin(x0, res_fixed.corner[e][k][0]);
+            x1 = fmax(x1, res_fixed.corner[e][k][0]);
+        }
+        got += ee * res_fixed.area[e];
+        if (x1 < -1.95 - 0.1) { /* a tenth for the pixels */
+            dark++;
+            CHECK_LE(ee, 0, "ground element %d (x %.2f..%.2f) in the umbra", e, x0, x1);
+        } else if (x0 > 1.95 + 0.1) {
+            lit++;
+            /* a unit element's coverage bound, in each of the 16 shots */
+            worst = fmax(worst, fabs(ee / (e0 * c) - 1));
+            CHECK_NEAR(ee, e0 * c, e0 * c * (coverage(4, px) + 1e-4), "ground element %d (x %.2f..%.2f) in full sun",
+                       e, x0, x1);
+        } else if (ee > 0.05 * e0 && ee < 0.95 * e0 * c) {
+            part++;
+        }
+    }
+    err = e0 * c * (coverage(2 * (32 + 16), px) + coverage(2 * (16 + 16), px));
+    want = e0 * c * 16 * 16;
+    print_message("sun of radius 1/4: %d elements dark, %d lit (within %.3f%%, bound %.2f%%), %d in the penumbra; "
+                  "ground power %.6g, E c 16 x 16 %.6g (%+.4f%%, bound %.4f%%)\n",
+                  dark, lit, 100 * worst, 100 * (coverage(4, px) + 1e-4), part, got, want, 100 * (got / want - 1),
+                  100 * (err / want + 1e-4));
+    CHECK_INT_GE(dark, 150, "elements in the umbra");
+    CHECK_INT_GE(lit, 150, "elements in full sun");
+    CHECK_INT_GE(part, 32, "elements in the penumbra, partly lit");
+    CHECK_NEAR(got, want, err + want * 1e-4, "the ground's power under a sun of radius 1/4");
+}
+
 /* A work buffer used in bands of rows gives the same bits (each pixel's element depends
  * on its own span alone): a sun at 4 res and a point light at res, in bands of 3 rows. */
 static void test_bands(void **state)
 {
     tpoly p[2];
-    tlight l[2] = {{RAD_LIGHT_SUN, 0, {0, 0, 0}, {0.3, -1, 0.2}, {30, 20, 10}, 0, 0},
-                   {RAD_LIGHT_POINT, 0, {-3, 6, 2}, {0, 0, 0}, {90, 90, 60}, 0, 0}};
+    tlight l[2] = {{RAD_LIGHT_SUN, 0, {0, 0, 0}, {0.3, -1, 0.2}, {30, 20, 10}, 0, 0, 0},
+                   {RAD_LIGHT_POINT, 0, {-3, 6, 2}, {0, 0, 0}, {90, 90, 60}, 0, 0, 0}};
     tscene sc = {32, 1.0, 0.5, p, 2, l, 2, 0, 0};
     int e, c;
     (void)state;
@@ -590,6 +650,9 @@ static void test_api(void **state)
     l.intensity.g = RAD_REAL(5000);
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "an intensity beyond 4096");
     l.intensity.g = 0;
+    l.radius = RAD_REAL(0.3);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a sun's radius beyond 1/4");
+    l.radius = 0;
     l.type = RAD_LIGHT_SPOT;
     l.cos_outer = RAD_REAL(0.9);
     l.cos_inner = RAD_REAL(0.8);
@@ -626,7 +689,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sun_plane), cmocka_unit_test(test_box_shadow), cmocka_unit_test(test_point_plane),
         cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_one_sided),  cmocka_unit_test(test_twin),
-        cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
+        cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

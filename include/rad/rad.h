@@ -665,6 +665,11 @@ struct rad_light_s {
      * between them I times s^2, s = (cos a - cos_outer) / (cos_inner - cos_outer)
      * (glTF's KHR_lights_punctual falloff); equal cosines: a hard edge */
     rad_real_t cos_outer, cos_inner;
+    /* sun: the tangent of its angular radius, in [0, 1/4] (0: a point; the real sun's
+     * is 0.0047): its light then comes from 16 directions over its disc (8 of
+     * Vogel's spiral and their opposites, fixed), each an orthographic shot of E / 16,
+     * so that shadows have penumbrae */
+    rad_real_t radius;
 };
 
 /* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then

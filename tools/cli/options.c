@@ -183,9 +183,12 @@ static void opt_sun(opts_t *o, const char *opt, const char *val)
 {
     double v[7];
     sc_light *l = light_values(o, opt, val, v, 7, 1, 3, 0,
-                               "DX,DY,DZ,R,G,B[,ANGLE]: the way the light travels (not zero), irradiance >= 0");
-    if (v[6] != 0) die_usage("--sun's ANGLE (the sun's angular radius) is not supported yet: leave it out", val);
+                               "DX,DY,DZ,R,G,B[,ANGLE]: the way the light travels (not zero), irradiance >= 0, "
+                               "ANGLE 0..14");
+    if (!(v[6] >= 0 && v[6] <= 14))
+        die_usage("--sun wants ANGLE (the sun's angular radius, degrees) in [0, 14]", val);
     l->type = RAD_LIGHT_SUN;
+    l->radius = tan(v[6] * 3.14159265358979323846 / 180);
     memcpy(l->dir, v, sizeof l->dir);
 }
 
@@ -347,10 +350,12 @@ static const option_t options[] = {
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
     {"--emit", NULL, "NAME=R,G,B", "set the emission of material NAME (repeatable)", opt_emit},
-    {"--sun", NULL, "DX,DY,DZ,R,G,B",
+    {"--sun", NULL, "DX,DY,DZ,R,G,B[,ANGLE]",
      "a sun: its light travels along DX,DY,DZ ((0,-1,0): straight\n"
      "down with +Y up), irradiance R,G,B on a plane facing it, in\n"
-     "emission units (a plane at angle t gets E cos t) (repeatable)", opt_sun},
+     "emission units (a plane at angle t gets E cos t); ANGLE (0..14,\n"
+     "0) its angular radius in degrees (the sun's: 0.27), 16\n"
+     "directions over its disc for soft shadows (repeatable)", opt_sun},
     {"--point", NULL, "X,Y,Z,R,G,B",
      "a point light at X,Y,Z of intensity R,G,B per steradian: a plane at\n"
      "distance r, at angle t, gets I cos t / r^2 (repeatable)", opt_point},

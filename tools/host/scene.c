@@ -483,6 +483,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
         c->intensity.b = RAD_REAL(fmin(l->rgb[2] * k, 4096.0));
         c->cos_outer = RAD_REAL(l->cos_outer);
         c->cos_inner = RAD_REAL(l->cos_inner);
+        c->radius = RAD_REAL(l->radius);
     }
     return 0;
 }

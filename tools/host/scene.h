@@ -25,11 +25,12 @@ typedef struct {
 /* A light that is not a surface (rad_add_light), in the caller's units: TYPE 1 sun, 2
  * point, 3 spot (RAD_LIGHT_*); DIR the way its light travels; RGB a point's or spot's
  * intensity (per steradian) or a sun's irradiance on a plane facing it; a spot's cone
- * by the cosines of its outer and inner half angles. */
+ * by the cosines of its outer and inner half angles; a sun's disc by RADIUS. */
 typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
     double cos_outer, cos_inner;
+    double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
 } sc_light;
 
 typedef struct {
