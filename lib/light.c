@@ -338,7 +338,7 @@ static void sun_view(const rad_scene_t *s, view_t *v)
     /* a tile's half width, rounded up (the centre's rounding, the division's) */
     ht = rad__div(du > dv ? du : dv, rad__from_int((int32_t)v->tiles), 0) + 4 * RAD__EPS;
     v->h = ht < RAD__NEAR ? RAD__NEAR : ht;
-    v->hw = v->h * (int32_t)v->tiles; /* exact: under 2^7 units */
+    v->hw = rad__mul(v->h, rad__from_int((int32_t)v->tiles), 0); /* exact: under 2^7 units */
     v->far = hi.z;
 }
 
@@ -346,8 +346,8 @@ static void sun_view(const rad_scene_t *s, view_t *v)
 static void sun_tile(view_t *v, uint32_t t)
 {
     int32_t tu = (int32_t)(t % v->tiles), tv = (int32_t)(t / v->tiles);
-    v->u0 = v->uc - v->hw + v->h * (2 * tu + 1);
-    v->v0 = v->vc + v->hw - v->h * (2 * tv + 1);
+    v->u0 = v->uc - v->hw + rad__mul(v->h, rad__from_int(2 * tu + 1), 0); /* exact, as hw */
+    v->v0 = v->vc + v->hw - rad__mul(v->h, rad__from_int(2 * tv + 1), 0);
 }
 
 /* Every face of V's view (a sun's tiles, a point's six faces) in bands of B's rows. */
@@ -457,8 +457,8 @@ static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t part
 /* Light L's shot (a sun of some radius: one a direction of its disc). */
 static void shoot_light(rad_scene_t *s, const rad_light_t *l)
 {
-    view_t v;
-    bufs_t b;
+    view_t v = {0};
+    bufs_t b = {0};
     uint32_t e, head;
     v.l = l;
     v.ortho = l->type == RAD_LIGHT_SUN;
