@@ -1422,6 +1422,20 @@ static void test_lights(void **state)
                   100 * (mean / want - 1));
     CHECK_NEAR(mean, want, want * 0.01, "the floor's mean radiosity under --point");
 
+    /* threads shoot the lights first too (rad_shot_begin): the same bits as serially */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--threads", "2", "--point", "0,4,0,10,10,10",
+        "--dump-radiosity", tmp_path("point2.csv"), "-o", tmp_path("point2.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    {
+        char *a = slurp(tmp_path("point.csv"), NULL), *b = slurp(tmp_path("point2.csv"), NULL);
+        assert_non_null(a);
+        assert_non_null(b);
+        assert_string_equal(a, b);
+        free(a);
+        free(b);
+    }
+
     /* a spot pointing away from the floor leaves it dark */
     RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--spot", "0,4,0,0,1,0,10,10,10,30,0.2",
         "--dump-radiosity", tmp_path("spot.csv"), "-o", tmp_path("spot.png"), tmp_path("floor.obj"));
