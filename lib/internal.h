@@ -28,6 +28,9 @@
 #define rad__scale_power     radf__scale_power
 #define rad__ambient         radf__ambient
 #define rad__patch_mean      radf__patch_mean
+#define rad__lights_shoot    radf__lights_shoot
+#define rad__lights_peak     radf__lights_peak
+#define rad__lights_solve    radf__lights_solve
 #endif
 
 /* A vertex in view space before projection: a across, b up, d depth; c a colour. */
@@ -38,9 +41,13 @@ typedef struct {
 
 /* A view frustum of unit slopes: |a| <= d, and d >= b >= -d (or >= 0 when half is
  * set: the hemi-cube's side faces), d >= RAD__NEAR; mapped onto a WIDTH x HEIGHT
- * raster. (The camera scales its axes so that its field of view has unit slopes.) */
+ * raster. (The camera scales its axes so that its field of view has unit slopes.)
+ * ORTHO: an orthographic view (a sun's, light.c) given as vertices whose d is one
+ * constant, the window's half width, so that a / d is their place across it: the
+ * depth tested is then the vertex attribute c[0] (nearness, larger is nearer) in
+ * place of 1 / d, and is linear on the screen as an orthographic depth is. */
 typedef struct {
-    int half;
+    unsigned char half, ortho; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
     int width, height;
 } rad__frustum_t;
 
@@ -174,6 +181,20 @@ void rad__shot_cube(rad_scene_t *s, uint32_t p);
 /* Element E receives power F * U (three channels) from a shooter; its patch's unshot
  * power grows by what it reflects (solve.c). */
 void rad__receive(rad_scene_t *s, const rad_energy_t *u, uint32_t e, rad_ff_t f);
+/* Lights (light.c): whether some have not shot since the solution started; shooting
+ * up to MAX of them (returns how many, or RAD_ERR_RANGE with none shot when a point
+ * or spot light lies outside the core's range); and their brightest irradiance on
+ * any surface, in the caller's units, for the power shift. */
+static inline int rad__lights_pending(const rad_scene_t *s)
+{
+    return s->lights_shot < s->n_lights;
+}
+int rad__lights_shoot(rad_scene_t *s, uint32_t max);
+rad_real_t rad__lights_peak(const rad_scene_t *s);
+/* rad_shoot while lights are pending: they shoot (each a shot of MAX_SHOTS), then
+ * patches as rad__shoot (returns the shots, or the error). */
+int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
+
 /* Progressive refinement through hemi-cubes (ROWS null) or stored rows. */
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
 

@@ -627,6 +627,7 @@ static void start_all(rad_scene_t *s)
 {
     uint32_t i;
     s->emitted = 0;
+    s->lights_shot = 0; /* lights shoot again (light.c) */
     for (i = 0; i < s->n_surfaces; i++) start_surface(s, i);
 }
 
@@ -670,7 +671,8 @@ static rad_real_t extent(const rad_scene_t *s)
     return rad__scale2(m, -s->length_shift, 0); /* exact: a multiple of 2^length_shift */
 }
 
-/* The brightest emission channel of any surface, in the caller's units. */
+/* The brightest emission channel of any surface, or irradiance of any light, in the
+ * caller's units. */
 static rad_real_t peak(const rad_scene_t *s)
 {
     rad_real_t m = 0;
@@ -679,7 +681,7 @@ static rad_real_t peak(const rad_scene_t *s)
         const rad_rgb_t *e = &s->pools.surfaces[i].emission;
         m = larger_abs(larger_abs(larger_abs(m, e->r), e->g), e->b);
     }
-    return m;
+    return larger_abs(m, rad__lights_peak(s));
 }
 
 /* Meshes every surface again, in place, from its corners at length shift G: the same

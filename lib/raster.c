@@ -15,8 +15,8 @@
 
 #define SUB 16 /* subpixels per pixel */
 
-/* A projected vertex: position in 1/16 pixel, depth w = 2^30 NEAR / d (at[0]) and
- * colour (at[1..3], used by colour targets only). */
+/* A projected vertex: position in 1/16 pixel, depth w = 2^30 NEAR / d (at[0]; ortho:
+ * the attribute c[0]) and colour (at[1..3], used by colour targets only). */
 typedef struct {
     int32_t x, y;
     uint32_t at[4];
@@ -277,7 +277,7 @@ static void project(const rad__frustum_t *f, const rad__cvert_t *c, pvert_t *r)
     int32_t w16 = f->width * SUB, h16 = f->height * SUB;
     r->x = clampi(rad__proj(c->a + c->d, inv, (uint32_t)(w16 / 2)), 0, w16);
     r->y = clampi(rad__proj(c->d - c->b, inv, (uint32_t)(f->half ? h16 : h16 / 2)), 0, h16);
-    r->at[0] = rad__depth(inv);
+    r->at[0] = f->ortho ? rad__attr(c->c[0]) : rad__depth(inv);
     r->at[1] = rad__attr(c->c[0]);
     r->at[2] = rad__attr(c->c[1]);
     r->at[3] = rad__attr(c->c[2]);

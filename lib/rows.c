@@ -64,6 +64,7 @@ int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, r
 {
     int rc;
     RAD__CHECK_SCENE(s);
+    if (s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     if ((rc = rows_ready(s, rows)) < 0) return rc;
     s->shot_patch = RAD_INDEX_NONE; /* as rad_shoot */
     return rad__shoot(s, rows, max_shots, tol);
@@ -114,6 +115,7 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     np = s->n_patches;
     /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
+    if (s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     if ((rc = rows_ready(s, rows)) < 0) return rc;
     s->shot_patch = RAD_INDEX_NONE;
     rad__freeze(s);

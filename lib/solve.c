@@ -363,6 +363,11 @@ int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_r
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
 {
     RAD__CHECK_SCENE(s);
+    /* lights first (light.c: a call of its own, which keeps this frame as it was) */
+    if (rad__lights_pending(s)) {
+        s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
+        return rad__lights_solve(s, max_shots, tol);
+    }
     if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
     s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
     return rad__shoot(s, 0, max_shots, tol);
@@ -373,6 +378,7 @@ rad_real_t rad_unshot_fraction(const rad_scene_t *s)
     static const rad_real_t none[3] = {0, 0, 0};
     rad_energy_t total;
     if (!s || !rad__live(s)) return 0;
+    if (rad__lights_pending(s)) return RAD__ONE; /* none of a light's power has gone */
     select_shooter(s, none, &total);
     return rad__energy_ratio(total, s->emitted);
 }
@@ -412,12 +418,15 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     rad_energy_t total;
     rad_real_t amb[3];
     uint32_t p;
+    int lit;
     RAD__CHECK_SCENE(s);
     if (!patch) return RAD_ERR_ARG;
     s->shot_patch = RAD_INDEX_NONE;
-    if (s->emitted == 0) return 0; /* as rad_shoot */
+    if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
+    lit = rad__lights_shoot(s, UINT32_MAX); /* as rad_shoot, here all at once */
+    if (lit < 0) return lit;
     start_solving(s);
     p = next_shooter(s, amb, &total);
     if (p == RAD_INDEX_NONE || rad__energy_ratio(total, s->emitted) <= tol) return 0;

@@ -498,7 +498,7 @@ static void test_dirty_buffers(void **st)
 }
 
 /* The public calls refused_calls makes, each on a scene that must be refused. */
-#define CALLS 26
+#define CALLS 28
 
 /* Every call taking a scene, on scene S: how many of them refused it with RAD_ERR_STATE
  * (printed one by one; rad_unshot_fraction, which returns a value, counts when 0). The
@@ -521,6 +521,9 @@ static int refused_calls(rad_scene_t *s, const char *what)
     void *bufs[1] = {part_mem};
     rad_gather_t g, gs;
     rad_rgb_t c;
+    static rad_light_t lights[1];
+    const rad_light_t sun = {RAD_LIGHT_SUN, 0, {0, 0, 0}, {0, -RAD_REAL(1), 0},
+                             {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)}, 0, 0, 0};
     uint32_t patch = 0;
     int rc[CALLS], n = 0, k, refused = 0;
     assert_int_equal(rad_gather_init(&g, 8, 0, gwork, sizeof gwork), RAD_OK);
@@ -541,6 +544,8 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rc[n++] = rad_shade_vertices(s, 0, vrgb, NV);
     rc[n++] = rad_shade_elements(s, 0, vrgb, NV);
     rc[n++] = rad_element_geometry(s, 0, NULL, NULL);
+    rc[n++] = rad_use_lights(s, lights, 1);
+    rc[n++] = rad_add_light(s, &sun);
     rc[n++] = rad_render(s, vrgb, &cam, fb, zb, 4, 4);
     rc[n++] = rad_form_factors(s, 0, ff);
     rc[n++] = rad_rows_compute(s, &rows, 1);

@@ -1333,6 +1333,129 @@ static void test_render_cracks(void **state)
     img_free(&fl);
 }
 
+/* ---- lights: --sun, --point, --spot ------------------------------------------- */
+
+/* The area-weighted mean red radiosity of --dump-radiosity's rows (CSV at PATH). */
+static double csv_mean_red(const char *path, double *area_out)
+{
+    char *csv = slurp(path, NULL), *line;
+    double sum = 0, area = 0;
+    assert_non_null(csv);
+    line = strchr(csv, '\n');
+    assert_non_null(line);
+    for (line++; *line;) {
+        double a, c[3], rgb[3];
+        int el, sf;
+        char mat[64];
+        char *next = strchr(line, '\n');
+        if (next) *next++ = '\0';
+        assert_int_equal(sscanf(line, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1],
+                                &c[2], &rgb[0], &rgb[1], &rgb[2]),
+                         10);
+        sum += rgb[0] * a;
+        area += a;
+        line = next ? next : line + strlen(line);
+    }
+    free(csv);
+    *area_out = area;
+    return sum / area;
+}
+
+/* A 16 x 16 floor of Kd 0.5 under --sun at 60 degrees from its normal: the floor's mean
+ * radiosity is rho E cos t, within the sun raster's coverage bound for its outline
+ * (test_light.c: p P / sqrt 2 + 2 p^2 + P p sqrt 2 / 32 over the area, p = the
+ * projection's diameter / R, R = 4 x 192 = 768): 0.62%. Under --point at height 4 over
+ * its centre the floor gets I times its solid angle 4 asin(64 / 80) (within 1%: the
+ * total over the plane, measured +0.02% at R 512 in test_light). Bad values and
+ * stored rows are refused. */
+static void test_lights(void **state)
+{
+    static const struct {
+        const char *opt, *val, *more, *says;
+    } bad[] = {
+        {"--sun", "0,0,0,1,1,1", NULL, "--sun wants DX,DY,DZ,R,G,B"},
+        {"--sun", "0,-1,0,1,1,1,20", NULL, "angular radius"},
+        {"--point", "0,4,0,-1,1,1", NULL, "--point wants X,Y,Z,R,G,B"},
+        {"--spot", "0,4,0,0,-1,0,1,1,1,200", NULL, "ANGLE"},
+        {"--point", "0,4,0,1,1,1", "--save-ff", "stored form factors"},
+    };
+    run_t r;
+    double area, mean, t = 60 * 3.14159265358979323846 / 180, want;
+    char sun[96];
+    size_t k;
+    (void)state;
+    need(FIXED);
+    write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
+    write_text(tmp_path("floor.obj"),
+               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    snprintf(sun, sizeof sun, "%.9f,%.9f,0,2,2,2", sin(t), -cos(t));
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", sun, "--dump-radiosity",
+        tmp_path("sun.csv"), "-o", tmp_path("sun.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    mean = csv_mean_red(tmp_path("sun.csv"), &area);
+    want = 0.5 * 2 * cos(t);
+    print_message("--sun at 60 degrees: mean radiosity %.6f, rho E cos t %.6f (%+.3f%%)\n", mean, want,
+                  100 * (mean / want - 1));
+    CHECK_NEAR(area, 256, 0.01, "the floor's area");
+    CHECK_NEAR(mean, want, want * 0.0062, "the floor's mean radiosity under --sun");
+
+    /* with an angular radius of 5 degrees: its directions tilt by up to 5 degrees, so
+     * cos t loses at most 1 - cos 5 = 0.38% more */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", "0,-1,0,2,2,2,5", "--dump-radiosity",
+        tmp_path("disc.csv"), "-o", tmp_path("disc.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    mean = csv_mean_red(tmp_path("disc.csv"), &area);
+    print_message("--sun of angular radius 5 degrees: mean radiosity %.6f, rho E %.6f (%+.3f%%)\n", mean, 1.0,
+                  100 * (mean - 1));
+    CHECK_NEAR(mean, 1.0 - 0.0019, 0.0062 + 0.0019, "the floor's mean radiosity under a --sun of radius 5 degrees");
+
+    RUN(&r, FIXED, "--width", "16", "--height", "16", "--point", "0,4,0,10,10,10", "--dump-radiosity",
+        tmp_path("point.csv"), "-o", tmp_path("point.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    CHECK_LACKS(r.err, "no material emits", "rad_cli's stderr with a --point light");
+    run_free(&r);
+    mean = csv_mean_red(tmp_path("point.csv"), &area);
+    want = 0.5 * 10 * 4 * asin(64.0 / 80) / 256;
+    print_message("--point at height 4: mean radiosity %.6f, rho I w / A %.6f (%+.3f%%)\n", mean, want,
+                  100 * (mean / want - 1));
+    CHECK_NEAR(mean, want, want * 0.01, "the floor's mean radiosity under --point");
+
+    /* threads shoot the lights first too (rad_shot_begin): the same bits as serially */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--threads", "2", "--point", "0,4,0,10,10,10",
+        "--dump-radiosity", tmp_path("point2.csv"), "-o", tmp_path("point2.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    {
+        char *a = slurp(tmp_path("point.csv"), NULL), *b = slurp(tmp_path("point2.csv"), NULL);
+        assert_non_null(a);
+        assert_non_null(b);
+        assert_string_equal(a, b);
+        free(a);
+        free(b);
+    }
+
+    /* a spot pointing away from the floor leaves it dark */
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--spot", "0,4,0,0,1,0,10,10,10,30,0.2",
+        "--dump-radiosity", tmp_path("spot.csv"), "-o", tmp_path("spot.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    CHECK_LE(csv_mean_red(tmp_path("spot.csv"), &area), 0, "the floor behind a spot's cone");
+
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        RUN(&r, FIXED, bad[k].opt, bad[k].val, bad[k].more ? bad[k].more : "--quiet", bad[k].more ? tmp_path("x.ff") : "--quiet",
+            "-o", tmp_path("x.png"), tmp_path("floor.obj"));
+        expect_status(&r, 2);
+        CHECK_CONTAINS(r.err, bad[k].says, "rad_cli %s %s", bad[k].opt, bad[k].val);
+        run_free(&r);
+    }
+    RUN(&r, FIXED, "--point", "0,100,0,1,1,1", "-o", tmp_path("x.png"), tmp_path("floor.obj"));
+    expect_status(&r, 1);
+    CHECK_CONTAINS(r.err, "light 1: its position lies beyond", "a point light far outside");
+    run_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1353,6 +1476,7 @@ int main(void)
         cmocka_unit_test(test_trailing_list_items),
         cmocka_unit_test(test_camera_looking_down),
         cmocka_unit_test(test_render_cracks),
+        cmocka_unit_test(test_lights),
     };
     return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);
 }

@@ -275,26 +275,32 @@ typedef struct {
     uint32_t coarse_shots; /* shots whose cube was coarser than res (rad_config_t.coarse) */
 } rad_stats_t;
 
+/* A light (rad_add_light; defined with the light functions at the end). */
+typedef struct rad_light_s rad_light_t;
+
 /* The solver. Fields are read-only for the caller; set them only through the API. */
 typedef struct {
     rad_config_t cfg;
     rad_pools_t pools;
     rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
-    int solving;          /* set by the first shot: geometry is frozen */
-    /* the shot between rad_shot_begin and rad_shot_end: its patch (RAD_INDEX_NONE: no
-     * shot begun) and serial number (shot_serial, below), which part buffers record */
+    uint16_t solving;     /* set by the first shot: geometry is frozen */
+    /* the shot between rad_shot_begin and rad_shot_end: its serial number, which part
+     * buffers record, and its patch (RAD_INDEX_NONE: no shot begun) */
+    uint16_t shot_serial;
     uint32_t shot_patch;
     rad_energy_t emitted; /* total emitted power, all channels */
     /* The core's scale (see the top of this file): coordinates are the caller's times
      * 2^length_shift (0..15), radiosity and power the caller's times 2^power_shift
      * (0..24); both 0 for a scene within +-32 whose brightest emission is 256. */
     int8_t length_shift, power_shift;
-    uint16_t shot_serial;
+    /* lights (rad_use_lights): the caller's array of max_lights, n_lights added; the
+     * first lights_shot of them have shot since the solution last started */
+    uint16_t n_lights, max_lights, lights_shot;
+    rad_light_t *lights;
     /* The scene's own address, set by a successful rad_init (cleared first). Every call
      * refuses (RAD_ERR_STATE) a scene without it: never initialised, its rad_init
-     * failed, or a copy at another address. (These three fields fill padding: the
-     * scene is no larger on 32-bit targets, where a Cortex-M0's 16 KB has no room.) */
+     * failed, or a copy at another address. */
     const void *self;
     rad_stats_t stats;
     /* work buffer layout */
@@ -305,11 +311,16 @@ typedef struct {
     rad_index_t *ibuf;
     uint32_t pass_pixels; /* pixels the face buffers hold */
     uint16_t band_rows;   /* rows per band, or 0: all faces in one pass */
+    uint16_t amb_ok;      /* (see amb_area) */
     /* the shot's cube: its resolution and delta form factor tables (cfg.res and the
      * dff tables but for a coarse shot, whose tables follow its depth buffer) */
     rad_ff_t *cube_top, *cube_side;
     uint16_t cube_res;
     uint16_t cube_built; /* the coarse level whose tables are built, 0: none */
+    /* (amb_ok and amb_max_area belong with the ambient sums below: they fill gaps of
+     * the layout here, as the lights' and shot fields do above; a Cortex-M0's 16 KB has
+     * no room for a larger scene) */
+    rad_real_t amb_max_area;
     /* overshooting's back-off (lib/solve.c), reset before the first shot */
     rad_energy_t over_low;  /* lowest unshot total since the last back-off */
     rad_energy_t over_net;  /* net unshot power (channels' signed sums) allowed twice */
@@ -317,11 +328,9 @@ typedef struct {
     uint32_t over_sat;      /* stats.saturations at the last selection */
     uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
     /* the ambient term's sums over the patches of area and of reflectance times area,
-     * and the largest patch area (lib/solve.c), valid while solving when amb_ok:
-     * cleared by the freeze and by every change of a patch's reflectance */
+     * and the largest patch area (amb_max_area, above), valid while solving when amb_ok
+     * (above): cleared by the freeze and by every change of a patch's reflectance */
     rad_energy_t amb_area, amb_rho[3];
-    rad_real_t amb_max_area;
-    int amb_ok;
 } rad_scene_t;
 
 /* ---- building a scene ---------------------------------------------------------- */
@@ -432,8 +441,12 @@ int rad_restart(rad_scene_t *s);
  * (its unshot power, plus the overshoot unless RAD_NO_OVERSHOOT; in magnitude, summed
  * over channels), and stops early once the unshot fraction is at most TOL. A call while
  * something emits freezes the geometry (rad_add_polygon then returns RAD_ERR_STATE);
- * while nothing emits no shot is possible, and the scene stays open. Returns the
- * number of patches shot (0: already converged or nothing emits) or RAD_ERR_ARG. */
+ * while nothing emits no shot is possible, and the scene stays open. Lights that have
+ * not shot (rad_add_light) shoot first, one a step, each counted as a shot. Returns
+ * the number of patches and lights shot (0: already converged or nothing emits),
+ * RAD_ERR_ARG, or RAD_ERR_RANGE when a point or spot light lies beyond
+ * +-RAD_COORD_LIMIT in the core's scale (farther out than about twice the scene's
+ * extent; nothing shot). */
 int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
 
 /* One shot in parts, for threads of the caller's (the core has none): rad_shot_begin
@@ -654,6 +667,74 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
  * Returns as rad_gather (RAD_ERR_ARG for a hemisphere gatherer). */
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
                   int flags, rad_rgb_t *sh);
+
+/* ---- lights: sun, point and spot (lib/light.c) ---------------------------------- */
+/* Lights that are not surfaces: each shoots once, at the start of a solve (the first
+ * rad_shoot steps, one light a step, before any patch), giving every element it
+ * reaches its direct light: power P on an element of area A and reflectance rho adds
+ * rho P / A to its radiosity and rho P to its patch's unshot power, which progressive
+ * refinement then bounces as any other. A light itself is never seen (it has no area).
+ * Shadows come from the same rasterizer and element lattice as the shots:
+ *   - a point or spot light renders a whole cube (six faces of RES^2 pixels) at its
+ *     position; a pixel of solid angle dw (its delta solid angle, the cube's quadrant
+ *     sums exact) gives the element it sees I dw of power (times the spot's falloff);
+ *   - a sun renders an orthographic item buffer of about RES x RES pixels (in tiles
+ *     of the scene's res) over the square that the scene's corners project to,
+ *     across its direction; a pixel of area a (perpendicular to the light) gives the
+ *     element it sees E a.
+ * Surfaces are one-sided: an element receives only on its front (the side its normal
+ * points to), and a face turned away from the light does not shadow either. Units are
+ * the scene's: a point light of intensity I (per channel) at distance r from a plane
+ * whose normal makes angle t with the direction to it gives irradiance E = I cos t /
+ * r^2 and radiosity B = rho E; a sun of E gives a plane at angle t to it E cos t, and
+ * B = rho E cos t: the emission units of rad_add_polygon (a surface emitting B of them
+ * is a light of radiosity B). Lights count in the power shift (rad.h: Scale) through
+ * their brightest irradiance on any surface (a point light's I / d^2 at the nearest
+ * plane it faces), and their power reaching the surfaces joins the emitted power
+ * (rad_unshot_fraction, which is 1 while a light has not shot). */
+#define RAD_LIGHT_SUN   1 /* directional: irradiance E on a plane facing it */
+#define RAD_LIGHT_POINT 2 /* intensity I in every direction */
+#define RAD_LIGHT_SPOT  3 /* intensity I inside a cone, 0 outside */
+struct rad_light_s {
+    uint16_t type; /* RAD_LIGHT_* */
+    uint16_t res;  /* 0: default (point, spot: the scene's res; sun: 4 res, at most
+                    * RAD_MAX_RES); else even, 8..RAD_MAX_RES. A sun's raster is
+                    * K x K tiles of the scene's res, K = RES / res rounded up; a point
+                    * light's face above the scene's res needs 2 RES pixels a pass in
+                    * the work buffer (rad_scene_t.pass_pixels), else RES is halved
+                    * down to res */
+    rad_vec3_t position;  /* point, spot: where it is, within +-RAD_INPUT_LIMIT in the
+                           * caller's units and +-RAD_COORD_LIMIT in the core's scale
+                           * (checked by rad_shoot) */
+    rad_vec3_t direction; /* sun, spot: the way its light travels (a sun straight
+                           * overhead: (0, -1, 0) with y up); any length above 0 */
+    rad_rgb_t intensity;  /* point, spot: I (per unit solid angle); sun: E; each
+                           * channel in [0, RAD_EMISSION_LIMIT] */
+    /* spot: the cosines of the cone's half angle (0 beyond it) and of the inner half
+     * angle (full intensity within it), cos_outer <= cos_inner, both in [-1, 1];
+     * between them I times s^2, s = (cos a - cos_outer) / (cos_inner - cos_outer)
+     * (glTF's KHR_lights_punctual falloff); equal cosines: a hard edge */
+    rad_real_t cos_outer, cos_inner;
+    /* sun: the tangent of its angular radius, in [0, 1/4] (0: a point; the real sun's
+     * is 0.0047): its light then comes from 16 directions over its disc (8 of
+     * Vogel's spiral and their opposites, fixed), each an orthographic shot of E / 16,
+     * so that shadows have penumbrae */
+    rad_real_t radius;
+};
+
+/* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then
+ * on; at most 65535 are used). Returns RAD_OK, RAD_ERR_ARG (NULL, MAX 0) or
+ * RAD_ERR_STATE (an array is in use already, or shooting started). */
+int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max);
+
+/* Adds a copy of LIGHT to the scene's array; it shoots at the start of the next solve
+ * (the one that rad_restart starts, once solving). Returns its index, or RAD_ERR_ARG
+ * (NULL, an unknown type or res, a zero direction), RAD_ERR_RANGE (a position,
+ * intensity or cosine out of range), RAD_ERR_FULL (the array is full) or
+ * RAD_ERR_STATE (no array, or shooting started: rad_restart first). Stored rows
+ * (rad_rows_shoot, rad_rows_gauss_seidel) do not take lights yet: they return
+ * RAD_ERR_STATE for a scene with lights. */
+int rad_add_light(rad_scene_t *s, const rad_light_t *light);
 
 #ifdef __cplusplus
 }

@@ -38,5 +38,7 @@
 #define rad_gather_sh         radf_gather_sh
 #define rad_shot_aim          radf_shot_aim
 #define rad_shot_receive_part radf_shot_receive_part
+#define rad_use_lights        radf_use_lights
+#define rad_add_light         radf_add_light
 
 #endif

@@ -95,6 +95,8 @@ typedef struct {
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
+    sc_light *lights;               /* --sun, --point, --spot in order */
+    int nlights;
     /* stored form factors and relighting */
     const char *save_ff, *load_ff, *animate;
     int gauss_seidel, each_group, ncams;

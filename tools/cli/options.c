@@ -6,8 +6,10 @@
 #include "bake/lightmap.h"
 #include "bake/probes.h"
 #include "formats/assimp_scene.h"
+#include "rad/rad.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -159,6 +161,64 @@ static void opt_emit(opts_t *o, const char *opt, const char *val)
     o->emit[o->nemit++] = (char *)val;
 }
 
+/* --sun, --point, --spot: N values (the last optional when OPT_LAST), intensities at
+ * V[RGB..RGB+2] not negative, a direction at V[DIR..] (DIR < 0: none) not zero. */
+static sc_light *light_values(opts_t *o, const char *opt, const char *val, double *v, int n, int opt_last,
+                              int rgb, int dir, const char *want)
+{
+    char msg[192];
+    sc_light *l = &o->lights[o->nlights];
+    int k = parse_list(val, v, n, opt_last), a;
+    int ok = k > 0 && v[rgb] >= 0 && v[rgb + 1] >= 0 && v[rgb + 2] >= 0;
+    if (ok && dir >= 0) ok = v[dir] != 0 || v[dir + 1] != 0 || v[dir + 2] != 0;
+    if (!ok) {
+        snprintf(msg, sizeof msg, "%s wants %s", opt, want);
+        die_usage(msg, val);
+    }
+    memset(l, 0, sizeof *l);
+    for (a = 0; a < 3; a++) l->rgb[a] = v[rgb + a];
+    if (k < n) v[n - 1] = 0; /* the optional last value left out */
+    o->nlights++;
+    return l;
+}
+
+static void opt_sun(opts_t *o, const char *opt, const char *val)
+{
+    double v[7];
+    sc_light *l = light_values(o, opt, val, v, 7, 1, 3, 0,
+                               "DX,DY,DZ,R,G,B[,ANGLE]: the way the light travels (not zero), irradiance >= 0, "
+                               "ANGLE 0..14");
+    if (!(v[6] >= 0 && v[6] <= 14))
+        die_usage("--sun wants ANGLE (the sun's angular radius, degrees) in [0, 14]", val);
+    l->type = RAD_LIGHT_SUN;
+    l->radius = tan(v[6] * 3.14159265358979323846 / 180);
+    memcpy(l->dir, v, sizeof l->dir);
+}
+
+static void opt_point(opts_t *o, const char *opt, const char *val)
+{
+    double v[6];
+    sc_light *l = light_values(o, opt, val, v, 6, 0, 3, -1, "X,Y,Z,R,G,B with intensities >= 0");
+    l->type = RAD_LIGHT_POINT;
+    memcpy(l->pos, v, sizeof l->pos);
+}
+
+static void opt_spot(opts_t *o, const char *opt, const char *val)
+{
+    const double deg = 3.14159265358979323846 / 180;
+    double v[11];
+    sc_light *l = light_values(o, opt, val, v, 11, 1, 6, 3,
+                               "X,Y,Z,DX,DY,DZ,R,G,B,ANGLE[,SOFTNESS]: a direction not zero, intensities >= 0, "
+                               "ANGLE 0..180, SOFTNESS 0..1");
+    if (!(v[9] > 0 && v[9] <= 180 && v[10] >= 0 && v[10] <= 1))
+        die_usage("--spot wants ANGLE (the cone's half angle, degrees) in (0, 180] and SOFTNESS in [0, 1]", val);
+    l->type = RAD_LIGHT_SPOT;
+    memcpy(l->pos, v, sizeof l->pos);
+    memcpy(l->dir, v + 3, sizeof l->dir);
+    l->cos_outer = cos(v[9] * deg);
+    l->cos_inner = cos(v[9] * (1 - v[10]) * deg);
+}
+
 static void opt_save_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->save_ff = val; }
 static void opt_load_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->load_ff = val; }
 
@@ -302,6 +362,19 @@ static const option_t options[] = {
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
     {"--emit", NULL, "NAME=R,G,B", "set the emission of material NAME (repeatable)", opt_emit},
+    {"--sun", NULL, "DX,DY,DZ,R,G,B[,ANGLE]",
+     "a sun: its light travels along DX,DY,DZ ((0,-1,0): straight\n"
+     "down with +Y up), irradiance R,G,B on a plane facing it, in\n"
+     "emission units (a plane at angle t gets E cos t); ANGLE (0..14,\n"
+     "0) its angular radius in degrees (the sun's: 0.27), 16\n"
+     "directions over its disc for soft shadows (repeatable)", opt_sun},
+    {"--point", NULL, "X,Y,Z,R,G,B",
+     "a point light at X,Y,Z of intensity R,G,B per steradian: a plane at\n"
+     "distance r, at angle t, gets I cos t / r^2 (repeatable)", opt_point},
+    {"--spot", NULL, "X,Y,Z,DX,DY,DZ,R,G,B,ANGLE[,SOFTNESS]",
+     "a spot light at X,Y,Z pointing along DX,DY,DZ: a point light\n"
+     "inside the cone of half angle ANGLE degrees, dark outside;\n"
+     "SOFTNESS (0..1, 0) of the angle fades out (repeatable)", opt_spot},
     SECTION("stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
             "no hemi-cube):"),
     {"--save-ff", NULL, "FILE", "compute all rows, save them to FILE, solve from them", opt_save_ff},
@@ -413,6 +486,9 @@ static void check_combinations(opts_t *o)
         die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
+    if (o->nlights && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate))
+        die_usage("--sun, --point and --spot do not work with stored form factors yet (--save-ff, --load-ff, "
+                  "--solver gauss-seidel, --light-group, --animate): leave one or the other out", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
         if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
@@ -445,7 +521,8 @@ static void set_defaults(opts_t *o, int argc)
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
     o->gint = calloc((size_t)argc, sizeof *o->gint);
-    if (!o->emit || !o->groups || !o->gint) {
+    o->lights = calloc((size_t)argc, sizeof *o->lights);
+    if (!o->emit || !o->groups || !o->gint || !o->lights) {
         fprintf(stderr, PROG ": out of memory\n");
         exit(CLI_EXIT_ERROR);
     }
@@ -479,4 +556,5 @@ void free_opts(opts_t *o)
     free(o->emit);
     free(o->groups);
     free(o->gint);
+    free(o->lights);
 }

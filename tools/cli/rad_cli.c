@@ -304,9 +304,10 @@ static int load_step(run_t *r)
     if (check_emissions(o, &r->sc) < 0) return -1;
     for (i = 0; i < r->sc.nmaterials; i++)
         if (emits(&r->sc.materials[i])) emitters++;
-    if (!emitters && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; "
-                        "set one with --emit NAME=R,G,B (--list-materials shows them)\n", o->scene);
+    if (!emitters && !o->nlights && !o->quiet)
+        fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; set one with "
+                        "--emit NAME=R,G,B (--list-materials shows them), or add --sun, --point or --spot\n",
+                o->scene);
     if (r->groups_mode && resolve_groups(r) < 0) return -1;
     if (o->animate && read_frames(o) < 0) return -1;
     return 0;
@@ -407,6 +408,8 @@ static int build_step(run_t *r)
     r->so.max_element = o->max_element;
     cli_shot_settings(o, r->rows_mode, &r->so);
     r->so.no_overshoot = o->no_overshoot;
+    r->so.lights = o->lights;
+    r->so.nlights = o->nlights;
     r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
     r->polys = polys; /* kept for --export-gltf */
     r->npolys = npolys;

@@ -46,6 +46,8 @@ struct sc_solver {
     int n_tiny;
     rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
     unsigned long ambient_terms; /* sc_stats.ambient_terms */
+    rad_light_t *lights;        /* the lights in the core's units (sc_opts.lights), or NULL */
+    int nlights;
 };
 
 typedef struct {
@@ -425,6 +427,78 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
     return 0;
 }
 
+/* The lights of O checked and taken to the core (h->lights): positions as the
+ * polygons', directions unit, intensities by escale (a point's also by scale^2, as its
+ * irradiance I / r^2 keeps with lengths), escale lowered first so that the brightest
+ * light, as an emission, reaches at most CORE_EMIT_PEAK. 0 or -1 with err. */
+static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t errlen)
+{
+    double peak = h->epeak;
+    int i, a;
+    if (o->nlights <= 0) return 0;
+    for (i = 0; i < o->nlights; i++) {
+        const sc_light *l = &o->lights[i];
+        double k = l->type == RAD_LIGHT_SUN ? 1.0 : h->scale * h->scale, d = 0;
+        for (a = 0; a < 3; a++) {
+            if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) || !isfinite(l->dir[a])) {
+                snprintf(err, errlen, "light %d: a negative or non-finite value", i + 1);
+                return -1;
+            }
+            if (l->rgb[a] * k > peak) peak = l->rgb[a] * k;
+            d += l->dir[a] * l->dir[a];
+            if (l->type != RAD_LIGHT_SUN && fabs((l->pos[a] - h->off[a]) * h->scale) > RAD_COORD_LIMIT) {
+                snprintf(err, errlen, "light %d: its position lies beyond the core's range, twice the scene's "
+                         "extent from its centre: move it nearer", i + 1);
+                return -1;
+            }
+        }
+        if (l->type != RAD_LIGHT_POINT && !(d > 0)) {
+            snprintf(err, errlen, "light %d: a zero direction", i + 1);
+            return -1;
+        }
+    }
+    if (peak > h->epeak) {
+        h->epeak = peak;
+        h->escale = h->escale0 = CORE_EMIT_PEAK / peak;
+    }
+    h->lights = calloc((size_t)o->nlights, sizeof *h->lights);
+    if (!h->lights) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    h->nlights = o->nlights;
+    for (i = 0; i < o->nlights; i++) {
+        const sc_light *l = &o->lights[i];
+        rad_light_t *c = &h->lights[i];
+        double k = (l->type == RAD_LIGHT_SUN ? 1.0 : h->scale * h->scale) * h->escale;
+        double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
+        c->type = (uint16_t)l->type;
+        to_core(h, l->pos, &c->position);
+        if (d > 0) {
+            c->direction.x = RAD_REAL(l->dir[0] / d);
+            c->direction.y = RAD_REAL(l->dir[1] / d);
+            c->direction.z = RAD_REAL(l->dir[2] / d);
+        }
+        c->intensity.r = RAD_REAL(fmin(l->rgb[0] * k, 4096.0));
+        c->intensity.g = RAD_REAL(fmin(l->rgb[1] * k, 4096.0));
+        c->intensity.b = RAD_REAL(fmin(l->rgb[2] * k, 4096.0));
+        c->cos_outer = RAD_REAL(l->cos_outer);
+        c->cos_inner = RAD_REAL(l->cos_inner);
+        c->radius = RAD_REAL(l->radius);
+    }
+    return 0;
+}
+
+/* The lights into the core's scene, after rad_init: RAD_OK or the core's error. */
+static int add_lights(struct sc_solver *h)
+{
+    int i, rc;
+    if (!h->nlights) return RAD_OK;
+    rc = rad_use_lights(&h->s, h->lights, (uint32_t)h->nlights);
+    for (i = 0; i < h->nlights && rc >= 0; i++) rc = rad_add_light(&h->s, &h->lights[i]);
+    return rc < 0 ? rc : RAD_OK;
+}
+
 /* A generous estimate of the elements the core will make (it grows if short). */
 static long estimate_elements(const struct sc_solver *h, const sc_poly *polys, int n, double me)
 {
@@ -512,7 +586,11 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     if (!o) o = &defaults;
     if (!h) { snprintf(err, errlen, "out of memory"); return NULL; }
     if (n <= 0) { snprintf(err, errlen, "the scene has no polygons"); free(h); return NULL; }
-    if (frame_scene(h, polys, n, err, errlen) < 0) { free(h); return NULL; }
+    if (frame_scene(h, polys, n, err, errlen) < 0 || frame_lights(h, o, err, errlen) < 0) {
+        free(h->lights);
+        free(h);
+        return NULL;
+    }
     memset(&cfg, 0, sizeof cfg);
     {
         double me = o->max_element > 0 ? o->max_element * h->scale : 2.0 * CORE_HALF_EXTENT / 24.0;
@@ -520,6 +598,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         if (me < 1.0 / 16.0 || me > 128.0 || mp < me || mp > 256.0) {
             snprintf(err, errlen, "element size %g / patch size %g out of range for this scene (element >= %g, patch >= element)",
                      me / h->scale, mp / h->scale, 1.0 / 16.0 / h->scale);
+            free(h->lights);
             free(h);
             return NULL;
         }
@@ -536,6 +615,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         if (!order) {
             snprintf(err, errlen, "out of memory");
             free(same);
+            free(h->lights);
             free(h);
             return NULL;
         }
@@ -547,6 +627,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         if (cap > limit) cap = limit;
         if (!alloc_pools(h, cap, n, &cfg)) { snprintf(err, errlen, "out of memory for %ld elements", cap); break; }
         rc = rad_init(&h->s, &h->pools, &cfg);
+        if (rc == RAD_OK) rc = add_lights(h);
         if (rc < 0) { snprintf(err, errlen, "cannot set up the solver: %s", rad_strerror(rc)); break; }
         h->skipped = h->split = h->clamped = h->skipped_emitters = h->n_tiny = 0;
         w.seen = 0;
@@ -592,6 +673,7 @@ void sc_destroy(sc_solver *h)
     if (!h) return;
     free_pools(h);
     free(h->rows.start); free(h->rows.ids); free(h->rows.ffs); free(h->gs);
+    free(h->lights);
     free(h);
 }
 

@@ -22,6 +22,17 @@ typedef struct {
     int tag;          /* caller's id (material, source line): passed back in warnings */
 } sc_poly;
 
+/* A light that is not a surface (rad_add_light), in the caller's units: TYPE 1 sun, 2
+ * point, 3 spot (RAD_LIGHT_*); DIR the way its light travels; RGB a point's or spot's
+ * intensity (per steradian) or a sun's irradiance on a plane facing it; a spot's cone
+ * by the cosines of its outer and inner half angles; a sun's disc by RADIUS. */
+typedef struct {
+    int type;
+    double pos[3], dir[3], rgb[3];
+    double cos_outer, cos_inner;
+    double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
+} sc_light;
+
 typedef struct {
     double max_patch, max_element;  /* in the caller's units; 0: 1/8 and 1/32 of the extent */
     int res;                        /* hemi-cube resolution; 0: 64 */
@@ -31,6 +42,8 @@ typedef struct {
     double coarse;                  /* rad_config_t.coarse: unshot fraction below which
                                        shots coarsen; 0: never */
     int coarse_res;                 /* rad_config_t.coarse_res: their floor; 0: res / 4 */
+    const sc_light *lights;         /* lights shot first (rows and relighting refuse them) */
+    int nlights;
 } sc_opts;
 
 typedef struct {

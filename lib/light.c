@@ -1,0 +1,583 @@
+/* SPDX-License-Identifier: MIT */
+/* rad — lights that are not surfaces: sun, point and spot (rad.h has the model).
+ *
+ * A light shoots once, through the one rasterizer and the element lattice, as a
+ * patch's shot does: its view's item buffer gives each pixel the element it sees, the
+ * pixels' weights are summed per element into s->acc (a fraction F of the power U of
+ * the light's whole raster, Q2.30), and each element receives F U as from a patch
+ * (rad__receive: rho F U to its radiosity over its area and to its patch's unshot
+ * power).
+ *
+ * Point and spot: a whole cube at the light (six R x R faces, R = the light's res).
+ * A pixel of a face at (a, b, 1), a and b its centre's odd lattice numbers over R,
+ * has the solid angle dw ~ c^3 dA, c = 1 / sqrt(a^2 + b^2 + 1); its weight is c^3, in
+ * integers in both builds, scaled so that each quadrant of a face sums to exactly 2^26
+ * (a face's quadrant is 1/24 of the sphere): the sphere's 24 quadrants sum to
+ * 1.5 2^30, standing for 4 pi, so U = 4 pi I / 1.5 and a pixel gives I dw. A
+ * spot's pixel weighs that times its falloff at the pixel centre's direction. The
+ * cube is turned by the rotation of rows (2, 3, 6) / 7, (3, -6, 2) / 7, (6, 2, -3) / 7:
+ * no scene axis lies along a face's rows or columns, where walls along the axes would
+ * alias by half a pixel along their whole length.
+ *
+ * Sun: an orthographic item buffer over the square (side 2 h) that every surface
+ * corner projects into across the light's direction, in K x K tiles of W x W pixels
+ * (W the scene's res, or R when smaller; K = R / W rounded up), each pixel of area
+ * (2 h / K W)^2: U = E (2 h)^2 and a pixel's fraction 1 / (K W)^2. The rasterizer draws
+ * a tile as a face whose vertices all lie at depth h / K (a / (h / K) is then the
+ * place across the tile, exactly), testing depth by the nearness to the sun (frustum
+ * ORTHO); the tiles' half widths times K make h, so they meet exactly. A sun with an
+ * angular radius shoots 16 times, each with E / 16 from one direction of its disc
+ * (a fixed pattern, symmetric about its centre), which gives shadows penumbrae.
+ *
+ * Both render in bands of rows in the depth and item buffers of the work buffer, so the
+ * result does not depend on the buffer's size, with the scene's row of id steps; a
+ * point light's face wider than the scene's res keeps a row of its own at the depth
+ * buffer's start, and its R is lowered (halved, at least the scene's res) when not
+ * even one row fits beside it. Weights are worked out a pixel at a time (no table): a
+ * light shoots once.
+ */
+#include "internal.h"
+
+static int res_ok(unsigned res)
+{
+    return res == 0 || (res >= 8u && res <= RAD_MAX_RES && !(res & 1u));
+}
+
+/* V within +-M (written so that a NaN fails in the float twin). */
+static int within(const rad_vec3_t *v, rad_real_t m)
+{
+    return v->x >= -m && v->x <= m && v->y >= -m && v->y <= m && v->z >= -m && v->z <= m;
+}
+
+/* In the core's scale (light_position), or a direction. */
+static int vec_ok(const rad_vec3_t *v)
+{
+    return within(v, RAD__Q(RAD_COORD_LIMIT));
+}
+
+static int channel_ok(rad_real_t v)
+{
+    return v >= 0 && v <= RAD__Q(RAD_EMISSION_LIMIT);
+}
+
+static int cosine_ok(rad_real_t c)
+{
+    return c >= -RAD__ONE && c <= RAD__ONE;
+}
+
+/* The light's raster resolution, before the work buffer's limit. */
+static uint32_t wanted_res(const rad_scene_t *s, const rad_light_t *l)
+{
+    uint32_t r = s->cfg.res;
+    if (l->res) return l->res;
+    if (l->type != RAD_LIGHT_SUN) return r;
+    return 4u * r < RAD_MAX_RES ? 4u * r : RAD_MAX_RES;
+}
+
+/* Words of the depth buffer a raster of resolution R takes before its first row: a
+ * row of id steps when the scene's (res entries) is too short. */
+static uint32_t head_words(const rad_scene_t *s, uint32_t r)
+{
+    return r > s->cfg.res ? r : 0u;
+}
+
+/* R, halved (kept even, at least the scene's res, which always fits) until its head
+ * and one row fit the buffers. */
+static uint32_t fitted_res(const rad_scene_t *s, uint32_t r)
+{
+    while (r > s->cfg.res && head_words(s, r) + r > s->pass_pixels)
+        r = r / 4u * 2u < s->cfg.res ? s->cfg.res : r / 4u * 2u;
+    return r;
+}
+
+int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max)
+{
+    RAD__CHECK_SCENE(s);
+    if (!lights || max == 0) return RAD_ERR_ARG;
+    if (s->lights || s->solving) return RAD_ERR_STATE;
+    s->lights = lights;
+    s->max_lights = (uint16_t)(max < 65535u ? max : 65535u); /* more than 65535: as many */
+    s->n_lights = 0;
+    s->lights_shot = 0;
+    return RAD_OK;
+}
+
+int rad_add_light(rad_scene_t *s, const rad_light_t *l)
+{
+    rad_vec3_t u;
+    RAD__CHECK_SCENE(s);
+    if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SPOT || !res_ok(l->res))
+        return RAD_ERR_ARG;
+    if (!s->lights || s->solving) return RAD_ERR_STATE;
+    if (!channel_ok(l->intensity.r) || !channel_ok(l->intensity.g) || !channel_ok(l->intensity.b))
+        return RAD_ERR_RANGE;
+    if (l->type != RAD_LIGHT_SUN && !within(&l->position, RAD__Q(RAD_INPUT_LIMIT))) return RAD_ERR_RANGE;
+    if (l->type != RAD_LIGHT_POINT) {
+        if (!vec_ok(&l->direction)) return RAD_ERR_RANGE;
+        if (!rad__normalize(l->direction, &u)) return RAD_ERR_ARG;
+    }
+    if (l->type == RAD_LIGHT_SPOT &&
+        !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
+        return RAD_ERR_RANGE;
+    if (l->type == RAD_LIGHT_SUN && !(l->radius >= 0 && l->radius <= RAD__Q(0.25))) return RAD_ERR_RANGE;
+    if (s->n_lights >= s->max_lights) return RAD_ERR_FULL;
+    s->lights[s->n_lights] = *l;
+    return (int)s->n_lights++;
+}
+
+/* ---- the view --------------------------------------------------------------------- */
+
+/* What a light's raster draws: its kind, resolution R and frame (rows: the view's
+ * axes on the scene's), and
+ *   point, spot: the position C (the core's scale) and the face drawn;
+ *   sun: the window's centre (U0, V0) and half width H across the direction, and the
+ *        largest depth FAR along it, from which nearness is measured. */
+typedef struct {
+    const rad_light_t *l;
+    rad_vec3_t dir; /* sun: the direction of this shot (one of its disc's, radius > 0) */
+    int ortho;
+    uint32_t res;
+    rad_vec3_t c, frame[3];
+    rad_real_t u0, v0, h, far;
+    rad_real_t uc, vc, hw; /* sun: the whole window's centre and half width */
+    uint32_t tiles;        /* sun: the window in TILES x TILES squares of res pixels */
+    unsigned face;
+    uint64_t sum;     /* point: a quadrant's sum of c^3 (pixel_weight) */
+    uint32_t deficit; /* and the units its entries' rounding down lost */
+} view_t;
+
+/* The buffers of a band: id steps (R, zero), the rows' depths and ids. */
+typedef struct {
+    uint32_t *steps, *z;
+    rad_index_t *ids;
+    uint32_t rows;
+} bufs_t;
+
+static rad_real_t comp(rad_vec3_t v, unsigned k)
+{
+    return k == 0 ? v.x : k == 1 ? v.y : v.z;
+}
+
+/* V's coordinates on the view's axes. */
+static rad_vec3_t on_frame(const view_t *v, rad_vec3_t d)
+{
+    rad_vec3_t r;
+    r.x = rad__dot_unit(d, v->frame[0]);
+    r.y = rad__dot_unit(d, v->frame[1]);
+    r.z = rad__dot_unit(d, v->frame[2]);
+    return r;
+}
+
+/* Whether surface SF, of corners K (N), turns its front to the light: a sun's
+ * direction against its normal; a point in front of it at some corner (a quad may be
+ * planar only within rounding), as the hemi-cube's test. */
+static int faces_light(const rad_scene_t *s, const view_t *v, const rad_surface_t *sf,
+                       const uint32_t *k, unsigned n)
+{
+    unsigned i;
+    if (v->ortho) return rad__dot(sf->normal, v->frame[2]) < 0;
+    for (i = 0; i < n; i++)
+        if (rad__dot_unit(rad__sub(v->c, s->pools.vertices[k[i]]), sf->normal) > 0) return 1;
+    return 0;
+}
+
+/* Surface SF into target T of frustum FR: its outline once, each pixel given the
+ * element of its lattice it sees. */
+static void draw_surface(rad_scene_t *s, const view_t *v, const rad__target_t *t,
+                         const rad__frustum_t *fr, const rad_surface_t *sf)
+{
+    static const unsigned char same_axis[3] = {0, 1, 2};
+    static const signed char same_sign[3] = {1, 1, 1};
+    uint32_t k[4];
+    rad_vec3_t lc[4];
+    rad__cvert_t cv[4];
+    rad__lattice_t lat;
+    rad__target_t tl = *t;
+    unsigned i, j, any, n = rad__surface_corners(s, sf, k);
+    if (!faces_light(s, v, sf, k, n)) return;
+    for (i = 0; i < n; i++) {
+        const rad_vec3_t p = s->pools.vertices[k[i]];
+        rad_vec3_t l = on_frame(v, v->ortho ? p : rad__sub(p, v->c));
+        cv[i].c[0] = cv[i].c[1] = cv[i].c[2] = 0;
+        if (v->ortho) {
+            cv[i].a = l.x - v->u0;
+            cv[i].b = l.y - v->v0;
+            cv[i].d = v->h;
+            cv[i].c[0] = v->far - l.z + RAD__ONE; /* nearness >= 1 */
+            lc[i].x = cv[i].a;
+            lc[i].y = cv[i].b;
+            lc[i].z = cv[i].d;
+        } else {
+            const unsigned char *ax = rad__face_axis[v->face];
+            const signed char *sg = rad__face_sign[v->face];
+            rad_real_t f[3];
+            for (j = 0; j < 3; j++) f[j] = sg[j] < 0 ? -comp(l, ax[j]) : comp(l, ax[j]);
+            cv[i].a = f[0];
+            cv[i].b = f[1];
+            cv[i].d = f[2];
+            lc[i] = l;
+        }
+    }
+    any = rad__outcodes(fr, cv, n);
+    if (any & RAD__CULLED) return;
+    if (sf->n_elements > 1) {
+        rad__lattice_init(&lat, sf, lc, n, (int32_t)v->res);
+        if (v->ortho)
+            rad__lattice_face(&lat, same_axis, same_sign);
+        else
+            rad__lattice_face(&lat, rad__face_axis[v->face], rad__face_sign[v->face]);
+        tl.lat = &lat;
+    }
+    rad__draw(&s->stats, &tl, fr, cv, n, any, (rad_index_t)rad__group_element(s, sf, sf->first_element));
+}
+
+/* The spot's falloff at cosine C of the angle to its axis (rad.h). */
+static rad_real_t falloff(const rad_light_t *l, rad_real_t c)
+{
+    rad_real_t t;
+    if (c >= l->cos_inner) return RAD__ONE;
+    if (c <= l->cos_outer) return 0;
+    t = rad__div(c - l->cos_outer, l->cos_inner - l->cos_outer, 0);
+    return rad__mul(t, t, 0);
+}
+
+/* c^3 of quadrant pixel (I, J) of a face of resolution R, c = R / sqrt(A^2 + B^2 + R^2)
+ * for its centre's odd numbers A = 2 I + 1, B = 2 J + 1: in Q31, c from c^2 in Q40. */
+static uint64_t pixel_c3(uint32_t r, uint32_t i, uint32_t j)
+{
+    uint64_t a = 2u * i + 1u, b = 2u * j + 1u, r2 = (uint64_t)r * r;
+    uint64_t c = rad__isqrt64(((r2 << 40) / (a * a + b * b + r2)) << 22);
+    return (((c * c) >> 31) * c) >> 31;
+}
+
+/* The point light's weights: entry k = j q + i of a quadrant is c^3 times 2^26 over the
+ * quadrant's sum, rounded down, plus 1 for the first DEFICIT entries, so that each
+ * quadrant sums to exactly 2^26 (Q2.30), in both builds. */
+static void weight_sums(view_t *v)
+{
+    uint32_t q = v->res / 2u, n = q * q, k;
+    uint64_t got = 0;
+    v->sum = 0;
+    for (k = 0; k < n; k++) v->sum += pixel_c3(v->res, k % q, k / q);
+    for (k = 0; k < n; k++) got += (pixel_c3(v->res, k % q, k / q) << 26) / v->sum;
+    v->deficit = (uint32_t)(((uint64_t)1 << 26) - got);
+}
+
+static rad_ff_t pixel_weight(const view_t *v, uint32_t i, uint32_t j)
+{
+    uint32_t k = j * (v->res / 2u) + i;
+    return rad__ff_from_q30((uint32_t)((pixel_c3(v->res, i, j) << 26) / v->sum + (k < v->deficit)));
+}
+
+/* The weight of pixel (X, Y) of the face drawn: a sun's one count, a point's solid
+ * angle, a spot's that times its falloff toward the pixel centre (AXIS: the spot's
+ * axis on the face's axes a, b, d). */
+static rad_ff_t weight(const view_t *v, const rad_vec3_t *axis, uint32_t x, uint32_t y)
+{
+    const int32_t r = (int32_t)v->res;
+    uint32_t q = v->res / 2u, i = x < q ? q - 1u - x : x - q, j = y < q ? q - 1u - y : y - q;
+    rad_ff_t w;
+    rad_vec3_t d;
+    if (v->ortho) return rad__ff_from_q30(1u);
+    w = pixel_weight(v, i, j);
+    if (v->l->type != RAD_LIGHT_SPOT) return w;
+    d.x = rad__div(rad__from_int(2 * (int32_t)x + 1 - r), rad__from_int(r), 0);
+    d.y = rad__div(rad__from_int(r - 1 - 2 * (int32_t)y), rad__from_int(r), 0);
+    d.z = RAD__ONE;
+    return rad__ff_scale(w, falloff(v->l, rad__div(rad__dot(d, *axis), rad__length(d), 0)),
+                         RAD__ONE, 0);
+}
+
+/* Rows Y0..Y1-1 of the face drawn: cleared, every surface drawn, each pixel's weight
+ * added to the sum of the element it sees. */
+static void band(rad_scene_t *s, const view_t *v, const bufs_t *b, const rad_vec3_t *axis,
+                 uint32_t y0, uint32_t y1)
+{
+    const uint32_t r = v->res, npix = (y1 - y0) * r;
+    rad__frustum_t fr;
+    rad__target_t t;
+    uint32_t i, x, y;
+    for (i = 0; i < npix; i++) {
+        b->z[i] = 0;
+        b->ids[i] = RAD_INDEX_NONE;
+    }
+    fr.half = 0;
+    fr.ortho = v->ortho;
+    fr.width = fr.height = (int)r;
+    t.z = b->z;
+    t.ids = b->ids;
+    t.rgb = 0;
+    t.lat = 0;
+    t.steps = b->steps;
+    t.width = (int)r;
+    t.row0 = (int)y0;
+    t.row1 = (int)y1;
+    for (i = 0; i < s->n_surfaces; i++) draw_surface(s, v, &t, &fr, &s->pools.surfaces[i]);
+    for (y = y0, i = 0; y < y1; y++)
+        for (x = 0; x < r; x++, i++)
+            if (b->ids[i] < s->n_elements) s->acc[b->ids[i]] += weight(v, axis, x, y);
+}
+
+/* The sun's frame (its direction the third axis, turned as a patch's cube) and
+ * window: the square about the centre of the corners' projections, of half width HW
+ * (the tiles' half width times their count, so that the tiles meet exactly; at least
+ * RAD__NEAR a tile: the frustum's near plane), and the largest depth. */
+static void sun_view(const rad_scene_t *s, view_t *v)
+{
+    rad_vec3_t dir, lo = {0, 0, 0}, hi = {0, 0, 0};
+    rad_real_t du, dv, ht;
+    uint32_t i;
+    dir = v->dir;
+    rad__cube_frame(dir, 0, v->frame);
+    for (i = 0; i < s->n_vertices; i++) {
+        rad_vec3_t p = on_frame(v, s->pools.vertices[i]);
+        if (i == 0 || p.x < lo.x) lo.x = p.x;
+        if (i == 0 || p.y < lo.y) lo.y = p.y;
+        if (i == 0 || p.z < lo.z) lo.z = p.z;
+        if (i == 0 || p.x > hi.x) hi.x = p.x;
+        if (i == 0 || p.y > hi.y) hi.y = p.y;
+        if (i == 0 || p.z > hi.z) hi.z = p.z;
+    }
+    v->uc = lo.x + (hi.x - lo.x) / 2;
+    v->vc = lo.y + (hi.y - lo.y) / 2;
+    du = hi.x - v->uc;
+    dv = hi.y - v->vc;
+    /* a tile's half width, rounded up (the centre's rounding, the division's) */
+    ht = rad__div(du > dv ? du : dv, rad__from_int((int32_t)v->tiles), 0) + 4 * RAD__EPS;
+    v->h = ht < RAD__NEAR ? RAD__NEAR : ht;
+    v->hw = rad__mul(v->h, rad__from_int((int32_t)v->tiles), 0); /* exact: under 2^7 units */
+    v->far = hi.z;
+}
+
+/* Tile T of the sun's window (row after row from its top left) as the view drawn. */
+static void sun_tile(view_t *v, uint32_t t)
+{
+    int32_t tu = (int32_t)(t % v->tiles), tv = (int32_t)(t / v->tiles);
+    v->u0 = v->uc - v->hw + rad__mul(v->h, rad__from_int(2 * tu + 1), 0); /* exact, as hw */
+    v->v0 = v->vc + v->hw - rad__mul(v->h, rad__from_int(2 * tv + 1), 0);
+}
+
+/* Every face of V's view (a sun's tiles, a point's six faces) in bands of B's rows. */
+static void render(rad_scene_t *s, view_t *v, const bufs_t *b)
+{
+    unsigned nface = v->ortho ? 1u : 6u, k;
+    uint32_t y, t, ntiles = v->ortho ? v->tiles * v->tiles : 1u;
+    rad_vec3_t axis = {0, 0, 0}, ax;
+    if (v->l->type == RAD_LIGHT_SPOT) {
+        rad__normalize(v->l->direction, &ax);
+        ax = on_frame(v, ax);
+    }
+    for (v->face = 0; v->face < nface; v->face++) {
+        if (v->l->type == RAD_LIGHT_SPOT) { /* the axis on this face's a, b, d */
+            rad_real_t f[3];
+            for (k = 0; k < 3; k++) {
+                rad_real_t c = comp(ax, rad__face_axis[v->face][k]);
+                f[k] = rad__face_sign[v->face][k] < 0 ? -c : c;
+            }
+            axis.x = f[0];
+            axis.y = f[1];
+            axis.z = f[2];
+        }
+        for (t = 0; t < ntiles; t++) {
+            if (v->ortho) sun_tile(v, t);
+            for (y = 0; y < v->res; y += b->rows)
+                band(s, v, b, &axis, y, y + b->rows < v->res ? y + b->rows : v->res);
+        }
+    }
+}
+
+/* ---- shooting --------------------------------------------------------------------- */
+
+/* E >= 0 times 2^N, stopped at RAD__EMAX (counted in SAT); N < 0 (a scene the core
+ * scaled down: rad.h, any units) halves, rounding down in the fixed build (a unit of
+ * the last place a halving, against powers of many thousand units). */
+static rad_energy_t energy_shift(rad_energy_t e, int n, uint32_t *sat)
+{
+    for (; n > 0; n--) {
+        if (e > RAD__EMAX / 2) {
+            (*sat)++;
+            return RAD__EMAX;
+        }
+        e += e;
+    }
+    for (; n < 0; n++) e = e / 2;
+    return e;
+}
+
+/* 4 pi / 1.5: the power of unit intensity over the cube's weights (1.5 2^30 in all). */
+#define SPHERE_POWER RAD__Q(8.377580409572781)
+
+/* The power of light L's whole raster per channel, in the core's scale, into U. */
+static void light_power(rad_scene_t *s, const view_t *v, rad_energy_t *u)
+{
+    const rad_light_t *l = v->l;
+    unsigned c;
+    for (c = 0; c < 3; c++) {
+        rad_real_t i = rad__channel(&l->intensity, c);
+        if (v->ortho) { /* E (2 hw)^2, hw below 2^7: (2 hw)^2 as a product of energies */
+            rad_energy_t e = rad__energy(i, 2 * v->hw);
+            u[c] = energy_shift(rad__energy_refl(e, 2 * v->hw), s->power_shift, &s->stats.saturations);
+        } else { /* lengths scale by 2^length_shift, so I by its square: E stays */
+            u[c] = energy_shift(rad__energy(i, SPHERE_POWER), 2 * s->length_shift + s->power_shift,
+                                &s->stats.saturations);
+        }
+    }
+}
+
+/* A point's position in the core's scale into C: 0 when beyond the core's range. */
+static int light_position(const rad_scene_t *s, const rad_light_t *l, rad_vec3_t *c)
+{
+    uint32_t sat = 0;
+    *c = rad__scale2_vec(l->position, s->length_shift, &sat);
+    return !sat && vec_ok(c);
+}
+
+/* The sun's disc: 8 points of Vogel's spiral over the unit disc (radius
+ * sqrt((k + 1/2) / 8), angle k times the golden angle) and their opposites, in Q16. */
+#define SUN_SAMPLES 16u
+static const int32_t disc[8][2] = {{16384, 0},       {-20925, 19169}, {3203, -36495},
+                                   {26375, 34401},   {-48401, -8561}, {45849, -29166},
+                                   {-15336, 57048},  {-29247, -56313}};
+
+/* View V's shot, each channel's power divided by PARTS: its raster's weights into
+ * s->acc, then every element that sees it receives its share, and the power arriving
+ * joins the emitted power. */
+static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t parts)
+{
+    rad_energy_t u[3], got = 0;
+    uint32_t e, c, nn = v->res * v->tiles * v->res * v->tiles;
+    if (v->ortho) sun_view(s, v);
+    for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
+    render(s, v, b);
+    light_power(s, v, u);
+    for (c = 0; c < 3; c++) u[c] /= (rad_energy_t)parts;
+    for (e = 0; e < s->n_elements; e++) {
+        rad_ff_t f = s->acc[e];
+        if (!(f > 0)) continue;
+        if (v->ortho) /* the pixel count over all the tiles' (< 2^22), in Q2.30 */
+            f = rad__ff_from_q30(
+                (uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
+        rad__receive(s, u, e, f);
+        got = rad__esum(got, rad__energy_ff(u[0], f) + rad__energy_ff(u[1], f) +
+                                 rad__energy_ff(u[2], f));
+    }
+    s->emitted = rad__esum(s->emitted, got);
+}
+
+/* Light L's shot (a sun of some radius: one a direction of its disc). */
+static void shoot_light(rad_scene_t *s, const rad_light_t *l)
+{
+    view_t v = {0};
+    bufs_t b = {0};
+    uint32_t e, head;
+    v.l = l;
+    v.ortho = l->type == RAD_LIGHT_SUN;
+    v.res = v.ortho ? s->cfg.res : fitted_res(s, wanted_res(s, l));
+    v.tiles = 1;
+    if (v.ortho && wanted_res(s, l) <= v.res) v.res = wanted_res(s, l);
+    if (v.ortho) v.tiles = (wanted_res(s, l) + v.res - 1u) / v.res;
+    head = head_words(s, v.res);
+    b.steps = head ? s->zbuf : s->steps;
+    b.z = s->zbuf + head;
+    b.ids = s->ibuf;
+    b.rows = (s->pass_pixels - head) / v.res;
+    for (e = 0; e < head; e++) b.steps[e] = 0; /* every span leaves it zero */
+    if (!v.ortho) {
+        static const signed char turn7[3][3] = {{2, 3, 6}, {3, -6, 2}, {6, 2, -3}};
+        unsigned k;
+        light_position(s, l, &v.c);
+        for (k = 0; k < 3; k++) {
+            v.frame[k].x = RAD_REAL_RATIO(turn7[k][0], 7);
+            v.frame[k].y = RAD_REAL_RATIO(turn7[k][1], 7);
+            v.frame[k].z = RAD_REAL_RATIO(turn7[k][2], 7);
+        }
+        weight_sums(&v);
+        shoot_view(s, &v, &b, 1);
+    } else if (l->radius == 0) {
+        rad__normalize(l->direction, &v.dir);
+        shoot_view(s, &v, &b, 1);
+    } else {
+        rad_vec3_t d0, f[3];
+        uint32_t k;
+        rad__normalize(l->direction, &d0);
+        rad__cube_frame(d0, 0, f);
+        for (k = 0; k < SUN_SAMPLES; k++) { /* d0 + radius (x f0 + y f1) */
+            const int32_t sg = k < SUN_SAMPLES / 2u ? 1 : -1;
+            rad_real_t x = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][0], 65536), 0);
+            rad_real_t y = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][1], 65536), 0);
+            rad_vec3_t d;
+            d.x = d0.x + rad__mul(x, f[0].x, 0) + rad__mul(y, f[1].x, 0);
+            d.y = d0.y + rad__mul(x, f[0].y, 0) + rad__mul(y, f[1].y, 0);
+            d.z = d0.z + rad__mul(x, f[0].z, 0) + rad__mul(y, f[1].z, 0);
+            rad__normalize(d, &v.dir);
+            shoot_view(s, &v, &b, SUN_SAMPLES);
+        }
+    }
+    s->cube_built = 0; /* a coarse cube's tables lay in the depth buffer */
+}
+
+int rad__lights_shoot(rad_scene_t *s, uint32_t max)
+{
+    uint32_t k, n = 0;
+    rad_vec3_t c;
+    for (k = s->lights_shot; k < s->n_lights; k++)
+        if (s->lights[k].type != RAD_LIGHT_SUN && !light_position(s, &s->lights[k], &c))
+            return RAD_ERR_RANGE;
+    for (; n < max && rad__lights_pending(s); n++) shoot_light(s, &s->lights[s->lights_shot++]);
+    return (int)n;
+}
+
+int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+{
+    int lit, rest;
+    rad__freeze(s);
+    lit = rad__lights_shoot(s, max_shots); /* before any patch: their power joins emitted */
+    if (lit < 0 || (uint32_t)lit >= max_shots) return lit;
+    rest = rad__shoot(s, 0, max_shots - (uint32_t)lit, tol);
+    return rest < 0 ? rest : lit + rest;
+}
+
+/* The irradiance of point light L at the nearest plane of a surface it faces, in the
+ * caller's units (the core's lengths are the caller's times 2^length_shift): at least
+ * that of any point of the scene. 0 when it faces none. */
+static rad_real_t brightest(const rad_rgb_t *c)
+{
+    rad_real_t m = c->r > c->g ? c->r : c->g;
+    return m > c->b ? m : c->b;
+}
+
+static rad_real_t point_peak(const rad_scene_t *s, const rad_light_t *l)
+{
+    rad_real_t dmin = -1, d2;
+    rad_vec3_t c;
+    uint32_t k[4], sat = 0, j;
+    view_t v;
+    if (!light_position(s, l, &c)) return 0; /* rad_shoot refuses it */
+    v.ortho = 0;
+    v.c = c;
+    for (j = 0; j < s->n_surfaces; j++) {
+        const rad_surface_t *sf = &s->pools.surfaces[j];
+        unsigned n = rad__surface_corners(s, sf, k);
+        rad_real_t d;
+        if (!faces_light(s, &v, sf, k, n)) continue;
+        d = rad__dot_unit(rad__sub(c, s->pools.vertices[k[0]]), sf->normal);
+        if (d < 0) d = -d;
+        if (dmin < 0 || d < dmin) dmin = d;
+    }
+    if (dmin < 0) return 0;
+    d2 = rad__scale2(rad__mul(dmin, dmin, &sat), -2 * s->length_shift, &sat);
+    if (!(d2 > 0)) return RAD__Q(32767.0);
+    return rad__div(brightest(&l->intensity), d2, &sat);
+}
+
+rad_real_t rad__lights_peak(const rad_scene_t *s)
+{
+    rad_real_t m = 0, p;
+    uint32_t k;
+    for (k = 0; k < s->n_lights; k++) {
+        const rad_light_t *l = &s->lights[k];
+        p = l->type == RAD_LIGHT_SUN ? brightest(&l->intensity) : point_peak(s, l);
+        if (p > m) m = p;
+    }
+    return m;
+}

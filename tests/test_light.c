@@ -1,0 +1,696 @@
+/* SPDX-License-Identifier: MIT */
+/* Lights (lib/light.c) in both builds, against closed forms: a plane under the sun
+ * receives E cos t; a box's shadow on the ground has the area of its projection; a
+ * point light gives each element I times its solid angle (I cos t / r^2 over a small
+ * element); a spot gives nothing outside its cone and the point light's light inside;
+ * one-sided faces neither receive nor shadow from behind; the twin against the fixed
+ * build; bad input.
+ *
+ * Bounds on pixel coverage (both lights): a convex outline covers the pixels whose
+ * centres it holds, so in each row of pixels it crosses the count differs from the
+ * outline's length at the row's centre by less than 1, and the rows' lengths sum to
+ * the area but for the two end rows, each off by at most half its length: |n - A| <
+ * H + W + 2 pixels, W and H its extents across and along the raster (rows or
+ * columns alike). W + H is half the integral of |n_x| + |n_y| around the outline, at
+ * most P / sqrt 2 for perimeter P, whichever way the raster is turned. Vertices are
+ * placed to 1/16 pixel: the outline moves by at most sqrt 2 / 32 pixel, the area by
+ * that times P. In units, with pixels of side p: |error| <= p P / sqrt 2 + 2 p^2 +
+ * P p sqrt 2 / 32. A sun's pixel side is 2 h / R, h at most half the diameter of the
+ * scene's projection; a point light's face pixel is 2 / R on the face plane at
+ * distance 1, of solid angle at most (2 / R)^2 c^3 (c the cosine to the face's axis),
+ * and the midpoint rule's error on c^3 is below 1 / R^2 of it. The fixed point's
+ * roundings (power, area, radiosity in Q16.16) add 1e-4.
+ *
+ * This file is compiled twice (Makefile: tests/float/test_light.o): with RAD_FLOAT=1 it
+ * defines the *_float scene function, without it the *_fixed one and the tests. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "check.h"
+#include "rad/rad.h"
+
+#if RAD_FLOAT
+#define TW(name) name##_float
+#else
+#define TW(name) name##_fixed
+#endif
+
+#define PI 3.14159265358979323846
+
+/* A scene in doubles: polygons (reflectance RHO, no emission) and lights. */
+typedef struct {
+    double v[4][3];
+    int n;
+} tpoly;
+typedef struct {
+    int type, res;
+    double pos[3], dir[3], i[3], cos_outer, cos_inner, radius;
+} tlight;
+typedef struct {
+    int res;                /* the scene's hemi-cube res */
+    double max_element;     /* and patch: 4 times that */
+    double rho;
+    const tpoly *polys;
+    int npolys;
+    const tlight *lights;
+    int nlights;
+    int shots;              /* 0: the lights' shots alone */
+    int band_rows;          /* rad_config_t.band_rows */
+} tscene;
+
+/* Per element: radiosity (caller units), area, corners (caller units), its polygon. */
+typedef struct {
+    int rc, n;
+    double b[4096][3], area[4096], corner[4096][4][3];
+    int ncorner[4096], poly[4096];
+    double unshot_before, unshot_after;
+    unsigned long saturations;
+} tres;
+
+int scene_light_fixed(const tscene *sc, tres *r);
+int scene_light_float(const tscene *sc, tres *r);
+
+/* ---- the scene, in this build of the core --------------------------------------- */
+
+#define NS 16
+#define NP 1024
+#define NE 4096
+#define NV 8192
+#define WRES 256
+
+typedef struct {
+    rad_surface_t surf[NS];
+    rad_patch_t patch[NP];
+    rad_element_t elem[NE];
+    rad_vec3_t vert[NV];
+    rad_light_t lights[4];
+    unsigned char work[RAD_WORK_BYTES(WRES, RAD_PIXELS_ALL(WRES), NV)];
+    rad_scene_t s;
+} world_t;
+
+static rad_vec3_t vec(const double *p)
+{
+    rad_vec3_t v;
+    v.x = RAD_REAL(p[0]);
+    v.y = RAD_REAL(p[1]);
+    v.z = RAD_REAL(p[2]);
+    return v;
+}
+
+/* W's pools and a work buffer at WRES under configuration C, and with LIGHTS its
+ * lights' array of 4. */
+static int world_init(world_t *w, const rad_config_t *c, int lights)
+{
+    rad_pools_t p = {.surfaces = w->surf, .max_surfaces = NS, .patches = w->patch, .max_patches = NP,
+                     .elements = w->elem, .max_elements = NE, .vertices = w->vert, .max_vertices = NV,
+                     .work = w->work, .work_bytes = sizeof w->work};
+    int rc = rad_init(&w->s, &p, c);
+    return rc == RAD_OK && lights ? rad_use_lights(&w->s, w->lights, 4) : rc;
+}
+
+int TW(scene_light)(const tscene *sc, tres *r)
+{
+    world_t *w = calloc(1, sizeof *w);
+    rad_config_t c;
+    rad_rgb_t rho;
+    double ls;
+    int i, k, rc;
+    if (!w) return -100;
+    memset(r, 0, sizeof *r);
+    memset(&c, 0, sizeof c);
+    c.max_element = RAD_REAL(sc->max_element);
+    c.max_patch = RAD_REAL(4 * sc->max_element);
+    c.res = (uint16_t)sc->res;
+    c.band_rows = (uint16_t)sc->band_rows;
+    rc = world_init(w, &c, 1);
+    rho.r = rho.g = rho.b = RAD_REAL(sc->rho);
+    for (i = 0; i < sc->npolys && rc >= 0; i++) {
+        rad_vec3_t v[4];
+        for (k = 0; k < sc->polys[i].n; k++) v[k] = vec(sc->polys[i].v[k]);
+        rc = rad_add_polygon(&w->s, v, (unsigned)sc->polys[i].n, &rho, NULL);
+    }
+    for (i = 0; i < sc->nlights && rc >= 0; i++) {
+        const tlight *t = &sc->lights[i];
+        rad_light_t l;
+        memset(&l, 0, sizeof l);
+        l.type = (uint16_t)t->type;
+        l.res = (uint16_t)t->res;
+        l.position = vec(t->pos);
+        l.direction = vec(t->dir);
+        l.intensity.r = RAD_REAL(t->i[0]);
+        l.intensity.g = RAD_REAL(t->i[1]);
+        l.intensity.b = RAD_REAL(t->i[2]);
+        l.cos_outer = RAD_REAL(t->cos_outer);
+        l.cos_inner = RAD_REAL(t->cos_inner);
+        l.radius = RAD_REAL(t->radius);
+        rc = rad_add_light(&w->s, &l);
+    }
+    if (rc < 0) {
+        free(w);
+        return rc;
+    }
+    r->unshot_before = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
+    rc = rad_shoot(&w->s, (uint32_t)(sc->shots ? sc->shots : sc->nlights), 0);
+    r->rc = rc;
+    r->unshot_after = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
+    ls = ldexp(1.0, -w->s.length_shift);
+    r->n = (int)w->s.n_elements;
+    for (i = 0; i < r->n; i++) {
+        const rad_element_t *el = &w->elem[i];
+        rad_rgb_t b;
+        rad_element_radiosity(&w->s, (uint32_t)i, 0, &b);
+        r->b[i][0] = RAD_TO_DOUBLE(b.r);
+        r->b[i][1] = RAD_TO_DOUBLE(b.g);
+        r->b[i][2] = RAD_TO_DOUBLE(b.b);
+        r->area[i] = RAD_TO_DOUBLE(el->area) * ls * ls;
+        r->poly[i] = (int)el->surface;
+        r->ncorner[i] = el->v[3] == RAD_INDEX_NONE ? 3 : 4;
+        for (k = 0; k < r->ncorner[i]; k++) {
+            const rad_vec3_t *q = &w->vert[el->v[k]];
+            r->corner[i][k][0] = RAD_TO_DOUBLE(q->x) * ls;
+            r->corner[i][k][1] = RAD_TO_DOUBLE(q->y) * ls;
+            r->corner[i][k][2] = RAD_TO_DOUBLE(q->z) * ls;
+        }
+    }
+    r->saturations = w->s.stats.saturations;
+    free(w);
+    return rc;
+}
+
+#if !RAD_FLOAT
+/* ---- the tests (fixed build's half) ---------------------------------------------- */
+
+static tres res_fixed, res_float;
+
+/* A square of side 2 S in y = Y centred on (CX, CZ), facing up (or down). */
+static tpoly ground(double cx, double y, double cz, double s, int up)
+{
+    tpoly q = {{{cx - s, y, cz - s}, {cx - s, y, cz + s}, {cx + s, y, cz + s}, {cx + s, y, cz - s}}, 4};
+    if (!up) {
+        double t[3];
+        memcpy(t, q.v[1], sizeof t);
+        memcpy(q.v[1], q.v[3], sizeof t);
+        memcpy(q.v[3], t, sizeof t);
+    }
+    return q;
+}
+
+static double dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* The element's received irradiance from its radiosity (channel 0). */
+static double irradiance(const tres *r, int e, double rho)
+{
+    return r->b[e][0] / rho;
+}
+
+/* The coverage bound above, in units^2, for an outline of perimeter P at pixel side PX. */
+static double coverage(double p, double px)
+{
+    return px * p / sqrt(2.0) + 2 * px * px + p * px * sqrt(2.0) / 32;
+}
+
+/* The sun's largest pixel side: the scene's projection across DIR (unit) has a
+ * diameter at most that of the corners' projections; the window is at most that wide. */
+static double sun_pixel(const tpoly *polys, int n, const double *dir, int res)
+{
+    double d = 0;
+    int i, j, a, b;
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++)
+            for (a = 0; a < polys[i].n; a++)
+                for (b = 0; b < polys[j].n; b++) {
+                    double v[3], t, l;
+                    int k;
+                    for (k = 0; k < 3; k++) v[k] = polys[i].v[a][k] - polys[j].v[b][k];
+                    t = dot3(v, dir);
+                    for (k = 0; k < 3; k++) v[k] -= t * dir[k];
+                    l = sqrt(dot3(v, v));
+                    if (l > d) d = l;
+                }
+    return d / res;
+}
+
+/* A plane of 32 x 32 under a sun at angle T from its normal receives E cos t in all,
+ * and each element its E cos t, within the coverage bounds. */
+static void test_sun_plane(void **state)
+{
+    static const double angles[] = {0.0, 30.0, 45.0, 60.0, 75.0};
+    const double e0 = 100.0, rho = 0.5;
+    unsigned a;
+    (void)state;
+    for (a = 0; a < sizeof angles / sizeof angles[0]; a++) {
+        double t = angles[a] * PI / 180, total = 0, want, px, worst = 0;
+        tpoly pl = ground(0, 0, 0, 16, 1);
+        tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
+        tscene sc = {64, 1.0, rho, &pl, 1, &sun, 1, 0, 0};
+        double dir[3] = {sin(t), -cos(t), 0}, pproj, aproj;
+        int e;
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot at %g degrees", angles[a]);
+        px = sun_pixel(&pl, 1, dir, 1024);
+        /* the plane's projection: 32 cos t by 32 */
+        aproj = 32 * 32 * cos(t);
+        pproj = 2 * (32 + 32 * cos(t));
+        for (e = 0; e < res_fixed.n; e++) {
+            double ee = irradiance(&res_fixed, e, rho), pe, ae = res_fixed.area[e] * cos(t), bound;
+            total += ee * res_fixed.area[e];
+            /* an element of side 1: projected 1 by cos t */
+            pe = 2 * (1 + cos(t));
+            bound = coverage(pe, px) / ae + 1e-4;
+            if (fabs(ee / (e0 * cos(t)) - 1) / bound > worst) worst = fabs(ee / (e0 * cos(t)) - 1) / bound;
+            CHECK_NEAR(ee, e0 * cos(t), e0 * cos(t) * bound, "element %d's irradiance under a sun at %g degrees", e,
+                       angles[a]);
+        }
+        want = e0 * aproj;
+        print_message("sun at %g degrees: plane power %.6g, E cos t A %.6g (%+.4f%%, bound %.4f%%); elements at "
+                      "most %.2f of their bound\n",
+                      angles[a], total, want, 100 * (total / want - 1),
+                      100 * (coverage(pproj, px) / aproj + 1e-4), worst);
+        CHECK_NEAR(total, want, want * (coverage(pproj, px) / aproj + 1e-4),
+                   "the plane's power under a sun at %g degrees", angles[a]);
+        /* the bound is within 0.5% up to 45 degrees at R = 1024 (0.503% at 60, 0.7% at 75) */
+        if (angles[a] <= 45)
+            CHECK_LE(coverage(pproj, px) / aproj + 1e-4, 0.005, "the plane's bound at %g degrees", angles[a]);
+    }
+}
+
+/* The box's outline on the ground along the sun's direction: the box [-4, 4] x [0, 8]
+ * x [-4, 4] under a sun tilted by T about z towards +x has the shadow x in
+ * [-4, 4 + 8 tan t], z in [-4, 4] (its own footprint included). */
+static void test_box_shadow(void **state)
+{
+    const double e0 = 50.0, rho = 0.5, t = 30 * PI / 180, s = 4;
+    tpoly p[6];
+    double dir[3] = {sin(t), -cos(t), 0}, px, got = 0, lit, shadow, err;
+    tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
+    tscene sc = {64, 1.0, rho, p, 6, &sun, 1, 0, 0};
+    int e, dark = 0;
+    (void)state;
+    p[0] = ground(0, 0, 0, 24, 1);
+    p[1] = ground(0, 2 * s, 0, s, 1); /* the box's top */
+    /* its sides, facing out */
+    p[2] = (tpoly){{{s, 0, -s}, {s, 2 * s, -s}, {s, 2 * s, s}, {s, 0, s}}, 4};
+    p[3] = (tpoly){{{-s, 0, -s}, {-s, 0, s}, {-s, 2 * s, s}, {-s, 2 * s, -s}}, 4};
+    p[4] = (tpoly){{{-s, 0, s}, {s, 0, s}, {s, 2 * s, s}, {-s, 2 * s, s}}, 4};
+    p[5] = (tpoly){{{-s, 0, -s}, {-s, 2 * s, -s}, {s, 2 * s, -s}, {s, 0, -s}}, 4};
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot over the box");
+    px = sun_pixel(p, 6, dir, 1024);
+    for (e = 0; e < res_fixed.n; e++) {
+        double c[3] = {0, 0, 0};
+        int k;
+        if (res_fixed.poly[e] != 0) continue;
+        got += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+        for (k = 0; k < 4; k++) {
+            c[0] += res_fixed.corner[e][k][0] / 4;
+            c[2] += res_fixed.corner[e][k][2] / 4;
+        }
+        /* an element well inside the shadow (a pixel and a half from its edge) */
+        if (c[0] > -s + 1.5 && c[0] < s + 8 * tan(t) - 1.5 && fabs(c[2]) < s - 1.5) {
+            dark++;
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "ground element %d inside the shadow", e);
+        }
+    }
+    CHECK_INT_GE(dark, 20, "ground elements inside the shadow");
+    shadow = 2 * s * (2 * s + 2 * s * tan(t));
+    lit = e0 * cos(t) * (48 * 48 - shadow);
+    /* the ground's outline and the shadow's, projected (cos t across x) */
+    err = coverage(2 * (48 + 48 * cos(t)), px) + coverage(2 * (2 * s + (2 * s + 2 * s * tan(t)) * cos(t)), px);
+    print_message("box shadow: ground power %.6g, E cos t (A - shadow %.4g) %.6g (%+.4f%%, bound %.4f%%)\n", got,
+                  shadow, lit, 100 * (got / lit - 1), 100 * (err / (48 * 48 * cos(t) - shadow * cos(t)) + 1e-4));
+    CHECK_NEAR(got, lit, e0 * err + lit * 1e-4, "the ground's power beside the box's shadow");
+}
+
+/* The solid angle of the triangle A, B, C seen from the origin (Van Oosterom &
+ * Strackee 1983). */
+static double tri_solid(const double *a, const double *b, const double *c)
+{
+    double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
+    double bc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
+    double num = dot3(a, bc), den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
+    return fabs(2 * atan2(num, den));
+}
+
+/* The solid angle of polygon C (N corners) from P, and its extent on the face plane of
+ * axes (A, B, D) in face pixels at resolution R (width plus height), its largest c^3. */
+static double poly_solid(const double (*c)[3], int n, const double *p, const double *fa, const double *fb,
+                         const double *fd, int res, double *wh, double *c3max)
+{
+    double v[4][3], lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9}, om = 0;
+    int k, j;
+    *c3max = 0;
+    for (k = 0; k < n; k++) {
+        double d, x, y, cc;
+        for (j = 0; j < 3; j++) v[k][j] = c[k][j] - p[j];
+        d = dot3(v[k], fd);
+        x = dot3(v[k], fa) / d;
+        y = dot3(v[k], fb) / d;
+        cc = pow(1 + x * x + y * y, -1.5);
+        if (cc > *c3max) *c3max = cc;
+        lo[0] = fmin(lo[0], x);
+        hi[0] = fmax(hi[0], x);
+        lo[1] = fmin(lo[1], y);
+        hi[1] = fmax(hi[1], y);
+    }
+    for (k = 1; k + 1 < n; k++) om += tri_solid(v[0], v[k], v[k + 1]);
+    *wh = (hi[0] - lo[0] + hi[1] - lo[1]) * res / 2;
+    /* c^3 is largest at the face's centre: if the outline holds it, 1 */
+    if (lo[0] < 0 && hi[0] > 0 && lo[1] < 0 && hi[1] > 0) *c3max = 1;
+    return om;
+}
+
+/* The point light's face looking down: the cube's frame is the rotation of rows
+ * (2, 3, 6) / 7, (3, -6, 2) / 7, (6, 2, -3) / 7 (light.c), and face 3 looks along its
+ * second axis with the first across and the third up. */
+static const double FA[3] = {2.0 / 7, 3.0 / 7, 6.0 / 7}, FB[3] = {6.0 / 7, 2.0 / 7, -3.0 / 7},
+                    FD[3] = {3.0 / 7, -6.0 / 7, 2.0 / 7};
+
+/* A point light at height 8 over a patch of ground inside its downward face: each
+ * element gets I times its solid angle, I cos t / r^2 at a small element's centre. */
+static void test_point_plane(void **state)
+{
+    const double i0 = 640.0, rho = 0.5, lp[3] = {0, 8, 0};
+    const int r = 512;
+    /* the face's axis meets the ground at (4, 0, 8 / 3) */
+    tpoly pl = ground(4, 0, 8.0 / 3, 3, 1);
+    tlight pt = {RAD_LIGHT_POINT, r, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
+    tscene sc = {64, 1.0, rho, &pl, 1, &pt, 1, 0, 0};
+    double worst = 0, worst_rel = 0, tot = 0, tot_want = 0, s2 = 0;
+    int e;
+    (void)state;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the point light's shot");
+    for (e = 0; e < res_fixed.n; e++) {
+        double wh, c3, om = poly_solid((const double(*)[3])res_fixed.corner[e], res_fixed.ncorner[e], lp, FA, FB, FD,
+                                       r, &wh, &c3);
+        double want = i0 * om / res_fixed.area[e], got = irradiance(&res_fixed, e, rho);
+        double dw = 4.0 / ((double)r * r) * c3, bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
+        double c[3] = {0, 0, 0}, rr, ct;
+        int k, j;
+        for (k = 0; k < 4; k++)
+            for (j = 0; j < 3; j++) c[j] += (res_fixed.corner[e][k][j] - lp[j]) / 4;
+        rr = dot3(c, c);
+        ct = -c[1] / sqrt(rr);
+        tot += got * res_fixed.area[e];
+        tot_want += i0 * om;
+        if (fabs(got / want - 1) / bound > worst) worst = fabs(got / want - 1) / bound;
+        if (fabs(got / want - 1) > worst_rel) worst_rel = fabs(got / want - 1);
+        s2 += (got / want - 1) * (got / want - 1);
+        if (getenv("DBG")) print_message("e %d c %.2f %.2f ratio %.4f bound %.4f wh %.1f\n", e, c[0], c[2], got / want, bound, wh);
+        if (getenv("DBG")) continue;
+        CHECK_NEAR(got, want, want * bound, "element %d: I x solid angle / area", e);
+        /* a unit element at distance >= 8: I cos t / r^2 at its centre within 1% */
+        CHECK_NEAR(want, i0 * ct / rr, i0 * ct / rr * 0.01, "element %d: I cos t / r^2", e);
+    }
+    print_message("point light: %d elements within %.3f%% (rms %.3f%%) of I w / A (at most %.2f of their bounds); "
+                  "plane power %+.4f%%\n",
+                  res_fixed.n, 100 * worst_rel, 100 * sqrt(s2 / res_fixed.n), worst, 100 * (tot / tot_want - 1));
+    {
+        double wh, c3, om = poly_solid((const double(*)[3])pl.v, 4, lp, FA, FB, FD, r, &wh, &c3);
+        double dw = 4.0 / ((double)r * r) * c3, bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
+        print_message("point light: the plane's solid angle %.6f, bound %.4f%%\n", om, 100 * bound);
+        CHECK_NEAR(tot, tot_want, tot_want * bound, "the plane's power against I times its solid angle");
+    }
+}
+
+/* A spot pointing down with a cone of 30 degrees (inner 20): nothing beyond the cone,
+ * the point light's light inside the inner cone. */
+static void test_spot_cone(void **state)
+{
+    const double i0 = 200.0, rho = 0.5, co = cos(30 * PI / 180), ci = cos(20 * PI / 180);
+    const double lp[3] = {0, 8, 0};
+    tpoly pl = ground(0, 0, 0, 16, 1);
+    tlight sp = {RAD_LIGHT_SPOT, 256, {0, 8, 0}, {0, -1, 0}, {i0, i0, i0}, co, ci, 0};
+    tlight pt = {RAD_LIGHT_POINT, 256, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
+    tscene sc = {64, 1.0, rho, &pl, 1, &sp, 1, 0, 0};
+    double px = 2.0 / 256; /* a face pixel's angle, at most */
+    int e, outside = 0, inside = 0;
+    (void)state;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the spot's shot");
+    sc.lights = &pt;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_float), 1, "the point light's shot"); /* (fixed too) */
+    for (e = 0; e < res_fixed.n; e++) {
+        double amin = 1e9, amax = 0;
+        int k;
+        for (k = 0; k < 4; k++) {
+            double v[3] = {res_fixed.corner[e][k][0] - lp[0], res_fixed.corner[e][k][1] - lp[1],
+                           res_fixed.corner[e][k][2] - lp[2]};
+            double a = acos(-v[1] / sqrt(dot3(v, v)));
+            amin = fmin(amin, a);
+            amax = fmax(amax, a);
+        }
+        if (amin > acos(co) + px) {
+            outside++;
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d beyond the cone (%.2f degrees)", e,
+                     amin * 180 / PI);
+        } else if (amax < acos(ci) - px) {
+            inside++;
+            CHECK_NEAR(irradiance(&res_fixed, e, rho), irradiance(&res_float, e, rho),
+                       irradiance(&res_float, e, rho) * 1e-4, "element %d inside the inner cone", e);
+        } else {
+            CHECK_LE(irradiance(&res_fixed, e, rho), irradiance(&res_float, e, rho) * (1 + 1e-4),
+                     "element %d in the falloff", e);
+        }
+    }
+    print_message("spot: %d elements beyond the cone dark, %d inside the inner cone as the point light\n", outside,
+                  inside);
+    CHECK_INT_GE(outside, 500, "elements beyond the cone");
+    CHECK_INT_GE(inside, 10, "elements inside the inner cone");
+}
+
+/* One-sided: a face turned away from the light receives nothing, and does not shadow
+ * what lies behind it. */
+static void test_one_sided(void **state)
+{
+    const double e0 = 80.0, rho = 0.5;
+    tpoly p[2];
+    tlight sun = {RAD_LIGHT_SUN, 512, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, 0};
+    tlight pt = {RAD_LIGHT_POINT, 128, {0, -4, 0}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
+    tscene sc = {64, 2.0, rho, p, 2, &sun, 1, 0, 0};
+    int e, lower = 0;
+    (void)state;
+    p[0] = ground(0, 0, 0, 8, 1);  /* facing the sun */
+    p[1] = ground(0, 4, 0, 4, 0);  /* above it, facing down: away from the sun */
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot");
+    for (e = 0; e < res_fixed.n; e++) {
+        if (res_fixed.poly[e] == 1)
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d of the face turned away", e);
+        else {
+            lower++;
+            CHECK_NEAR(irradiance(&res_fixed, e, rho), e0, e0 * 0.08,
+                       "element %d under a face turned away (side 2 at pixel 16 / 512: coverage bound 8%%)", e);
+        }
+    }
+    CHECK_INT_GE(lower, 16, "elements of the lower face");
+    /* a point light below the ground: the ground faces away from it */
+    sc.lights = &pt;
+    sc.npolys = 1;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the point light's shot");
+    for (e = 0; e < res_fixed.n; e++)
+        CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d lit from behind", e);
+}
+
+/* The twin against the fixed build on a sun and a spot, after bounces: the same pixels
+ * up to rounding, so each element within 0.5% plus two of each light's pixels (where an
+ * outline passes within rounding of a pixel centre, the pixel may change hands: a sun
+ * pixel brings rho E p^2, a spot's rho I (2 / R)^2 at most), and the total within 5e-4:
+ * the builds' sun windows differ by the fixed build's rounding of a tile's half width
+ * (up to 5 LSB, 2e-5 of it at 4 tiles of 64 here), which moves the pixel grid and so
+ * the pixels along every outline (measured 1.2e-4 of the total). */
+static void test_twin(void **state)
+{
+    const double t = 40 * PI / 180, rho = 0.6;
+    tpoly p[3];
+    tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0.05},
+                   {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9, 0}};
+    tscene sc = {64, 1.0, rho, p, 3, l, 2, 40, 0};
+    double sf = 0, sx = 0, worst = 0, px, dir[3];
+    int e;
+    (void)state;
+    p[0] = ground(0, 0, 0, 12, 1);
+    p[1] = ground(0, 3, 0, 2, 1);
+    p[2] = (tpoly){{{-12, 0, -12}, {-12, 8, -12}, {12, 8, -12}, {12, 0, -12}}, 4};
+    memcpy(dir, l[0].dir, sizeof dir);
+    for (e = 0; e < 3; e++) dir[e] /= sqrt(dot3(l[0].dir, l[0].dir));
+    px = sun_pixel(p, 3, dir, 256);
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 40, "the fixed build's shots");
+    CHECK_INT_EQ(scene_light_float(&sc, &res_float), 40, "the twin's shots");
+    CHECK_INT_EQ(res_fixed.n, res_float.n, "elements");
+    for (e = 0; e < res_fixed.n; e++) {
+        int c;
+        for (c = 0; c < 3; c++) {
+            double a = res_fixed.b[e][c], b = res_float.b[e][c];
+            double pix = 2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) / res_float.area[e];
+            double allowed = 0.005 * b + pix;
+            sx += a * res_fixed.area[e];
+            sf += b * res_float.area[e];
+            if (fabs(a - b) / allowed > worst) worst = fabs(a - b) / allowed;
+            CHECK_NEAR(a, b, allowed, "element %d channel %d against the twin", e, c);
+        }
+    }
+    print_message("twin: elements at most %.3f of their bound, total %+.6f%%\n", worst, 100 * (sx / sf - 1));
+    CHECK_NEAR(sx, sf, sf * 5e-4, "the total power against the twin");
+}
+
+/* A sun of angular radius atan 1/4 straight down over a ground half under a roof at
+ * height 8, the roof's edge along z at x = 0: its 16 directions (rad.h) shift the
+ * shadow's edge by at most 8 x 1/4 x 0.97 = 1.95, in opposite pairs, so the ground
+ * is dark for x < -1.95, fully lit for x > 1.95 (E times the directions' mean cosine
+ * c), in between partly, and in all gets E c times its area less the roof's shadow,
+ * 16 x 16 (the shifts cancel), within the coverage bound of its outline and the
+ * shadow's edge, 1e-4 for the rounding of the directions (Q16 cosines). */
+static void test_sun_radius(void **state)
+{
+    static const double disc[8][2] = {{16384, 0},      {-20925, 19169}, {3203, -36495},  {26375, 34401},
+                                      {-48401, -8561}, {45849, -29166}, {-15336, 57048}, {-29247, -56313}};
+    const double e0 = 40, rho = 0.5, rad = 0.25;
+    tpoly p[2];
+    tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, rad};
+    tscene sc = {64, 1.0, rho, p, 2, &sun, 1, 0, 0};
+    /* the window: at most the diameter of the scene's projection (40 x 40, tilted by
+     * up to 1/4 either way: 2 x 8 / 4 more) over R */
+    const double px = sqrt(2.0) * (40 + 4) / 1024;
+    double c = 0, got = 0, want, err, worst = 0;
+    int e, k, dark = 0, lit = 0, part = 0;
+    (void)state;
+    p[0] = (tpoly){{{-16, 0, -8}, {-16, 0, 8}, {16, 0, 8}, {16, 0, -8}}, 4};
+    p[1] = (tpoly){{{-24, 8, -20}, {-24, 8, 20}, {0, 8, 20}, {0, 8, -20}}, 4};
+    for (k = 0; k < 8; k++) c += 2 / sqrt(1 + rad * rad * (disc[k][0] * disc[k][0] + disc[k][1] * disc[k][1]) /
+                                              65536.0 / 65536.0) / 16;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot");
+    for (e = 0; e < res_fixed.n; e++) {
+        double x0 = 1e9, x1 = -1e9, ee = irradiance(&res_fixed, e, rho);
+        if (res_fixed.poly[e] != 0) continue;
+        for (k = 0; k < 4; k++) {
+            x0 = fmin(x0, res_fixed.corner[e][k][0]);
+            x1 = fmax(x1, res_fixed.corner[e][k][0]);
+        }
+        got += ee * res_fixed.area[e];
+        if (x1 < -1.95 - 0.1) { /* a tenth for the pixels */
+            dark++;
+            CHECK_LE(ee, 0, "ground element %d (x %.2f..%.2f) in the umbra", e, x0, x1);
+        } else if (x0 > 1.95 + 0.1) {
+            lit++;
+            /* a unit element's coverage bound, in each of the 16 shots */
+            worst = fmax(worst, fabs(ee / (e0 * c) - 1));
+            CHECK_NEAR(ee, e0 * c, e0 * c * (coverage(4, px) + 1e-4), "ground element %d (x %.2f..%.2f) in full sun",
+                       e, x0, x1);
+        } else if (ee > 0.05 * e0 && ee < 0.95 * e0 * c) {
+            part++;
+        }
+    }
+    err = e0 * c * (coverage(2 * (32 + 16), px) + coverage(2 * (16 + 16), px));
+    want = e0 * c * 16 * 16;
+    print_message("sun of radius 1/4: %d elements dark, %d lit (within %.3f%%, bound %.2f%%), %d in the penumbra; "
+                  "ground power %.6g, E c 16 x 16 %.6g (%+.4f%%, bound %.4f%%)\n",
+                  dark, lit, 100 * worst, 100 * (coverage(4, px) + 1e-4), part, got, want, 100 * (got / want - 1),
+                  100 * (err / want + 1e-4));
+    CHECK_INT_GE(dark, 150, "elements in the umbra");
+    CHECK_INT_GE(lit, 150, "elements in full sun");
+    CHECK_INT_GE(part, 32, "elements in the penumbra, partly lit");
+    CHECK_NEAR(got, want, err + want * 1e-4, "the ground's power under a sun of radius 1/4");
+}
+
+/* A work buffer used in bands of rows gives the same bits (each pixel's element depends
+ * on its own span alone): a sun at 4 res and a point light at res, in bands of 3 rows. */
+static void test_bands(void **state)
+{
+    tpoly p[2];
+    tlight l[2] = {{RAD_LIGHT_SUN, 0, {0, 0, 0}, {0.3, -1, 0.2}, {30, 20, 10}, 0, 0, 0},
+                   {RAD_LIGHT_POINT, 0, {-3, 6, 2}, {0, 0, 0}, {90, 90, 60}, 0, 0, 0}};
+    tscene sc = {32, 1.0, 0.5, p, 2, l, 2, 0, 0};
+    int e, c;
+    (void)state;
+    p[0] = ground(0, 0, 0, 12, 1);
+    p[1] = ground(1, 3, 0, 2, 1);
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 2, "the lights' shots, all faces at once");
+    sc.band_rows = 3;
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_float), 2, "the lights' shots in bands of 3 rows");
+    for (e = 0; e < res_fixed.n; e++)
+        for (c = 0; c < 3; c++)
+            CHECK_NEAR(res_float.b[e][c], res_fixed.b[e][c], 0, "element %d channel %d in bands", e, c);
+}
+
+/* Unshot fraction 1 before the lights shoot; bad lights refused with the scene unchanged. */
+static void test_api(void **state)
+{
+    static world_t w;
+    rad_config_t c = {0};
+    rad_light_t l, arr[2];
+    rad_rows_t rows;
+    (void)state;
+    memset(&w, 0, sizeof w);
+    CHECK_INT_EQ(world_init(&w, &c, 0), RAD_OK, "init");
+    memset(&l, 0, sizeof l);
+    l.type = RAD_LIGHT_SUN;
+    l.direction.y = RAD_REAL(-1);
+    l.intensity.r = RAD_REAL(1);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_STATE, "a light before rad_use_lights");
+    CHECK_INT_EQ(rad_use_lights(&w.s, NULL, 2), RAD_ERR_ARG, "no array");
+    CHECK_INT_EQ(rad_use_lights(&w.s, arr, 2), RAD_OK, "the array");
+    CHECK_INT_EQ(rad_use_lights(&w.s, arr, 2), RAD_ERR_STATE, "a second array");
+    l.type = 7;
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_ARG, "an unknown type");
+    l.type = RAD_LIGHT_SUN;
+    l.res = 9;
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_ARG, "an odd res");
+    l.res = 0;
+    l.direction.y = 0;
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_ARG, "a zero direction");
+    l.direction.y = RAD_REAL(-1);
+    l.intensity.g = RAD_REAL(-1);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a negative intensity");
+    l.intensity.g = RAD_REAL(5000);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "an intensity beyond 4096");
+    l.intensity.g = 0;
+    l.radius = RAD_REAL(0.3);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a sun's radius beyond 1/4");
+    l.radius = 0;
+    l.type = RAD_LIGHT_SPOT;
+    l.cos_outer = RAD_REAL(0.9);
+    l.cos_inner = RAD_REAL(0.8);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a spot's inner cone wider than its outer");
+    l.type = RAD_LIGHT_POINT;
+    l.position.x = RAD_REAL(8193);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a point beyond RAD_INPUT_LIMIT");
+    l.position.x = 0;
+    l.position.y = RAD_REAL(2);
+    CHECK_INT_EQ(w.s.n_lights, 0, "lights after refusals");
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), 0, "a point light");
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), 1, "a second");
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_FULL, "a third in an array of two");
+    {
+        rad_vec3_t v[4] = {{RAD_REAL(-4), 0, RAD_REAL(-4)}, {RAD_REAL(-4), 0, RAD_REAL(4)},
+                           {RAD_REAL(4), 0, RAD_REAL(4)}, {RAD_REAL(4), 0, RAD_REAL(-4)}};
+        rad_rgb_t rho = {RAD_REAL(0.5), RAD_REAL(0.5), RAD_REAL(0.5)};
+        CHECK_INT_EQ(rad_add_polygon(&w.s, v, 4, &rho, NULL), 0, "the ground");
+    }
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction before the lights shoot");
+    memset(&rows, 0, sizeof rows);
+    CHECK_INT_EQ(rad_rows_shoot(&w.s, &rows, 10, 0), RAD_ERR_STATE, "stored rows with lights");
+    CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the first light's shot");
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction with a light still to shoot");
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_STATE, "a light while solving");
+    CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the second light's shot");
+    CHECK_LT(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, "unshot fraction after the lights");
+    CHECK_INT_EQ(rad_restart(&w.s), RAD_OK, "restart");
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "lights shoot again after a restart");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sun_plane), cmocka_unit_test(test_box_shadow), cmocka_unit_test(test_point_plane),
+        cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_one_sided),  cmocka_unit_test(test_twin),
+        cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
+#endif
