@@ -92,6 +92,7 @@ typedef struct {
     int allow_outside;              /* --allow-outside-paths: inputs outside the scene's
                                        folder, --views outputs outside the current one */
     int two_sided;                  /* --two-sided: every face doubled, back to back */
+    int no_file_lights;             /* --no-file-lights: the scene file's lights left out */
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
@@ -154,6 +155,8 @@ typedef struct {
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
     struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */
+    sc_light *lights;               /* --sun, --point, --spot, then the scene file's lights */
+    int nlights;
 } run_t;
 
 /* ---- options.c ---- */

@@ -118,6 +118,10 @@ static void opt_csv(opts_t *o, const char *opt, const char *val) { (void)opt, o-
 static void opt_gltf(opts_t *o, const char *opt, const char *val) { (void)opt, o->gltf = val; }
 static void opt_no_textures(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_textures = 1; }
 static void opt_two_sided(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->two_sided = 1; }
+static void opt_no_file_lights(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt, (void)val, o->no_file_lights = 1;
+}
 
 static void opt_res(opts_t *o, const char *opt, const char *val)
 {
@@ -375,6 +379,9 @@ static const option_t options[] = {
      "a spot light at X,Y,Z pointing along DX,DY,DZ: a point light\n"
      "inside the cone of half angle ANGLE degrees, dark outside;\n"
      "SOFTNESS (0..1, 0) of the angle fades out (repeatable)", opt_spot},
+    {"--no-file-lights", NULL, NULL,
+     "leave out the lights a glTF, FBX, COLLADA or 3DS scene holds\n"
+     "(by default they shine, after --sun, --point and --spot)", opt_no_file_lights},
     SECTION("stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
             "no hemi-cube):"),
     {"--save-ff", NULL, "FILE", "compute all rows, save them to FILE, solve from them", opt_save_ff},

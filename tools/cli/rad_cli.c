@@ -17,6 +17,7 @@
 #include "host/gltf_export.h"
 #include "host/obj_polys.h"
 #include "host/tex_render.h"
+#include "rad/rad.h"
 #include "progress.h"
 
 /* ---- load: the scene, --emit, the light groups, the views and frames ------------- */
@@ -255,6 +256,39 @@ static int load_textures(run_t *r)
     return 0;
 }
 
+/* The lights: --sun, --point and --spot's, then the scene file's (obj_scene.lights,
+ * unless --no-file-lights), which stored form factors do not take yet, as the options'.
+ * 0 or -1 (said). */
+static int gather_lights(run_t *r)
+{
+    const opts_t *o = r->o;
+    int i, nfile = o->no_file_lights ? 0 : r->sc.nlights;
+    if (nfile && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate)) {
+        fprintf(stderr, PROG ": %s: the scene's %d lights do not work with stored form factors yet (--save-ff, "
+                        "--load-ff, --solver gauss-seidel, --light-group, --animate): add --no-file-lights\n",
+                o->scene, nfile);
+        return -1;
+    }
+    r->lights = calloc((size_t)(o->nlights + nfile) + 1, sizeof *r->lights);
+    if (!r->lights) {
+        fprintf(stderr, PROG ": out of memory\n");
+        return -1;
+    }
+    for (i = 0; i < o->nlights; i++) r->lights[r->nlights++] = o->lights[i];
+    for (i = 0; i < nfile; i++) {
+        const obj_light *l = &r->sc.lights[i];
+        sc_light *d = &r->lights[r->nlights++];
+        d->type = l->type == OBJ_LIGHT_SUN ? RAD_LIGHT_SUN : l->type == OBJ_LIGHT_POINT ? RAD_LIGHT_POINT
+                                                                                       : RAD_LIGHT_SPOT;
+        memcpy(d->pos, l->pos, sizeof d->pos);
+        memcpy(d->dir, l->dir, sizeof d->dir);
+        memcpy(d->rgb, l->rgb, sizeof d->rgb);
+        d->cos_outer = l->cos_outer;
+        d->cos_inner = l->cos_inner;
+    }
+    return 0;
+}
+
 /* The scene and everything that names its materials. 1: done (--list-materials). */
 /* Faces wound against their vn turned round (warned with the count), or with
  * --two-sided every face doubled back to back (both sides there: nothing to turn). */
@@ -302,9 +336,10 @@ static int load_step(run_t *r)
         return -1;
     }
     if (check_emissions(o, &r->sc) < 0) return -1;
+    if (gather_lights(r) < 0) return -1;
     for (i = 0; i < r->sc.nmaterials; i++)
         if (emits(&r->sc.materials[i])) emitters++;
-    if (!emitters && !o->nlights && !o->quiet)
+    if (!emitters && !r->nlights && !o->quiet)
         fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; set one with "
                         "--emit NAME=R,G,B (--list-materials shows them), or add --sun, --point or --spot\n",
                 o->scene);
@@ -408,8 +443,8 @@ static int build_step(run_t *r)
     r->so.max_element = o->max_element;
     cli_shot_settings(o, r->rows_mode, &r->so);
     r->so.no_overshoot = o->no_overshoot;
-    r->so.lights = o->lights;
-    r->so.nlights = o->nlights;
+    r->so.lights = r->lights;
+    r->so.nlights = r->nlights;
     r->s = sc_create(polys, npolys, &r->so, o->quiet ? NULL : glue_warning, r, err, sizeof err);
     r->polys = polys; /* kept for --export-gltf */
     r->npolys = npolys;
@@ -629,6 +664,7 @@ static void free_run(run_t *r)
     bake_free(r);
     if (r->s) sc_destroy(r->s);
     free(r->polys);
+    free(r->lights);
     for (g = 0; r->maps && g < r->sc.nmaterials; g++) tex_free(&r->maps[g]);
     free(r->maps);
     if (r->have_scene) obj_free(&r->sc);

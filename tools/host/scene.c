@@ -473,6 +473,16 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
         double k = (l->type == RAD_LIGHT_SUN ? 1.0 : h->scale * h->scale) * h->escale;
         double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
         c->type = (uint16_t)l->type;
+        /* A light shoots once, so its aliasing is not averaged over many shots as a
+         * patch's is: a point light over a floor of 2,592 elements at res 192 gave
+         * the direct light 11% rms (79% max) off I cos t / r^2 per element, at 4 res
+         * 1.2% (10%), in 0.2 s. The core's default is the scene's res (the same bits
+         * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
+         * that a point light's finer cube needs. A sun is 4 res by default. */
+        if (l->type != RAD_LIGHT_SUN) {
+            int r = 4 * (o->res ? o->res : 64);
+            c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
+        }
         to_core(h, l->pos, &c->position);
         if (d > 0) {
             c->direction.x = RAD_REAL(l->dir[0] / d);
