@@ -1013,6 +1013,27 @@ static void test_emit_lights_dark_scene(void **state)
 
 /* ---- 8. exit codes and messages ----------------------------------------------- */
 
+/* --help's sections: every heading (a line at the margin ending in ':') is followed
+ * by an option of its own, and no heading names a folder of the source. */
+static void check_help_sections(const char *out)
+{
+    const char *line = out;
+    int headings = 0;
+    while (*line) {
+        const char *end = strchr(line, '\n'), *next = end ? end + 1 : line + strlen(line);
+        size_t n = (size_t)(next - line) - (end ? 1u : 0u);
+        if (n > 1 && line[0] != ' ' && line[n - 1] == ':') {
+            char heading[256];
+            snprintf(heading, sizeof heading, "%.*s", (int)(n < 255 ? n : 255), line);
+            headings++;
+            CHECK_THAT(starts_with(next, "  -"), "--help's section \"%s\" has no option of its own", heading);
+            CHECK_LACKS(heading, "tools/", "--help's heading names a source folder");
+        }
+        line = next;
+    }
+    CHECK_INT_GE(headings, 5, "--help's sections");
+}
+
 /* Usage error: exit 2, "PROG: reason" first, the usage text, nothing on stdout. */
 static void expect_usage_error_at(const char *bin, const char *prog, const char *const *args, const char *file,
                                   int line)
@@ -1065,6 +1086,7 @@ static void test_usage_errors(void **state)
         expect_status(&r, 0);
         CHECK_THAT(starts_with(r.out, "usage: "), "%s --help prints the usage:\n%s", bin, r.out);
         assert_string_equal(r.err, "");
+        check_help_sections(r.out);
         run_free(&r);
     }
 }

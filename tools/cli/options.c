@@ -404,8 +404,7 @@ static const option_t options[] = {
      "frames from one visibility computation: each line\n"
      "'EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]' is a frame,\n"
      "written as -o's name + _0000, _0001, ... (PNG or PPM)", opt_animate},
-    SECTION("information:"),
-    SECTION("baking (tools/bake):"),
+    SECTION("baking (lightmaps and light probes):"),
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
@@ -414,6 +413,7 @@ static const option_t options[] = {
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
+    SECTION("information:"),
     {"--list-materials", NULL, NULL, "print materials with Kd, Ke and area, then exit", opt_list},
     {"--stats", NULL, NULL, "print counts, times, memory and the exposure used", opt_stats},
     {"--quiet", NULL, NULL, "no progress or warnings", opt_quiet},
