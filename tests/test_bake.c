@@ -235,7 +235,7 @@ static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int r
  * the default tolerance. */
 static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 64};
     char err[256] = "";
     sc_solver *s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
@@ -450,7 +450,7 @@ static int cube(sc_poly *q, double lo, double hi, int inward, double emit);
  * corners' share of it. */
 static void test_lightmap_adaptive(void **state)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 64};
     char err[256] = "";
     lm_atlas ex, ad;
     sc_poly polys[8];
@@ -631,7 +631,7 @@ static int count_of(const char *text, const char *part)
 static void test_probes_grid(void **state)
 {
     sc_poly polys[12];
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 64};
     int dims[3], n = cube(polys, -2, 2, 1, 1.0), i, k, inside = 0;
     char err[256] = "", *json;
     size_t len;

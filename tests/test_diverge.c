@@ -140,7 +140,7 @@ static void check_bright(const char *name, const sc_poly *polys, int n, const sc
 static void test_open_box(void **st)
 {
     sc_poly p[6];
-    sc_opts o = {0.5, 0.25, 32, 0, 0, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32};
     (void)st;
     check_bright("open box, Kd 0.998", p, open_box(p, 0.998), &o, 2000, 0.002);
     check_bright("open box, Kd 0.9999", p, open_box(p, 0.9999), &o, 6000, 0.002);
@@ -151,7 +151,7 @@ static void test_open_box(void **st)
  * Measured at res 64: 2673 / 1715 shots, balance off by 0.017%; bounds as above. */
 static void test_cornell_998(void **st)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 64};
     int n;
     sc_poly *p = bundled_box(&n, 0.998);
     (void)st;
@@ -163,7 +163,7 @@ static void test_cornell_998(void **st)
  * solve without it): the bundled Cornell box as it is, both builds. */
 static void test_no_backoff(void **st)
 {
-    sc_opts o = {0, 0, 64, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 64};
     sc_stats a, b;
     sc_solver *s;
     scf_solver *f;
@@ -186,7 +186,7 @@ static void test_no_backoff(void **st)
 static void test_not_converged(void **st)
 {
     sc_poly p[6];
-    sc_opts o = {0.5, 0.25, 32, 0, 0, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32};
     char err[256];
     sc_solver *s = sc_create(p, open_box(p, 0.998), &o, NULL, NULL, err, sizeof err);
     sc_stats a;
@@ -224,7 +224,7 @@ static void collect(void *ctx, int tag, const char *msg)
 static void test_lost_lamp(void **st)
 {
     sc_poly p[2];
-    sc_opts o = {0, 0, 16, 0, 0, 0, 0, 0};
+    sc_opts o = {.res = 16};
     char err[256];
     int twin;
     (void)st;
@@ -278,7 +278,7 @@ static void test_outlier_vertex(void **st)
 static void test_rows_memory(void **st)
 {
     sc_poly p[6];
-    sc_opts o = {0.5, 0.25, 32, 0, 0, 0, 0, 0};
+    sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = 32};
     char err[256] = "";
     sc_solver *s = sc_create(p, open_box(p, 0.5), &o, NULL, NULL, err, sizeof err);
     sc_stats a;
@@ -312,7 +312,7 @@ static void test_rows_memory(void **st)
 static void test_gauss_seidel_limit(void **st)
 {
     sc_poly p[1];
-    sc_opts o = {1.0 / 130, 1.0 / 130, 8, 0, 0, 0, 0, 0};
+    sc_opts o = {.max_patch = 1.0 / 130, .max_element = 1.0 / 130, .res = 8};
     char err[256] = "";
     sc_solver *s;
     sc_stats a;

@@ -479,7 +479,7 @@ static void test_solution_colours(void **state)
     obj_scene sc;
     sc_poly *polys;
     sc_solver *s;
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
+    sc_opts o = {.max_element = 0.25, .res = 64};
     char err[600];
     tex_image maps[4];
     glb g;

@@ -568,7 +568,7 @@ static void free_textured(textured *t)
    solutions of the same mesh (fixed build, or the float twin if FLOAT). */
 static double solution_difference(const textured *a, const textured *b, int use_float)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
+    sc_opts o = {.max_element = 0.25, .res = 64};
     char err[512];
     double worst = 0, peak = 0, ra[3], rb[3];
     int e, k, ne, pass;
@@ -714,7 +714,7 @@ typedef struct {
 
 static void solve_textured(const char *name, solved *x)
 {
-    sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
+    sc_opts o = {.max_element = 0.25, .res = 64};
     char err[512];
     load_textured(name, &x->t);
     x->s = sc_create(x->t.p, x->t.n, &o, NULL, NULL, err, sizeof err);
@@ -795,7 +795,7 @@ static void test_element_reflectance(void **state)
     write_split_room("split.obj");
     for (pass = 0; pass < 2; pass++) {
         solved x;
-        sc_opts o = { 0, 0.25, 64, 0, 0, 0, 0, 0 };
+        sc_opts o = {.max_element = 0.25, .res = 64};
         sc_stats st;
         load_textured("split.obj", &x.t);
         x.s = sc_create(x.t.p, x.t.n, &o, NULL, NULL, err, sizeof err);
@@ -1263,7 +1263,7 @@ static void test_degenerate_footprints(void **state)
    within 2^-16 of 0. */
 static void test_tiled_room(void **state)
 {
-    sc_opts o = { 0, 0.3, 64, 0, 0, 0, 0, 0 };
+    sc_opts o = {.max_element = 0.3, .res = 64};
     tex_image t;
     textured x;
     sc_solver *s;
