@@ -158,10 +158,18 @@ static rad_real_t points_extent(const rad_vec3_t *v, unsigned n)
 
 /* The largest shift in MIN_LENGTH_SHIFT..0 that takes magnitude M within
  * RAD_COORD_LIMIT (M <= RAD_INPUT_LIMIT). */
+/* The magnitude of -M at scale 2^G <= 0 as scale_point rounds it (down: away from 0),
+ * the farthest from 0 that a coordinate of magnitude M goes: rounding M itself to
+ * nearest took -256 - 2^-16 to -64 at G = -2, where scale_point gives -64 - 2^-16. */
+static rad_real_t farthest(rad_real_t m, int g)
+{
+    return g == 0 ? m : -rad__floor2(-m, (unsigned)-g);
+}
+
 static int fit_shift(rad_real_t m)
 {
     int g = 0;
-    while (g > MIN_LENGTH_SHIFT && rad__scale2(m, g, 0) > RAD__Q(RAD_COORD_LIMIT)) g--;
+    while (g > MIN_LENGTH_SHIFT && farthest(m, g) > RAD__Q(RAD_COORD_LIMIT)) g--;
     return g;
 }
 

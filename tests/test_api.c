@@ -228,6 +228,35 @@ static void test_add_errors(void **st)
     pools_free(&g);
 }
 
+/* A scene scaled down to fit (rad.h: any units) keeps every vertex within
+ * +-RAD_COORD_LIMIT: a coordinate one LSB beyond -256 rounds down (away from 0) at the
+ * quarter scale, so that scale is too large for it; it takes an eighth. The fuzzer found
+ * -64 - 2^-16 in the pool when the choice rounded the magnitude to nearest. */
+static void test_scaled_down_fits(void **st)
+{
+    guarded_t g;
+    rad_scene_t s;
+    rad_vec3_t v[3] = {V(-64, 64, 0), V(64, 64, 0), V(0, 64, 0)};
+    uint32_t i;
+    int outside = 0;
+    (void)st;
+    v[2].z = -Q(256.0) - 1;
+    pools_make(&g, NS, NP, NE, NV, WORK);
+    assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
+    assert_int_equal(rad_add_polygon(&s, v, 3, &grey, NULL), 0);
+    for (i = 0; i < s.n_vertices; i++) {
+        const rad_vec3_t *p = &g.p.vertices[i];
+        outside += p->x < -Q(64.0) || p->x > Q(64.0) || p->y < -Q(64.0) || p->y > Q(64.0) ||
+                   p->z < -Q(64.0) || p->z > Q(64.0);
+    }
+    print_message("length shift %d; vertices beyond +-64: %d of %u\n", s.length_shift, outside,
+                  (unsigned)s.n_vertices);
+    CHECK_INT_EQ(outside, 0, "vertices beyond +-RAD_COORD_LIMIT in the pool");
+    CHECK_INT_EQ(s.length_shift, -3, "the scale of a coordinate just beyond -256");
+    pools_check(&g);
+    pools_free(&g);
+}
+
 static void test_full_pools(void **st)
 {
     /* Each pool in turn too small for the cube: RAD_ERR_FULL, counts untouched, and
@@ -749,6 +778,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_init_errors),
         cmocka_unit_test(test_add_errors),
+        cmocka_unit_test(test_scaled_down_fits),
         cmocka_unit_test(test_full_pools),
         cmocka_unit_test(test_calls_and_guards),
         cmocka_unit_test(test_restart_relight),
