@@ -274,7 +274,7 @@ static void test_lightmap_lambert(void **state)
     (void)state;
     polys[0] = flat(-2, 2, -2, 2, 0, 1, 0.0, 0.0);
     polys[1] = flat(-1, 1, -1, 1, 1, 0, 0.0, 1.0);
-    bake_scene(polys, 2, 64, 64, &a);
+    bake_scene(polys, 2, 80, 64, &a); /* 80: a texel of 0.103, the floor 39 texels wide with its gutter */
     for (y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
             double p[3], want, rel;
@@ -356,7 +356,7 @@ static void test_lightmap_no_seams(void **state)
     int n = terrain(polys), p, q, k, l, t, edges = 0;
     double worst = 0.0, lo = HUGE_VAL, hi = 0.0;
     (void)state;
-    bake_scene(polys, n, 128, 32, &a);
+    bake_scene(polys, n, 192, 32, &a);
     CHECK_INT_EQ(a.ncharts, n, "charts of the terrain: every triangle");
     for (p = 0; p < n; p++)
         for (q = 0; q < n; q++)
@@ -503,13 +503,13 @@ static void test_lightmap_adaptive(void **state)
     sc_destroy(s);
 }
 
-/* Packing: the charts' rectangles lie inside the atlas and PADDING apart; every
- * polygon's vertices inside its rectangle's ring; every point of a polygon (a lattice
+/* Packing: the charts' rectangles lie inside the atlas, apart; every polygon's
+ * vertices inside its rectangle's ring and gutter; every point of a polygon (a lattice
  * of 55 points inside each triangle) in a covered texel of its own chart. */
 static void test_lightmap_packing(void **state)
 {
     sc_poly polys[2 * TN * TN + 1];
-    lm_opts o = {96, 0.0, 0, LM_TOL};
+    lm_opts o = {160, 0.0, 0, LM_TOL};
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys), i, j, k, points = 0;
@@ -521,10 +521,9 @@ static void test_lightmap_packing(void **state)
                    "chart %d's rectangle %d,%d %dx%d inside the atlas of %d", i, c->x, c->y, c->w, c->h, a.size);
         for (j = 0; j < i; j++) {
             const lm_chart *d = &a.charts[j];
-            int apart = c->x >= d->x + d->w + a.padding || d->x >= c->x + c->w + a.padding ||
-                        c->y >= d->y + d->h + a.padding || d->y >= c->y + c->h + a.padding;
-            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d at least %d apart", i, j, c->x,
-                       c->y, c->w, c->h, d->x, d->y, d->w, d->h, a.padding);
+            int apart = c->x >= d->x + d->w || d->x >= c->x + c->w || c->y >= d->y + d->h || d->y >= c->y + c->h;
+            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d apart", i, j, c->x, c->y, c->w,
+                       c->h, d->x, d->y, d->w, d->h);
         }
     }
     for (i = 0; i < n; i++) {
@@ -532,9 +531,11 @@ static void test_lightmap_packing(void **state)
         for (k = 0; k < polys[i].n; k++) {
             double uv[2];
             lm_uv(&a, i, polys[i].v[k], uv);
-            CHECK_THAT(uv[0] >= c->x + 1 - 1e-9 && uv[0] <= c->x + c->w - 1 + 1e-9 && uv[1] >= c->y + 1 - 1e-9 &&
-                           uv[1] <= c->y + c->h - 1 + 1e-9,
-                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring (to 1e-9)", i, k, uv[0], uv[1]);
+            int e = a.padding + 1; /* the gutter and the ring */
+            CHECK_THAT(uv[0] >= c->x + e - 1e-9 && uv[0] <= c->x + c->w - e + 1e-9 && uv[1] >= c->y + e - 1e-9 &&
+                           uv[1] <= c->y + c->h - e + 1e-9,
+                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring and gutter (to 1e-9)", i, k, uv[0],
+                       uv[1]);
         }
         for (j = 0; j < 10; j++)
             for (k = 0; k < 10 - j; k++) {
@@ -552,6 +553,74 @@ static void test_lightmap_packing(void **state)
     }
     printf("lightmap packing: %d charts in %dx%d at a texel of %.4f, %d polygon points in covered texels\n",
            a.ncharts, a.size, a.size, a.texel, points);
+    lm_free(&a);
+}
+
+/* Light by position: pure red left of x = 2, pure green right of it. */
+static int two_colour_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    (void)ctx;
+    (void)n;
+    rgb[0] = p[0] < 2.0 ? 1.0 : 0.0;
+    rgb[1] = p[0] < 2.0 ? 0.0 : 1.0;
+    rgb[2] = 0.0;
+    return 0;
+}
+
+/* Gutters for mipmaps: two coplanar but disjoint squares (two charts), one lit red and
+ * one green. Every texel within the padding of a chart's covered texels holds none of
+ * the other chart's colour (the gutter is dilated from its own chart only), and in the
+ * box-filtered mip levels m with 2^m <= padding + 1 every texel whose block holds a
+ * chart's covered texel holds none of the other's: the block reaches at most 2^m - 1
+ * texels past the chart's texels, inside its own gutter. Exact: the colours are pure. */
+static void test_lightmap_gutter(void **state)
+{
+    sc_poly polys[2];
+    lm_opts o = {48, 0.0, 0, 0.0};
+    lm_atlas a;
+    char err[256] = "";
+    int x, y, m, dx, dy, checked = 0, levels = 0;
+    (void)state;
+    polys[0] = flat(0, 1, 0, 1, 0, 1, 0.5, 0);
+    polys[1] = flat(3, 4, 0, 1, 0, 1, 0.5, 0);
+    CHECK_INT_EQ(lm_build(&a, polys, 2, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_EQ(a.ncharts, 2, "coplanar disjoint squares: charts");
+    CHECK_INT_EQ(a.padding, LM_PADDING, "the default padding");
+    CHECK_INT_EQ(lm_bake(&a, two_colour_cb, NULL), 0, "lm_bake");
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            size_t at = (size_t)y * a.size + (size_t)x;
+            int other = a.poly[at] == 0 ? 1 : 0;
+            if (isnan(a.sample[2 * at])) continue;
+            for (dy = -a.padding; dy <= a.padding; dy++)
+                for (dx = -a.padding; dx <= a.padding; dx++) {
+                    size_t b = (size_t)(y + dy) * a.size + (size_t)(x + dx);
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= a.size || y + dy >= a.size) continue;
+                    CHECK_THAT(a.rgb[3 * b + other] == 0.0f,
+                               "texel %d,%d (%d,%d from chart %d's covered texel) holds %g of the other chart",
+                               x + dx, y + dy, dx, dy, a.owner[at], a.rgb[3 * b + other]);
+                    checked++;
+                }
+        }
+    for (m = 1; (1 << m) <= a.padding + 1; m++, levels++)
+        for (y = 0; y < a.size; y += 1 << m)
+            for (x = 0; x < a.size; x += 1 << m) {
+                double sum[2] = {0, 0};
+                int has[2] = {0, 0};
+                for (dy = 0; dy < 1 << m && y + dy < a.size; dy++)
+                    for (dx = 0; dx < 1 << m && x + dx < a.size; dx++) {
+                        size_t b = (size_t)(y + dy) * a.size + (size_t)(x + dx);
+                        sum[0] += a.rgb[3 * b];
+                        sum[1] += a.rgb[3 * b + 1];
+                        if (!isnan(a.sample[2 * b])) has[a.poly[b]] = 1;
+                    }
+                CHECK_THAT(!(has[0] && sum[1] > 0) && !(has[1] && sum[0] > 0),
+                           "mip level %d texel %d,%d: a chart's covered texels mixed with the other's light "
+                           "(red %g, green %g)", m, x >> m, y >> m, sum[0], sum[1]);
+            }
+    printf("lightmap gutter: padding %d, %d texel pairs within it clean, mip levels 1..%d clean\n", a.padding,
+           checked, levels);
+    CHECK_INT_EQ(levels >= 2, 1, "mip levels kept clean by the default padding (1 and 2 at least)");
     lm_free(&a);
 }
 
@@ -731,9 +800,10 @@ static int cli(const char *args, char **err)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* The options: a lightmap and probes written; a size of 0 or a tolerance above 1 a usage
- * error, an atlas too small for the charts an error naming them before the solve, and
- * then no file; the lightmap baked on 3 threads is the same file as on one. */
+/* The options: a lightmap and probes written; a size of 0, a tolerance above 1 or a
+ * padding above 64 a usage error, an atlas too small for the charts an error naming
+ * them before the solve, and then no file; the lightmap baked on 3 threads is the same
+ * file as on one. */
 static void test_cli_bake(void **state)
 {
     char args[1024], *err = NULL, *json = NULL, *one = NULL, *three = NULL;
@@ -748,6 +818,9 @@ static void test_cli_bake(void **state)
     free(err);
     CHECK_INT_EQ(cli("--lightmap-tol 1.5", &err), 2, "exit status of --lightmap-tol 1.5 (%s)", err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-tol wants a number in [0, 1]", "the message");
+    free(err);
+    CHECK_INT_EQ(cli("--lightmap-pad 65", &err), 2, "exit status of --lightmap-pad 65 (%s)", err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-pad wants a whole number from 0 to 64", "the message");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
     CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
@@ -847,6 +920,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_adaptive),
         cmocka_unit_test(test_lightmap_packing),
         cmocka_unit_test(test_lightmap_bad_sizes),
+        cmocka_unit_test(test_lightmap_gutter),
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
         cmocka_unit_test(test_cli_bake),
