@@ -93,6 +93,62 @@ static void shared_pairs(const edge_t *e, int ne, const geom_poly *g, double tol
     }
 }
 
+/* Polygons' corners sorted by position, with the unit directions of the corner's two
+ * edges: two coplanar polygons with a corner at one point and an edge of each leaving
+ * it the same way (within 10^-3 rad) touch along a segment of both edges, whole or
+ * not, as at a T-junction (a vertex of one inside an edge of the other). */
+typedef struct {
+    double p[3], dir[2][3];
+    int poly;
+} corner_t;
+
+static int corner_cmp(const void *x, const void *y)
+{
+    const corner_t *p = x, *q = y;
+    int c = cmp3(p->p, q->p);
+    return c ? c : p->poly - q->poly;
+}
+
+static int same_way(const corner_t *x, const corner_t *y)
+{
+    int i, j;
+    for (i = 0; i < 2; i++)
+        for (j = 0; j < 2; j++)
+            if (geom_dot(x->dir[i], y->dir[j]) >= COS_PLANE) return 1;
+    return 0;
+}
+
+/* Unions coplanar polygons that touch along part of an edge (see corner_t). 0, or -1
+ * out of memory. */
+static int join_partial_edges(const sc_poly *p, int n, const geom_poly *g, double tol, int *parent)
+{
+    corner_t *c = malloc((size_t)(4 * n + 1) * sizeof *c);
+    int i, k, m = 0, j, end;
+    if (!c) return -1;
+    for (i = 0; i < n; i++)
+        for (k = 0; g[i].area > 0.0 && k < p[i].n; k++) {
+            memcpy(c[m].p, p[i].v[k], sizeof c[m].p);
+            geom_sub(p[i].v[(k + 1) % p[i].n], p[i].v[k], c[m].dir[0]);
+            geom_sub(p[i].v[(k + p[i].n - 1) % p[i].n], p[i].v[k], c[m].dir[1]);
+            if (!geom_normalize(c[m].dir[0])) memset(c[m].dir[0], 0, sizeof c[m].dir[0]);
+            if (!geom_normalize(c[m].dir[1])) memset(c[m].dir[1], 0, sizeof c[m].dir[1]);
+            c[m++].poly = i;
+        }
+    qsort(c, (size_t)m, sizeof *c, corner_cmp);
+    for (i = 0; i < m; i = end) {
+        for (end = i + 1; end < m && !cmp3(c[end].p, c[i].p); end++) {
+        }
+        for (j = i; j < end; j++)
+            for (k = j + 1; k < end; k++) {
+                int a = c[j].poly, b = c[k].poly;
+                if (find(parent, a) != find(parent, b) && same_plane(g, a, b, tol) && same_way(&c[j], &c[k]))
+                    parent[find(parent, a)] = find(parent, b);
+            }
+    }
+    free(c);
+    return 0;
+}
+
 /* Chart ids in order of each chart's first polygon, and the polygons by chart. */
 static int number_charts(lm_atlas *a, int *parent)
 {
@@ -410,7 +466,7 @@ static int alloc_atlas(lm_atlas *a, int n)
     return 0;
 }
 
-/* Charts of the polygons: union-find over coplanar shared edges. */
+/* Charts of the polygons: union-find over coplanar shared edges, whole or in part. */
 static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
 {
     int ne = 0, i, rc = -1, *parent = malloc((size_t)(a->npolys + 1) * sizeof *parent);
@@ -421,8 +477,9 @@ static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
             a->poly_chart[i] = g[i].area > 0.0 ? 0 : -1;
         }
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 0);
+        rc = join_partial_edges(a->polys, a->npolys, g, PLANE_TOL * a->extent, parent);
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 1);
-        rc = number_charts(a, parent);
+        if (rc == 0) rc = number_charts(a, parent);
     }
     free(e);
     free(parent);

@@ -3,8 +3,11 @@
  * texels (uses malloc, libm).
  *
  * Charts: polygons joined across shared edges (the same two vertex positions, exactly)
- * when they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
- * 10^-6 of the scene's extent of the plane). A chart is projected on its plane, its u
+ * or parts of edges (a corner at the same position and an edge of each leaving it the
+ * same way, within 10^-3 rad: a T-junction, where regions tessellated apart meet) when
+ * they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
+ * 10^-6 of the scene's extent of the plane). Coplanar polygons that do not overlap in
+ * space do not overlap on their plane, so a chart's layout never folds. A chart is projected on its plane, its u
  * axis along its longest boundary edge, at one texel size T (world units a texel) for
  * the whole atlas: a texel shows the same area everywhere.
  *
