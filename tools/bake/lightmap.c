@@ -531,7 +531,8 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     }
     a->size = o->size;
     a->tol = o->tol;
-    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : LM_PADDING;
+    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : o->size / 128 < 1 ? 1 : o->size / 128;
+    if (!o->padding && a->padding > LM_PADDING) a->padding = LM_PADDING;
     if (a->padding > LM_MAX_PADDING) {
         snprintf(err, errlen, "a lightmap padding of %d is outside 0..%d", o->padding, LM_MAX_PADDING);
         return -1;
