@@ -93,6 +93,62 @@ static void shared_pairs(const edge_t *e, int ne, const geom_poly *g, double tol
     }
 }
 
+/* Polygons' corners sorted by position, with the unit directions of the corner's two
+ * edges: two coplanar polygons with a corner at one point and an edge of each leaving
+ * it the same way (within 10^-3 rad) touch along a segment of both edges, whole or
+ * not, as at a T-junction (a vertex of one inside an edge of the other). */
+typedef struct {
+    double p[3], dir[2][3];
+    int poly;
+} corner_t;
+
+static int corner_cmp(const void *x, const void *y)
+{
+    const corner_t *p = x, *q = y;
+    int c = cmp3(p->p, q->p);
+    return c ? c : p->poly - q->poly;
+}
+
+static int same_way(const corner_t *x, const corner_t *y)
+{
+    int i, j;
+    for (i = 0; i < 2; i++)
+        for (j = 0; j < 2; j++)
+            if (geom_dot(x->dir[i], y->dir[j]) >= COS_PLANE) return 1;
+    return 0;
+}
+
+/* Unions coplanar polygons that touch along part of an edge (see corner_t). 0, or -1
+ * out of memory. */
+static int join_partial_edges(const sc_poly *p, int n, const geom_poly *g, double tol, int *parent)
+{
+    corner_t *c = malloc((size_t)(4 * n + 1) * sizeof *c);
+    int i, k, m = 0, j, end;
+    if (!c) return -1;
+    for (i = 0; i < n; i++)
+        for (k = 0; g[i].area > 0.0 && k < p[i].n; k++) {
+            memcpy(c[m].p, p[i].v[k], sizeof c[m].p);
+            geom_sub(p[i].v[(k + 1) % p[i].n], p[i].v[k], c[m].dir[0]);
+            geom_sub(p[i].v[(k + p[i].n - 1) % p[i].n], p[i].v[k], c[m].dir[1]);
+            if (!geom_normalize(c[m].dir[0])) memset(c[m].dir[0], 0, sizeof c[m].dir[0]);
+            if (!geom_normalize(c[m].dir[1])) memset(c[m].dir[1], 0, sizeof c[m].dir[1]);
+            c[m++].poly = i;
+        }
+    qsort(c, (size_t)m, sizeof *c, corner_cmp);
+    for (i = 0; i < m; i = end) {
+        for (end = i + 1; end < m && !cmp3(c[end].p, c[i].p); end++) {
+        }
+        for (j = i; j < end; j++)
+            for (k = j + 1; k < end; k++) {
+                int a = c[j].poly, b = c[k].poly;
+                if (find(parent, a) != find(parent, b) && same_plane(g, a, b, tol) && same_way(&c[j], &c[k]))
+                    parent[find(parent, a)] = find(parent, b);
+            }
+    }
+    free(c);
+    return 0;
+}
+
 /* Chart ids in order of each chart's first polygon, and the polygons by chart. */
 static int number_charts(lm_atlas *a, int *parent)
 {
@@ -195,21 +251,21 @@ static int rect_cmp(const void *x, const void *y)
 }
 
 /* Texels of a rectangle along an extent of X world units at texel T: the chart's
- * texels start at RING, so its far end lies in texel RING + floor(X / T), and a ring
- * follows. 0 when it cannot fit an atlas of N. */
-static int rect_len(double x, double t, int n)
+ * texels start at EDGE = PAD + RING, so its far end lies in texel EDGE + floor(X / T),
+ * and a ring and the gutter follow. 0 when it cannot fit an atlas of N. */
+static int rect_len(double x, double t, int pad, int n)
 {
-    double k = floor(x / t) + 2 * RING + 1;
+    double k = floor(x / t) + 2 * (pad + RING) + 1;
     return k <= n ? (int)k : 0;
 }
 
 /* Lays the rectangles at texel T into the atlas; 0, or -1 when they do not fit. */
 static int pack(lm_atlas *a, const extent_t *x, rect_t *r, double t)
 {
-    int i, n = a->size, cx = 0, cy = 0, shelf = 0, pad = a->padding;
+    int i, n = a->size, cx = 0, cy = 0, shelf = 0;
     for (i = 0; i < a->ncharts; i++) {
-        r[i].w = rect_len(x[i].w, t, n);
-        r[i].h = rect_len(x[i].h, t, n);
+        r[i].w = rect_len(x[i].w, t, a->padding, n);
+        r[i].h = rect_len(x[i].h, t, a->padding, n);
         r[i].id = i;
         if (!r[i].w || !r[i].h) return -1;
     }
@@ -218,7 +274,7 @@ static int pack(lm_atlas *a, const extent_t *x, rect_t *r, double t)
         lm_chart *c = &a->charts[r[i].id];
         if (cx + r[i].w > n) {
             cx = 0;
-            cy += shelf + pad;
+            cy += shelf;
             shelf = 0;
         }
         if (cy + r[i].h > n) return -1;
@@ -227,7 +283,7 @@ static int pack(lm_atlas *a, const extent_t *x, rect_t *r, double t)
         c->y = cy;
         c->w = r[i].w;
         c->h = r[i].h;
-        cx += r[i].w + pad;
+        cx += r[i].w;
     }
     return 0;
 }
@@ -251,8 +307,9 @@ static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given,
     for (hi = lo, i = 0; pack(a, x, r, hi) != 0; i++, hi *= 2.0) {
         lo = hi;
         if (i == 64) {
-            snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts (each needs at least %dx%d texels and %d of padding)",
-                     a->size, a->size, a->ncharts, 2 * RING + 1, 2 * RING + 1, a->padding);
+            snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts (each needs at least %dx%d texels with "
+                     "--lightmap-pad %d)", a->size, a->size, a->ncharts, 2 * (a->padding + RING) + 1,
+                     2 * (a->padding + RING) + 1, a->padding);
             return -1;
         }
     }
@@ -409,7 +466,7 @@ static int alloc_atlas(lm_atlas *a, int n)
     return 0;
 }
 
-/* Charts of the polygons: union-find over coplanar shared edges. */
+/* Charts of the polygons: union-find over coplanar shared edges, whole or in part. */
 static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
 {
     int ne = 0, i, rc = -1, *parent = malloc((size_t)(a->npolys + 1) * sizeof *parent);
@@ -420,8 +477,9 @@ static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
             a->poly_chart[i] = g[i].area > 0.0 ? 0 : -1;
         }
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 0);
+        rc = join_partial_edges(a->polys, a->npolys, g, PLANE_TOL * a->extent, parent);
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 1);
-        rc = number_charts(a, parent);
+        if (rc == 0) rc = number_charts(a, parent);
     }
     free(e);
     free(parent);
@@ -444,8 +502,9 @@ static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior
         rc = choose_texel(a, x, r, texel, err, errlen);
         for (i = 0; rc == 0 && i < a->ncharts; i++)
             for (k = 0; k < 3; k++)
-                a->charts[i].o[k] = (x[i].smin - RING * a->texel) * a->charts[i].u[k] +
-                                    (x[i].tmin - RING * a->texel) * a->charts[i].v[k] + x[i].d * a->charts[i].n[k];
+                a->charts[i].o[k] = (x[i].smin - (a->padding + RING) * a->texel) * a->charts[i].u[k] +
+                                    (x[i].tmin - (a->padding + RING) * a->texel) * a->charts[i].v[k] +
+                                    x[i].d * a->charts[i].n[k];
     }
     free(x);
     free(r);
@@ -472,7 +531,12 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     }
     a->size = o->size;
     a->tol = o->tol;
-    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : LM_PADDING;
+    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : o->size / 128 < 1 ? 1 : o->size / 128;
+    if (!o->padding && a->padding > LM_PADDING) a->padding = LM_PADDING;
+    if (a->padding > LM_MAX_PADDING) {
+        snprintf(err, errlen, "a lightmap padding of %d is outside 0..%d", o->padding, LM_MAX_PADDING);
+        return -1;
+    }
     a->npolys = n;
     a->polys = polys;
     g = geom_polys(polys, n, &a->extent);
@@ -509,8 +573,8 @@ int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
     return 1;
 }
 
-/* The mean of texel AT's filled 8-neighbours that it may take from (its chart's, or
- * any for padding) into the texel; 1 if there was one. */
+/* The mean of texel AT's filled 8-neighbours of its chart into the texel; 1 if there
+ * was one. */
 static int fill_from(lm_atlas *a, const unsigned char *filled, size_t at)
 {
     int x = (int)(at % (size_t)a->size), y = (int)(at / (size_t)a->size), dx, dy, n = 0, k;
@@ -519,7 +583,7 @@ static int fill_from(lm_atlas *a, const unsigned char *filled, size_t at)
         for (dx = -1; dx <= 1; dx++) {
             size_t b = (size_t)(y + dy) * a->size + (size_t)(x + dx);
             if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size || !filled[b]) continue;
-            if (a->owner[at] >= 0 && a->owner[b] != a->owner[at]) continue;
+            if (a->owner[b] != a->owner[at]) continue;
             for (k = 0; k < 3; k++) sum[k] += a->rgb[3 * b + k];
             n++;
         }
@@ -527,21 +591,20 @@ static int fill_from(lm_atlas *a, const unsigned char *filled, size_t at)
     return n > 0;
 }
 
-/* Rings of dilation: texels of charts (PAD 0) until none is left, then padding texels
- * (PAD 1) for a->padding rings. Each ring reads only the texels filled before it. */
-static int dilate(lm_atlas *a, unsigned char *filled, int pad)
+/* Rings of dilation of the texels of charts' rectangles (the gutter, a concave chart's
+ * rest) from their own chart until none is left; texels of no rectangle stay 0. Each
+ * ring reads only the texels filled before it. */
+static int dilate(lm_atlas *a, unsigned char *filled)
 {
     size_t t = (size_t)a->size * a->size, i, n;
     size_t *ring = malloc(t * sizeof *ring);
-    int rounds = 0;
     if (!ring) return -1;
     do {
         n = 0;
         for (i = 0; i < t; i++)
-            if (!filled[i] && (a->owner[i] < 0) == pad && fill_from(a, filled, i)) ring[n++] = i;
+            if (!filled[i] && a->owner[i] >= 0 && fill_from(a, filled, i)) ring[n++] = i;
         for (i = 0; i < n; i++) filled[ring[i]] = 1;
-        rounds++;
-    } while (n && (!pad || rounds < a->padding));
+    } while (n);
     free(ring);
     return 0;
 }
@@ -671,8 +734,7 @@ int lm_dilate(lm_atlas *a)
     unsigned char *filled = malloc(t);
     int rc = filled ? 0 : -1;
     for (i = 0; filled && i < t; i++) filled[i] = !isnan(a->sample[2 * i]);
-    if (rc == 0) rc = dilate(a, filled, 0);
-    if (rc == 0 && a->padding > 0) rc = dilate(a, filled, 1);
+    if (rc == 0) rc = dilate(a, filled);
     free(filled);
     return rc;
 }

@@ -3,14 +3,22 @@
  * texels (uses malloc, libm).
  *
  * Charts: polygons joined across shared edges (the same two vertex positions, exactly)
- * when they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
- * 10^-6 of the scene's extent of the plane). A chart is projected on its plane, its u
+ * or parts of edges (a corner at the same position and an edge of each leaving it the
+ * same way, within 10^-3 rad: a T-junction, where regions tessellated apart meet) when
+ * they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
+ * 10^-6 of the scene's extent of the plane). Coplanar polygons that do not overlap in
+ * space do not overlap on their plane, so a chart's layout never folds. A chart is projected on its plane, its u
  * axis along its longest boundary edge, at one texel size T (world units a texel) for
  * the whole atlas: a texel shows the same area everywhere.
  *
- * Packing: each chart's rectangle holds its texels and a ring of one texel around them
- * (so that a bilinear lookup anywhere on the chart reads texels of this chart only); rectangles are sorted by height (then width, then chart) and laid
- * in shelves left to right, top to bottom, PADDING texels apart. Without a texel size,
+ * Packing: each chart's rectangle holds its texels, a ring of one texel around them
+ * (so that a bilinear lookup anywhere on the chart reads texels of this chart only) and
+ * a gutter of PADDING texels around the ring, dilated from the chart alone: a mip level
+ * m box-filters blocks of 2^m texels, so a block holding a chart's texel reaches at most
+ * 2^m - 1 texels past it, inside the gutter when 2^m <= PADDING + 1 (levels 1 and 2 at
+ * the default 4: a 2x2 and a 4x4 downsample read the chart alone). Rectangles are
+ * sorted by height (then width, then chart) and laid in shelves left to right, top to
+ * bottom, side by side; texels of no rectangle stay 0. Without a texel size,
  * T is the smallest (to 2^-20 of itself) at which the shelves fit: no smaller than
  * sqrt(area) / N, the size at which the texels would hold the area and nothing more.
  *
@@ -24,8 +32,8 @@
  * floor, a thick wall through it) and moves out past it.
  * Gathering the ring (rather than dilating into it) puts values of the surface's own
  * edge under a bilinear lookup there, from either side of a seam. Texels of a
- * rectangle left over (a concave chart's) get the mean of their filled neighbours,
- * ring by ring, and the padding likewise from any chart, for LM_PADDING rings.
+ * rectangle left over (the gutter, a concave chart's rest) get the mean of their filled
+ * neighbours of the same chart, ring by ring.
  * A texel holds E, the radiosity arriving (sc_gather's units): a surface of
  * reflectance rho there shows rho E plus its own emission.
  *
@@ -56,7 +64,8 @@
 #include "host/scene.h"
 
 #define LM_MAX_SIZE 8192
-#define LM_PADDING 2 /* texels between rectangles, for mipmaps' first levels */
+#define LM_PADDING 4      /* the default gutter from 512 texels a side: mip levels 1, 2 */
+#define LM_MAX_PADDING 64 /* mip levels up to 6 */
 #define LM_STEP 4    /* texels between the first pass's gathers, within a chart */
 #define LM_TOL 0.05  /* the default tolerance of the adaptive bake (tests/test_bake.c) */
 
@@ -67,7 +76,10 @@ typedef int (*lm_gather_fn)(void *ctx, const double p[3], const double n[3], dou
 typedef struct {
     int size;      /* N: the atlas is N x N texels, 1..LM_MAX_SIZE */
     double texel;  /* world units a texel; 0: the smallest that fits */
-    int padding;   /* texels between rectangles; 0: LM_PADDING, -1: none */
+    int padding;   /* texels of gutter around each chart, 1..LM_MAX_PADDING; -1: none; 0: size / 128
+                    * within 1..LM_PADDING (a small atlas's charts are a few texels wide:
+                    * a 64 x 64 one of the Cornell box's 16 charts covers 2652 texels at
+                    * 1, 729 at 4) */
     double tol;    /* adaptive gathering's tolerance, 0..1 (LM_TOL); 0: every texel */
 } lm_opts;
 
@@ -85,7 +97,7 @@ typedef struct {
     lm_chart *charts;
     int *poly_chart;  /* per polygon: its chart, -1 for a degenerate polygon */
     int *chart_polys; /* polygons by chart */
-    int *owner;       /* size^2: the chart whose rectangle holds the texel, -1: padding */
+    int *owner;       /* size^2: the chart whose rectangle holds the texel, -1: none */
     float *sample;    /* size^2 * 2: a covered texel's sample (s, t) in its rectangle,
                        * NaN when not covered */
     float *rgb;       /* size^2 * 3: the baked light, row 0 at the top */

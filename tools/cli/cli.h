@@ -114,6 +114,7 @@ typedef struct {
     char *probes_default;           /* scene name + .probes.json, when no --probes-out */
     int lightmap_size, gather_res, probe_dims[3], probes;
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
+    int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
 } opts_t;
 
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);

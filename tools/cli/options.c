@@ -286,6 +286,11 @@ static void opt_lightmap(opts_t *o, const char *opt, const char *val)
 
 static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
 
+static void opt_lightmap_pad(opts_t *o, const char *opt, const char *val)
+{
+    o->lightmap_pad = (int)parse_int(opt, val, 0, LM_MAX_PADDING);
+}
+
 static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
@@ -408,6 +413,8 @@ static const option_t options[] = {
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
     {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
+    {"--lightmap-pad", NULL, "N",
+     "texels of gutter around each lightmap chart, 0..64 (size / 128\nwithin 1..4): mip levels m with 2^m <= N + 1 stay clean", opt_lightmap_pad},
     {"--lightmap-tol", NULL, "F",
      "interpolate a lightmap block whose gathered corners agree\nwithin F (0.05); 0: gather every texel", opt_lightmap_tol},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
@@ -525,6 +532,7 @@ static void set_defaults(opts_t *o, int argc)
     o->threads = 1;
     o->coarse = -1; /* not given: cli_shot_settings */
     o->lightmap_tol = LM_TOL;
+    o->lightmap_pad = -1;
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
     o->gint = calloc((size_t)argc, sizeof *o->gint);
