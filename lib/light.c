@@ -538,9 +538,16 @@ static uint64_t cube_q30(uint64_t a)
     return (((a * a) >> 30) * a) >> 30;
 }
 
+/* A sky band's edge: sqrt(m^2 - i^2) / m in Q30 (m <= 16: m^2 - i^2 < 2^9), the root
+ * in Q27 (off by less than 2^-27). */
+static uint64_t edge_q30(uint64_t m, uint64_t i)
+{
+    return (rad__isqrt64((m * m - i * i) << 54) << 3) / m;
+}
+
 /* The sky's 3 m^2 shots (the top of the file), each from its cell's direction with the
  * weights WZ, WH of the zenith's and horizon's radiance; all in integers, as both builds'
- * weights must agree: the cosines c1, c2, c in Q30 (c^2 = (m^2 - i^2) / m^2), 2 pi in
+ * weights must agree: the cosines c1, c2, c in Q30 (edge_q30), 2 pi in
  * Q28, the weights Q30 fractions (at most 2 pi / 3). */
 static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
 {
@@ -553,8 +560,7 @@ static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
     rad__cube_frame(up, 0, f);
     for (i = 0; i < m; i++) {
         const uint32_t n = 3u * (2u * i + 1u);
-        const uint64_t c1 = rad__isqrt64(((mm - (uint64_t)i * i) << 60) / mm);
-        const uint64_t c2 = rad__isqrt64(((mm - (uint64_t)(i + 1u) * (i + 1u)) << 60) / mm);
+        const uint64_t c1 = edge_q30(m, i), c2 = edge_q30(m, i + 1u);
         const uint64_t c = (c1 + c2) / 2u, sn = rad__isqrt64(((uint64_t)1 << 60) - c * c);
         const uint64_t d3 = cube_q30(c1) - cube_q30(c2);          /* c1^3 - c2^3 */
         const uint64_t e3 = 3u * ((((uint64_t)2u * i + 1u) << 30) / (2u * mm)); /* 3 (c1^2 - c2^2) / 2 */

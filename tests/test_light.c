@@ -49,6 +49,8 @@ typedef struct {
     double v[4][3];
     int n;
 } tpoly;
+/* A light; a sky (RAD_LIGHT_SKY) keeps its horizon's radiance in pos and its count of
+ * directions in radius, its up in dir and its zenith's radiance in i. */
 typedef struct {
     int type, res;
     double pos[3], dir[3], i[3], cos_outer, cos_inner, radius;
@@ -150,6 +152,14 @@ int TW(scene_light)(const tscene *sc, tres *r)
         l.cos_outer = RAD_REAL(t->cos_outer);
         l.cos_inner = RAD_REAL(t->cos_inner);
         l.radius = RAD_REAL(t->radius);
+        if (t->type == RAD_LIGHT_SKY) { /* tlight's pos: the horizon's radiance; radius: dirs */
+            memset(&l.position, 0, sizeof l.position);
+            l.horizon.r = RAD_REAL(t->pos[0]);
+            l.horizon.g = RAD_REAL(t->pos[1]);
+            l.horizon.b = RAD_REAL(t->pos[2]);
+            l.radius = 0;
+            l.dirs = (uint32_t)t->radius;
+        }
         rc = rad_add_light(&w->s, &l);
     }
     if (rc < 0) {
@@ -618,6 +628,93 @@ static void test_bands(void **state)
             CHECK_NEAR(res_float.b[e][c], res_fixed.b[e][c], 0, "element %d channel %d in bands", e, c);
 }
 
+/* ---- the sky ---------------------------------------------------------------------- */
+
+/* The sky's dome (lib/light.c) in doubles for up +y: its N = 3 m^2 directions of travel
+ * D and each one's irradiance over the zenith's and the horizon's radiance, WZ and WH.
+ * rad__cube_frame's tangents for up +y are f0 = (-4, 0, -3) / 5, f1 = (-3, 0, 4) / 5. */
+typedef struct {
+    int n;
+    double d[768][3], wz[768], wh[768];
+} tdome;
+
+static void dome(int dirs, tdome *t)
+{
+    const double f0[3] = {-0.8, 0, -0.6}, f1[3] = {-0.6, 0, 0.8};
+    int m = 1, i, j, k;
+    while (3 * (m + 1) * (m + 1) <= dirs) m++;
+    t->n = 0;
+    for (i = 0; i < m; i++) {
+        const int n = 3 * (2 * i + 1);
+        double c1 = sqrt(1 - (double)i * i / m / m), c2 = sqrt(1 - (double)(i + 1) * (i + 1) / m / m);
+        double c = (c1 + c2) / 2, sn = sqrt(1 - c * c), d3 = (c1 * c1 * c1 - c2 * c2 * c2) / 3;
+        for (j = 0; j < n; j++, t->n++) {
+            double ph = 2 * PI * (j + 0.5) / n;
+            for (k = 0; k < 3; k++) t->d[t->n][k] = -(sn * (cos(ph) * f0[k] + sin(ph) * f1[k]));
+            t->d[t->n][1] = -c;
+            t->wz[t->n] = 2 * PI / n * d3 / c;
+            t->wh[t->n] = 2 * PI / n * ((c1 * c1 - c2 * c2) / 2 - d3) / c;
+        }
+    }
+}
+
+/* The dome's irradiance on a plane of normal NR, unshadowed: sum of E_k max(0, -d . n). */
+static double dome_on(const tdome *t, double z, double h, const double *nr)
+{
+    double e = 0;
+    int k;
+    for (k = 0; k < t->n; k++) e += (z * t->wz[k] + h * t->wh[k]) * fmax(0, -dot3(t->d[k], nr));
+    return e;
+}
+
+/* The sky's 3-cell coverage bound over the dome: sum of E_k coverage(P, px) for an
+ * outline whose projections' perimeters are at most P, at pixel side PX. */
+static double dome_coverage(const tdome *t, double z, double h, double p, double px)
+{
+    double e = 0;
+    int k;
+    for (k = 0; k < t->n; k++) e += (z * t->wz[k] + h * t->wh[k]) * coverage(p, px);
+    return e;
+}
+
+/* A uniform sky of L over an open plane of 32 x 32: pi L A in all, exactly by the dome's
+ * weights (a plane facing up receives the integral of each cell's L c dw), within the
+ * coverage bound of its outline in every shot (its projections' perimeters at most
+ * 128, the window at most the plane's diagonal wide); the same for 3 and 192
+ * directions. Each element inside receives pi L within its own bound. */
+static void test_sky_open(void **state)
+{
+    static const int counts[] = {3, 48, 192};
+    static tdome t;
+    const double l0 = 10, rho = 0.5, up[3] = {0, 1, 0}, px = 32 * sqrt(2.0) / 1024;
+    unsigned a;
+    (void)state;
+    for (a = 0; a < sizeof counts / sizeof counts[0]; a++) {
+        tpoly pl = ground(0, 0, 0, 16, 1);
+        tlight sky = {RAD_LIGHT_SKY, 1024, {l0, l0, l0}, {0, 1, 0}, {l0, l0, l0}, 0, 0, counts[a]};
+        tscene sc = {64, 2.0, rho, &pl, 1, &sky, 1, 0, 0};
+        double total = 0, want = PI * l0 * 32 * 32, err, worst = 0;
+        int e;
+        dome(counts[a], &t);
+        CHECK_NEAR(dome_on(&t, l0, l0, up), PI * l0, PI * l0 * 1e-12, "the dome's weights over a plane facing up");
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sky's shot (%d directions)", counts[a]);
+        for (e = 0; e < res_fixed.n; e++) {
+            double ee = irradiance(&res_fixed, e, rho);
+            total += ee * res_fixed.area[e];
+            /* an element of side 2: projections' perimeters at most 8 */
+            worst = fmax(worst, fabs(ee / (PI * l0) - 1));
+            CHECK_NEAR(ee, PI * l0, dome_coverage(&t, l0, l0, 8, px) / res_fixed.area[e] + PI * l0 * 1e-4,
+                       "element %d's irradiance under a uniform sky of %d directions", e, counts[a]);
+        }
+        err = dome_coverage(&t, l0, l0, 128, px) * 1 + want * 1e-4;
+        print_message("sky of %d directions over an open plane: power %.6g, pi L A %.6g (%+.4f%%, bound %.4f%%); "
+                      "elements within %.3f%% of pi L (bound %.3f%%)\n",
+                      t.n, total, want, 100 * (total / want - 1), 100 * err / want, 100 * worst,
+                      100 * (dome_coverage(&t, l0, l0, 8, px) / 4 / (PI * l0) + 1e-4));
+        CHECK_NEAR(total, want, err, "the open plane's power under a uniform sky of %d directions", counts[a]);
+    }
+}
+
 /* Unshot fraction 1 before the lights shoot; bad lights refused with the scene unchanged. */
 static void test_api(void **state)
 {
@@ -690,6 +787,7 @@ int main(void)
         cmocka_unit_test(test_sun_plane), cmocka_unit_test(test_box_shadow), cmocka_unit_test(test_point_plane),
         cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_one_sided),  cmocka_unit_test(test_twin),
         cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
+        cmocka_unit_test(test_sky_open),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
