@@ -117,7 +117,7 @@ static rad_vec3_t sky_up(const rad_light_t *l)
 
 /* A sky's bands m: its count of directions rounded down to 3 m^2 (0: the default). */
 #define SKY_MAX_DIRS     768u /* 3 x 16^2 */
-#define SKY_DEFAULT_DIRS 48u
+#define SKY_DEFAULT_DIRS 192u
 static uint32_t sky_bands(const rad_light_t *l)
 {
     uint32_t n = l->dirs ? l->dirs : SKY_DEFAULT_DIRS, m = 1;

@@ -738,7 +738,7 @@ struct rad_light_s {
                         * [0, RAD_EMISSION_LIMIT] (equal to intensity: a uniform sky;
                         * a light zeroed then filled in has H = 0: L = Z cos t) */
     uint32_t dirs;     /* sky: its count of directions, rounded down to 3 m^2
-                        * (3, 12, 27, 48, 75, ...), 3..768; 0: the default, 48 */
+                        * (3, 12, 27, 48, 75, ...), 3..768; 0: the default, 192 */
 };
 
 /* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then
