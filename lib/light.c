@@ -29,16 +29,14 @@
  * angular radius shoots 16 times, each with E / 16 from one direction of its disc
  * (a fixed pattern, symmetric about its centre), which gives shadows penumbrae.
  *
- * Sky: N = 3 m^2 sun shots over the hemisphere about "up" (sky_dir). Band i (0..m-1)
+ * Sky: N = 3 m^2 sun shots over the hemisphere about "up" (sky_up). Band i (0..m-1)
  * holds the directions whose projection on the ground plane lies in the ring of radii
  * i / m .. (i + 1) / m of the unit disc, in 3 (2 i + 1) cells of equal angle about up:
- * every cell's projected area is pi / (3 m^2), and its direction has the cosine
- * c = (c1 + c2) / 2 to up (c1, c2 the band's edges: c^2 = 1 - r^2), the mean cosine over
- * the band's solid angle, at the cell's middle angle. A cell of radiance L(c) = H + (Z -
- * H) c gives a plane facing up the irradiance integral of L(c) c dw over the cell,
- * 2 pi / n [H (c1^2 - c2^2) / 2 + (Z - H) (c1^3 - c2^3) / 3], so its shot has E that over
- * its c: the cells sum to exactly pi H + (Z - H) 2 pi / 3 on a plane facing up (pi L for
- * a uniform sky), and for a uniform sky E = L times the cell's solid angle.
+ * every cell's projected area is pi / (3 m^2). A cell's shot comes along the cell's
+ * vector integral of L w dw (shoot_sky), with the irradiance that the cell's sky gives
+ * a plane facing up over the shot's cosine to up: the cells sum to exactly
+ * pi H + 2 pi (Z - H) / 3 on a plane facing up (pi L for a uniform sky), and any plane
+ * that sees a whole cell receives that cell's light exactly (grey skies).
  *
  * Both render in bands of rows in the depth and item buffers of the work buffer, so the
  * result does not depend on the buffer's size, with the scene's row of id steps; a
@@ -509,6 +507,8 @@ static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t part
     s->emitted = rad__esum(s->emitted, got);
 }
 
+#define HALF_PI_Q30 1686629713u /* pi / 2 in Q30, 2 pi in Q28 */
+
 /* sin(2 pi NUM / DEN) in Q30 (DEN > 0), in integers: the angle reduced to a quarter
  * turn's fraction F, then x = F pi / 2 < 2^31 in Q30 and Taylor's series to x^17 / 17!
  * (its remainder below 2e-12 at pi / 2). */
@@ -516,7 +516,7 @@ static int64_t sin_q30(uint32_t num, uint32_t den)
 {
     const uint64_t q4 = 4u * (uint64_t)num;
     const uint32_t quarter = (uint32_t)((q4 / den) % 4u);
-    const int64_t x = (int64_t)(((q4 % den) * 1686629713u) / den); /* pi / 2 in Q30 */
+    const int64_t x = (int64_t)(((q4 % den) * HALF_PI_Q30) / den);
     const int64_t x2 = (x * x) >> 30;
     int64_t term = quarter & 1u ? (int64_t)1 << 30 : x, sum = term; /* cos or sin of x */
     unsigned k;
@@ -545,29 +545,84 @@ static uint64_t edge_q30(uint64_t m, uint64_t i)
     return (rad__isqrt64((m * m - i * i) << 54) << 3) / m;
 }
 
-/* The sky's 3 m^2 shots (the top of the file), each from its cell's direction with the
- * weights WZ, WH of the zenith's and horizon's radiance; all in integers, as both builds'
- * weights must agree: the cosines c1, c2, c in Q30 (edge_q30), 2 pi in
- * Q28, the weights Q30 fractions (at most 2 pi / 3). */
+/* atan(X) in Q30 for X >= 0 in Q30 (below 2^32): X halved twice by atan x =
+ * 2 atan(x / (1 + sqrt(1 + x^2))), to at most tan(pi / 8) = 0.41, then Taylor's series
+ * to x^41 (its remainder below 2e-17). */
+static uint64_t atan_q30(uint64_t x)
+{
+    const uint64_t one = (uint64_t)1 << 30;
+    int64_t term, sum, x2;
+    unsigned k;
+    for (k = 0; k < 2u; k++) x = (x << 30) / (one + rad__isqrt64((one + ((x * x) >> 30)) << 30));
+    x2 = (int64_t)((x * x) >> 30);
+    term = (int64_t)x;
+    sum = term;
+    for (k = 3; k < 42u; k += 2u) {
+        term = -((term * x2) >> 30); /* (-1)^(k/2) x^k */
+        sum += term / (int64_t)k;
+    }
+    return (uint64_t)sum * 4u;
+}
+
+/* The sum of a colour's channels as an integer (Q16), alike in both builds. */
+static uint64_t grey_q16(const rad_rgb_t *c)
+{
+#if RAD_FLOAT
+    return (uint64_t)((c->r + c->g + c->b) * 65536.0f + 0.5f);
+#else
+    return (uint64_t)c->r + (uint64_t)c->g + (uint64_t)c->b;
+#endif
+}
+
+/* The sky's 3 m^2 shots (the top of the file), all in integers, as both builds' must
+ * agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc (c^2 = 1 - r^2,
+ * dw = r dr dphi / c) has, per unit of angle, the integrals
+ *   Au = int c dw = (r2^2 - r1^2) / 2,        Ac = int c^2 dw = (c1^3 - c2^3) / 3,
+ *   Bu = int s dw = (asin r - r c) / 2 |r1..r2, Bc = int c s dw = (r2^3 - r1^3) / 3
+ * (s = r the sine of the zenith angle). A cell's light of L = H (1 - c) + Z c has the
+ * vector integral of L w dw with the vertical part A = H (Au - Ac) + Z Ac and the
+ * horizontal part B = H (Bu - Bc) + Z Bc times sin(pi / n) / (pi / n) toward the
+ * cell's middle angle: its shot comes along that vector (for Z and H the sums of the
+ * channels), so a plane that sees the whole cell in front of it receives the cell's
+ * light exactly (for a grey sky); each channel's E is its own 2 pi A / n over the
+ * shot's cosine c to up, so a plane facing up receives exactly pi H + 2 pi (Z - H) / 3.
+ * In Q30: the edges c1, c2 (edge_q30), the integrals, the cosine and sine of the shot
+ * (c, sn), the weights WZ = 2 pi Ac / (n c), WH = 2 pi (Au - Ac) / (n c) (at most 2 pi
+ * / 3); 2 pi in Q28; A and B (Q16 radiance times Q30) shifted below 2^31 for their
+ * length. */
 static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
 {
-    const uint64_t two_pi = 1686629713u; /* 2 pi in Q28 */
+    const uint64_t two_pi = HALF_PI_Q30; /* 2 pi in Q28 */
     const uint32_t m = sky_bands(v->l);
     const uint64_t mm = (uint64_t)m * m;
+    uint64_t zs = grey_q16(&v->l->intensity), hs = grey_q16(&v->l->horizon), asin1 = 0;
     rad_vec3_t up, f[3];
     uint32_t i, j;
     rad__normalize(sky_up(v->l), &up);
     rad__cube_frame(up, 0, f);
+    if (zs + hs == 0) zs = hs = 1; /* a black sky: any directions */
     for (i = 0; i < m; i++) {
         const uint32_t n = 3u * (2u * i + 1u);
         const uint64_t c1 = edge_q30(m, i), c2 = edge_q30(m, i + 1u);
-        const uint64_t c = (c1 + c2) / 2u, sn = rad__isqrt64(((uint64_t)1 << 60) - c * c);
-        const uint64_t d3 = cube_q30(c1) - cube_q30(c2);          /* c1^3 - c2^3 */
-        const uint64_t e3 = 3u * ((((uint64_t)2u * i + 1u) << 30) / (2u * mm)); /* 3 (c1^2 - c2^2) / 2 */
-        /* 2 pi / n times each integral / 3 (then 3 again), over c */
-        v->wz = rad__ff_from_q30((uint32_t)((((d3 * two_pi) >> 28) / (3u * n) << 30) / c));
-        v->wh = rad__ff_from_q30(
-            (uint32_t)(((((e3 > d3 ? e3 - d3 : 0) * two_pi) >> 28) / (3u * n) << 30) / c));
+        const uint64_t r1 = ((uint64_t)i << 30) / m, r2 = ((uint64_t)(i + 1u) << 30) / m;
+        const uint64_t asin2 = c2 ? atan_q30((r2 << 30) / c2) : HALF_PI_Q30;
+        const uint64_t au = (((uint64_t)2u * i + 1u) << 30) / (2u * mm);
+        const uint64_t ac = (cube_q30(c1) - cube_q30(c2)) / 3u;
+        const uint64_t bu = (asin2 - asin1 - ((r2 * c2) >> 30) + ((r1 * c1) >> 30)) / 2u;
+        const uint64_t bc = (((uint64_t)3u * i * i + 3u * i + 1u) << 30) / (3u * mm * m);
+        const uint64_t sinc = (((uint64_t)n * (uint64_t)sin_q30(1u, 2u * n)) << 28) / two_pi * 2u;
+        uint64_t va = hs * (au > ac ? au - ac : 0) + zs * ac;
+        uint64_t vb = ((hs * (bu > bc ? bu - bc : 0) + zs * bc) >> 30) * sinc, len, c, sn;
+        while (va >= ((uint64_t)1 << 31) || vb >= ((uint64_t)1 << 31)) {
+            va >>= 1;
+            vb >>= 1;
+        }
+        len = rad__isqrt64(va * va + vb * vb);
+        c = (va << 30) / len;
+        sn = (vb << 30) / len;
+        asin1 = asin2;
+        v->wz = rad__ff_from_q30((uint32_t)(((((ac * two_pi) >> 28) / n) << 30) / c));
+        v->wh = rad__ff_from_q30((uint32_t)((((((au > ac ? au - ac : 0) * two_pi) >> 28) / n) << 30) / c));
         for (j = 0; j < n; j++) { /* the light travels down: -(c up + sn (cos f0 + sin f1)) */
             const rad_real_t a0 = real_q30(((int64_t)sn * sin_q30(4u * j + 2u + n, 4u * n)) >> 30);
             const rad_real_t a1 = real_q30(((int64_t)sn * sin_q30(2u * j + 1u, 2u * n)) >> 30);

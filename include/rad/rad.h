@@ -684,15 +684,17 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *     element it sees E a;
  *   - a sky is a fixed dome of N = 3 m^2 such suns over the hemisphere about its up
  *     (lib/light.c has the dome): rings of equal width on the unit disc that the
- *     hemisphere projects to, ring i (0..m-1) in 3 (2 i + 1) cells of equal angle, each
- *     cell's sun from its mean cosine and middle angle with the irradiance that the
- *     cell's sky gives a plane facing up, over that cosine. Light enters through
- *     openings as a sun's does. Its radiance at zenith angle t is
+ *     hemisphere projects to, ring i (0..m-1) in 3 (2 i + 1) cells of equal angle (each
+ *     of projected area pi / N), each cell's sun along the cell's irradiance vector
+ *     (the integral of L w dw over it, for the channels' sum) with the irradiance that
+ *     the cell's sky gives a plane facing up, over its cosine to up. Light enters
+ *     through openings as a sun's does. Its radiance at zenith angle t is
  *     L(t) = H + (Z - H) cos t (Z at the zenith, H at the horizon; H = Z: uniform), so a
- *     plane facing up under an open sky receives E = pi H + 2 pi (Z - H) / 3, exactly
- *     (pi L for a uniform sky), and each of its cells its sky's radiance times its
- *     solid angle when uniform; a vertical wall under a uniform sky receives pi L / 2
- *     from it in the limit of many directions (an open ground below gives it nothing).
+ *     plane facing up under an open sky receives E = pi H + 2 pi (Z - H) / 3 exactly
+ *     (pi L for a uniform sky), and a plane that sees whole cells their light exactly
+ *     (a grey sky); a vertical wall, whose plane cuts cells, receives
+ *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction costs
+ *     a sun's shot: N of them cost about N / 3 patch shots at the same res.
  * Surfaces are one-sided: an element receives only on its front (the side its normal
  * points to), and a face turned away from the light does not shadow either. Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
