@@ -948,6 +948,19 @@ static void test_api(void **state)
     l.cos_outer = RAD_REAL(0.9);
     l.cos_inner = RAD_REAL(0.8);
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a spot's inner cone wider than its outer");
+    l.type = RAD_LIGHT_SKY; /* up 0 stands for +y; dirs 0, 3..768; horizon in range */
+    l.direction.y = 0;
+    l.dirs = 2;
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_ARG, "a sky of 2 directions");
+    l.dirs = 769;
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_ARG, "a sky of 769 directions");
+    l.dirs = 0;
+    l.horizon.b = RAD_REAL(-1);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a negative horizon");
+    l.horizon.b = RAD_REAL(5000);
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a horizon beyond 4096");
+    l.horizon.b = 0;
+    l.direction.y = RAD_REAL(-1);
     l.type = RAD_LIGHT_POINT;
     l.position.x = RAD_REAL(8193);
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a point beyond RAD_INPUT_LIMIT");
@@ -966,6 +979,18 @@ static void test_api(void **state)
     CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction before the lights shoot");
     memset(&rows, 0, sizeof rows);
     CHECK_INT_EQ(rad_rows_shoot(&w.s, &rows, 10, 0), RAD_ERR_STATE, "stored rows with lights");
+    {
+        static world_t w2;
+        rad_rows_t rows2;
+        memset(&w2, 0, sizeof w2);
+        memset(&rows2, 0, sizeof rows2);
+        memset(&l, 0, sizeof l);
+        l.type = RAD_LIGHT_SKY;
+        l.intensity.r = l.horizon.r = RAD_REAL(1);
+        CHECK_INT_EQ(world_init(&w2, &c, 1), RAD_OK, "init for a sky");
+        CHECK_INT_EQ(rad_add_light(&w2.s, &l), 0, "a sky with up 0 (+y) and the default directions");
+        CHECK_INT_EQ(rad_rows_shoot(&w2.s, &rows2, 10, 0), RAD_ERR_STATE, "stored rows with a sky");
+    }
     CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the first light's shot");
     CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction with a light still to shoot");
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_STATE, "a light while solving");
