@@ -693,8 +693,8 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *     plane facing up under an open sky receives E = pi H + 2 pi (Z - H) / 3 exactly
  *     (pi L for a uniform sky), and a plane that sees whole cells their light exactly
  *     (a grey sky); a vertical wall, whose plane cuts cells, receives
- *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction costs
- *     a sun's shot: N of them cost about N / 3 patch shots at the same res.
+ *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction is
+ *     a sun's shot of one raster over the whole scene (RES, default the scene's res).
  * Surfaces are one-sided: an element receives only on its front (the side its normal
  * points to), and a face turned away from the light does not shadow either. Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
