@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: MIT */
-/* rad — lights that are not surfaces: sun, point and spot (rad.h has the model).
+/* rad — lights that are not surfaces: sun, sky, point and spot (rad.h has the model).
  *
  * A light shoots once, through the one rasterizer and the element lattice, as a
  * patch's shot does: its view's item buffer gives each pixel the element it sees, the
@@ -28,6 +28,15 @@
  * ORTHO); the tiles' half widths times K make h, so they meet exactly. A sun with an
  * angular radius shoots 16 times, each with E / 16 from one direction of its disc
  * (a fixed pattern, symmetric about its centre), which gives shadows penumbrae.
+ *
+ * Sky: N = 3 m^2 sun shots over the hemisphere about "up" (sky_up). Band i (0..m-1)
+ * holds the directions whose projection on the ground plane lies in the ring of radii
+ * i / m .. (i + 1) / m of the unit disc, in 3 (2 i + 1) cells of equal angle about up:
+ * every cell's projected area is pi / (3 m^2). A cell's shot comes along the cell's
+ * vector integral of L w dw (shoot_sky), with the irradiance that the cell's sky gives
+ * a plane facing up over the shot's cosine to up: the cells sum to exactly
+ * pi H + 2 pi (Z - H) / 3 on a plane facing up (pi L for a uniform sky), and any plane
+ * that sees a whole cell receives that cell's light exactly (grey skies).
  *
  * Both render in bands of rows in the depth and item buffers of the work buffer, so the
  * result does not depend on the buffer's size, with the scene's row of id steps; a
@@ -90,6 +99,30 @@ static uint32_t fitted_res(const rad_scene_t *s, uint32_t r)
     return r;
 }
 
+/* Point and spot lights have a position; suns and skies only directions. */
+static int is_point(const rad_light_t *l)
+{
+    return l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT;
+}
+
+/* A sun's or spot's direction, a sky's up (zero: +y). */
+static rad_vec3_t sky_up(const rad_light_t *l)
+{
+    rad_vec3_t u = l->direction;
+    if (l->type == RAD_LIGHT_SKY && u.x == 0 && u.y == 0 && u.z == 0) u.y = RAD__ONE;
+    return u;
+}
+
+/* A sky's bands m: its count of directions rounded down to 3 m^2 (0: the default). */
+#define SKY_MAX_DIRS     768u /* 3 x 16^2 */
+#define SKY_DEFAULT_DIRS 192u
+static uint32_t sky_bands(const rad_light_t *l)
+{
+    uint32_t n = l->dirs ? l->dirs : SKY_DEFAULT_DIRS, m = 1;
+    while (3u * (m + 1u) * (m + 1u) <= n) m++;
+    return m;
+}
+
 int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max)
 {
     RAD__CHECK_SCENE(s);
@@ -106,15 +139,20 @@ int rad_add_light(rad_scene_t *s, const rad_light_t *l)
 {
     rad_vec3_t u;
     RAD__CHECK_SCENE(s);
-    if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SPOT || !res_ok(l->res))
+    if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SKY || !res_ok(l->res))
+        return RAD_ERR_ARG;
+    if (l->type == RAD_LIGHT_SKY && (l->dirs > SKY_MAX_DIRS || (l->dirs && l->dirs < 3u)))
         return RAD_ERR_ARG;
     if (!s->lights || s->solving) return RAD_ERR_STATE;
     if (!channel_ok(l->intensity.r) || !channel_ok(l->intensity.g) || !channel_ok(l->intensity.b))
         return RAD_ERR_RANGE;
-    if (l->type != RAD_LIGHT_SUN && !within(&l->position, RAD__Q(RAD_INPUT_LIMIT))) return RAD_ERR_RANGE;
+    if (l->type == RAD_LIGHT_SKY &&
+        !(channel_ok(l->horizon.r) && channel_ok(l->horizon.g) && channel_ok(l->horizon.b)))
+        return RAD_ERR_RANGE;
+    if (is_point(l) && !within(&l->position, RAD__Q(RAD_INPUT_LIMIT))) return RAD_ERR_RANGE;
     if (l->type != RAD_LIGHT_POINT) {
         if (!vec_ok(&l->direction)) return RAD_ERR_RANGE;
-        if (!rad__normalize(l->direction, &u)) return RAD_ERR_ARG;
+        if (!rad__normalize(sky_up(l), &u)) return RAD_ERR_ARG;
     }
     if (l->type == RAD_LIGHT_SPOT &&
         !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
@@ -140,6 +178,7 @@ typedef struct {
     rad_vec3_t c, frame[3];
     rad_real_t u0, v0, h, far;
     rad_real_t uc, vc, hw; /* sun: the whole window's centre and half width */
+    rad_ff_t wz, wh;       /* sky: this direction's E over the zenith's and horizon's L */
     uint32_t tiles;        /* sun: the window in TILES x TILES squares of res pixels */
     unsigned face;
     uint64_t sum;     /* point: a quadrant's sum of c^3 (pixel_weight) */
@@ -415,8 +454,12 @@ static void light_power(rad_scene_t *s, const view_t *v, rad_energy_t *u)
     for (c = 0; c < 3; c++) {
         rad_real_t i = rad__channel(&l->intensity, c);
         if (v->ortho) { /* E (2 hw)^2, hw below 2^7: (2 hw)^2 as a product of energies */
-            rad_energy_t e = rad__energy(i, 2 * v->hw);
-            u[c] = energy_shift(rad__energy_refl(e, 2 * v->hw), s->power_shift, &s->stats.saturations);
+            rad_energy_t e = rad__energy_refl(rad__energy(i, 2 * v->hw), 2 * v->hw);
+            if (l->type == RAD_LIGHT_SKY) { /* Z wz + H wh, then (2 hw)^2 */
+                rad_energy_t h = rad__energy(rad__channel(&l->horizon, c), 2 * v->hw);
+                e = rad__energy_ff(e, v->wz) + rad__energy_ff(rad__energy_refl(h, 2 * v->hw), v->wh);
+            }
+            u[c] = energy_shift(e, s->power_shift, &s->stats.saturations);
         } else { /* lengths scale by 2^length_shift, so I by its square: E stays */
             u[c] = energy_shift(rad__energy(i, SPHERE_POWER), 2 * s->length_shift + s->power_shift,
                                 &s->stats.saturations);
@@ -464,6 +507,136 @@ static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t part
     s->emitted = rad__esum(s->emitted, got);
 }
 
+#define HALF_PI_Q30 1686629713u /* pi / 2 in Q30, 2 pi in Q28 */
+
+/* sin(2 pi NUM / DEN) in Q30 (DEN > 0), in integers: the angle reduced to a quarter
+ * turn's fraction F, then x = F pi / 2 < 2^31 in Q30 and Taylor's series to x^17 / 17!
+ * (its remainder below 2e-12 at pi / 2). */
+static int64_t sin_q30(uint32_t num, uint32_t den)
+{
+    const uint64_t q4 = 4u * (uint64_t)num;
+    const uint32_t quarter = (uint32_t)((q4 / den) % 4u);
+    const int64_t x = (int64_t)(((q4 % den) * HALF_PI_Q30) / den);
+    const int64_t x2 = (x * x) >> 30;
+    int64_t term = quarter & 1u ? (int64_t)1 << 30 : x, sum = term; /* cos or sin of x */
+    unsigned k;
+    for (k = quarter & 1u ? 1u : 2u; k < 18u; k += 2u) {
+        term = -((term * x2) >> 30) / (int64_t)(k * (k + 1u));
+        sum += term;
+    }
+    return quarter >= 2u ? -sum : sum;
+}
+
+static rad_real_t real_q30(int64_t q)
+{
+    return RAD_REAL_RATIO(q, 1073741824);
+}
+
+/* Q30 a^3 for A in Q30, A <= 1. */
+static uint64_t cube_q30(uint64_t a)
+{
+    return (((a * a) >> 30) * a) >> 30;
+}
+
+/* A sky band's edge: sqrt(m^2 - i^2) / m in Q30 (m <= 16: m^2 - i^2 < 2^9), the root
+ * in Q27 (off by less than 2^-27). */
+static uint64_t edge_q30(uint64_t m, uint64_t i)
+{
+    return (rad__isqrt64((m * m - i * i) << 54) << 3) / m;
+}
+
+/* atan(X) in Q30 for X >= 0 in Q30 (below 2^32): X halved twice by atan x =
+ * 2 atan(x / (1 + sqrt(1 + x^2))), to at most tan(pi / 8) = 0.41, then Taylor's series
+ * to x^41 (its remainder below 2e-17). */
+static uint64_t atan_q30(uint64_t x)
+{
+    const uint64_t one = (uint64_t)1 << 30;
+    int64_t term, sum, x2;
+    unsigned k;
+    for (k = 0; k < 2u; k++) x = (x << 30) / (one + rad__isqrt64((one + ((x * x) >> 30)) << 30));
+    x2 = (int64_t)((x * x) >> 30);
+    term = (int64_t)x;
+    sum = term;
+    for (k = 3; k < 42u; k += 2u) {
+        term = -((term * x2) >> 30); /* (-1)^(k/2) x^k */
+        sum += term / (int64_t)k;
+    }
+    return (uint64_t)sum * 4u;
+}
+
+/* The sum of a colour's channels as an integer (Q16), alike in both builds. */
+static uint64_t grey_q16(const rad_rgb_t *c)
+{
+#if RAD_FLOAT
+    return (uint64_t)((c->r + c->g + c->b) * 65536.0f + 0.5f);
+#else
+    return (uint64_t)c->r + (uint64_t)c->g + (uint64_t)c->b;
+#endif
+}
+
+/* The sky's 3 m^2 shots (the top of the file), all in integers, as both builds' must
+ * agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc (c^2 = 1 - r^2,
+ * dw = r dr dphi / c) has, per unit of angle, the integrals
+ *   Au = int c dw = (r2^2 - r1^2) / 2,        Ac = int c^2 dw = (c1^3 - c2^3) / 3,
+ *   Bu = int s dw = (asin r - r c) / 2 |r1..r2, Bc = int c s dw = (r2^3 - r1^3) / 3
+ * (s = r the sine of the zenith angle). A cell's light of L = H (1 - c) + Z c has the
+ * vector integral of L w dw with the vertical part A = H (Au - Ac) + Z Ac and the
+ * horizontal part B = H (Bu - Bc) + Z Bc times sin(pi / n) / (pi / n) toward the
+ * cell's middle angle: its shot comes along that vector (for Z and H the sums of the
+ * channels), so a plane that sees the whole cell in front of it receives the cell's
+ * light exactly (for a grey sky); each channel's E is its own 2 pi A / n over the
+ * shot's cosine c to up, so a plane facing up receives exactly pi H + 2 pi (Z - H) / 3.
+ * In Q30: the edges c1, c2 (edge_q30), the integrals, the cosine and sine of the shot
+ * (c, sn), the weights WZ = 2 pi Ac / (n c), WH = 2 pi (Au - Ac) / (n c) (at most 2 pi
+ * / 3); 2 pi in Q28; A and B (Q16 radiance times Q30) shifted below 2^31 for their
+ * length. */
+static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
+{
+    const uint64_t two_pi = HALF_PI_Q30; /* 2 pi in Q28 */
+    const uint32_t m = sky_bands(v->l);
+    const uint64_t mm = (uint64_t)m * m;
+    uint64_t zs = grey_q16(&v->l->intensity), hs = grey_q16(&v->l->horizon), asin1 = 0;
+    rad_vec3_t up, f[3];
+    uint32_t i, j;
+    rad__normalize(sky_up(v->l), &up);
+    rad__cube_frame(up, 0, f);
+    if (zs + hs == 0) zs = hs = 1; /* a black sky: any directions */
+    for (i = 0; i < m; i++) {
+        const uint32_t n = 3u * (2u * i + 1u);
+        const uint64_t c1 = edge_q30(m, i), c2 = edge_q30(m, i + 1u);
+        const uint64_t r1 = ((uint64_t)i << 30) / m, r2 = ((uint64_t)(i + 1u) << 30) / m;
+        const uint64_t asin2 = c2 ? atan_q30((r2 << 30) / c2) : HALF_PI_Q30;
+        const uint64_t au = (((uint64_t)2u * i + 1u) << 30) / (2u * mm);
+        const uint64_t ac = (cube_q30(c1) - cube_q30(c2)) / 3u;
+        const uint64_t bu = (asin2 - asin1 - ((r2 * c2) >> 30) + ((r1 * c1) >> 30)) / 2u;
+        const uint64_t bc = (((uint64_t)3u * i * i + 3u * i + 1u) << 30) / (3u * mm * m);
+        const uint64_t sinc = (((uint64_t)n * (uint64_t)sin_q30(1u, 2u * n)) << 28) / two_pi * 2u;
+        uint64_t va = hs * (au > ac ? au - ac : 0) + zs * ac;
+        uint64_t vb = ((hs * (bu > bc ? bu - bc : 0) + zs * bc) >> 30) * sinc, len, c, sn;
+        while (va >= ((uint64_t)1 << 31) || vb >= ((uint64_t)1 << 31)) {
+            va >>= 1;
+            vb >>= 1;
+        }
+        len = rad__isqrt64(va * va + vb * vb);
+        c = (va << 30) / len;
+        sn = (vb << 30) / len;
+        asin1 = asin2;
+        v->wz = rad__ff_from_q30((uint32_t)(((((ac * two_pi) >> 28) / n) << 30) / c));
+        v->wh = rad__ff_from_q30((uint32_t)((((((au > ac ? au - ac : 0) * two_pi) >> 28) / n) << 30) / c));
+        for (j = 0; j < n; j++) { /* the light travels down: -(c up + sn (cos f0 + sin f1)) */
+            const rad_real_t a0 = real_q30(((int64_t)sn * sin_q30(4u * j + 2u + n, 4u * n)) >> 30);
+            const rad_real_t a1 = real_q30(((int64_t)sn * sin_q30(2u * j + 1u, 2u * n)) >> 30);
+            const rad_real_t cr = real_q30((int64_t)c);
+            rad_vec3_t d;
+            d.x = -(rad__mul(cr, up.x, 0) + rad__mul(a0, f[0].x, 0) + rad__mul(a1, f[1].x, 0));
+            d.y = -(rad__mul(cr, up.y, 0) + rad__mul(a0, f[0].y, 0) + rad__mul(a1, f[1].y, 0));
+            d.z = -(rad__mul(cr, up.z, 0) + rad__mul(a0, f[0].z, 0) + rad__mul(a1, f[1].z, 0));
+            rad__normalize(d, &v->dir);
+            shoot_view(s, v, b, 1);
+        }
+    }
+}
+
 /* Light L's shot (a sun of some radius: one a direction of its disc). */
 static void shoot_light(rad_scene_t *s, const rad_light_t *l)
 {
@@ -471,7 +644,7 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
     bufs_t b = {0};
     uint32_t e, head;
     v.l = l;
-    v.ortho = l->type == RAD_LIGHT_SUN;
+    v.ortho = !is_point(l);
     v.res = v.ortho ? s->cfg.res : fitted_res(s, wanted_res(s, l));
     v.tiles = 1;
     if (v.ortho && wanted_res(s, l) <= v.res) v.res = wanted_res(s, l);
@@ -493,6 +666,8 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
         }
         weight_sums(&v);
         shoot_view(s, &v, &b, 1);
+    } else if (l->type == RAD_LIGHT_SKY) {
+        shoot_sky(s, &v, &b);
     } else if (l->radius == 0) {
         rad__normalize(l->direction, &v.dir);
         shoot_view(s, &v, &b, 1);
@@ -521,7 +696,7 @@ int rad__lights_shoot(rad_scene_t *s, uint32_t max)
     uint32_t k, n = 0;
     rad_vec3_t c;
     for (k = s->lights_shot; k < s->n_lights; k++)
-        if (s->lights[k].type != RAD_LIGHT_SUN && !light_position(s, &s->lights[k], &c))
+        if (is_point(&s->lights[k]) && !light_position(s, &s->lights[k], &c))
             return RAD_ERR_RANGE;
     for (; n < max && rad__lights_pending(s); n++) shoot_light(s, &s->lights[s->lights_shot++]);
     return (int)n;
@@ -576,7 +751,12 @@ rad_real_t rad__lights_peak(const rad_scene_t *s)
     uint32_t k;
     for (k = 0; k < s->n_lights; k++) {
         const rad_light_t *l = &s->lights[k];
-        p = l->type == RAD_LIGHT_SUN ? brightest(&l->intensity) : point_peak(s, l);
+        if (l->type == RAD_LIGHT_SKY) /* at most pi times its brightest radiance */
+            p = rad__mul(RAD__Q(3.14159265), brightest(&l->intensity) > brightest(&l->horizon)
+                                                 ? brightest(&l->intensity)
+                                                 : brightest(&l->horizon), 0);
+        else
+            p = l->type == RAD_LIGHT_SUN ? brightest(&l->intensity) : point_peak(s, l);
         if (p > m) m = p;
     }
     return m;

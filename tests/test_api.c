@@ -552,7 +552,7 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rad_rgb_t c;
     static rad_light_t lights[1];
     const rad_light_t sun = {RAD_LIGHT_SUN, 0, {0, 0, 0}, {0, -RAD_REAL(1), 0},
-                             {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)}, 0, 0, 0};
+                             {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)}, 0, 0, 0, {0, 0, 0}, 0};
     uint32_t patch = 0;
     int rc[CALLS], n = 0, k, refused = 0;
     assert_int_equal(rad_gather_init(&g, 8, 0, gwork, sizeof gwork), RAD_OK);

@@ -1383,6 +1383,63 @@ static double csv_mean_red(const char *path, double *area_out)
     return sum / area;
 }
 
+/* A 16 x 16 floor of Kd 0.5 under --sky: its mean radiosity is rho pi L (uniform), and
+ * rho pi H / 3 under a horizon-only sky (R,G,B 0 at the zenith: L = H (1 - cos t)),
+ * exactly by the dome's weights (rad.h) but for the raster's coverage of the floor's
+ * outline in each direction's shot (test_light.c's bound at the scene's res 192:
+ * p = 16 sqrt 2 / 192, P <= 64 for every projection: 2.2% of the area); with N = 12
+ * directions the same. Bad values and stored rows are refused. */
+static void test_sky(void **state)
+{
+    static const struct {
+        const char *val, *more, *says;
+    } bad[] = {
+        {"1,1", NULL, "--sky wants R,G,B[,HR,HG,HB][,N]"},
+        {"1,1,1,2", NULL, "N an integer 3..768"},
+        {"1,1,1,12.5", NULL, "N an integer 3..768"},
+        {"1,1,1,769", NULL, "N an integer 3..768"},
+        {"1,1,1,1,1", NULL, "--sky wants"},
+        {"1,1,-1", NULL, "radiances >= 0"},
+        {"1,1,1,1,-1,1,12", NULL, "radiances >= 0"},
+        {"1,1,1", "--save-ff", "stored form factors"},
+    };
+    static const struct {
+        const char *val;
+        double want;
+    } good[] = {{"2,2,2", 0.5 * 3.14159265358979323846 * 2},
+                {"0,0,0,2,2,2", 0.5 * 3.14159265358979323846 * 2 / 3},
+                {"2,2,2,12", 0.5 * 3.14159265358979323846 * 2}};
+    run_t r;
+    double area, mean;
+    size_t k;
+    (void)state;
+    need(FIXED);
+    write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
+    write_text(tmp_path("floor.obj"),
+               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    for (k = 0; k < sizeof good / sizeof good[0]; k++) {
+        RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sky", good[k].val, "--dump-radiosity",
+            tmp_path("sky.csv"), "-o", tmp_path("sky.png"), tmp_path("floor.obj"));
+        expect_status(&r, 0);
+        run_free(&r);
+        mean = csv_mean_red(tmp_path("sky.csv"), &area);
+        print_message("--sky %s: mean radiosity %.6f, the law's %.6f (%+.3f%%, bound 2.2%%)\n", good[k].val, mean,
+                      good[k].want, 100 * (mean / good[k].want - 1));
+        CHECK_NEAR(area, 256, 0.01, "the floor's area");
+        CHECK_NEAR(mean, good[k].want, good[k].want * 0.022, "the floor's mean radiosity under --sky %s", good[k].val);
+    }
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        if (bad[k].more)
+            RUN(&r, FIXED, "--sky", bad[k].val, bad[k].more, tmp_path("sky.ff"), "-o", tmp_path("bad.png"),
+                tmp_path("floor.obj"));
+        else
+            RUN(&r, FIXED, "--sky", bad[k].val, "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
+        expect_status(&r, 2);
+        CHECK_CONTAINS(r.err, bad[k].says, "rad_cli --sky %s", bad[k].val);
+        run_free(&r);
+    }
+}
+
 /* A 16 x 16 floor of Kd 0.5 under --sun at 60 degrees from its normal: the floor's mean
  * radiosity is rho E cos t, within the sun raster's coverage bound for its outline
  * (test_light.c: p P / sqrt 2 + 2 p^2 + P p sqrt 2 / 32 over the area, p = the
@@ -1498,7 +1555,7 @@ int main(void)
         cmocka_unit_test(test_trailing_list_items),
         cmocka_unit_test(test_camera_looking_down),
         cmocka_unit_test(test_render_cracks),
-        cmocka_unit_test(test_lights),
+        cmocka_unit_test(test_lights), cmocka_unit_test(test_sky),
     };
     return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);
 }

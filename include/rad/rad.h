@@ -668,7 +668,7 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
                   int flags, rad_rgb_t *sh);
 
-/* ---- lights: sun, point and spot (lib/light.c) ---------------------------------- */
+/* ---- lights: sun, sky, point and spot (lib/light.c) ----------------------------- */
 /* Lights that are not surfaces: each shoots once, at the start of a solve (the first
  * rad_shoot steps, one light a step, before any patch), giving every element it
  * reaches its direct light: power P on an element of area A and reflectance rho adds
@@ -681,7 +681,20 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *   - a sun renders an orthographic item buffer of about RES x RES pixels (in tiles
  *     of the scene's res) over the square that the scene's corners project to,
  *     across its direction; a pixel of area a (perpendicular to the light) gives the
- *     element it sees E a.
+ *     element it sees E a;
+ *   - a sky is a fixed dome of N = 3 m^2 such suns over the hemisphere about its up
+ *     (lib/light.c has the dome): rings of equal width on the unit disc that the
+ *     hemisphere projects to, ring i (0..m-1) in 3 (2 i + 1) cells of equal angle (each
+ *     of projected area pi / N), each cell's sun along the cell's irradiance vector
+ *     (the integral of L w dw over it, for the channels' sum) with the irradiance that
+ *     the cell's sky gives a plane facing up, over its cosine to up. Light enters
+ *     through openings as a sun's does. Its radiance at zenith angle t is
+ *     L(t) = H + (Z - H) cos t (Z at the zenith, H at the horizon; H = Z: uniform), so a
+ *     plane facing up under an open sky receives E = pi H + 2 pi (Z - H) / 3 exactly
+ *     (pi L for a uniform sky), and a plane that sees whole cells their light exactly
+ *     (a grey sky); a vertical wall, whose plane cuts cells, receives
+ *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction is
+ *     a sun's shot of one raster over the whole scene (RES, default the scene's res).
  * Surfaces are one-sided: an element receives only on its front (the side its normal
  * points to), and a face turned away from the light does not shadow either. Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
@@ -695,9 +708,10 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
 #define RAD_LIGHT_SUN   1 /* directional: irradiance E on a plane facing it */
 #define RAD_LIGHT_POINT 2 /* intensity I in every direction */
 #define RAD_LIGHT_SPOT  3 /* intensity I inside a cone, 0 outside */
+#define RAD_LIGHT_SKY   4 /* radiance from every direction above the horizon */
 struct rad_light_s {
     uint16_t type; /* RAD_LIGHT_* */
-    uint16_t res;  /* 0: default (point, spot: the scene's res; sun: 4 res, at most
+    uint16_t res;  /* 0: default (point, spot, sky: the scene's res; sun: 4 res, at most
                     * RAD_MAX_RES); else even, 8..RAD_MAX_RES. A sun's raster is
                     * K x K tiles of the scene's res, K = RES / res rounded up; a point
                     * light's face above the scene's res needs 2 RES pixels a pass in
@@ -707,9 +721,11 @@ struct rad_light_s {
                            * caller's units and +-RAD_COORD_LIMIT in the core's scale
                            * (checked by rad_shoot) */
     rad_vec3_t direction; /* sun, spot: the way its light travels (a sun straight
-                           * overhead: (0, -1, 0) with y up); any length above 0 */
-    rad_rgb_t intensity;  /* point, spot: I (per unit solid angle); sun: E; each
-                           * channel in [0, RAD_EMISSION_LIMIT] */
+                           * overhead: (0, -1, 0) with y up); any length above 0.
+                           * sky: its up, the zenith's direction (0: +y) */
+    rad_rgb_t intensity;  /* point, spot: I (per unit solid angle); sun: E; sky: the
+                           * zenith's radiance Z; each channel in
+                           * [0, RAD_EMISSION_LIMIT] */
     /* spot: the cosines of the cone's half angle (0 beyond it) and of the inner half
      * angle (full intensity within it), cos_outer <= cos_inner, both in [-1, 1];
      * between them I times s^2, s = (cos a - cos_outer) / (cos_inner - cos_outer)
@@ -720,6 +736,11 @@ struct rad_light_s {
      * Vogel's spiral and their opposites, fixed), each an orthographic shot of E / 16,
      * so that shadows have penumbrae */
     rad_real_t radius;
+    rad_rgb_t horizon; /* sky: the horizon's radiance H, each channel in
+                        * [0, RAD_EMISSION_LIMIT] (equal to intensity: a uniform sky;
+                        * a light zeroed then filled in has H = 0: L = Z cos t) */
+    uint32_t dirs;     /* sky: its count of directions, rounded down to 3 m^2
+                        * (3, 12, 27, 48, 75, ...), 3..768; 0: the default, 192 */
 };
 
 /* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then
@@ -731,7 +752,8 @@ int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max);
  * (the one that rad_restart starts, once solving). Returns its index, or RAD_ERR_ARG
  * (NULL, an unknown type or res, a zero direction), RAD_ERR_RANGE (a position,
  * intensity or cosine out of range), RAD_ERR_FULL (the array is full) or
- * RAD_ERR_STATE (no array, or shooting started: rad_restart first). Stored rows
+ * RAD_ERR_STATE (no array, or shooting started: rad_restart first); a sky's dirs
+ * outside 0, 3..768 is RAD_ERR_ARG. Stored rows
  * (rad_rows_shoot, rad_rows_gauss_seidel) do not take lights yet: they return
  * RAD_ERR_STATE for a scene with lights. */
 int rad_add_light(rad_scene_t *s, const rad_light_t *light);

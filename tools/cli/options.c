@@ -165,7 +165,7 @@ static void opt_emit(opts_t *o, const char *opt, const char *val)
     o->emit[o->nemit++] = (char *)val;
 }
 
-/* --sun, --point, --spot: N values (the last optional when OPT_LAST), intensities at
+/* --sun, --point, --spot (--sky: opt_sky): N values (the last optional when OPT_LAST), intensities at
  * V[RGB..RGB+2] not negative, a direction at V[DIR..] (DIR < 0: none) not zero. */
 static sc_light *light_values(opts_t *o, const char *opt, const char *val, double *v, int n, int opt_last,
                               int rgb, int dir, const char *want)
@@ -221,6 +221,35 @@ static void opt_spot(opts_t *o, const char *opt, const char *val)
     memcpy(l->dir, v + 3, sizeof l->dir);
     l->cos_outer = cos(v[9] * deg);
     l->cos_inner = cos(v[9] * (1 - v[10]) * deg);
+}
+
+/* --sky R,G,B[,HR,HG,HB][,N]: 3, 4, 6 or 7 values. */
+static void opt_sky(opts_t *o, const char *opt, const char *val)
+{
+    static const int counts[4] = {3, 4, 6, 7};
+    const char *want = "R,G,B[,HR,HG,HB][,N]: radiances >= 0, N an integer 3..768";
+    double v[7], *n = NULL;
+    sc_light *l;
+    int k, a, dirs;
+    for (k = 0; k < 4 && parse_list(val, v, counts[k], 0) != counts[k]; k++) continue;
+    if (k < 4 && (counts[k] == 4 || counts[k] == 7)) n = &v[counts[k] - 1];
+    if (k == 4 || (n && !(*n >= 3 && *n <= 768 && *n == floor(*n)))) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "%s wants %s", opt, want);
+        die_usage(msg, val);
+    }
+    dirs = n ? (int)*n : 0;
+    if (counts[k] < 6) memcpy(v + 3, v, 3 * sizeof *v); /* no horizon: a uniform sky */
+    for (a = 0; a < 6 && v[a] >= 0; a++) continue;
+    if (a < 6) die_usage("--sky wants radiances >= 0", val);
+    l = &o->lights[o->nlights++];
+    memset(l, 0, sizeof *l);
+    for (a = 0; a < 3; a++) {
+        l->rgb[a] = v[a];
+        l->horizon[a] = v[3 + a];
+    }
+    l->type = RAD_LIGHT_SKY;
+    l->dirs = dirs;
 }
 
 static void opt_save_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->save_ff = val; }
@@ -384,6 +413,11 @@ static const option_t options[] = {
      "a spot light at X,Y,Z pointing along DX,DY,DZ: a point light\n"
      "inside the cone of half angle ANGLE degrees, dark outside;\n"
      "SOFTNESS (0..1, 0) of the angle fades out (repeatable)", opt_spot},
+    {"--sky", NULL, "R,G,B[,HR,HG,HB][,N]",
+     "a sky over +Y: radiance R,G,B at the zenith, HR,HG,HB at the\n"
+     "horizon (default: R,G,B, a uniform sky), linear in the cosine\n"
+     "of the zenith angle; an open floor gets pi L; N directions\n"
+     "(3..768, rounded down to 3 m^2; 192), each a sun's shot", opt_sky},
     {"--no-file-lights", NULL, NULL,
      "leave out the lights a glTF, FBX, COLLADA or 3DS scene holds\n"
      "(by default they shine, after --sun, --point and --spot)", opt_no_file_lights},
@@ -501,7 +535,7 @@ static void check_combinations(opts_t *o)
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->nlights && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate))
-        die_usage("--sun, --point and --spot do not work with stored form factors yet (--save-ff, --load-ff, "
+        die_usage("--sun, --point, --spot and --sky do not work with stored form factors yet (--save-ff, --load-ff, "
                   "--solver gauss-seidel, --light-group, --animate): leave one or the other out", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {

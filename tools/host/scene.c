@@ -427,6 +427,14 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
     return 0;
 }
 
+/* A light's intensities' factor from the caller's units to the core's (before escale):
+ * a sun's irradiance and a sky's radiance keep with lengths, a point's I / r^2 scales by
+ * scale^2. */
+static double light_k(const struct sc_solver *h, const sc_light *l)
+{
+    return l->type == RAD_LIGHT_SUN || l->type == RAD_LIGHT_SKY ? 1.0 : h->scale * h->scale;
+}
+
 /* The lights of O checked and taken to the core (h->lights): positions as the
  * polygons', directions unit, intensities by escale (a point's also by scale^2, as its
  * irradiance I / r^2 keeps with lengths), escale lowered first so that the brightest
@@ -438,21 +446,25 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
     if (o->nlights <= 0) return 0;
     for (i = 0; i < o->nlights; i++) {
         const sc_light *l = &o->lights[i];
-        double k = l->type == RAD_LIGHT_SUN ? 1.0 : h->scale * h->scale, d = 0;
+        /* a sky's irradiance: at most pi times its brightest radiance */
+        double k = light_k(h, l), d = 0, pk = l->type == RAD_LIGHT_SKY ? 3.14159265358979323846 : 1.0;
         for (a = 0; a < 3; a++) {
-            if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) || !isfinite(l->dir[a])) {
+            if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) || !isfinite(l->dir[a]) ||
+                !(l->horizon[a] >= 0) || !isfinite(l->horizon[a])) {
                 snprintf(err, errlen, "light %d: a negative or non-finite value", i + 1);
                 return -1;
             }
-            if (l->rgb[a] * k > peak) peak = l->rgb[a] * k;
+            if (l->rgb[a] * k * pk > peak) peak = l->rgb[a] * k * pk;
+            if (l->horizon[a] * k * pk > peak) peak = l->horizon[a] * k * pk;
             d += l->dir[a] * l->dir[a];
-            if (l->type != RAD_LIGHT_SUN && fabs((l->pos[a] - h->off[a]) * h->scale) > RAD_COORD_LIMIT) {
+            if ((l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) &&
+                fabs((l->pos[a] - h->off[a]) * h->scale) > RAD_COORD_LIMIT) {
                 snprintf(err, errlen, "light %d: its position lies beyond the core's range, twice the scene's "
                          "extent from its centre: move it nearer", i + 1);
                 return -1;
             }
         }
-        if (l->type != RAD_LIGHT_POINT && !(d > 0)) {
+        if (l->type != RAD_LIGHT_POINT && l->type != RAD_LIGHT_SKY && !(d > 0)) {
             snprintf(err, errlen, "light %d: a zero direction", i + 1);
             return -1;
         }
@@ -470,7 +482,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
     for (i = 0; i < o->nlights; i++) {
         const sc_light *l = &o->lights[i];
         rad_light_t *c = &h->lights[i];
-        double k = (l->type == RAD_LIGHT_SUN ? 1.0 : h->scale * h->scale) * h->escale;
+        double k = light_k(h, l) * h->escale;
         double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
         c->type = (uint16_t)l->type;
         /* A light shoots once, so its aliasing is not averaged over many shots as a
@@ -479,7 +491,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
          * 1.2% (10%), in 0.2 s. The core's default is the scene's res (the same bits
          * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
          * that a point light's finer cube needs. A sun is 4 res by default. */
-        if (l->type != RAD_LIGHT_SUN) {
+        if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
             int r = 4 * (o->res ? o->res : 64);
             c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
         }
@@ -495,6 +507,13 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
         c->cos_outer = RAD_REAL(l->cos_outer);
         c->cos_inner = RAD_REAL(l->cos_inner);
         c->radius = RAD_REAL(l->radius);
+        if (l->type == RAD_LIGHT_SKY) {
+            memset(&c->position, 0, sizeof c->position);
+            c->horizon.r = RAD_REAL(fmin(l->horizon[0] * k, 4096.0));
+            c->horizon.g = RAD_REAL(fmin(l->horizon[1] * k, 4096.0));
+            c->horizon.b = RAD_REAL(fmin(l->horizon[2] * k, 4096.0));
+            c->dirs = (uint32_t)l->dirs;
+        }
     }
     return 0;
 }

@@ -23,14 +23,18 @@ typedef struct {
 } sc_poly;
 
 /* A light that is not a surface (rad_add_light), in the caller's units: TYPE 1 sun, 2
- * point, 3 spot (RAD_LIGHT_*); DIR the way its light travels; RGB a point's or spot's
- * intensity (per steradian) or a sun's irradiance on a plane facing it; a spot's cone
- * by the cosines of its outer and inner half angles; a sun's disc by RADIUS. */
+ * point, 3 spot, 4 sky (RAD_LIGHT_*); DIR the way its light travels (a sky's up, zero:
+ * +Y); RGB a point's or spot's intensity (per steradian), a sun's irradiance on a plane
+ * facing it or a sky's zenith radiance; a spot's cone by the cosines of its outer and
+ * inner half angles; a sun's disc by RADIUS; a sky's HORIZON radiance and DIRS (0: the
+ * core's default). */
 typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
     double cos_outer, cos_inner;
     double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
+    double horizon[3];
+    int dirs;
 } sc_light;
 
 typedef struct {
