@@ -201,9 +201,11 @@ $(FUZZDIR)/fuzz_obj: tests/fuzz/fuzz_obj.c $(FUZZDIR)/tools/formats/obj.o $(FUZZ
 $(FUZZDIR)/fuzz_image: tests/fuzz/fuzz_image.c $(FUZZDIR)/tools/formats/image.o $(FUZZDIR)/tools/formats/file_io.o $(TOOL_HDRS)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZDIR)/tools/formats/image.o $(FUZZDIR)/tools/formats/file_io.o $(PNG_LIBS) -lm -o $@
 # libstb is the system's (not instrumented): the harness covers our side of it.
-FUZZ_TEX_OBJS = $(FUZZDIR)/tools/formats/obj.o $(FUZZDIR)/tools/formats/texture.o $(FUZZDIR)/tools/formats/gltf.o $(FUZZDIR)/tools/formats/file_io.o
+# gltf.o re-encodes BMP and TGA textures as PNG (image.o, libpng).
+FUZZ_TEX_OBJS = $(FUZZDIR)/tools/formats/obj.o $(FUZZDIR)/tools/formats/texture.o $(FUZZDIR)/tools/formats/gltf.o \
+                $(FUZZDIR)/tools/formats/image.o $(FUZZDIR)/tools/formats/file_io.o
 $(FUZZDIR)/fuzz_mtl_texture: tests/fuzz/fuzz_mtl_texture.c $(FUZZ_TEX_OBJS) $(TOOL_HDRS)
-	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZ_TEX_OBJS) $(STB_LIBS) -lm -o $@
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $(PNG_CFLAGS) $< $(FUZZ_TEX_OBJS) $(STB_LIBS) $(PNG_LIBS) -lm -o $@
 # rad_cli's --views and --animate parsers, taken from a buffer (tools/cli/views.c).
 $(FUZZDIR)/fuzz_views: tests/fuzz/fuzz_views.c $(FUZZDIR)/tools/cli/views.o $(TOOL_HDRS)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/cli/views.o -lm -o $@
