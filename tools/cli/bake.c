@@ -11,7 +11,7 @@
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "host/clock.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 #include "host/obj_polys.h"
 #include "progress.h"
 

@@ -28,7 +28,7 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/fgather.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 #include "host/scene.h"
 
 /* Exit statuses (the README's and --help's list). */

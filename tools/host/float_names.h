@@ -3,7 +3,7 @@
  * host/scene.h defines and calls the float twin's functions (scf_*, declared in
  * host/scene_float.h) under the names of the fixed build. Only the files built once
  * per build of the core include it: tools/host/scene.c, tools/host/parallel.c,
- * tools/host/gltf_export.c, tools/host/tex_render.c, tools/host/ply_export.c,
+ * tools/bake/gltf_export.c, tools/host/tex_render.c, tools/host/ply_export.c,
  * tools/host/fgather.c and
  * tools/cli/rad_cli.c. */
 #ifndef RAD_TOOLS_FLOAT_NAMES_H
