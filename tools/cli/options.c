@@ -355,8 +355,8 @@ static const option_t options[] = {
      "eye, look-at point, vertical field of view (degrees, 45);\n"
      "repeat '--camera ... -o FILE' to render many views of one solve", opt_camera},
     {"--views", NULL, "FILE", "one view a line: EX EY EZ LX LY LZ [FOV] OUTPUT", opt_views},
-    {"--width", NULL, "N", "image width (512), up to 2048", opt_width},
-    {"--height", NULL, "N", "image height (512), up to 2048", opt_height},
+    {"--width", NULL, "N", "image width (" DEF_STR(DEF_IMAGE_SIZE) "), up to 2048", opt_width},
+    {"--height", NULL, "N", "image height (" DEF_STR(DEF_IMAGE_SIZE) "), up to 2048", opt_height},
     {"--exposure", NULL, "X",
      "linear scale before sRGB (default: automatic, from the first view:\n"
      "its 97th percentile maps to white; one exposure for every view)", opt_exposure},
@@ -384,9 +384,9 @@ static const option_t options[] = {
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
      "for small lamps): shadows sharper than the elements; also the\n"
-     "lightmap's and probes' gather resolution (32 without it)", opt_gather},
+     "lightmap's and probes' gather resolution (" DEF_STR(DEF_GATHER_RES) " without it)", opt_gather},
     SECTION("solver:"),
-    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (192; 128 with stored rows)", opt_res},
+    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (" DEF_STR(DEF_RES) "; " DEF_STR(DEF_ROWS_RES) " with stored rows)", opt_res},
     {"--coarse", NULL, "F",
      "once the unshot fraction is below F, shots (but the emitters' own\n"
      "light) render at res / 2, below F / 8 at res / 4, ... (1; 0: never)", opt_coarse},
@@ -446,7 +446,7 @@ static const option_t options[] = {
     SECTION("baking (lightmaps and light probes):"),
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
-    {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
+    {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (" DEF_STR(DEF_LIGHTMAP_SIZE) ")", opt_lightmap_size},
     {"--lightmap-pad", NULL, "N",
      "texels of gutter around each lightmap chart, 0..64 (size / 128\nwithin 1..4): mip levels m with 2^m <= N + 1 stay clean", opt_lightmap_pad},
     {"--lightmap-tol", NULL, "F",
@@ -552,15 +552,15 @@ static void check_combinations(opts_t *o)
  * at res, so there the default stays 128 and nothing coarsens. */
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)
 {
-    so->res = o->res ? o->res : rows ? CLI_ROWS_RES : CLI_RES;
-    so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : CLI_COARSE;
-    so->coarse_res = o->coarse_res ? o->coarse_res : CLI_COARSE_FLOOR(so->res);
+    so->res = o->res ? o->res : rows ? DEF_ROWS_RES : DEF_RES;
+    so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : DEF_COARSE;
+    so->coarse_res = o->coarse_res ? o->coarse_res : DEF_COARSE_FLOOR(so->res);
 }
 
 static void set_defaults(opts_t *o, int argc)
 {
     memset(o, 0, sizeof *o);
-    o->width = o->height = 512;
+    o->width = o->height = DEF_IMAGE_SIZE;
     o->tol = 0.001;
     o->max_shots = 1000000;
     o->threads = 1;

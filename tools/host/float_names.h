@@ -36,6 +36,8 @@
 #define sc_form_factors scf_form_factors
 #define sc_checksum scf_checksum
 #define sc_core scf_core
+#define sc_patch_count scf_patch_count
+#define sc_patch scf_patch
 #define sc_rows_compute scf_rows_compute
 #define sc_rows_save scf_rows_save
 #define sc_rows_load scf_rows_load
