@@ -24,11 +24,17 @@ typedef struct {
 } option_t;
 
 static void usage(FILE *f);
+static void print_option(FILE *f, const option_t *p);
 
+/* The option whose value is being read, for die_usage: NULL between options. */
+static const option_t *parsing;
+
+/* A usage error: the message, the help of the option at fault, and where the rest is. */
 void die_usage(const char *msg, const char *arg)
 {
     fprintf(stderr, PROG ": %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
-    usage(stderr);
+    if (parsing) print_option(stderr, parsing);
+    fprintf(stderr, "usage: " PROG " [options] scene.obj   (" PROG " --help lists the options)\n");
     exit(CLI_EXIT_USAGE);
 }
 
@@ -44,6 +50,18 @@ static long parse_int(const char *opt, const char *s, long lo, long hi)
         die_usage(msg, s);
     }
     return v;
+}
+
+/* A hemi-cube resolution: even (a cube's sides are half faces), 8..1024. */
+static int parse_res(const char *opt, const char *s)
+{
+    long v = parse_int(opt, s, 8, 1024);
+    if (v % 2) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s must be even", opt);
+        die_usage(msg, s);
+    }
+    return (int)v;
 }
 
 static double parse_pos(const char *opt, const char *s)
@@ -125,8 +143,7 @@ static void opt_no_file_lights(opts_t *o, const char *opt, const char *val)
 
 static void opt_res(opts_t *o, const char *opt, const char *val)
 {
-    o->res = (int)parse_int(opt, val, 8, 1024);
-    if (o->res % 2) die_usage("--res must be even", val);
+    o->res = parse_res(opt, val);
 }
 
 static void opt_coarse(opts_t *o, const char *opt, const char *val)
@@ -138,8 +155,7 @@ static void opt_coarse(opts_t *o, const char *opt, const char *val)
 
 static void opt_coarse_res(opts_t *o, const char *opt, const char *val)
 {
-    o->coarse_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->coarse_res % 2) die_usage("--coarse-res must be even", val);
+    o->coarse_res = parse_res(opt, val);
 }
 
 static void opt_max_patch(opts_t *o, const char *opt, const char *val) { o->max_patch = parse_pos(opt, val); }
@@ -329,8 +345,7 @@ static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 
 static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
-    o->gather_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->gather_res % 2) die_usage("--gather must be even", val);
+    o->gather_res = parse_res(opt, val);
 }
 
 static void opt_probes(opts_t *o, const char *opt, const char *val)
@@ -464,6 +479,23 @@ static const option_t options[] = {
 #define NOPTIONS (sizeof options / sizeof options[0])
 #define HELP_COLUMN 26
 
+/* One option's entry of the help: its name and value, then its help lines. */
+static void print_option(FILE *f, const option_t *p)
+{
+    const char *h = p->help;
+    int w = fprintf(f, "  %s%s%s%s%s", p->name, p->alt ? ", " : "", p->alt ? p->alt : "", p->arg ? " " : "",
+                    p->arg ? p->arg : "");
+    if (w >= HELP_COLUMN) w = fprintf(f, "\n") - 1; /* a long name: its help on the next line */
+    for (;;) {
+        const char *nl = strchr(h, '\n');
+        int len = nl ? (int)(nl - h) : (int)strlen(h);
+        fprintf(f, "%*s%.*s\n", HELP_COLUMN - w, "", len, h);
+        if (!nl) break;
+        h = nl + 1;
+        w = 0;
+    }
+}
+
 static void usage(FILE *f)
 {
     size_t i;
@@ -474,21 +506,8 @@ static void usage(FILE *f)
                "assimp: %s.\n\n",
             assimp_scene_available() ? "built in" : "not in this build (libassimp-dev, then make)");
     for (i = 0; i < NOPTIONS; i++) {
-        const option_t *p = &options[i];
-        const char *h = p->help;
-        int w;
-        if (!p->name) { fprintf(f, "%s\n", h); continue; }
-        w = fprintf(f, "  %s%s%s%s%s", p->name, p->alt ? ", " : "", p->alt ? p->alt : "", p->arg ? " " : "",
-                    p->arg ? p->arg : "");
-        if (w >= HELP_COLUMN) w = fprintf(f, "\n") - 1; /* a long name: its help on the next line */
-        for (;;) {
-            const char *nl = strchr(h, '\n');
-            int len = nl ? (int)(nl - h) : (int)strlen(h);
-            fprintf(f, "%*s%.*s\n", HELP_COLUMN - w, "", len, h);
-            if (!nl) break;
-            h = nl + 1;
-            w = 0;
-        }
+        if (!options[i].name) fprintf(f, "%s\n", options[i].help);
+        else print_option(f, &options[i]);
     }
     fprintf(f, "\nWithout --camera or --views, the default camera looks along -Z at the centre of\n"
                "the meshed scene's bounding box, from in front of it (+Z), with +Y up, a 45 degree\n"
@@ -585,8 +604,10 @@ void parse_args(int argc, char **argv, opts_t *o)
         const char *a = argv[i];
         const option_t *p = a[0] == '-' && a[1] ? find_option(a) : NULL;
         if (p) {
+            parsing = p;
             if (p->arg && i + 1 >= argc) die_usage("option needs a value", a);
             p->fn(o, a, p->arg ? argv[++i] : NULL);
+            parsing = NULL;
         } else if (a[0] == '-' && a[1]) die_usage("unknown option", a);
         else if (o->scene) die_usage("more than one scene given", a);
         else o->scene = a;
