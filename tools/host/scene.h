@@ -219,6 +219,7 @@ int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]
 /* Values past the core's range met by this gatherer (saturated, counted). */
 unsigned long sc_gatherer_saturations(sc_gatherer *g);
 
+#define RAD_TWIN_SCENE /* the float twin's names of the above (generated): */
 #include "host/scene_float.h"
 
 #endif
