@@ -144,7 +144,7 @@ nm-check: $(LIBRAD)
 	@sh tests/nm_check.sh $(LIBRAD)
 
 test: all $(TESTS) nm-check
-	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/twin_names_check.sh
+	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/docs_check.sh tests/twin_names_check.sh
 
 clean:
 	rm -rf $(BUILDDIR)

@@ -721,7 +721,7 @@ static void same_image(const char *pa, const char *pb)
 }
 
 /* A polygon that is skipped (zero area) far from the box must not be framed: the default
- * image equals the one through the camera the README describes for the box alone. The
+ * image equals the one through the camera docs/cli.md describes for the box alone. The
  * skipped polygon is named by its line. */
 static void test_default_camera_frames_meshed(void **state)
 {
@@ -754,7 +754,7 @@ static void test_default_camera_frames_meshed(void **state)
         h[k] = 0.5 * (hi[k] - lo[k]);
         c[k] = 0.5 * (hi[k] + lo[k]);
     }
-    /* The README's default camera for a square image: along -Z, backed off until the
+    /* docs/cli.md's default camera for a square image: along -Z, backed off until the
      * box's front face fills the frame with a 5% margin. */
     fit = h[1] > h[0] ? h[1] : h[0];
     snprintf(cam, sizeof cam, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c[0], c[1], c[2] + h[2] + 1.05 * fit / t, c[0],
@@ -828,36 +828,36 @@ static void test_outward_room_warns(void **state)
     done(&r);
 }
 
-/* ---- the documentation: --help and the README's table ------------------------------ */
+/* ---- the documentation: --help and docs/cli.md's table ----------------------------- */
 
-/* The README's rad_cli table and --help name the same options, and --help states the
+/* docs/cli.md's option table and --help name the same options, and --help states the
  * exit statuses and the default camera. */
-static void test_help_matches_readme(void **state)
+static void test_help_matches_docs(void **state)
 {
     result_t r;
-    char *readme = read_whole("README.md"), *p;
+    char *doc = read_whole("docs/cli.md"), *p;
     int n = 0;
     (void)state;
     RUN(&r, "--help");
     expect(&r, 0, "");
     assert_non_null(strstr(r.out, "Exit status: 0 success; 1 runtime or input error; 2 usage error; 3 outputs"));
     assert_non_null(strstr(r.out, "the default camera looks along -Z at the centre of"));
-    for (p = readme; (p = strstr(p, "\n| `-")) != NULL; p++) {
+    for (p = doc; (p = strstr(p, "\n| `-")) != NULL; p++) {
         const char *end = strchr(p + 3, '|'), *q; /* the row's first column */
         for (q = p + 3; q && q < end; q = strchr(q + 1, '`')) {
             char opt[64];
             size_t len = strcspn(q + 1, " `,=");
             if (q[1] != '-') continue;
-            if (len >= sizeof opt) fail_msg("README row: %.60s", p);
+            if (len >= sizeof opt) fail_msg("docs/cli.md row: %.60s", p);
             memcpy(opt, q + 1, len);
             opt[len] = '\0';
-            if (!strstr(r.out, opt)) fail_msg("the README's option %s is not in --help", opt);
+            if (!strstr(r.out, opt)) fail_msg("docs/cli.md's option %s is not in --help", opt);
             n++;
             q = strchr(q + 1, '`'); /* past the closing backtick */
             if (!q) break;
         }
     }
-    print_message("%d README options found in --help\n", n);
+    print_message("%d docs/cli.md options found in --help\n", n);
     assert_in_range(n, 25, 100);
     /* and the other way: every option --help lists has its row (its alias aside) */
     for (p = r.out; (p = strstr(p, "\n  -")) != NULL; p++) {
@@ -867,9 +867,9 @@ static void test_help_matches_readme(void **state)
         opt[0] = '`';
         memcpy(opt + 1, p + 3, len);
         opt[len + 1] = '\0';
-        if (!strstr(readme, opt)) fail_msg("--help's option %s has no row in the README's table", opt + 1);
+        if (!strstr(doc, opt)) fail_msg("--help's option %s has no row in docs/cli.md's table", opt + 1);
     }
-    free(readme);
+    free(doc);
     done(&r);
 }
 
@@ -892,7 +892,7 @@ int main(void)
         cmocka_unit_test(test_default_camera_frames_meshed),
         cmocka_unit_test(test_exposure_shared_and_printed),
         cmocka_unit_test(test_outward_room_warns),
-        cmocka_unit_test(test_help_matches_readme),
+        cmocka_unit_test(test_help_matches_docs),
         cmocka_unit_test(test_image_to_stdout),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

@@ -526,7 +526,7 @@ static void test_solution_colours(void **state)
         print_message("closed glowing box: _LIGHT against E / (1 - rho), worst %.3g%% (elements "
                       "%.4f to %.4f of %.1f)\n", 100 * worst, lo[0], hi[0], want[0]);
         /* The elements' own spread about the closed form is the hemi-cube's aliasing
-           (README: elements' form factors within 4.9% at res 512): measured -2.4% to
+           (docs/library.md: elements' form factors within 4.9% at res 512): measured -2.4% to
            +1.6% here at res 64, so 5% bounds it with the reason stated. */
         assert_true(worst <= 0.05);
         /* every face emits: the scale is the brightest channel, about 6 / (1 - 0.5) here,

@@ -229,7 +229,7 @@ static void test_gauss_seidel_vs_shooting(void **st)
     assert_int_equal(b->s.stats.raster_calls, calls);
     d = max_rel(b, a);
     print_message("Gauss-Seidel (%d sweeps) vs progressive refinement: max %.4f%% per element\n", it, 100 * d);
-    /* The same equations solved two ways, each to 0.0001: the README's bound for
+    /* The same equations solved two ways, each to 0.0001: docs/cli.md's bound for
      * Gauss-Seidel against shooting, 0.5% per element. */
     CHECK_LE(d, 0.005, "Gauss-Seidel against progressive refinement: max relative difference "
                        "per element above 1%% of the brightest");

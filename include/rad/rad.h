@@ -226,7 +226,7 @@ typedef struct {
  * still sum to exactly 2^30, and the light shot after the switch is what was unshot
  * then: the error coarse shots add is bounded by that share. Raising res with
  * COARSE = 1 puts the direct light at the finer res and everything else coarser
- * (README: Coarse shots). Needs all five faces in the work buffer (band_rows 0):
+ * (docs/library.md: Coarse shots). Needs all five faces in the work buffer (band_rows 0):
  * with bands every shot is at res. Stored rows and rad_form_factors are always at
  * res. 0 (the default) keeps every shot at res: the same bits as without the field. */
 

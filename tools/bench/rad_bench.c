@@ -3,9 +3,9 @@
  * the bundled Cornell box at three densities, the original Cornell box (when
  * ../shared/scenes is there) and a generated scene of 20,000+ elements, and rad_cli
  * against a peer (RenderPark's rpkCpp, built outside the repository) as whole
- * processes. Prints a Markdown report, writes it to docs/bench.md, replaces the
- * README's section between the bench markers, and draws the convergence plots with
- * the project's PNG writer.
+ * processes. Prints a Markdown report, writes it into docs/bench.md between the bench
+ * markers (never into README.md), and draws the convergence plots with the project's
+ * PNG writer.
  *
  * Times are wall-clock medians of several runs in this one process, two variants
  * solved shot by shot in turn; compare the ratios measured here, not absolute times
@@ -1378,28 +1378,43 @@ static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     sc_destroy(s);
 }
 
-/* docs/bench.md, and the README's section between the bench markers, regenerated. */
+/* docs/bench.md's part between the bench markers, regenerated: the page's own text
+ * around them stays, and the file is replaced whole (a temporary beside it, renamed)
+ * or, on any error, left as it was with a line on stderr saying why. */
 static void write_docs(const report_t *rp)
 {
+    static const char path[] = "docs/bench.md", tmp[] = "docs/bench.md.tmp";
+    static const char begin[] = "<!-- bench:begin -->\n", end[] = "<!-- bench:end -->";
     static char buf[1 << 20];
-    FILE *f = fopen("docs/bench.md", "w"), *r;
-    size_t n;
+    FILE *r = fopen(path, "r"), *w;
+    size_t n = r ? fread(buf, 1, sizeof buf - 1, r) : 0;
     char *a, *b;
-    if (f) { fputs(rp->md, f); fclose(f); }
-    r = fopen("README.md", "r");
-    n = r ? fread(buf, 1, sizeof buf - 1, r) : 0;
-    if (r) fclose(r);
+    int ok;
+    if (!r || ferror(r) || n == sizeof buf - 1) {
+        fprintf(stderr, "rad_bench: %s: %s; the report is on standard output only\n", path,
+                !r ? strerror(errno) : n == sizeof buf - 1 ? "larger than 1 MiB" : "read error");
+        if (r) fclose(r);
+        return;
+    }
+    fclose(r);
     buf[n] = '\0';
-    a = strstr(buf, "<!-- bench:begin -->");
-    b = strstr(buf, "<!-- bench:end -->");
-    if (a && b && b > a) {
-        FILE *w = fopen("README.md.tmp", "w");
-        if (w) {
-            fwrite(buf, 1, (size_t)(a - buf) + strlen("<!-- bench:begin -->\n"), w);
-            fputs(rp->md, w);
-            fputs(b, w);
-            if (fclose(w) == 0) rename("README.md.tmp", "README.md");
-        }
+    a = strstr(buf, begin);
+    b = a ? strstr(a, end) : NULL;
+    if (!b) {
+        fprintf(stderr, "rad_bench: %s: no '%.20s' line followed by '%s'; the report is on standard output only\n",
+                path, begin, end);
+        return;
+    }
+    w = fopen(tmp, "w");
+    if (!w) {
+        fprintf(stderr, "rad_bench: %s: %s\n", tmp, strerror(errno));
+        return;
+    }
+    a += strlen(begin);
+    ok = fwrite(buf, 1, (size_t)(a - buf), w) == (size_t)(a - buf) && fputs(rp->md, w) >= 0 && fputs(b, w) >= 0;
+    if (fclose(w) != 0 || !ok || rename(tmp, path) != 0) {
+        fprintf(stderr, "rad_bench: writing %s failed: %s\n", path, strerror(errno));
+        remove(tmp);
     }
 }
 

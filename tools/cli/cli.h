@@ -32,7 +32,7 @@
 #include "host/defaults.h"
 #include "host/scene.h"
 
-/* Exit statuses (the README's and --help's list). */
+/* Exit statuses (docs/cli.md's and --help's list). */
 #define CLI_EXIT_OK 0       /* success */
 #define CLI_EXIT_ERROR 1    /* runtime or input error: one line on stderr */
 #define CLI_EXIT_USAGE 2    /* usage error */

@@ -566,7 +566,7 @@ static void check_combinations(opts_t *o)
 
 /* The hemi-cube settings of a run: res 192 and coarse shots by default, so that the
  * direct light, which the emitters' own shots carry, is drawn finer than the late shots
- * that move little (README, Coarse shots: on CornellBox-Original more accurate than
+ * that move little (docs/library.md, Coarse shots: on CornellBox-Original more accurate than
  * every shot at 128, in about half the time). Stored rows (ROWS) are every patch's row
  * at res, so there the default stays 128 and nothing coarsens. */
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)

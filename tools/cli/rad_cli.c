@@ -381,7 +381,7 @@ static int meshed_box(const run_t *r, double lo[3], double hi[3])
 
 /* Looks along -Z at the centre of the meshed box, from in front of it, +Y up, 45
  * degrees, backed off until the box's front face fits the frame with a 5% margin (the
- * README and --help say so). */
+ * docs/cli.md and --help say so). */
 static int default_camera(const run_t *r, sc_camera *c)
 {
     double lo[3], hi[3], half[3], ctr[3], t = tan(22.5 * 3.14159265358979323846 / 180.0), fit;

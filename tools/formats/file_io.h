@@ -44,7 +44,7 @@
 extern "C" {
 #endif
 
-/* Read limits of the tools, in bytes: one place so the README's table stays true. */
+/* Read limits of the tools, in bytes: one place so docs/precision.md's table stays true. */
 #define FIO_LIMIT_OBJ   (1024u * 1024u * 1024u) /* an OBJ scene: 1 GiB */
 #define FIO_LIMIT_MTL   (64u * 1024u * 1024u)   /* a material library: 64 MiB */
 #define FIO_LIMIT_TEXT  (16u * 1024u * 1024u)   /* --views, --animate: 16 MiB */
