@@ -12,8 +12,9 @@
  *     faces' winding, so their front stays where the file put it); faces of fewer than
  *     three vertices (points, lines) are left out and counted in unknown_statements;
  *     each node's name is the faces' object name (obj_face.object);
- *   - the first texture coordinate set (assimp gives it with v up, as OBJ) and the
- *     normals;
+ *   - the first texture coordinate set (assimp gives it with v up, as OBJ), the second
+ *     (glTF's TEXCOORD_1, FBX's and COLLADA's second channel) per corner as
+ *     obj_scene.uv2, the lightmap's UVs under --lightmap-uv, and the normals;
  *   - per material: the base colour (glTF baseColorFactor, else the diffuse colour) as
  *     Kd, the base colour or diffuse texture as map_Kd (a file beside the scene, or the
  *     bytes of an image the file holds: obj_map.data, named "SCENE/texture N
