@@ -568,7 +568,7 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
         if (st.why[0] && err && errlen) /* mf_open's words, which name the scene */
             snprintf(err, errlen, "%s", st.why);
         else if (!st.why[0])
-            fio_err(err, errlen, path, "%s", aiGetErrorString());
+            fio_err(err, errlen, path, "not readable as a scene: %s", aiGetErrorString());
         return -1;
     }
     if (!ai->mRootNode || ai->mNumMeshes == 0) {

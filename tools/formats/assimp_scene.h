@@ -36,7 +36,8 @@
  * file_io (fio_read_all: regular files only, at most FIO_LIMIT_OBJ bytes), so a FIFO,
  * a device or a huge file is refused as for an OBJ, and files outside the scene's
  * folder are refused as the OBJ reader refuses them (obj_opts). Errors are one line,
- * "FILE: what is wrong" (assimp's own words after the file's name); warnings go to WARN
+ * "FILE: what is wrong" (a file assimp cannot read: "FILE: not readable as a scene: "
+ * and assimp's own words, as "Chunk is too large" for a cut .3ds); warnings go to WARN
  * in the OBJ reader's form.
  */
 #ifndef RAD_TOOLS_ASSIMP_SCENE_H
