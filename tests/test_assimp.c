@@ -381,6 +381,16 @@ static void expect_refused(const char *path, const char *part)
     CHECK_INT_EQ(sc.nfaces, 0, "faces left in the scene");
 }
 
+/* The file NAME (in the test's folder) holding TEXT is refused (expect_refused). */
+static void refuse_text(const char *name, const char *text, const char *part)
+{
+    FILE *f = fopen(tmp_path(name), "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+    expect_refused(tmp_path(name), part);
+}
+
 /* Bad input: one line naming the file, nothing loaded. */
 static void test_bad_files(void **state)
 {
@@ -407,21 +417,12 @@ static void test_bad_files(void **state)
     fclose(f);
     free(text);
     expect_refused(tmp_path("cut.gltf"), "");
-    f = fopen(tmp_path("empty.gltf"), "w");
-    fputs("{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[]}],\"scene\":0}\n", f);
-    fclose(f);
-    expect_refused(tmp_path("empty.gltf"), "");
+    refuse_text("empty.gltf", "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[]}],\"scene\":0}\n", "");
     expect_refused(tmp_path("missing.glb"), "No such file");
     /* COLLADA and 3DS: not a file of theirs, and (with assimp-utils) the exporter's
      * files cut in half */
-    f = fopen(tmp_path("bad.dae"), "w");
-    fputs("<?xml version=\"1.0\"?><COLLADA>", f);
-    fclose(f);
-    expect_refused(tmp_path("bad.dae"), "not readable as a scene: ");
-    f = fopen(tmp_path("bad.3ds"), "w");
-    fputs("garbage", f);
-    fclose(f);
-    expect_refused(tmp_path("bad.3ds"), "not readable as a scene: ");
+    refuse_text("bad.dae", "<?xml version=\"1.0\"?><COLLADA>", "not readable as a scene: ");
+    refuse_text("bad.3ds", "garbage", "not readable as a scene: ");
     if (system("command -v assimp >/dev/null 2>&1") == 0) {
         static const char *const ext[] = {"dae", "3ds"};
         int e;
