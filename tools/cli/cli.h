@@ -107,7 +107,10 @@ typedef struct {
     int lightmap_size, gather_res, probe_dims[3], probes;
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
     int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
+    int lightmap_uv;     /* --lightmap-uv: LIGHTMAP_UV_AUTO, _FILE or _RAD */
 } opts_t;
+
+enum { LIGHTMAP_UV_AUTO, LIGHTMAP_UV_FILE, LIGHTMAP_UV_RAD };
 
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);
 

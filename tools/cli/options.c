@@ -343,6 +343,15 @@ static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
         die_usage("--lightmap-tol wants a number in [0, 1]", val);
 }
 
+static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (!strcmp(val, "auto")) o->lightmap_uv = LIGHTMAP_UV_AUTO;
+    else if (!strcmp(val, "file")) o->lightmap_uv = LIGHTMAP_UV_FILE;
+    else if (!strcmp(val, "rad")) o->lightmap_uv = LIGHTMAP_UV_RAD;
+    else die_usage("--lightmap-uv wants auto, file or rad", val);
+}
+
 static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
     o->gather_res = parse_res(opt, val);
@@ -466,6 +475,9 @@ static const option_t options[] = {
      "texels of gutter around each lightmap chart, 0..64 (size / 128\nwithin 1..4): mip levels m with 2^m <= N + 1 stay clean", opt_lightmap_pad},
     {"--lightmap-tol", NULL, "F",
      "interpolate a lightmap block whose gathered corners agree\nwithin F (0.05); 0: gather every texel", opt_lightmap_tol},
+    {"--lightmap-uv", NULL, "MODE",
+     "the lightmap's UVs, MODE auto, file or rad: the file's second UV\nset (glTF TEXCOORD_1; file: required) or rad's own charts\n(auto: the file's if it has one)",
+     opt_lightmap_uv},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
