@@ -316,6 +316,7 @@ static void region_view(const canvas_t *cv, const region_t *r, rad__frustum_t *f
 {
     f->half = r->face != 0 && !cv->full;
     f->ortho = 0;
+    f->recede = 0;
     f->width = (int)cv->res;
     f->height = (int)rows_of(cv->res, cv->full, r->face);
     t->z = cv->z + r->offset;

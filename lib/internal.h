@@ -45,9 +45,13 @@ typedef struct {
  * ORTHO: an orthographic view (a sun's, light.c) given as vertices whose d is one
  * constant, the window's half width, so that a / d is their place across it: the
  * depth tested is then the vertex attribute c[0] (nearness, larger is nearer) in
- * place of 1 / d, and is linear on the screen as an orthographic depth is. */
+ * place of 1 / d, and is linear on the screen as an orthographic depth is.
+ * RECEDE (perspective only; 0: none): every vertex's depth w lowered by w / 2^RECEDE,
+ * as if the polygon were scaled away from the eye by 1 / (1 - 2^-RECEDE) (its pixels
+ * unchanged): a light's faces turned away from it, a little behind the faces it lights
+ * (light.c). */
 typedef struct {
-    unsigned char half, ortho; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
+    unsigned char half, ortho, recede; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
     int width, height;
 } rad__frustum_t;
 

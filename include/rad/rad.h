@@ -697,7 +697,11 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction is
  *     a sun's shot of one raster over the whole scene (RES, default the scene's res).
  * Surfaces are one-sided: an element receives only on its front (the side its normal
- * points to), and a face turned away from the light does not shadow either. Units are
+ * points to), but a face turned away from the light shadows as any other (a one-sided
+ * roof facing into a room keeps the sun out), drawn a quarter of a pixel's footprint
+ * behind the faces the light reaches so that it never shadows a lit face it meets or
+ * lies on (what lies less than that behind it, along contact edges, may be lit: at
+ * most a row of pixels along each). Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
  * whose normal makes angle t with the direction to it gives irradiance E = I cos t /
  * r^2 and radiosity B = rho E; a sun of E gives a plane at angle t to it E cos t, and
