@@ -53,7 +53,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c 
               tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
-              tools/host/clock.c tools/bench/plot.c
+              tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
