@@ -54,7 +54,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c 
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \
               $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/obj_polys.c \
-              tools/host/geom.c tools/host/clock.c tools/bench/plot.c
+              tools/host/geom.c tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)

@@ -495,6 +495,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
             int r = 4 * (o->res ? o->res : RAD_DEFAULT_RES);
             c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
         }
+        if (l->dome) c->res = (uint16_t)(o->res ? o->res : 64); /* cfg.res */
         to_core(h, l->pos, &c->position);
         if (d > 0) {
             c->direction.x = RAD_REAL(l->dir[0] / d);

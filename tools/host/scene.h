@@ -27,7 +27,8 @@ typedef struct {
  * +Y); RGB a point's or spot's intensity (per steradian), a sun's irradiance on a plane
  * facing it or a sky's zenith radiance; a spot's cone by the cosines of its outer and
  * inner half angles; a sun's disc by RADIUS; a sky's HORIZON radiance and DIRS (0: the
- * core's default). */
+ * core's default); DOME: a sun of a sky's dome (rad_cli --sky-hdr), drawn at the
+ * scene's res as the core's sky draws its own (not at a sun's 4 res). */
 typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
@@ -35,6 +36,7 @@ typedef struct {
     double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
     double horizon[3];
     int dirs;
+    int dome;
 } sc_light;
 
 typedef struct {
