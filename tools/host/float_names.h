@@ -51,6 +51,7 @@
 #define sc_gatherer scf_gatherer
 #define sc_gatherer_new scf_gatherer_new
 #define sc_gatherer_free scf_gatherer_free
+#define sc_gatherer_cull scf_gatherer_cull
 #define sc_gather scf_gather
 #define sc_gather_on scf_gather_on
 #define sc_gather_sh scf_gather_sh
