@@ -129,6 +129,7 @@ $(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib -DRAD_FLOAT=1 -c $< -o $@
 $(BUILDDIR)/tests/test_gather: $(BUILDDIR)/tests/float/test_gather.o
+$(BUILDDIR)/tests/test_cull: $(BUILDDIR)/tests/float/test_cull.o
 $(BUILDDIR)/tests/test_light: $(BUILDDIR)/tests/float/test_light.o
 
 # tests/test_scale.c drives the core directly in both builds: its float pass is an

@@ -207,6 +207,11 @@ typedef struct sc_gatherer sc_gatherer;
  * only read S). NULL on a bad RES or out of memory. S must have been solved. */
 sc_gatherer *sc_gatherer_new(sc_solver *s, int res, int sphere);
 void sc_gatherer_free(sc_gatherer *g);
+/* Whether G draws through the hierarchy of the surfaces (ON 1: rad_gather_cull) or
+ * every surface (0): the same values either way, only the time differs. A new
+ * gatherer does from CULL_SURFACES surfaces (host/scene.c). 0, or -1 (ON and the
+ * hierarchy could not be had: G then draws every surface). */
+int sc_gatherer_cull(sc_gatherer *g, int on);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
  * with the ambient term if AMBIENT, in caller units: what an element of reflectance
  * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the
