@@ -215,10 +215,11 @@ static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb
 }
 
 /* Builds and bakes A over solver S's solution (SIZE texels a side, gather resolution
- * RES, adaptive tolerance TOL): the gathers done. */
-static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int res, double tol, lm_atlas *a)
+ * RES, adaptive tolerance TOL, chart crease CREASE: lm_opts): the gathers done. */
+static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int res, double tol, double crease,
+                      lm_atlas *a)
 {
-    lm_opts lo = {size, 0.0, 0, tol};
+    lm_opts lo = {size, 0.0, 0, tol, crease};
     char err[256] = "";
     baker b = {NULL, NULL, 0};
     b.s = s;
@@ -231,16 +232,16 @@ static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int r
     return b.calls;
 }
 
-/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES) at
- * the default tolerance. */
-static void bake_scene(const sc_poly *polys, int n, int size, int res, lm_atlas *a)
+/* Solves POLYS, then builds and bakes A (SIZE texels a side, gather resolution RES,
+ * chart crease CREASE) at the default tolerance. */
+static void bake_scene(const sc_poly *polys, int n, int size, int res, double crease, lm_atlas *a)
 {
     sc_opts o = {.res = 64};
     char err[256] = "";
     sc_solver *s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-4, NULL, NULL);
-    bake_atlas(s, polys, n, size, res, LM_TOL, a);
+    bake_atlas(s, polys, n, size, res, LM_TOL, crease, a);
     sc_destroy(s);
 }
 
@@ -277,7 +278,7 @@ static void test_lightmap_lambert(void **state)
     (void)state;
     polys[0] = flat(-2, 2, -2, 2, 0, 1, 0.0, 0.0);
     polys[1] = flat(-1, 1, -1, 1, 1, 0, 0.0, 1.0);
-    bake_scene(polys, 2, 66, 64, &a);
+    bake_scene(polys, 2, 66, 64, 0.0, &a);
     for (y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
             double p[3], want, rel;
@@ -342,7 +343,8 @@ static int shared_edge(const sc_poly *p, int k, const sc_poly *q, int *l)
     return 0;
 }
 
-/* No seams: along every edge two charts share, bilinear lookups from both sides (at
+/* No seams: with coplanar charts only (lm_opts.crease -1), along every edge two charts
+ * share, bilinear lookups from both sides (at
  * nine points of the edge) agree within 2% (the brief's bound). The light arriving is
  * continuous across a fold of a few degrees, so a difference is the atlas's: a texel
  * of padding or of another chart read, a wrong UV, or the interpolation of the light's
@@ -359,7 +361,7 @@ static void test_lightmap_no_seams(void **state)
     int n = terrain(polys), p, q, k, l, t, edges = 0;
     double worst = 0.0, lo = HUGE_VAL, hi = 0.0;
     (void)state;
-    bake_scene(polys, n, 192, 32, &a);
+    bake_scene(polys, n, 192, 32, -1.0, &a); /* coplanar charts only: seams everywhere */
     CHECK_INT_EQ(a.ncharts, n, "charts of the terrain: every triangle");
     for (p = 0; p < n; p++)
         for (q = 0; q < n; q++)
@@ -421,7 +423,7 @@ static void test_lightmap_no_leaks(void **state)
     polys[1] = quad(w0, w3, w2, w1, 0.5, 0.0); /* faces +x, into the room */
     polys[2] = quad(e0, e3, e2, e1, 0.0, 10.0); /* faces +x, at the wall's back */
     polys[3] = flat(1, 3, 1, 3, 3, 0, 0.0, 1.0);
-    bake_scene(polys, 4, 128, 64, &a);
+    bake_scene(polys, 4, 128, 64, 0.0, &a);
     for (i = 0; i < 40; i++) {
         double z = 0.05 + 3.9 * i / 39.0, x0[3] = {1e-3 * a.texel, 0, z}, x1[3] = {1.001 * a.texel, 0, z};
         double uv0[2], uv1[2], c0[3], c1[3];
@@ -469,8 +471,8 @@ static void test_lightmap_adaptive(void **state)
     s = sc_create(polys, 8, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-4, NULL, NULL);
-    ne = bake_atlas(s, polys, 8, 128, 32, 0.0, &ex);
-    na = bake_atlas(s, polys, 8, 128, 32, LM_TOL, &ad);
+    ne = bake_atlas(s, polys, 8, 128, 32, 0.0, 0.0, &ex);
+    na = bake_atlas(s, polys, 8, 128, 32, LM_TOL, 0.0, &ad);
     for (i = 0; i < (size_t)ex.size * ex.size; i++) {
         double top = 0.0, d = 0.0;
         int k;
@@ -512,7 +514,7 @@ static void test_lightmap_adaptive(void **state)
 static void test_lightmap_packing(void **state)
 {
     sc_poly polys[2 * TN * TN + 1];
-    lm_opts o = {160, 0.0, 0, LM_TOL};
+    lm_opts o = {160, 0.0, 0, LM_TOL, 0.0};
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys), i, j, k, points = 0;
@@ -591,7 +593,7 @@ static int tessellated(sc_poly *polys, double x0, double rho)
 static void test_lightmap_charts(void **state)
 {
     sc_poly polys[80];
-    lm_opts o = {128, 0.0, 0, LM_TOL};
+    lm_opts o = {128, 0.0, 0, LM_TOL, 0.0};
     lm_atlas a;
     char err[256] = "";
     int n = tessellated(polys, 0.0, 0.5), i, plane;
@@ -625,7 +627,7 @@ static void test_lightmap_charts(void **state)
 static void test_lightmap_merged_light(void **state)
 {
     sc_poly polys[2][80];
-    lm_opts o = {128, 0.1, 0, 0.0};
+    lm_opts o = {128, 0.1, 0, 0.0, 0.0};
     lm_atlas a[2];
     int n[2], m, i, j, charts[2];
     double worst = 0.0;
@@ -680,6 +682,195 @@ static void test_lightmap_merged_light(void **state)
     lm_free(&a[1]);
 }
 
+#define TURN 6.283185307179586 /* radians a turn */
+
+/* Quad A B C D turned (reversed) so that its lit side faces along WANT. */
+static sc_poly facing(const double *a, const double *b, const double *c, const double *d, const double *want)
+{
+    double e[3], f[3], nn[3];
+    int k;
+    for (k = 0; k < 3; k++) {
+        e[k] = c[k] - a[k];
+        f[k] = d[k] - b[k];
+    }
+    nn[0] = e[1] * f[2] - e[2] * f[1];
+    nn[1] = e[2] * f[0] - e[0] * f[2];
+    nn[2] = e[0] * f[1] - e[1] * f[0];
+    return nn[0] * want[0] + nn[1] * want[1] + nn[2] * want[2] >= 0 ? quad(a, b, c, d, 0.5, 0.0)
+                                                                     : quad(d, c, b, a, 0.5, 0.0);
+}
+
+/* Quad of corners at angles A (about the y axis), radii R and heights Y, turned to
+ * face WANT. */
+static sc_poly ring_quad(const double *a, const double *r, const double *y, const double *want)
+{
+    double v[4][3];
+    int k;
+    for (k = 0; k < 4; k++) {
+        v[k][0] = r[k] * cos(a[k]);
+        v[k][1] = y[k];
+        v[k][2] = r[k] * sin(a[k]);
+    }
+    return facing(v[0], v[1], v[2], v[3], want);
+}
+
+/* A cylinder's side of SEG facets, radius 1, from y 0 to 2 in 4 rings, facing out.
+ * Returns the quads written to P. */
+static int cylinder(sc_poly *p, int seg)
+{
+    int i, j, n = 0;
+    for (i = 0; i < seg; i++)
+        for (j = 0; j < 4; j++) {
+            double a0 = TURN * i / seg, a1 = TURN * (i + 1) / seg, mid = 0.5 * (a0 + a1);
+            double a[4] = {a0, a1, a1, a0}, r[4] = {1, 1, 1, 1}, y[4] = {0.5 * j, 0.5 * j, 0.5 * j + 0.5, 0.5 * j + 0.5};
+            double want[3] = {cos(mid), 0.0, sin(mid)};
+            p[n++] = ring_quad(a, r, y, want);
+        }
+    return n;
+}
+
+/* A spiral ramp between radii 1 and 2 (2 quads across), SEG quads along it of DA
+ * radians each, rising RISE a turn, facing up. Returns the quads written to P. */
+static int ramp(sc_poly *p, int seg, double da, double rise)
+{
+    int i, j, n = 0;
+    for (i = 0; i < seg; i++)
+        for (j = 0; j < 2; j++) {
+            double a0 = da * i, a1 = da * (i + 1), y0 = rise * a0 / TURN, y1 = rise * a1 / TURN;
+            double a[4] = {a0, a1, a1, a0}, r[4] = {1 + 0.5 * j, 1 + 0.5 * j, 1.5 + 0.5 * j, 1.5 + 0.5 * j};
+            double y[4] = {y0, y1, y1, y0}, up[3] = {0, 1, 0};
+            p[n++] = ring_quad(a, r, y, up);
+        }
+    return n;
+}
+
+/* No texel of a chart holds two parts of the surface: at a lattice of 5 x 5 points
+ * inside each quad of P[0..N), the texel that lm_uv puts the point in has its sample
+ * within 2 texels of the point. A sample lies within its texel's square on the chart's
+ * plane (half a diagonal, 0.71 texels) lifted onto the polygon (times 1 / cos 25
+ * degrees at most: 0.78), or moved out of geometry by its rays (3/4 texel more): 1.6
+ * texels; a layout that folds over itself puts it on the other sheet instead. Returns
+ * the worst distance in texels. */
+static double texel_nearness(const lm_atlas *a, const sc_poly *p, int n)
+{
+    double worst = 0.0;
+    int i, si, ti, k;
+    for (i = 0; i < n; i++)
+        for (si = 0; si < 5; si++)
+            for (ti = 0; ti < 5; ti++) {
+                double s = 0.1 + 0.2 * si, t = 0.1 + 0.2 * ti, x[3], uv[2], q[3], d;
+                for (k = 0; k < 3; k++)
+                    x[k] = (1 - t) * ((1 - s) * p[i].v[0][k] + s * p[i].v[1][k]) +
+                           t * ((1 - s) * p[i].v[3][k] + s * p[i].v[2][k]);
+                CHECK_INT_EQ(lm_uv(a, i, x, uv), 0, "lm_uv of quad %d", i);
+                CHECK_INT_EQ(lm_texel_point(a, (int)floor(uv[0]), (int)floor(uv[1]), q), 1,
+                             "quad %d at (%.3f, %.3f, %.3f): its texel covered", i, x[0], x[1], x[2]);
+                d = sqrt((q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) + (q[2] - x[2]) * (q[2] - x[2])) /
+                    a->texel;
+                CHECK_LE(d, 2.0, "quad %d at (%.3f, %.3f, %.3f): its texel's sample %.3f texels away (chart %d)", i, x[0],
+                         x[1], x[2], d, a->poly_chart[i]);
+                worst = fmax(worst, d);
+            }
+    return worst;
+}
+
+/* The charts of the N quads P (in an atlas of 256 texels a side) number LO..HI, and
+ * none of their texels holds two parts of the surface; the counts printed. */
+static void smooth_shape(const char *what, const sc_poly *p, int n, int lo, int hi)
+{
+    lm_opts o = {256, 0.0, 0, 0.0, 0.0};
+    lm_atlas a;
+    char err[256] = "";
+    double worst;
+    CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_GE(a.ncharts, lo, "charts of %s", what);
+    CHECK_INT_LE(a.ncharts, hi, "charts of %s", what);
+    worst = texel_nearness(&a, p, n);
+    printf("lightmap smooth charts: %s (%d quads): %d charts (bounds %d..%d), samples within %.2f texels\n", what, n,
+           a.ncharts, lo, hi, worst);
+    lm_free(&a);
+}
+
+/* Charts joined across gentle folds (lm_opts.crease, LM_CREASE 25 degrees by default):
+ * a floor of 12 x 12 quads is one chart and an L of two perpendicular walls (3 x 3
+ * quads each, standing on the floor) two more; a cylinder of 24 facets (15 degrees
+ * apart) in 4 rings has fewer charts than facets, at least 24 / 3 (a chart's facets lie
+ * within 25 degrees of its seed's: three, so 8 or more); a spiral ramp of 1.5 turns
+ * (every normal within 6 degrees of up) folds over itself on any one plane, so it takes
+ * two charts or more (about a turn each: up to 4). None of their texels holds two parts of the surface (texel_nearness). */
+static void test_lightmap_smooth_charts(void **state)
+{
+    static sc_poly polys[400];
+    lm_opts o = {256, 0.0, 0, 0.0, 0.0};
+    lm_atlas a;
+    char err[256] = "";
+    int n = 0, i, j, floor_n, walls;
+    double worst;
+    (void)state;
+    for (i = 0; i < 12; i++)
+        for (j = 0; j < 12; j++) polys[n++] = flat(0.5 * i, 0.5 * (i + 1), 0.5 * j, 0.5 * (j + 1), 0, 1, 0.5, 0);
+    floor_n = n;
+    for (i = 0; i < 3; i++)
+        for (j = 0; j < 3; j++) {
+            double a0[3] = {0, j, 2.0 * i}, a1[3] = {0, j, 2.0 * i + 2}, a2[3] = {0, j + 1, 2.0 * i + 2},
+                   a3[3] = {0, j + 1, 2.0 * i}, b0[3] = {2.0 * i, j, 0}, b1[3] = {2.0 * i + 2, j, 0},
+                   b2[3] = {2.0 * i + 2, j + 1, 0}, b3[3] = {2.0 * i, j + 1, 0}, px[3] = {1, 0, 0}, pz[3] = {0, 0, 1};
+            polys[n++] = facing(a0, a1, a2, a3, px);
+            polys[n++] = facing(b0, b1, b2, b3, pz);
+        }
+    walls = n - floor_n;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    for (i = 1; i < floor_n; i++) CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[0], "floor quad %d: its chart", i);
+    for (i = floor_n + 2; i < n; i++)
+        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[floor_n + (i - floor_n) % 2], "wall quad %d: its wall's chart", i);
+    CHECK_INT_EQ(a.ncharts, 3, "charts of the floor and the L of walls");
+    worst = texel_nearness(&a, polys, n);
+    printf("lightmap smooth charts: a floor of %d quads and an L of two walls of %d: %d charts, samples within %.2f "
+           "texels\n", floor_n, walls, a.ncharts, worst);
+    lm_free(&a);
+
+    smooth_shape("a cylinder of 24 facets", polys, cylinder(polys, 24), 8, 23);
+    smooth_shape("a spiral ramp of 1.5 turns", polys, ramp(polys, 54, TURN / 36, 0.6), 2, 4);
+}
+
+/* The terrain (gentle slopes of up to 2.6 degrees) baked as one chart (the default
+ * crease) against coplanar charts only (every triangle its own): bilinear lookups at
+ * each triangle's centroid and the midpoints of its edges agree within 2%, the no-seams
+ * bound: the light is continuous over the terrain, and the two atlases differ only in
+ * where their texel centres fall (their texel sizes differ) and so in how each
+ * interpolates the light's gradient. */
+static void test_lightmap_smooth_light(void **state)
+{
+    sc_poly polys[2 * TN * TN + 1];
+    lm_atlas a[2];
+    int n = terrain(polys), p, k, m, c, points = 0;
+    double worst = 0.0;
+    (void)state;
+    bake_scene(polys, n, 192, 32, -1.0, &a[0]);
+    bake_scene(polys, n, 192, 32, 0.0, &a[1]);
+    CHECK_INT_EQ(a[1].ncharts, 2, "charts of the terrain and its emitter at the default crease");
+    for (p = 0; p < n - 1; p++)
+        for (k = 0; k <= polys[p].n; k++) {
+            double x[3], uv[2], e[2][3], rel;
+            for (c = 0; c < 3; c++)
+                x[c] = k == polys[p].n ? (polys[p].v[0][c] + polys[p].v[1][c] + polys[p].v[2][c]) / 3.0
+                                       : 0.5 * (polys[p].v[k][c] + polys[p].v[(k + 1) % 3][c]);
+            for (m = 0; m < 2; m++) {
+                lm_uv(&a[m], p, x, uv);
+                lm_lookup(&a[m], uv, e[m]);
+            }
+            rel = fabs(e[0][1] - e[1][1]) / fmax(e[0][1], e[1][1]);
+            CHECK_LE(rel, 0.02, "triangle %d at (%.3f, %.3f, %.3f): one chart %.6f against coplanar charts %.6f", p,
+                     x[0], x[1], x[2], e[1][1], e[0][1]);
+            worst = fmax(worst, rel);
+            points++;
+        }
+    printf("lightmap smooth light: the terrain as %d chart(s) against %d, %d points, worst %.3f%% apart (bound 2%%)\n",
+           a[1].ncharts - 1, a[0].ncharts - 1, points, 100.0 * worst);
+    lm_free(&a[0]);
+    lm_free(&a[1]);
+}
+
 /* Light by position: pure red left of x = 2, pure green right of it. */
 static int two_colour_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
@@ -700,7 +891,7 @@ static int two_colour_cb(void *ctx, const double p[3], const double n[3], double
 static void test_lightmap_gutter(void **state)
 {
     sc_poly polys[2];
-    lm_opts o = {512, 0.0, 0, 0.0};
+    lm_opts o = {512, 0.0, 0, 0.0, 0.0};
     lm_atlas a;
     char err[256] = "";
     int x, y, m, dx, dy, checked = 0, levels = 0;
@@ -761,8 +952,10 @@ static void test_lightmap_bad_sizes(void **state)
     lm_atlas a;
     char err[256] = "";
     int n = terrain(polys);
-    lm_opts zero = {0, 0.0, 0, LM_TOL}, big = {8193, 0.0, 0, LM_TOL}, small = {8, 0.0, 0, LM_TOL};
-    lm_opts fine = {64, 0.001, 0, LM_TOL}, o64 = {64, 0.0, 0, LM_TOL}, tol = {64, 0.0, 0, 1.5};
+    /* coplanar charts only: every triangle of the terrain its own */
+    lm_opts zero = {0, 0.0, 0, LM_TOL, -1}, big = {8193, 0.0, 0, LM_TOL, -1}, small = {8, 0.0, 0, LM_TOL, -1};
+    lm_opts fine = {64, 0.001, 0, LM_TOL, -1}, o64 = {64, 0.0, 0, LM_TOL, -1}, tol = {64, 0.0, 0, 1.5, -1};
+    lm_opts crease = {64, 0.0, 0, LM_TOL, 61};
     (void)state;
     CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
     CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
@@ -776,6 +969,10 @@ static void test_lightmap_bad_sizes(void **state)
     CHECK_CONTAINS(err, "a lightmap tolerance of 1.5 is outside 0..1", "the message");
     tol.tol = NAN;
     CHECK_INT_EQ(lm_build(&a, polys, n, &tol, err, sizeof err), -1, "a tolerance of NaN refused");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &crease, err, sizeof err), -1, "a crease of 61 degrees refused");
+    CHECK_CONTAINS(err, "a chart crease of 61 degrees is outside 0..60", "the message");
+    crease.crease = NAN;
+    CHECK_INT_EQ(lm_build(&a, polys, n, &crease, err, sizeof err), -1, "a crease of NaN refused");
     assert_null(a.rgb);
     memset(polys, 0, sizeof polys[0]);
     polys[0].n = 3; /* three vertices at the origin */
@@ -1053,6 +1250,8 @@ int main(void)
         cmocka_unit_test(test_lightmap_gutter),
         cmocka_unit_test(test_lightmap_charts),
         cmocka_unit_test(test_lightmap_merged_light),
+        cmocka_unit_test(test_lightmap_smooth_charts),
+        cmocka_unit_test(test_lightmap_smooth_light),
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
         cmocka_unit_test(test_cli_bake),

@@ -804,7 +804,7 @@ static void test_lightmap(void **state)
     sc_solver *s;
     sc_gatherer *gt;
     sc_opts o = {.max_element = 0.25, .res = 32};
-    lm_opts lo = { 64, 0, 0, LM_TOL };
+    lm_opts lo = { 64, 0, 0, LM_TOL, 0 };
     lm_atlas a;
     char err[600];
     img_t im;

@@ -126,7 +126,7 @@ static void test_lightmap_backs(void **state)
 {
     scene_t t;
     lm_atlas a;
-    lm_opts lo = {128, 0.0, 0, LM_TOL};
+    lm_opts lo = {128, 0.0, 0, LM_TOL, 0.0};
     char err[256] = "";
     sc_gatherer *g;
     sc_stats st;
@@ -386,7 +386,7 @@ static void test_two_sided(void **state)
     sc_gatherer *g;
     sc_opts o;
     lm_atlas a;
-    lm_opts lo = {64, 0.0, 0, LM_TOL};
+    lm_opts lo = {64, 0.0, 0, LM_TOL, 0.0};
     char err[512] = "", *cerr = NULL, args[512], *csv;
     const char *line;
     double sum[2][3] = {{0}}, rel;

@@ -2,6 +2,7 @@
 /* lightmap — charts, atlas packing, texel samples, gathering, dilation. See lightmap.h. */
 #include "bake/lightmap.h"
 
+#include "bake/tset.h"
 #include "host/geom.h"
 #include "formats/hdr.h"
 #include "formats/image.h"
@@ -149,6 +150,183 @@ static int join_partial_edges(const sc_poly *p, int n, const geom_poly *g, doubl
     return 0;
 }
 
+/* ---- smooth charts: coplanar charts joined across gentle folds ---- */
+
+/* Coplanar charts (union-find roots) as groups: their polygons, areas and the groups
+ * each shares an edge with across a fold of at most the crease (CSR lists). */
+typedef struct {
+    int *first, *polys; /* group R's polygons: polys[first[R] .. first[R + 1]) */
+    int *nfirst, *next; /* group R's neighbours: next[nfirst[R] .. nfirst[R + 1]) */
+    double *area;
+    int *order; /* the roots, largest area first */
+    int nroots;
+} groups_t;
+
+static void groups_free(groups_t *gr)
+{
+    free(gr->first);
+    free(gr->polys);
+    free(gr->nfirst);
+    free(gr->next);
+    free(gr->area);
+    free(gr->order);
+}
+
+static const double *order_area; /* qsort's context: the groups' areas */
+
+static int area_cmp(const void *x, const void *y)
+{
+    int p = *(const int *)x, q = *(const int *)y;
+    if (order_area[p] != order_area[q]) return order_area[p] > order_area[q] ? -1 : 1;
+    return p - q;
+}
+
+/* Counting sort of N items by KEY[i] in 0..M-1 (-1: left out) into FIRST (M + 1) and
+ * OUT (the items, or VAL[i] when VAL). 0 or -1. */
+static int bucket(const int *key, const int *val, int n, int m, int **first, int **out)
+{
+    int i, *fill = calloc((size_t)m + 1, sizeof *fill);
+    *first = calloc((size_t)m + 2, sizeof **first);
+    *out = malloc(((size_t)n + 1) * sizeof **out);
+    if (!fill || !*first || !*out) {
+        free(fill);
+        return -1;
+    }
+    for (i = 0; i < n; i++)
+        if (key[i] >= 0) (*first)[key[i] + 1]++;
+    for (i = 0; i < m; i++) (*first)[i + 1] += (*first)[i];
+    for (i = 0; i < n; i++)
+        if (key[i] >= 0) (*out)[(*first)[key[i]] + fill[key[i]]++] = val ? val[i] : i;
+    free(fill);
+    return 0;
+}
+
+static int make_groups(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne, double cos_crease,
+                       int *parent, groups_t *gr)
+{
+    int n = a->npolys, i = 0, j, k, m = 0, rc = -1;
+    int *root = malloc((size_t)(n + 1) * sizeof *root), *from = malloc((size_t)(2 * ne + 1) * sizeof *from);
+    int *to = malloc((size_t)(2 * ne + 1) * sizeof *to);
+    memset(gr, 0, sizeof *gr);
+    gr->area = calloc((size_t)n + 1, sizeof *gr->area);
+    gr->order = malloc((size_t)(n + 1) * sizeof *gr->order);
+    if (root && from && to && gr->area && gr->order) {
+        for (j = 0; j < n; j++) {
+            root[j] = g[j].area > 0.0 ? find(parent, j) : -1;
+            if (root[j] >= 0) gr->area[root[j]] += g[j].area;
+            if (root[j] == j) gr->order[gr->nroots++] = j;
+        }
+        while (i < ne) { /* each run of equal edges: its pairs across a gentle fold */
+            int end = i + 1;
+            while (end < ne && !cmp3(e[end].a, e[i].a) && !cmp3(e[end].b, e[i].b)) end++;
+            for (j = i; j < end; j++)
+                for (k = j + 1; k < end; k++) {
+                    int p = e[j].poly, q = e[k].poly;
+                    if (root[p] == root[q] || geom_dot(g[p].n, g[q].n) < cos_crease) continue;
+                    from[m] = root[p], to[m++] = root[q];
+                    from[m] = root[q], to[m++] = root[p];
+                }
+            i = end;
+        }
+        order_area = gr->area;
+        qsort(gr->order, (size_t)gr->nroots, sizeof *gr->order, area_cmp);
+        if (bucket(root, NULL, n, n, &gr->first, &gr->polys) == 0 && bucket(from, to, m, n, &gr->nfirst, &gr->next) == 0)
+            rc = 0;
+    }
+    free(root);
+    free(from);
+    free(to);
+    return rc;
+}
+
+/* Polygon P's fan triangles projected on the plane of axes U, V into T (n - 2 of them). */
+static int project_fan(const sc_poly *p, const double *u, const double *v, double t[2][3][2])
+{
+    int k, j;
+    for (k = 1; k + 1 < p->n; k++)
+        for (j = 0; j < 3; j++) {
+            const double *x = p->v[j == 0 ? 0 : k + j - 1];
+            t[k - 1][j][0] = geom_dot(x, u);
+            t[k - 1][j][1] = geom_dot(x, v);
+        }
+    return p->n - 2;
+}
+
+/* Group R's triangles on the plane: added to S (ADD), or 1 when one overlaps S's (0). */
+static int group_on_plane(const lm_atlas *a, const groups_t *gr, int r, const double *u, const double *v, tset *s,
+                          int add)
+{
+    double t[2][3][2];
+    int i, k, m;
+    for (i = gr->first[r]; i < gr->first[r + 1]; i++) {
+        m = project_fan(&a->polys[gr->polys[i]], u, v, t);
+        for (k = 0; k < m; k++)
+            if (add ? tset_add(s, (const double(*)[2])t[k]) != 0 : tset_hits(s, (const double(*)[2])t[k])) return 1;
+    }
+    return 0;
+}
+
+/* Grows the chart of seed group SEED: breadth first across gentle folds, a neighbour
+ * group joining when every polygon of it lies within the crease of the seed's normal
+ * and its projection on the seed's plane overlaps none of the chart's. Each member's
+ * CN (by polygon) is the seed's normal, the chart's plane. 0 or -1 out of memory. */
+static int grow_chart(const lm_atlas *a, const geom_poly *g, const groups_t *gr, int seed, double cos_crease,
+                      int *parent, int *queue, int *seen, unsigned char *joined, tset *s, double (*cn)[3])
+{
+    double u[3], v[3];
+    const double *n = g[seed].n;
+    int head = 0, tail = 0, i, j;
+    geom_any_perp(n, u);
+    geom_cross(n, u, v);
+    tset_clear(s);
+    queue[tail++] = seed;
+    seen[seed] = seed;
+    joined[seed] = 1;
+    if (group_on_plane(a, gr, seed, u, v, s, 1)) return -1;
+    while (head < tail) {
+        int r = queue[head++];
+        for (i = gr->first[r]; i < gr->first[r + 1]; i++) memcpy(cn[gr->polys[i]], n, sizeof cn[0]);
+        for (j = gr->nfirst[r]; j < gr->nfirst[r + 1]; j++) {
+            int q = gr->next[j];
+            if (seen[q] == seed || joined[q] || geom_dot(g[q].n, n) < cos_crease) continue;
+            seen[q] = seed; /* tried for this chart once */
+            if (group_on_plane(a, gr, q, u, v, s, 0)) continue;
+            if (group_on_plane(a, gr, q, u, v, s, 1)) return -1;
+            parent[q] = seed;
+            joined[q] = 1;
+            queue[tail++] = q;
+        }
+    }
+    return 0;
+}
+
+/* Joins coplanar charts (the roots of PARENT) into smooth ones, seeds largest first;
+ * every polygon's chart normal into CN. 0 or -1 out of memory. */
+static int merge_smooth(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne, double cos_crease,
+                        int *parent, double (*cn)[3])
+{
+    groups_t gr;
+    int n = a->npolys, i, rc = make_groups(a, g, e, ne, cos_crease, parent, &gr);
+    int *queue = malloc((size_t)(n + 1) * sizeof *queue), *seen = malloc((size_t)(n + 1) * sizeof *seen);
+    unsigned char *joined = calloc((size_t)n + 1, 1);
+    double cell = 0.0;
+    tset *s;
+    for (i = 0; i < n; i++) cell += sqrt(g[i].area);
+    s = tset_new(fmax(2.0 * cell / n, a->extent * 1e-6), PLANE_TOL * a->extent);
+    if (!queue || !seen || !joined || !s) rc = -1;
+    for (i = 0; rc == 0 && i < n; i++) seen[i] = -1;
+    for (i = 0; rc == 0 && i < gr.nroots; i++) {
+        int r = gr.order[i];
+        if (!joined[r]) rc = grow_chart(a, g, &gr, r, cos_crease, parent, queue, seen, joined, s, cn);
+    }
+    groups_free(&gr);
+    free(queue);
+    free(seen);
+    free(joined);
+    tset_free(s);
+    return rc;
+}
+
 /* Chart ids in order of each chart's first polygon, and the polygons by chart. */
 static int number_charts(lm_atlas *a, int *parent)
 {
@@ -182,22 +360,16 @@ static int number_charts(lm_atlas *a, int *parent)
     return 0;
 }
 
-/* ---- chart frames: the plane's axes, u along the longest boundary edge ---- */
+/* ---- chart frames: the chart's plane's axes, u along the longest boundary edge ---- */
 
 typedef struct {
     double smin, tmin, w, h, d; /* extent on the axes (world units) and plane offset */
 } extent_t;
 
-static void chart_axes(const lm_atlas *a, const geom_poly *g, const unsigned char *interior, lm_chart *c)
+static void chart_axes(const lm_atlas *a, const unsigned char *interior, lm_chart *c)
 {
     double best = -1.0, e[3];
     int i, k;
-    memset(c->n, 0, sizeof c->n);
-    for (i = 0; i < c->count; i++) {
-        int p = a->chart_polys[c->first + i];
-        for (k = 0; k < 3; k++) c->n[k] += g[p].n[k] * g[p].area;
-    }
-    geom_normalize(c->n);
     for (i = 0; i < c->count; i++) {
         const sc_poly *q = &a->polys[a->chart_polys[c->first + i]];
         int p = a->chart_polys[c->first + i];
@@ -401,7 +573,22 @@ static int raster_chart(lm_atlas *a, const lm_chart *c, const unsigned char *int
     return 0;
 }
 
-/* World point of rectangle position ST of chart C (on the plane, lifted by LIFT). */
+/* World point of rectangle position ST of chart C on polygon POLY: the chart's plane's
+ * point moved along the chart's normal onto the polygon's plane (a chart joined across
+ * folds is a height field over its plane: n_poly . n_chart >= the crease's cosine > 0),
+ * lifted off it by LIFT along the polygon's normal. */
+static void surface_point(const lm_atlas *a, const lm_chart *c, int poly, const double *st, double lift, double *p)
+{
+    const double *pl = &a->planes[4 * (size_t)poly];
+    double h;
+    int k;
+    for (k = 0; k < 3; k++) p[k] = c->o[k] + a->texel * (st[0] * c->u[k] + st[1] * c->v[k]);
+    h = (pl[3] - geom_dot(pl, p)) / geom_dot(pl, c->n);
+    for (k = 0; k < 3; k++) p[k] += h * c->n[k] + lift * pl[k];
+}
+
+/* World point of position ST on frame C's plane (a file UV triangle's frame), lifted off
+ * it by LIFT along its normal. */
 static void rect_point(const lm_atlas *a, const lm_chart *c, const double *st, double lift, double *p)
 {
     int k;
@@ -413,11 +600,14 @@ static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a
 
 /* A sample whose rays along the plane meet a back face first is inside geometry: it
  * moves past the nearest such face by the margin. 1 when the rays met no face at all. */
-static int push_out(lm_atlas *a, const lm_chart *c, float *st)
+static int push_out(lm_atlas *a, const lm_chart *c, int poly, float *st)
 {
-    double s[2] = {st[0], st[1]}, p[3], best, dir[3], met;
-    rect_point(a, c, s, lift_of(a), p);
-    best = geom_back_ray(a->grid, a->polys, p, c->u, c->v, 0.75 * a->texel, dir, &met);
+    double s[2] = {st[0], st[1]}, p[3], best, dir[3], met, u[3], v[3];
+    surface_point(a, c, poly, s, lift_of(a), p);
+    geom_reject(c->u, &a->planes[4 * (size_t)poly], u); /* the rays along the polygon's plane */
+    if (!geom_normalize(u)) geom_any_perp(&a->planes[4 * (size_t)poly], u);
+    geom_cross(&a->planes[4 * (size_t)poly], u, v);
+    best = geom_back_ray(a->grid, a->polys, p, u, v, 0.75 * a->texel, dir, &met);
     if (!(best < HUGE_VAL)) return !(met < HUGE_VAL);
     best += margin_of(a);
     st[0] = (float)(s[0] + best / a->texel * geom_dot(dir, c->u));
@@ -440,7 +630,7 @@ static int place_samples(lm_atlas *a, const unsigned char *interior)
                 float *st = &a->sample[2 * at];
                 /* free: no face within the rays' reach, and the sample at the centre (the
                  * float of x + 0.5 is exact) */
-                if (!isnan(st[0]) && push_out(a, c, st) && st[0] == x + 0.5f && st[1] == y + 0.5f)
+                if (!isnan(st[0]) && push_out(a, c, a->poly[at], st) && st[0] == x + 0.5f && st[1] == y + 0.5f)
                     a->state[at] = LM_FREE;
             }
     }
@@ -449,9 +639,10 @@ static int place_samples(lm_atlas *a, const unsigned char *interior)
 
 /* ---- building ---- */
 
-static int alloc_atlas(lm_atlas *a, int n)
+static int alloc_atlas(lm_atlas *a, const geom_poly *g, int n)
 {
     size_t t = (size_t)a->size * a->size, i;
+    int k;
     a->poly_chart = calloc((size_t)n + 1, sizeof *a->poly_chart);
     a->chart_polys = calloc((size_t)n + 1, sizeof *a->chart_polys);
     a->owner = malloc(t * sizeof *a->owner);
@@ -460,8 +651,13 @@ static int alloc_atlas(lm_atlas *a, int n)
     a->poly = malloc(t * sizeof *a->poly);
     a->state = calloc(t, 1);
     a->block = calloc(t, 1);
-    if (!a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb || !a->poly || !a->state || !a->block)
+    a->planes = malloc(4 * ((size_t)n + 1) * sizeof *a->planes);
+    if (!a->planes || !a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb || !a->poly || !a->state || !a->block)
         return -1;
+    for (k = 0; k < n; k++) {
+        memcpy(&a->planes[4 * (size_t)k], g[k].n, sizeof g[k].n);
+        a->planes[4 * (size_t)k + 3] = g[k].d;
+    }
     for (i = 0; i < t; i++) {
         a->owner[i] = a->poly[i] = -1;
         a->sample[2 * i] = a->sample[2 * i + 1] = NAN;
@@ -469,11 +665,13 @@ static int alloc_atlas(lm_atlas *a, int n)
     return 0;
 }
 
-/* Charts of the polygons: union-find over coplanar shared edges, whole or in part. */
-static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
+/* Charts of the polygons: union-find over coplanar shared edges, whole or in part, then
+ * coplanar charts joined across gentle folds (COS_CREASE); each chart's normal set. */
+static int make_charts(lm_atlas *a, const geom_poly *g, double cos_crease, unsigned char *interior)
 {
     int ne = 0, i, rc = -1, *parent = malloc((size_t)(a->npolys + 1) * sizeof *parent);
-    edge_t *e = parent ? sorted_edges(a->polys, a->npolys, g, &ne) : NULL;
+    double(*cn)[3] = malloc((size_t)(a->npolys + 1) * sizeof *cn);
+    edge_t *e = parent && cn ? sorted_edges(a->polys, a->npolys, g, &ne) : NULL;
     if (e) {
         for (i = 0; i < a->npolys; i++) {
             parent[i] = i;
@@ -481,15 +679,19 @@ static int make_charts(lm_atlas *a, const geom_poly *g, unsigned char *interior)
         }
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 0);
         rc = join_partial_edges(a->polys, a->npolys, g, PLANE_TOL * a->extent, parent);
+        if (rc == 0) rc = merge_smooth(a, g, e, ne, cos_crease, parent, cn);
         shared_pairs(e, ne, g, PLANE_TOL * a->extent, parent, interior, 1);
         if (rc == 0) rc = number_charts(a, parent);
+        for (i = 0; rc == 0 && i < a->ncharts; i++)
+            memcpy(a->charts[i].n, cn[a->chart_polys[a->charts[i].first]], sizeof a->charts[i].n);
     }
     free(e);
     free(parent);
+    free(cn);
     return rc;
 }
 
-static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior, double texel, char *err,
+static int layout(lm_atlas *a, const unsigned char *interior, double texel, char *err,
                   size_t errlen)
 {
     extent_t *x = malloc((size_t)(a->ncharts + 1) * sizeof *x);
@@ -499,7 +701,7 @@ static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior
         snprintf(err, errlen, "out of memory for %d charts", a->ncharts);
     } else {
         for (i = 0; i < a->ncharts; i++) {
-            chart_axes(a, g, interior, &a->charts[i]);
+            chart_axes(a, interior, &a->charts[i]);
             chart_extent(a, &a->charts[i], &x[i]);
         }
         rc = choose_texel(a, x, r, texel, err, errlen);
@@ -514,8 +716,15 @@ static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior
     return rc;
 }
 
-/* The atlas emptied and O's size, tolerance and padding checked and kept, for N
- * POLYS. 0, or -1 with err. */
+/* The cosine of the crease (lm_opts.crease); above 1 (no fold joins) when negative. */
+static double cos_crease(const lm_opts *o)
+{
+    double deg = o->crease > 0.0 ? o->crease : o->crease < 0.0 ? -1.0 : LM_CREASE;
+    return deg < 0.0 ? 2.0 : cos(deg * (3.14159265358979323846 / 180.0));
+}
+
+/* The atlas emptied and O's size, tolerance, crease and padding checked and kept, for
+ * N POLYS. 0, or -1 with err. */
 static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
 {
     memset(a, 0, sizeof *a);
@@ -525,6 +734,11 @@ static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, cha
     }
     if (!(o->tol >= 0.0 && o->tol <= 1.0)) {
         snprintf(err, errlen, "a lightmap tolerance of %g is outside 0..1", o->tol);
+        return -1;
+    }
+    if (!(o->crease <= LM_MAX_CREASE)) {
+        snprintf(err, errlen, "a chart crease of %g degrees is outside 0..%d (negative: coplanar charts only)", o->crease,
+                 LM_MAX_CREASE);
         return -1;
     }
     if (n < 1 || !(o->texel >= 0.0) || !isfinite(o->texel)) {
@@ -555,12 +769,12 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
         snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
         rc = -2;
-    } else if (g && interior && alloc_atlas(a, n) == 0 && make_charts(a, g, interior) == 0 &&
+    } else if (g && interior && alloc_atlas(a, g, n) == 0 && make_charts(a, g, cos_crease(o), interior) == 0 &&
                (a->grid = geom_grid_new(polys, g, n)) != NULL) {
         rc = 0;
     }
     if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
-    if (rc == 0) rc = layout(a, g, interior, o->texel, err, errlen);
+    if (rc == 0) rc = layout(a, interior, o->texel, err, errlen);
     if (rc == 0 && place_samples(a, interior) != 0) {
         snprintf(err, errlen, "out of memory for a %dx%d lightmap", o->size, o->size);
         rc = -1;
@@ -922,7 +1136,7 @@ int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, co
     if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
         snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
         rc = -2;
-    } else if (g && interior && parent && comp && a->file_uv && a->frames && alloc_atlas(a, n) == 0 &&
+    } else if (g && interior && parent && comp && a->file_uv && a->frames && alloc_atlas(a, g, n) == 0 &&
                (a->grid = geom_grid_new(polys, g, n)) != NULL) {
         file_frames(a, uv, g, rep);
         rc = a->texel > 0.0 ? 0 : -3;
@@ -965,16 +1179,6 @@ double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n)
 
 /* ---- baking and dilation ---- */
 
-/* The frame of covered texel AT's sample: its chart's, or its triangle's (file_tri). */
-static const lm_chart *texel_frame(const lm_atlas *a, size_t at)
-{
-    double st[2];
-    if (!a->file_uv) return &a->charts[a->owner[at]];
-    st[0] = a->sample[2 * at];
-    st[1] = a->sample[2 * at + 1];
-    return file_tri(a, a->poly[at], st);
-}
-
 int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
 {
     size_t at = (size_t)y * a->size + (size_t)x;
@@ -982,7 +1186,10 @@ int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
     if (x < 0 || y < 0 || x >= a->size || y >= a->size || isnan(a->sample[2 * at])) return 0;
     st[0] = a->sample[2 * at];
     st[1] = a->sample[2 * at + 1];
-    rect_point(a, texel_frame(a, at), st, lift_of(a), p);
+    if (a->file_uv) /* on its triangle's frame (file_tri) */
+        rect_point(a, file_tri(a, a->poly[at], st), st, lift_of(a), p);
+    else
+        surface_point(a, &a->charts[a->owner[at]], a->poly[at], st, lift_of(a), p);
     return 1;
 }
 
@@ -1030,7 +1237,7 @@ int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
             size_t i = (size_t)y * a->size + (size_t)x;
             double p[3], rgb[3];
             if (!(a->state[i] & LM_WANT) || !lm_texel_point(a, x, y, p)) continue;
-            if (fn(ctx, p, texel_frame(a, i)->n, rgb) != 0) return -1;
+            if (fn(ctx, p, &a->planes[4 * (size_t)a->poly[i]], rgb) != 0) return -1;
             for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
             a->state[i] = (unsigned char)((a->state[i] & LM_FREE) | LM_GATHERED);
         }
@@ -1302,6 +1509,7 @@ void lm_free(lm_atlas *a)
     free(a->poly);
     free(a->state);
     free(a->block);
+    free(a->planes);
     geom_grid_free(a->grid);
     free(a->file_uv);
     free(a->frames);

@@ -7,9 +7,23 @@
  * same way, within 10^-3 rad: a T-junction, where regions tessellated apart meet) when
  * they lie in one plane (normals within 10^-3 rad, the neighbour's centroid within
  * 10^-6 of the scene's extent of the plane). Coplanar polygons that do not overlap in
- * space do not overlap on their plane, so a chart's layout never folds. A chart is projected on its plane, its u
+ * space do not overlap on their plane, so such a chart's layout never folds.
+ * Smooth charts: then coplanar charts join across gentle folds, so that a column's
+ * facets, an arch's or a terrain's triangles do not each take a chart (and its gutter).
+ * Seeds are taken largest area first; a seed's chart grows breadth first across edges
+ * shared whole where the two polygons' normals lie within the crease (lm_opts.crease,
+ * LM_CREASE = 25 degrees by default), taking a neighbouring coplanar chart when every
+ * polygon of it lies within the crease of the seed's normal and its projection on the
+ * seed's plane overlaps none of the chart's so far (tools/bake/tset.h; a spiral ramp
+ * folds over itself and so splits). The seed's plane is the chart's: the chart is a
+ * height field over it, each polygon projected with a texel covering at most
+ * 1 / cos 25 = 1.10 times its nominal area, and a texel's sample lies on its own
+ * polygon and is gathered about that polygon's normal. 25 degrees, not more: a crease
+ * of a hard edge (a box's 90, a chamfer's 45) keeps its charts apart, so each side's
+ * light stays its own up to the edge; a smooth surface's facets (a column of 16 or
+ * more, 22.5 degrees apart) join. A chart is projected on its plane, its u
  * axis along its longest boundary edge, at one texel size T (world units a texel) for
- * the whole atlas: a texel shows the same area everywhere.
+ * the whole atlas: a texel shows the same area everywhere (within the crease's 1.10).
  *
  * Packing: each chart's rectangle holds its texels, a ring of one texel around them
  * (so that a bilinear lookup anywhere on the chart reads texels of this chart only) and
@@ -68,6 +82,8 @@
 #define LM_MAX_PADDING 64 /* mip levels up to 6 */
 #define LM_STEP 4    /* texels between the first pass's gathers, within a chart */
 #define LM_TOL 0.05  /* the default tolerance of the adaptive bake (tests/test_bake.c) */
+#define LM_CREASE 25     /* degrees: the default crease of smooth charts (see above) */
+#define LM_MAX_CREASE 60 /* a texel then covers up to 1 / cos 60 = 2 times its area */
 
 /* The light arriving at world point P on a surface of unit normal N, into RGB.
  * Returns 0, or nonzero to stop the bake. */
@@ -81,6 +97,8 @@ typedef struct {
                     * a 64 x 64 one of the Cornell box's 16 charts covers 2652 texels at
                     * 1, 729 at 4) */
     double tol;    /* adaptive gathering's tolerance, 0..1 (LM_TOL); 0: every texel */
+    double crease; /* degrees, up to LM_MAX_CREASE: charts joined across folds (see above);
+                    * 0: LM_CREASE; negative: coplanar charts only */
 } lm_opts;
 
 typedef struct {
@@ -104,6 +122,8 @@ typedef struct {
     int *poly;        /* size^2: the polygon of a covered texel's sample */
     unsigned char *state; /* size^2: LM_FREE, and how the texel got its light */
     unsigned char *block; /* size^2: the size of the block waiting with its corner here, 0: none */
+    double *planes;   /* npolys * 4: each polygon's unit normal (a texel's gather's) and
+                       * offset d (n . x = d) */
     double tol;
     int pass, waiting; /* passes planned so far; the size of the blocks waiting */
     const sc_poly *polys;

@@ -1446,7 +1446,7 @@ static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *f
 /* A laid out for SC at tolerance TOL, its first pass planned; its covered texels. */
 static long lm_layout(const bscene *sc, double tol, lm_atlas *a)
 {
-    lm_opts lo = {512, 0, 0, tol};
+    lm_opts lo = {512, 0, 0, tol, 0};
     char err[512];
     long covered = 0;
     int x, y;

@@ -303,7 +303,7 @@ int bake_prepare(run_t *r)
 {
     const opts_t *o = r->o;
     lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
-                  o->lightmap_tol};
+                  o->lightmap_tol, 0.0};
     struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;
     b = r->bake = calloc(1, sizeof *b);
