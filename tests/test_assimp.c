@@ -837,7 +837,7 @@ static void poly_means(const lm_atlas *a, int n, double *mean)
  * line. */
 static void uv_faults(const sc_poly *polys, int n, const double *uv)
 {
-    lm_opts lo = {128, 0.0, 0, 0.0};
+    lm_opts lo = {128, 0.0, 0, 0.0, 0.0};
     lm_file_report rep;
     lm_atlas a;
     char err[512];
@@ -875,7 +875,7 @@ static void uv_faults(const sc_poly *polys, int n, const double *uv)
  * per face agrees with rad's own charts' bake of the same scene. */
 static void test_lightmap_file_uv(void **state)
 {
-    lm_opts lo = {64, 0.0, 0, 0.0};
+    lm_opts lo = {64, 0.0, 0, 0.0, 0.0};
     lm_file_report rep;
     lm_atlas a, b;
     obj_scene sc;
