@@ -49,11 +49,12 @@ ASSIMP_LIBS   := $(shell pkg-config --exists assimp 2>/dev/null && pkg-config --
 LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
-TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c \
+TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c \
               tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
-TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
-              tools/host/clock.c tools/bench/plot.c
+TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \
+              $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/obj_polys.c \
+              tools/host/geom.c tools/host/clock.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
@@ -143,7 +144,7 @@ nm-check: $(LIBRAD)
 	@sh tests/nm_check.sh $(LIBRAD)
 
 test: all $(TESTS) nm-check
-	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/docs_check.sh
+	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/twin_names_check.sh tests/docs_check.sh
 
 clean:
 	rm -rf $(BUILDDIR)

@@ -44,7 +44,7 @@ static int rgb_any(const rad_rgb_t *c)
  * them. Returns RAD_OK or RAD_ERR_ARG with *WHY naming the setting. */
 static int resolve_config(rad_config_t *c, const char **why)
 {
-    if (c->res == 0) c->res = 64;
+    if (c->res == 0) c->res = RAD_DEFAULT_RES;
     if (c->max_element == 0) c->max_element = RAD__Q(4.0);
     *why = "res not even within 8..RAD_MAX_RES";
     if (c->res < 8 || c->res > RAD_MAX_RES || (c->res & 1u)) return RAD_ERR_ARG;

@@ -1053,6 +1053,30 @@ static void expect_usage_error_at(const char *bin, const char *prog, const char 
 #define expect_usage_error(bin, prog, ...) \
     expect_usage_error_at((bin), (prog), (const char *const[]){__VA_ARGS__, NULL}, __FILE__, __LINE__)
 
+/* A usage error is short: the message, the help of the option at fault (its own
+ * lines only), and where the rest is; the 130-line help is for --help. */
+static void test_usage_error_short(void **state)
+{
+    static const char *const bad[][3] = {{"--gather", "31", "  --gather RES"},
+                                         {"--res", "9", "  --res N"},
+                                         {"--bogus", CORNELL, NULL}};
+    size_t i;
+    (void)state;
+    need(FIXED);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        run_t r;
+        const char *args[] = {bad[i][0], bad[i][1], CORNELL, NULL};
+        run_args(&r, FIXED, args);
+        print_message("%s %s: status %d, %d lines on stderr\n", bad[i][0], bad[i][1], r.status, count_lines(r.err));
+        CHECK_INT_EQ(r.status, 2, "exit status of a usage error");
+        CHECK_CONTAINS(r.err, "rad_cli --help lists the options", "the pointer to --help");
+        if (bad[i][2]) CHECK_CONTAINS(r.err, bad[i][2], "the option's own help");
+        CHECK_LACKS(r.err, "--lightmap-size", "another option's help");
+        CHECK_INT_LE(count_lines(r.err), 8, "lines of a usage error");
+        run_free(&r);
+    }
+}
+
 static void test_usage_errors(void **state)
 {
     static const char *const bins[2][2] = {{FIXED, "rad_cli"}, {FLOAT, "rad_cli_float"}};
@@ -1068,6 +1092,8 @@ static void test_usage_errors(void **state)
         expect_usage_error(bin, prog, "--bogus", CORNELL);                  /* unknown option */
         expect_usage_error(bin, prog, "--res", "7", CORNELL);               /* below 8 */
         expect_usage_error(bin, prog, "--res", "10", "--res", "9", CORNELL); /* odd */
+        expect_usage_error(bin, prog, "--coarse-res", "25", CORNELL);       /* odd */
+        expect_usage_error(bin, prog, "--gather", "31", CORNELL);           /* odd */
         expect_usage_error(bin, prog, "--width", "0", CORNELL);
         expect_usage_error(bin, prog, "--height", "-3", CORNELL);
         expect_usage_error(bin, prog, "--width", "12x", CORNELL);
@@ -1548,6 +1574,7 @@ int main(void)
         cmocka_unit_test(test_list_materials),
         cmocka_unit_test(test_emit_lights_dark_scene),
         cmocka_unit_test(test_usage_errors),
+        cmocka_unit_test(test_usage_error_short),
         cmocka_unit_test(test_runtime_errors),
         cmocka_unit_test(test_unwritable_output),
         cmocka_unit_test(test_twin_agreement),

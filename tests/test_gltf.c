@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* Tests for the glTF export: tools/formats/gltf.c (the .glb writer) and
- * tools/host/gltf_export.c (the solution at the input's vertices). The files are read
+ * tools/bake/gltf_export.c (the solution at the input's vertices). The files are read
  * back by a JSON reader written here and checked for structure, then by assimp
  * (Debian assimp-utils) when it is installed. */
 #include <stdarg.h>
@@ -20,7 +20,7 @@
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 #include "host/obj_polys.h"
 #include "tmpdir.h"
 #include "assimp.h"

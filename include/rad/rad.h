@@ -201,13 +201,14 @@ typedef struct {
      (size_t)(pixels) * (sizeof(uint32_t) + sizeof(rad_index_t)) + 16u)
 
 /* ---- configuration (zero means default) ---------------------------------------- */
+#define RAD_DEFAULT_RES 64 /* rad_config_t.res when 0 */
 typedef struct {
     rad_real_t max_patch;   /* longest patch edge, in the caller's units: max_element..
                              * 2 RAD_INPUT_LIMIT; default 4 max_element (at most that) */
     rad_real_t max_element; /* longest element edge, in the caller's units: 2^-16..
                              * 2 RAD_INPUT_LIMIT; default 4.0 (set it for the scene's
                              * units: a polygon's lattice has at most 32768 a side) */
-    uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; default 64 */
+    uint16_t res;           /* hemi-cube resolution, even, 8..RAD_MAX_RES; 0: RAD_DEFAULT_RES */
     uint16_t band_rows;     /* rows per pass, 0 = as many as the work buffer holds */
     uint16_t flags;         /* RAD_NO_OVERSHOOT, RAD_NO_BANDS, RAD_SMALL_FACES, or 0 */
     uint16_t coarse_res;    /* least resolution of a coarse shot (below); 0: res / 4 */

@@ -2,7 +2,7 @@
 /* lightmap — charts, atlas packing, texel samples, gathering, dilation. See lightmap.h. */
 #include "bake/lightmap.h"
 
-#include "bake/geom.h"
+#include "host/geom.h"
 #include "formats/hdr.h"
 #include "formats/image.h"
 

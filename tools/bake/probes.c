@@ -2,7 +2,7 @@
 /* probes — light probes in spherical harmonics, as JSON. See probes.h. */
 #include "bake/probes.h"
 
-#include "bake/geom.h"
+#include "host/geom.h"
 #include "formats/file_io.h"
 
 #include <errno.h>

@@ -33,10 +33,10 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/clock.h"
+#include "host/defaults.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
 #include "bench/plot.h"
-#include "cli/cli.h"
 #include "rad/rad.h"
 #include "reference/reference.h"
 #include "host/scene.h"
@@ -689,7 +689,7 @@ static void dir_of(const char *path, char *out, size_t n)
  * and 24 as the unshot fraction falls below 1, 1/8 and 1/64 (chosen on
  * CornellBox-Original: more accurate than every shot at 128, about half its time; see
  * the peer table's accuracy column). */
-#define CLI_FLOOR CLI_COARSE_FLOOR(CLI_RES)
+#define DEF_FLOOR DEF_COARSE_FLOOR(DEF_RES)
 
 /* Each rad_cli row of the peer table as the solver's settings: its tolerance, element
  * edge (0: rad_cli's default), res, coarse fraction and floor, and its flags. */
@@ -702,13 +702,13 @@ typedef struct {
 } peer_row_t;
 
 static const peer_row_t peer_rows[PEER_CMDS] = {
-    {0.01, 0, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.01"},
-    {0.001, 0, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.001"},
+    {0.01, 0, DEF_RES, DEF_COARSE, DEF_FLOOR, "--tol 0.01"},
+    {0.001, 0, DEF_RES, DEF_COARSE, DEF_FLOOR, "--tol 0.001"},
     {0, 0, 0, 0, 0, NULL}, /* rpkCpp */
     {0.001, 0, 128, 0, 0, "--tol 0.001 --res 128 --coarse 0"},
-    {0.001, 0.08, CLI_RES, CLI_COARSE, CLI_FLOOR, "--tol 0.001 --max-element 0.08"},
+    {0.001, 0.08, DEF_RES, DEF_COARSE, DEF_FLOOR, "--tol 0.001 --max-element 0.08"},
     {0.001, 0.08, 128, 0, 0, "--tol 0.001 --max-element 0.08 --res 128 --coarse 0"},
-    {0.001, 0.08, 256, 2, CLI_COARSE_FLOOR(256), "--tol 0.001 --max-element 0.08 --res 256 --coarse 2"}};
+    {0.001, 0.08, 256, 2, DEF_COARSE_FLOOR(256), "--tol 0.001 --max-element 0.08 --res 256 --coarse 2"}};
 
 typedef struct {
     char why[3072];                        /* empty when measured; else why not */

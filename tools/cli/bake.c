@@ -11,11 +11,10 @@
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "host/clock.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 #include "host/obj_polys.h"
 #include "progress.h"
 
-#define GATHER_RES 32 /* the gathers' resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
 
 /* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
  * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. */
@@ -254,7 +253,7 @@ static int read_probes(run_t *r, struct bake_state *b)
 int bake_prepare(run_t *r)
 {
     const opts_t *o = r->o;
-    lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
+    lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
                   o->lightmap_tol};
     char err[1024];
     struct bake_state *b;
@@ -278,7 +277,7 @@ int bake_step(run_t *r)
 {
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
-    int rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
+    int rc = 0, res = o->gather_res ? o->gather_res : DEF_GATHER_RES;
     gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL};
     double t = host_now();
     if (!b) return 0;

@@ -13,8 +13,6 @@
 
 #include <stdlib.h>
 
-#include "rad/rad.h"
-
 /* At most this many hemi-cubes at resolution 128 (fewer at higher ones, never fewer
  * than one): the emitting patches are sampled evenly, so the share is a power-weighted
  * mean over a sample. The check only tells most of the light lost (a room wound
@@ -25,29 +23,32 @@
 
 /* The emitted power of patch P in caller units of emission (times core area: the
  * scale is common to every patch, so it cancels in the share). */
-static double patch_power(sc_solver *s, const run_t *r, const rad_patch_t *p)
+static double patch_power(const run_t *r, int p)
 {
-    int tag = sc_element_tag(s, (int)p->first_element);
+    int first, tag;
+    double area;
     const double *ke;
+    if (sc_patch(r->s, p, &first, &area) < 0) return 0;
+    tag = sc_element_tag(r->s, first);
     if (tag < 0 || tag >= r->sc.nfaces) return 0;
     ke = r->sc.materials[r->sc.faces[tag].material].ke;
-    return RAD_TO_DOUBLE(p->area) * (ke[0] + ke[1] + ke[2]);
+    return area * (ke[0] + ke[1] + ke[2]);
 }
 
 double emitted_share_landing(run_t *r)
 {
-    const rad_scene_t *core = sc_core(r->s);
-    uint32_t p, emitting = 0, stride, cubes = BALANCE_PIXELS / ((uint32_t)r->so.res * (uint32_t)r->so.res), k = 0;
+    int p, n = sc_patch_count(r->s);
+    uint32_t emitting = 0, stride, cubes = BALANCE_PIXELS / ((uint32_t)r->so.res * (uint32_t)r->so.res), k = 0;
     double landed = 0, total = 0, *ff = malloc((size_t)(r->st.elements ? r->st.elements : 1) * sizeof *ff);
     if (!ff) return -1;
-    for (p = 0; p < core->n_patches; p++) emitting += patch_power(r->s, r, &core->pools.patches[p]) > 0;
+    for (p = 0; p < n; p++) emitting += patch_power(r, p) > 0;
     if (cubes < 1) cubes = 1;
     stride = emitting > cubes ? (emitting + cubes - 1) / cubes : 1;
-    for (p = 0; p < core->n_patches; p++) {
-        double w = patch_power(r->s, r, &core->pools.patches[p]), sum = 0;
+    for (p = 0; p < n; p++) {
+        double w = patch_power(r, p), sum = 0;
         int e;
         if (!(w > 0) || k++ % stride != 0) continue;
-        if (sc_form_factors(r->s, (int)p, ff) < 0) break;
+        if (sc_form_factors(r->s, p, ff) < 0) break;
         for (e = 0; e < r->st.elements; e++) sum += ff[e];
         landed += w * sum;
         total += w;

@@ -28,7 +28,8 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "host/fgather.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
+#include "host/defaults.h"
 #include "host/scene.h"
 
 /* Exit statuses (docs/cli.md's and --help's list). */
@@ -39,15 +40,6 @@
 
 #define MAX_VIEWS 4096
 
-/* rad_cli's hemi-cube defaults (cli_shot_settings; tools/bench/rad_bench.c measures
- * them): res, coarse shots below an unshot fraction of CLI_COARSE down to
- * CLI_COARSE_FLOOR(res): res / 8 made even, but not below 24 (a cube of 8 or 16 misses
- * whole surfaces), so that a res of 24 or less never coarsens. With stored rows,
- * CLI_ROWS_RES and no coarse shots. */
-#define CLI_RES      192
-#define CLI_COARSE   1.0
-#define CLI_ROWS_RES 128
-#define CLI_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
 /* The largest emission channel accepted: the OBJ loader's limit on any number, now also
  * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
  * below 32768 with that emission at 256; past it values saturate, and are reported),

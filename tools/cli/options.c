@@ -24,11 +24,17 @@ typedef struct {
 } option_t;
 
 static void usage(FILE *f);
+static void print_option(FILE *f, const option_t *p);
 
+/* The option whose value is being read, for die_usage: NULL between options. */
+static const option_t *parsing;
+
+/* A usage error: the message, the help of the option at fault, and where the rest is. */
 void die_usage(const char *msg, const char *arg)
 {
     fprintf(stderr, PROG ": %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
-    usage(stderr);
+    if (parsing) print_option(stderr, parsing);
+    fprintf(stderr, "usage: " PROG " [options] scene.obj   (" PROG " --help lists the options)\n");
     exit(CLI_EXIT_USAGE);
 }
 
@@ -44,6 +50,18 @@ static long parse_int(const char *opt, const char *s, long lo, long hi)
         die_usage(msg, s);
     }
     return v;
+}
+
+/* A hemi-cube resolution: even (a cube's sides are half faces), 8..1024. */
+static int parse_res(const char *opt, const char *s)
+{
+    long v = parse_int(opt, s, 8, 1024);
+    if (v % 2) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s must be even", opt);
+        die_usage(msg, s);
+    }
+    return (int)v;
 }
 
 static double parse_pos(const char *opt, const char *s)
@@ -125,8 +143,7 @@ static void opt_no_file_lights(opts_t *o, const char *opt, const char *val)
 
 static void opt_res(opts_t *o, const char *opt, const char *val)
 {
-    o->res = (int)parse_int(opt, val, 8, 1024);
-    if (o->res % 2) die_usage("--res must be even", val);
+    o->res = parse_res(opt, val);
 }
 
 static void opt_coarse(opts_t *o, const char *opt, const char *val)
@@ -138,8 +155,7 @@ static void opt_coarse(opts_t *o, const char *opt, const char *val)
 
 static void opt_coarse_res(opts_t *o, const char *opt, const char *val)
 {
-    o->coarse_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->coarse_res % 2) die_usage("--coarse-res must be even", val);
+    o->coarse_res = parse_res(opt, val);
 }
 
 static void opt_max_patch(opts_t *o, const char *opt, const char *val) { o->max_patch = parse_pos(opt, val); }
@@ -329,8 +345,7 @@ static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 
 static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
-    o->gather_res = (int)parse_int(opt, val, 8, 1024);
-    if (o->gather_res % 2) die_usage("--gather must be even", val);
+    o->gather_res = parse_res(opt, val);
 }
 
 static void opt_probes(opts_t *o, const char *opt, const char *val)
@@ -355,8 +370,8 @@ static const option_t options[] = {
      "eye, look-at point, vertical field of view (degrees, 45);\n"
      "repeat '--camera ... -o FILE' to render many views of one solve", opt_camera},
     {"--views", NULL, "FILE", "one view a line: EX EY EZ LX LY LZ [FOV] OUTPUT", opt_views},
-    {"--width", NULL, "N", "image width (512), up to 2048", opt_width},
-    {"--height", NULL, "N", "image height (512), up to 2048", opt_height},
+    {"--width", NULL, "N", "image width (" DEF_STR(DEF_IMAGE_SIZE) "), up to 2048", opt_width},
+    {"--height", NULL, "N", "image height (" DEF_STR(DEF_IMAGE_SIZE) "), up to 2048", opt_height},
     {"--exposure", NULL, "X",
      "linear scale before sRGB (default: automatic, from the first view:\n"
      "its 97th percentile maps to white; one exposure for every view)", opt_exposure},
@@ -384,9 +399,9 @@ static const option_t options[] = {
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
      "for small lamps): shadows sharper than the elements; also the\n"
-     "lightmap's and probes' gather resolution (32 without it)", opt_gather},
+     "lightmap's and probes' gather resolution (" DEF_STR(DEF_GATHER_RES) " without it)", opt_gather},
     SECTION("solver:"),
-    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (192; 128 with stored rows)", opt_res},
+    {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (" DEF_STR(DEF_RES) "; " DEF_STR(DEF_ROWS_RES) " with stored rows)", opt_res},
     {"--coarse", NULL, "F",
      "once the unshot fraction is below F, shots (but the emitters' own\n"
      "light) render at res / 2, below F / 8 at res / 4, ... (1; 0: never)", opt_coarse},
@@ -446,7 +461,7 @@ static const option_t options[] = {
     SECTION("baking (lightmaps and light probes):"),
     {"--lightmap", NULL, "FILE", "bake the light arriving on every surface into an atlas\n(.png, .ppm or .hdr)",
      opt_lightmap},
-    {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (512)", opt_lightmap_size},
+    {"--lightmap-size", NULL, "N", "the lightmap atlas is N x N texels, 1..8192 (" DEF_STR(DEF_LIGHTMAP_SIZE) ")", opt_lightmap_size},
     {"--lightmap-pad", NULL, "N",
      "texels of gutter around each lightmap chart, 0..64 (size / 128\nwithin 1..4): mip levels m with 2^m <= N + 1 stay clean", opt_lightmap_pad},
     {"--lightmap-tol", NULL, "F",
@@ -464,6 +479,23 @@ static const option_t options[] = {
 #define NOPTIONS (sizeof options / sizeof options[0])
 #define HELP_COLUMN 26
 
+/* One option's entry of the help: its name and value, then its help lines. */
+static void print_option(FILE *f, const option_t *p)
+{
+    const char *h = p->help;
+    int w = fprintf(f, "  %s%s%s%s%s", p->name, p->alt ? ", " : "", p->alt ? p->alt : "", p->arg ? " " : "",
+                    p->arg ? p->arg : "");
+    if (w >= HELP_COLUMN) w = fprintf(f, "\n") - 1; /* a long name: its help on the next line */
+    for (;;) {
+        const char *nl = strchr(h, '\n');
+        int len = nl ? (int)(nl - h) : (int)strlen(h);
+        fprintf(f, "%*s%.*s\n", HELP_COLUMN - w, "", len, h);
+        if (!nl) break;
+        h = nl + 1;
+        w = 0;
+    }
+}
+
 static void usage(FILE *f)
 {
     size_t i;
@@ -474,21 +506,8 @@ static void usage(FILE *f)
                "assimp: %s.\n\n",
             assimp_scene_available() ? "built in" : "not in this build (libassimp-dev, then make)");
     for (i = 0; i < NOPTIONS; i++) {
-        const option_t *p = &options[i];
-        const char *h = p->help;
-        int w;
-        if (!p->name) { fprintf(f, "%s\n", h); continue; }
-        w = fprintf(f, "  %s%s%s%s%s", p->name, p->alt ? ", " : "", p->alt ? p->alt : "", p->arg ? " " : "",
-                    p->arg ? p->arg : "");
-        if (w >= HELP_COLUMN) w = fprintf(f, "\n") - 1; /* a long name: its help on the next line */
-        for (;;) {
-            const char *nl = strchr(h, '\n');
-            int len = nl ? (int)(nl - h) : (int)strlen(h);
-            fprintf(f, "%*s%.*s\n", HELP_COLUMN - w, "", len, h);
-            if (!nl) break;
-            h = nl + 1;
-            w = 0;
-        }
+        if (!options[i].name) fprintf(f, "%s\n", options[i].help);
+        else print_option(f, &options[i]);
     }
     fprintf(f, "\nWithout --camera or --views, the default camera looks along -Z at the centre of\n"
                "the meshed scene's bounding box, from in front of it (+Z), with +Y up, a 45 degree\n"
@@ -552,15 +571,15 @@ static void check_combinations(opts_t *o)
  * at res, so there the default stays 128 and nothing coarsens. */
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)
 {
-    so->res = o->res ? o->res : rows ? CLI_ROWS_RES : CLI_RES;
-    so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : CLI_COARSE;
-    so->coarse_res = o->coarse_res ? o->coarse_res : CLI_COARSE_FLOOR(so->res);
+    so->res = o->res ? o->res : rows ? DEF_ROWS_RES : DEF_RES;
+    so->coarse = rows ? 0 : o->coarse >= 0 ? o->coarse : DEF_COARSE;
+    so->coarse_res = o->coarse_res ? o->coarse_res : DEF_COARSE_FLOOR(so->res);
 }
 
 static void set_defaults(opts_t *o, int argc)
 {
     memset(o, 0, sizeof *o);
-    o->width = o->height = 512;
+    o->width = o->height = DEF_IMAGE_SIZE;
     o->tol = 0.001;
     o->max_shots = 1000000;
     o->threads = 1;
@@ -585,8 +604,10 @@ void parse_args(int argc, char **argv, opts_t *o)
         const char *a = argv[i];
         const option_t *p = a[0] == '-' && a[1] ? find_option(a) : NULL;
         if (p) {
+            parsing = p;
             if (p->arg && i + 1 >= argc) die_usage("option needs a value", a);
             p->fn(o, a, p->arg ? argv[++i] : NULL);
+            parsing = NULL;
         } else if (a[0] == '-' && a[1]) die_usage("unknown option", a);
         else if (o->scene) die_usage("more than one scene given", a);
         else o->scene = a;

@@ -14,7 +14,7 @@
 #include "formats/assimp_scene.h"
 #include "formats/file_io.h"
 #include "host/clock.h"
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 #include "host/obj_polys.h"
 #include "host/tex_render.h"
 #include "rad/rad.h"

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/geom.h"
+#include "host/geom.h"
 #include "host/tex_render.h"
 #include "rad/rad.h"
 

@@ -71,17 +71,7 @@ int sc_vertex_colours(sc_solver *s, sc_fgather *f, int ambient, double *rgb);
 int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers, char *err,
                       size_t errlen);
 
-#ifndef RAD_HOST_FLOAT_NAMES
-typedef struct scf_fgather scf_fgather;
-typedef int (*scf_split_fn)(void *ctx, scf_gatherer *g, int first, int step);
-int scf_gather_split(scf_solver *s, int res, int threads, scf_split_fn fn, void *ctx);
-scf_fgather *scf_fgather_new(scf_solver *s, const sc_poly *polys, int n, int res, int threads, int ambient);
-void scf_fgather_free(scf_fgather *f);
-void scf_fgather_progress(scf_fgather *f, sc_fraction_fn fn, void *ctx);
-int scf_fgather_vertices(scf_fgather *f, const double **e, const unsigned char **ok);
-int scf_vertex_colours(scf_solver *s, scf_fgather *f, int ambient, double *rgb);
-int scf_fgather_render(scf_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers, char *err,
-                       size_t errlen);
-#endif
+#define RAD_TWIN_FGATHER /* the float twin's names of the above (generated): */
+#include "host/scene_float.h"
 
 #endif

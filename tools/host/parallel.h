@@ -13,4 +13,7 @@
  * or threads cannot start. */
 int sc_solve_parallel(sc_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx);
 
+#define RAD_TWIN_PARALLEL /* the float twin's names of the above (generated): */
+#include "host/scene_float.h"
+
 #endif

@@ -17,9 +17,7 @@
 int sc_export_ply(sc_solver *s, const double *rgb, const char *path, int format, double exposure,
                   char *err, size_t errlen);
 
-#ifndef RAD_HOST_FLOAT_NAMES
-int scf_export_ply(scf_solver *s, const double *rgb, const char *path, int format,
-                   double exposure, char *err, size_t errlen);
-#endif
+#define RAD_TWIN_PLY_EXPORT /* the float twin's names of the above (generated): */
+#include "host/scene_float.h"
 
 #endif

@@ -492,7 +492,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
          * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
          * that a point light's finer cube needs. A sun is 4 res by default. */
         if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
-            int r = 4 * (o->res ? o->res : 64);
+            int r = 4 * (o->res ? o->res : RAD_DEFAULT_RES);
             c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
         }
         to_core(h, l->pos, &c->position);
@@ -633,7 +633,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         }
         cfg.max_element = RAD_REAL(me);
         cfg.max_patch = RAD_REAL(mp);
-        cfg.res = (uint16_t)(o->res ? o->res : 64);
+        cfg.res = (uint16_t)(o->res ? o->res : RAD_DEFAULT_RES);
         cfg.band_rows = (uint16_t)o->band_rows;
         cfg.flags = (o->no_overshoot ? RAD_NO_OVERSHOOT : 0u) | RAD_SMALL_FACES;
         cfg.coarse = RAD_REAL(o->coarse);
@@ -988,6 +988,18 @@ uint64_t sc_checksum(sc_solver *h)
 }
 
 void *sc_core(sc_solver *h) { return &h->s; }
+
+int sc_patch_count(sc_solver *h) { return (int)h->s.n_patches; }
+
+int sc_patch(sc_solver *h, int p, int *first_element, double *area)
+{
+    const rad_patch_t *q;
+    if (p < 0 || (uint32_t)p >= h->s.n_patches) return -1;
+    q = &h->pools.patches[p];
+    *first_element = (int)q->first_element;
+    *area = RAD_TO_DOUBLE(q->area);
+    return 0;
+}
 
 /* ---- stored form factors --------------------------------------------------------- */
 

@@ -143,6 +143,11 @@ int sc_form_factors(sc_solver *s, int p, double *ff);
 uint64_t sc_checksum(sc_solver *s);
 /* The core's rad_scene_t (of this build) inside, for glue of the same build. */
 void *sc_core(sc_solver *s);
+/* Patches: how many, and patch P's first element and its area in core units (the core
+ * scales every area alike, so ratios of them hold in caller units). sc_patch returns 0,
+ * or -1 for P out of range. */
+int sc_patch_count(sc_solver *s);
+int sc_patch(sc_solver *s, int p, int *first_element, double *area);
 
 /* ---- stored form factors (rad_rows_t): visibility once, then relighting ---- */
 /* The memory the rows (and the Gauss-Seidel matrix) may take, in bytes; 0: the
@@ -214,6 +219,7 @@ int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]
 /* Values past the core's range met by this gatherer (saturated, counted). */
 unsigned long sc_gatherer_saturations(sc_gatherer *g);
 
+#define RAD_TWIN_SCENE /* the float twin's names of the above (generated): */
 #include "host/scene_float.h"
 
 #endif

@@ -43,16 +43,7 @@ int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
 int sc_render_surfaces(sc_solver *s, const sc_camera *cam, int w, int h, int *surface, char *err,
                        size_t errlen);
 
-#ifndef RAD_HOST_FLOAT_NAMES
-int scf_texture_elements(scf_solver *s, const obj_scene *sc, const tex_image *maps, char *err,
-                         size_t errlen);
-int scf_texture_detail(scf_solver *s, const obj_scene *sc, const tex_image *maps,
-                       const sc_camera *cam, int w, int h, float *rgb, char *err, size_t errlen);
-int scf_render_surfaces(scf_solver *s, const sc_camera *cam, int w, int h, int *surface, char *err,
-                        size_t errlen);
-int scf_render_textured(scf_solver *s, const obj_scene *sc, const tex_image *maps,
-                        const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
-                        size_t errlen);
-#endif
+#define RAD_TWIN_TEX_RENDER /* the float twin's names of the above (generated): */
+#include "host/scene_float.h"
 
 #endif

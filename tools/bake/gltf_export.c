@@ -3,7 +3,7 @@
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
-#include "host/gltf_export.h"
+#include "bake/gltf_export.h"
 
 #include <math.h>
 #include <stdio.h>

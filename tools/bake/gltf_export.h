@@ -50,18 +50,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
                             double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
                             char *err, size_t errlen);
 
-#ifndef RAD_HOST_FLOAT_NAMES
-int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                     double *rgb, double *weight);
-int scf_corner_light_fg(scf_solver *s, scf_fgather *fg, const obj_scene *sc, const sc_poly *polys,
-                        int n, double *rgb, double *weight);
-int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                    const tex_image *maps, scf_fgather *fg, const char *path, gltf_warn_fn warn,
-                    void *ctx, char *err, size_t errlen);
-int scf_export_gltf_lightmap(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
-                             const tex_image *maps, scf_fgather *fg, const lm_atlas *lm,
-                             double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
-                             char *err, size_t errlen);
-#endif
+#define RAD_TWIN_GLTF_EXPORT /* the float twin's names of the above (generated): */
+#include "host/scene_float.h"
 
 #endif

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* geom — the bake's geometry in double. See geom.h. */
-#include "bake/geom.h"
+#include "host/geom.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,0 +1,30 @@
+/* SPDX-License-Identifier: MIT */
+/* defaults — rad_cli's program defaults, one home: the options, the --help text and
+ * rad_bench (which measures them) all read them here. The core's own defaults
+ * (rad_config_t, rad_light_t) are in include/rad/rad.h (RAD_DEFAULT_*).
+ *
+ * Hemi-cube: every shot at DEF_RES once the unshot fraction is above DEF_COARSE, then
+ * coarse shots down to DEF_COARSE_FLOOR(res): res / 8 made even, but not below 24 (a cube
+ * of 8 or 16 misses whole surfaces), so that a res of 24 or less never coarsens. Stored
+ * rows are every patch's row at res and never coarse: DEF_ROWS_RES and no coarse shots.
+ * docs on the choice: docs/library.md, "Coarse shots". */
+#ifndef RAD_TOOLS_DEFAULTS_H
+#define RAD_TOOLS_DEFAULTS_H
+
+#define DEF_RES      192
+#define DEF_COARSE   1.0
+#define DEF_ROWS_RES 128
+#define DEF_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
+
+/* The gathers' resolution (lightmap texels, probes) without --gather: 0.84% from Lambert
+ * at 64 (tests/test_bake.c). */
+#define DEF_GATHER_RES 32
+/* The lightmap atlas' side in texels, and the image's width and height. */
+#define DEF_LIGHTMAP_SIZE 512
+#define DEF_IMAGE_SIZE    512
+
+/* A default written into help text: DEF_STR(DEF_RES) is "192". */
+#define DEF_STR_(x) #x
+#define DEF_STR(x)  DEF_STR_(x)
+
+#endif
