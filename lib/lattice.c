@@ -117,7 +117,8 @@ static void lattice_setup(rad__lattice_t *lt)
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
      * limits), so S >= 10. */
-    unsigned i, nb = rad__bitlen64(len), s = nb < 22u ? 22u - nb : 0u, shift = s > 17u ? s - 17u : 0u;
+    unsigned i, nb = rad__bitlen64(len), s = nb < 22u ? 22u - nb : 0u,
+                shift = s > 17u ? s - 17u : 0u;
     for (i = 0; i < n; i++) {
         rad_real_t a = corner[i].x < 0 ? -corner[i].x : corner[i].x;
         rad_real_t b = corner[i].y < 0 ? -corner[i].y : corner[i].y;

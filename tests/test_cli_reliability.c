@@ -867,7 +867,8 @@ static void test_help_matches_docs(void **state)
         opt[0] = '`';
         memcpy(opt + 1, p + 3, len);
         opt[len + 1] = '\0';
-        if (!strstr(doc, opt)) fail_msg("--help's option %s has no row in docs/cli.md's table", opt + 1);
+        if (!strstr(doc, opt))
+            fail_msg("--help's option %s has no row in docs/cli.md's table", opt + 1);
     }
     free(doc);
     done(&r);
@@ -895,7 +896,8 @@ static void test_help_sections(void **state)
         const char *nl = strchr(p, '\n');
         size_t len = (size_t)(nl - p);
         if (p[0] == ' ') {
-            if (open) fail_msg("--help: heading '%s' does not end in ':' before its options", heading);
+            if (open)
+                fail_msg("--help: heading '%s' does not end in ':' before its options", heading);
             if (strncmp(p, "  -", 3) == 0) in_section++;
         } else {
             if (!open) {
@@ -903,13 +905,15 @@ static void test_help_sections(void **state)
                 hl = 0;
                 open = 1;
             }
-            if (hl + len + 2 > sizeof heading) fail_msg("--help: a heading longer than %zu bytes", sizeof heading);
+            if (hl + len + 2 > sizeof heading)
+                fail_msg("--help: a heading longer than %zu bytes", sizeof heading);
             if (hl) heading[hl++] = ' ';
             memcpy(heading + hl, p, len);
             hl += len;
             heading[hl] = '\0';
             if (len && p[len - 1] == ':') {
-                if (strchr(heading, '/')) fail_msg("--help: the heading '%s' names a path", heading);
+                if (strchr(heading, '/'))
+                    fail_msg("--help: the heading '%s' names a path", heading);
                 open = 0;
                 in_section = 0;
                 sections++;

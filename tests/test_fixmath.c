@@ -58,7 +58,8 @@ static void test_bitlen(void **st)
     (void)st;
     CHECK_INT_EQ(rad__bitlen64(0), 0, "rad__bitlen64(0)");
     for (i = 0; i < 64 * 3 + 100000; i++) {
-        uint64_t v = i < 64 * 3 ? ((uint64_t)1 << (i / 3)) + (uint64_t)(i % 3) - 1u : rnd() >> (rnd() % 64);
+        uint64_t v = i < 64 * 3 ? ((uint64_t)1 << (i / 3)) + (uint64_t)(i % 3) - 1u
+                                : rnd() >> (rnd() % 64);
         unsigned b = rad__bitlen64(v);
         if (v == 0) continue;
         CHECK_THAT(b >= 1 && b <= 64 && v >> (b - 1) == 1,
