@@ -54,7 +54,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c 
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \
               $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/obj_polys.c \
-              tools/host/geom.c tools/host/clock.c tools/bench/plot.c
+              tools/host/geom.c tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
@@ -129,6 +129,7 @@ $(BUILDDIR)/tests/float/%.o: tests/%.c $(LIB_HDRS) $(TOOL_HDRS) $(TEST_HDRS)
 	@mkdir -p $(@D)
 	$(CC) $(ALLCFLAGS) $(TOOLFLAGS) -Itests -Ilib -DRAD_FLOAT=1 -c $< -o $@
 $(BUILDDIR)/tests/test_gather: $(BUILDDIR)/tests/float/test_gather.o
+$(BUILDDIR)/tests/test_cull: $(BUILDDIR)/tests/float/test_cull.o
 $(BUILDDIR)/tests/test_light: $(BUILDDIR)/tests/float/test_light.o
 
 # tests/test_scale.c drives the core directly in both builds: its float pass is an
@@ -144,7 +145,7 @@ nm-check: $(LIBRAD)
 	@sh tests/nm_check.sh $(LIBRAD)
 
 test: all $(TESTS) nm-check
-	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/twin_names_check.sh tests/docs_check.sh
+	@MAKE="$(MAKE)" CC="$(CC)" RAD_CFLAGS_EXTRA="$(CFLAGS_EXTRA)" sh tests/run_tests.sh $(BUILDDIR) $(TESTS) tests/pkgconfig_check.sh tests/docs_check.sh tests/twin_names_check.sh
 
 clean:
 	rm -rf $(BUILDDIR)

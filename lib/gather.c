@@ -104,6 +104,8 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
     g->zbuf = g->steps + res;
     g->ibuf = (rad_index_t *)(void *)(g->zbuf + (size_t)res * res);
     g->stats = zero;
+    g->cull = 0;
+    g->cull_work = 0;
     for (k = 0; k < res; k++) g->steps[k] = 0; /* once: every span leaves it zero */
     if (g->sh)
         sphere_tables(res, g->table);
@@ -128,7 +130,7 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     RAD__CHECK_SCENE(s);
     if (!g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
         return RAD_ERR_ARG;
-    if (!s->solving) return RAD_ERR_STATE;
+    if (!s->solving || (g->cull && !rad__cull_fits(s, g->cull))) return RAD_ERR_STATE;
     e->c = rad__scale2_vec(*point, s->length_shift, &sat);
     if (sat || !in_range(&e->c)) return RAD_ERR_RANGE;
     e->res = g->res;
@@ -138,7 +140,18 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     e->steps = g->steps;
     e->ids = g->ibuf;
     e->st = &g->stats;
+    e->cull = g->cull;
+    e->cwork = g->cull_work;
     return RAD_OK;
+}
+
+/* Face F of E's cube: through its hierarchy when it has one (the same pixels). */
+static void eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned f)
+{
+    if (e->cull)
+        rad__cull_face(s, e, f);
+    else
+        rad__eye_face(s, e, f);
 }
 
 /* The ambient term in the core's scale into AMB when FLAGS ask for it (a pass over the
@@ -288,7 +301,7 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     rad__cube_frame(n, g->turn, e.frame);
     ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 5; f++) {
-        rad__eye_face(s, &e, f);
+        eye_face(s, &e, f);
         face_sum(s, g, ap, f, sum);
     }
     v.r = rad__wvalue(sum[0], &g->stats.saturations);
@@ -434,7 +447,7 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
     ap = gather_ambient(s, g, flags, &amb);
     for (f = 0; f < 6; f++) {
         rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
-        rad__eye_face(s, &e, f);
+        eye_face(s, &e, f);
         for (r = 0; r < g->res; r++) row_moments(s, g, ap, r, fs);
         add_face(f, fs, &cube);
     }

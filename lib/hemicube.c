@@ -298,7 +298,7 @@ typedef struct {
     const region_t *reg;
     unsigned nreg;
     uint32_t skip, group;
-    int backs;
+    int backs, zonly; /* ZONLY: every surface drawn as an occluder showing nothing */
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
@@ -306,6 +306,7 @@ static void region_view(const canvas_t *cv, const region_t *r, rad__frustum_t *f
 {
     f->half = r->face != 0 && !cv->full;
     f->ortho = 0;
+    f->recede = 0;
     f->width = (int)cv->res;
     f->height = (int)rows_of(cv->res, cv->full, r->face);
     t->z = cv->z + r->offset;
@@ -336,6 +337,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
      * under a panel lit from above is in its shadow as the lamp's shots left it. */
     for (i = 0; i < n; i++)
         front |= rad__dot_unit(rad__sub(ps->c, s->pools.vertices[k[i]]), sf->normal) > 0;
+    if (ps->zonly) front = 0;
     if (!front && !ps->backs) return;
     grid = front && sf->n_elements > 1;
     id = front ? (rad_index_t)rad__group_element(s, sf, sf->first_element) : RAD_INDEX_NONE;
@@ -466,15 +468,19 @@ void rad__cube_frame(rad_vec3_t n, unsigned spin, rad_vec3_t *frame)
     frame[2] = n;
 }
 
+/* Surface K into PS's regions unless it is PS's skipped one or joined to its group. */
+static void render_one(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps, uint32_t k)
+{
+    const rad_surface_t *sf = &s->pools.surfaces[k];
+    if (k != ps->skip && (sf->n_patches != 0 || sf->first_patch != ps->group))
+        render_surface(s, cv, ps, sf);
+}
+
 /* Every surface but PS's skipped one into PS's regions. */
 static void render_view(const rad_scene_t *s, const canvas_t *cv, const pass_t *ps)
 {
     uint32_t k;
-    for (k = 0; k < s->n_surfaces; k++) {
-        const rad_surface_t *sf = &s->pools.surfaces[k];
-        if (k != ps->skip && (sf->n_patches != 0 || sf->first_patch != ps->group))
-            render_surface(s, cv, ps, sf);
-    }
+    for (k = 0; k < s->n_surfaces; k++) render_one(s, cv, ps, k);
 }
 
 /* Every surface but the shooter's own into the regions, seen from patch P's centre
@@ -493,6 +499,7 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     ps.skip = pt->surface;
     ps.group = p;
     ps.backs = 0;
+    ps.zonly = 0;
     render_view(s, cv, &ps);
 }
 
@@ -510,28 +517,55 @@ static canvas_t scene_canvas(const rad_scene_t *s, uint32_t *z, rad_index_t *ids
     return cv;
 }
 
+/* Face FACE of E's cube as a canvas, its one region and a pass (ZONLY as pass_t's). */
+static void eye_pass(const rad__eye_t *e, unsigned face, int zonly, canvas_t *cv, region_t *reg,
+                     pass_t *ps)
+{
+    cv->z = e->z;
+    cv->ids = e->ids;
+    cv->steps = e->steps;
+    cv->st = e->st;
+    cv->res = e->res;
+    cv->full = e->full;
+    reg->face = face;
+    reg->row0 = 0;
+    reg->row1 = (int)rows_of(e->res, e->full, face);
+    reg->offset = 0;
+    ps->c = e->c;
+    ps->frame = e->frame;
+    ps->reg = reg;
+    ps->nreg = 1;
+    ps->skip = e->skip;
+    ps->group = UINT32_MAX;
+    ps->backs = 1;
+    ps->zonly = zonly;
+}
+
+void rad__eye_clear(const rad__eye_t *e, unsigned face)
+{
+    canvas_t cv;
+    region_t reg;
+    pass_t ps;
+    eye_pass(e, face, 0, &cv, &reg, &ps);
+    clear_region(&cv, &reg);
+}
+
+void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, uint32_t k,
+                      int zonly)
+{
+    canvas_t cv;
+    region_t reg;
+    pass_t ps;
+    eye_pass(e, face, zonly, &cv, &reg, &ps);
+    render_one(s, &cv, &ps, k);
+}
+
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
 {
     canvas_t cv;
     region_t reg;
     pass_t ps;
-    cv.z = e->z;
-    cv.ids = e->ids;
-    cv.steps = e->steps;
-    cv.st = e->st;
-    cv.res = e->res;
-    cv.full = e->full;
-    reg.face = face;
-    reg.row0 = 0;
-    reg.row1 = (int)rows_of(e->res, e->full, face);
-    reg.offset = 0;
-    ps.c = e->c;
-    ps.frame = e->frame;
-    ps.reg = &reg;
-    ps.nreg = 1;
-    ps.skip = e->skip;
-    ps.group = UINT32_MAX;
-    ps.backs = 1;
+    eye_pass(e, face, 0, &cv, &reg, &ps);
     clear_region(&cv, &reg);
     render_view(s, &cv, &ps);
 }

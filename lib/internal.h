@@ -20,6 +20,10 @@
 #define rad__dff_table       radf__dff_table
 #define rad__cube_frame      radf__cube_frame
 #define rad__eye_face        radf__eye_face
+#define rad__eye_clear       radf__eye_clear
+#define rad__eye_surface     radf__eye_surface
+#define rad__cull_face       radf__cull_face
+#define rad__cull_fits       radf__cull_fits
 #define rad__face_axis       radf__face_axis
 #define rad__face_sign       radf__face_sign
 #define rad__emission        radf__emission
@@ -45,9 +49,13 @@ typedef struct {
  * ORTHO: an orthographic view (a sun's, light.c) given as vertices whose d is one
  * constant, the window's half width, so that a / d is their place across it: the
  * depth tested is then the vertex attribute c[0] (nearness, larger is nearer) in
- * place of 1 / d, and is linear on the screen as an orthographic depth is. */
+ * place of 1 / d, and is linear on the screen as an orthographic depth is.
+ * RECEDE (perspective only; 0: none): every vertex's depth w lowered by w / 2^RECEDE,
+ * as if the polygon were scaled away from the eye by 1 / (1 - 2^-RECEDE) (its pixels
+ * unchanged): a light's faces turned away from it, a little behind the faces it lights
+ * (light.c). */
 typedef struct {
-    unsigned char half, ortho; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
+    unsigned char half, ortho, recede; /* (chars: the frustum stays 12 bytes on 32-bit stacks) */
     int width, height;
 } rad__frustum_t;
 
@@ -157,7 +165,8 @@ extern const signed char rad__face_sign[6][3];
 /* A cube at any point (gather.c): centre C, FRAME, resolution RES, a hemi-cube (five
  * faces, half sides) or, FULL, a whole cube (six whole faces); surface SKIP not drawn
  * (past the last: none). Buffers of one face: Z and IDS of RES^2 pixels, STEPS of RES
- * entries, zero. */
+ * entries, zero. CULL: a hierarchy (rad_cull_build) to draw through, with its work
+ * CWORK (rad_gather_cull), or null: every surface drawn. */
 typedef struct {
     rad_vec3_t c, frame[3];
     uint32_t res, skip;
@@ -165,10 +174,22 @@ typedef struct {
     uint32_t *z, *steps;
     rad_index_t *ids;
     rad_stats_t *st;
+    const void *cull;
+    uint32_t *cwork;
 } rad__eye_t;
 /* Face FACE of E's cube into its buffers: cleared, then every surface drawn (rows 0 at
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
+/* Face FACE of E's buffers cleared; surface K drawn into them, as rad__eye_face draws it
+ * (nothing when it is E's skipped one), or with ZONLY as an occluder showing nothing:
+ * the same depths, ids RAD_INDEX_NONE. */
+void rad__eye_clear(const rad__eye_t *e, unsigned face);
+void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, uint32_t k,
+                      int zonly);
+/* rad__eye_face through E's hierarchy (cull.c): the same pixels, bit for bit. */
+void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
+/* Whether hierarchy CULL was built for S as it stands (its surfaces and scale). */
+int rad__cull_fits(const rad_scene_t *s, const void *cull);
 /* Form factors from patch P's centre to every element, into s->acc, at res. */
 void rad__hemicube(rad_scene_t *s, uint32_t p);
 /* The shot's cube at coarse level LEVEL (0: res; rad_config_t.coarse) or the deepest

@@ -278,6 +278,7 @@ static void project(const rad__frustum_t *f, const rad__cvert_t *c, pvert_t *r)
     r->x = clampi(rad__proj(c->a + c->d, inv, (uint32_t)(w16 / 2)), 0, w16);
     r->y = clampi(rad__proj(c->d - c->b, inv, (uint32_t)(f->half ? h16 : h16 / 2)), 0, h16);
     r->at[0] = f->ortho ? rad__attr(c->c[0]) : rad__depth(inv);
+    if (f->recede) r->at[0] -= r->at[0] >> f->recede;
     r->at[1] = rad__attr(c->c[0]);
     r->at[2] = rad__attr(c->c[1]);
     r->at[3] = rad__attr(c->c[2]);

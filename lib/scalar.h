@@ -493,6 +493,11 @@ static inline uint32_t rad__depth(rad__recip_t inv)
 {
     return (uint32_t)(1073741824.0f * RAD__NEAR * inv + 0.5f);
 }
+/* The distance d of depth value W > 0 (w = 2^30 NEAR / d), rounded. */
+static inline rad_real_t rad__depth_d(uint32_t w)
+{
+    return 1073741824.0f * RAD__NEAR / (float)w;
+}
 static inline rad_energy_t rad__energy(rad_real_t b, rad_real_t area)
 {
     return b * area;
@@ -571,6 +576,11 @@ static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 static inline rad_real_t rad__from_int(int32_t i)
 {
     return (float)i;
+}
+/* floor(V M) for 0 <= V <= 2 and M <= 2^15: a fraction of a raster's width in pixels. */
+static inline int32_t rad__floor_times(rad_real_t v, uint32_t m)
+{
+    return (int32_t)(v * (float)m);
 }
 /* V in [-M, M] as an integer in [-2^S, 2^S], rounded (S <= 23, M > 0), for the GRID of
  * M and S (one for every coordinate of a lattice). */
@@ -739,6 +749,12 @@ static inline uint32_t rad__depth(rad__recip_t inv)
 {
     return (uint32_t)((inv + 128u) >> 8);
 }
+/* d = 2^38 / w for W > 0, rounded; past 2^31 - 1 (w < 128, d beyond 32767) that. */
+static inline rad_real_t rad__depth_d(uint32_t w)
+{
+    uint64_t d = (((uint64_t)1 << 38) + w / 2u) / w;
+    return d > 0x7FFFFFFFu ? 0x7FFFFFFF : (rad_real_t)d;
+}
 /* Energies are signed (overshooting owes power), but these take and give magnitudes:
  * callers carry the sign (rad__eabs), so no product or shift sees a negative value. */
 /* b, area >= 0 and < 2^31: the product < 2^62. */
@@ -849,6 +865,10 @@ static inline rad_real_t rad__wpart(rad_real_t b, rad_ff_t w, rad_ff_t wsum)
 static inline rad_real_t rad__from_int(int32_t i)
 {
     return (rad_real_t)((uint32_t)i << 16);
+}
+static inline int32_t rad__floor_times(rad_real_t v, uint32_t m)
+{
+    return (int32_t)(((uint64_t)(uint32_t)v * m) >> 16);
 }
 /* |v| <= m: the quotient is at most 2^S + 1/2 (S <= 23). */
 typedef struct {

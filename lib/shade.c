@@ -177,6 +177,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     }
     f.half = 0;
     f.ortho = 0;
+    f.recede = 0;
     f.width = (int)w;
     f.height = (int)h;
     t.z = zbuf;

@@ -60,7 +60,7 @@ PORT_cortex-m0_CPU := -mcpu=cortex-m0 -mthumb -mfloat-abi=soft
 PORT_cortex-m0_DEFS := -DPORT_TARGET_NAME=cortex-m0 -DPORT_CPU_HZ=16000000
 PORT_cortex-m0_PLAT := $(PORT_CM_PLAT)
 PORT_cortex-m0_LD := -Lports/common -Tports/cortex-m0/link.ld
-PORT_cortex-m0_PROFILES := small
+PORT_cortex-m0_PROFILES := small sun
 # 16 KB of RAM: the hemi-cube is rendered 24 rows at a time at res 16 (half its 48 rows
 # of faces: two passes, bit-exact with all at once, and each pass draws the whole scene
 # again, so fewer passes is fewer instructions; 28 bytes of the 16 KB are left); the
@@ -74,7 +74,7 @@ PORT_cortex-m3_CPU := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 PORT_cortex-m3_DEFS := -DPORT_TARGET_NAME=cortex-m3 -DPORT_CPU_HZ=25000000
 PORT_cortex-m3_PLAT := $(PORT_CM_PLAT)
 PORT_cortex-m3_LD := -Lports/common -Tports/cortex-m3/link.ld
-PORT_cortex-m3_PROFILES := small medium
+PORT_cortex-m3_PROFILES := small medium sun
 PORT_cortex-m3_TEST :=
 # The res-64 work buffer (all faces) needs more than the test's 64 KB budget.
 PORT_cortex-m3_BENCH := -Wl,--defsym=__ram_budget=0x100000
@@ -85,11 +85,11 @@ PORT_rv32_DEFS :=
 PORT_rv32_PLAT := ports/rv32/start.S ports/rv32/rv32.c ports/common/probes.c ports/common/semihost.c \
                   ports/common/port_libc.c
 PORT_rv32_LD := -Tports/rv32/link.ld
-PORT_rv32_PROFILES := small medium
+PORT_rv32_PROFILES := small medium sun
 PORT_rv32_TEST :=
 PORT_rv32_BENCH := -Wl,--defsym=__ram_budget=0x100000
 
-PORT_HOST_PROFILES := small medium
+PORT_HOST_PROFILES := small medium sun
 
 # ---- rules per target ----------------------------------------------------------------
 # $(1): target. Core objects (fixed and float twin) into archives, then the port test

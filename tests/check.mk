@@ -79,13 +79,14 @@ endef
 # $(call check_make,STAGE-DIR,CC,OPT,CFLAGS_EXTRA,[extra make arguments]) TARGETS...
 check_make = $(MAKE) --no-print-directory -C $(1)/root BUILDDIR=build WERROR=-Werror CC=$(2) OPT='$(3)' CFLAGS_EXTRA='$(4)' $(5)
 
-CHECK_STAGES := asan valgrind clang lint idx16 small soak fuzz-obj fuzz-core fuzz-image fuzz-mtl_texture fuzz-views
+CHECK_STAGES := asan valgrind clang lint idx16 small soak fuzz-obj fuzz-core fuzz-image fuzz-mtl_texture fuzz-views \
+                fuzz-json
 CHECK_PARALLEL = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(CHECK_JOBS))
 
 .PHONY: check check-stages check-asan check-valgrind check-clang check-lint check-idx16 \
         check-small check-fuzz check-fuzz-build check-fuzz-obj check-fuzz-core check-fuzz-image \
         check-fuzz-mtl_texture check-fuzz-mtl_texture-run \
-        check-fuzz-views check-fuzz-views-run \
+        check-fuzz-views check-fuzz-views-run check-fuzz-json check-fuzz-json-run \
         check-asan-run check-valgrind-run check-clang-run check-lint-run check-idx16-run \
         check-small-run check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run \
         check-soak check-soak-run
@@ -181,9 +182,10 @@ FUZZ_CFLAGS := -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize
 # FUZZ_SECONDS=0 only replays the seeds and the saved corpus.
 FUZZ_RUN     = $(if $(filter 0,$(FUZZ_SECONDS)),-runs=0,-max_total_time=$(FUZZ_SECONDS)) \
                -timeout=30 -rss_limit_mb=2560 -print_final_stats=1
-FUZZ_HARNESSES := obj core image mtl_texture views
+FUZZ_HARNESSES := obj core image mtl_texture views json
 FUZZ_DICT_obj   = -dict=$(CURDIR)/tests/fuzz/obj.dict
 FUZZ_DICT_mtl_texture = -dict=$(CURDIR)/tests/fuzz/mtl_texture.dict
+FUZZ_DICT_json  = -dict=$(CURDIR)/tests/fuzz/json.dict
 FUZZ_FIXED   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/fixed/%.o)
 FUZZ_FLOAT   = $(LIB_SRCS:lib/%.c=$(FUZZDIR)/lib/float/%.o)
 
@@ -209,6 +211,9 @@ $(FUZZDIR)/fuzz_mtl_texture: tests/fuzz/fuzz_mtl_texture.c $(FUZZ_TEX_OBJS) $(TO
 # rad_cli's --views and --animate parsers, taken from a buffer (tools/cli/views.c).
 $(FUZZDIR)/fuzz_views: tests/fuzz/fuzz_views.c $(FUZZDIR)/tools/cli/views.o $(TOOL_HDRS)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/cli/views.o -lm -o $@
+# rad_cli's --lights reader (tools/formats/json.c).
+$(FUZZDIR)/fuzz_json: tests/fuzz/fuzz_json.c $(FUZZDIR)/tools/formats/json.o $(TOOL_HDRS)
+	$(CHECK_CLANG) $(FUZZ_CFLAGS) -D_POSIX_C_SOURCE=200809L $< $(FUZZDIR)/tools/formats/json.o -lm -o $@
 $(FUZZDIR)/fuzz_core_float.o: tests/fuzz/fuzz_core.c $(LIB_HDRS)
 	@mkdir -p $(@D)
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) -DRAD_FLOAT=1 -c $< -o $@
@@ -216,12 +221,13 @@ $(FUZZDIR)/fuzz_core: tests/fuzz/fuzz_core.c $(FUZZDIR)/fuzz_core_float.o $(FUZZ
 	$(CHECK_CLANG) $(FUZZ_CFLAGS) $< $(FUZZDIR)/fuzz_core_float.o $(FUZZ_FIXED) $(FUZZ_FLOAT) -o $@
 
 check-fuzz-build: $(FUZZ_HARNESSES:%=$(FUZZDIR)/fuzz_%)
-check-fuzz: check-fuzz-obj check-fuzz-core check-fuzz-image check-fuzz-mtl_texture check-fuzz-views
+check-fuzz: check-fuzz-obj check-fuzz-core check-fuzz-image check-fuzz-mtl_texture check-fuzz-views check-fuzz-json
 
 # One stage per harness, so that two can run at once; each builds its own harness.
-check-fuzz-obj check-fuzz-core check-fuzz-image check-fuzz-mtl_texture check-fuzz-views: check-fuzz-%:
+check-fuzz-obj check-fuzz-core check-fuzz-image check-fuzz-mtl_texture check-fuzz-views check-fuzz-json: check-fuzz-%:
 	@+$(CHECK_STAGE) fuzz-$* $(CHECKDIR)/fuzz-$*.log $(CHECK_MAKE) check-fuzz-$*-run
-check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run check-fuzz-mtl_texture-run check-fuzz-views-run: check-fuzz-%-run: $(FUZZDIR)/fuzz_%
+check-fuzz-obj-run check-fuzz-core-run check-fuzz-image-run check-fuzz-mtl_texture-run check-fuzz-views-run \
+check-fuzz-json-run: check-fuzz-%-run: $(FUZZDIR)/fuzz_%
 	@mkdir -p $(FUZZDIR)/corpus-$*
 	cd $(FUZZDIR) && UBSAN_OPTIONS=print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
 	  ./fuzz_$* $(FUZZ_RUN) $(FUZZ_DICT_$*) -artifact_prefix=$*- corpus-$* $(CURDIR)/tests/fuzz/corpus/$*

@@ -1561,6 +1561,128 @@ static void test_lights(void **state)
     run_free(&r);
 }
 
+/* ---- --lights FILE ---------------------------------------------------------------- */
+
+/* Files at A and B hold the same bytes. */
+static void expect_same_file(const char *a, const char *b)
+{
+    size_t la, lb;
+    char *x = slurp(a, &la), *y = slurp(b, &lb);
+    assert_non_null(x);
+    assert_non_null(y);
+    CHECK_INT_EQ(la, lb, "the size of %s against %s", a, b);
+    if (memcmp(x, y, la) != 0) fail_msg("%s and %s differ", a, b);
+    free(x);
+    free(y);
+}
+
+#define LIT_ARGS "--quiet", "--width", "32", "--height", "32"
+
+/* A lights file says the same lights as the options, to the same bits: the radiosity
+ * CSV, the PLY and the image of the file's four kinds (between two options, in the
+ * command line's order) equal those of the options alone. Each bad file is one line
+ * "FILE:LINE:COL: what" (or "FILE: what" when it cannot be read), exit status 2, and
+ * no output written. */
+static void test_lights_file(void **state)
+{
+    static const struct {
+        const char *text, *says;
+    } bad[] = {
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1],}]}",
+         "bad.json:1:73: a ',' before '}'"},
+        {"{\"lights\": []} []", "bad.json:1:16: '[' after the JSON value"},
+        {"{\"lights\": [{\"type\": \"point\", \"position\": [0,4,0],\n \"position\": [0,4,0], \"intensity\": [1,1,1]}]}",
+         "bad.json:2:2: the name \"position\" given twice in one object (first at 1:31)"},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": \"white\"}]}",
+         "bad.json:1:66: lights[0].irradiance: wants an array of 3 numbers, found a string"},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1]}]}",
+         "lights[0].irradiance: wants an array of 3 numbers, found 2 items"},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,null], \"irradiance\": [1,1,1]}]}",
+         "bad.json:1:48: lights[0].direction[2]: wants a number, found null"},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], \"color\": 1}]}",
+         "bad.json:1:75: lights[0]: a sun has no \"color\" (it takes type, direction, irradiance, angle)"},
+        {"{\"lights\": [{\"type\": \"lamp\"}]}", "bad.json:1:22: lights[0].type: wants \"sun\", \"point\""},
+        {"{\"lights\": [{\"direction\": [0,-1,0]}]}", "bad.json:1:13: lights[0].type: wants \"sun\""},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,0,0], \"irradiance\": [1,1,1]}]}",
+         "bad.json:1:42: lights[0].direction: wants the way the light travels, not zero"},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], \"angle\": 15}]}",
+         "bad.json:1:84: lights[0].angle: wants the sun's angular radius in degrees, 0..14"},
+        {"{\"lights\": [{\"type\": \"spot\", \"position\": [0,4,0], \"direction\": [0,-1,0], \"intensity\": [1,1,1]}]}",
+         "bad.json:1:13: lights[0]: a spot wants \"angle\""},
+        {"{\"lights\": [{\"type\": \"point\", \"position\": [0,4,0], \"intensity\": [1,-1,1]}]}",
+         "lights[0].intensity: wants the intensity per steradian, each >= 0"},
+        {"{\"lights\": [{\"type\": \"sky\", \"radiance\": [1,1,1], \"directions\": 12.5}]}",
+         "lights[0].directions: wants a whole number of directions, 3..768"},
+        {"{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"nothere.hdr\"}]}",
+         "bad.json:1:41: lights[0].file: "},
+        {"{\"lights\": [], \"suns\": []}", "bad.json:1:16: an unknown name \"suns\" (the file holds \"lights\")"},
+        {"[{\"type\": \"sun\"}]", "bad.json:1:1: wants an object {\"lights\": [...]}, found an array"},
+        {"{\"lights\": [{\"type\": \"sun\\u0000\"}]}", "bad.json:1:26: \\u0000 (NUL) in a string"},
+        {"", "bad.json:1:1: no JSON value: the file is empty"},
+    };
+    static const char good[] =
+        "{\"lights\": [\n"
+        "  {\"type\": \"sky\", \"radiance\": [0.6, 0.7, 1.0], \"horizon\": [1, 1, 1], \"directions\": 12},\n"
+        "  {\"type\": \"point\", \"position\": [2, 3, 1], \"intensity\": [4, 3, 2]},\n"
+        "  {\"type\": \"spot\", \"position\": [-2, 3, 0], \"direction\": [0.2, -1, 0], \"intensity\": [9, 9, 6],\n"
+        "   \"angle\": 35, \"softness\": 0.25}\n"
+        "]}\n";
+    const char *outs[2][3] = {{"lf.csv", "lf.ply", "lf.png"}, {"lo.csv", "lo.ply", "lo.png"}};
+    run_t r;
+    size_t k;
+    int f;
+    (void)state;
+    need(FIXED);
+    write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl post\nKd 0.7 0.3 0.2\n");
+    write_text(tmp_path("floor.obj"), "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\n"
+                                      "f 1 2 3 4\nusemtl post\nv -1 0 1\nv 1 0 1\nv 1 4 1\nv -1 4 1\nf 5 6 7 8\n");
+    write_text(tmp_path("good.json"), good);
+    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--lights", tmp_path("good.json"), "--point",
+        "0,5,3,6,6,6", "--dump-radiosity", tmp_path(outs[0][0]), "--export-ply", tmp_path(outs[0][1]), "-o",
+        tmp_path(outs[0][2]), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--sky", "0.6,0.7,1.0,1,1,1,12", "--point",
+        "2,3,1,4,3,2", "--spot", "-2,3,0,0.2,-1,0,9,9,6,35,0.25", "--point", "0,5,3,6,6,6", "--dump-radiosity",
+        tmp_path(outs[1][0]), "--export-ply", tmp_path(outs[1][1]), "-o", tmp_path(outs[1][2]), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    for (f = 0; f < 3; f++) expect_same_file(tmp_path(outs[0][f]), tmp_path(outs[1][f]));
+    CHECK_GT(csv_mean_red(tmp_path("lf.csv"), &(double){0}), 0.1, "the lit floor's mean radiosity");
+
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        write_text(tmp_path("bad.json"), bad[k].text);
+        RUN(&r, FIXED, "--lights", tmp_path("bad.json"), "--dump-radiosity", tmp_path("bad.csv"), "-o",
+            tmp_path("bad.png"), tmp_path("floor.obj"));
+        expect_status(&r, 2);
+        CHECK_CONTAINS(r.err, bad[k].says, "bad lights file %zu: %s", k, bad[k].text);
+        CHECK_INT_EQ(count_lines(r.err), 1, "bad lights file %zu: lines on stderr (%s)", k, r.err);
+        CHECK_THAT(!file_exists(tmp_path("bad.png")) && !file_exists(tmp_path("bad.csv")),
+                   "bad lights file %zu: no output written", k);
+        run_free(&r);
+    }
+    RUN(&r, FIXED, "--lights", tmp_path("none.json"), "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
+    expect_status(&r, 2);
+    CHECK_CONTAINS(r.err, "none.json: cannot open: No such file or directory", "a lights file that is not there");
+    run_free(&r);
+    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("bad.png"),
+        tmp_path("floor.obj"));
+    expect_status(&r, 2);
+    CHECK_CONTAINS(r.err, "do not work with stored form factors yet", "a lights file with --save-ff");
+    run_free(&r);
+    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--dump-radiosity", tmp_path("good.json"), "-o",
+        tmp_path("bad.png"), tmp_path("floor.obj"));
+    expect_status(&r, 1);
+    CHECK_CONTAINS(r.err, "would write over a --lights or --sky-hdr file", "--dump-radiosity over the lights file");
+    run_free(&r);
+    {
+        char *still = slurp(tmp_path("good.json"), NULL);
+        assert_non_null(still);
+        assert_string_equal(still, good);
+        free(still);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1582,7 +1704,7 @@ int main(void)
         cmocka_unit_test(test_trailing_list_items),
         cmocka_unit_test(test_camera_looking_down),
         cmocka_unit_test(test_render_cracks),
-        cmocka_unit_test(test_lights), cmocka_unit_test(test_sky),
+        cmocka_unit_test(test_lights), cmocka_unit_test(test_sky), cmocka_unit_test(test_lights_file),
     };
     return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);
 }

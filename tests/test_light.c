@@ -3,7 +3,8 @@
  * receives E cos t; a box's shadow on the ground has the area of its projection; a
  * point light gives each element I times its solid angle (I cos t / r^2 over a small
  * element); a spot gives nothing outside its cone and the point light's light inside;
- * one-sided faces neither receive nor shadow from behind; the twin against the fixed
+ * faces turned away from a light receive nothing and occlude it, without shadowing a
+ * lit face they meet or lie on; the twin against the fixed
  * build; bad input.
  *
  * Bounds on pixel coverage (both lights): a convex outline covers the pixels whose
@@ -477,36 +478,122 @@ static void test_spot_cone(void **state)
     CHECK_INT_GE(inside, 10, "elements inside the inner cone");
 }
 
-/* One-sided: a face turned away from the light receives nothing, and does not shadow
- * what lies behind it. */
-static void test_one_sided(void **state)
+/* Faces turned away from a light receive nothing and occlude it.
+ * A closed box whose faces all face in (floor, four walls, and a one-sided roof facing
+ * down into it) under a sun straight down and at 30 and 60 degrees, a sky and a point
+ * light and a spot above it: every face of it is turned away from the light or is lit
+ * only through one that is. Back faces are drawn a quarter of a pixel's footprint
+ * behind (light.c), so what lies that little behind a back face along the light, at
+ * the box's edges, may be reached: at most a row of pixels along the box's 12 edges
+ * (96 units). So: an element all of whose corners lie more than a footprint from
+ * every edge receives exactly 0 (footprints: the sun's pixel at most the box's
+ * diagonal 13.9 / 512; the point light's 2 r / (R c^2) at most 2 x 14.5 x 3 / 256 =
+ * 0.34 units; elements of side 1 here, their inner corners 1 unit in); and the power
+ * reaching the box in all is below that row: E p 96 for a sun of pixel side p, the
+ * sum of the dome's suns at most 2 pi L of them, and for the point light and the spot
+ * pixels of solid angle at most 4 / R^2 along 96 units at least r_min 4 units away,
+ * each pixel at least 2 r_min / R across: I 4 / R^2 96 R / (2 r_min). Without the
+ * roof the box gets more than that (the check that could fail the other way). */
+static void test_back_faces(void **state)
 {
+    const double e0 = 80.0, rho = 0.5, s = 4, px_sun = sqrt(3 * 64.0 * 2) / 512;
+    static const double sun_deg[3] = {0, 30, 60};
+    tpoly p[6];
+    tlight l[6];
+    tscene sc = {64, 1.0, rho, p, 6, l, 1, 0, 0};
+    int e, k, inner;
+    (void)state;
+    p[0] = ground(0, 0, 0, s, 1);     /* the floor, facing up into the box */
+    p[1] = ground(0, 2 * s, 0, s, 0); /* the roof, facing down into the box */
+    p[2] = (tpoly){{{s, 0, -s}, {s, 0, s}, {s, 2 * s, s}, {s, 2 * s, -s}}, 4}; /* walls facing in */
+    p[3] = (tpoly){{{-s, 0, -s}, {-s, 2 * s, -s}, {-s, 2 * s, s}, {-s, 0, s}}, 4};
+    p[4] = (tpoly){{{-s, 0, s}, {-s, 2 * s, s}, {s, 2 * s, s}, {s, 0, s}}, 4};
+    p[5] = (tpoly){{{-s, 0, -s}, {s, 0, -s}, {s, 2 * s, -s}, {-s, 2 * s, -s}}, 4};
+    for (k = 0; k < 3; k++) {
+        double t = sun_deg[k] * PI / 180;
+        l[k] = (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.2 * sin(t)}, {e0, e0, e0}, 0, 0, 0};
+    }
+    l[3] = (tlight){RAD_LIGHT_SKY, 512, {e0, e0, e0}, {0, 1, 0}, {e0, e0, e0}, 0, 0, 48};
+    l[4] = (tlight){RAD_LIGHT_POINT, 256, {1, 12, -0.5}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
+    l[5] = (tlight){RAD_LIGHT_SPOT, 256, {1, 12, -0.5}, {0, -1, 0}, {e0, e0, e0}, 0.5, 0.7, 0};
+    for (k = 0; k < 6; k++) {
+        double got = 0, open, bound = k < 3 ? e0 * px_sun * 96 : k == 3 ? 2 * PI * e0 * px_sun * 96
+                                                                  : e0 * 4.0 / (256.0 * 256.0) * 96 * 256 / 8;
+        sc.lights = &l[k];
+        sc.npolys = 6;
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d's shot over the closed box", k);
+        for (e = inner = 0; e < res_fixed.n; e++) {
+            int c, j, edge = 0;
+            got += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+            for (c = 0; c < 4; c++) { /* a corner on two of the box's planes lies on an edge */
+                int planes = 0;
+                for (j = 0; j < 3; j++) planes += fabs(fabs(res_fixed.corner[e][c][j] - (j == 1 ? s : 0)) - s) < 1e-6;
+                edge |= planes >= 2;
+            }
+            if (edge) continue;
+            inner++;
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "light %d: element %d of face %d inside the closed box", k, e,
+                     res_fixed.poly[e]);
+        }
+        print_message("light %d over the closed box: %d inner elements dark; power inside %.4g (a row of pixels "
+                      "along the edges: %.4g)\n",
+                      k, inner, got, bound);
+        CHECK_INT_EQ(inner, 6 * 36, "elements more than a unit from the box's edges");
+        CHECK_LE(got, bound, "light %d: the power reaching inside the closed box", k);
+        /* the roof off: the floor is lit */
+        p[1] = p[5];
+        sc.npolys = 5;
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d's shot into the open box", k);
+        for (e = 0, open = 0; e < res_fixed.n; e++) open += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+        print_message("light %d into the open box: power %.4g\n", k, open);
+        CHECK_LE(bound, open, "light %d: the power reaching into the box with the roof off", k);
+        p[1] = ground(0, 2 * s, 0, s, 0);
+    }
+}
+
+/* A lit face is not shadowed by a back face lying on it: a panel of two faces back to
+ * back (the up face first, then the down face, and the other way round) under suns at
+ * 0, 30, 60 and 75 degrees and a point light gives its up face the very radiosities
+ * of the up face alone (the same pixels: the down face's depth is the up face's,
+ * within the 1/32 pixel of its vertices' placing times its slope, far less than the
+ * footprint it is drawn behind), and the face turned away receives nothing. */
+static void test_back_to_back(void **state)
+{
+    static double alone[4096];
+    static const double deg[4] = {0, 30, 60, 75};
     const double e0 = 80.0, rho = 0.5;
     tpoly p[2];
-    tlight sun = {RAD_LIGHT_SUN, 512, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, 0};
-    tlight pt = {RAD_LIGHT_POINT, 128, {0, -4, 0}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
-    tscene sc = {64, 2.0, rho, p, 2, &sun, 1, 0, 0};
-    int e, lower = 0;
+    tlight l;
+    tscene sc = {64, 1.0, rho, p, 1, &l, 1, 0, 0};
+    int k, order, e, n;
     (void)state;
-    p[0] = ground(0, 0, 0, 8, 1);  /* facing the sun */
-    p[1] = ground(0, 4, 0, 4, 0);  /* above it, facing down: away from the sun */
-    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot");
-    for (e = 0; e < res_fixed.n; e++) {
-        if (res_fixed.poly[e] == 1)
-            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d of the face turned away", e);
-        else {
-            lower++;
-            CHECK_NEAR(irradiance(&res_fixed, e, rho), e0, e0 * 0.08,
-                       "element %d under a face turned away (side 2 at pixel 16 / 512: coverage bound 8%%)", e);
+    for (k = 0; k < 5; k++) {
+        double t = k < 4 ? deg[k] * PI / 180 : 0;
+        l = k < 4 ? (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.1}, {e0, e0, e0}, 0, 0, 0}
+                  : (tlight){RAD_LIGHT_POINT, 256, {1, 6, 0.5}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
+        p[0] = ground(0, 0, 0, 8, 1);
+        sc.npolys = 1;
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d on the face alone", k);
+        n = res_fixed.n;
+        for (e = 0; e < n; e++) alone[e] = res_fixed.b[e][0];
+        for (order = 0; order < 2; order++) {
+            int up = order == 0 ? 0 : 1, seen = 0;
+            p[up] = ground(0, 0, 0, 8, 1);
+            p[1 - up] = ground(0, 0, 0, 8, 0);
+            sc.npolys = 2;
+            CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d on the panel", k);
+            for (e = 0; e < res_fixed.n; e++) {
+                if (res_fixed.poly[e] != up) {
+                    CHECK_LE(irradiance(&res_fixed, e, rho), 0, "light %d: element %d of the face turned away", k, e);
+                    continue;
+                }
+                CHECK_NEAR(res_fixed.b[e][0], alone[seen], 0,
+                           "light %d (order %d): element %d of the lit face against the face alone", k, order, seen);
+                seen++;
+            }
+            CHECK_INT_EQ(seen, n, "light %d: the lit face's elements", k);
         }
     }
-    CHECK_INT_GE(lower, 16, "elements of the lower face");
-    /* a point light below the ground: the ground faces away from it */
-    sc.lights = &pt;
-    sc.npolys = 1;
-    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the point light's shot");
-    for (e = 0; e < res_fixed.n; e++)
-        CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d lit from behind", e);
 }
 
 /* The twin against the fixed build on a sun and a spot, after bounces: the same pixels
@@ -831,7 +918,10 @@ static void test_sky_box(void **state)
  * (pi / 2 - 2 / 3) H + (2 / 3) Z (the integrals of cos_n and of
  * cos_n cos t over the quarter sphere in front of it and above the horizon: pi / 2 and
  * 2 / 3). So the wall gets half the ground's light under a uniform sky, 0.863 of it
- * under a horizon-only sky (Z = 0) and 0.318 under a zenith-only sky (H = 0). The core
+ * under a horizon-only sky (Z = 0) and 0.318 under a zenith-only sky (H = 0). The wall
+ * shadows the ground from the light travelling towards +x (a face turned away from a
+ * light occludes it), so the ground is measured alone; the ground lies below the
+ * wall's horizon, so the wall is measured beside it. The core
  * against the dome unshadowed: within the coverage bounds (projections' perimeters at
  * most 64 and 48, the window at most the scene's diagonal, 24, wide); the dome's wall
  * against the limit: exact but for the cells that the wall's plane cuts, measured
@@ -857,9 +947,12 @@ static void test_sky_gradient(void **state)
         double dw, eg, ew;
         dome(192, z, h, &t);
         dw = dome_on(&t, z, h, nx);
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot", name[a]);
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the wall", name[a]);
         for (e = 0; e < res_fixed.n; e++)
-            *(res_fixed.poly[e] == 0 ? &g : &w) += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+            if (res_fixed.poly[e] == 1) w += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+        sc.npolys = 1;
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the ground", name[a]);
+        for (e = 0; e < res_fixed.n; e++) g += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
         g /= 256;
         w /= 128;
         eg = dome_coverage(&t, z, h, 64, px) / 256 + wg * 1e-4;
@@ -1004,7 +1097,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sun_plane), cmocka_unit_test(test_box_shadow), cmocka_unit_test(test_point_plane),
-        cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_one_sided),  cmocka_unit_test(test_twin),
+        cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_back_faces), cmocka_unit_test(test_back_to_back),  cmocka_unit_test(test_twin),
         cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
         cmocka_unit_test(test_sky_open), cmocka_unit_test(test_sky_box), cmocka_unit_test(test_sky_gradient),
         cmocka_unit_test(test_sky_twin),

@@ -633,6 +633,8 @@ typedef struct {
     uint32_t *zbuf;    /* res^2: one face */
     rad_index_t *ibuf; /* res^2 */
     rad_stats_t stats; /* this gatherer's raster calls, pixels and saturations */
+    const void *cull;  /* the hierarchy it draws through (rad_gather_cull), or NULL */
+    uint32_t *cull_work;
 } rad_gather_t;
 
 /* Lays a gatherer of resolution RES out in WORK (BYTES long; FLAGS 0 or RAD_GATHER_SH)
@@ -669,6 +671,35 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
 int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point, uint32_t skip,
                   int flags, rad_rgb_t *sh);
 
+/* ---- culling: a gather's cost that does not grow with the scene ------------------ */
+/* A gather draws every surface on each face of its cube. Through a bounding volume
+ * hierarchy over the surfaces (integer boxes in the core's coordinates: Q16.16 in the
+ * fixed build), a face draws only the surfaces in its frustum whose boxes the depth
+ * already drawn (nearest first) does not hide, then draws those again in the order of
+ * their indices: the same pixels, bit for bit, as drawing them all (ties between equal
+ * depths go to the lower surface index either way). Only stats.raster_calls and
+ * raster_pixels differ. RAD_CULL_BYTES(surfaces): the hierarchy's buffer, 4-aligned;
+ * RAD_GATHER_CULL_BYTES(res, surfaces): a gatherer's work for it, any alignment. */
+#define RAD_CULL_BYTES(surfaces) (16u + (size_t)(surfaces)*60u)
+#define RAD_GATHER_CULL_BYTES(res, surfaces) /* the same for every res (16 x 16 tiles) */ \
+    (((size_t)(surfaces) + 31u) / 32u * 4u + 5u * 256u + 3u)
+
+/* Builds the hierarchy over S's surfaces into BUF (BYTES long, 4-aligned): the same
+ * for the same scene every time. Needs frozen geometry (as rad_gather); a scene whose
+ * surfaces or scale change after it (a new solve after rad_restart re-meshing) needs
+ * a new one. Returns its number of nodes (2 surfaces - 1, 0 without surfaces),
+ * RAD_ERR_ARG (NULL), RAD_ERR_ALIGN, RAD_ERR_STATE (geometry not frozen) or
+ * RAD_ERR_WORK (BYTES below RAD_CULL_BYTES(s->n_surfaces)). */
+int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes);
+
+/* Makes G's gathers (rad_gather, rad_gather_sh) draw through hierarchy CULL (built by
+ * rad_cull_build, read only: many gatherers may share it), with WORK (BYTES long, at
+ * least RAD_GATHER_CULL_BYTES(G's res, the hierarchy's surfaces)) its own; CULL NULL:
+ * every surface drawn again. A gather over a scene the hierarchy was not built for
+ * (another surface count or scale) returns RAD_ERR_STATE. Returns RAD_OK, RAD_ERR_ARG
+ * (NULL G or WORK, CULL not a hierarchy) or RAD_ERR_WORK. */
+int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes);
+
 /* ---- lights: sun, sky, point and spot (lib/light.c) ----------------------------- */
 /* Lights that are not surfaces: each shoots once, at the start of a solve (the first
  * rad_shoot steps, one light a step, before any patch), giving every element it
@@ -697,7 +728,11 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction is
  *     a sun's shot of one raster over the whole scene (RES, default the scene's res).
  * Surfaces are one-sided: an element receives only on its front (the side its normal
- * points to), and a face turned away from the light does not shadow either. Units are
+ * points to), but a face turned away from the light shadows as any other (a one-sided
+ * roof facing into a room keeps the sun out), drawn a quarter of a pixel's footprint
+ * behind the faces the light reaches so that it never shadows a lit face it meets or
+ * lies on (what lies less than that behind it, along contact edges, may be lit: at
+ * most a row of pixels along each). Units are
  * the scene's: a point light of intensity I (per channel) at distance r from a plane
  * whose normal makes angle t with the direction to it gives irradiance E = I cos t /
  * r^2 and radiosity B = rho E; a sun of E gives a plane at angle t to it E cos t, and

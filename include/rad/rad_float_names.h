@@ -23,6 +23,8 @@
 #define rad_use_element_reflectance radf_use_element_reflectance
 #define rad_set_element_reflectance radf_set_element_reflectance
 #define rad_form_factors      radf_form_factors
+#define rad_cull_build        radf_cull_build
+#define rad_gather_cull       radf_gather_cull
 #define rad_strerror          radf_strerror
 #define rad_real_from_q16     radf_real_from_q16
 #define rad_rows_compute      radf_rows_compute

@@ -9,9 +9,12 @@
  * radiosity) and what each target measures (instructions, RAM).
  *
  * Build switches:
- *   PORT_PROFILE=small|medium (or 1|2)  the scene and configuration (default small):
+ *   PORT_PROFILE=small|medium|sun (or 1|2|3)  the scene and configuration (default small):
  *       small:  >= 100 elements, hemi-cube res 16: fits the Cortex-M0's 16 KB of RAM.
  *       medium: >= 500 elements, hemi-cube res 32: fits 64 KB of RAM.
+ *       sun:    small's box without its ceiling and lamp, lit by a sun (rad_add_light)
+ *               slanting in through the open top: the light's orthographic shot
+ *               (4 x 4 tiles of 16 pixels) and its shadows, on the Cortex-M0.
  *   PORT_BAND_ROWS=n   render the hemi-cube n rows at a time (work buffer sized for it;
  *                      bit-exact with all faces at once, so checksums do not change)
  *   PORT_WORK_BYTES=n  size the work buffer explicitly (default: what the config needs)
@@ -29,8 +32,10 @@
 
 #define PORT_PROFILE_small 1
 #define PORT_PROFILE_medium 2
+#define PORT_PROFILE_sun 3
 #define PORT_PROFILE_1 1
 #define PORT_PROFILE_2 2
+#define PORT_PROFILE_3 3
 #ifndef PORT_PROFILE
 #define PORT_PROFILE small
 #endif
@@ -70,9 +75,21 @@
 #define N_PATCHES 40
 #define N_ELEMENTS 632
 #define N_VERTICES 825
+#elif PROFILE == 3
+#define PROFILE_NAME "sun"
+#define MAX_ELEMENT Q16(16, 1)
+#define MAX_PATCH Q16(32, 1)
+#define RES 16
+#define MAX_SHOTS 400
+#define TOL Q16(1, 50)
+#define N_SURFACES 14
+#define N_PATCHES 30
+#define N_ELEMENTS 120
+#define N_VERTICES 214
 #else
-#error "PORT_PROFILE must be small, medium, 1 or 2"
+#error "PORT_PROFILE must be small, medium, sun, 1, 2 or 3"
 #endif
+#define SUN (PROFILE == 3)
 
 /* Host only, when the core's meshing changes: -DPORT_PROBE=1 gives the pools room for
  * any scene, and the elements/patches/vertices lines then give the sizes to set above. */
@@ -118,6 +135,9 @@ static rad_element_t elements[N_ELEMENTS];
 static rad_vec3_t vertices[N_VERTICES];
 static uint64_t work[(PORT_WORK_BYTES + 7u) / 8u];
 static rad_scene_t scene;
+#if SUN
+static rad_light_t lights[1];
+#endif
 
 /* ---- output: a tiny formatter (no printf on the targets) ------------------------ */
 
@@ -217,6 +237,9 @@ static const rad_rgb_t materials[4] = {
     {Q16(78, 100), Q16(78, 100), Q16(78, 100)},
 };
 static const rad_rgb_t light_emission = {Q16(16, 1), Q16(12, 1), Q16(6, 1)};
+#if PROFILE == 3
+static const rad_rgb_t sun_irradiance = {Q16(3, 1), Q16(5, 2), Q16(2, 1)};
+#endif
 
 static rad_vec3_t point(int32_t x, int32_t y, int32_t z)
 {
@@ -266,6 +289,7 @@ static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
 
     for (i = 0; i < sizeof walls / sizeof walls[0]; i++) {
         rad_vec3_t v[4];
+        if (SUN && (i == 1 || walls[i].mat == LIGHT)) continue; /* open to the sun */
         for (k = 0; k < 4; k++) v[k] = point(walls[i].v[k][0], walls[i].v[k][1], walls[i].v[k][2]);
         rc = add_quad(s, v, walls[i].mat);
         if (rc < 0) return rc;
@@ -286,6 +310,17 @@ static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
             if (rc < 0) return rc;
         }
     }
+#if SUN
+    {
+        rad_light_t sun = {0};
+        sun.type = RAD_LIGHT_SUN;
+        sun.direction = point(-5, -16, -7); /* down, and into the box from its front */
+        sun.intensity = colour(&sun_irradiance);
+        rc = rad_use_lights(s, lights, 1);
+        if (rc == 0) rc = rad_add_light(s, &sun);
+        if (rc < 0) return rc;
+    }
+#endif
     return 0;
 }
 

@@ -345,12 +345,15 @@ static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, int poly,
 {
     double lo[2], hi[2];
     int i, j, k;
-    for (k = 0; k < 2; k++) {
-        lo[k] = fmin(t->p[0][k], fmin(t->p[1][k], t->p[2][k]));
-        hi[k] = fmax(t->p[0][k], fmax(t->p[1][k], t->p[2][k]));
+    for (k = 0; k < 2; k++) { /* clamped to the rectangle (a file's UVs may lie far off) */
+        double len = k ? c->h : c->w;
+        lo[k] = floor(fmin(t->p[0][k], fmin(t->p[1][k], t->p[2][k]))) - RING;
+        hi[k] = floor(fmax(t->p[0][k], fmax(t->p[1][k], t->p[2][k]))) + RING;
+        lo[k] = fmin(fmax(lo[k], 0.0), len);
+        hi[k] = fmin(fmax(hi[k], -1.0), len - 1.0);
     }
-    for (j = (int)floor(lo[1]) - RING; j <= (int)floor(hi[1]) + RING; j++)
-        for (i = (int)floor(lo[0]) - RING; i <= (int)floor(hi[0]) + RING; i++) {
+    for (j = (int)lo[1]; j <= (int)hi[1]; j++)
+        for (i = (int)lo[0]; i <= (int)hi[0]; i++) {
             double ctr[2] = {i + 0.5, j + 0.5}, q[2], d;
             size_t at;
             if (i < 0 || j < 0 || i >= c->w || j >= c->h || !geom_tri2_touches_box(t->p, i - RING, j - RING, 1 + 2 * RING))
@@ -511,11 +514,10 @@ static int layout(lm_atlas *a, const geom_poly *g, const unsigned char *interior
     return rc;
 }
 
-int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
+/* The atlas emptied and O's size, tolerance and padding checked and kept, for N
+ * POLYS. 0, or -1 with err. */
+static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
 {
-    geom_poly *g = NULL;
-    unsigned char *interior = NULL;
-    int rc = -1;
     memset(a, 0, sizeof *a);
     if (o->size < 1 || o->size > LM_MAX_SIZE) {
         snprintf(err, errlen, "a lightmap size of %d is outside 1..%d", o->size, LM_MAX_SIZE);
@@ -539,6 +541,15 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     }
     a->npolys = n;
     a->polys = polys;
+    return 0;
+}
+
+int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
+{
+    geom_poly *g = NULL;
+    unsigned char *interior = NULL;
+    int rc = -1;
+    if (setup(a, polys, n, o, err, errlen) != 0) return -1;
     g = geom_polys(polys, n, &a->extent);
     interior = calloc(4 * (size_t)n, 1);
     if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
@@ -560,7 +571,409 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     return rc < 0 ? -1 : 0;
 }
 
+/* ---- the file's UVs (lm_build_file) ---- */
+
+#define UV_FLAT 1e-12 /* a UV triangle whose doubled area is below this of its sides'
+                       * squares has none: its affine map would divide by about 0 */
+
+static double cross2d(const double *o, const double *x, const double *y)
+{
+    return (x[0] - o[0]) * (y[1] - o[1]) - (x[1] - o[1]) * (y[0] - o[0]);
+}
+
+/* Twice the area (signed) of polygon I's fan triangle K in texels, 0 when it has none
+ * (UV_FLAT) or a UV is not finite. */
+static double uv_det(const lm_atlas *a, int i, int k)
+{
+    const double *uv = &a->file_uv[8 * (size_t)i];
+    const double *x = uv + 2 * (k + 1), *y = uv + 2 * (k + 2);
+    double det, scale;
+    if (k + 2 >= a->polys[i].n) return 0.0;
+    det = cross2d(uv, x, y);
+    scale = (x[0] - uv[0]) * (x[0] - uv[0]) + (x[1] - uv[1]) * (x[1] - uv[1]) + (y[0] - uv[0]) * (y[0] - uv[0]) +
+            (y[1] - uv[1]) * (y[1] - uv[1]);
+    return isfinite(det) && fabs(det) > UV_FLAT * scale ? det : 0.0;
+}
+
+/* Polygon I's fan triangle K (corners 0, K + 1, K + 2) as a frame (lm_atlas.frames) on
+ * its plane of unit normal N: world = o + x Wx + y Wy solves the map from its UV
+ * corners to its world corners; u, v = Wx, Wy over the texel size T. */
+static void file_frame(lm_atlas *a, int i, int k, const double *n)
+{
+    const double *uv = &a->file_uv[8 * (size_t)i], *x = uv + 2 * (k + 1), *y = uv + 2 * (k + 2);
+    const sc_poly *q = &a->polys[i];
+    lm_chart *f = &a->frames[2 * (size_t)i + k];
+    double det = uv_det(a, i, k), e1[3], e2[3];
+    int j;
+    memset(f, 0, sizeof *f);
+    if (det == 0.0) return;
+    geom_sub(q->v[k + 1], q->v[0], e1);
+    geom_sub(q->v[k + 2], q->v[0], e2);
+    for (j = 0; j < 3; j++) {
+        double wx = ((y[1] - uv[1]) * e1[j] - (x[1] - uv[1]) * e2[j]) / det;
+        double wy = ((x[0] - uv[0]) * e2[j] - (y[0] - uv[0]) * e1[j]) / det;
+        f->u[j] = wx / a->texel;
+        f->v[j] = wy / a->texel;
+        f->o[j] = q->v[0][j] - uv[0] * wx - uv[1] * wy;
+        f->n[j] = n[j];
+    }
+    f->count = 1;
+}
+
+/* The frame of polygon P's fan triangle that holds atlas position ST: of a quad, by the
+ * side of its diagonal (corner 0 to 2) ST lies on; the other when that one has none. */
+static const lm_chart *file_tri(const lm_atlas *a, int p, const double *st)
+{
+    const double *uv = &a->file_uv[8 * (size_t)p];
+    const lm_chart *f = &a->frames[2 * (size_t)p];
+    int k = a->polys[p].n == 4 && cross2d(uv, uv + 4, uv + 2) * cross2d(uv, uv + 4, st) < 0.0;
+    return f[k].count ? &f[k] : &f[!k];
+}
+
+/* World point P on frame F (on its plane) as an atlas position: the normal equations
+ * of o + T (x u + y v) = P. */
+static void frame_inverse(const lm_atlas *a, const lm_chart *f, const double *p, double *xy)
+{
+    double r[3], uu = geom_dot(f->u, f->u), uv = geom_dot(f->u, f->v), vv = geom_dot(f->v, f->v), bu, bv;
+    double det = uu * vv - uv * uv;
+    geom_sub(p, f->o, r);
+    bu = geom_dot(r, f->u) / a->texel;
+    bv = geom_dot(r, f->v) / a->texel;
+    xy[0] = (vv * bu - uv * bv) / det;
+    xy[1] = (uu * bv - uv * bu) / det;
+}
+
+static int file_uv_of(const lm_atlas *a, int poly, const double p[3], double xy[2])
+{
+    const lm_chart *f = &a->frames[2 * (size_t)poly], *g;
+    if (!f->count) f++;
+    frame_inverse(a, f, p, xy);
+    g = file_tri(a, poly, xy);
+    if (g != f) frame_inverse(a, g, p, xy);
+    return 0;
+}
+
+static void file_corner_uvs(const obj_scene *sc, double *uv)
+{
+    int c;
+    for (c = 0; c < sc->nindices; c++) {
+        const obj_vec2 *w = sc->uv2 ? &sc->uv2[c] : NULL;
+        int ok = w && isfinite(w->u) && isfinite(w->v);
+        uv[2 * (size_t)c] = ok ? w->u : 0.0;
+        uv[2 * (size_t)c + 1] = ok ? 1.0 - w->v : 0.0;
+    }
+}
+
+/* Edges X and Y (the same world endpoints) have the same UVs at each end. */
+static int same_uv_edge(const lm_atlas *a, const edge_t *x, const edge_t *y)
+{
+    const sc_poly *p = &a->polys[x->poly], *q = &a->polys[y->poly];
+    const double *u = &a->file_uv[8 * (size_t)x->poly], *w = &a->file_uv[8 * (size_t)y->poly];
+    int x0 = x->k, x1 = (x->k + 1) % p->n, y0 = y->k, y1 = (y->k + 1) % q->n;
+    if (cmp3(p->v[x0], q->v[y0])) {
+        int t = y0;
+        y0 = y1;
+        y1 = t;
+    }
+    return u[2 * x0] == w[2 * y0] && u[2 * x0 + 1] == w[2 * y0 + 1] && u[2 * x1] == w[2 * y1] &&
+           u[2 * x1 + 1] == w[2 * y1 + 1];
+}
+
+/* The file's charts: polygons unioned across edges whose world and UV endpoints are
+ * the same, those edges flagged in INTERIOR. 0, or -1 out of memory. */
+static int file_joins(lm_atlas *a, const geom_poly *g, int *parent, unsigned char *interior)
+{
+    int ne = 0, i, end, j, k;
+    edge_t *e = sorted_edges(a->polys, a->npolys, g, &ne);
+    if (!e) return -1;
+    for (i = 0; i < a->npolys; i++) parent[i] = i;
+    for (i = 0; i < ne; i = end) {
+        for (end = i + 1; end < ne && !cmp3(e[end].a, e[i].a) && !cmp3(e[end].b, e[i].b); end++) {
+        }
+        for (j = i; j < end; j++)
+            for (k = j + 1; k < end; k++)
+                if (same_uv_edge(a, &e[j], &e[k])) {
+                    parent[find(parent, e[j].poly)] = find(parent, e[k].poly);
+                    interior[4 * e[j].poly + e[j].k] = interior[4 * e[k].poly + e[k].k] = 1;
+                }
+    }
+    free(e);
+    return 0;
+}
+
+/* A ray move of the sample ST on frame F out of geometry, as push_out's: the rays
+ * along two unit axes of the plane, 3/4 of the triangle's own texel long, the move
+ * solved back to atlas texels. 1 when the rays met no face at all. */
+static int file_push_out(lm_atlas *a, const lm_chart *f, float *st)
+{
+    double s[2] = {st[0], st[1]}, p[3], e1[3], e2[3], dir[3], met, best, uxv[3];
+    double uu = geom_dot(f->u, f->u), uv = geom_dot(f->u, f->v), vv = geom_dot(f->v, f->v), du, dv;
+    geom_cross(f->u, f->v, uxv);
+    rect_point(a, f, s, lift_of(a), p);
+    geom_any_perp(f->n, e1);
+    geom_cross(f->n, e1, e2);
+    best = geom_back_ray(a->grid, a->polys, p, e1, e2, 0.75 * a->texel * sqrt(sqrt(geom_dot(uxv, uxv))), dir, &met);
+    if (!(best < HUGE_VAL)) return !(met < HUGE_VAL);
+    best = (best + margin_of(a)) / a->texel; /* the move T (ds u + dt v) = best dir */
+    du = best * geom_dot(dir, f->u);
+    dv = best * geom_dot(dir, f->v);
+    st[0] = (float)(s[0] + (vv * du - uv * dv) / (uu * vv - uv * uv));
+    st[1] = (float)(s[1] + (uu * dv - uv * du) / (uu * vv - uv * uv));
+    return 0;
+}
+
+/* Every mapped polygon's fan triangles rasterised on the whole atlas (charts[0]), then
+ * each covered texel owned by its polygon's chart COMP and tested free. 0, or -1. */
+static int file_samples(lm_atlas *a, const unsigned char *interior, const int *comp)
+{
+    size_t t = (size_t)a->size * a->size, at;
+    float *best = malloc(t * sizeof *best);
+    double m = margin_of(a) / a->texel;
+    int i, k;
+    if (!best) return -1;
+    for (at = 0; at < t; at++) best[at] = HUGE_VALF;
+    for (i = 0; i < a->npolys; i++) {
+        const sc_poly *q = &a->polys[i];
+        const double *uv = &a->file_uv[8 * (size_t)i];
+        for (k = 1; a->poly_chart[i] >= 0 && k + 1 < q->n; k++) {
+            tri_t tr;
+            if (!a->frames[2 * (size_t)i + k - 1].count) continue;
+            memcpy(tr.p[0], uv, sizeof tr.p[0]);
+            memcpy(tr.p[1], uv + 2 * k, sizeof tr.p[1]);
+            memcpy(tr.p[2], uv + 2 * k + 2, sizeof tr.p[2]);
+            tr.b[0] = k == 1 && !interior[4 * i];
+            tr.b[1] = !interior[4 * i + k];
+            tr.b[2] = k + 2 == q->n && !interior[4 * i + q->n - 1];
+            raster_tri(a, &a->charts[0], &tr, i, m, best);
+        }
+    }
+    free(best);
+    for (at = 0; at < t; at++) {
+        float *st = &a->sample[2 * at];
+        double s[2];
+        if (isnan(st[0])) continue;
+        s[0] = st[0];
+        s[1] = st[1];
+        a->owner[at] = comp[a->poly[at]];
+        if (file_push_out(a, file_tri(a, a->poly[at], s), st) && st[0] == (float)(at % (size_t)a->size) + 0.5f &&
+            st[1] == (float)(at / (size_t)a->size) + 0.5f)
+            a->state[at] = LM_FREE;
+    }
+    return 0;
+}
+
+/* The gutter: PADDING rings around the charts' texels, each texel of no chart taken by
+ * the lowest chart among its 8-neighbours of the rings before. 0, or -1. */
+static int file_gutter(lm_atlas *a)
+{
+    size_t t = (size_t)a->size * a->size, i, n;
+    size_t *ring = malloc((t + 1) * sizeof *ring);
+    int *take = malloc((t + 1) * sizeof *take), r, dx, dy;
+    if (!ring || !take) {
+        free(ring);
+        free(take);
+        return -1;
+    }
+    for (r = 0; r < a->padding; r++) {
+        for (n = 0, i = 0; i < t; i++) {
+            int x = (int)(i % (size_t)a->size), y = (int)(i / (size_t)a->size), best = -1;
+            if (a->owner[i] >= 0) continue;
+            for (dy = -1; dy <= 1; dy++)
+                for (dx = -1; dx <= 1; dx++) {
+                    int o;
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size) continue;
+                    o = a->owner[(size_t)(y + dy) * a->size + (size_t)(x + dx)];
+                    if (o >= 0 && (best < 0 || o < best)) best = o;
+                }
+            if (best >= 0) {
+                take[n] = best;
+                ring[n++] = i;
+            }
+        }
+        for (i = 0; i < n; i++) a->owner[ring[i]] = take[i];
+    }
+    free(ring);
+    free(take);
+    return 0;
+}
+
+/* Texels whose centre lies strictly inside the UV triangles of two polygons. -1 out
+ * of memory. */
+static long file_overlaps(const lm_atlas *a)
+{
+    size_t t = (size_t)a->size * a->size;
+    int *first = malloc((t + 1) * sizeof *first), i, k, x, y;
+    unsigned char *twice = calloc(t + 1, 1);
+    long n = 0;
+    if (!first || !twice) {
+        free(first);
+        free(twice);
+        return -1;
+    }
+    memset(first, 0xff, t * sizeof *first);
+    for (i = 0; i < a->npolys; i++)
+        for (k = 0; a->poly_chart[i] >= 0 && k < 2; k++) {
+            const double *uv = &a->file_uv[8 * (size_t)i], *p = uv + 2 * (k + 1), *q = uv + 2 * (k + 2);
+            double lo[2], hi[2], sign = uv_det(a, i, k) < 0.0 ? -1.0 : 1.0;
+            int j;
+            if (!a->frames[2 * (size_t)i + k].count) continue;
+            for (j = 0; j < 2; j++) {
+                lo[j] = fmin(fmax(floor(fmin(uv[j], fmin(p[j], q[j]))), 0.0), a->size);
+                hi[j] = fmin(fmax(floor(fmax(uv[j], fmax(p[j], q[j]))), -1.0), a->size - 1.0);
+            }
+            for (y = (int)lo[1]; y <= (int)hi[1]; y++)
+                for (x = (int)lo[0]; x <= (int)hi[0]; x++) {
+                    double c[2] = {x + 0.5, y + 0.5};
+                    size_t at = (size_t)y * a->size + (size_t)x;
+                    if (!(sign * cross2d(uv, p, c) > 0 && sign * cross2d(p, q, c) > 0 && sign * cross2d(q, uv, c) > 0))
+                        continue;
+                    if (first[at] < 0) first[at] = i;
+                    else if (first[at] != i && !twice[at]++) n++;
+                }
+        }
+    free(first);
+    free(twice);
+    return n;
+}
+
+/* The file's UVs in texels, their faults counted, each polygon's frames; the texel size
+ * T the root of the mapped triangles' world area over their texel area. Polygons with a
+ * UV not finite are left out (missing). */
+static void file_frames(lm_atlas *a, const double *uv, const geom_poly *g, lm_file_report *rep)
+{
+    double world = 0.0, texels = 0.0;
+    int i, k;
+    for (i = 0; i < a->npolys; i++) {
+        int bad = 0;
+        for (k = 0; k < 2 * a->polys[i].n; k++) {
+            a->file_uv[8 * (size_t)i + k] = uv[8 * (size_t)i + k] * a->size;
+            bad |= !isfinite(uv[8 * (size_t)i + k]);
+        }
+        for (k = 0; !bad && k < a->polys[i].n; k++) {
+            const double *c = &uv[8 * (size_t)i + 2 * k];
+            rep->outside += c[0] < 0.0 || c[0] > 1.0 || c[1] < 0.0 || c[1] > 1.0;
+        }
+        for (k = 0; k < 8; k++)
+            if (bad || k >= 2 * a->polys[i].n) a->file_uv[8 * (size_t)i + k] = NAN;
+        rep->missing += bad;
+        for (k = 0; !bad && g[i].area > 0.0 && k + 2 < a->polys[i].n; k++) {
+            double e1[3], e2[3], c[3];
+            if (uv_det(a, i, k) == 0.0) {
+                rep->zero_area++;
+                continue;
+            }
+            geom_sub(a->polys[i].v[k + 1], a->polys[i].v[0], e1);
+            geom_sub(a->polys[i].v[k + 2], a->polys[i].v[0], e2);
+            geom_cross(e1, e2, c);
+            world += sqrt(geom_dot(c, c));
+            texels += fabs(uv_det(a, i, k));
+        }
+    }
+    a->texel = texels > 0.0 ? sqrt(world / texels) : 0.0;
+    for (i = 0; a->texel > 0.0 && i < a->npolys; i++) {
+        file_frame(a, i, 0, g[i].n);
+        file_frame(a, i, 1, g[i].n);
+        a->poly_chart[i] = g[i].area > 0.0 && (a->frames[2 * (size_t)i].count || a->frames[2 * (size_t)i + 1].count)
+                               ? 0 : -1;
+    }
+}
+
+/* The one rectangle of the adaptive blocks (the whole atlas) holding the mapped
+ * polygons, and each one's chart into COMP (numbered in order of first polygon). */
+static int file_charts(lm_atlas *a, int *parent, int *comp)
+{
+    int i, m = 0, *id = malloc((size_t)(a->npolys + 1) * sizeof *id);
+    a->charts = calloc(2, sizeof *a->charts);
+    if (!id || !a->charts) {
+        free(id);
+        return -1;
+    }
+    for (i = 0; i < a->npolys; i++) id[i] = -1;
+    for (i = 0; i < a->npolys; i++) {
+        int r;
+        if (a->poly_chart[i] < 0) continue;
+        r = find(parent, i);
+        if (id[r] < 0) id[r] = a->file_charts++;
+        comp[i] = id[r];
+        a->chart_polys[m++] = i;
+    }
+    free(id);
+    a->ncharts = 1;
+    a->charts[0].w = a->charts[0].h = a->size;
+    a->charts[0].count = m;
+    a->charts[0].n[2] = 1.0;
+    return 0;
+}
+
+int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, const lm_opts *o,
+                  lm_file_report *rep, char *err, size_t errlen)
+{
+    geom_poly *g;
+    unsigned char *interior;
+    int *parent, *comp, rc = -1;
+    memset(rep, 0, sizeof *rep);
+    if (setup(a, polys, n, o, err, errlen) != 0) return -1;
+    g = geom_polys(polys, n, &a->extent);
+    interior = calloc(4 * (size_t)n, 1);
+    parent = malloc(((size_t)n + 1) * sizeof *parent);
+    comp = malloc(((size_t)n + 1) * sizeof *comp);
+    a->file_uv = malloc((8 * (size_t)n + 1) * sizeof *a->file_uv);
+    a->frames = calloc(2 * (size_t)n + 1, sizeof *a->frames);
+    if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
+        snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
+        rc = -2;
+    } else if (g && interior && parent && comp && a->file_uv && a->frames && alloc_atlas(a, n) == 0 &&
+               (a->grid = geom_grid_new(polys, g, n)) != NULL) {
+        file_frames(a, uv, g, rep);
+        rc = a->texel > 0.0 ? 0 : -3;
+        if (rc == -3) snprintf(err, errlen, "no polygon has a second UV set with area (the file's lightmap UVs)");
+    }
+    if (rc == 0 && (file_joins(a, g, parent, interior) != 0 || file_charts(a, parent, comp) != 0 ||
+                    file_samples(a, interior, comp) != 0 || file_gutter(a) != 0 ||
+                    (rep->overlap = file_overlaps(a)) < 0))
+        rc = -1;
+    if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
+    free(g);
+    free(interior);
+    free(parent);
+    free(comp);
+    if (rc != 0) lm_free(a);
+    return rc < 0 ? -1 : 0;
+}
+
+double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n)
+{
+    double *uv = sc->uv2 ? malloc((8 * (size_t)n + 1) * sizeof *uv) : NULL;
+    int i, k, c;
+    for (i = 0; uv && i < n; i++) {
+        const obj_face *f = polys[i].tag >= 0 && polys[i].tag < sc->nfaces ? &sc->faces[polys[i].tag] : NULL;
+        for (k = 0; k < 4; k++) {
+            double *w = &uv[8 * (size_t)i + 2 * k];
+            w[0] = w[1] = NAN;
+            for (c = 0; f && k < polys[i].n && c < f->count; c++) {
+                const obj_vec3 *v = &sc->verts[sc->indices[f->first + c]];
+                const double p[3] = {v->x, v->y, v->z};
+                if (cmp3(p, polys[i].v[k])) continue;
+                w[0] = sc->uv2[f->first + c].u;
+                w[1] = 1.0 - sc->uv2[f->first + c].v; /* v up, as vt: the atlas's rows go down */
+                break;
+            }
+        }
+    }
+    return uv;
+}
+
 /* ---- baking and dilation ---- */
+
+/* The frame of covered texel AT's sample: its chart's, or its triangle's (file_tri). */
+static const lm_chart *texel_frame(const lm_atlas *a, size_t at)
+{
+    double st[2];
+    if (!a->file_uv) return &a->charts[a->owner[at]];
+    st[0] = a->sample[2 * at];
+    st[1] = a->sample[2 * at + 1];
+    return file_tri(a, a->poly[at], st);
+}
 
 int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
 {
@@ -569,7 +982,7 @@ int lm_texel_point(const lm_atlas *a, int x, int y, double p[3])
     if (x < 0 || y < 0 || x >= a->size || y >= a->size || isnan(a->sample[2 * at])) return 0;
     st[0] = a->sample[2 * at];
     st[1] = a->sample[2 * at + 1];
-    rect_point(a, &a->charts[a->owner[at]], st, lift_of(a), p);
+    rect_point(a, texel_frame(a, at), st, lift_of(a), p);
     return 1;
 }
 
@@ -617,7 +1030,7 @@ int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
             size_t i = (size_t)y * a->size + (size_t)x;
             double p[3], rgb[3];
             if (!(a->state[i] & LM_WANT) || !lm_texel_point(a, x, y, p)) continue;
-            if (fn(ctx, p, a->charts[a->owner[i]].n, rgb) != 0) return -1;
+            if (fn(ctx, p, texel_frame(a, i)->n, rgb) != 0) return -1;
             for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
             a->state[i] = (unsigned char)((a->state[i] & LM_FREE) | LM_GATHERED);
         }
@@ -752,6 +1165,7 @@ int lm_uv(const lm_atlas *a, int poly, const double p[3], double xy[2])
 {
     const lm_chart *c;
     if (poly < 0 || poly >= a->npolys || a->poly_chart[poly] < 0) return -1;
+    if (a->file_uv) return file_uv_of(a, poly, p, xy);
     c = &a->charts[a->poly_chart[poly]];
     to_rect(c, a->texel, p, xy);
     xy[0] += c->x;
@@ -830,11 +1244,13 @@ int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv)
 {
     int *first = calloc((size_t)sc->nfaces + 2, sizeof *first), *byface = malloc(((size_t)a->npolys + 1) * sizeof *byface);
     int *fill = calloc((size_t)sc->nfaces + 1, sizeof *fill), i, f, k;
-    if (!first || !byface || !fill) {
+    if (!first || !byface || !fill || a->file_uv) {
         free(first);
         free(byface);
         free(fill);
-        return -1;
+        if (!a->file_uv) return -1;
+        file_corner_uvs(sc, uv);
+        return 0;
     }
     for (i = 0; i < a->npolys; i++)
         if (a->polys[i].tag >= 0 && a->polys[i].tag < sc->nfaces) first[a->polys[i].tag + 1]++;
@@ -887,5 +1303,7 @@ void lm_free(lm_atlas *a)
     free(a->state);
     free(a->block);
     geom_grid_free(a->grid);
+    free(a->file_uv);
+    free(a->frames);
     memset(a, 0, sizeof *a);
 }

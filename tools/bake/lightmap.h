@@ -108,6 +108,12 @@ typedef struct {
     int pass, waiting; /* passes planned so far; the size of the blocks waiting */
     const sc_poly *polys;
     void *grid;       /* the polygons by cell, for the sample's rays */
+    /* lm_build_file only (NULL, 0: rad's charts) */
+    double *file_uv;  /* 8 per polygon: its corners' places in texels (x right, y down) */
+    lm_chart *frames; /* 2 per polygon, its fan triangles (corners 0 1 2, 0 2 3): world =
+                       * o + x T u + y T v at atlas texel position (x, y); count 1 when
+                       * the triangle has UV area, else 0 */
+    int file_charts;  /* the file's charts: polygons joined across shared UV edges */
 } lm_atlas;
 
 /* Charts, packing and texel samples for POLYS (kept by pointer until lm_free). Returns
@@ -115,6 +121,31 @@ typedef struct {
  * 0..1, an atlas that cannot fit (at the given texel size, or at any with too many
  * charts), out of memory. */
 int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen);
+
+/* The file's own lightmap UVs (a second UV set: glTF's TEXCOORD_1) instead of rad's
+ * charts: lm_build laid out by UV (8 per polygon: corner K of polygon I at u =
+ * UV[8 I + 2 K], v = UV[8 I + 2 K + 1], glTF's convention, origin at the image's top
+ * left; NaN for a polygon without), each texel a triangle's UV covers sampled on that
+ * triangle by the affine map from its UV corners to its world corners. The file's charts
+ * are its polygons joined across edges whose world and UV endpoints are both the same;
+ * a chart's boundary edges keep the samples 1/8 texel in, as rad's do, and texels
+ * within PADDING (lm_build's rule) rings of a chart's texels that no other chart holds
+ * make its gutter, dilated from it alone (the first chart in order to reach a texel
+ * takes it). The adaptive bake cuts the whole atlas into blocks. What is wrong with the
+ * UVs is counted into *REP: corners outside [0, 1] (texels past the atlas's edge are
+ * lost), texels whose centre lies inside triangles of two polygons (overlapping charts:
+ * the nearest sample wins), triangles of no UV area (below 10^-12 of their sides'
+ * squares: no texels) and polygons with no UVs (no texels). Returns 0, or -1 with one
+ * line in err (lm_build's, or no polygon with UVs). */
+typedef struct {
+    long outside, overlap, zero_area, missing;
+} lm_file_report;
+int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, const lm_opts *o,
+                  lm_file_report *rep, char *err, size_t errlen);
+/* lm_build_file's UV array for POLYS (tags = face indices of SC, obj_to_polys) from SC's
+ * second UV set (obj_scene.uv2): each polygon corner takes the UV of its face's first
+ * corner at the same position. NULL when out of memory or SC has none. */
+double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n);
 
 /* Texel states: LM_FREE a flag (see above), and at most one of the others. */
 enum { LM_FREE = 1, LM_WANT = 2, LM_GATHERED = 4, LM_LERPED = 8 };
@@ -152,8 +183,9 @@ int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, si
 /* Each face corner of SC (whose faces the atlas's polygons came from: tags = face
  * indices, obj_to_polys) as a glTF UV on the atlas ([0, 1], origin at the top left),
  * into UV[2 * corner]: on the polygon of its face that has the corner's vertex (the
- * face's first polygon if none has; (0, 0) for a face without one). 0, or -1 out of
- * memory. */
+ * face's first polygon if none has; (0, 0) for a face without one); an atlas of
+ * lm_build_file: the corner's own second UV (obj_scene.uv2; (0, 0) where none). 0, or
+ * -1 out of memory. */
 int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv);
 
 /* The atlas as 8-bit sRGB PNG bytes for embedding (*PNG, malloc'd, *N bytes), scaled so

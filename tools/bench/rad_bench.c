@@ -1048,6 +1048,149 @@ static void report_large(report_t *rp)
     free(sc.polys);
 }
 
+/* ---- culled gathers (rad_cull_build, rad_gather_cull) ------------------------------ */
+
+/* Face F of the box [LO, HI] (add_box's numbering and facing) alone. */
+static void box_face(sc_poly *p, int *n, const double lo[3], const double hi[3], int inward, int f,
+                     const double rho[3])
+{
+    sc_poly six[6];
+    int m = 0;
+    add_box(six, &m, lo, hi, inward, -1, rho);
+    p[*n] = six[f];
+    p[*n].tag = *n;
+    (*n)++;
+}
+
+/* A grid of SIDE x SIDE rooms 4.8 x 3 x 4.8 on a 5-unit pitch, walls facing in, each
+ * with a ceiling lamp and four cabinets, and doorways 1 wide and 2 high between
+ * neighbours along x, near one end of the wall or the other by the room's column, so
+ * that no two line up: 36 polygons a room. Returns them (count in N), or NULL. */
+static sc_poly *gen_rooms(int side, int *n)
+{
+    static const double white[3] = {0.7, 0.7, 0.68}, wood[3] = {0.5, 0.35, 0.2}, lamp[3] = {12, 12, 11};
+    sc_poly *p = calloc((size_t)side * side * 40, sizeof *p);
+    int i, j, k, w, f;
+    if (!p) return NULL;
+    *n = 0;
+    for (i = 0; i < side; i++)
+        for (j = 0; j < side; j++) {
+            double x0 = 5.0 * i + 0.1, z0 = 5.0 * j + 0.1, x1 = x0 + 4.8, z1 = z0 + 4.8;
+            double lo[3] = {x0, 0, z0}, hi[3] = {x1, 3, z1};
+            for (f = 2; f < 6; f++) box_face(p, n, lo, hi, 1, f, white); /* floor, ceiling, walls along x */
+            for (w = 0; w < 2; w++) { /* the walls at x0 and x1, each with its doorway inside the grid */
+                int door = w ? i < side - 1 : i > 0;
+                double dz = (i + w) % 2 ? 0.6 : 3.2; /* the doorway of the wall between i and i + 1 */
+                double seg[3][4] = {{z0, z0 + dz, 0, 3}, {z0 + dz + 1, z1, 0, 3}, {z0 + dz, z0 + dz + 1, 2, 3}};
+                if (!door) seg[0][1] = z1;
+                for (k = 0; k < (door ? 3 : 1); k++) {
+                    double a[3] = {x0, seg[k][2], seg[k][0]}, b[3] = {x1, seg[k][3], seg[k][1]};
+                    box_face(p, n, a, b, 1, w, white);
+                }
+            }
+            for (k = 0; k < 4; k++) { /* cabinets in the corners, open below */
+                double a[3] = {x0 + (k % 2 ? 3.6 : 0.3), 0, z0 + (k / 2 ? 3.8 : 0.3)}, b[3];
+                b[0] = a[0] + 0.9;
+                b[1] = 0.6 + 0.3 * k;
+                b[2] = a[2] + 0.7;
+                add_box(p, n, a, b, 0, 2, wood);
+            }
+            {
+                double v[4][3] = {{x0 + 2, 2.99, z0 + 2}, {x0 + 2.8, 2.99, z0 + 2}, {x0 + 2.8, 2.99, z0 + 2.8},
+                                  {x0 + 2, 2.99, z0 + 2.8}};
+                add_quad(p, n, (const double(*)[3])v, white, lamp);
+            }
+        }
+    return p;
+}
+
+/* Microseconds per gather of G (res 32, as rad_cli's lightmaps) at points on the floors
+ * and walls of random rooms of the grid of SIDE: as many as fit in about SECS seconds
+ * (at least 8, at most MAX); their number into N. */
+static double gather_us(sc_gatherer *g, int side, double secs, int max, int *n)
+{
+    unsigned long seed = 12345;
+    double t0 = host_now(), t = 0;
+    int k;
+    for (k = 0; k < max && (k < 8 || t < secs); k++) {
+        double p[3], nrm[3] = {0, 1, 0}, rgb[3];
+        int room, i, j;
+        seed = seed * 6364136223846793005ul + 1442695040888963407ul;
+        room = (int)((seed >> 33) % (unsigned long)(side * side));
+        i = room / side;
+        j = room % side;
+        p[0] = 5.0 * i + 0.6 + ((seed >> 20) % 1000) * 0.0038;
+        p[1] = 0.01;
+        p[2] = 5.0 * j + 0.6 + ((seed >> 8) % 1000) * 0.0038;
+        if (k % 3 == 2) { /* on the wall along x at z0, facing in */
+            p[1] = 0.5 + ((seed >> 40) % 100) * 0.02;
+            p[2] = 5.0 * j + 0.11;
+            nrm[1] = 0;
+            nrm[2] = 1;
+        }
+        if (sc_gather(g, p, nrm, 0, rgb) < 0) {
+            fprintf(stderr, "rad_bench: a gather in the rooms failed\n");
+            exit(1);
+        }
+        t = host_now() - t0;
+    }
+    *n = k;
+    return 1e6 * t / k;
+}
+
+/* Culled against plain gathers on grids of rooms from 1 to 44 x 44 (36 to 69,696
+ * polygons), fixed build, one core: the hierarchy's build time and each gather's. */
+static void report_cull(report_t *rp)
+{
+    static const int sides[] = {1, 2, 4, 8, 16, 32, 44};
+    const int ns = (int)(sizeof sides / sizeof *sides);
+    double us[2][8], first[2] = {0, 0};
+    int k, surf0 = 0, surf = 0;
+    out(rp, "\nCulled gathers (rad_cull_build, rad_gather_cull): a grid of rooms with doorways (36 polygons a "
+        "room), one shot, then gathers at res 32 on floors and walls of random rooms, every surface drawn against "
+        "through the hierarchy (the same values, bit for bit), fixed build, one core:\n\n"
+        "| rooms | surfaces | elements | gatherer and hierarchy ms | us per gather, all drawn | us per gather, culled | "
+        "culled speed-up |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (k = 0; k < ns; k++) {
+        int n, m[2], c;
+        char err[256];
+        sc_opts o = {0};
+        sc_stats st;
+        sc_poly *p = gen_rooms(sides[k], &n);
+        sc_solver *s;
+        sc_gatherer *g;
+        double t0, build;
+        if (!p) exit(1);
+        o.max_element = 2.5;
+        o.max_patch = 5;
+        o.res = 32;
+        fprintf(stderr, "rad_bench: culled gathers, %d rooms ...\n", sides[k] * sides[k]);
+        if (!(s = sc_create(p, n, &o, NULL, NULL, err, sizeof err)) || sc_solve(s, 1, 0, NULL, NULL) < 0) {
+            fprintf(stderr, "rad_bench: rooms: %s\n", err);
+            exit(1);
+        }
+        sc_get_stats(s, &st);
+        t0 = host_now(); /* a new gatherer, its hierarchy built as it is first used */
+        if (!(g = sc_gatherer_new(s, 32, 0)) || sc_gatherer_cull(g, 1) < 0) exit(1);
+        build = 1000 * (host_now() - t0);
+        sc_gatherer_cull(g, 0);
+        us[0][k] = gather_us(g, sides[k], 0.3, 2000, &m[0]);
+        sc_gatherer_cull(g, 1);
+        us[1][k] = gather_us(g, sides[k], 0.3, 2000, &m[1]);
+        for (c = 0; c < 2; c++)
+            if (k == 0) first[c] = us[c][k];
+        if (k == 0) surf0 = st.surfaces;
+        surf = st.surfaces;
+        out(rp, "| %d | %d | %d | %.1f | %.0f | %.0f | %.2f |\n", sides[k] * sides[k], st.surfaces, st.elements, build,
+            us[0][k], us[1][k], us[0][k] / us[1][k]);
+        sc_gatherer_free(g);
+        sc_destroy(s);
+        free(p);
+    }
+    out(rp, "\nFrom %d to %d surfaces (%.0f times as many) a gather drawing every surface grew %.1f times, a culled "
+        "one %.1f times.\n", surf0, surf, (double)surf / surf0, us[0][ns - 1] / first[0], us[1][ns - 1] / first[1]);
+}
+
 /* Coarse shots on the generated hall: every shot at res 128 (the scene's settings, the
  * bits of the build before coarse shots) against peer rows 1 (rad_cli's defaults) and
  * 6 (res 256, coarse 2), each pair solved side by side in this process (shot by shot,
@@ -1694,6 +1837,12 @@ int main(int argc, char **argv)
 
     const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
 
+    if (argc > 1 && strcmp(argv[1], "--cull") == 0) { /* this report alone, printed */
+        report_cull(&rp);
+        fputs(rp.md, stdout);
+        return 0;
+    }
+
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */
     peer_bench(argv[0], shared, &peer);
@@ -1721,6 +1870,7 @@ int main(int argc, char **argv)
     report_textures(&rp, argv[0]);
     report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
     report_hall_coarse(&rp, &scenes[ns - 1]);
+    report_cull(&rp);
     fputs(rp.md, stdout);
     write_docs(&rp);
     draw_plots(scenes, ns, fx);

@@ -133,8 +133,8 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     long gathers = 0, total = covered_texels(a);
     int rc;
     if (!o->quiet)
-        fprintf(stderr, PROG ": lightmap: %d charts, %ld texels covered: at most %ld gathers at res %d\n", a->ncharts,
-                total, total, res);
+        fprintf(stderr, PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
+                a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "", total, total, res);
     rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
@@ -142,7 +142,7 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     else if (o->stats)
         printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d (%d passes, tolerance %g) on %d "
-               "threads, %.2f s\n", a->size, a->size, a->ncharts, a->texel, gathers, res, a->pass - 1, a->tol,
+               "threads, %.2f s\n", a->size, a->size, a->file_uv ? a->file_charts : a->ncharts, a->texel, gathers, res, a->pass - 1, a->tol,
                o->threads > 1 ? o->threads : 1, host_now() - t0);
     return rc;
 }
@@ -250,12 +250,60 @@ static int read_probes(run_t *r, struct bake_state *b)
     return 0;
 }
 
+/* The file's UVs' faults (lm_file_report), each counted in one warning. */
+static void file_uv_warnings(const opts_t *o, const lm_file_report *rep)
+{
+    if (o->quiet) return;
+    if (rep->outside)
+        fprintf(stderr, PROG ": warning: %s: %ld polygon corners have lightmap UVs outside [0, 1]: their texels past "
+                        "the atlas's edge are lost\n", o->scene, rep->outside);
+    if (rep->overlap)
+        fprintf(stderr, PROG ": warning: %s: %ld lightmap texels lie inside the UV triangles of two polygons "
+                        "(overlapping charts): each holds the nearer one's light\n", o->scene, rep->overlap);
+    if (rep->zero_area)
+        fprintf(stderr, PROG ": warning: %s: %ld triangles have lightmap UVs of no area: they get no texels\n",
+                o->scene, rep->zero_area);
+    if (rep->missing)
+        fprintf(stderr, PROG ": warning: %s: %ld polygons have no second UV set: they get no lightmap texels\n",
+                o->scene, rep->missing);
+}
+
+/* The atlas: laid out by the file's second UV set (--lightmap-uv file, or auto when the
+ * scene has one and faces have one side) or by rad's charts. 0 or -1. */
+static int build_atlas(run_t *r, struct bake_state *b, const lm_opts *lo)
+{
+    const opts_t *o = r->o;
+    char err[1024];
+    lm_file_report rep;
+    double *uv;
+    int rc;
+    if (o->lightmap_uv == LIGHTMAP_UV_FILE && (!r->sc.uv2 || o->two_sided)) {
+        fprintf(stderr, PROG ": %s: --lightmap-uv file: %s\n", o->scene,
+                o->two_sided ? "--two-sided would put both sides of a face on the file's texels (use "
+                               "--lightmap-uv rad)"
+                             : "the scene has no second UV set (glTF TEXCOORD_1, an FBX's or COLLADA "
+                               "file's second channel)");
+        return -1;
+    }
+    if (o->lightmap_uv == LIGHTMAP_UV_RAD || !r->sc.uv2 || o->two_sided)
+        rc = lm_build(&b->atlas, b->polys, b->n, lo, err, sizeof err);
+    else if (!(uv = lm_poly_file_uvs(&r->sc, b->polys, b->n))) {
+        snprintf(err, sizeof err, "out of memory");
+        rc = -1;
+    } else {
+        rc = lm_build_file(&b->atlas, b->polys, b->n, uv, lo, &rep, err, sizeof err);
+        free(uv);
+        if (rc == 0) file_uv_warnings(o, &rep);
+    }
+    if (rc < 0) fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
+    return rc;
+}
+
 int bake_prepare(run_t *r)
 {
     const opts_t *o = r->o;
     lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
                   o->lightmap_tol};
-    char err[1024];
     struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;
     b = r->bake = calloc(1, sizeof *b);
@@ -265,10 +313,7 @@ int bake_prepare(run_t *r)
         return -1;
     }
     if (o->lightmap && lightmap_memory(o, lo.size) < 0) return -1;
-    if (o->lightmap && lm_build(&b->atlas, b->polys, b->n, &lo, err, sizeof err) < 0) {
-        fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
-        return -1;
-    }
+    if (o->lightmap && build_atlas(r, b, &lo) < 0) return -1;
     b->has_atlas = o->lightmap != NULL;
     return o->probes || o->probe_file ? read_probes(r, b) : 0;
 }

@@ -7,6 +7,7 @@
  *
  * Files: options.c (the option table, --help from it), views.c (the --views and
  * --animate parsers, on a buffer), rad_cli.c (main: load, build, solve, outputs),
+ * lights.c (the lights' fields, --lights files, --sky-hdr maps),
  * solve.c (the solves), progress.c (every long stage's progress and ETA), outputs.c (images, PLY, CSV, output and
  * camera checks), balance.c (where the emitted light goes), bake.c (lightmaps and
  * probes from the solution, tools/bake/).
@@ -88,8 +89,11 @@ typedef struct {
     int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
-    sc_light *lights;               /* --sun, --point, --spot in order */
-    int nlights;
+    sc_light *lights;               /* --sun, --point, --spot, --sky, --sky-hdr's suns and
+                                       --lights files' lights, in the command line's order */
+    int nlights, max_lights;
+    const char **light_files;       /* --lights and --sky-hdr files (check_collisions) */
+    int nlight_files;
     /* stored form factors and relighting */
     const char *save_ff, *load_ff, *animate;
     int gauss_seidel, each_group, ncams;
@@ -107,7 +111,10 @@ typedef struct {
     int lightmap_size, gather_res, probe_dims[3], probes;
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
     int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
+    int lightmap_uv;     /* --lightmap-uv: LIGHTMAP_UV_AUTO, _FILE or _RAD */
 } opts_t;
+
+enum { LIGHTMAP_UV_AUTO, LIGHTMAP_UV_FILE, LIGHTMAP_UV_RAD };
 
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);
 
@@ -162,6 +169,34 @@ void add_view(opts_t *o, const sc_camera *cam, const char *out);
  * one line on stderr and -1 for the first that would write over another. */
 int check_collisions(const opts_t *o, const obj_scene *sc);
 void free_opts(opts_t *o);
+
+/* ---- lights.c ---- */
+/* The kinds of light the options and --lights files give; each's values in the
+ * options' order (lights.c's table): sun DX,DY,DZ,R,G,B,ANGLE; point X,Y,Z,R,G,B; spot
+ * X,Y,Z,DX,DY,DZ,R,G,B,ANGLE,SOFTNESS; sky R,G,B,HR,HG,HB,N; sky-hdr -,N,SCALE (the
+ * file aside). An optional value left out is NAN (its default). */
+#define CLI_LIGHT_SUN 0
+#define CLI_LIGHT_POINT 1
+#define CLI_LIGHT_SPOT 2
+#define CLI_LIGHT_SKY 3
+#define CLI_LIGHT_SKY_HDR 4
+#define CLI_LIGHT_MAX_VALUES 11
+#define CLI_MAX_LIGHTS 65535 /* the core's count (rad_use_lights) */
+/* The count of KIND's values. */
+int cli_light_values(int kind);
+/* The first field of KIND whose values V break its rule (lights.c), or -1. */
+int cli_light_check(int kind, const double *v);
+/* A new light at the end of O's (zeroed); exits 2 beyond CLI_MAX_LIGHTS, 1 out of memory. */
+sc_light *cli_new_light(opts_t *o);
+/* Light KIND (not CLI_LIGHT_SKY_HDR) of checked values V appended to O's. */
+void cli_light_make(opts_t *o, int kind, const double *v);
+/* --sky-hdr: the map at PATH (tools/formats/hdr.h) shot as the sky dome of DIRS
+ * directions (0: 192) times SCALE, its suns appended to O's (tools/host/sky_map.h).
+ * 0, or -1 with "PATH: what" in err. */
+int cli_add_sky_map(opts_t *o, const char *path, int dirs, double scale, char *err, size_t errlen);
+/* --lights: the JSON file at PATH (docs: {"lights": [...]}) appended to O's lights in
+ * its order. 0, or -1 with "PATH:LINE:COL: what" (or "PATH: what") in err. */
+int cli_read_lights(opts_t *o, const char *path, char *err, size_t errlen);
 
 /* ---- views.c: parsers that take a buffer (the fuzz harness calls them) ---- */
 /* N comma-separated finite numbers, or N-1 when OPT_LAST is set; anything else (junk,

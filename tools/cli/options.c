@@ -181,91 +181,128 @@ static void opt_emit(opts_t *o, const char *opt, const char *val)
     o->emit[o->nemit++] = (char *)val;
 }
 
-/* --sun, --point, --spot (--sky: opt_sky): N values (the last optional when OPT_LAST), intensities at
- * V[RGB..RGB+2] not negative, a direction at V[DIR..] (DIR < 0: none) not zero. */
-static sc_light *light_values(opts_t *o, const char *opt, const char *val, double *v, int n, int opt_last,
-                              int rgb, int dir, const char *want)
+/* Option OPT's values V (K of them, -1: not a list of numbers) as light KIND:
+ * WANT names the list when it is wrong, SAYS (when not NULL) a wrong value of field
+ * FIELD or later. */
+static void light_option(opts_t *o, const char *opt, const char *val, int kind, const double *v, int k,
+                         const char *want, int field, const char *says)
 {
-    char msg[192];
-    sc_light *l = &o->lights[o->nlights];
-    int k = parse_list(val, v, n, opt_last), a;
-    int ok = k > 0 && v[rgb] >= 0 && v[rgb + 1] >= 0 && v[rgb + 2] >= 0;
-    if (ok && dir >= 0) ok = v[dir] != 0 || v[dir + 1] != 0 || v[dir + 2] != 0;
-    if (!ok) {
-        snprintf(msg, sizeof msg, "%s wants %s", opt, want);
+    int bad = k < 0 ? 0 : cli_light_check(kind, v);
+    if (bad >= 0) {
+        char msg[224];
+        snprintf(msg, sizeof msg, "%s wants %s", opt, says && k >= 0 && bad >= field ? says : want);
         die_usage(msg, val);
     }
-    memset(l, 0, sizeof *l);
-    for (a = 0; a < 3; a++) l->rgb[a] = v[rgb + a];
-    if (k < n) v[n - 1] = 0; /* the optional last value left out */
-    o->nlights++;
-    return l;
+    cli_light_make(o, kind, v);
+}
+
+/* N values, the last optional (NAN when left out): the count or -1. */
+static int light_list(const char *val, double *v, int n)
+{
+    int k = parse_list(val, v, n, 1);
+    if (k == n - 1) v[n - 1] = NAN;
+    return k;
 }
 
 static void opt_sun(opts_t *o, const char *opt, const char *val)
 {
     double v[7];
-    sc_light *l = light_values(o, opt, val, v, 7, 1, 3, 0,
-                               "DX,DY,DZ,R,G,B[,ANGLE]: the way the light travels (not zero), irradiance >= 0, "
-                               "ANGLE 0..14");
-    if (!(v[6] >= 0 && v[6] <= 14))
-        die_usage("--sun wants ANGLE (the sun's angular radius, degrees) in [0, 14]", val);
-    l->type = RAD_LIGHT_SUN;
-    l->radius = tan(v[6] * 3.14159265358979323846 / 180);
-    memcpy(l->dir, v, sizeof l->dir);
+    light_option(o, opt, val, CLI_LIGHT_SUN, v, light_list(val, v, 7),
+                 "DX,DY,DZ,R,G,B[,ANGLE]: the way the light travels (not zero), irradiance >= 0, ANGLE 0..14", 2,
+                 "ANGLE (the sun's angular radius, degrees) in [0, 14]");
 }
 
 static void opt_point(opts_t *o, const char *opt, const char *val)
 {
     double v[6];
-    sc_light *l = light_values(o, opt, val, v, 6, 0, 3, -1, "X,Y,Z,R,G,B with intensities >= 0");
-    l->type = RAD_LIGHT_POINT;
-    memcpy(l->pos, v, sizeof l->pos);
+    light_option(o, opt, val, CLI_LIGHT_POINT, v, parse_list(val, v, 6, 0), "X,Y,Z,R,G,B with intensities >= 0", 2,
+                 NULL);
 }
 
 static void opt_spot(opts_t *o, const char *opt, const char *val)
 {
-    const double deg = 3.14159265358979323846 / 180;
     double v[11];
-    sc_light *l = light_values(o, opt, val, v, 11, 1, 6, 3,
-                               "X,Y,Z,DX,DY,DZ,R,G,B,ANGLE[,SOFTNESS]: a direction not zero, intensities >= 0, "
-                               "ANGLE 0..180, SOFTNESS 0..1");
-    if (!(v[9] > 0 && v[9] <= 180 && v[10] >= 0 && v[10] <= 1))
-        die_usage("--spot wants ANGLE (the cone's half angle, degrees) in (0, 180] and SOFTNESS in [0, 1]", val);
-    l->type = RAD_LIGHT_SPOT;
-    memcpy(l->pos, v, sizeof l->pos);
-    memcpy(l->dir, v + 3, sizeof l->dir);
-    l->cos_outer = cos(v[9] * deg);
-    l->cos_inner = cos(v[9] * (1 - v[10]) * deg);
+    light_option(o, opt, val, CLI_LIGHT_SPOT, v, light_list(val, v, 11),
+                 "X,Y,Z,DX,DY,DZ,R,G,B,ANGLE[,SOFTNESS]: a direction not zero, intensities >= 0, ANGLE 0..180, "
+                 "SOFTNESS 0..1",
+                 3, "ANGLE (the cone's half angle, degrees) in (0, 180] and SOFTNESS in [0, 1]");
 }
 
-/* --sky R,G,B[,HR,HG,HB][,N]: 3, 4, 6 or 7 values. */
+/* --sky R,G,B[,HR,HG,HB][,N]: 3, 4, 6 or 7 values into the fields R,G,B,HR,HG,HB,N. */
 static void opt_sky(opts_t *o, const char *opt, const char *val)
 {
     static const int counts[4] = {3, 4, 6, 7};
-    const char *want = "R,G,B[,HR,HG,HB][,N]: radiances >= 0, N an integer 3..768";
-    double v[7], *n = NULL;
-    sc_light *l;
-    int k, a, dirs;
+    double v[7];
+    int k;
     for (k = 0; k < 4 && parse_list(val, v, counts[k], 0) != counts[k]; k++) continue;
-    if (k < 4 && (counts[k] == 4 || counts[k] == 7)) n = &v[counts[k] - 1];
-    if (k == 4 || (n && !(*n >= 3 && *n <= 768 && *n == floor(*n)))) {
+    if (k < 4) {
+        if (counts[k] == 4) v[6] = v[3];
+        if (counts[k] < 6) v[3] = v[4] = v[5] = NAN;
+        if (counts[k] == 3 || counts[k] == 6) v[6] = NAN;
+    }
+    light_option(o, opt, val, CLI_LIGHT_SKY, v, k < 4 ? 7 : -1,
+                 "R,G,B[,HR,HG,HB][,N]: radiances >= 0, N an integer 3..768", 0, NULL);
+}
+
+/* A --lights or --sky-hdr file that cannot be read or is wrong: one line, exit 2. */
+static void die_light_file(const char *err)
+{
+    fprintf(stderr, PROG ": %s\n", err);
+    exit(CLI_EXIT_USAGE);
+}
+
+/* A file of lights (--lights, --sky-hdr) kept for check_collisions: a copy of PATH. */
+static const char *light_file(opts_t *o, const char *path, size_t len)
+{
+    char *s = malloc(len + 1);
+    if (!s) die_usage("out of memory", NULL);
+    memcpy(s, path, len);
+    s[len] = '\0';
+    o->light_files[o->nlight_files++] = s;
+    return s;
+}
+
+/* --sky-hdr FILE[,N[,SCALE]]: the last one or two comma-separated numbers are N and
+ * SCALE, the rest the file's name. */
+static void opt_sky_hdr(opts_t *o, const char *opt, const char *val)
+{
+    double v[3] = {NAN, NAN, NAN}, t[2];
+    size_t len = strlen(val);
+    int k = 0;
+    char err[1024];
+    const char *file;
+    while (k < 2) {
+        size_t c = len, n;
+        char num[64];
+        while (c > 0 && val[c - 1] != ',') c--;
+        n = len - c;
+        if (c == 0 || n >= sizeof num) break;
+        memcpy(num, val + c, n);
+        num[n] = '\0';
+        if (parse_list(num, &t[k], 1, 0) != 1) break;
+        len = c - 1;
+        k++;
+    }
+    if (k == 1) v[1] = t[0];
+    if (k == 2) {
+        v[1] = t[1];
+        v[2] = t[0];
+    }
+    if (len == 0 || cli_light_check(CLI_LIGHT_SKY_HDR, v) >= 0) {
         char msg[160];
-        snprintf(msg, sizeof msg, "%s wants %s", opt, want);
+        snprintf(msg, sizeof msg, "%s wants FILE[,N[,SCALE]]: N a whole number 3..768, SCALE > 0", opt);
         die_usage(msg, val);
     }
-    dirs = n ? (int)*n : 0;
-    if (counts[k] < 6) memcpy(v + 3, v, 3 * sizeof *v); /* no horizon: a uniform sky */
-    for (a = 0; a < 6 && v[a] >= 0; a++) continue;
-    if (a < 6) die_usage("--sky wants radiances >= 0", val);
-    l = &o->lights[o->nlights++];
-    memset(l, 0, sizeof *l);
-    for (a = 0; a < 3; a++) {
-        l->rgb[a] = v[a];
-        l->horizon[a] = v[3 + a];
-    }
-    l->type = RAD_LIGHT_SKY;
-    l->dirs = dirs;
+    file = light_file(o, val, len);
+    if (cli_add_sky_map(o, file, isnan(v[1]) ? 0 : (int)v[1], isnan(v[2]) ? 1.0 : v[2], err, sizeof err) < 0)
+        die_light_file(err);
+}
+
+static void opt_lights(opts_t *o, const char *opt, const char *val)
+{
+    char err[1024];
+    (void)opt;
+    if (cli_read_lights(o, light_file(o, val, strlen(val)), err, sizeof err) < 0) die_light_file(err);
 }
 
 static void opt_save_ff(opts_t *o, const char *opt, const char *val) { (void)opt, o->save_ff = val; }
@@ -341,6 +378,15 @@ static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
     (void)opt;
     if (parse_list(val, &o->lightmap_tol, 1, 0) != 1 || !(o->lightmap_tol >= 0 && o->lightmap_tol <= 1))
         die_usage("--lightmap-tol wants a number in [0, 1]", val);
+}
+
+static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
+{
+    (void)opt;
+    if (!strcmp(val, "auto")) o->lightmap_uv = LIGHTMAP_UV_AUTO;
+    else if (!strcmp(val, "file")) o->lightmap_uv = LIGHTMAP_UV_FILE;
+    else if (!strcmp(val, "rad")) o->lightmap_uv = LIGHTMAP_UV_RAD;
+    else die_usage("--lightmap-uv wants auto, file or rad", val);
 }
 
 static void opt_gather(opts_t *o, const char *opt, const char *val)
@@ -433,9 +479,16 @@ static const option_t options[] = {
      "horizon (default: R,G,B, a uniform sky), linear in the cosine\n"
      "of the zenith angle; an open floor gets pi L; N directions\n"
      "(3..768, rounded down to 3 m^2; 192), each a sun's shot", opt_sky},
+    {"--sky-hdr", NULL, "FILE[,N[,SCALE]]",
+     "a sky from an equirectangular Radiance .hdr map (+Y up, its\n"
+     "middle column toward +X): each of N directions (as --sky's;\n"
+     "192) a sun carrying its cell's light, radiance times SCALE (1)", opt_sky_hdr},
+    {"--lights", NULL, "FILE",
+     "suns, skies, points and spots from a JSON file (repeatable;\n"
+     "shining with the options', in the command line's order)", opt_lights},
     {"--no-file-lights", NULL, NULL,
      "leave out the lights a glTF, FBX, COLLADA or 3DS scene holds\n"
-     "(by default they shine, after --sun, --point and --spot)", opt_no_file_lights},
+     "(by default they shine, after --sun, --point, --spot, --sky,\n--sky-hdr and --lights)", opt_no_file_lights},
     SECTION("stored form factors (every patch's hemi-cube row, computed once; relighting renders\n"
             "no hemi-cube):"),
     {"--save-ff", NULL, "FILE", "compute all rows, save them to FILE, solve from them", opt_save_ff},
@@ -466,6 +519,9 @@ static const option_t options[] = {
      "texels of gutter around each lightmap chart, 0..64 (size / 128\nwithin 1..4): mip levels m with 2^m <= N + 1 stay clean", opt_lightmap_pad},
     {"--lightmap-tol", NULL, "F",
      "interpolate a lightmap block whose gathered corners agree\nwithin F (0.05); 0: gather every texel", opt_lightmap_tol},
+    {"--lightmap-uv", NULL, "MODE",
+     "the lightmap's UVs, MODE auto, file or rad: the file's second UV\nset (glTF TEXCOORD_1; file: required) or rad's own charts\n(auto: the file's if it has one)",
+     opt_lightmap_uv},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene", opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line", opt_probe_file},
     {"--probes-out", NULL, "FILE", "the probes' JSON (scene name + .probes.json)", opt_probes_out},
@@ -554,7 +610,8 @@ static void check_combinations(opts_t *o)
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
     if (o->nlights && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate))
-        die_usage("--sun, --point, --spot and --sky do not work with stored form factors yet (--save-ff, --load-ff, "
+        die_usage("--sun, --point, --spot, --sky, --sky-hdr and --lights do not work with stored form factors yet "
+                  "(--save-ff, --load-ff, "
                   "--solver gauss-seidel, --light-group, --animate): leave one or the other out", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
@@ -589,8 +646,8 @@ static void set_defaults(opts_t *o, int argc)
     o->emit = calloc((size_t)argc, sizeof *o->emit);
     o->groups = calloc((size_t)argc + 1, sizeof *o->groups);
     o->gint = calloc((size_t)argc, sizeof *o->gint);
-    o->lights = calloc((size_t)argc, sizeof *o->lights);
-    if (!o->emit || !o->groups || !o->gint || !o->lights) {
+    o->light_files = calloc((size_t)argc, sizeof *o->light_files);
+    if (!o->emit || !o->groups || !o->gint || !o->light_files) {
         fprintf(stderr, PROG ": out of memory\n");
         exit(CLI_EXIT_ERROR);
     }
@@ -627,4 +684,6 @@ void free_opts(opts_t *o)
     free(o->groups);
     free(o->gint);
     free(o->lights);
+    while (o->nlight_files > 0) free((char *)o->light_files[--o->nlight_files]);
+    free(o->light_files);
 }

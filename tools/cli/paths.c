@@ -94,6 +94,7 @@ static void inputs(const opts_t *o, const obj_scene *sc, list_t *in)
     add(in, o->animate, NULL, "the --animate file");
     add(in, o->probe_file, NULL, "the --probe-file");
     add(in, o->load_ff, NULL, "the --load-ff file");
+    for (i = 0; i < o->nlight_files; i++) add(in, o->light_files[i], NULL, "a --lights or --sky-hdr file");
 }
 
 static void outputs(const opts_t *o, list_t *out)

@@ -187,7 +187,8 @@ typedef struct {
     const struct aiScene *ai;
     int half_angles;  /* spot cones given as half angles (glTF), else full (assimp's rule) */
     char *placed;     /* per assimp light: placed by its node */
-    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces;
+    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces, cap_uv2;
+    long uv2_corners; /* corners given a second UV set */
     int *mat_of; /* assimp material -> obj material */
 } build;
 
@@ -266,6 +267,7 @@ static int add_mesh(build *b, const struct aiMesh *me, const xform *t, int objec
     const double det = xf_det(t), sign = det < 0 ? -1.0 : 1.0;
     const int v0 = sc->nverts, t0 = sc->nuvs, n0 = sc->nnormals;
     const int has_uv = me->mTextureCoords[0] != NULL, has_n = me->mNormals != NULL;
+    const int has_uv2 = me->mTextureCoords[1] != NULL;
     unsigned i, k;
     long nv = (long)sc->nverts + me->mNumVertices;
     if (grow((void **)&sc->verts, &b->cap_verts, nv, sizeof *sc->verts) ||
@@ -298,7 +300,8 @@ static int add_mesh(build *b, const struct aiMesh *me, const xform *t, int objec
             return -1;
         if (grow((void **)&sc->indices, &b->cap_idx, ni, sizeof(int)) ||
             grow((void **)&sc->uv_indices, &b->cap_uvi, ni, sizeof(int)) ||
-            grow((void **)&sc->normal_indices, &b->cap_ni, ni, sizeof(int)))
+            grow((void **)&sc->normal_indices, &b->cap_ni, ni, sizeof(int)) ||
+            grow((void **)&sc->uv2, &b->cap_uv2, ni, sizeof *sc->uv2))
             return -1;
         of = &sc->faces[sc->nfaces++];
         of->material = b->mat_of[me->mMaterialIndex];
@@ -314,6 +317,9 @@ static int add_mesh(build *b, const struct aiMesh *me, const xform *t, int objec
             sc->indices[sc->nindices] = v0 + (int)vi;
             sc->uv_indices[sc->nindices] = has_uv ? t0 + (int)vi : -1;
             sc->normal_indices[sc->nindices] = has_n ? n0 + (int)vi : -1;
+            sc->uv2[sc->nindices].u = has_uv2 ? me->mTextureCoords[1][vi].x : NAN;
+            sc->uv2[sc->nindices].v = has_uv2 ? me->mTextureCoords[1][vi].y : NAN;
+            b->uv2_corners += has_uv2;
             sc->nindices++;
         }
         sc->materials[of->material].nfaces++;
@@ -562,7 +568,7 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
         if (st.why[0] && err && errlen) /* mf_open's words, which name the scene */
             snprintf(err, errlen, "%s", st.why);
         else if (!st.why[0])
-            fio_err(err, errlen, path, "%s", aiGetErrorString());
+            fio_err(err, errlen, path, "not readable as a scene: %s", aiGetErrorString());
         return -1;
     }
     if (!ai->mRootNode || ai->mNumMeshes == 0) {
@@ -602,6 +608,10 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
     aiReleaseImport(ai);
     free(b.mat_of);
     free(b.placed);
+    if (!b.uv2_corners) { /* no mesh has a second set */
+        free(sc->uv2);
+        sc->uv2 = NULL;
+    }
     for (i = 0; i < (unsigned)sc->nfaces; i++)
         sc->materials[sc->faces[i].material].area += obj_face_area(sc, &sc->faces[i]);
     if (sc->nfaces == 0) {

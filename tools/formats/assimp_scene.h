@@ -12,8 +12,9 @@
  *     faces' winding, so their front stays where the file put it); faces of fewer than
  *     three vertices (points, lines) are left out and counted in unknown_statements;
  *     each node's name is the faces' object name (obj_face.object);
- *   - the first texture coordinate set (assimp gives it with v up, as OBJ) and the
- *     normals;
+ *   - the first texture coordinate set (assimp gives it with v up, as OBJ), the second
+ *     (glTF's TEXCOORD_1, FBX's and COLLADA's second channel) per corner as
+ *     obj_scene.uv2, the lightmap's UVs under --lightmap-uv, and the normals;
  *   - per material: the base colour (glTF baseColorFactor, else the diffuse colour) as
  *     Kd, the base colour or diffuse texture as map_Kd (a file beside the scene, or the
  *     bytes of an image the file holds: obj_map.data, named "SCENE/texture N
@@ -35,7 +36,8 @@
  * file_io (fio_read_all: regular files only, at most FIO_LIMIT_OBJ bytes), so a FIFO,
  * a device or a huge file is refused as for an OBJ, and files outside the scene's
  * folder are refused as the OBJ reader refuses them (obj_opts). Errors are one line,
- * "FILE: what is wrong" (assimp's own words after the file's name); warnings go to WARN
+ * "FILE: what is wrong" (a file assimp cannot read: "FILE: not readable as a scene: "
+ * and assimp's own words, as "Chunk is too large" for a cut .3ds); warnings go to WARN
  * in the OBJ reader's form.
  */
 #ifndef RAD_TOOLS_ASSIMP_SCENE_H

@@ -1236,6 +1236,7 @@ void obj_free(obj_scene *sc)
     free(sc->uv_indices);
     free(sc->normal_indices);
     free(sc->uvs);
+    free(sc->uv2);
     free(sc->normals);
     free(sc->faces);
     memset(sc, 0, sizeof *sc);

@@ -81,6 +81,10 @@ typedef struct {
     int *uv_indices;                 /* nindices entries: into uvs, -1 where a face gave no vt */
     int *normal_indices;             /* nindices entries: into normals, -1 where no vn */
     obj_vec2 *uvs; int nuvs;         /* vt u v (a w is read and dropped) */
+    obj_vec2 *uv2;                   /* NULL, or nindices entries: each corner's second UV set
+                                        (a lightmap's: glTF TEXCOORD_1, assimp's
+                                        mTextureCoords[1]; v up as vt), NaN where its mesh
+                                        has none. OBJ has none. */
     obj_vec3 *normals; int nnormals; /* vn as given (not normalised) */
     char **names; int nnames;        /* o and g names: an entry per statement that changes one */
     obj_face *faces; int nfaces;

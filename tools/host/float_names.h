@@ -43,6 +43,7 @@
 #define sc_gather_sh scf_gather_sh
 #define sc_gather_split scf_gather_split
 #define sc_gatherer scf_gatherer
+#define sc_gatherer_cull scf_gatherer_cull
 #define sc_gatherer_free scf_gatherer_free
 #define sc_gatherer_new scf_gatherer_new
 #define sc_gatherer_saturations scf_gatherer_saturations

@@ -133,7 +133,7 @@ int obj_match_material(void *ctx, int tag)
     return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
 }
 
-/* Reverses face FC's corners: positions, texture coordinates and normals together. */
+/* Reverses face FC's corners: positions, both texture coordinate sets and normals together. */
 static void reverse_face(obj_scene *sc, const obj_face *fc)
 {
     int i, j;
@@ -150,6 +150,11 @@ static void reverse_face(obj_scene *sc, const obj_face *fc)
             t = sc->normal_indices[i];
             sc->normal_indices[i] = sc->normal_indices[j];
             sc->normal_indices[j] = t;
+        }
+        if (sc->uv2) {
+            obj_vec2 w = sc->uv2[i];
+            sc->uv2[i] = sc->uv2[j];
+            sc->uv2[j] = w;
         }
     }
 }
@@ -200,6 +205,12 @@ int obj_two_sided(obj_scene *sc)
     if (nx) sc->normal_indices = nx;
     normals = realloc(sc->normals, 2 * (size_t)nn * sizeof *normals + 1);
     if (normals) sc->normals = normals;
+    if (sc->uv2) {
+        obj_vec2 *uv2 = realloc(sc->uv2, 2 * (size_t)ni * sizeof *uv2);
+        if (!uv2) return -1;
+        sc->uv2 = uv2;
+        memcpy(uv2 + ni, uv2, (size_t)ni * sizeof *uv2);
+    }
     if (!faces || !ix || !uv || !nx || !normals) return -1; /* grown, but the counts stay */
     for (k = 0; k < nn; k++) {
         normals[nn + k].x = -normals[k].x;

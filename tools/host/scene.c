@@ -6,6 +6,7 @@
 #include "host/scene.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -48,6 +49,9 @@ struct sc_solver {
     unsigned long ambient_terms; /* sc_stats.ambient_terms */
     rad_light_t *lights;        /* the lights in the core's units (sc_opts.lights), or NULL */
     int nlights;
+    void *cull;                 /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
+    uint32_t cull_surfaces;     /* the scene it was built for: its surfaces and scale */
+    int cull_shift;
 };
 
 typedef struct {
@@ -495,6 +499,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
             int r = 4 * (o->res ? o->res : RAD_DEFAULT_RES);
             c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
         }
+        if (l->dome) c->res = (uint16_t)(o->res ? o->res : 64); /* cfg.res */
         to_core(h, l->pos, &c->position);
         if (d > 0) {
             c->direction.x = RAD_REAL(l->dir[0] / d);
@@ -703,6 +708,7 @@ void sc_destroy(sc_solver *h)
     free_pools(h);
     free(h->rows.start); free(h->rows.ids); free(h->rows.ffs); free(h->gs);
     free(h->lights);
+    free(h->cull);
     free(h);
 }
 
@@ -1407,7 +1413,57 @@ struct sc_gatherer {
     struct sc_solver *h;
     rad_gather_t g;
     void *work;
+    void *cull_work; /* rad_gather_cull's, or NULL */
 };
+
+/* Surfaces from which a new gatherer draws through the hierarchy: in rad_bench's cull
+ * report (gathers at res 32 in grids of rooms) the culled gather took 1.3 times as long
+ * as drawing all at 27 surfaces, 0.76 times at 116 and 0.2 at 1,952. */
+#define CULL_SURFACES 100
+
+/* Gatherers may be made in threads of their own: the hierarchy is built once, under
+ * this lock, and only read after. */
+static pthread_mutex_t cull_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* H's hierarchy for the scene as it stands, built on first use; NULL when it cannot be
+ * (geometry not frozen, out of memory) or when the scene changed since (its surfaces
+ * or scale; gatherers may still read the old one). */
+static const void *solver_cull(struct sc_solver *h)
+{
+    const void *c;
+    pthread_mutex_lock(&cull_lock);
+    if (!h->cull) {
+        size_t bytes = RAD_CULL_BYTES(h->s.n_surfaces);
+        void *b = malloc(bytes);
+        if (b && rad_cull_build(&h->s, b, bytes) >= 0) {
+            h->cull = b;
+            h->cull_surfaces = h->s.n_surfaces;
+            h->cull_shift = h->s.length_shift;
+        } else {
+            free(b);
+        }
+    }
+    c = h->cull && h->cull_surfaces == h->s.n_surfaces && h->cull_shift == h->s.length_shift ? h->cull : NULL;
+    pthread_mutex_unlock(&cull_lock);
+    return c;
+}
+
+int sc_gatherer_cull(sc_gatherer *q, int on)
+{
+    const void *c = on ? solver_cull(q->h) : NULL;
+    size_t bytes;
+    if (!c) {
+        rad_gather_cull(&q->g, NULL, NULL, 0);
+        return on ? -1 : 0;
+    }
+    bytes = RAD_GATHER_CULL_BYTES(q->g.res, q->h->s.n_surfaces);
+    free(q->cull_work);
+    if (!(q->cull_work = malloc(bytes)) || rad_gather_cull(&q->g, c, q->cull_work, bytes) < 0) {
+        rad_gather_cull(&q->g, NULL, NULL, 0);
+        return -1;
+    }
+    return 0;
+}
 
 sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
 {
@@ -1424,12 +1480,17 @@ sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
         sc_gatherer_free(q);
         return NULL;
     }
+    /* without its hierarchy a gather draws every surface: the same values */
+    if (h->s.n_surfaces >= CULL_SURFACES) sc_gatherer_cull(q, 1);
     return q;
 }
 
 void sc_gatherer_free(sc_gatherer *q)
 {
-    if (q) free(q->work);
+    if (q) {
+        free(q->work);
+        free(q->cull_work);
+    }
     free(q);
 }
 

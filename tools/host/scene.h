@@ -27,7 +27,8 @@ typedef struct {
  * +Y); RGB a point's or spot's intensity (per steradian), a sun's irradiance on a plane
  * facing it or a sky's zenith radiance; a spot's cone by the cosines of its outer and
  * inner half angles; a sun's disc by RADIUS; a sky's HORIZON radiance and DIRS (0: the
- * core's default). */
+ * core's default); DOME: a sun of a sky's dome (rad_cli --sky-hdr), drawn at the
+ * scene's res as the core's sky draws its own (not at a sun's 4 res). */
 typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
@@ -35,6 +36,7 @@ typedef struct {
     double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
     double horizon[3];
     int dirs;
+    int dome;
 } sc_light;
 
 typedef struct {
@@ -205,6 +207,11 @@ typedef struct sc_gatherer sc_gatherer;
  * only read S). NULL on a bad RES or out of memory. S must have been solved. */
 sc_gatherer *sc_gatherer_new(sc_solver *s, int res, int sphere);
 void sc_gatherer_free(sc_gatherer *g);
+/* Whether G draws through the hierarchy of the surfaces (ON 1: rad_gather_cull) or
+ * every surface (0): the same values either way, only the time differs. A new
+ * gatherer does from CULL_SURFACES surfaces (host/scene.c). 0, or -1 (ON and the
+ * hierarchy could not be had: G then draws every surface). */
+int sc_gatherer_cull(sc_gatherer *g, int on);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
  * with the ambient term if AMBIENT, in caller units: what an element of reflectance
  * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the

@@ -62,6 +62,7 @@ int scf_mix(scf_solver *s, scf_solution *const *groups, const double (*intensity
 typedef struct scf_gatherer scf_gatherer;
 scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
 void scf_gatherer_free(scf_gatherer *g);
+int scf_gatherer_cull(scf_gatherer *g, int on);
 int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
 int scf_gather_on(scf_gatherer *g, const double p[3], const double n[3], int surface, int ambient,
                   double rgb[3]);
