@@ -20,7 +20,7 @@
  * an element's run in a row is under two pixels on average at res 128, too short for
  * branches on it to be predicted.
  *
- * Integer ranges: corners scaled to |c| <= 2^S with S = 22 - bits(n); the ray's
+ * Integer ranges: corners scaled to |c| <= 2^S with S = 22 - bitlen(n); the ray's
  * components are at most RES <= 2^10; then |C0| <= 2 n^2 2^2S, |C1| <= 8 n 2^2S,
  * |C2| <= 8 2^2S, and every E_k, k in [0, n], stays below 54 2^10 n^2 2^2S < 2^60, so
  * differences of two fit as well.
@@ -34,16 +34,6 @@
  * many pixels wide. The outline, and so which surface a pixel sees, is exact.
  */
 #include "internal.h"
-
-static unsigned bits(uint32_t v)
-{
-    unsigned b = 0;
-    while (v) {
-        b++;
-        v >>= 1;
-    }
-    return b;
-}
 
 /* Corners (and their sums, shifted) are within +-2^22: int32, products below 2^45. */
 static void cross(const int32_t *a, const int32_t *b, int64_t *r)
@@ -127,7 +117,8 @@ static void lattice_setup(rad__lattice_t *lt)
     uint32_t len = sf->pu * sf->ku > sf->pv * sf->kv ? sf->pu * sf->ku : sf->pv * sf->kv;
     /* len < 2^12 (edges of at most 222 units in elements of at least 1/16: mesh.c's
      * limits), so S >= 10. */
-    unsigned i, nb = bits(len), s = nb < 22u ? 22u - nb : 0u, shift = s > 17u ? s - 17u : 0u;
+    unsigned i, nb = rad__bitlen64(len), s = nb < 22u ? 22u - nb : 0u,
+                shift = s > 17u ? s - 17u : 0u;
     for (i = 0; i < n; i++) {
         rad_real_t a = corner[i].x < 0 ? -corner[i].x : corner[i].x;
         rad_real_t b = corner[i].y < 0 ? -corner[i].y : corner[i].y;

@@ -31,7 +31,7 @@ uint64_t rad__isqrt64(uint64_t v)
     uint32_t hi = (uint32_t)(v >> 32);
     if (hi == 0) return isqrt32((uint32_t)v);
     if (hi >> 30 == 0) {
-        unsigned k = (33u - rad__clz32(hi)) >> 1; /* 2k = bits(hi) rounded up to even */
+        unsigned k = (33u - rad__clz32(hi)) >> 1; /* 2k = bitlen(hi) rounded up to even */
         uint32_t r0 = isqrt32((uint32_t)(v >> 2u * k)) << k, r;
         r = (uint32_t)(((uint64_t)r0 + rad__udiv64(v, r0)) >> 1);
         while (rad__mulu32(r, r) > v) r--;
@@ -53,16 +53,6 @@ uint64_t rad__isqrt64(uint64_t v)
 
 #if !RAD_FLOAT
 
-static unsigned bitlen(uint64_t v)
-{
-    unsigned b = 0;
-    while (v) {
-        b++;
-        v >>= 1;
-    }
-    return b;
-}
-
 static uint64_t mag(int64_t v)
 {
     return v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
@@ -81,7 +71,7 @@ uint64_t rad__unit64(int64_t x, int64_t y, int64_t z, rad_vec3_t *unit)
         unit->x = unit->y = unit->z = 0;
         return 0;
     }
-    b = bitlen(m);
+    b = rad__bitlen64(m);
     c[0] = x;
     c[1] = y;
     c[2] = z;

@@ -199,6 +199,13 @@ static inline unsigned rad__clz32(uint32_t d)
     return s + nibble[d >> 28];
 }
 
+/* The bit length of V: 0 for 0, else 1 + the index of its highest set bit. */
+static inline unsigned rad__bitlen64(uint64_t v)
+{
+    uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
+    return hi ? 64u - rad__clz32(hi) : lo ? 32u - rad__clz32(lo) : 0u;
+}
+
 /* One 16-bit digit of rad__udiv64_32: the quotient of U * 2^16 + LO16 (U < V) by the
  * normalised V (top bit set), estimated from V's top half VN1, then corrected: the
  * estimate is at most 2 too large (Knuth, TAOCP 4.3.1, Theorem B). Leaves the

@@ -867,9 +867,64 @@ static void test_help_matches_docs(void **state)
         opt[0] = '`';
         memcpy(opt + 1, p + 3, len);
         opt[len + 1] = '\0';
-        if (!strstr(doc, opt)) fail_msg("--help's option %s has no row in docs/cli.md's table", opt + 1);
+        if (!strstr(doc, opt))
+            fail_msg("--help's option %s has no row in docs/cli.md's table", opt + 1);
     }
     free(doc);
+    done(&r);
+}
+
+/* --help's options come in sections, each under a heading (lines at the margin, the
+ * last ending in ':') that says what its options do, in words: no heading without an
+ * option under it, and no folder of the source ('/') in one. */
+static void test_help_sections(void **state)
+{
+    result_t r;
+    const char *p, *end;
+    char heading[256] = "";
+    size_t hl = 0;
+    int sections = 0, in_section = -1, open = 0;
+    (void)state;
+    RUN(&r, "--help");
+    expect(&r, 0, "");
+    p = strstr(r.out, "\n\n"); /* the options: after the introduction, to the next blank line */
+    assert_non_null(p);
+    p += 2;
+    end = strstr(p, "\n\n");
+    assert_non_null(end);
+    while (p < end) {
+        const char *nl = strchr(p, '\n');
+        size_t len = (size_t)(nl - p);
+        if (p[0] == ' ') {
+            if (open)
+                fail_msg("--help: heading '%s' does not end in ':' before its options", heading);
+            if (strncmp(p, "  -", 3) == 0) in_section++;
+        } else {
+            if (!open) {
+                if (in_section == 0) fail_msg("--help: the section '%s' has no option", heading);
+                hl = 0;
+                open = 1;
+            }
+            if (hl + len + 2 > sizeof heading)
+                fail_msg("--help: a heading longer than %zu bytes", sizeof heading);
+            if (hl) heading[hl++] = ' ';
+            memcpy(heading + hl, p, len);
+            hl += len;
+            heading[hl] = '\0';
+            if (len && p[len - 1] == ':') {
+                if (strchr(heading, '/'))
+                    fail_msg("--help: the heading '%s' names a path", heading);
+                open = 0;
+                in_section = 0;
+                sections++;
+            }
+        }
+        p = nl + 1;
+    }
+    if (open) fail_msg("--help: heading '%s' does not end in ':'", heading);
+    if (in_section == 0) fail_msg("--help: the last section, '%s', has no option", heading);
+    print_message("--help: %d sections, each with options, no '/' in a heading\n", sections);
+    assert_in_range(sections, 2, 32);
     done(&r);
 }
 
@@ -893,6 +948,7 @@ int main(void)
         cmocka_unit_test(test_exposure_shared_and_printed),
         cmocka_unit_test(test_outward_room_warns),
         cmocka_unit_test(test_help_matches_docs),
+        cmocka_unit_test(test_help_sections),
         cmocka_unit_test(test_image_to_stdout),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

@@ -50,6 +50,24 @@ static void test_isqrt(void **st)
     }
 }
 
+/* rad__bitlen64 (rad__clz32 on each half) against its definition: 2^(b-1) <= v < 2^b,
+ * at every power of two, one either side of it, and random values of every length. */
+static void test_bitlen(void **st)
+{
+    size_t i;
+    (void)st;
+    CHECK_INT_EQ(rad__bitlen64(0), 0, "rad__bitlen64(0)");
+    for (i = 0; i < 64 * 3 + 100000; i++) {
+        uint64_t v = i < 64 * 3 ? ((uint64_t)1 << (i / 3)) + (uint64_t)(i % 3) - 1u
+                                : rnd() >> (rnd() % 64);
+        unsigned b = rad__bitlen64(v);
+        if (v == 0) continue;
+        CHECK_THAT(b >= 1 && b <= 64 && v >> (b - 1) == 1,
+                   "rad__bitlen64(%llu) = %u: not 1 + the index of the highest set bit",
+                   (unsigned long long)v, b);
+    }
+}
+
 static void test_shr_and_div_round(void **st)
 {
     size_t i, j;
@@ -241,6 +259,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_isqrt),
+        cmocka_unit_test(test_bitlen),
         cmocka_unit_test(test_shr_and_div_round),
         cmocka_unit_test(test_dot_cross_mul),
         cmocka_unit_test(test_unit_and_length),

@@ -1544,7 +1544,9 @@ static void write_docs(const report_t *rp)
     a = strstr(buf, begin);
     b = a ? strstr(a, end) : NULL;
     if (!b) {
-        fprintf(stderr, "rad_bench: %s: no '%.20s' line followed by '%s'; the report is on standard output only\n",
+        fprintf(stderr,
+                "rad_bench: %s: no '%.20s' line followed by '%s'; the report is on standard "
+                "output only\n",
                 path, begin, end);
         return;
     }
@@ -1554,7 +1556,8 @@ static void write_docs(const report_t *rp)
         return;
     }
     a += strlen(begin);
-    ok = fwrite(buf, 1, (size_t)(a - buf), w) == (size_t)(a - buf) && fputs(rp->md, w) >= 0 && fputs(b, w) >= 0;
+    ok = fwrite(buf, 1, (size_t)(a - buf), w) == (size_t)(a - buf) && fputs(rp->md, w) >= 0 &&
+         fputs(b, w) >= 0;
     if (fclose(w) != 0 || !ok || rename(tmp, path) != 0) {
         fprintf(stderr, "rad_bench: writing %s failed: %s\n", path, strerror(errno));
         remove(tmp);

@@ -7,7 +7,7 @@
  * coarse shots down to DEF_COARSE_FLOOR(res): res / 8 made even, but not below 24 (a cube
  * of 8 or 16 misses whole surfaces), so that a res of 24 or less never coarsens. Stored
  * rows are every patch's row at res and never coarse: DEF_ROWS_RES and no coarse shots.
- * docs on the choice: the README's "Coarse shots". */
+ * docs on the choice: docs/library.md, "Coarse shots". */
 #ifndef RAD_TOOLS_DEFAULTS_H
 #define RAD_TOOLS_DEFAULTS_H
 

@@ -20,10 +20,11 @@ sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *
  * gets, per polygon, the reflectance of the texture's mean over the polygon's UV
  * footprint (texture.h's rule applied to the mean, the same as to each texel below
  * TEX_RHO_MAX since it is linear there); a face without texture coordinates, that of
- * the image's mean (tex_image_mean). A surface per face (a surface per element would
- * make every element a patch: CornellBox-Original 278 patches to 3,958, the solve 1.0 s
- * to 17.2 s); sc_texture_elements (host/tex_render.h) then gives each element of a
- * textured face the mean over its own footprint. */
+ * the image's mean (tex_image_mean). A surface per face, not per element: a surface
+ * per element would make every element a patch (CornellBox-Original: 3,958 patches
+ * instead of 278, as many more hemi-cubes to shoot); sc_texture_elements
+ * (host/tex_render.h) then gives each element of a textured face the mean over its own
+ * footprint. */
 sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
                           obj_poly_warn_fn warn, void *ctx);
 

@@ -492,7 +492,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
         /* A light shoots once, so its aliasing is not averaged over many shots as a
          * patch's is: a point light over a floor of 2,592 elements at res 192 gave
          * the direct light 11% rms (79% max) off I cos t / r^2 per element, at 4 res
-         * 1.2% (10%), in 0.2 s. The core's default is the scene's res (the same bits
+         * 1.2% (10%). The core's default is the scene's res (the same bits
          * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
          * that a point light's finer cube needs. A sun is 4 res by default. */
         if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
