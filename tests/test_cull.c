@@ -18,9 +18,10 @@
 
 #include "check.h"
 #include "rad/rad.h"
-#if !RAD_FLOAT
-#include "host/scene.h" /* the host's gatherers (test_host) */
+#if RAD_FLOAT
+#include "host/float_names.h" /* sc_ names for the twin's scf_ (host_gathers) */
 #endif
+#include "host/scene.h"
 
 #if RAD_FLOAT
 #define TW(name) name##_float
@@ -46,7 +47,8 @@ typedef struct {
 
 #define DECLARE(B)                                      \
     int scene_cull_##B(int scene, int res, cres *r); \
-    int sizes_cull_##B(csizes *z)
+    int sizes_cull_##B(csizes *z);                  \
+    int host_gathers_##B(const sc_poly *p, int n, long *failed, long *differ)
 DECLARE(fixed);
 DECLARE(float);
 #undef DECLARE
@@ -389,6 +391,37 @@ out:
     return rc;
 }
 
+/* The host's gatherers (tools/host/scene.c) over polygons P: 30 gathers through the
+ * hierarchy and drawing every surface; counts calls FAILED and values that DIFFER.
+ * Returns 0, or -1 when the scene cannot be made. */
+int TW(host_gathers)(const sc_poly *p, int n, long *failed, long *differ)
+{
+    char err[256];
+    sc_opts o;
+    sc_solver *s;
+    sc_gatherer *g = NULL;
+    int k;
+    memset(&o, 0, sizeof o);
+    o.max_element = 2;
+    o.res = 32;
+    *failed = *differ = 0;
+    s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    if (!s || sc_solve(s, 20, 0, NULL, NULL) < 0 || !(g = sc_gatherer_new(s, 32, 0))) {
+        sc_destroy(s);
+        return -1;
+    }
+    for (k = 0; k < 30; k++) {
+        double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k}, nrm[3] = {k % 3 - 1.0, 1, 0.3};
+        double a[3], c[3];
+        *failed += sc_gatherer_cull(g, 0) != 0 || sc_gather(g, pt, nrm, 1, a) != 0;
+        *failed += sc_gatherer_cull(g, 1) != 0 || sc_gather(g, pt, nrm, 1, c) != 0;
+        *differ += memcmp(a, c, sizeof a) != 0;
+    }
+    sc_gatherer_free(g);
+    sc_destroy(s);
+    return 0;
+}
+
 #if !RAD_FLOAT
 /* ---- the tests (fixed half) --------------------------------------------------------- */
 
@@ -489,9 +522,8 @@ static void test_sizes(void **st)
     }
 }
 
-/* The host's gatherers (tools/host/scene.c): a room of 4 x 4 x 2 cubes (199 polygons)
- * gathered at 30 points through the hierarchy and drawing every surface, in both
- * builds: the same doubles. */
+/* A quad of sc_poly P[N] at (X0, Y0, Z0) spanning DU, DV along the axes after AX,
+ * turned over when FLIP; returns N + 1. */
 static int host_poly(sc_poly *p, int n, double x0, double y0, double z0, int ax, double du, double dv, int flip,
                      double rho, double emit)
 {
@@ -526,6 +558,9 @@ static int host_cube(sc_poly *p, int n, double x, double y, double z, double e, 
     return n;
 }
 
+/* The host's gatherers: a room of 4 x 4 x 2 cubes (199 polygons) gathered at 30
+ * points through the hierarchy and drawing every surface, in both builds: the same
+ * doubles. */
 static void test_host(void **st)
 {
     sc_poly *p = calloc(256, sizeof *p);
@@ -538,41 +573,9 @@ static void test_host(void **st)
         for (j = 0; j < 4; j++)
             for (i = 0; i < 4; i++) n = host_cube(p, n, 1.5 + 3.6 * i, 2 + 6 * k, 1.5 + 3.6 * j, 1.5, 0, 0.4);
     for (b = 0; b < 2; b++) {
-        char err[256];
-        sc_opts o;
-        long differ = 0, failed = 0;
-        memset(&o, 0, sizeof o);
-        o.max_element = 2;
-        o.res = 32;
-        if (b == 0) {
-            sc_solver *s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
-            sc_gatherer *g = NULL;
-            if (!s || sc_solve(s, 20, 0, NULL, NULL) < 0 || !(g = sc_gatherer_new(s, 32, 0)))
-                fail_msg("fixed host: %s", err);
-            for (k = 0; k < 30; k++) {
-                double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k}, nrm[3] = {k % 3 - 1.0, 1, 0.3};
-                double a[3], c[3];
-                failed += sc_gatherer_cull(g, 0) != 0 || sc_gather(g, pt, nrm, 1, a) != 0;
-                failed += sc_gatherer_cull(g, 1) != 0 || sc_gather(g, pt, nrm, 1, c) != 0;
-                differ += memcmp(a, c, sizeof a) != 0;
-            }
-            sc_gatherer_free(g);
-            sc_destroy(s);
-        } else {
-            scf_solver *s = scf_create(p, n, &o, NULL, NULL, err, sizeof err);
-            scf_gatherer *g = NULL;
-            if (!s || scf_solve(s, 20, 0, NULL, NULL) < 0 || !(g = scf_gatherer_new(s, 32, 0)))
-                fail_msg("float host: %s", err);
-            for (k = 0; k < 30; k++) {
-                double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k}, nrm[3] = {k % 3 - 1.0, 1, 0.3};
-                double a[3], c[3];
-                failed += scf_gatherer_cull(g, 0) != 0 || scf_gather(g, pt, nrm, 1, a) != 0;
-                failed += scf_gatherer_cull(g, 1) != 0 || scf_gather(g, pt, nrm, 1, c) != 0;
-                differ += memcmp(a, c, sizeof a) != 0;
-            }
-            scf_gatherer_free(g);
-            scf_destroy(s);
-        }
+        long failed, differ;
+        int rc = b ? host_gathers_float(p, n, &failed, &differ) : host_gathers_fixed(p, n, &failed, &differ);
+        if (rc != 0) fail_msg("%s host: the scene failed", b ? "float" : "fixed");
         if (failed || differ)
             fail_msg("%s host, %d polygons: %ld calls failed, %ld of 30 gathers differ culled", b ? "float" : "fixed", n,
                      failed, differ);
