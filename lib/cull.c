@@ -47,7 +47,8 @@
 
 typedef struct {
     uint32_t magic, surfaces, nodes;
-    int32_t shift; /* the scene's length_shift when built */
+    int8_t shift; /* the scene's length_shift when built */
+    uint8_t pad[3];
 } head_t;
 
 typedef struct {
@@ -151,19 +152,21 @@ static void select_nth(const rad_scene_t *s, uint32_t *v, int32_t n, int32_t m, 
     }
 }
 
-/* The axis along which the centres of surfaces V[0..N) spread most (the lowest of
- * equal spreads). */
+/* The axis along which the centres of surfaces V[0..N), N >= 1, spread most (the
+ * lowest of equal spreads). */
 static unsigned split_axis(const rad_scene_t *s, const uint32_t *v, uint32_t n)
 {
     rad_real_t lo[3], hi[3], blo[3], bhi[3], best = 0;
     uint32_t k;
     unsigned a, axis = 0;
-    for (k = 0; k < n; k++) {
+    surface_box(s, v[0], blo, bhi);
+    for (a = 0; a < 3; a++) lo[a] = hi[a] = blo[a] + bhi[a];
+    for (k = 1; k < n; k++) {
         surface_box(s, v[k], blo, bhi);
         for (a = 0; a < 3; a++) {
             rad_real_t c = blo[a] + bhi[a];
-            if (k == 0 || c < lo[a]) lo[a] = c;
-            if (k == 0 || c > hi[a]) hi[a] = c;
+            if (c < lo[a]) lo[a] = c;
+            if (c > hi[a]) hi[a] = c;
         }
     }
     for (a = 0; a < 3; a++)
@@ -221,6 +224,7 @@ int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes)
     h->surfaces = n;
     h->nodes = b.next;
     h->shift = s->length_shift;
+    h->pad[0] = h->pad[1] = h->pad[2] = 0;
     return (int)b.next;
 }
 

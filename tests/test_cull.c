@@ -18,6 +18,10 @@
 
 #include "check.h"
 #include "rad/rad.h"
+#if RAD_FLOAT
+#include "host/float_names.h" /* sc_ names for the twin's scf_ (host_gathers) */
+#endif
+#include "host/scene.h"
 
 #if RAD_FLOAT
 #define TW(name) name##_float
@@ -43,7 +47,8 @@ typedef struct {
 
 #define DECLARE(B)                                      \
     int scene_cull_##B(int scene, int res, cres *r); \
-    int sizes_cull_##B(csizes *z)
+    int sizes_cull_##B(csizes *z);                  \
+    int host_gathers_##B(const sc_poly *p, int n, long *failed, long *differ)
 DECLARE(fixed);
 DECLARE(float);
 #undef DECLARE
@@ -386,6 +391,37 @@ out:
     return rc;
 }
 
+/* The host's gatherers (tools/host/scene.c) over polygons P: 30 gathers through the
+ * hierarchy and drawing every surface; counts calls FAILED and values that DIFFER.
+ * Returns 0, or -1 when the scene cannot be made. */
+int TW(host_gathers)(const sc_poly *p, int n, long *failed, long *differ)
+{
+    char err[256];
+    sc_opts o;
+    sc_solver *s;
+    sc_gatherer *g = NULL;
+    int k;
+    memset(&o, 0, sizeof o);
+    o.max_element = 2;
+    o.res = 32;
+    *failed = *differ = 0;
+    s = sc_create(p, n, &o, NULL, NULL, err, sizeof err);
+    if (!s || sc_solve(s, 20, 0, NULL, NULL) < 0 || !(g = sc_gatherer_new(s, 32, 0))) {
+        sc_destroy(s);
+        return -1;
+    }
+    for (k = 0; k < 30; k++) {
+        double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k}, nrm[3] = {k % 3 - 1.0, 1, 0.3};
+        double a[3], c[3];
+        *failed += sc_gatherer_cull(g, 0) != 0 || sc_gather(g, pt, nrm, 1, a) != 0;
+        *failed += sc_gatherer_cull(g, 1) != 0 || sc_gather(g, pt, nrm, 1, c) != 0;
+        *differ += memcmp(a, c, sizeof a) != 0;
+    }
+    sc_gatherer_free(g);
+    sc_destroy(s);
+    return 0;
+}
+
 #if !RAD_FLOAT
 /* ---- the tests (fixed half) --------------------------------------------------------- */
 
@@ -486,12 +522,73 @@ static void test_sizes(void **st)
     }
 }
 
+/* A quad of sc_poly P[N] at (X0, Y0, Z0) spanning DU, DV along the axes after AX,
+ * turned over when FLIP; returns N + 1. */
+static int host_poly(sc_poly *p, int n, double x0, double y0, double z0, int ax, double du, double dv, int flip,
+                     double rho, double emit)
+{
+    int u = (ax + 1) % 3, v = (ax + 2) % 3, k;
+    static const int cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
+    memset(&p[n], 0, sizeof p[n]);
+    for (k = 0; k < 4; k++) {
+        int kk = flip ? 3 - k : k;
+        p[n].v[k][0] = x0;
+        p[n].v[k][1] = y0;
+        p[n].v[k][2] = z0;
+        p[n].v[k][u] += cu[kk] * du;
+        p[n].v[k][v] += cv[kk] * dv;
+    }
+    p[n].n = 4;
+    p[n].rho[0] = p[n].rho[1] = p[n].rho[2] = rho;
+    p[n].emit[0] = p[n].emit[1] = p[n].emit[2] = emit;
+    p[n].tag = n;
+    return n + 1;
+}
+
+/* The six faces of the cube at (X, Y, Z) of edge E facing out (IN: in) into P at N. */
+static int host_cube(sc_poly *p, int n, double x, double y, double z, double e, int in, double rho)
+{
+    int ax;
+    for (ax = 0; ax < 3; ax++) {
+        double o[3] = {x, y, z};
+        n = host_poly(p, n, o[0], o[1], o[2], ax, e, e, !in, rho, 0);
+        o[ax] += e;
+        n = host_poly(p, n, o[0], o[1], o[2], ax, e, e, in, rho, 0);
+    }
+    return n;
+}
+
+/* The host's gatherers: a room of 4 x 4 x 2 cubes (199 polygons) gathered at 30
+ * points through the hierarchy and drawing every surface, in both builds: the same
+ * doubles. */
+static void test_host(void **st)
+{
+    sc_poly *p = calloc(256, sizeof *p);
+    int n = 0, i, j, k, b;
+    (void)st;
+    if (!p) fail_msg("out of memory");
+    n = host_cube(p, n, 0, 0, 0, 16, 1, 0.5);
+    n = host_poly(p, n, 6, 15.9, 6, 1, 4, 4, 1, 0.2, 6); /* the lamp, facing down */
+    for (k = 0; k < 2; k++)
+        for (j = 0; j < 4; j++)
+            for (i = 0; i < 4; i++) n = host_cube(p, n, 1.5 + 3.6 * i, 2 + 6 * k, 1.5 + 3.6 * j, 1.5, 0, 0.4);
+    for (b = 0; b < 2; b++) {
+        long failed, differ;
+        int rc = b ? host_gathers_float(p, n, &failed, &differ) : host_gathers_fixed(p, n, &failed, &differ);
+        if (rc != 0) fail_msg("%s host: the scene failed", b ? "float" : "fixed");
+        if (failed || differ)
+            fail_msg("%s host, %d polygons: %ld calls failed, %ld of 30 gathers differ culled", b ? "float" : "fixed", n,
+                     failed, differ);
+    }
+    free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cornell),    cmocka_unit_test(test_boxes), cmocka_unit_test(test_coplanar),
         cmocka_unit_test(test_on_surface), cmocka_unit_test(test_one),   cmocka_unit_test(test_rooms),
-        cmocka_unit_test(test_sizes),
+        cmocka_unit_test(test_sizes),      cmocka_unit_test(test_host),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -694,8 +694,8 @@ int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes);
 
 /* Makes G's gathers (rad_gather, rad_gather_sh) draw through hierarchy CULL (built by
  * rad_cull_build, read only: many gatherers may share it), with WORK (BYTES long, at
- * least RAD_GATHER_CULL_BYTES(G's res, the hierarchy's surfaces)) its own; CULL NULL:
- * every surface drawn again. A gather over a scene the hierarchy was not built for
+ * least RAD_GATHER_CULL_BYTES(G's res, the hierarchy's surfaces)) its own; CULL NULL
+ * (or rad_gather_init): every surface drawn again. A gather over a scene the hierarchy was not built for
  * (another surface count or scale) returns RAD_ERR_STATE. Returns RAD_OK, RAD_ERR_ARG
  * (NULL G or WORK, CULL not a hierarchy) or RAD_ERR_WORK. */
 int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes);

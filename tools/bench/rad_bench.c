@@ -1065,7 +1065,7 @@ static void box_face(sc_poly *p, int *n, const double lo[3], const double hi[3],
 /* A grid of SIDE x SIDE rooms 4.8 x 3 x 4.8 on a 5-unit pitch, walls facing in, each
  * with a ceiling lamp and four cabinets, and doorways 1 wide and 2 high between
  * neighbours along x, near one end of the wall or the other by the room's column, so
- * that no two line up: 36 polygons a room. Returns them (count in N), or NULL. */
+ * that no two line up: 27 to 31 polygons a room. Returns them (count in N), or NULL. */
 static sc_poly *gen_rooms(int side, int *n)
 {
     static const double white[3] = {0.7, 0.7, 0.68}, wood[3] = {0.5, 0.35, 0.2}, lamp[3] = {12, 12, 11};
@@ -1138,7 +1138,7 @@ static double gather_us(sc_gatherer *g, int side, double secs, int max, int *n)
     return 1e6 * t / k;
 }
 
-/* Culled against plain gathers on grids of rooms from 1 to 44 x 44 (36 to 69,696
+/* Culled against plain gathers on grids of rooms from 1 to 44 x 44 (27 to 59,840
  * polygons), fixed build, one core: the hierarchy's build time and each gather's. */
 static void report_cull(report_t *rp)
 {
@@ -1146,9 +1146,9 @@ static void report_cull(report_t *rp)
     const int ns = (int)(sizeof sides / sizeof *sides);
     double us[2][8], first[2] = {0, 0};
     int k, surf0 = 0, surf = 0;
-    out(rp, "\nCulled gathers (rad_cull_build, rad_gather_cull): a grid of rooms with doorways (36 polygons a "
-        "room), one shot, then gathers at res 32 on floors and walls of random rooms, every surface drawn against "
-        "through the hierarchy (the same values, bit for bit), fixed build, one core:\n\n"
+    out(rp, "\nCulled gathers (rad_cull_build, rad_gather_cull): a grid of rooms with doorways (27 to 31 polygons a "
+        "room), one shot, then gathers at res 32 on floors and walls of random rooms, drawing every surface against "
+        "drawing through the hierarchy (the same values, bit for bit), fixed build, one core:\n\n"
         "| rooms | surfaces | elements | gatherer and hierarchy ms | us per gather, all drawn | us per gather, culled | "
         "culled speed-up |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (k = 0; k < ns; k++) {

@@ -1417,9 +1417,10 @@ struct sc_gatherer {
 };
 
 /* Surfaces from which a new gatherer draws through the hierarchy: in rad_bench's cull
- * report (gathers at res 32 in grids of rooms) the culled gather took 1.3 times as long
- * as drawing all at 27 surfaces, 0.76 times at 116 and 0.2 at 1,952. */
-#define CULL_SURFACES 100
+ * report (gathers at res 32 in grids of rooms; two runs) the culled gather took 1.23
+ * to 1.27 times as long as drawing all at 27 surfaces, 0.76 to 1.09 at 116, 0.63 to
+ * 0.67 at 480 and 0.22 at 1,952. */
+#define CULL_SURFACES 200
 
 /* Gatherers may be made in threads of their own: the hierarchy is built once, under
  * this lock, and only read after. */
