@@ -43,6 +43,7 @@
 #define sc_rows_solve scf_rows_solve
 #define sc_rows_gauss_seidel scf_rows_gauss_seidel
 #define sc_set_surfaces scf_set_surfaces
+#define sc_set_light scf_set_light
 #define sc_restart scf_restart
 #define sc_keep scf_keep
 #define sc_solution_free scf_solution_free
