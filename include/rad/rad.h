@@ -544,8 +544,9 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
 /* ---- stored form factors: relighting without new visibility -------------------- */
 /* Cohen & Greenberg's form factors do not depend on light or colour, so once every
- * patch's hemi-cube row is stored, emissions and reflectances can change
- * (rad_set_surface, rad_restart) and the scene be solved again with no rendering.
+ * patch's hemi-cube row is stored, emissions, reflectances and lights can change
+ * (rad_set_surface, rad_set_light, rad_restart) and the scene be solved again with no
+ * hemi-cube rendered (lights render their direct shots again: rad_rows_shoot).
  * An entry keeps an element id and a 16-bit code of its form factor (5-bit exponent,
  * 11-bit mantissa of the Q2.30 value): relative error below 2^-11 = 0.05% per entry,
  * so a solution from stored rows is within about 0.05% of one from hemi-cubes.
