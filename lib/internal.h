@@ -33,6 +33,7 @@
 #define rad__ambient         radf__ambient
 #define rad__patch_mean      radf__patch_mean
 #define rad__lights_shoot    radf__lights_shoot
+#define rad__lights_check    radf__lights_check
 #define rad__lights_peak     radf__lights_peak
 #define rad__lights_solve    radf__lights_solve
 #endif
@@ -211,10 +212,13 @@ static inline int rad__lights_pending(const rad_scene_t *s)
     return s->lights_shot < s->n_lights;
 }
 int rad__lights_shoot(rad_scene_t *s, uint32_t max);
+/* RAD_ERR_RANGE when a point or spot light from index FIRST on lies beyond the core's
+ * range (rad__lights_shoot would refuse), else RAD_OK. */
+int rad__lights_check(const rad_scene_t *s, uint32_t first);
 rad_real_t rad__lights_peak(const rad_scene_t *s);
-/* rad_shoot while lights are pending: they shoot (each a shot of MAX_SHOTS), then
- * patches as rad__shoot (returns the shots, or the error). */
-int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
+/* rad_shoot (ROWS null) or rad_rows_shoot while lights are pending: they shoot (each
+ * a shot of MAX_SHOTS), then patches as rad__shoot (returns the shots, or the error). */
+int rad__lights_solve(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
 
 /* Progressive refinement through hemi-cubes (ROWS null) or stored rows. */
 int rad__shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);

@@ -139,15 +139,14 @@ int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max)
     return RAD_OK;
 }
 
-int rad_add_light(rad_scene_t *s, const rad_light_t *l)
+/* RAD_OK for a light rad_add_light takes, else its error but RAD_ERR_STATE. */
+static int light_ok(const rad_light_t *l)
 {
     rad_vec3_t u;
-    RAD__CHECK_SCENE(s);
     if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SKY || !res_ok(l->res))
         return RAD_ERR_ARG;
     if (l->type == RAD_LIGHT_SKY && (l->dirs > SKY_MAX_DIRS || (l->dirs && l->dirs < 3u)))
         return RAD_ERR_ARG;
-    if (!s->lights || s->solving) return RAD_ERR_STATE;
     if (!channel_ok(l->intensity.r) || !channel_ok(l->intensity.g) || !channel_ok(l->intensity.b))
         return RAD_ERR_RANGE;
     if (l->type == RAD_LIGHT_SKY &&
@@ -162,9 +161,47 @@ int rad_add_light(rad_scene_t *s, const rad_light_t *l)
         !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
         return RAD_ERR_RANGE;
     if (l->type == RAD_LIGHT_SUN && !(l->radius >= 0 && l->radius <= RAD__Q(0.25))) return RAD_ERR_RANGE;
+    return RAD_OK;
+}
+
+int rad_add_light(rad_scene_t *s, const rad_light_t *l)
+{
+    int rc;
+    RAD__CHECK_SCENE(s);
+    rc = light_ok(l);
+    if (rc == RAD_ERR_ARG) return rc; /* bad arguments first, then state, then ranges */
+    if (!s->lights || s->solving) return RAD_ERR_STATE;
+    if (rc < 0) return rc;
     if (s->n_lights >= s->max_lights) return RAD_ERR_FULL;
     s->lights[s->n_lights] = *l;
     return (int)s->n_lights++;
+}
+
+int rad_set_light(rad_scene_t *s, uint32_t k, const rad_light_t *l)
+{
+    int rc;
+    RAD__CHECK_SCENE(s);
+    if (!l || k >= s->n_lights) return RAD_ERR_ARG;
+    if ((rc = light_ok(l)) < 0) return rc;
+    if (!s->solving || !rad__lights_pending(s)) {
+        s->lights[k] = *l; /* read by the next solve's shots and power scale */
+        return RAD_OK;
+    }
+    /* A solve with lights still to shoot would shoot this one at the scale chosen
+     * without it: refused once anything has shot; before (rows computed, frozen) the
+     * scale is chosen again at once. */
+    if (s->lights_shot || s->stats.shots) return RAD_ERR_STATE;
+    s->lights[k] = *l;
+    return rad_restart(s);
+}
+
+/* A light all of whose channels are 0 (a light group's others, rad.h) sends nothing:
+ * its shot is not rendered. */
+static int dark(const rad_light_t *l)
+{
+    const rad_rgb_t *i = &l->intensity, *h = &l->horizon;
+    return !(i->r > 0 || i->g > 0 || i->b > 0) &&
+           (l->type != RAD_LIGHT_SKY || !(h->r > 0 || h->g > 0 || h->b > 0));
 }
 
 /* ---- the view --------------------------------------------------------------------- */
@@ -725,24 +762,32 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
     s->cube_built = 0; /* a coarse cube's tables lay in the depth buffer */
 }
 
-int rad__lights_shoot(rad_scene_t *s, uint32_t max)
+int rad__lights_check(const rad_scene_t *s, uint32_t first)
 {
-    uint32_t k, n = 0;
+    uint32_t k;
     rad_vec3_t c;
-    for (k = s->lights_shot; k < s->n_lights; k++)
+    for (k = first; k < s->n_lights; k++)
         if (is_point(&s->lights[k]) && !light_position(s, &s->lights[k], &c))
             return RAD_ERR_RANGE;
-    for (; n < max && rad__lights_pending(s); n++) shoot_light(s, &s->lights[s->lights_shot++]);
+    return RAD_OK;
+}
+
+int rad__lights_shoot(rad_scene_t *s, uint32_t max)
+{
+    uint32_t n = 0;
+    if (rad__lights_check(s, s->lights_shot) < 0) return RAD_ERR_RANGE;
+    for (; n < max && rad__lights_pending(s); n++, s->lights_shot++)
+        if (!dark(&s->lights[s->lights_shot])) shoot_light(s, &s->lights[s->lights_shot]);
     return (int)n;
 }
 
-int rad__lights_solve(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
+int rad__lights_solve(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     int lit, rest;
     rad__freeze(s);
     lit = rad__lights_shoot(s, max_shots); /* before any patch: their power joins emitted */
     if (lit < 0 || (uint32_t)lit >= max_shots) return lit;
-    rest = rad__shoot(s, 0, max_shots - (uint32_t)lit, tol);
+    rest = rad__shoot(s, rows, max_shots - (uint32_t)lit, tol);
     return rest < 0 ? rest : lit + rest;
 }
 

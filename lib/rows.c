@@ -60,13 +60,17 @@ static int rows_ready(const rad_scene_t *s, const rad_rows_t *rows)
     return rows_valid(s, rows, rows->n_rows) ? RAD_OK : RAD_ERR_ARG;
 }
 
+/* Lights are not rows: a light's direct light is its first shot, rendered again on each
+ * solve (light.c) exactly as rad_shoot renders it. Stored, a light would need a row of
+ * up to every element (a sky one per direction: its dome turns with its colours) in
+ * more caller memory, for a handful of renders next to the patches' rows. */
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol)
 {
     int rc;
     RAD__CHECK_SCENE(s);
-    if (s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     if ((rc = rows_ready(s, rows)) < 0) return rc;
     s->shot_patch = RAD_INDEX_NONE; /* as rad_shoot */
+    if (rad__lights_pending(s)) return rad__lights_solve(s, rows, max_shots, tol);
     return rad__shoot(s, rows, max_shots, tol);
 }
 
@@ -92,7 +96,8 @@ static void assemble(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *g)
     }
 }
 
-/* Patch K's emission-plus-reflection from the current patch radiosities B (3 per patch). */
+/* Patch K's emission-plus-reflection from the current patch radiosities B (3 per patch);
+ * E its emission plus the lights' direct light it reflects. */
 static rad_real_t gather(rad_scene_t *s, const rad_ff_t *g, const rad_real_t *b, uint32_t k,
                          unsigned c, rad_real_t e, rad_real_t rho)
 {
@@ -102,6 +107,37 @@ static rad_real_t gather(rad_scene_t *s, const rad_ff_t *g, const rad_real_t *b,
     return rad__add_sat(
         e, rad__mul(rho, rad__gs_value(sum, &s->stats.saturations), &s->stats.saturations),
         &s->stats.saturations);
+}
+
+/* Every element at its emission, then the lights' shots: each element's direct light
+ * added, and each patch's unshot power the direct light it reflects (rad__receive),
+ * which source() reads. */
+static void start_direct(rad_scene_t *s)
+{
+    uint32_t e, k;
+    for (e = 0; e < s->n_elements; e++)
+        s->pools.elements[e].radiosity =
+            rad__emission(s, &s->pools.surfaces[s->pools.elements[e].surface]);
+    for (k = 0; k < s->n_patches; k++) {
+        rad_patch_t *pt = &s->pools.patches[k];
+        pt->unshot[0] = pt->unshot[1] = pt->unshot[2] = 0;
+    }
+    rad__lights_shoot(s, UINT32_MAX); /* checked in range by the caller */
+}
+
+/* Patch K's own radiosity: its emission plus the direct light it reflects (its unshot
+ * power over its area, after start_direct). */
+static rad_rgb_t source(rad_scene_t *s, uint32_t k)
+{
+    const rad_patch_t *pt = &s->pools.patches[k];
+    rad_rgb_t em = rad__emission(s, &s->pools.surfaces[pt->surface]);
+    rad_energy_t a = rad__energy(RAD__ONE, pt->area);
+    uint32_t *sat = &s->stats.saturations;
+    /* (light received is >= 0; without lights, 0: the emission's own bits) */
+    if (pt->unshot[0] > 0) em.r = rad__add_sat(em.r, rad__energy_ratio(pt->unshot[0], a), sat);
+    if (pt->unshot[1] > 0) em.g = rad__add_sat(em.g, rad__energy_ratio(pt->unshot[1], a), sat);
+    if (pt->unshot[2] > 0) em.b = rad__add_sat(em.b, rad__energy_ratio(pt->unshot[2], a), sat);
+    return em;
 }
 
 int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
@@ -115,16 +151,18 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
     np = s->n_patches;
     /* The fixed build's sums hold 2^14 patches' terms (see rad__gs_term). */
     if (entries < RAD_GS_ENTRIES(np) || np > 16384u) return RAD_ERR_ARG;
-    if (s->n_lights) return RAD_ERR_STATE; /* no lights yet */
     if ((rc = rows_ready(s, rows)) < 0) return rc;
+    if ((rc = rad__lights_check(s, 0)) < 0) return rc;
     s->shot_patch = RAD_INDEX_NONE;
+    if (s->n_lights) rad_restart(s); /* the lights shoot again, from the emissions alone */
     rad__freeze(s);
     rad__scale_power(s); /* for the emissions now: this solve starts from them alone */
     assemble(s, rows, matrix);
+    start_direct(s);
     /* The patch radiosities live after the matrix, in its type's room (4 bytes). */
     b = (rad_real_t *)(void *)(matrix + (size_t)np * np);
     for (k = 0; k < np; k++) {
-        rad_rgb_t em = rad__emission(s, &s->pools.surfaces[s->pools.patches[k].surface]);
+        rad_rgb_t em = source(s, k);
         b[3 * k] = em.r;
         b[3 * k + 1] = em.g;
         b[3 * k + 2] = em.b;
@@ -133,8 +171,7 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
         int moved = 0;
         it++;
         for (k = 0; k < np; k++) {
-            const rad_surface_t *sf = &s->pools.surfaces[s->pools.patches[k].surface];
-            rad_rgb_t em = rad__emission(s, sf);
+            rad_rgb_t em = source(s, k);
             const rad_rgb_t *rho = rad__patch_rho(s, k);
             unsigned c;
             for (c = 0; c < 3; c++) {
@@ -149,10 +186,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
         }
         if (!moved) break;
     }
-    /* Elements: their emission plus every patch's total power shot once. */
-    for (e = 0; e < s->n_elements; e++)
-        s->pools.elements[e].radiosity =
-            rad__emission(s, &s->pools.surfaces[s->pools.elements[e].surface]);
+    /* Elements: their emission and direct light (start_direct) plus every patch's total
+     * power shot once. */
     for (k = 0; k < np; k++) {
         rad_energy_t u[3];
         const rad_patch_t *pt = &s->pools.patches[k];

@@ -366,7 +366,7 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
     /* lights first (light.c: a call of its own, which keeps this frame as it was) */
     if (rad__lights_pending(s)) {
         s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
-        return rad__lights_solve(s, max_shots, tol);
+        return rad__lights_solve(s, 0, max_shots, tol);
     }
     if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
     s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */

@@ -527,7 +527,7 @@ static void test_dirty_buffers(void **st)
 }
 
 /* The public calls refused_calls makes, each on a scene that must be refused. */
-#define CALLS 28
+#define CALLS 29
 
 /* Every call taking a scene, on scene S: how many of them refused it with RAD_ERR_STATE
  * (printed one by one; rad_unshot_fraction, which returns a value, counts when 0). The
@@ -575,6 +575,7 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rc[n++] = rad_element_geometry(s, 0, NULL, NULL);
     rc[n++] = rad_use_lights(s, lights, 1);
     rc[n++] = rad_add_light(s, &sun);
+    rc[n++] = rad_set_light(s, 0, &sun);
     rc[n++] = rad_render(s, vrgb, &cam, fb, zb, 4, 4);
     rc[n++] = rad_form_factors(s, 0, ff);
     rc[n++] = rad_rows_compute(s, &rows, 1);

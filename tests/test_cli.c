@@ -1414,7 +1414,7 @@ static double csv_mean_red(const char *path, double *area_out)
  * exactly by the dome's weights (rad.h) but for the raster's coverage of the floor's
  * outline in each direction's shot (test_light.c's bound at the scene's res 192:
  * p = 16 sqrt 2 / 192, P <= 64 for every projection: 2.2% of the area); with N = 12
- * directions the same. Bad values and stored rows are refused. */
+ * directions the same. Bad values are refused (stored rows take lights: test_relight.c). */
 static void test_sky(void **state)
 {
     static const struct {
@@ -1427,7 +1427,6 @@ static void test_sky(void **state)
         {"1,1,1,1,1", NULL, "--sky wants"},
         {"1,1,-1", NULL, "radiances >= 0"},
         {"1,1,1,1,-1,1,12", NULL, "radiances >= 0"},
-        {"1,1,1", "--save-ff", "stored form factors"},
     };
     static const struct {
         const char *val;
@@ -1471,8 +1470,8 @@ static void test_sky(void **state)
  * (test_light.c: p P / sqrt 2 + 2 p^2 + P p sqrt 2 / 32 over the area, p = the
  * projection's diameter / R, R = 4 x 192 = 768): 0.62%. Under --point at height 4 over
  * its centre the floor gets I times its solid angle 4 asin(64 / 80) (within 1%: the
- * total over the plane, measured +0.02% at R 512 in test_light). Bad values and
- * stored rows are refused. */
+ * total over the plane, measured +0.02% at R 512 in test_light). Bad values are
+ * refused (stored rows take lights: test_relight.c). */
 static void test_lights(void **state)
 {
     static const struct {
@@ -1482,7 +1481,6 @@ static void test_lights(void **state)
         {"--sun", "0,-1,0,1,1,1,20", NULL, "angular radius"},
         {"--point", "0,4,0,-1,1,1", NULL, "--point wants X,Y,Z,R,G,B"},
         {"--spot", "0,4,0,0,-1,0,1,1,1,200", NULL, "ANGLE"},
-        {"--point", "0,4,0,1,1,1", "--save-ff", "stored form factors"},
     };
     run_t r;
     double area, mean, t = 60 * 3.14159265358979323846 / 180, want;

@@ -68,6 +68,7 @@ typedef struct {
     int nlights;
     int shots;              /* 0: the lights' shots alone */
     int band_rows;          /* rad_config_t.band_rows */
+    double tol;             /* the solve's tolerance (0: shots alone decide) */
 } tscene;
 
 /* Per element: radiosity (caller units), area, corners (caller units), its polygon. */
@@ -81,6 +82,13 @@ typedef struct {
 
 int scene_light_fixed(const tscene *sc, tres *r);
 int scene_light_float(const tscene *sc, tres *r);
+/* Stored rows (scene_rows's MODE) */
+#define ROWS_SOLVE 0 /* the scene solved through stored rows */
+#define ROWS_RELIT 1 /* solved with every light at half its intensity, relit (rad_set_light) */
+#define ROWS_MIX   2 /* each light solved alone (the others dark), mixed (rad_mix) */
+#define ROWS_GS    3 /* rad_rows_gauss_seidel (to the tolerance, at most SHOTS sweeps) */
+int scene_rows_fixed(const tscene *sc, int mode, tres *r);
+int scene_rows_float(const tscene *sc, int mode, tres *r);
 
 /* ---- the scene, in this build of the core --------------------------------------- */
 
@@ -120,15 +128,38 @@ static int world_init(world_t *w, const rad_config_t *c, int lights)
     return rc == RAD_OK && lights ? rad_use_lights(&w->s, w->lights, 4) : rc;
 }
 
-int TW(scene_light)(const tscene *sc, tres *r)
+/* Light L of the test's scene as the core's, its intensity times K. */
+static rad_light_t core_light(const tlight *t, double k)
 {
-    world_t *w = calloc(1, sizeof *w);
+    rad_light_t l;
+    memset(&l, 0, sizeof l);
+    l.type = (uint16_t)t->type;
+    l.res = (uint16_t)t->res;
+    l.position = vec(t->pos);
+    l.direction = vec(t->dir);
+    l.intensity.r = RAD_REAL(k * t->i[0]);
+    l.intensity.g = RAD_REAL(k * t->i[1]);
+    l.intensity.b = RAD_REAL(k * t->i[2]);
+    l.cos_outer = RAD_REAL(t->cos_outer);
+    l.cos_inner = RAD_REAL(t->cos_inner);
+    l.radius = RAD_REAL(t->radius);
+    if (t->type == RAD_LIGHT_SKY) { /* tlight's pos: the horizon's radiance; radius: dirs */
+        memset(&l.position, 0, sizeof l.position);
+        l.horizon.r = RAD_REAL(k * t->pos[0]);
+        l.horizon.g = RAD_REAL(k * t->pos[1]);
+        l.horizon.b = RAD_REAL(k * t->pos[2]);
+        l.radius = 0;
+        l.dirs = (uint32_t)t->radius;
+    }
+    return l;
+}
+
+/* W's scene from SC, every light's intensity times K. */
+static int world_scene(world_t *w, const tscene *sc, double k)
+{
     rad_config_t c;
     rad_rgb_t rho;
-    double ls;
-    int i, k, rc;
-    if (!w) return -100;
-    memset(r, 0, sizeof *r);
+    int i, j, rc;
     memset(&c, 0, sizeof c);
     c.max_element = RAD_REAL(sc->max_element);
     c.max_patch = RAD_REAL(4 * sc->max_element);
@@ -138,42 +169,21 @@ int TW(scene_light)(const tscene *sc, tres *r)
     rho.r = rho.g = rho.b = RAD_REAL(sc->rho);
     for (i = 0; i < sc->npolys && rc >= 0; i++) {
         rad_vec3_t v[4];
-        for (k = 0; k < sc->polys[i].n; k++) v[k] = vec(sc->polys[i].v[k]);
+        for (j = 0; j < sc->polys[i].n; j++) v[j] = vec(sc->polys[i].v[j]);
         rc = rad_add_polygon(&w->s, v, (unsigned)sc->polys[i].n, &rho, NULL);
     }
     for (i = 0; i < sc->nlights && rc >= 0; i++) {
-        const tlight *t = &sc->lights[i];
-        rad_light_t l;
-        memset(&l, 0, sizeof l);
-        l.type = (uint16_t)t->type;
-        l.res = (uint16_t)t->res;
-        l.position = vec(t->pos);
-        l.direction = vec(t->dir);
-        l.intensity.r = RAD_REAL(t->i[0]);
-        l.intensity.g = RAD_REAL(t->i[1]);
-        l.intensity.b = RAD_REAL(t->i[2]);
-        l.cos_outer = RAD_REAL(t->cos_outer);
-        l.cos_inner = RAD_REAL(t->cos_inner);
-        l.radius = RAD_REAL(t->radius);
-        if (t->type == RAD_LIGHT_SKY) { /* tlight's pos: the horizon's radiance; radius: dirs */
-            memset(&l.position, 0, sizeof l.position);
-            l.horizon.r = RAD_REAL(t->pos[0]);
-            l.horizon.g = RAD_REAL(t->pos[1]);
-            l.horizon.b = RAD_REAL(t->pos[2]);
-            l.radius = 0;
-            l.dirs = (uint32_t)t->radius;
-        }
+        rad_light_t l = core_light(&sc->lights[i], k);
         rc = rad_add_light(&w->s, &l);
     }
-    if (rc < 0) {
-        free(w);
-        return rc;
-    }
-    r->unshot_before = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
-    rc = rad_shoot(&w->s, (uint32_t)(sc->shots ? sc->shots : sc->nlights), 0);
-    r->rc = rc;
-    r->unshot_after = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
-    ls = ldexp(1.0, -w->s.length_shift);
+    return rc;
+}
+
+/* W's solution into R (radiosities in the caller's units). */
+static void world_read(world_t *w, tres *r)
+{
+    double ls = ldexp(1.0, -w->s.length_shift);
+    int i, k;
     r->n = (int)w->s.n_elements;
     for (i = 0; i < r->n; i++) {
         const rad_element_t *el = &w->elem[i];
@@ -193,6 +203,98 @@ int TW(scene_light)(const tscene *sc, tres *r)
         }
     }
     r->saturations = w->s.stats.saturations;
+}
+
+static uint32_t max_shots(const tscene *sc)
+{
+    return (uint32_t)(sc->shots ? sc->shots : sc->nlights);
+}
+
+int TW(scene_light)(const tscene *sc, tres *r)
+{
+    world_t *w = calloc(1, sizeof *w);
+    int rc;
+    if (!w) return -100;
+    memset(r, 0, sizeof *r);
+    rc = world_scene(w, sc, 1);
+    if (rc < 0) {
+        free(w);
+        return rc;
+    }
+    r->unshot_before = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
+    rc = rad_shoot(&w->s, max_shots(sc), RAD_REAL(sc->tol));
+    r->rc = rc;
+    r->unshot_after = RAD_TO_DOUBLE(rad_unshot_fraction(&w->s));
+    world_read(w, r);
+    free(w);
+    return rc;
+}
+
+/* SC solved through stored rows as MODE says (ROWS_*): returns the last solve's
+ * shots, or the first error. */
+int TW(scene_rows)(const tscene *sc, int mode, tres *r)
+{
+    world_t *w = calloc(1, sizeof *w);
+    rad_rows_t rows;
+    rad_rgb_t *groups[4] = {0}, *mix = 0, ones[4];
+    const rad_rgb_t *cg[4];
+    int rc, g, i;
+    memset(&rows, 0, sizeof rows);
+    memset(r, 0, sizeof *r);
+    if (!w) return -100;
+    rc = world_scene(w, sc, mode == ROWS_RELIT ? 0.5 : 1);
+    if (rc >= 0) {
+        rows.max_rows = w->s.n_patches;
+        rows.max_entries = w->s.n_patches * w->s.n_elements;
+        rows.start = calloc(rows.max_rows + 1u, sizeof *rows.start);
+        rows.ids = calloc(rows.max_entries, sizeof *rows.ids);
+        rows.ffs = calloc(rows.max_entries, sizeof *rows.ffs);
+        rc = rows.start && rows.ids && rows.ffs ? rad_rows_compute(&w->s, &rows, rows.max_rows) : -100;
+    }
+    if (rc >= 0 && mode == ROWS_RELIT) {
+        rc = rad_rows_shoot(&w->s, &rows, max_shots(sc), RAD_REAL(sc->tol));
+        for (i = 0; i < sc->nlights && rc >= 0; i++) {
+            rad_light_t l = core_light(&sc->lights[i], 1);
+            rc = rad_set_light(&w->s, (uint32_t)i, &l);
+        }
+        if (rc >= 0) rc = rad_restart(&w->s);
+    }
+    if (rc >= 0 && mode == ROWS_MIX) {
+        for (g = 0; g < sc->nlights && rc >= 0; g++) {
+            groups[g] = calloc(w->s.n_elements, sizeof *groups[g]);
+            cg[g] = groups[g];
+            ones[g].r = ones[g].g = ones[g].b = RAD_REAL(1);
+            for (i = 0; i < sc->nlights && rc >= 0; i++) {
+                rad_light_t l = core_light(&sc->lights[i], i == g ? 1 : 0);
+                rc = rad_set_light(&w->s, (uint32_t)i, &l);
+            }
+            if (rc >= 0) rc = rad_restart(&w->s);
+            if (rc >= 0) rc = rad_rows_shoot(&w->s, &rows, max_shots(sc), RAD_REAL(sc->tol));
+            for (i = 0; rc >= 0 && i < (int)w->s.n_elements; i++)
+                rad_element_radiosity(&w->s, (uint32_t)i, 0, &groups[g][i]);
+        }
+        mix = calloc(w->s.n_elements, sizeof *mix);
+        if (rc >= 0) rc = rad_mix(&w->s, cg, ones, (uint32_t)sc->nlights, mix);
+    } else if (rc >= 0 && mode == ROWS_GS) {
+        size_t n = RAD_GS_ENTRIES(w->s.n_patches);
+        rad_ff_t *m = calloc(n, sizeof *m);
+        rc = m ? rad_rows_gauss_seidel(&w->s, &rows, m, n, max_shots(sc), RAD_REAL(sc->tol)) : -100;
+        free(m);
+    } else if (rc >= 0) {
+        rc = rad_rows_shoot(&w->s, &rows, max_shots(sc), RAD_REAL(sc->tol));
+    }
+    r->rc = rc;
+    world_read(w, r);
+    for (i = 0; mix && i < r->n; i++) {
+        r->b[i][0] = RAD_TO_DOUBLE(mix[i].r);
+        r->b[i][1] = RAD_TO_DOUBLE(mix[i].g);
+        r->b[i][2] = RAD_TO_DOUBLE(mix[i].b);
+    }
+    for (g = 0; g < 4; g++) free(groups[g]);
+    free(mix);
+    free(rows.start);
+    free(rows.ids);
+    free(rows.ffs);
     free(w);
     return rc;
 }
@@ -265,7 +367,7 @@ static void test_sun_plane(void **state)
         double t = angles[a] * PI / 180, total = 0, want, px, worst = 0;
         tpoly pl = ground(0, 0, 0, 16, 1);
         tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
-        tscene sc = {64, 1.0, rho, &pl, 1, &sun, 1, 0, 0};
+        tscene sc = {64, 1.0, rho, &pl, 1, &sun, 1, 0, 0, 0};
         double dir[3] = {sin(t), -cos(t), 0}, pproj, aproj;
         int e;
         CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot at %g degrees", angles[a]);
@@ -305,7 +407,7 @@ static void test_box_shadow(void **state)
     tpoly p[6];
     double dir[3] = {sin(t), -cos(t), 0}, px, got = 0, lit, shadow, err;
     tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {sin(t), -cos(t), 0}, {e0, e0, e0}, 0, 0, 0};
-    tscene sc = {64, 1.0, rho, p, 6, &sun, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, p, 6, &sun, 1, 0, 0, 0};
     int e, dark = 0;
     (void)state;
     p[0] = ground(0, 0, 0, 24, 1);
@@ -395,7 +497,7 @@ static void test_point_plane(void **state)
     /* the face's axis meets the ground at (4, 0, 8 / 3) */
     tpoly pl = ground(4, 0, 8.0 / 3, 3, 1);
     tlight pt = {RAD_LIGHT_POINT, r, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
-    tscene sc = {64, 1.0, rho, &pl, 1, &pt, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, &pl, 1, &pt, 1, 0, 0, 0};
     double worst = 0, worst_rel = 0, tot = 0, tot_want = 0, s2 = 0;
     int e;
     (void)state;
@@ -442,7 +544,7 @@ static void test_spot_cone(void **state)
     tpoly pl = ground(0, 0, 0, 16, 1);
     tlight sp = {RAD_LIGHT_SPOT, 256, {0, 8, 0}, {0, -1, 0}, {i0, i0, i0}, co, ci, 0};
     tlight pt = {RAD_LIGHT_POINT, 256, {0, 8, 0}, {0, 0, 0}, {i0, i0, i0}, 0, 0, 0};
-    tscene sc = {64, 1.0, rho, &pl, 1, &sp, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, &pl, 1, &sp, 1, 0, 0, 0};
     double px = 2.0 / 256; /* a face pixel's angle, at most */
     int e, outside = 0, inside = 0;
     (void)state;
@@ -500,7 +602,7 @@ static void test_back_faces(void **state)
     static const double sun_deg[3] = {0, 30, 60};
     tpoly p[6];
     tlight l[6];
-    tscene sc = {64, 1.0, rho, p, 6, l, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, p, 6, l, 1, 0, 0, 0};
     int e, k, inner;
     (void)state;
     p[0] = ground(0, 0, 0, s, 1);     /* the floor, facing up into the box */
@@ -564,7 +666,7 @@ static void test_back_to_back(void **state)
     const double e0 = 80.0, rho = 0.5;
     tpoly p[2];
     tlight l;
-    tscene sc = {64, 1.0, rho, p, 1, &l, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, p, 1, &l, 1, 0, 0, 0};
     int k, order, e, n;
     (void)state;
     for (k = 0; k < 5; k++) {
@@ -609,7 +711,7 @@ static void test_twin(void **state)
     tpoly p[3];
     tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0.05},
                    {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9, 0}};
-    tscene sc = {64, 1.0, rho, p, 3, l, 2, 40, 0};
+    tscene sc = {64, 1.0, rho, p, 3, l, 2, 40, 0, 0};
     double sf = 0, sx = 0, worst = 0, px, dir[3];
     int e;
     (void)state;
@@ -652,7 +754,7 @@ static void test_sun_radius(void **state)
     const double e0 = 40, rho = 0.5, rad = 0.25;
     tpoly p[2];
     tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, rad};
-    tscene sc = {64, 1.0, rho, p, 2, &sun, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, p, 2, &sun, 1, 0, 0, 0};
     /* the window: at most the diameter of the scene's projection (40 x 40, tilted by
      * up to 1/4 either way: 2 x 8 / 4 more) over R */
     const double px = sqrt(2.0) * (40 + 4) / 1024;
@@ -704,7 +806,7 @@ static void test_bands(void **state)
     tpoly p[2];
     tlight l[2] = {{RAD_LIGHT_SUN, 0, {0, 0, 0}, {0.3, -1, 0.2}, {30, 20, 10}, 0, 0, 0},
                    {RAD_LIGHT_POINT, 0, {-3, 6, 2}, {0, 0, 0}, {90, 90, 60}, 0, 0, 0}};
-    tscene sc = {32, 1.0, 0.5, p, 2, l, 2, 0, 0};
+    tscene sc = {32, 1.0, 0.5, p, 2, l, 2, 0, 0, 0};
     int e, c;
     (void)state;
     p[0] = ground(0, 0, 0, 12, 1);
@@ -786,7 +888,7 @@ static void test_sky_open(void **state)
     for (a = 0; a < sizeof counts / sizeof counts[0]; a++) {
         tpoly pl = ground(0, 0, 0, 16, 1);
         tlight sky = {RAD_LIGHT_SKY, 1024, {l0, l0, l0}, {0, 1, 0}, {l0, l0, l0}, 0, 0, counts[a]};
-        tscene sc = {64, 2.0, rho, &pl, 1, &sky, 1, 0, 0};
+        tscene sc = {64, 2.0, rho, &pl, 1, &sky, 1, 0, 0, 0};
         double total = 0, want = PI * l0 * 32 * 32, err, worst = 0;
         int e;
         dome(counts[a], l0, l0, &t);
@@ -876,7 +978,7 @@ static void test_sky_box(void **state)
     const double l0 = 10, rho = 0.5, px = 12.0 / 1024, exact = box_exact(l0);
     tpoly p[9];
     tlight sky = {RAD_LIGHT_SKY, 1024, {l0, l0, l0}, {0, 0, 0}, {l0, l0, l0}, 0, 0, 0};
-    tscene sc = {64, 1.0, rho, p, sky_box(p), &sky, 1, 0, 0};
+    tscene sc = {64, 1.0, rho, p, sky_box(p), &sky, 1, 0, 0, 0};
     double got = 0, want, err, worst = 0;
     unsigned a;
     int e;
@@ -942,7 +1044,7 @@ static void test_sky_gradient(void **state)
     for (a = 0; a < 3; a++) {
         const double z = zh[a][0], h = zh[a][1];
         tlight sky = {RAD_LIGHT_SKY, 1024, {h, h, h}, {0, 1, 0}, {z, z, z}, 0, 0, 0};
-        tscene sc = {64, 2.0, rho, p, 2, &sky, 1, 0, 0};
+        tscene sc = {64, 2.0, rho, p, 2, &sky, 1, 0, 0, 0};
         double g = 0, w = 0, wg = PI * h + 2 * PI * (z - h) / 3, ww = (PI / 2 - 2.0 / 3) * h + 2.0 / 3 * z;
         double dw, eg, ew;
         dome(192, z, h, &t);
@@ -980,7 +1082,7 @@ static void test_sky_twin(void **state)
     const double rho = 0.6, px = 12.0 / 256, z[3] = {10, 6, 3}, h[3] = {4, 8, 12};
     tpoly p[9];
     tlight sky = {RAD_LIGHT_SKY, 256, {4, 8, 12}, {0, 2, 0}, {10, 6, 3}, 0, 0, 27};
-    tscene sc = {64, 1.0, rho, p, sky_box(p), &sky, 1, 30, 0};
+    tscene sc = {64, 1.0, rho, p, sky_box(p), &sky, 1, 30, 0, 0};
     double sf = 0, sx = 0, worst = 0, pix[3] = {0, 0, 0};
     int e, c, k;
     (void)state;
@@ -1002,13 +1104,116 @@ static void test_sky_twin(void **state)
     CHECK_NEAR(sx, sf, sf * 5e-4, "the total power against the twin");
 }
 
+/* The largest relative difference of A from B per element and channel, over values
+ * above 1% of B's brightest (dimmer ones are rounding), and whether every bit is equal. */
+static double rel_diff(const tres *a, const tres *b, int *same)
+{
+    double top = 0, worst = 0;
+    int e, c;
+    *same = a->n == b->n;
+    for (e = 0; e < b->n; e++)
+        for (c = 0; c < 3; c++) top = fmax(top, b->b[e][c]);
+    for (e = 0; e < a->n && e < b->n; e++)
+        for (c = 0; c < 3; c++) {
+            *same = *same && a->b[e][c] == b->b[e][c];
+            if (b->b[e][c] > 0.01 * top) worst = fmax(worst, fabs(a->b[e][c] / b->b[e][c] - 1));
+        }
+    return worst;
+}
+
+/* Lights with stored rows (rad_rows_shoot), relighting (rad_set_light, rad_restart)
+ * and light groups (rad_mix), on an open scene (ground, box, a back wall) under a sun
+ * at 40 degrees and a point light, solved to 1e-4:
+ *   - the lights' shots alone: the very bits of rad_shoot's (the same renders);
+ *   - the whole solve from rows against hemi-cubes: within 0.2%, the bound of
+ *     tests/test_relight.c's REL_BOUND (the 16-bit codes' 2^-11 = 0.049% per form
+ *     factor on the bounced light, and the difference of two solves stopped at 1e-4);
+ *   - solved at half intensity, then relit to full: the bits of the solve at full;
+ *   - each light solved alone (the other dark) and mixed: within 0.2% of both solved
+ *     at once (radiosity is linear in emission; each group's solve stops at 1e-4 of
+ *     its own light and has its own power scale);
+ *   - Gauss-Seidel on the same rows, the lights' direct light its source: within 0.5%
+ *     of the rows solve (tests/test_relight.c's bound for the same equations solved
+ *     two ways);
+ *   - the float twin's rows solve against the fixed build's, as test_twin: 0.5% plus
+ *     two pixels of each light. */
+static void test_rows_lights(void **state)
+{
+    static tres fresh, rows, other;
+    const double t = 40 * PI / 180, rho = 0.6, s = 3;
+    tpoly p[7];
+    tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0},
+                   {RAD_LIGHT_POINT, 128, {-5, 7, 3}, {0, 0, 0}, {200, 200, 150}, 0, 0, 0}};
+    tscene sc = {32, 1.0, rho, p, 7, l, 2, 2, 0, 0};
+    double d, worst = 0, px, dir[3];
+    int same, e, c, shots;
+    (void)state;
+    p[0] = ground(0, 0, 0, 8, 1);
+    p[1] = ground(0, 2 * s, 0, s, 1);
+    p[2] = (tpoly){{{s, 0, -s}, {s, 2 * s, -s}, {s, 2 * s, s}, {s, 0, s}}, 4};
+    p[3] = (tpoly){{{-s, 0, -s}, {-s, 0, s}, {-s, 2 * s, s}, {-s, 2 * s, -s}}, 4};
+    p[4] = (tpoly){{{-s, 0, s}, {s, 0, s}, {s, 2 * s, s}, {-s, 2 * s, s}}, 4};
+    p[5] = (tpoly){{{-s, 0, -s}, {-s, 2 * s, -s}, {s, 2 * s, -s}, {s, 0, -s}}, 4};
+    p[6] = (tpoly){{{-8, 0, -8}, {-8, 6, -8}, {8, 6, -8}, {8, 0, -8}}, 4};
+    /* the lights' shots alone */
+    CHECK_INT_EQ(scene_light_fixed(&sc, &fresh), 2, "the lights' shots through rad_shoot");
+    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_SOLVE, &rows), 2, "the lights' shots through rad_rows_shoot");
+    d = rel_diff(&rows, &fresh, &same);
+    CHECK_INT_EQ(same, 1, "the lights' direct light from rad_rows_shoot against rad_shoot's bits (max %.2g%%)",
+                 100 * d);
+    /* whole solves */
+    sc.shots = 2000;
+    sc.tol = 1e-4;
+    shots = scene_light_fixed(&sc, &fresh);
+    CHECK_INT_GE(shots, 20, "rad_shoot's shots to 1e-4");
+    CHECK_INT_LE(shots, 1999, "rad_shoot converged before its limit");
+    CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_SOLVE, &rows), 20, "rad_rows_shoot's shots to 1e-4");
+    d = rel_diff(&rows, &fresh, &same);
+    print_message("lights with stored rows: %d elements, rows against hemi-cubes within %.4f%% (bound 0.2%%)\n",
+                  rows.n, 100 * d);
+    CHECK_LE(d, 0.002, "the solve from stored rows with a sun and a point light against hemi-cubes");
+    CHECK_INT_EQ((int)rows.saturations, 0, "saturations of the rows solve");
+    /* relit */
+    CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_RELIT, &other), 20, "the relit solve's shots");
+    d = rel_diff(&other, &rows, &same);
+    CHECK_INT_EQ(same, 1, "relit from half intensity against the solve at full: the same bits (max %.2g%%)",
+                 100 * d);
+    /* groups */
+    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_MIX, &other), RAD_OK, "the groups' solves and their mix");
+    d = rel_diff(&other, &rows, &same);
+    print_message("light groups: sun and point light solved alone and mixed, within %.4f%% of both at once "
+                  "(bound 0.2%%)\n",
+                  100 * d);
+    CHECK_LE(d, 0.002, "the mix of the sun's and the point light's groups against both solved at once");
+    /* Gauss-Seidel */
+    CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_GS, &other), 2, "Gauss-Seidel's sweeps");
+    d = rel_diff(&other, &rows, &same);
+    print_message("Gauss-Seidel with a sun and a point light: within %.4f%% of the rows solve (bound 0.5%%)\n",
+                  100 * d);
+    CHECK_LE(d, 0.005, "Gauss-Seidel with lights against progressive refinement from the same rows");
+    /* the twin */
+    CHECK_INT_GE(scene_rows_float(&sc, ROWS_SOLVE, &other), 20, "the twin's rows solve");
+    CHECK_INT_EQ(other.n, rows.n, "the twin's elements");
+    memcpy(dir, l[0].dir, sizeof dir);
+    for (e = 0; e < 3; e++) dir[e] /= sqrt(dot3(l[0].dir, l[0].dir));
+    px = sun_pixel(p, 7, dir, 256);
+    for (e = 0; e < rows.n; e++)
+        for (c = 0; c < 3; c++) {
+            double a = rows.b[e][c], b = other.b[e][c];
+            double pix = 2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) / other.area[e];
+            double allowed = 0.005 * b + pix;
+            if (fabs(a - b) / allowed > worst) worst = fabs(a - b) / allowed;
+            CHECK_NEAR(a, b, allowed, "element %d channel %d of the rows solve against the twin", e, c);
+        }
+    print_message("lights with stored rows, the twin: elements at most %.3f of their bound\n", worst);
+}
+
 /* Unshot fraction 1 before the lights shoot; bad lights refused with the scene unchanged. */
 static void test_api(void **state)
 {
     static world_t w;
     rad_config_t c = {0};
     rad_light_t l, arr[2];
-    rad_rows_t rows;
     (void)state;
     memset(&w, 0, sizeof w);
     CHECK_INT_EQ(world_init(&w, &c, 0), RAD_OK, "init");
@@ -1070,24 +1275,32 @@ static void test_api(void **state)
         CHECK_INT_EQ(rad_add_polygon(&w.s, v, 4, &rho, NULL), 0, "the ground");
     }
     CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction before the lights shoot");
-    memset(&rows, 0, sizeof rows);
-    CHECK_INT_EQ(rad_rows_shoot(&w.s, &rows, 10, 0), RAD_ERR_STATE, "stored rows with lights");
     {
         static world_t w2;
-        rad_rows_t rows2;
         memset(&w2, 0, sizeof w2);
-        memset(&rows2, 0, sizeof rows2);
         memset(&l, 0, sizeof l);
         l.type = RAD_LIGHT_SKY;
         l.intensity.r = l.horizon.r = RAD_REAL(1);
         CHECK_INT_EQ(world_init(&w2, &c, 1), RAD_OK, "init for a sky");
         CHECK_INT_EQ(rad_add_light(&w2.s, &l), 0, "a sky with up 0 (+y) and the default directions");
-        CHECK_INT_EQ(rad_rows_shoot(&w2.s, &rows2, 10, 0), RAD_ERR_STATE, "stored rows with a sky");
+        CHECK_INT_EQ(rad_set_light(&w2.s, 0, &l), RAD_OK, "a sky set again");
     }
+    l = arr[1];
+    CHECK_INT_EQ(rad_set_light(&w.s, 2, &l), RAD_ERR_ARG, "setting a light not added");
+    CHECK_INT_EQ(rad_set_light(&w.s, 0, NULL), RAD_ERR_ARG, "setting a light to NULL");
+    l.intensity.r = RAD_REAL(-1);
+    CHECK_INT_EQ(rad_set_light(&w.s, 0, &l), RAD_ERR_RANGE, "setting a negative intensity");
+    l.intensity.r = RAD_REAL(1);
+    l.type = 9;
+    CHECK_INT_EQ(rad_set_light(&w.s, 0, &l), RAD_ERR_ARG, "setting an unknown type");
+    CHECK_INT_EQ(arr[0].type, RAD_LIGHT_POINT, "the light after refused sets");
+    l.type = RAD_LIGHT_POINT;
     CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the first light's shot");
     CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction with a light still to shoot");
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_STATE, "a light while solving");
+    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_ERR_STATE, "setting a light while another is still to shoot");
     CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the second light's shot");
+    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_OK, "setting a light once all have shot (for the restart)");
     CHECK_LT(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, "unshot fraction after the lights");
     CHECK_INT_EQ(rad_restart(&w.s), RAD_OK, "restart");
     CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "lights shoot again after a restart");
@@ -1100,7 +1313,7 @@ int main(void)
         cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_back_faces), cmocka_unit_test(test_back_to_back),  cmocka_unit_test(test_twin),
         cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
         cmocka_unit_test(test_sky_open), cmocka_unit_test(test_sky_box), cmocka_unit_test(test_sky_gradient),
-        cmocka_unit_test(test_sky_twin),
+        cmocka_unit_test(test_sky_twin), cmocka_unit_test(test_rows_lights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -723,7 +723,7 @@ static void test_cli_save_load(void **state)
     expect_status(&r, 0);
     /* No hemi-cube at all: the counters of the whole run are zero. */
     CHECK_CONTAINS(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels", "rad_cli's stdout");
-    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "0 polygons rendered during the solve", "rad_cli's stdout");
     CHECK_CONTAINS(r.out, "loaded from", "rad_cli's stdout");
     run_free(&r);
     /* Rows computed in memory only (a light group of the one light): the same image. */
@@ -873,7 +873,7 @@ static void test_cli_groups(void **state)
 
     /* Errors. */
     RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber,brass", "-o", out, GALLERY);
-    expect_error(&r, 1, "no material named 'brass'");
+    expect_error(&r, 1, "no material or light named 'brass'");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber", "--light-group", "warm=panel", "-o", out, GALLERY);
     expect_error(&r, 2, "a group name given twice");
@@ -927,6 +927,100 @@ static void test_cli_gauss_seidel(void **state)
     free(a); free(b);
 }
 
+/* The solve of ARGS (a NULL-terminated list after the common ones) dumped to CSV PATH:
+ * the elements' radiosities, N of them. */
+static double *cli_csv(const char *path, int *n, const char *const *args)
+{
+    const char *all[32];
+    run_t r;
+    int k = 0, j;
+    const char *common[] = {"--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.0001",
+                            "--sun", "0.3,-0.6,-1,4,4,3.5", "--point", "-0.2,0.35,-0.3,0.02,0.02,0.015"};
+    for (j = 0; j < (int)(sizeof common / sizeof common[0]); j++) all[k++] = common[j];
+    for (j = 0; args[j]; j++) all[k++] = args[j];
+    all[k++] = "--dump-radiosity";
+    all[k++] = path;
+    all[k++] = "-o";
+    all[k++] = tmp_path("lights.png");
+    all[k++] = CORNELL;
+    all[k] = NULL;
+    run_args(&r, FIXED, all);
+    expect_status(&r, 0);
+    run_free(&r);
+    return read_csv(path, n);
+}
+#define CLI_CSV(path, n, ...) cli_csv((path), (n), (const char *const[]){__VA_ARGS__, NULL})
+
+/* Lights (--sun through the Cornell box's open front, --point inside, and its ceiling
+ * lamp) with stored form factors through rad_cli:
+ *   - --save-ff then --load-ff: the same elements, bit for bit (the lights' shots are
+ *     rendered again, the same bits); against the plain hemi-cube solve within
+ *     REL_BOUND (the rows' codes on the bounced light, two solves to 1e-4);
+ *   - the sun, the point light and the lamp each a group ('other': the lamp), mixed at
+ *     intensity 1: within REL_BOUND of all in one solve (radiosity is linear in
+ *     emission); the sun's group at 0 against a solve without --sun: REL_BOUND;
+ *   - --solver gauss-seidel within GS_BOUND of shooting;
+ *   - errors: a light in two groups, a light that is not there. */
+static void test_cli_lights(void **state)
+{
+    const char *ff = tmp_path("lights.ff");
+    double *saved, *loaded, *plain, *mix, *off, *nosun, *gs, d, rms;
+    int n1, n2, n3, n4, n5, n6, n7;
+    run_t r;
+    (void)state;
+    if (!need(FIXED)) skip();
+    saved = CLI_CSV(tmp_path("l_saved.csv"), &n1, "--save-ff", ff);
+    loaded = CLI_CSV(tmp_path("l_loaded.csv"), &n2, "--load-ff", ff);
+    plain = CLI_CSV(tmp_path("l_plain.csv"), &n3, "--max-shots", "1000000");
+    assert_int_equal(n1, n2);
+    assert_int_equal(n1, n3);
+    CHECK_THAT(memcmp(saved, loaded, (size_t)n1 * 3 * sizeof *saved) == 0,
+               "rad_cli with lights: --save-ff and --load-ff give the same radiosities");
+    d = max_rel(saved, plain, n1, &rms);
+    print_message("rad_cli Cornell with a sun and a point light: rows vs hemi-cubes max %.4f%%, rms %.4f%%\n",
+                  100 * d, 100 * rms);
+    CHECK_LE(d, REL_BOUND, "rad_cli with lights: the solve from rows against hemi-cubes, max relative difference");
+    mix = CLI_CSV(tmp_path("l_mix.csv"), &n4, "--load-ff", ff, "--light-group", "day=sun1", "--light-group",
+                  "bulb=point1");
+    assert_int_equal(n4, n1);
+    d = max_rel(mix, saved, n1, &rms);
+    print_message("rad_cli Cornell: the sun's, the point light's and the lamp's groups mixed vs one solve: max "
+                  "%.4f%%, rms %.4f%%\n",
+                  100 * d, 100 * rms);
+    CHECK_LE(d, REL_BOUND, "rad_cli with lights: --light-group mix against one solve, max relative difference");
+    off = CLI_CSV(tmp_path("l_off.csv"), &n5, "--load-ff", ff, "--light-group", "day=sun1", "--group-intensity",
+                  "day=0,0,0");
+    {
+        const char *args[] = {"--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.0001", "--point",
+                              "-0.2,0.35,-0.3,0.02,0.02,0.015", "--load-ff", ff, "--dump-radiosity",
+                              tmp_path("l_nosun.csv"), "-o", tmp_path("l_nosun.png"), CORNELL, NULL};
+        run_args(&r, FIXED, args);
+        expect_status(&r, 0);
+        run_free(&r);
+        nosun = read_csv(tmp_path("l_nosun.csv"), &n6);
+    }
+    assert_int_equal(n5, n6);
+    d = max_rel(off, nosun, n5, &rms);
+    print_message("rad_cli Cornell: the sun's group at 0 vs no sun: max %.4f%%, rms %.4f%%\n", 100 * d, 100 * rms);
+    CHECK_LE(d, REL_BOUND, "rad_cli with lights: a group at 0 against the scene without it, max relative difference");
+    gs = CLI_CSV(tmp_path("l_gs.csv"), &n7, "--load-ff", ff, "--solver", "gauss-seidel", "--tol", "0.00001");
+    assert_int_equal(n7, n1);
+    d = max_rel(gs, saved, n1, &rms);
+    print_message("rad_cli Cornell with lights: gauss-seidel vs shooting from rows: max %.4f%%, rms %.4f%%\n",
+                  100 * d, 100 * rms);
+    CHECK_LE(d, GS_BOUND, "rad_cli with lights: --solver gauss-seidel against shooting, max relative difference");
+    free(saved); free(loaded); free(plain); free(mix); free(off); free(nosun); free(gs);
+    /* errors */
+    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun1", "--light-group", "b=sun1",
+        "-o", tmp_path("x.png"), CORNELL);
+    expect_error(&r, 1, "light 'sun1' is already in group 'a'");
+    run_free(&r);
+    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun2", "-o", tmp_path("x.png"),
+        CORNELL);
+    expect_error(&r, 1, "no material or light named 'sun2'");
+    run_free(&r);
+}
+
 static void test_cli_animate(void **state)
 {
     run_t r;
@@ -938,7 +1032,7 @@ static void test_cli_animate(void **state)
         "--animate", DATA "frames.txt", "-o", tmp_path("fr.png"), GALLERY);
     expect_status(&r, 0);
     /* One visibility computation for every frame. */
-    CHECK_CONTAINS(r.out, "0 hemi-cube polygons rendered during the solve", "rad_cli's stdout");
+    CHECK_CONTAINS(r.out, "0 polygons rendered during the solve", "rad_cli's stdout");
     run_free(&r);
     for (i = 0; i < 5; i++) {
         snprintf(name, sizeof name, "fr_%04d.png", i);
@@ -1009,6 +1103,7 @@ int main(void)
         cmocka_unit_test(test_cli_groups),
         cmocka_unit_test(test_cli_gauss_seidel),
         cmocka_unit_test(test_cli_animate),
+        cmocka_unit_test(test_cli_lights),
     };
     return cmocka_run_group_tests_name("relight", tests, group_setup, group_teardown);
 }

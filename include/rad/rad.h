@@ -545,8 +545,9 @@ int rad_form_factors(rad_scene_t *s, uint32_t p, rad_ff_t *out);
 
 /* ---- stored form factors: relighting without new visibility -------------------- */
 /* Cohen & Greenberg's form factors do not depend on light or colour, so once every
- * patch's hemi-cube row is stored, emissions and reflectances can change
- * (rad_set_surface, rad_restart) and the scene be solved again with no rendering.
+ * patch's hemi-cube row is stored, emissions, reflectances and lights can change
+ * (rad_set_surface, rad_set_light, rad_restart) and the scene be solved again with no
+ * hemi-cube rendered (lights render their direct shots again: rad_rows_shoot).
  * An entry keeps an element id and a 16-bit code of its form factor (5-bit exponent,
  * 11-bit mantissa of the Q2.30 value): relative error below 2^-11 = 0.05% per entry,
  * so a solution from stored rows is within about 0.05% of one from hemi-cubes.
@@ -567,10 +568,16 @@ typedef struct {
  * stored so far that rad_rows_shoot would refuse). */
 int rad_rows_compute(rad_scene_t *s, rad_rows_t *rows, uint32_t count);
 
-/* rad_shoot through the stored rows instead of hemi-cubes. Returns the shots, or
- * RAD_ERR_STATE when not every patch has its row yet, or RAD_ERR_ARG for rows that
- * are not this scene's (offsets not rising within max_entries, an element id beyond
- * the scene's elements: checked in a pass over the entries before anything changes). */
+/* rad_shoot through the stored rows instead of hemi-cubes. Lights (rad_add_light)
+ * shoot first as in rad_shoot, rendered: a light's direct light is its first shot,
+ * which rows of patches do not hold, and storing it would take a row of up to every
+ * element per light (a sky's dome turns with its colours) for a handful of renders;
+ * so the direct light is the very bits rad_shoot gives, and lights may change in any
+ * way between solves (rad_set_light). Returns the shots (lights included, as
+ * rad_shoot), or RAD_ERR_STATE when not every patch has its row yet, or RAD_ERR_ARG
+ * for rows that are not this scene's (offsets not rising within max_entries, an
+ * element id beyond the scene's elements: checked in a pass over the entries before
+ * anything changes), or RAD_ERR_RANGE for a point light beyond range (as rad_shoot). */
 int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
 
 /* The 1985 paper's full-matrix solve: Gauss-Seidel on the patch radiosities
@@ -578,16 +585,23 @@ int rad_rows_shoot(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, r
  * to patch k's elements) assembled from the stored rows -- the very system
  * progressive refinement solves, so both converge to one solution -- then one pass
  * gives every element its radiosity. Sweeps until no patch's radiosity changes by
- * more than TOL of itself (plus one LSB), or MAX_ITER sweeps. MATRIX holds RAD_GS_ENTRIES(patches)
- * entries; at most 16384 patches. Returns the sweeps done, or RAD_ERR_ARG (matrix too
- * small, too many patches, rows as rad_rows_shoot refuses) or RAD_ERR_STATE (rows
- * missing). */
+ * more than TOL of itself (plus one LSB), or MAX_ITER sweeps. Lights (rad_add_light)
+ * shoot first, every one (a scene with lights restarts: the solve starts from the
+ * emissions alone, as without), rendered as rad_rows_shoot's: each element keeps its
+ * direct light, and a patch's source E_k is its emission plus the direct light it
+ * reflects (its power received times rho over its area). MATRIX holds
+ * RAD_GS_ENTRIES(patches) entries; at most 16384 patches. Returns the sweeps done, or
+ * RAD_ERR_ARG (matrix too small, too many patches, rows as rad_rows_shoot refuses),
+ * RAD_ERR_STATE (rows missing) or RAD_ERR_RANGE (a point light beyond range, as
+ * rad_shoot; nothing changed). */
 #define RAD_GS_ENTRIES(patches) ((size_t)(patches) * (patches) + 3u * (size_t)(patches))
 int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matrix, size_t entries,
                           uint32_t max_iter, rad_real_t tol);
 
 /* Light groups: radiosity is linear in emission, so solve once per group of lights
- * (the others dark) and keep each solution's element radiosities; then any mix is
+ * (the others dark: emitting surfaces through rad_set_surface, lights through
+ * rad_set_light with all channels 0, then rad_restart) and keep each solution's
+ * element radiosities; then any mix is
  * OUT[e] = sum_g INTENSITY[g] * GROUPS[g][e] per channel, for n_elements elements.
  * OUT is in the groups' unit: keep them in the caller's (rad_element_radiosity without
  * RAD_SHADE_SCALED), since each solve has the power shift of its own lights.
@@ -789,10 +803,23 @@ int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max);
  * (NULL, an unknown type or res, a zero direction), RAD_ERR_RANGE (a position,
  * intensity or cosine out of range), RAD_ERR_FULL (the array is full) or
  * RAD_ERR_STATE (no array, or shooting started: rad_restart first); a sky's dirs
- * outside 0, 3..768 is RAD_ERR_ARG. Stored rows
- * (rad_rows_shoot, rad_rows_gauss_seidel) do not take lights yet: they return
- * RAD_ERR_STATE for a scene with lights. */
+ * outside 0, 3..768 is RAD_ERR_ARG. */
 int rad_add_light(rad_scene_t *s, const rad_light_t *light);
+
+/* Replaces light K (the index rad_add_light returned) by a copy of LIGHT: any of its
+ * fields (colour, intensity, position, direction, even its type), checked as
+ * rad_add_light. Takes effect on the next rad_restart(), as rad_set_surface (before
+ * anything has shot, or after rad_restart: at once); the power scale is chosen then
+ * with it. Relighting: rad_set_light, rad_restart, then rad_rows_shoot (no patch's
+ * cube rendered again; the lights' shots are, being their direct light) or rad_shoot.
+ * A light whose channels are all 0 (a sky: its horizon's too) shoots nothing and is
+ * not rendered, though it counts as a shot: a light group (rad_mix) is solved with
+ * every light not in it set dark (and every surface not in it not emitting,
+ * rad_set_surface). Returns RAD_OK, RAD_ERR_ARG (K not one of S's lights, or as
+ * rad_add_light), RAD_ERR_RANGE (as rad_add_light) or RAD_ERR_STATE (a solve has shot
+ * but not all of its lights yet: they would shoot at the scale chosen without the
+ * change; rad_restart first). */
+int rad_set_light(rad_scene_t *s, uint32_t k, const rad_light_t *light);
 
 #ifdef __cplusplus
 }

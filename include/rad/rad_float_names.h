@@ -42,5 +42,6 @@
 #define rad_shot_receive_part radf_shot_receive_part
 #define rad_use_lights        radf_use_lights
 #define rad_add_light         radf_add_light
+#define rad_set_light         radf_set_light
 
 #endif

@@ -146,6 +146,7 @@ typedef struct {
     sc_solution **sol;              /* groups: each group's solution, for mixing */
     double (*ks)[3];                /* groups: the run's intensities */
     int *group_of;                  /* material -> group, or -1 */
+    int *light_group_of;            /* light (of lights) -> group, or -1 */
     int rows_mode, groups_mode, ambient;
     int work;                       /* shots (or Gauss-Seidel sweeps) of the solve */
     int unconverged;                /* solves that stopped at the limit above --tol */

@@ -500,9 +500,11 @@ static const option_t options[] = {
      "Gauss-Seidel solve (needs rows: computed if not loaded;\n"
      "--tol: stop when no patch changes by more than F of itself)", opt_solver},
     {"--light-group", NULL, "NAME=MAT1,MAT2,...",
-     "a group of emitting materials (repeatable); emitters in no\n"
-     "group form the group 'other'; each group is solved once\n"
-     "from the rows and the image mixes them", opt_light_group},
+     "a group of emitting materials and lights (repeatable; lights:\n"
+     "sun1, sky1, point1, spot1, ... in the order given, or a file\n"
+     "light's name); emitters and lights in no group form the group\n"
+     "'other'; each group is solved once from the rows and the\n"
+     "image mixes them", opt_light_group},
     {"--group-intensity", NULL, "NAME=R,G,B", "a group's intensity in the mix (1,1,1)", opt_group_intensity},
     {"--each-group", NULL, NULL,
      "one image per group (group name before the extension:\n"
@@ -609,10 +611,6 @@ static void check_combinations(opts_t *o)
         die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
     if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
-    if (o->nlights && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate))
-        die_usage("--sun, --point, --spot, --sky, --sky-hdr and --lights do not work with stored form factors yet "
-                  "(--save-ff, --load-ff, "
-                  "--solver gauss-seidel, --light-group, --animate): leave one or the other out", NULL);
     if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
         if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);

@@ -98,8 +98,50 @@ static int emits(const obj_material *m)
     return m->nfaces > 0 && (m->ke[0] > 0 || m->ke[1] > 0 || m->ke[2] > 0);
 }
 
-/* Material names of --light-group's list into OF[material] = G; 0 or -1. */
-static int group_materials(run_t *r, int g, int *of)
+/* Light I's name for --light-group: an option's light by its kind and number among
+ * the lights of that option (sun1, sky1, point2, spot1, in the order given), a scene
+ * file's light by its name (light1, light2, ... when it has none). */
+static void light_name(const run_t *r, int i, char *name, size_t len)
+{
+    static const char *const kind[] = {"light", "sun", "point", "spot", "sky"};
+    int j, n = 1, t = r->lights[i].type;
+    if (i < r->o->nlights) {
+        for (j = 0; j < i; j++) n += r->lights[j].type == t;
+        snprintf(name, len, "%s%d", kind[t >= 1 && t <= 4 ? t : 0], n);
+    } else if (r->sc.lights[i - r->o->nlights].name && r->sc.lights[i - r->o->nlights].name[0]) {
+        snprintf(name, len, "%s", r->sc.lights[i - r->o->nlights].name);
+    } else {
+        snprintf(name, len, "light%d", i - r->o->nlights + 1);
+    }
+}
+
+static int find_light(const run_t *r, const char *name)
+{
+    char ln[512];
+    int i;
+    for (i = 0; i < r->nlights; i++) {
+        light_name(r, i, ln, sizeof ln);
+        if (strcmp(ln, name) == 0) return i;
+    }
+    return -1;
+}
+
+/* Light L into group G of --light-group's list (LOF: light -> group); 0 or -1. */
+static int group_light(run_t *r, int g, int l, int *lof, const char *name)
+{
+    const opts_t *o = r->o;
+    if (lof[l] >= 0 && lof[l] != g) {
+        fprintf(stderr, PROG ": %s: --light-group %s: light '%s' is already in group '%s'\n", o->scene,
+                o->groups[g].name, name, o->groups[lof[l]].name);
+        return -1;
+    }
+    lof[l] = g;
+    return 0;
+}
+
+/* Material and light names of --light-group's list into OF[material] = G and
+ * LOF[light] = G; 0 or -1. */
+static int group_materials(run_t *r, int g, int *of, int *lof)
 {
     const opts_t *o = r->o;
     const obj_scene *sc = &r->sc;
@@ -108,13 +150,27 @@ static int group_materials(run_t *r, int g, int *of)
         const char *q = strchr(p, ',');
         size_t len = q ? (size_t)(q - p) : strlen(p);
         char name[512];
-        int m;
+        int m, l;
         if (len >= sizeof name) len = sizeof name - 1;
         memcpy(name, p, len);
         name[len] = '\0';
         m = obj_find_material(sc, name);
+        l = find_light(r, name);
+        if (m >= 0 && l >= 0) {
+            fprintf(stderr, PROG ": %s: --light-group %s: '%s' names both a material and a light\n", o->scene,
+                    o->groups[g].name, name);
+            return -1;
+        }
+        if (l >= 0) {
+            if (group_light(r, g, l, lof, name) < 0) return -1;
+            p += len;
+            if (*p == ',') p++;
+            continue;
+        }
         if (m < 0) {
-            fprintf(stderr, PROG ": %s: --light-group %s: no material named '%s' (--list-materials shows them)\n",
+            fprintf(stderr, PROG ": %s: --light-group %s: no material or light named '%s' (--list-materials shows "
+                            "the materials; lights are sun1, sky1, point1, spot1, ... in the order given, or a "
+                            "scene file light's name)\n",
                     o->scene, o->groups[g].name, name);
             return -1;
         }
@@ -152,33 +208,38 @@ static int other_intensity(run_t *r, int other)
     return 0;
 }
 
-/* Material -> group (-1: none, or it emits nothing), after --emit. Adds the group
- * "other" for emitting materials in no group, and applies its --group-intensity. */
+/* Material -> group (-1: none, or it emits nothing) and light -> group, after --emit.
+ * Adds the group "other" for emitting materials and lights in no group, and applies
+ * its --group-intensity. */
 static int resolve_groups(run_t *r)
 {
     opts_t *o = r->o;
     const obj_scene *sc = &r->sc;
     int *of = malloc((size_t)(sc->nmaterials ? sc->nmaterials : 1) * sizeof *of), g, m, other = 0;
+    int *lof = malloc((size_t)(r->nlights + 1) * sizeof *lof);
     r->group_of = of;
-    if (!of) {
+    r->light_group_of = lof;
+    if (!of || !lof) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
     for (m = 0; m < sc->nmaterials; m++) of[m] = -1;
+    for (m = 0; m < r->nlights; m++) lof[m] = -1;
     for (g = 0; g < o->nuser_groups; g++)
-        if (group_materials(r, g, of) < 0) return -1;
-    for (m = 0; m < sc->nmaterials; m++)
-        if (of[m] < 0 && emits(&sc->materials[m])) {
-            if (!other) {
-                group_t *og = &o->groups[o->ngroups];
-                memset(og, 0, sizeof *og);
-                strcpy(og->name, OTHER_GROUP);
-                og->mats = "";
-                og->k[0] = og->k[1] = og->k[2] = 1.0;
-                other = ++o->ngroups;
-            }
-            of[m] = other - 1;
+        if (group_materials(r, g, of, lof) < 0) return -1;
+    for (m = 0; m < sc->nmaterials + r->nlights; m++) {
+        int *in = m < sc->nmaterials ? &of[m] : &lof[m - sc->nmaterials];
+        if (*in >= 0 || (m < sc->nmaterials && !emits(&sc->materials[m]))) continue;
+        if (!other) {
+            group_t *og = &o->groups[o->ngroups];
+            memset(og, 0, sizeof *og);
+            strcpy(og->name, OTHER_GROUP);
+            og->mats = "";
+            og->k[0] = og->k[1] = og->k[2] = 1.0;
+            other = ++o->ngroups;
         }
+        *in = other - 1;
+    }
     if (other_intensity(r, other) < 0) return -1;
     /* Emitting materials outside the user's groups are all in "other": unused if none. */
     for (m = 0; m < sc->nmaterials; m++)
@@ -257,18 +318,11 @@ static int load_textures(run_t *r)
 }
 
 /* The lights: --sun, --point and --spot's, then the scene file's (obj_scene.lights,
- * unless --no-file-lights), which stored form factors do not take yet, as the options'.
- * 0 or -1 (said). */
+ * unless --no-file-lights). 0 or -1 (said). */
 static int gather_lights(run_t *r)
 {
     const opts_t *o = r->o;
     int i, nfile = o->no_file_lights ? 0 : r->sc.nlights;
-    if (nfile && (o->save_ff || o->load_ff || o->gauss_seidel || o->ngroups || o->animate)) {
-        fprintf(stderr, PROG ": %s: the scene's %d lights do not work with stored form factors yet (--save-ff, "
-                        "--load-ff, --solver gauss-seidel, --light-group, --animate): add --no-file-lights\n",
-                o->scene, nfile);
-        return -1;
-    }
     r->lights = calloc((size_t)(o->nlights + nfile) + 1, sizeof *r->lights);
     if (!r->lights) {
         fprintf(stderr, PROG ": out of memory\n");
@@ -555,8 +609,9 @@ static void print_rows_stats(const run_t *r)
     printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n", rst.rows,
            o->load_ff ? "loaded from " : "computed", o->load_ff ? o->load_ff : "", rst.entries, rst.bytes,
            rst.rows ? (double)rst.bytes / rst.rows : 0.0, o->save_ff ? "saved" : "not saved");
-    printf("solve from rows: %s, %lu hemi-cube polygons rendered during the solve\n",
-           o->gauss_seidel ? "gauss-seidel" : "shoot", st->raster_calls - r->raster_before_solve);
+    printf("solve from rows: %s, %lu polygons rendered during the solve (%s)\n",
+           o->gauss_seidel ? "gauss-seidel" : "shoot", st->raster_calls - r->raster_before_solve,
+           r->nlights ? "the lights' direct shots: no hemi-cube" : "no hemi-cube");
     if (r->groups_mode) {
         printf("light groups %d:", o->ngroups);
         for (g = 0; g < o->ngroups; g++)
@@ -658,6 +713,7 @@ static void free_run(run_t *r)
     free(r->sol);
     free(r->ks);
     free(r->group_of);
+    free(r->light_group_of);
     free(r->ot.img);
     free(r->ot.rgb8);
     sc_fgather_free(r->ot.fg);

@@ -121,13 +121,21 @@ int mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n)
     return 0;
 }
 
-/* Group G's emitters lit, every other emitter dark. */
+/* Group G's emitters and lights lit, every other emitter and light dark. */
 static int light_group(run_t *r, int g)
 {
     static const double dark[3] = {0, 0, 0};
     const obj_scene *sc = &r->sc;
     char err[512];
     int m;
+    for (m = 0; m < r->nlights; m++) {
+        const sc_light *l = &r->lights[m];
+        int lit = r->light_group_of[m] == g;
+        if (sc_set_light(r->s, m, lit ? l->rgb : dark, lit ? l->horizon : dark, err, sizeof err) < 0) {
+            fprintf(stderr, PROG ": %s: %s\n", r->o->scene, err);
+            return -1;
+        }
+    }
     for (m = 0; m < sc->nmaterials; m++) {
         obj_material_match mm;
         if (r->group_of[m] < 0) continue;

@@ -65,6 +65,7 @@
 #define sc_rows_save scf_rows_save
 #define sc_rows_solve scf_rows_solve
 #define sc_set_element_rho scf_set_element_rho
+#define sc_set_light scf_set_light
 #define sc_set_memory_limit scf_set_memory_limit
 #define sc_set_surfaces scf_set_surfaces
 #define sc_shade scf_shade

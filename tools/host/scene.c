@@ -48,7 +48,8 @@ struct sc_solver {
     rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
     unsigned long ambient_terms; /* sc_stats.ambient_terms */
     rad_light_t *lights;        /* the lights in the core's units (sc_opts.lights), or NULL */
-    int nlights;
+    sc_light *src;              /* and in the caller's, as now set (sc_set_light) */
+    int nlights, light_res;     /* light_res: the scene's res, for light_to_core */
     void *cull;                 /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
     uint32_t cull_surfaces;     /* the scene it was built for: its surfaces and scale */
     int cull_shift;
@@ -439,6 +440,56 @@ static double light_k(const struct sc_solver *h, const sc_light *l)
     return l->type == RAD_LIGHT_SUN || l->type == RAD_LIGHT_SKY ? 1.0 : h->scale * h->scale;
 }
 
+/* The brightest of light L as an emission in the core's units before escale (a sky's
+ * irradiance: at most pi times its brightest radiance). */
+static double light_peak(const struct sc_solver *h, const sc_light *l)
+{
+    double k = light_k(h, l) * (l->type == RAD_LIGHT_SKY ? 3.14159265358979323846 : 1.0), peak = 0;
+    int a;
+    for (a = 0; a < 3; a++) peak = fmax(peak, fmax(l->rgb[a], l->horizon[a]) * k);
+    return peak;
+}
+
+/* Light I (h->src) into the core's units at the current escale, into C. */
+static void light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c)
+{
+    const sc_light *l = &h->src[i];
+    double k = light_k(h, l) * h->escale;
+    double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
+    memset(c, 0, sizeof *c);
+    c->type = (uint16_t)l->type;
+    /* A light shoots once, so its aliasing is not averaged over many shots as a
+     * patch's is: a point light over a floor of 2,592 elements at res 192 gave
+     * the direct light 11% rms (79% max) off I cos t / r^2 per element, at 4 res
+     * 1.2% (10%). The core's default is the scene's res (the same bits
+     * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
+     * that a point light's finer cube needs. A sun is 4 res by default. */
+    if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
+        int r = 4 * res;
+        c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
+    }
+    if (l->dome) c->res = (uint16_t)res; /* cfg.res */
+    to_core(h, l->pos, &c->position);
+    if (d > 0) {
+        c->direction.x = RAD_REAL(l->dir[0] / d);
+        c->direction.y = RAD_REAL(l->dir[1] / d);
+        c->direction.z = RAD_REAL(l->dir[2] / d);
+    }
+    c->intensity.r = RAD_REAL(fmin(l->rgb[0] * k, 4096.0));
+    c->intensity.g = RAD_REAL(fmin(l->rgb[1] * k, 4096.0));
+    c->intensity.b = RAD_REAL(fmin(l->rgb[2] * k, 4096.0));
+    c->cos_outer = RAD_REAL(l->cos_outer);
+    c->cos_inner = RAD_REAL(l->cos_inner);
+    c->radius = RAD_REAL(l->radius);
+    if (l->type == RAD_LIGHT_SKY) {
+        memset(&c->position, 0, sizeof c->position);
+        c->horizon.r = RAD_REAL(fmin(l->horizon[0] * k, 4096.0));
+        c->horizon.g = RAD_REAL(fmin(l->horizon[1] * k, 4096.0));
+        c->horizon.b = RAD_REAL(fmin(l->horizon[2] * k, 4096.0));
+        c->dirs = (uint32_t)l->dirs;
+    }
+}
+
 /* The lights of O checked and taken to the core (h->lights): positions as the
  * polygons', directions unit, intensities by escale (a point's also by scale^2, as its
  * irradiance I / r^2 keeps with lengths), escale lowered first so that the brightest
@@ -450,16 +501,13 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
     if (o->nlights <= 0) return 0;
     for (i = 0; i < o->nlights; i++) {
         const sc_light *l = &o->lights[i];
-        /* a sky's irradiance: at most pi times its brightest radiance */
-        double k = light_k(h, l), d = 0, pk = l->type == RAD_LIGHT_SKY ? 3.14159265358979323846 : 1.0;
+        double d = 0;
         for (a = 0; a < 3; a++) {
             if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) || !isfinite(l->dir[a]) ||
                 !(l->horizon[a] >= 0) || !isfinite(l->horizon[a])) {
                 snprintf(err, errlen, "light %d: a negative or non-finite value", i + 1);
                 return -1;
             }
-            if (l->rgb[a] * k * pk > peak) peak = l->rgb[a] * k * pk;
-            if (l->horizon[a] * k * pk > peak) peak = l->horizon[a] * k * pk;
             d += l->dir[a] * l->dir[a];
             if ((l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) &&
                 fabs((l->pos[a] - h->off[a]) * h->scale) > RAD_COORD_LIMIT) {
@@ -472,54 +520,22 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
             snprintf(err, errlen, "light %d: a zero direction", i + 1);
             return -1;
         }
+        peak = fmax(peak, light_peak(h, l));
     }
     if (peak > h->epeak) {
         h->epeak = peak;
         h->escale = h->escale0 = CORE_EMIT_PEAK / peak;
     }
     h->lights = calloc((size_t)o->nlights, sizeof *h->lights);
-    if (!h->lights) {
+    h->src = malloc((size_t)o->nlights * sizeof *h->src);
+    if (!h->lights || !h->src) {
         snprintf(err, errlen, "out of memory");
         return -1;
     }
+    memcpy(h->src, o->lights, (size_t)o->nlights * sizeof *h->src);
     h->nlights = o->nlights;
-    for (i = 0; i < o->nlights; i++) {
-        const sc_light *l = &o->lights[i];
-        rad_light_t *c = &h->lights[i];
-        double k = light_k(h, l) * h->escale;
-        double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
-        c->type = (uint16_t)l->type;
-        /* A light shoots once, so its aliasing is not averaged over many shots as a
-         * patch's is: a point light over a floor of 2,592 elements at res 192 gave
-         * the direct light 11% rms (79% max) off I cos t / r^2 per element, at 4 res
-         * 1.2% (10%). The core's default is the scene's res (the same bits
-         * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
-         * that a point light's finer cube needs. A sun is 4 res by default. */
-        if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
-            int r = 4 * (o->res ? o->res : RAD_DEFAULT_RES);
-            c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
-        }
-        if (l->dome) c->res = (uint16_t)(o->res ? o->res : 64); /* cfg.res */
-        to_core(h, l->pos, &c->position);
-        if (d > 0) {
-            c->direction.x = RAD_REAL(l->dir[0] / d);
-            c->direction.y = RAD_REAL(l->dir[1] / d);
-            c->direction.z = RAD_REAL(l->dir[2] / d);
-        }
-        c->intensity.r = RAD_REAL(fmin(l->rgb[0] * k, 4096.0));
-        c->intensity.g = RAD_REAL(fmin(l->rgb[1] * k, 4096.0));
-        c->intensity.b = RAD_REAL(fmin(l->rgb[2] * k, 4096.0));
-        c->cos_outer = RAD_REAL(l->cos_outer);
-        c->cos_inner = RAD_REAL(l->cos_inner);
-        c->radius = RAD_REAL(l->radius);
-        if (l->type == RAD_LIGHT_SKY) {
-            memset(&c->position, 0, sizeof c->position);
-            c->horizon.r = RAD_REAL(fmin(l->horizon[0] * k, 4096.0));
-            c->horizon.g = RAD_REAL(fmin(l->horizon[1] * k, 4096.0));
-            c->horizon.b = RAD_REAL(fmin(l->horizon[2] * k, 4096.0));
-            c->dirs = (uint32_t)l->dirs;
-        }
-    }
+    h->light_res = o->res ? o->res : RAD_DEFAULT_RES;
+    for (i = 0; i < o->nlights; i++) light_to_core(h, i, h->light_res, &h->lights[i]);
     return 0;
 }
 
@@ -622,6 +638,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     if (n <= 0) { snprintf(err, errlen, "the scene has no polygons"); free(h); return NULL; }
     if (frame_scene(h, polys, n, err, errlen) < 0 || frame_lights(h, o, err, errlen) < 0) {
         free(h->lights);
+        free(h->src);
         free(h);
         return NULL;
     }
@@ -633,6 +650,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             snprintf(err, errlen, "element size %g / patch size %g out of range for this scene (element >= %g, patch >= element)",
                      me / h->scale, mp / h->scale, 1.0 / 16.0 / h->scale);
             free(h->lights);
+            free(h->src);
             free(h);
             return NULL;
         }
@@ -650,6 +668,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             snprintf(err, errlen, "out of memory");
             free(same);
             free(h->lights);
+            free(h->src);
             free(h);
             return NULL;
         }
@@ -709,6 +728,7 @@ void sc_destroy(sc_solver *h)
     free(h->rows.start); free(h->rows.ids); free(h->rows.ffs); free(h->gs);
     free(h->lights);
     free(h->cull);
+    free(h->src);
     free(h);
 }
 
@@ -1320,8 +1340,10 @@ void sc_restart(sc_solver *h)
 {
     double peak = 0;
     uint32_t i;
+    int k;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
+    for (k = 0; k < h->nlights; k++) peak = fmax(peak, light_peak(h, &h->src[k]));
     if (peak > 0) {
         h->epeak = peak;
         h->escale = CORE_EMIT_PEAK / peak;
@@ -1332,7 +1354,30 @@ void sc_restart(sc_solver *h)
         rad_set_surface(&h->s, i, NULL, &e); /* in range by construction */
     }
     rad_restart(&h->s);
+    for (k = 0; k < h->nlights; k++) { /* after the restart: always taken */
+        rad_light_t c;
+        light_to_core(h, k, h->light_res, &c);
+        rad_set_light(&h->s, (uint32_t)k, &c); /* in range by construction */
+    }
     h->mixed = 0;
+}
+
+int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, char *err, size_t errlen)
+{
+    int k;
+    if (i < 0 || i >= h->nlights) {
+        snprintf(err, errlen, "no light %d (the scene has %d)", i + 1, h->nlights);
+        return -1;
+    }
+    for (k = 0; k < 3; k++)
+        if ((rgb && !(rgb[k] >= 0 && rgb[k] <= 1e30)) || (horizon && !(horizon[k] >= 0 && horizon[k] <= 1e30))) {
+            snprintf(err, errlen, "light %d: intensities must be finite and >= 0", i + 1);
+            return -1;
+        }
+    if (rgb) memcpy(h->src[i].rgb, rgb, sizeof h->src[i].rgb);
+    if (horizon) memcpy(h->src[i].horizon, horizon, sizeof h->src[i].horizon);
+    sc_restart(h);
+    return 0;
 }
 
 struct sc_solution {
@@ -1358,7 +1403,7 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
             size_t errlen)
 {
     uint32_t ne = h->s.n_elements, e;
-    double *out = malloc((ne ? ne : 1u) * 3u * sizeof *out), top = 0, scale;
+    double *out = malloc((ne ? ne : 1u) * 3u * sizeof *out), top = 0, scale, shift;
     int i, c;
     if (!out) { snprintf(err, errlen, "out of memory"); return -1; }
     for (i = 0; i < n; i++) {
@@ -1390,15 +1435,19 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
         }
     }
     /* Back into the core (it shades and renders) at the scale the scene was built with,
-     * or lower if the mix is brighter than the core's radiosity range takes. */
+     * or lower if the mix is brighter than the core's radiosity range takes. The
+     * elements' radiosities are in the core's scale, the caller's times 2^power_shift
+     * (the last solve's: 0 when an emission is the brightest, more when a light's
+     * irradiance on the surfaces, rad.h: Scale, is the core's peak). */
+    shift = ldexp(1.0, h->s.power_shift);
     scale = h->escale0;
-    if (!isfinite(scale) || top * scale > 16384.0) scale = top > 0 ? 16384.0 / top : 1.0;
+    if (!isfinite(scale) || top * scale * shift > 16384.0) scale = top > 0 ? 16384.0 / (top * shift) : 1.0;
     h->escale = scale;
     for (e = 0; e < ne; e++) {
         rad_rgb_t *b = &h->pools.elements[e].radiosity;
-        b->r = RAD_REAL(out[3 * e] * scale);
-        b->g = RAD_REAL(out[3 * e + 1] * scale);
-        b->b = RAD_REAL(out[3 * e + 2] * scale);
+        b->r = RAD_REAL(out[3 * e] * scale * shift);
+        b->g = RAD_REAL(out[3 * e + 1] * scale * shift);
+        b->b = RAD_REAL(out[3 * e + 2] * scale * shift);
     }
     /* rad_element_t.radiosity is the caller's pools' memory, which the glue owns; the
      * core's emissions still stand at the last solve's scale: solving again restarts. */

@@ -48,7 +48,7 @@ typedef struct {
     double coarse;                  /* rad_config_t.coarse: unshot fraction below which
                                        shots coarsen; 0: never */
     int coarse_res;                 /* rad_config_t.coarse_res: their floor; 0: res / 4 */
-    const sc_light *lights;         /* lights shot first (rows and relighting refuse them) */
+    const sc_light *lights;         /* lights shot first (sc_set_light changes them) */
     int nlights;
 } sc_opts;
 
@@ -185,9 +185,13 @@ int sc_gauss_seidel_check(sc_solver *s, char *err, size_t errlen);
 int sc_set_surfaces(sc_solver *s, sc_tag_match_fn match, void *ctx, const double *rho,
                      const double *emit, char *err, size_t errlen);
 /* Resets the solution to the emission alone (the rows stay). As at create, the
- * brightest emission now set goes to the core at 256, so a dim relit scene (one
- * light group alone) keeps the core's precision; results map back to caller units. */
+ * brightest emission or light now set goes to the core at 256, so a dim relit scene
+ * (one light group alone) keeps the core's precision; results map back to caller units. */
 void sc_restart(sc_solver *s);
+/* Light I's (0-based, as sc_opts.lights) intensity RGB and a sky's horizon HORIZON
+ * (caller units; NULL keeps it; all 0: dark, not rendered), then sc_restart. 0, or -1
+ * with err (no such light, a negative or non-finite value). */
+int sc_set_light(sc_solver *s, int i, const double *rgb, const double *horizon, char *err, size_t errlen);
 /* A solution kept aside: every element's radiosity, with the ambient term baked in
  * if AMBIENT (radiosity is linear in emission, so is the ambient term). */
 sc_solution *sc_keep(sc_solver *s, int ambient);

@@ -55,6 +55,8 @@ int scf_gauss_seidel_check(scf_solver *s, char *err, size_t errlen);
 int scf_set_surfaces(scf_solver *s, sc_tag_match_fn match, void *ctx, const double *rho,
                      const double *emit, char *err, size_t errlen);
 void scf_restart(scf_solver *s);
+int scf_set_light(scf_solver *s, int i, const double *rgb, const double *horizon, char *err,
+                  size_t errlen);
 scf_solution *scf_keep(scf_solver *s, int ambient);
 void scf_solution_free(scf_solution *k);
 int scf_mix(scf_solver *s, scf_solution *const *groups, const double (*intensity)[3], int n,
