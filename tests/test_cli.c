@@ -1721,13 +1721,14 @@ static int csv_reds(const char *path, double *v, int n)
  *   Q16: they differ by about 2^-16 radians, which moves the floor's outline (16 units
  *   across, pixels of 0.12) by 0.002 pixel a shot and shifts a few pixels from one
  *   element to its neighbour: the floor's total within 1e-4, each element (about 32
- *   pixels a shot) within 0.5% (one pixel in a few of the 192 shots);
+ *   pixels a shot) within 0.5% (one pixel in a few of the 192 shots); the float twin
+ *   against the fixed build the same (their directions round apart as much);
  * - a cap of zenith angles below 45 degrees: a floor gets pi L sin^2 45 = pi L / 2, the
  *   cap's edge cutting cells changing nothing on it (every cell's light integrated);
  *   with SCALE 0.5 half that;
  * - the half of the sky toward +X (east): a wall facing +X gets pi L / 2, one facing -X
  *   nothing (every lit direction lies behind it);
- * each within the raster's coverage of the outline, test_sky's 2.2% (the same bound:
+ * the last two within the raster's coverage of the outline, test_sky's 2.2% (the same bound:
  * test_light.c's p P / sqrt 2 over the area, p P the same for the 4 x 4 walls in their
  * smaller window). A lights file's "sky-hdr" gives the option's bits; bad values and
  * bad maps are one line and status 2, no output. */
@@ -1783,6 +1784,22 @@ static void test_sky_hdr(void **state)
                   100 * (ta / tb - 1));
     CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, --sky-hdr against --sky");
     CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, --sky-hdr against --sky");
+
+    /* the float twin on the same map: its suns' directions round apart by as much */
+    need(FLOAT);
+    RUN(&r, FLOAT, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity", tmp_path("hdrf.csv"), "-o",
+        tmp_path("hdrf.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    CHECK_INT_EQ(csv_reds(tmp_path("hdrf.csv"), b, MAXEL), n, "elements under --sky-hdr, float twin");
+    for (i = 0, worst = 0, tb = 0; i < n; i++) {
+        worst = fmax(worst, fabs(a[i] / b[i] - 1));
+        tb += b[i];
+    }
+    print_message("--sky-hdr, fixed against the float twin: elements within %.3f%%, the floor %+.4f%%\n", 100 * worst,
+                  100 * (ta / tb - 1));
+    CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, fixed against float");
+    CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, fixed against float");
 
     snprintf(path, sizeof path, "%s,192,0.5", tmp_path("cap.hdr"));
     RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", path, "--dump-radiosity", tmp_path("cap.csv"), "-o", tmp_path("cap.png"),
