@@ -715,6 +715,31 @@ static void test_cli_file_lights(void **state)
     na = csv_rgb(tmp_path("c.csv"), a, NULL, NULL, 4096);
     for (i = 0; i < na; i++) dark += a[i] == 0;
     CHECK_INT_EQ(dark, na, "elements dark with --no-file-lights");
+
+    /* A --lights file's light shines with the glTF's, before it (the command line's
+     * lights first, the scene file's after), and --no-file-lights leaves the glTF's
+     * out but not the file's: the same bits as the OBJ with the options in that order. */
+    f = fopen(tmp_path("more.json"), "w");
+    assert_non_null(f);
+    fprintf(f, "{\"lights\": [{\"type\": \"point\", \"position\": [-1, 2, 1], \"intensity\": [2, 2, 2]}]}\n");
+    assert_int_equal(fclose(f), 0);
+    for (i = 0; i < 2; i++) {
+        snprintf(cmd, sizeof cmd,
+                 "build/rad_cli '%s' --lights '%s' %s --quiet --width 8 --height 8 -o '%s' --dump-radiosity '%s' && "
+                 "build/rad_cli '%s' --point -1,2,1,2,2,2 %s --quiet --width 8 --height 8 -o '%s' "
+                 "--dump-radiosity '%s'",
+                 tmp_path("lit.gltf"), tmp_path("more.json"), i ? "--no-file-lights" : "", tmp_path("d.png"),
+                 tmp_path("d.csv"), tmp_path("lit.obj"), i ? "" : "--point 0.5,1,0,3,1.5,0.75", tmp_path("e.png"),
+                 tmp_path("e.csv"));
+        CHECK_INT_EQ(system(cmd), 0, "rad_cli on the glTF with --lights%s and the OBJ with --point",
+                     i ? " --no-file-lights" : "");
+        na = csv_rgb(tmp_path("d.csv"), a, NULL, NULL, 4096);
+        nb = csv_rgb(tmp_path("e.csv"), b, NULL, NULL, 4096);
+        CHECK_INT_EQ(na, nb, "elements of the two solves%s", i ? " (--no-file-lights)" : "");
+        for (dark = 0; dark < na; dark++)
+            CHECK_NEAR(a[dark], b[dark], 0, "element %d's red, --lights%s against --point", dark,
+                       i ? " --no-file-lights" : " and the glTF's light");
+    }
 }
 
 /* ---- the file's lightmap UVs (--lightmap-uv) ----------------------------------------- */

@@ -32,6 +32,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "formats/hdr.h"
 #include "formats/image.h"
 #include "tmpdir.h"
 #include "formats/obj.h"
@@ -1681,6 +1682,205 @@ static void test_lights_file(void **state)
     }
 }
 
+/* ---- --sky-hdr FILE[,N[,SCALE]] ------------------------------------------------------ */
+
+/* A 64 x 32 map at PATH: grey radiance L where LIT(x, y), else black (+Y up, row 0 the
+ * zenith, the middle column toward +X: tools/host/sky_map.h). */
+static void write_map(const char *path, double l, int (*lit)(int x, int y))
+{
+    float m[3 * 64 * 32];
+    char err[256];
+    int x, y, c;
+    for (y = 0; y < 32; y++)
+        for (x = 0; x < 64; x++)
+            for (c = 0; c < 3; c++) m[3 * (y * 64 + x) + c] = lit(x, y) ? (float)l : 0.0f;
+    CHECK_INT_EQ(hdr_write(path, m, 64, 32, err, sizeof err), 0, "hdr_write %s (%s)", path, err);
+}
+
+static int map_all(int x, int y) { return (void)x, (void)y, 1; }
+static int map_cap(int x, int y) { return (void)x, y < 8; }                   /* zenith angle < 45 degrees */
+static int map_east(int x, int y) { return y < 16 && x >= 16 && x < 48; }   /* the half toward +X */
+
+/* The area-weighted mean red radiosity of surface SF in --dump-radiosity's CSV. */
+static double csv_surface_red(const char *path, int sf_want)
+{
+    char *csv = slurp(path, NULL), *line;
+    double sum = 0, area = 0;
+    assert_non_null(csv);
+    for (line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
+        double a, c[3], rgb[3];
+        int el, sf;
+        char mat[64];
+        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1],
+                                &c[2], &rgb[0], &rgb[1], &rgb[2]),
+                         10);
+        if (sf == sf_want) sum += rgb[0] * a, area += a;
+    }
+    free(csv);
+    return sum / area;
+}
+
+/* Red radiosities of every element of CSV at PATH into V (at most N); the count. */
+static int csv_reds(const char *path, double *v, int n)
+{
+    char *csv = slurp(path, NULL), *line;
+    int k = 0;
+    assert_non_null(csv);
+    for (line = strchr(csv, '\n'); line && line[1] && k < n; line = strchr(line + 1, '\n')) {
+        double a, c[3];
+        int el, sf;
+        char mat[64];
+        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1], &c[2],
+                                &v[k]),
+                         8);
+        k++;
+    }
+    free(csv);
+    return k;
+}
+
+/* --sky-hdr against closed forms (floor Kd 0.5):
+ * - a uniform map of L against --sky L: the same cells (tools/host/sky_map.h), each sun
+ *   along the direction the core computes in Q30 integers, here in doubles and then
+ *   Q16: they differ by about 2^-16 radians, which moves the floor's outline (16 units
+ *   across, pixels of 0.12) by 0.002 pixel a shot and shifts a few pixels from one
+ *   element to its neighbour: the floor's total within 1e-4, each element (about 32
+ *   pixels a shot) within 0.5% (one pixel in a few of the 192 shots); the float twin
+ *   against the fixed build the same (their directions round apart as much);
+ * - a cap of zenith angles below 45 degrees: a floor gets pi L sin^2 45 = pi L / 2, the
+ *   cap's edge cutting cells changing nothing on it (every cell's light integrated);
+ *   with SCALE 0.5 half that;
+ * - the half of the sky toward +X (east): a wall facing +X gets pi L / 2, one facing -X
+ *   nothing (every lit direction lies behind it);
+ * the last two within the raster's coverage of the outline, test_sky's 2.2% (the same bound:
+ * test_light.c's p P / sqrt 2 over the area, p P the same for the 4 x 4 walls in their
+ * smaller window). A lights file's "sky-hdr" gives the option's bits; bad values and
+ * bad maps are one line and status 2, no output. */
+static void test_sky_hdr(void **state)
+{
+    static const struct {
+        const char *val, *says;
+    } bad[] = {
+        {"map.hdr,2", "--sky-hdr wants FILE[,N[,SCALE]]"},
+        {"map.hdr,192,0", "--sky-hdr wants FILE[,N[,SCALE]]"},
+        {",192", "--sky-hdr wants FILE[,N[,SCALE]]"},
+        {"trunc.hdr", "trunc.hdr: truncated or corrupt pixel data"},
+        {"huge.hdr", "huge.hdr: truncated or corrupt pixel data: shorter than the header's size needs"},
+        {"notmap.hdr", "notmap.hdr: not a Radiance HDR"},
+        {"missing.hdr", "missing.hdr: cannot open"},
+    };
+    enum { MAXEL = 4096 };
+    static double a[MAXEL], b[MAXEL];
+    const double pi = 3.14159265358979323846;
+    double mean, worst = 0, ta = 0, tb = 0;
+    run_t r;
+    size_t k;
+    int n, nb, i;
+    char path[400];
+    (void)state;
+    need(FIXED);
+    write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
+    write_text(tmp_path("floor.obj"),
+               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    write_text(tmp_path("walls.obj"), "mtllib floor.mtl\nusemtl floor\nv 1 0 2\nv 1 0 -2\nv 1 4 -2\nv 1 4 2\n"
+                                      "f 1 2 3 4\nv -1 0 -2\nv -1 0 2\nv -1 4 2\nv -1 4 -2\nf 5 6 7 8\n");
+    write_map(tmp_path("map.hdr"), 2.0, map_all);
+    write_map(tmp_path("cap.hdr"), 2.0, map_cap);
+    write_map(tmp_path("east.hdr"), 2.0, map_east);
+
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity", tmp_path("hdr.csv"), "-o",
+        tmp_path("hdr.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    RUN(&r, FIXED, LIT_ARGS, "--sky", "2,2,2", "--dump-radiosity", tmp_path("sky.csv"), "-o", tmp_path("sky.png"),
+        tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    n = csv_reds(tmp_path("hdr.csv"), a, MAXEL);
+    nb = csv_reds(tmp_path("sky.csv"), b, MAXEL);
+    CHECK_INT_EQ(n, nb, "elements under --sky-hdr and --sky");
+    for (i = 0; i < n; i++) {
+        worst = fmax(worst, fabs(a[i] / b[i] - 1));
+        ta += a[i];
+        tb += b[i];
+    }
+    print_message("--sky-hdr of a uniform map against --sky: elements within %.3f%%, the floor %+.4f%%\n", 100 * worst,
+                  100 * (ta / tb - 1));
+    CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, --sky-hdr against --sky");
+    CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, --sky-hdr against --sky");
+
+    /* the float twin on the same map: its suns' directions round apart by as much */
+    need(FLOAT);
+    RUN(&r, FLOAT, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity", tmp_path("hdrf.csv"), "-o",
+        tmp_path("hdrf.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    CHECK_INT_EQ(csv_reds(tmp_path("hdrf.csv"), b, MAXEL), n, "elements under --sky-hdr, float twin");
+    for (i = 0, worst = 0, tb = 0; i < n; i++) {
+        worst = fmax(worst, fabs(a[i] / b[i] - 1));
+        tb += b[i];
+    }
+    print_message("--sky-hdr, fixed against the float twin: elements within %.3f%%, the floor %+.4f%%\n", 100 * worst,
+                  100 * (ta / tb - 1));
+    CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, fixed against float");
+    CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, fixed against float");
+
+    snprintf(path, sizeof path, "%s,192,0.5", tmp_path("cap.hdr"));
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", path, "--dump-radiosity", tmp_path("cap.csv"), "-o", tmp_path("cap.png"),
+        tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    mean = csv_surface_red(tmp_path("cap.csv"), 0);
+    print_message("--sky-hdr of a 45 degree cap, SCALE 0.5: the floor %.6f, rho pi L / 2 %.6f (%+.3f%%)\n", mean,
+                  0.5 * pi / 2, 100 * (mean / (0.5 * pi / 2) - 1));
+    CHECK_NEAR(mean, 0.5 * pi / 2, 0.5 * pi / 2 * 0.022, "the floor under a cap of 45 degrees at SCALE 0.5");
+
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("east.hdr"), "--dump-radiosity", tmp_path("east.csv"), "-o",
+        tmp_path("east.png"), tmp_path("walls.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    mean = csv_surface_red(tmp_path("east.csv"), 0);
+    print_message("--sky-hdr lit toward +X: the wall facing +X %.6f, rho pi L / 2 %.6f (%+.3f%%); facing -X %.6f\n",
+                  mean, 0.5 * pi, 100 * (mean / (0.5 * pi) - 1), csv_surface_red(tmp_path("east.csv"), 1));
+    CHECK_NEAR(mean, 0.5 * pi, 0.5 * pi * 0.022, "the wall facing +X (east) under the eastern half of the sky");
+    CHECK_LE(csv_surface_red(tmp_path("east.csv"), 1), 0, "the wall facing -X (west) under the eastern half");
+
+    /* a lights file's "sky-hdr", its map named from the file's folder: the same bits */
+    write_text(tmp_path("sky.json"), "{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"map.hdr\"}]}");
+    RUN(&r, FIXED, LIT_ARGS, "--lights", tmp_path("sky.json"), "--dump-radiosity", tmp_path("file.csv"), "-o",
+        tmp_path("file.png"), tmp_path("floor.obj"));
+    expect_status(&r, 0);
+    run_free(&r);
+    expect_same_file(tmp_path("file.csv"), tmp_path("hdr.csv"));
+
+    write_text(tmp_path("trunc.hdr"), "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\nabcdefgh");
+    write_text(tmp_path("huge.hdr"), "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 32768\n\2\2\200\0");
+    write_text(tmp_path("notmap.hdr"), "P6\n1 1\n255\nabc");
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        snprintf(path, sizeof path, "%s", bad[k].val[0] == ',' ? bad[k].val : tmp_path(bad[k].val));
+        RUN(&r, FIXED, "--sky-hdr", path, "--dump-radiosity", tmp_path("bad.csv"), "-o", tmp_path("bad.png"),
+            tmp_path("floor.obj"));
+        expect_status(&r, 2);
+        CHECK_CONTAINS(r.err, bad[k].says, "--sky-hdr %s", bad[k].val);
+        if (bad[k].says[0] != '-') /* a bad map: one line; a bad value: the usage follows, as for every option */
+            CHECK_INT_EQ(count_lines(r.err), 1, "--sky-hdr %s: lines on stderr (%s)", bad[k].val, r.err);
+        CHECK_THAT(!file_exists(tmp_path("bad.png")) && !file_exists(tmp_path("bad.csv")), "--sky-hdr %s: no output",
+                   bad[k].val);
+        run_free(&r);
+    }
+    setenv("RAD_MEMORY_BUDGET", "10000", 1); /* the 64 x 32 map's floats take 24,576 bytes */
+    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
+    unsetenv("RAD_MEMORY_BUDGET");
+    expect_status(&r, 2);
+    CHECK_CONTAINS(r.err, "map.hdr: image too large for the memory budget", "a map over the memory budget");
+    run_free(&r);
+    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("bad.png"),
+        tmp_path("floor.obj"));
+    expect_status(&r, 2);
+    CHECK_CONTAINS(r.err, "do not work with stored form factors yet", "--sky-hdr with --save-ff");
+    run_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1703,6 +1903,7 @@ int main(void)
         cmocka_unit_test(test_camera_looking_down),
         cmocka_unit_test(test_render_cracks),
         cmocka_unit_test(test_lights), cmocka_unit_test(test_sky), cmocka_unit_test(test_lights_file),
+        cmocka_unit_test(test_sky_hdr),
     };
     return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);
 }

@@ -168,6 +168,11 @@ int cli_add_sky_map(opts_t *o, const char *path, int dirs, double scale, char *e
     }
     n = sky_map_suns(im.rgb, im.w, im.h, scale, dirs, suns);
     hdr_free(&im);
+    if (n < 0) {
+        free(suns);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     for (i = 0; i < n; i++) {
         sc_light *l = cli_new_light(o);
         l->type = RAD_LIGHT_SUN;

@@ -246,10 +246,29 @@ static void rgbe_decode(const unsigned char *b, float *c)
     c[2] = (float)(b[2] * s);
 }
 
+/* The fewest bytes a row of W pixels takes: flat 4 W; RLE (widths 8..32767) its 4-byte
+ * start and per channel runs of at most 127 pixels, 2 bytes each. */
+static double row_bytes_min(int w)
+{
+    double flat = 4.0 * w, rle = 4.0 + 4.0 * 2.0 * ((w + 126) / 127);
+    return w >= HDR_RLE_MIN && w <= HDR_RLE_MAX && rle < flat ? rle : flat;
+}
+
 static int read_pixels(cursor *c, hdr_image *im, const char **why)
 {
-    unsigned char *row = malloc(4 * (size_t)im->w);
+    unsigned char *row;
     int x, y;
+    /* Refused before any allocation: a size the data cannot hold (a header alone may
+     * claim 32768 x 32768), or floats beyond the memory budget (file_io.h). */
+    if ((double)(c->end - c->p) < row_bytes_min(im->w) * im->h) {
+        *why = "truncated or corrupt pixel data: shorter than the header's size needs";
+        return -1;
+    }
+    if ((double)im->w * im->h * 3 * sizeof *im->rgb > fio_memory_budget()) {
+        *why = "image too large for the memory budget (RAD_MEMORY_BUDGET, else half the physical memory)";
+        return -1;
+    }
+    row = malloc(4 * (size_t)im->w);
     im->rgb = row ? malloc((size_t)im->w * im->h * 3 * sizeof *im->rgb) : NULL;
     if (!im->rgb) {
         free(row);

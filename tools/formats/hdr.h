@@ -16,7 +16,9 @@
  * (rows top to bottom), then rows run-length encoded as Radiance writes them (widths
  * 8..32767; other widths flat). The reader takes this file's form (also "#?RGBE", other
  * header lines ignored, flat or RLE rows); other orientations and the old RLE are
- * refused. Errors are one line, "PATH: what is wrong", in a caller buffer (NULL or
+ * refused, and so, before anything is allocated, are pixel data shorter than the
+ * header's size can take (each row at least its flat or RLE minimum) and an image whose
+ * floats exceed the memory budget (fio_memory_budget). Errors are one line, "PATH: what is wrong", in a caller buffer (NULL or
  * length 0: none); outputs are written through file_io (atomic, never a partial file).
  */
 #ifndef RAD_TOOLS_HDR_H

@@ -44,7 +44,7 @@ int sky_map_bands(int dirs);
 
 /* The map RGB (W x H x 3 linear floats, row 0 at the top, each >= 0) times SCALE over
  * the dome of DIRS directions (0: the default) into SUNS (room for 3 m^2), black cells
- * left out. Returns the count of suns. */
+ * left out. Returns the count of suns, or -1 out of memory. */
 int sky_map_suns(const float *rgb, int w, int h, double scale, int dirs, sky_sun *suns);
 
 #ifdef __cplusplus
