@@ -876,7 +876,7 @@ static void uv_faults(const sc_poly *polys, int n, const double *uv)
  * per face agrees with rad's own charts' bake of the same scene. */
 static void test_lightmap_file_uv(void **state)
 {
-    lm_opts lo = {64, 0.0, 0, 0.0};
+    lm_opts lo = {64, 0.0, 2, 0.0};
     lm_file_report rep;
     lm_atlas a, b;
     obj_scene sc;
@@ -926,6 +926,22 @@ static void test_lightmap_file_uv(void **state)
         CHECK_INT_EQ(obj_find_material(&sc, uvq_name[q]), sc.faces[polys[a.poly[at]].tag].material,
                      "the texel's face's material is %s's", uvq_name[q]);
     }
+    /* The gutter of 2 texels: at 64 texels, row 10 has the floor's texels (its ring
+     * included) to x = 29 and the wall's from x = 34 (0.55 x 64 = 35.2, less its ring):
+     * x = 30, 31 are the floor's gutter, 32, 33 the wall's, filled from their charts;
+     * under the lamp (rows 35..47 with its ring 34..48), rows 49, 50 its gutter and
+     * row 51 nothing. */
+    for (i = 30; i < 34; i++) {
+        size_t at = 10 * 64 + (size_t)i, from = 10 * 64 + (i < 32 ? 20 : 40);
+        CHECK_THAT(a.owner[at] == a.owner[from] && isnan(a.sample[2 * at]) && a.rgb[3 * at] > 0.0f,
+                   "texel (%d, 10) in the %s's gutter: owner %d (the chart's %d), light %g", i,
+                   i < 32 ? "floor" : "wall", a.owner[at], a.owner[from], a.rgb[3 * at]);
+    }
+    CHECK_THAT(a.owner[50 * 64 + 10] == a.owner[40 * 64 + 10] && a.rgb[3 * (50 * 64 + 10)] > 0.0f,
+               "texel (10, 50) in the lamp's gutter: owner %d", a.owner[50 * 64 + 10]);
+    CHECK_THAT(a.owner[51 * 64 + 10] == -1 && a.rgb[3 * (51 * 64 + 10)] == 0.0f,
+               "texel (10, 51) past the lamp's gutter: owner %d, light %g", a.owner[51 * 64 + 10],
+               a.rgb[3 * (51 * 64 + 10)]);
     for (i = 0; i < 64 * 64; i++) { /* the bottom right quarter: nothing there */
         int x = i % 64, y = i / 64;
         if (x < 32 || y < 32) continue;
