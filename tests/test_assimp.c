@@ -1010,7 +1010,9 @@ static void test_lightmap_file_uv(void **state)
 }
 
 /* --lightmap-uv file refuses a scene without a second UV set, naming it, before the
- * solve; auto bakes it on rad's charts. */
+ * solve, and --two-sided with it; auto bakes such a scene on rad's charts, and a scene
+ * with one on its UVs: the .glb's TEXCOORD_1 (read back by assimp) is the file's, at
+ * every corner within float32. */
 static void test_lightmap_uv_cli(void **state)
 {
     char cmd[2048], line[1024] = "";
@@ -1034,6 +1036,39 @@ static void test_lightmap_uv_cli(void **state)
                               "--lightmap-size 32",
              tmp_path("nouv.gltf"), tmp_path("nouv.png"), tmp_path("nouv_lm.png"));
     CHECK_INT_EQ(system(cmd), 0, "rad_cli --lightmap-uv auto (the default) on rad's charts");
+    write_uv_gltf(tmp_path("uv.gltf"), 1);
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
+                              "--lightmap-size 32 --lightmap-uv file --two-sided 2>'%s'",
+             tmp_path("uv.gltf"), tmp_path("uv.png"), tmp_path("uv_lm.png"), tmp_path("uv.err"));
+    CHECK_INT_NE(system(cmd), 0, "rad_cli --lightmap-uv file --two-sided");
+    f = fopen(tmp_path("uv.err"), "r");
+    assert_non_null(f);
+    if (!fgets(line, sizeof line, f)) line[0] = '\0';
+    fclose(f);
+    CHECK_CONTAINS(line, "--two-sided", "the error names --two-sided");
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
+                              "--lightmap-size 32 --export-gltf '%s'",
+             tmp_path("uv.gltf"), tmp_path("uv.png"), tmp_path("uv_lm.png"), tmp_path("uv.glb"));
+    CHECK_INT_EQ(system(cmd), 0, "rad_cli --lightmap --export-gltf on the file's UVs");
+    {
+        obj_scene sc;
+        char err[512];
+        int c, q;
+        if (assimp_scene_load(tmp_path("uv.glb"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+        assert_non_null(sc.uv2);
+        for (c = 0; c < sc.nindices; c++) {
+            const obj_vec3 *v = &sc.verts[sc.indices[c]];
+            double p[3] = {v->x, v->y, v->z}, w[2];
+            int f2 = 0;
+            while (f2 + 1 < sc.nfaces && sc.faces[f2 + 1].first <= c) f2++;
+            for (q = 0; q < 2; q++)
+                if (!strcmp(sc.materials[sc.faces[f2].material].name, uvq_name[q])) break;
+            uvq_uv(q, p, w);
+            CHECK_NEAR(sc.uv2[c].u, w[0], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 u", c, uvq_name[q]);
+            CHECK_NEAR(1.0 - sc.uv2[c].v, w[1], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 v", c, uvq_name[q]);
+        }
+        obj_free(&sc);
+    }
 }
 
 /* The face of SC whose centroid is nearest P (world), its distance into *D. */
