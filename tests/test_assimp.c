@@ -1013,43 +1013,47 @@ static void test_lightmap_file_uv(void **state)
  * solve, and --two-sided with it; auto bakes such a scene on rad's charts, and a scene
  * with one on its UVs: the .glb's TEXCOORD_1 (read back by assimp) is the file's, at
  * every corner within float32. */
+/* rad_cli on test file NAME (.gltf) with a 32 x 32 lightmap and EXTRA options; its
+ * exit status, the first line of its standard error into LINE (N bytes). */
+static int bake_cli(const char *name, const char *extra, char *line, size_t n)
+{
+    char cmd[4096], scene[256], out[300], lm[300], errf[300];
+    FILE *f;
+    int rc;
+    snprintf(scene, sizeof scene, "%s", tmp_path(name));
+    snprintf(out, sizeof out, "%s.png", scene);
+    snprintf(lm, sizeof lm, "%s_lm.png", scene);
+    snprintf(errf, sizeof errf, "%s.err", scene);
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
+                              "--lightmap-size 32 %s 2>'%s'", scene, out, lm, extra, errf);
+    rc = system(cmd);
+    f = fopen(errf, "r");
+    assert_non_null(f);
+    if (!fgets(line, (int)n, f)) line[0] = '\0';
+    fclose(f);
+    print_message("rad_cli %s %s: %d %s%s", name, extra, rc, line, *line ? "" : "\n");
+    return rc;
+}
+
 static void test_lightmap_uv_cli(void **state)
 {
-    char cmd[2048], line[1024] = "";
-    FILE *f;
+    char line[1024], extra[512];
     (void)state;
     if (!assimp_scene_available()) skip();
     write_uv_gltf(tmp_path("nouv.gltf"), 0);
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32 --lightmap-uv file 2>'%s'",
-             tmp_path("nouv.gltf"), tmp_path("nouv.png"), tmp_path("nouv_lm.png"), tmp_path("nouv.err"));
-    CHECK_INT_NE(system(cmd), 0, "rad_cli --lightmap-uv file on a scene without a second UV set");
-    f = fopen(tmp_path("nouv.err"), "r");
-    assert_non_null(f);
-    if (!fgets(line, sizeof line, f)) line[0] = '\0';
-    fclose(f);
-    print_message("%s", line);
+    CHECK_INT_NE(bake_cli("nouv.gltf", "--lightmap-uv file", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv file on a scene without a second UV set");
     CHECK_CONTAINS(line, "nouv.gltf", "the error names the scene");
     CHECK_CONTAINS(line, "no second UV set", "the error says what is missing");
-    CHECK_INT_EQ(access(tmp_path("nouv.png"), F_OK), -1, "no image written (refused before the solve)");
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32",
-             tmp_path("nouv.gltf"), tmp_path("nouv.png"), tmp_path("nouv_lm.png"));
-    CHECK_INT_EQ(system(cmd), 0, "rad_cli --lightmap-uv auto (the default) on rad's charts");
+    CHECK_INT_EQ(access(tmp_path("nouv.gltf.png"), F_OK), -1, "no image written (refused before the solve)");
+    CHECK_INT_EQ(bake_cli("nouv.gltf", "", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv auto (the default) on rad's charts");
     write_uv_gltf(tmp_path("uv.gltf"), 1);
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32 --lightmap-uv file --two-sided 2>'%s'",
-             tmp_path("uv.gltf"), tmp_path("uv.png"), tmp_path("uv_lm.png"), tmp_path("uv.err"));
-    CHECK_INT_NE(system(cmd), 0, "rad_cli --lightmap-uv file --two-sided");
-    f = fopen(tmp_path("uv.err"), "r");
-    assert_non_null(f);
-    if (!fgets(line, sizeof line, f)) line[0] = '\0';
-    fclose(f);
+    CHECK_INT_NE(bake_cli("uv.gltf", "--lightmap-uv file --two-sided", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv file --two-sided");
     CHECK_CONTAINS(line, "--two-sided", "the error names --two-sided");
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32 --export-gltf '%s'",
-             tmp_path("uv.gltf"), tmp_path("uv.png"), tmp_path("uv_lm.png"), tmp_path("uv.glb"));
-    CHECK_INT_EQ(system(cmd), 0, "rad_cli --lightmap --export-gltf on the file's UVs");
+    snprintf(extra, sizeof extra, "--export-gltf '%s'", tmp_path("uv.glb"));
+    CHECK_INT_EQ(bake_cli("uv.gltf", extra, line, sizeof line), 0, "rad_cli --lightmap --export-gltf on the file's UVs");
     {
         obj_scene sc;
         char err[512];
