@@ -382,13 +382,19 @@ static void expect_refused(const char *path, const char *part)
     CHECK_INT_EQ(sc.nfaces, 0, "faces left in the scene");
 }
 
-/* The file NAME (in the test's folder) holding TEXT is refused (expect_refused). */
-static void refuse_text(const char *name, const char *text, const char *part)
+/* TEXT as the file NAME in the test's folder. */
+static void write_text(const char *name, const char *text)
 {
     FILE *f = fopen(tmp_path(name), "w");
     assert_non_null(f);
     fputs(text, f);
     assert_int_equal(fclose(f), 0);
+}
+
+/* The file NAME (in the test's folder) holding TEXT is refused (expect_refused). */
+static void refuse_text(const char *name, const char *text, const char *part)
+{
+    write_text(name, text);
     expect_refused(tmp_path(name), part);
 }
 
@@ -1153,6 +1159,61 @@ static void test_export_keeps_nodes(void **state)
     obj_free(&b);
 }
 
+/* A COLLADA quad with two TEXCOORD sets: the second (set 1) is each corner's
+ * obj_scene.uv2, as the file gives it (COLLADA's T up, as a vt's v), the first its vt. */
+static void test_dae_second_uv(void **state)
+{
+    static const char dae[] =
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+        "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+        "  <asset><unit name=\"meter\" meter=\"1\"/><up_axis>Y_UP</up_axis></asset>\n"
+        "  <library_geometries>\n"
+        "    <geometry id=\"quad\" name=\"quad\">\n"
+        "      <mesh>\n"
+        "        <source id=\"pos\"><float_array id=\"pos-a\" count=\"12\">-1 0 -1 -1 0 1 1 0 1 1 0 -1</float_array>\n"
+        "          <technique_common><accessor source=\"#pos-a\" count=\"4\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv0\"><float_array id=\"uv0-a\" count=\"8\">0 0 0 1 1 1 1 0</float_array>\n"
+        "          <technique_common><accessor source=\"#uv0-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv1\"><float_array id=\"uv1-a\" count=\"8\">0.25 0.75 0.25 0.25 0.75 0.25 0.75 0.75</float_array>\n"
+        "          <technique_common><accessor source=\"#uv1-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <vertices id=\"verts\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
+        "        <triangles count=\"2\">\n"
+        "          <input semantic=\"VERTEX\" source=\"#verts\" offset=\"0\"/>\n"
+        "          <input semantic=\"TEXCOORD\" source=\"#uv0\" offset=\"0\" set=\"0\"/>\n"
+        "          <input semantic=\"TEXCOORD\" source=\"#uv1\" offset=\"0\" set=\"1\"/>\n"
+        "          <p>0 1 2 0 2 3</p>\n"
+        "        </triangles>\n"
+        "      </mesh>\n"
+        "    </geometry>\n"
+        "  </library_geometries>\n"
+        "  <library_visual_scenes>\n"
+        "    <visual_scene id=\"scene\"><node id=\"floor\" name=\"floor\"><instance_geometry url=\"#quad\"/></node></visual_scene>\n"
+        "  </library_visual_scenes>\n"
+        "  <scene><instance_visual_scene url=\"#scene\"/></scene>\n"
+        "</COLLADA>\n";
+    static const double pos[4][3] = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    static const double uv1[4][2] = {{0.25, 0.75}, {0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}};
+    obj_scene sc;
+    char err[512];
+    int c, k, found;
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    write_text("two.dae", dae);
+    if (assimp_scene_load(tmp_path("two.dae"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    CHECK_INT_EQ(sc.nfaces, 2, "triangles of the quad");
+    assert_non_null(sc.uv2);
+    for (c = 0; c < sc.nindices; c++) {
+        const obj_vec3 *v = &sc.verts[sc.indices[c]];
+        for (k = 0, found = -1; k < 4; k++)
+            if (v->x == pos[k][0] && v->y == pos[k][1] && v->z == pos[k][2]) found = k;
+        CHECK_INT_GE(found, 0, "corner %d is a corner of the quad", c);
+        CHECK_EQ(sc.uv2[c].u, uv1[found][0], "corner %d's second u", c);
+        CHECK_EQ(sc.uv2[c].v, uv1[found][1], "corner %d's second v", c);
+        CHECK_INT_GE(sc.uv_indices[c], 0, "corner %d keeps its first set", c);
+    }
+    obj_free(&sc);
+}
+
 /* .obj in any case goes to the OBJ reader, every other name to assimp. */
 static void test_wants(void **state)
 {
@@ -1180,6 +1241,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_file_uv),
         cmocka_unit_test(test_lightmap_uv_cli),
         cmocka_unit_test(test_export_keeps_nodes),
+        cmocka_unit_test(test_dae_second_uv),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }
