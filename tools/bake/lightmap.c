@@ -597,18 +597,22 @@ static double uv_det(const lm_atlas *a, int i, int k)
 
 /* Polygon I's fan triangle K (corners 0, K + 1, K + 2) as a frame (lm_atlas.frames) on
  * its plane of unit normal N: world = o + x Wx + y Wy solves the map from its UV
- * corners to its world corners; u, v = Wx, Wy over the texel size T. */
+ * corners to its world corners; u, v = Wx, Wy over the texel size T. None (count 0)
+ * for a triangle of no UV area or of no world area (a quad with three corners on a
+ * line): its map could not be inverted. */
 static void file_frame(lm_atlas *a, int i, int k, const double *n)
 {
     const double *uv = &a->file_uv[8 * (size_t)i], *x = uv + 2 * (k + 1), *y = uv + 2 * (k + 2);
     const sc_poly *q = &a->polys[i];
     lm_chart *f = &a->frames[2 * (size_t)i + k];
-    double det = uv_det(a, i, k), e1[3], e2[3];
+    double det = uv_det(a, i, k), e1[3], e2[3], c[3];
     int j;
     memset(f, 0, sizeof *f);
     if (det == 0.0) return;
     geom_sub(q->v[k + 1], q->v[0], e1);
     geom_sub(q->v[k + 2], q->v[0], e2);
+    geom_cross(e1, e2, c);
+    if (!(geom_dot(c, c) > 0.0)) return;
     for (j = 0; j < 3; j++) {
         double wx = ((y[1] - uv[1]) * e1[j] - (x[1] - uv[1]) * e2[j]) / det;
         double wy = ((x[0] - uv[0]) * e2[j] - (y[0] - uv[0]) * e1[j]) / det;
