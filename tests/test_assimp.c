@@ -32,6 +32,7 @@
 #include "check.h"
 #include "formats/assimp_scene.h"
 #include "formats/file_io.h"
+#include "formats/gltf.h"
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
@@ -381,13 +382,19 @@ static void expect_refused(const char *path, const char *part)
     CHECK_INT_EQ(sc.nfaces, 0, "faces left in the scene");
 }
 
-/* The file NAME (in the test's folder) holding TEXT is refused (expect_refused). */
-static void refuse_text(const char *name, const char *text, const char *part)
+/* TEXT as the file NAME in the test's folder. */
+static void write_text(const char *name, const char *text)
 {
     FILE *f = fopen(tmp_path(name), "w");
     assert_non_null(f);
     fputs(text, f);
     assert_int_equal(fclose(f), 0);
+}
+
+/* The file NAME (in the test's folder) holding TEXT is refused (expect_refused). */
+static void refuse_text(const char *name, const char *text, const char *part)
+{
+    write_text(name, text);
     expect_refused(tmp_path(name), part);
 }
 
@@ -900,7 +907,7 @@ static void uv_faults(const sc_poly *polys, int n, const double *uv)
  * per face agrees with rad's own charts' bake of the same scene. */
 static void test_lightmap_file_uv(void **state)
 {
-    lm_opts lo = {64, 0.0, 0, 0.0, 0.0};
+    lm_opts lo = {64, 0.0, 2, 0.0, 0.0};
     lm_file_report rep;
     lm_atlas a, b;
     obj_scene sc;
@@ -950,6 +957,22 @@ static void test_lightmap_file_uv(void **state)
         CHECK_INT_EQ(obj_find_material(&sc, uvq_name[q]), sc.faces[polys[a.poly[at]].tag].material,
                      "the texel's face's material is %s's", uvq_name[q]);
     }
+    /* The gutter of 2 texels: at 64 texels, row 10 has the floor's texels (its ring
+     * included) to x = 29 and the wall's from x = 34 (0.55 x 64 = 35.2, less its ring):
+     * x = 30, 31 are the floor's gutter, 32, 33 the wall's, filled from their charts;
+     * under the lamp (rows 35..47 with its ring 34..48), rows 49, 50 its gutter and
+     * row 51 nothing. */
+    for (i = 30; i < 34; i++) {
+        size_t at = 10 * 64 + (size_t)i, from = 10 * 64 + (i < 32 ? 20 : 40);
+        CHECK_THAT(a.owner[at] == a.owner[from] && isnan(a.sample[2 * at]) && a.rgb[3 * at] > 0.0f,
+                   "texel (%d, 10) in the %s's gutter: owner %d (the chart's %d), light %g", i,
+                   i < 32 ? "floor" : "wall", a.owner[at], a.owner[from], a.rgb[3 * at]);
+    }
+    CHECK_THAT(a.owner[50 * 64 + 10] == a.owner[40 * 64 + 10] && a.rgb[3 * (50 * 64 + 10)] > 0.0f,
+               "texel (10, 50) in the lamp's gutter: owner %d", a.owner[50 * 64 + 10]);
+    CHECK_THAT(a.owner[51 * 64 + 10] == -1 && a.rgb[3 * (51 * 64 + 10)] == 0.0f,
+               "texel (10, 51) past the lamp's gutter: owner %d, light %g", a.owner[51 * 64 + 10],
+               a.rgb[3 * (51 * 64 + 10)]);
     for (i = 0; i < 64 * 64; i++) { /* the bottom right quarter: nothing there */
         int x = i % 64, y = i / 64;
         if (x < 32 || y < 32) continue;
@@ -1018,30 +1041,202 @@ static void test_lightmap_file_uv(void **state)
 }
 
 /* --lightmap-uv file refuses a scene without a second UV set, naming it, before the
- * solve; auto bakes it on rad's charts. */
+ * solve, and --two-sided with it; auto bakes such a scene on rad's charts, and a scene
+ * with one on its UVs: the .glb's TEXCOORD_1 (read back by assimp) is the file's, at
+ * every corner within float32. */
+/* rad_cli on test file NAME (.gltf) with a 32 x 32 lightmap and EXTRA options; its
+ * exit status, the first line of its standard error into LINE (N bytes). */
+static int bake_cli(const char *name, const char *extra, char *line, size_t n)
+{
+    char cmd[4096], scene[256], out[300], lm[300], errf[300];
+    FILE *f;
+    int rc;
+    snprintf(scene, sizeof scene, "%s", tmp_path(name));
+    snprintf(out, sizeof out, "%s.png", scene);
+    snprintf(lm, sizeof lm, "%s_lm.png", scene);
+    snprintf(errf, sizeof errf, "%s.err", scene);
+    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
+                              "--lightmap-size 32 %s 2>'%s'", scene, out, lm, extra, errf);
+    rc = system(cmd);
+    f = fopen(errf, "r");
+    assert_non_null(f);
+    if (!fgets(line, (int)n, f)) line[0] = '\0';
+    fclose(f);
+    print_message("rad_cli %s %s: %d %s%s", name, extra, rc, line, *line ? "" : "\n");
+    return rc;
+}
+
 static void test_lightmap_uv_cli(void **state)
 {
-    char cmd[2048], line[1024] = "";
-    FILE *f;
+    char line[1024], extra[512];
     (void)state;
     if (!assimp_scene_available()) skip();
     write_uv_gltf(tmp_path("nouv.gltf"), 0);
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32 --lightmap-uv file 2>'%s'",
-             tmp_path("nouv.gltf"), tmp_path("nouv.png"), tmp_path("nouv_lm.png"), tmp_path("nouv.err"));
-    CHECK_INT_NE(system(cmd), 0, "rad_cli --lightmap-uv file on a scene without a second UV set");
-    f = fopen(tmp_path("nouv.err"), "r");
-    assert_non_null(f);
-    if (!fgets(line, sizeof line, f)) line[0] = '\0';
-    fclose(f);
-    print_message("%s", line);
+    CHECK_INT_NE(bake_cli("nouv.gltf", "--lightmap-uv file", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv file on a scene without a second UV set");
     CHECK_CONTAINS(line, "nouv.gltf", "the error names the scene");
     CHECK_CONTAINS(line, "no second UV set", "the error says what is missing");
-    CHECK_INT_EQ(access(tmp_path("nouv.png"), F_OK), -1, "no image written (refused before the solve)");
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32",
-             tmp_path("nouv.gltf"), tmp_path("nouv.png"), tmp_path("nouv_lm.png"));
-    CHECK_INT_EQ(system(cmd), 0, "rad_cli --lightmap-uv auto (the default) on rad's charts");
+    CHECK_INT_EQ(access(tmp_path("nouv.gltf.png"), F_OK), -1, "no image written (refused before the solve)");
+    CHECK_INT_EQ(bake_cli("nouv.gltf", "", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv auto (the default) on rad's charts");
+    write_uv_gltf(tmp_path("uv.gltf"), 1);
+    CHECK_INT_NE(bake_cli("uv.gltf", "--lightmap-uv file --two-sided", line, sizeof line), 0,
+                 "rad_cli --lightmap-uv file --two-sided");
+    CHECK_CONTAINS(line, "--two-sided", "the error names --two-sided");
+    snprintf(extra, sizeof extra, "--export-gltf '%s'", tmp_path("uv.glb"));
+    CHECK_INT_EQ(bake_cli("uv.gltf", extra, line, sizeof line), 0, "rad_cli --lightmap --export-gltf on the file's UVs");
+    {
+        obj_scene sc;
+        char err[512];
+        int c, q;
+        if (assimp_scene_load(tmp_path("uv.glb"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+        assert_non_null(sc.uv2);
+        for (c = 0; c < sc.nindices; c++) {
+            const obj_vec3 *v = &sc.verts[sc.indices[c]];
+            double p[3] = {v->x, v->y, v->z}, w[2];
+            int f2 = 0;
+            while (f2 + 1 < sc.nfaces && sc.faces[f2 + 1].first <= c) f2++;
+            for (q = 0; q < 2; q++)
+                if (!strcmp(sc.materials[sc.faces[f2].material].name, uvq_name[q])) break;
+            uvq_uv(q, p, w);
+            CHECK_NEAR(sc.uv2[c].u, w[0], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 u", c, uvq_name[q]);
+            CHECK_NEAR(1.0 - sc.uv2[c].v, w[1], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 v", c, uvq_name[q]);
+        }
+        obj_free(&sc);
+    }
+}
+
+/* The face of SC whose centroid is nearest P (world), its distance into *D. */
+static int face_at(const obj_scene *sc, const double *p, double *d)
+{
+    int f, k, best = -1;
+    *d = HUGE_VAL;
+    for (f = 0; f < sc->nfaces; f++) {
+        double c[3] = {0, 0, 0}, e;
+        for (k = 0; k < sc->faces[f].count; k++) {
+            const obj_vec3 *v = &sc->verts[sc->indices[sc->faces[f].first + k]];
+            c[0] += v->x / sc->faces[f].count;
+            c[1] += v->y / sc->faces[f].count;
+            c[2] += v->z / sc->faces[f].count;
+        }
+        e = sqrt((c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) + (c[2] - p[2]) * (c[2] - p[2]));
+        if (e < *d) {
+            *d = e;
+            best = f;
+        }
+    }
+    return best;
+}
+
+/* --export-gltf of a glTF keeps its nodes: the room's house > props > lamp, block
+ * come back (the .glb read by assimp again) with their names, parents and local
+ * matrices to the bit (float32 in, %.17g out), its material names, and every face
+ * where it was (centroid within 10^-6: local vertices through the inverse of the
+ * node's transform, float32) facing as it did (the mirrored block's triangles written
+ * as the file wound them, so that the mirror turns them back). */
+static void test_export_keeps_nodes(void **state)
+{
+    obj_scene a, b;
+    gltf_input in;
+    char err[512];
+    int i, k, f;
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    write_gltf(tmp_path("nodes.gltf"));
+    if (assimp_scene_load(tmp_path("nodes.gltf"), NULL, &a, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    memset(&in, 0, sizeof in);
+    in.sc = &a;
+    if (gltf_write(tmp_path("nodes.glb"), &in, err, sizeof err) < 0) fail_msg("%s", err);
+    if (assimp_scene_load(tmp_path("nodes.glb"), NULL, &b, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    CHECK_INT_EQ(a.nnodes, 4, "nodes read from the room's glTF");
+    CHECK_INT_EQ(b.nnodes, a.nnodes, "nodes of the exported .glb");
+    for (i = 0; i < a.nnodes; i++) {
+        const obj_node *x = &a.nodes[i], *y = &b.nodes[i];
+        print_message("node %d %s (parent %s): %s (parent %s)\n", i, x->name,
+                      x->parent >= 0 ? a.nodes[x->parent].name : "-", y->name,
+                      y->parent >= 0 ? b.nodes[y->parent].name : "-");
+        CHECK_THAT(!strcmp(y->name, x->name), "node %d's name: %s, the input's %s", i, y->name, x->name);
+        CHECK_INT_EQ(y->parent, x->parent, "node %s's parent", x->name);
+        for (k = 0; k < 16; k++) CHECK_EQ(y->local[k], x->local[k], "node %s's matrix[%d]", x->name, k);
+    }
+    CHECK_EQ(a.nodes[3].local[0], -1, "the block's mirror (scale -1 on x)");
+    CHECK_EQ(a.nodes[2].local[13], 2.875, "the lamp's translation in y");
+    for (i = 0; i < 3; i++) CHECK_INT_GE(obj_find_material(&b, mat_names[i]), 0, "material %s kept", mat_names[i]);
+    CHECK_INT_EQ(b.nfaces, a.nfaces, "faces of the .glb");
+    for (f = 0; f < b.nfaces; f++) {
+        obj_vec3 nb = obj_face_normal(&b, &b.faces[f]), na;
+        double c[3] = {0, 0, 0}, d, dot;
+        int g;
+        for (k = 0; k < 3; k++) {
+            const obj_vec3 *v = &b.verts[b.indices[b.faces[f].first + k]];
+            c[0] += v->x / 3;
+            c[1] += v->y / 3;
+            c[2] += v->z / 3;
+        }
+        g = face_at(&a, c, &d);
+        CHECK_LE(d, 1e-6, "exported face %d (node %s) lies where an input face was", f, b.names[b.faces[f].object]);
+        na = obj_face_normal(&a, &a.faces[g]);
+        dot = (na.x * nb.x + na.y * nb.y + na.z * nb.z) /
+              sqrt((na.x * na.x + na.y * na.y + na.z * na.z) * (nb.x * nb.x + nb.y * nb.y + nb.z * nb.z));
+        CHECK_NEAR(dot, 1, 1e-9, "exported face %d (node %s) faces as the input's", f, b.names[b.faces[f].object]);
+    }
+    obj_free(&a);
+    obj_free(&b);
+}
+
+/* A COLLADA quad with two TEXCOORD sets: the second (set 1) is each corner's
+ * obj_scene.uv2, as the file gives it (COLLADA's T up, as a vt's v), the first its vt. */
+static void test_dae_second_uv(void **state)
+{
+    static const char dae[] =
+        "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+        "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+        "  <asset><unit name=\"meter\" meter=\"1\"/><up_axis>Y_UP</up_axis></asset>\n"
+        "  <library_geometries>\n"
+        "    <geometry id=\"quad\" name=\"quad\">\n"
+        "      <mesh>\n"
+        "        <source id=\"pos\"><float_array id=\"pos-a\" count=\"12\">-1 0 -1 -1 0 1 1 0 1 1 0 -1</float_array>\n"
+        "          <technique_common><accessor source=\"#pos-a\" count=\"4\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv0\"><float_array id=\"uv0-a\" count=\"8\">0 0 0 1 1 1 1 0</float_array>\n"
+        "          <technique_common><accessor source=\"#uv0-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv1\"><float_array id=\"uv1-a\" count=\"8\">0.25 0.75 0.25 0.25 0.75 0.25 0.75 0.75</float_array>\n"
+        "          <technique_common><accessor source=\"#uv1-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <vertices id=\"verts\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
+        "        <triangles count=\"2\">\n"
+        "          <input semantic=\"VERTEX\" source=\"#verts\" offset=\"0\"/>\n"
+        "          <input semantic=\"TEXCOORD\" source=\"#uv0\" offset=\"0\" set=\"0\"/>\n"
+        "          <input semantic=\"TEXCOORD\" source=\"#uv1\" offset=\"0\" set=\"1\"/>\n"
+        "          <p>0 1 2 0 2 3</p>\n"
+        "        </triangles>\n"
+        "      </mesh>\n"
+        "    </geometry>\n"
+        "  </library_geometries>\n"
+        "  <library_visual_scenes>\n"
+        "    <visual_scene id=\"scene\"><node id=\"floor\" name=\"floor\"><instance_geometry url=\"#quad\"/></node></visual_scene>\n"
+        "  </library_visual_scenes>\n"
+        "  <scene><instance_visual_scene url=\"#scene\"/></scene>\n"
+        "</COLLADA>\n";
+    static const double pos[4][3] = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    static const double uv1[4][2] = {{0.25, 0.75}, {0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}};
+    obj_scene sc;
+    char err[512];
+    int c, k, found;
+    (void)state;
+    if (!assimp_scene_available()) skip();
+    write_text("two.dae", dae);
+    if (assimp_scene_load(tmp_path("two.dae"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    CHECK_INT_EQ(sc.nfaces, 2, "triangles of the quad");
+    assert_non_null(sc.uv2);
+    for (c = 0; c < sc.nindices; c++) {
+        const obj_vec3 *v = &sc.verts[sc.indices[c]];
+        for (k = 0, found = -1; k < 4; k++)
+            if (v->x == pos[k][0] && v->y == pos[k][1] && v->z == pos[k][2]) found = k;
+        CHECK_INT_GE(found, 0, "corner %d is a corner of the quad", c);
+        CHECK_EQ(sc.uv2[c].u, uv1[found][0], "corner %d's second u", c);
+        CHECK_EQ(sc.uv2[c].v, uv1[found][1], "corner %d's second v", c);
+        CHECK_INT_GE(sc.uv_indices[c], 0, "corner %d keeps its first set", c);
+    }
+    obj_free(&sc);
 }
 
 /* .obj in any case goes to the OBJ reader, every other name to assimp. */
@@ -1070,6 +1265,8 @@ int main(void)
         cmocka_unit_test(test_cli_file_lights),
         cmocka_unit_test(test_lightmap_file_uv),
         cmocka_unit_test(test_lightmap_uv_cli),
+        cmocka_unit_test(test_export_keeps_nodes),
+        cmocka_unit_test(test_dae_second_uv),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -811,18 +811,22 @@ static double uv_det(const lm_atlas *a, int i, int k)
 
 /* Polygon I's fan triangle K (corners 0, K + 1, K + 2) as a frame (lm_atlas.frames) on
  * its plane of unit normal N: world = o + x Wx + y Wy solves the map from its UV
- * corners to its world corners; u, v = Wx, Wy over the texel size T. */
+ * corners to its world corners; u, v = Wx, Wy over the texel size T. None (count 0)
+ * for a triangle of no UV area or of no world area (a quad with three corners on a
+ * line): its map could not be inverted. */
 static void file_frame(lm_atlas *a, int i, int k, const double *n)
 {
     const double *uv = &a->file_uv[8 * (size_t)i], *x = uv + 2 * (k + 1), *y = uv + 2 * (k + 2);
     const sc_poly *q = &a->polys[i];
     lm_chart *f = &a->frames[2 * (size_t)i + k];
-    double det = uv_det(a, i, k), e1[3], e2[3];
+    double det = uv_det(a, i, k), e1[3], e2[3], c[3];
     int j;
     memset(f, 0, sizeof *f);
     if (det == 0.0) return;
     geom_sub(q->v[k + 1], q->v[0], e1);
     geom_sub(q->v[k + 2], q->v[0], e2);
+    geom_cross(e1, e2, c);
+    if (!(geom_dot(c, c) > 0.0)) return;
     for (j = 0; j < 3; j++) {
         double wx = ((y[1] - uv[1]) * e1[j] - (x[1] - uv[1]) * e2[j]) / det;
         double wy = ((x[0] - uv[0]) * e2[j] - (y[0] - uv[0]) * e1[j]) / det;
@@ -977,21 +981,16 @@ static int file_samples(lm_atlas *a, const unsigned char *interior, const int *c
 }
 
 /* The gutter: PADDING rings around the charts' texels, each texel of no chart taken by
- * the lowest chart among its 8-neighbours of the rings before. 0, or -1. */
-static int file_gutter(lm_atlas *a)
+ * the lowest chart among its 8-neighbours of the rings before (a ring's own texels
+ * marked -2 - chart until it is done, so that they are not read). */
+static void file_gutter(lm_atlas *a)
 {
-    size_t t = (size_t)a->size * a->size, i, n;
-    size_t *ring = malloc((t + 1) * sizeof *ring);
-    int *take = malloc((t + 1) * sizeof *take), r, dx, dy;
-    if (!ring || !take) {
-        free(ring);
-        free(take);
-        return -1;
-    }
+    size_t t = (size_t)a->size * a->size, i;
+    int r, dx, dy;
     for (r = 0; r < a->padding; r++) {
-        for (n = 0, i = 0; i < t; i++) {
+        for (i = 0; i < t; i++) {
             int x = (int)(i % (size_t)a->size), y = (int)(i / (size_t)a->size), best = -1;
-            if (a->owner[i] >= 0) continue;
+            if (a->owner[i] != -1) continue;
             for (dy = -1; dy <= 1; dy++)
                 for (dx = -1; dx <= 1; dx++) {
                     int o;
@@ -999,16 +998,11 @@ static int file_gutter(lm_atlas *a)
                     o = a->owner[(size_t)(y + dy) * a->size + (size_t)(x + dx)];
                     if (o >= 0 && (best < 0 || o < best)) best = o;
                 }
-            if (best >= 0) {
-                take[n] = best;
-                ring[n++] = i;
-            }
+            if (best >= 0) a->owner[i] = -2 - best;
         }
-        for (i = 0; i < n; i++) a->owner[ring[i]] = take[i];
+        for (i = 0; i < t; i++)
+            if (a->owner[i] <= -2) a->owner[i] = -2 - a->owner[i];
     }
-    free(ring);
-    free(take);
-    return 0;
 }
 
 /* Texels whose centre lies strictly inside the UV triangles of two polygons. -1 out
@@ -1143,9 +1137,10 @@ int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, co
         if (rc == -3) snprintf(err, errlen, "no polygon has a second UV set with area (the file's lightmap UVs)");
     }
     if (rc == 0 && (file_joins(a, g, parent, interior) != 0 || file_charts(a, parent, comp) != 0 ||
-                    file_samples(a, interior, comp) != 0 || file_gutter(a) != 0 ||
+                    file_samples(a, interior, comp) != 0 ||
                     (rep->overlap = file_overlaps(a)) < 0))
         rc = -1;
+    if (rc == 0) file_gutter(a);
     if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
     free(g);
     free(interior);

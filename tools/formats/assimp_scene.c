@@ -187,7 +187,7 @@ typedef struct {
     const struct aiScene *ai;
     int half_angles;  /* spot cones given as half angles (glTF), else full (assimp's rule) */
     char *placed;     /* per assimp light: placed by its node */
-    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces, cap_uv2;
+    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces, cap_uv2, cap_nodes;
     long uv2_corners; /* corners given a second UV set */
     int *mat_of; /* assimp material -> obj material */
 } build;
@@ -379,18 +379,59 @@ static int add_light(build *b, unsigned i, const xform *t)
     return 0;
 }
 
-/* Depth first from NODE with its parents' transform T; DEPTH bounds a cyclic or absurd
- * hierarchy (assimp's validation refuses cycles; this is belt and braces). */
-static int walk(build *b, const struct aiNode *node, const xform *parent, int depth)
+/* NODE (world transform T, parent PARENT, its faces' OBJECT) as the scene's next
+ * obj_node; its index, or -1 out of memory. */
+static void local_matrix(const struct aiNode *node, double local[16])
+{
+    const struct aiMatrix4x4 *m = &node->mTransformation;
+    const double c[16] = {m->a1, m->b1, m->c1, m->d1, m->a2, m->b2, m->c2, m->d2,
+                          m->a3, m->b3, m->c3, m->d3, m->a4, m->b4, m->c4, m->d4};
+    memcpy(local, c, sizeof c);
+}
+
+static int add_node(build *b, const struct aiNode *node, const xform *t, int parent, int object)
+{
+    obj_scene *sc = b->sc;
+    double local[16];
+    obj_node *n;
+    local_matrix(node, local);
+    if (grow((void **)&sc->nodes, &b->cap_nodes, (long)sc->nnodes + 1, sizeof *sc->nodes)) return -1;
+    n = &sc->nodes[sc->nnodes];
+    n->name = dup_str(node->mName.data);
+    if (!n->name) return -1;
+    n->parent = parent;
+    n->object = object;
+    memcpy(n->local, local, sizeof local);
+    memcpy(n->world, t->m, sizeof n->world);
+    return sc->nnodes++;
+}
+
+/* 1 for the root assimp adds above a file's several roots (glTF's "ROOT", FBX's
+ * "RootNode"): no mesh, the identity. Left out of the scene's nodes. */
+static int added_root(const struct aiNode *node, int depth)
+{
+    double m[16];
+    int k;
+    local_matrix(node, m);
+    for (k = 0; k < 16; k++)
+        if (m[k] != (k % 5 == 0)) return 0; /* the diagonal 1, the rest 0 */
+    return depth == 0 && !node->mNumMeshes;
+}
+
+/* Depth first from NODE with its parents' transform T and obj_node PARENT (-1: none);
+ * DEPTH bounds a cyclic or absurd hierarchy (assimp's validation refuses cycles; this
+ * is belt and braces). */
+static int walk(build *b, const struct aiNode *node, const xform *parent, int depth, int up)
 {
     xform t = xf_mul(parent, &node->mTransformation);
-    int object = -1;
+    int object = -1, me = up;
     unsigned i;
     if (depth > 1000) return -1;
     if (node->mNumMeshes) {
         object = add_name(b, &node->mName);
         if (object == -2) return -1;
     }
+    if (!added_root(node, depth) && (me = add_node(b, node, &t, up, object)) < 0) return -1;
     for (i = 0; i < b->ai->mNumLights; i++) /* a light is placed by the node of its name */
         if (!b->placed[i] && !strcmp(b->ai->mLights[i]->mName.data, node->mName.data) &&
             add_light(b, i, &t) < 0)
@@ -400,7 +441,7 @@ static int walk(build *b, const struct aiNode *node, const xform *parent, int de
         if (mi >= b->ai->mNumMeshes || add_mesh(b, b->ai->mMeshes[mi], &t, object) < 0) return -1;
     }
     for (i = 0; i < node->mNumChildren; i++)
-        if (walk(b, node->mChildren[i], &t, depth + 1) < 0) return -1;
+        if (walk(b, node->mChildren[i], &t, depth + 1, me) < 0) return -1;
     return 0;
 }
 
@@ -602,7 +643,7 @@ int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj
         b.mat_of[i] = sc->nmaterials;
         if (add_material(&b, &st, path, i, warn, ctx) < 0) goto nomem;
     }
-    if (walk(&b, ai->mRootNode, &id, 0) < 0) goto nomem;
+    if (walk(&b, ai->mRootNode, &id, 0, -1) < 0) goto nomem;
     for (i = 0; i < ai->mNumLights; i++) /* no node of its name: as the file gives it */
         if (!b.placed[i] && add_light(&b, i, &id) < 0) goto nomem;
     aiReleaseImport(ai);

@@ -11,7 +11,10 @@
  *     parents' (normals by the inverse transpose; a mirroring transform reverses the
  *     faces' winding, so their front stays where the file put it); faces of fewer than
  *     three vertices (points, lines) are left out and counted in unknown_statements;
- *     each node's name is the faces' object name (obj_face.object);
+ *     each node's name is the faces' object name (obj_face.object); the hierarchy as
+ *     obj_scene.nodes (names, parents, local and world transforms: what --export-gltf
+ *     writes back), less the root assimp adds above several roots (no mesh, the
+ *     identity);
  *   - the first texture coordinate set (assimp gives it with v up, as OBJ), the second
  *     (glTF's TEXCOORD_1, FBX's and COLLADA's second channel) per corner as
  *     obj_scene.uv2, the lightmap's UVs under --lightmap-uv, and the normals;

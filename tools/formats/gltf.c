@@ -317,8 +317,13 @@ static int face_triangles(const obj_scene *sc, const obj_face *f, int **tri, siz
 
 typedef struct {
     buf bin, views, accessors, meshes, nodes;
-    int nviews, naccessors, nmeshes;
+    int nviews, naccessors, nmeshes, nloose; /* nodes: the loose ones (no obj_node) */
     const gltf_input *in;
+    int *mesh_of_node; /* per obj_node: its mesh, -1 */
+    /* the node being written: its world transform inverted (vertices written in its
+       frame), its linear part (normals: by its transpose), and 1 if it mirrors */
+    double inv[3][4], lin[3][3];
+    int framed, mirror; /* framed 0: the world's frame, written as they are */
     int *image_of;   /* per material: image index, -1 */
     int *texture_of; /* per material: texture index, when image_of >= 0 */
 } writer;
@@ -399,6 +404,21 @@ static void write_uv1(writer *w, const prim_verts *pv, const char *name, buf *p)
     putf(p, ",\"%s\":%d", name, acc);
 }
 
+/* World normal N in the node's frame: by the transpose of its linear part (the
+   inverse of the inverse transpose that took it to the world), unit again. */
+static void local_normal(const writer *w, const float *n, double *o)
+{
+    double len;
+    int k;
+    for (k = 0; k < 3; k++)
+        o[k] = w->framed ? w->lin[0][k] * n[0] + w->lin[1][k] * n[1] + w->lin[2][k] * n[2] : n[k];
+    if (!w->framed)
+        return;
+    len = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+    for (k = 0; k < 3 && len > 0 && isfinite(len); k++)
+        o[k] /= len;
+}
+
 /* Writes the attribute arrays; appends their accessors to the primitive's JSON P. */
 static void write_attributes(writer *w, const prim_verts *pv, buf *p)
 {
@@ -414,9 +434,9 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     for (i = 0; i < pv->nverts; i++) {
         const obj_vec3 *v = &sc->verts[pv->c[pv->first[i]].v];
         float f[3];
-        f[0] = (float)v->x;
-        f[1] = (float)v->y;
-        f[2] = (float)v->z;
+        for (k = 0; k < 3; k++)
+            f[k] = !w->framed ? (float)(k == 0 ? v->x : k == 1 ? v->y : v->z)
+                              : (float)(w->inv[k][0] * v->x + w->inv[k][1] * v->y + w->inv[k][2] * v->z + w->inv[k][3]);
         for (k = 0; k < 3; k++) {
             put_f32(&w->bin, f[k]);
             lo[k] = f[k] < lo[k] ? f[k] : lo[k];
@@ -426,9 +446,12 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", lo, hi, 3);
     putf(p, "\"attributes\":{\"POSITION\":%d", acc);
     at = w->bin.n;
-    for (i = 0; i < pv->nverts; i++)
+    for (i = 0; i < pv->nverts; i++) {
+        double n[3];
+        local_normal(w, pv->c[pv->first[i]].n, n);
         for (k = 0; k < 3; k++)
-            put_f32(&w->bin, pv->c[pv->first[i]].n[k]);
+            put_f32(&w->bin, n[k]);
+    }
     acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
     putf(p, ",\"NORMAL\":%d", acc);
     if (pv->textured) {
@@ -473,7 +496,7 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
 }
 
 /* Corners of the triangles of faces R[0..n-1] (one material), sorted by weld key. */
-static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n, int *ncorners,
+static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n, int mirror, int *ncorners,
                                   int *textured)
 {
     const obj_scene *sc = in->sc;
@@ -497,7 +520,7 @@ static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n
         }
         for (t = 0; t < 3 * nt; t++) {
             corner_rec *x = &c[count];
-            k = tri[t];
+            k = tri[mirror ? t - t % 3 + 2 - t % 3 : t]; /* a mirroring node's triangles as the file wound them */
             x->corner = f->first + k;
             x->v = sc->indices[x->corner];
             x->vt = sc->uv_indices[x->corner];
@@ -528,7 +551,7 @@ static int write_primitive(writer *w, const face_rec *r, int n, buf *prims, int 
     size_t at;
     int i, v, acc;
     buf p = { 0 };
-    if (!(c = gather_corners(w->in, r, n, &pv.n, &pv.textured)))
+    if (!(c = gather_corners(w->in, r, n, w->mirror, &pv.n, &pv.textured)))
         return -1;
     pv.c = c;
     pv.m = &sc->materials[r[0].material];
@@ -578,8 +601,9 @@ static const char *node_name(const obj_scene *sc, const face_rec *r, char *s, si
     return s;
 }
 
-/* Faces R[0..n-1] of one node: its mesh and node. Returns -1 when out of memory. */
-static int write_node(writer *w, const face_rec *r, int n)
+/* Faces R[0..n-1] of one node: its mesh, and its node unless it is obj_node NODE
+   (>= 0: written by write_hierarchy). Returns -1 when out of memory. */
+static int write_node(writer *w, const face_rec *r, int n, int node)
 {
     buf prims = { 0 };
     char name[600];
@@ -602,9 +626,13 @@ static int write_node(writer *w, const face_rec *r, int n)
         put_text(&w->meshes, ",\"primitives\":[");
         put(&w->meshes, prims.p, prims.n);
         put_text(&w->meshes, "]}");
-        put_text(&w->nodes, w->nmeshes ? ",{\"name\":" : "{\"name\":");
-        put_string(&w->nodes, name);
-        putf(&w->nodes, ",\"mesh\":%d}", w->nmeshes++);
+        if (node >= 0) {
+            w->mesh_of_node[node] = w->nmeshes++;
+        } else {
+            put_text(&w->nodes, w->nloose++ ? ",{\"name\":" : "{\"name\":");
+            put_string(&w->nodes, name);
+            putf(&w->nodes, ",\"mesh\":%d}", w->nmeshes++);
+        }
     }
     i = prims.failed;
     free(prims.p);
@@ -818,14 +846,53 @@ static void free_writer(writer *w)
     free(w->accessors.p);
     free(w->meshes.p);
     free(w->nodes.p);
+    free(w->mesh_of_node);
     free(w->image_of);
     free(w->texture_of);
+}
+
+/* The scene's obj_nodes: name, children, matrix (unless the identity), mesh. */
+static void write_hierarchy(writer *w, buf *j)
+{
+    const obj_scene *sc = w->in->sc;
+    int *first = malloc(((size_t)sc->nnodes + 1) * sizeof *first);
+    int *next = malloc(((size_t)sc->nnodes + 1) * sizeof *next), i, c, k;
+    if (!first || !next) {
+        j->failed = 1;
+        free(first);
+        free(next);
+        return;
+    }
+    for (i = 0; i < sc->nnodes; i++)
+        first[i] = -1;
+    for (c = sc->nnodes - 1; c >= 0; c--) /* children in order, each list by its parent */
+        if (sc->nodes[c].parent >= 0) {
+            next[c] = first[sc->nodes[c].parent];
+            first[sc->nodes[c].parent] = c;
+        }
+    for (i = 0; i < sc->nnodes; i++) {
+        const obj_node *o = &sc->nodes[i];
+        put_text(j, i ? ",{\"name\":" : "{\"name\":");
+        put_string(j, o->name);
+        for (c = first[i]; c >= 0; c = next[c])
+            putf(j, "%s%d%s", c == first[i] ? ",\"children\":[" : ",", c, next[c] < 0 ? "]" : "");
+        for (k = 0; k < 16 && o->local[k] == (k % 5 == 0); k++) {
+        }
+        for (c = 0; k < 16 && c < 16; c++)
+            putf(j, "%s%.17g%s", c ? "," : ",\"matrix\":[", o->local[c], c == 15 ? "]" : "");
+        if (w->mesh_of_node[i] >= 0)
+            putf(j, ",\"mesh\":%d", w->mesh_of_node[i]);
+        put_text(j, "}");
+    }
+    free(first);
+    free(next);
 }
 
 /* The JSON chunk's text. */
 static void write_json(writer *w, buf *j)
 {
-    int i;
+    const obj_scene *sc = w->in->sc;
+    int i, n, nh = sc->nnodes;
     int lit = 0, unlit = 0;
     for (i = 0; i < w->in->sc->nmaterials; i++) {
         lit |= lit_by_lightmap(w->in, i);
@@ -836,17 +903,24 @@ static void write_json(writer *w, buf *j)
         putf(j, ",\"extensionsUsed\":[%s%s%s]", unlit ? "\"KHR_materials_unlit\"" : "", lit && unlit ? "," : "",
              lit ? "\"KHR_materials_emissive_strength\"" : "");
     put_text(j, ",\"scene\":0,\"scenes\":[{");
-    if (w->nmeshes) {
+    if (nh + w->nloose) {
         put_text(j, "\"nodes\":[");
-        for (i = 0; i < w->nmeshes; i++)
-            putf(j, "%s%d", i ? "," : "", i);
+        for (i = 0, n = 0; i < nh + w->nloose; i++)
+            if (i >= nh || sc->nodes[i].parent < 0)
+                putf(j, "%s%d", n++ ? "," : "", i);
         put_text(j, "]");
     }
     put_text(j, "}]");
-    if (w->nmeshes) {
+    if (nh + w->nloose) {
         put_text(j, ",\"nodes\":[");
+        write_hierarchy(w, j);
+        if (nh && w->nloose)
+            put_text(j, ",");
         put(j, w->nodes.p, w->nodes.n);
-        put_text(j, "],\"meshes\":[");
+        put_text(j, "]");
+    }
+    if (w->nmeshes) {
+        put_text(j, ",\"meshes\":[");
         put(j, w->meshes.p, w->meshes.n);
         put_text(j, "]");
     }
@@ -868,19 +942,73 @@ static void write_json(writer *w, buf *j)
     pad4(j, ' ');
 }
 
+/* The node of each object (names index; -1: none) and each obj_node's mesh (-1 so
+   far) for a scene with nodes; their names kept apart (two nodes may share one); with
+   none, canonical_names. NULL out of memory. */
+static int *node_names(writer *w, int **node_of)
+{
+    const obj_scene *sc = w->in->sc;
+    int *canon, i;
+    *node_of = NULL;
+    if (!sc->nnodes)
+        return canonical_names(sc);
+    canon = malloc(((size_t)sc->nnames + 1) * sizeof *canon);
+    *node_of = malloc(((size_t)sc->nnames + 1) * sizeof **node_of);
+    w->mesh_of_node = malloc((size_t)sc->nnodes * sizeof *w->mesh_of_node);
+    if (!canon || !*node_of || !w->mesh_of_node) {
+        free(canon);
+        free(*node_of);
+        return NULL;
+    }
+    for (i = 0; i < sc->nnames; i++)
+        canon[i] = i, (*node_of)[i] = -1;
+    for (i = 0; i < sc->nnodes; i++) {
+        w->mesh_of_node[i] = -1;
+        if (sc->nodes[i].object >= 0 && sc->nodes[i].object < sc->nnames)
+            (*node_of)[sc->nodes[i].object] = i;
+    }
+    return canon;
+}
+
+/* The frame faces are written in: obj_node NODE's (-1: the world's). */
+static void set_frame(writer *w, int node)
+{
+    static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    const double (*m)[4] = node >= 0 ? (const double (*)[4])w->in->sc->nodes[node].world : id;
+    double det;
+    int r, c;
+    for (r = 0; r < 3; r++)
+        for (c = 0; c < 3; c++)
+            w->lin[r][c] = m[r][c];
+    det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+          m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    w->mirror = det < 0;
+    w->framed = node >= 0;
+    for (r = 0; r < 3; r++) { /* the inverse: cofactors over det, then the translation */
+        for (c = 0; c < 3; c++) {
+            int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+            w->inv[r][c] = det != 0 ? (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det : id[r][c];
+        }
+    }
+    for (r = 0; r < 3; r++)
+        w->inv[r][3] = -(w->inv[r][0] * m[0][3] + w->inv[r][1] * m[1][3] + w->inv[r][2] * m[2][3]);
+}
+
 static int gather(writer *w)
 {
     const obj_scene *sc = w->in->sc;
-    int *canon = canonical_names(sc), nodes = 0, i = 0, rc = 0;
+    int *node_of, *canon = node_names(w, &node_of), nodes = 0, i = 0, rc = 0;
     face_rec *r = canon ? sort_faces(sc, canon, &nodes) : NULL;
     while (r && i < sc->nfaces && rc == 0) {
-        int j = i;
+        int j = i, o = sc->faces[r[i].face].object, node = node_of && o >= 0 ? node_of[o] : -1;
         while (j < sc->nfaces && r[j].node == r[i].node)
             j++;
-        rc = write_node(w, r + i, j - i);
+        set_frame(w, node);
+        rc = write_node(w, r + i, j - i, node);
         i = j;
     }
     free(canon);
+    free(node_of);
     free(r);
     return r && rc == 0 ? 0 : -1;
 }

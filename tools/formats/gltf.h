@@ -2,7 +2,10 @@
 /* gltf — glTF 2.0 binary (.glb) export of an OBJ scene's own meshes, for engines
  * (uses malloc and stdio).
  *
- * What is written: a node and a mesh per OBJ object or group (faces with the same o and
+ * What is written: the scene's nodes (obj_scene.nodes: a file read through assimp) with
+ * their names, children and matrices, each node's faces its mesh in the node's frame (a
+ * mirroring node's triangles wound as the file wound them: glTF turns them back); or,
+ * without nodes (an OBJ), a node and a mesh per OBJ object or group (faces with the same o and
  * g names, in the order they first appear; faces before any o or g form "(default)"),
  * a primitive per material in each mesh, triangles (faces of 4 vertices as the fan
  * (0,1,2)(0,2,3), larger ones ear-clipped by obj_triangulate), and vertices welded per

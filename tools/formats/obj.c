@@ -1225,6 +1225,9 @@ void obj_free(obj_scene *sc)
     for (i = 0; i < sc->nlights; i++)
         free(sc->lights[i].name);
     free(sc->lights);
+    for (i = 0; i < sc->nnodes; i++)
+        free(sc->nodes[i].name);
+    free(sc->nodes);
     for (i = 0; i < sc->nlibs; i++)
         free(sc->libs[i]);
     free(sc->libs);

@@ -75,6 +75,18 @@ typedef struct {
     double cos_outer, cos_inner;
 } obj_light;
 
+/* A node of the scene file's hierarchy (glTF, FBX, COLLADA, 3DS through
+ * assimp_scene.h; OBJ has none): its name, its parent (an index into nodes, before it;
+ * -1: a root), its transform relative to the parent (LOCAL, column-major 4 x 4 as a
+ * glTF node's matrix), its world transform (WORLD, rows of x' = M (x, y, z, 1): the
+ * product from the root, by which its faces' vertices were moved) and the object
+ * (index into names) of its faces, -1 when it has none. */
+typedef struct {
+    char *name;
+    int parent, object;
+    double local[16], world[3][4];
+} obj_node;
+
 typedef struct {
     obj_vec3 *verts; int nverts;
     int *indices; int nindices;      /* 0-based indices into verts, already resolved */
@@ -91,6 +103,7 @@ typedef struct {
     obj_material *materials; int nmaterials;
     char **libs; int nlibs;          /* the material libraries read, as opened (joined paths) */
     obj_light *lights; int nlights;  /* the file's lights (none from an OBJ) */
+    obj_node *nodes; int nnodes;     /* the file's hierarchy (none from an OBJ) */
     long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
     int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
