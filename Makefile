@@ -53,7 +53,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/host/gltf_export.c 
               tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c tools/bake/*.c) tools/host/obj_polys.c \
-              tools/host/clock.c tools/bench/plot.c
+              tools/host/clock.c tools/bench/plot.c tools/bench/level.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
@@ -69,7 +69,7 @@ LIBTOOLS   := $(BUILDDIR)/libradtools.a
 RAD_BUILD_H := $(BUILDDIR)/include/rad/rad_build.h
 TESTS      := $(TEST_SRCS:tests/%.c=$(BUILDDIR)/tests/%)
 
-.PHONY: all lib test check ports port-test port-bench port-size bench install install-lib uninstall clean nm-check example readme-image
+.PHONY: all lib test check ports port-test port-bench port-size bench bench-level install install-lib uninstall clean nm-check example readme-image
 all: lib $(BUILDDIR)/rad_cli $(BUILDDIR)/rad_cli_float
 # The library alone: no libpng, no CMocka, no host tools.
 lib: $(LIBRAD) $(LIBRADF) $(RAD_BUILD_H)
@@ -108,6 +108,10 @@ $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_
 
 bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
+
+# The level of Sponza's class alone (long: tools/bench/level.h, docs/new-level.md).
+bench-level: $(BUILDDIR)/rad_bench
+	$(BUILDDIR)/rad_bench --level
 
 # Every test links both builds of the core (through the host glue) and the host tools,
 # and the objects under $(BUILDDIR)/tests/ that a line below adds to its prerequisites.

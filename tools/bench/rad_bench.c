@@ -35,6 +35,7 @@
 #include "host/clock.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
+#include "bench/level.h"
 #include "bench/plot.h"
 #include "cli/cli.h"
 #include "rad/rad.h"
@@ -1657,6 +1658,158 @@ static void report_textures(report_t *rp, const char *self)
 }
 
 /* Index of the scene named NAME, or -1. */
+/* ---- rad_bench --level: a level of Sponza's class ---------------------------------- */
+
+#define LEVEL_SIZE 1024 /* the lightmap's texels a side */
+
+/* A run's progress on stderr every 10 s: the solve's shots and unshot fraction. */
+typedef struct {
+    double t0, last;
+} level_prog;
+
+static int level_shot(void *ctx, int shots, double unshot)
+{
+    level_prog *p = ctx;
+    double t = host_now();
+    if (t - p->last >= 10.0) {
+        fprintf(stderr, "rad_bench: level: %d shots, unshot %.4f, %.0f s\n", shots, unshot, t - p->t0);
+        p->last = t;
+    }
+    return 0;
+}
+
+/* The bake's gathers on this thread, stopping once STOP seconds of them have passed
+ * (0: never): their count and progress every 10 s. */
+typedef struct {
+    sc_gatherer *g;
+    long gathers;
+    double t0, last, stop;
+} level_bake;
+
+static int level_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    level_bake *b = ctx;
+    double t;
+    if ((++b->gathers & 63) == 0 && (t = host_now()) - b->last >= 10.0) {
+        fprintf(stderr, "rad_bench: level: lightmap, %ld gathers, %.0f s\n", b->gathers, t - b->t0);
+        b->last = t;
+        if (b->stop > 0 && t - b->t0 >= b->stop) return 1;
+    }
+    return sc_gather(b->g, p, n, 1, rgb);
+}
+
+/* One level (POLYS, N of them, lit by LIGHTS) measured and reported as a table row:
+ * the solve to 0.01 at rad_cli's hemi-cube defaults, the core's memory and the
+ * process's peak, the 1024 x 1024 atlas's charts and layout time, and its bake (the
+ * adaptive default, gather resolution GATHER_RES, one thread), cut short after STOP
+ * seconds when STOP > 0. Times are this thread's processor seconds (the machine may
+ * be shared) and wall seconds. */
+static void level_row(report_t *rp, const char *name, const sc_poly *polys, int n, const sc_light *lights, int nl,
+                      double stop)
+{
+    sc_opts o = {0};
+    sc_stats st;
+    lm_opts lo = {LEVEL_SIZE, 0.0, 0, LM_TOL, 0.0};
+    level_prog pg;
+    level_bake b;
+    lm_atlas a;
+    char err[512];
+    struct rusage ru;
+    sc_solver *s;
+    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1;
+    long covered;
+    int done, x, y;
+    o.res = CLI_RES;
+    o.coarse = CLI_COARSE;
+    o.coarse_res = CLI_COARSE_FLOOR(CLI_RES);
+    o.lights = lights;
+    o.nlights = nl;
+    fprintf(stderr, "rad_bench: level: %s, %d polygons: solving to 0.01 ...\n", name, n);
+    c0 = thread_cpu();
+    w0 = pg.t0 = pg.last = host_now();
+    if (!(s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err))) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+    sc_solve(s, 10000000, 0.01, level_shot, &pg);
+    solve_cpu = thread_cpu() - c0;
+    solve_wall = host_now() - w0;
+    sc_get_stats(s, &st);
+    fprintf(stderr, "rad_bench: level: solved in %.1f s; the lightmap's layout ...\n", solve_wall);
+    c0 = thread_cpu();
+    if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+    lay_cpu = thread_cpu() - c0;
+    for (covered = 0, y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3];
+            covered += lm_texel_point(&a, x, y, p);
+        }
+    memset(&b, 0, sizeof b);
+    if (!(b.g = sc_gatherer_new(s, GATHER_RES, 0))) exit(1);
+    c0 = thread_cpu();
+    b.t0 = b.last = host_now();
+    b.stop = stop;
+    done = lm_bake(&a, level_gather, &b) == 0;
+    bake_cpu = thread_cpu() - c0;
+    bake_wall = host_now() - b.t0;
+    getrusage(RUSAGE_SELF, &ru);
+    if (getloadavg(&load, 1) != 1) load = -1;
+    out(rp, "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | %s%.1f (%.1f) | %.0f | %.1f "
+        "| %.2f |\n", name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall, (st.pool_bytes + st.work_bytes) / 1048576.0,
+        ru.ru_maxrss / 1024.0, a.ncharts, lay_cpu, covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
+        1e6 * bake_cpu / (b.gathers ? b.gathers : 1), 1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6,
+        load);
+    sc_gatherer_free(b.g);
+    lm_free(&a);
+    sc_destroy(s);
+}
+
+/* rad_bench --level [STOP] [SCENE]: the generated atrium (tools/bench/level.h) and, when
+ * SCENE (default ../shared/scenes/sponza.obj) is there, that scene under the same sun
+ * and sky; each bake cut short after STOP seconds when STOP > 0. The table to stdout. */
+static int level_bench(int argc, char **argv)
+{
+    static report_t rp;
+    sc_light lights[LEVEL_LIGHTS];
+    obj_scene keep;
+    const char *scene = "../shared/scenes/sponza.obj";
+    double stop = 0.0;
+    sc_poly *p;
+    int n, i;
+    for (i = 2; i < argc; i++) {
+        char *end;
+        double v = strtod(argv[i], &end);
+        if (*end == '\0' && end != argv[i] && v >= 0) stop = v;
+        else scene = argv[i];
+    }
+    if (!(p = level_atrium(&n, lights))) return 1;
+    out(&rp, "A level of Sponza's class (`rad_bench --level`): the generated two-storey atrium "
+        "(tools/bench/level.h) under a sun and a %d-direction sky, solved to an unshot fraction of 0.01 at rad_cli's "
+        "hemi-cube defaults (res %d, coarse shots), then baked into a %d x %d lightmap at the defaults (adaptive, "
+        "tolerance %g, gather resolution %d) on one thread. Times are processor seconds of the one thread (wall "
+        "seconds in brackets: the machine may be shared); memory is the core's pools and work buffer, and the "
+        "process's peak resident size; the every-texel estimate is the covered texels times the time per gather "
+        "(an upper bound of the adaptive bake).\n\n"
+        "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | charts | layout s | "
+        "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | load average |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        lights[1].dirs, CLI_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, GATHER_RES);
+    level_row(&rp, "generated atrium", p, n, lights, LEVEL_LIGHTS, stop);
+    free(p);
+    if ((p = load_obj(scene, &n, &keep)) != NULL) {
+        level_row(&rp, scene, p, n, lights, LEVEL_LIGHTS, stop);
+        free(p);
+        obj_free(&keep);
+    } else {
+        out(&rp, "\n%s: not found, skipped.\n", scene);
+    }
+    fputs(rp.md, stdout);
+    return 0;
+}
+
 static int scene_named(const bscene *scenes, int ns, const char *name)
 {
     int i;
@@ -1675,6 +1828,8 @@ int main(int argc, char **argv)
     int ns, i, orig;
 
     const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
+
+    if (argc > 1 && strcmp(argv[1], "--level") == 0) return level_bench(argc, argv);
 
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */

@@ -15,8 +15,6 @@
 #include "host/obj_polys.h"
 #include "progress.h"
 
-#define GATHER_RES 32 /* the gathers' resolution without --gather: 0.84% from Lambert at 64 (tests/test_bake.c) */
-
 /* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
  * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. */
 typedef struct {

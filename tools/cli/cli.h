@@ -48,6 +48,9 @@
 #define CLI_COARSE   1.0
 #define CLI_ROWS_RES 128
 #define CLI_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
+/* The gather resolution of --lightmap's texels and the probes without --gather: 0.84%
+ * from Lambert at 64 (tests/test_bake.c). */
+#define GATHER_RES 32
 /* The largest emission channel accepted: the OBJ loader's limit on any number, now also
  * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
  * below 32768 with that emission at 256; past it values saturate, and are reported),
