@@ -1200,22 +1200,30 @@ static int cli_progress(const char *env, const char *args, char **err, char **ou
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* A bake with ENV and MORE arguments shows no progress (WHY: when). */
-static void no_progress(const char *env, const char *more, const char *why)
+/* A bake and a glTF export with ENV and MORE arguments show no progress (WHY: when);
+ * with QUIET, nothing at all on stderr. */
+static void no_progress(const char *env, const char *more, const char *why, int quiet)
 {
     char args[1024], *err = NULL, *out = NULL;
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 %s", tmp_path("lm.hdr"), more);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --export-gltf %s %s", tmp_path("lm.hdr"),
+             tmp_path("q.glb"), more);
     CHECK_INT_EQ(cli_progress(env, args, &err, &out), 0, "exit status %s", why);
     CHECK_LACKS(err, "solving", "stderr %s", why);
     CHECK_LACKS(err, "lightmap pass", "stderr %s", why);
     CHECK_LACKS(err, "gathering", "stderr %s", why);
+    CHECK_LACKS(err, "writing glTF", "stderr %s", why);
+    if (quiet) CHECK_INT_EQ((int)strlen(err), 0, "bytes on stderr %s (%s)", why, err);
     free(err);
     free(out);
 }
 
 static void test_cli_progress(void **state)
 {
+    /* every stage of this run on --stats' time line */
+    static const char *const stages[] = {"time: load ", "  mesh ", "  layout ", "  solve ", "  render ", "  write ",
+                                         "  vertex gathers ", "  csv ", "  lightmap ", "  gltf "};
     char args[1024], *err = NULL, *out = NULL;
+    int i;
     const char *lm = tmp_path("lm.hdr");
     (void)state;
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --stats --export-gltf %s --dump-radiosity %s",
@@ -1225,14 +1233,15 @@ static void test_cli_progress(void **state)
     CHECK_CONTAINS(err, "rad_cli: lightmap pass 1 ", "the first lightmap pass's progress");
     CHECK_CONTAINS(err, "rad_cli: gathering the view ", "the view's gathers' progress");
     CHECK_CONTAINS(err, ", ETA ", "an ETA");
-    CHECK_CONTAINS(out, "  lightmap ", "--stats' time of the lightmap");
-    CHECK_CONTAINS(out, "  gltf ", "--stats' time of the glTF export");
-    CHECK_CONTAINS(out, "  csv ", "--stats' time of the CSV");
-    printf("progress at delay 0: %d lines on stderr\n", count_of(err, "\n"));
+    CHECK_CONTAINS(err, "rad_cli: writing glTF ", "the glTF export's progress");
+    for (i = 0; i < (int)(sizeof stages / sizeof *stages); i++)
+        CHECK_CONTAINS(out, stages[i], "--stats' time line: the stage \"%s\"", stages[i]);
+    printf("progress at delay 0: %d lines on stderr; --stats timed %d stages\n", count_of(err, "\n"),
+           (int)(sizeof stages / sizeof *stages));
     free(err);
     free(out);
-    no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet");
-    no_progress("RAD_PROGRESS_DELAY=1000", "", "when no stage runs for the delay");
+    no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet", 1);
+    no_progress("RAD_PROGRESS_DELAY=1000", "", "when no stage runs for the delay", 0);
 }
 
 int main(void)

@@ -249,7 +249,18 @@ static int read_probes(run_t *r, struct bake_state *b)
     return 0;
 }
 
+/* bake_prepare's work, timed into r->t_layout. */
+static int prepare(run_t *r);
+
 int bake_prepare(run_t *r)
+{
+    double t = host_now();
+    int rc = prepare(r);
+    r->t_layout = host_now() - t;
+    return rc;
+}
+
+static int prepare(run_t *r)
 {
     const opts_t *o = r->o;
     lm_opts lo = {o->lightmap_size ? o->lightmap_size : 512, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
@@ -276,7 +287,7 @@ int bake_step(run_t *r)
 {
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
-    int rc = 0, res = o->gather_res ? o->gather_res : GATHER_RES;
+    int rc = 0, res = o->gather_res ? o->gather_res : CLI_GATHER_RES;
     gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL};
     double t = host_now();
     if (!b) return 0;

@@ -48,9 +48,14 @@
 #define CLI_COARSE   1.0
 #define CLI_ROWS_RES 128
 #define CLI_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
-/* The gather resolution of --lightmap's texels and the probes without --gather: 0.84%
- * from Lambert at 64 (tests/test_bake.c). */
-#define GATHER_RES 32
+/* The gather resolution of --lightmap's texels and the probes without --gather, chosen
+ * by the texels' error against resolution 256 (rad_bench --gather-res; docs/new-level.md):
+ * the lowest of 16, 32, 48, 64 within 2% rms on a room with cornices and on
+ * CornellBox-Original (32: 1.9% and 4.4%, its worst texels 9% and 24% off: the
+ * streaks under cornices), at about twice the time of a gather at 32. */
+#define CLI_GATHER_RES 64
+#define CLI_STR_(x) #x
+#define CLI_STR(x) CLI_STR_(x) /* a number macro's digits, for --help */
 /* The largest emission channel accepted: the OBJ loader's limit on any number, now also
  * on --emit. The core holds radiosity up to 128 times the brightest emission (Q16.16
  * below 32768 with that emission at 256; past it values saturate, and are reported),
@@ -156,6 +161,8 @@ typedef struct {
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
     double t_vertices, t_ply, t_lightmap, t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
+    double t_layout; /* --stats: bake_prepare (the lightmap's charts, packing and samples; the probes' points),
+                      * between the meshing and the solve */
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
     struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */

@@ -384,7 +384,7 @@ static const option_t options[] = {
      "shade the views and vertex exports by gathering the light at each\n"
      "pixel and vertex (a cube of resolution RES, even, 8..1024; 64 and up\n"
      "for small lamps): shadows sharper than the elements; also the\n"
-     "lightmap's and probes' gather resolution (32 without it)", opt_gather},
+     "lightmap's and probes' gather resolution (" CLI_STR(CLI_GATHER_RES) " without it)", opt_gather},
     SECTION("solver:"),
     {"--res", NULL, "N", "hemi-cube resolution, even, 8..1024 (192; 128 with stored rows)", opt_res},
     {"--coarse", NULL, "F",
