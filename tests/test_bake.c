@@ -17,6 +17,7 @@
 #include "check.h"
 #include "tmpdir.h"
 #include "bake/lightmap.h"
+#include "bench/level.h"
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "formats/hdr.h"
@@ -871,6 +872,34 @@ static void test_lightmap_smooth_light(void **state)
     lm_free(&a[1]);
 }
 
+/* The generated level (tools/bench/level.h, rad_bench --level): over 60,000 polygons,
+ * laid out in a 1024 x 1024 atlas in fewer than 3,000 charts (the issue's goal for a
+ * level of Sponza's class, whose coplanar charts were 27,172); its coplanar charts alone
+ * are more (its columns' and arches' facets each one). */
+static void test_lightmap_level_charts(void **state)
+{
+    sc_light lights[LEVEL_LIGHTS];
+    lm_opts o = {1024, 0.0, 0, LM_TOL, 0.0};
+    lm_atlas a;
+    char err[256] = "";
+    int n, smooth;
+    sc_poly *p = level_atrium(&n, lights);
+    (void)state;
+    assert_non_null(p);
+    CHECK_INT_GE(n, 60000, "polygons of the generated level");
+    CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    smooth = a.ncharts;
+    CHECK_INT_LE(smooth, 2999, "charts of the generated level at the default crease");
+    lm_free(&a);
+    o.crease = -1.0;
+    CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_GE(a.ncharts, smooth + 1, "coplanar charts of the level: more than smooth ones");
+    printf("lightmap level: %d polygons, %d charts (coplanar only: %d) in 1024 x 1024 (bound 2999)\n", n, smooth,
+           a.ncharts);
+    lm_free(&a);
+    free(p);
+}
+
 /* Light by position: pure red left of x = 2, pure green right of it. */
 static int two_colour_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
@@ -1261,6 +1290,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_merged_light),
         cmocka_unit_test(test_lightmap_smooth_charts),
         cmocka_unit_test(test_lightmap_smooth_light),
+        cmocka_unit_test(test_lightmap_level_charts),
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
         cmocka_unit_test(test_cli_bake),
