@@ -54,7 +54,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c 
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \
               $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/obj_polys.c \
-              tools/host/geom.c tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c
+              tools/host/geom.c tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c tools/bench/level.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)
 TEST_HDRS  := $(wildcard tests/*.h)
@@ -70,7 +70,7 @@ LIBTOOLS   := $(BUILDDIR)/libradtools.a
 RAD_BUILD_H := $(BUILDDIR)/include/rad/rad_build.h
 TESTS      := $(TEST_SRCS:tests/%.c=$(BUILDDIR)/tests/%)
 
-.PHONY: all lib test check ports port-test port-bench port-size bench install install-lib uninstall clean nm-check example readme-image
+.PHONY: all lib test check ports port-test port-bench port-size bench bench-level install install-lib uninstall clean nm-check example readme-image
 all: lib $(BUILDDIR)/rad_cli $(BUILDDIR)/rad_cli_float
 # The library alone: no libpng, no CMocka, no host tools.
 lib: $(LIBRAD) $(LIBRADF) $(RAD_BUILD_H)
@@ -109,6 +109,10 @@ $(BUILDDIR)/rad_bench: $(BUILDDIR)/tools/bench/rad_bench.o $(TWIN_FIXED) $(TWIN_
 
 bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 	$(BUILDDIR)/rad_bench ../shared/scenes/CornellBox-Original.obj
+
+# The level of Sponza's class alone (long: tools/bench/level.h, docs/new-level.md).
+bench-level: $(BUILDDIR)/rad_bench
+	$(BUILDDIR)/rad_bench --level
 
 # Every test links both builds of the core (through the host glue) and the host tools,
 # and the objects under $(BUILDDIR)/tests/ that a line below adds to its prerequisites.

@@ -17,6 +17,7 @@
 #include "check.h"
 #include "tmpdir.h"
 #include "bake/lightmap.h"
+#include "bench/level.h"
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "formats/hdr.h"
@@ -871,6 +872,34 @@ static void test_lightmap_smooth_light(void **state)
     lm_free(&a[1]);
 }
 
+/* The generated level (tools/bench/level.h, rad_bench --level): over 60,000 polygons,
+ * laid out in a 1024 x 1024 atlas in fewer than 3,000 charts (the issue's goal for a
+ * level of Sponza's class, whose coplanar charts were 27,172); its coplanar charts alone
+ * are more (its columns' and arches' facets each one). */
+static void test_lightmap_level_charts(void **state)
+{
+    sc_light lights[LEVEL_LIGHTS];
+    lm_opts o = {1024, 0.0, 0, LM_TOL, 0.0};
+    lm_atlas a;
+    char err[256] = "";
+    int n, smooth;
+    sc_poly *p = level_atrium(&n, lights);
+    (void)state;
+    assert_non_null(p);
+    CHECK_INT_GE(n, 60000, "polygons of the generated level");
+    CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    smooth = a.ncharts;
+    CHECK_INT_LE(smooth, 2999, "charts of the generated level at the default crease");
+    lm_free(&a);
+    o.crease = -1.0;
+    CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
+    CHECK_INT_GE(a.ncharts, smooth + 1, "coplanar charts of the level: more than smooth ones");
+    printf("lightmap level: %d polygons, %d charts (coplanar only: %d) in 1024 x 1024 (bound 2999)\n", n, smooth,
+           a.ncharts);
+    lm_free(&a);
+    free(p);
+}
+
 /* Light by position: pure red left of x = 2, pure green right of it. */
 static int two_colour_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
@@ -1200,22 +1229,30 @@ static int cli_progress(const char *env, const char *args, char **err, char **ou
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* A bake with ENV and MORE arguments shows no progress (WHY: when). */
-static void no_progress(const char *env, const char *more, const char *why)
+/* A bake and a glTF export with ENV and MORE arguments show no progress (WHY: when);
+ * with QUIET, nothing at all on stderr. */
+static void no_progress(const char *env, const char *more, const char *why, int quiet)
 {
     char args[1024], *err = NULL, *out = NULL;
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 %s", tmp_path("lm.hdr"), more);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --export-gltf %s %s", tmp_path("lm.hdr"),
+             tmp_path("q.glb"), more);
     CHECK_INT_EQ(cli_progress(env, args, &err, &out), 0, "exit status %s", why);
     CHECK_LACKS(err, "solving", "stderr %s", why);
     CHECK_LACKS(err, "lightmap pass", "stderr %s", why);
     CHECK_LACKS(err, "gathering", "stderr %s", why);
+    CHECK_LACKS(err, "writing glTF", "stderr %s", why);
+    if (quiet) CHECK_INT_EQ((int)strlen(err), 0, "bytes on stderr %s (%s)", why, err);
     free(err);
     free(out);
 }
 
 static void test_cli_progress(void **state)
 {
+    /* every stage of this run on --stats' time line */
+    static const char *const stages[] = {"time: load ", "  mesh ", "  layout ", "  solve ", "  render ", "  write ",
+                                         "  vertex gathers ", "  csv ", "  lightmap ", "  gltf "};
     char args[1024], *err = NULL, *out = NULL;
+    int i;
     const char *lm = tmp_path("lm.hdr");
     (void)state;
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --stats --export-gltf %s --dump-radiosity %s",
@@ -1225,14 +1262,15 @@ static void test_cli_progress(void **state)
     CHECK_CONTAINS(err, "rad_cli: lightmap pass 1 ", "the first lightmap pass's progress");
     CHECK_CONTAINS(err, "rad_cli: gathering the view ", "the view's gathers' progress");
     CHECK_CONTAINS(err, ", ETA ", "an ETA");
-    CHECK_CONTAINS(out, "  lightmap ", "--stats' time of the lightmap");
-    CHECK_CONTAINS(out, "  gltf ", "--stats' time of the glTF export");
-    CHECK_CONTAINS(out, "  csv ", "--stats' time of the CSV");
-    printf("progress at delay 0: %d lines on stderr\n", count_of(err, "\n"));
+    CHECK_CONTAINS(err, "rad_cli: writing glTF ", "the glTF export's progress");
+    for (i = 0; i < (int)(sizeof stages / sizeof *stages); i++)
+        CHECK_CONTAINS(out, stages[i], "--stats' time line: the stage \"%s\"", stages[i]);
+    printf("progress at delay 0: %d lines on stderr; --stats timed %d stages\n", count_of(err, "\n"),
+           (int)(sizeof stages / sizeof *stages));
     free(err);
     free(out);
-    no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet");
-    no_progress("RAD_PROGRESS_DELAY=1000", "", "when no stage runs for the delay");
+    no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet", 1);
+    no_progress("RAD_PROGRESS_DELAY=1000", "", "when no stage runs for the delay", 0);
 }
 
 int main(void)
@@ -1252,6 +1290,7 @@ int main(void)
         cmocka_unit_test(test_lightmap_merged_light),
         cmocka_unit_test(test_lightmap_smooth_charts),
         cmocka_unit_test(test_lightmap_smooth_light),
+        cmocka_unit_test(test_lightmap_level_charts),
         cmocka_unit_test(test_probes_grid),
         cmocka_unit_test(test_probes_input),
         cmocka_unit_test(test_cli_bake),

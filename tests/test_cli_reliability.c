@@ -328,7 +328,7 @@ static void test_lightmap_estimate(void **state)
     strcpy(lm, tmp_path("lm.png"));
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "64");
     CHECK_CONTAINS(r.err, "rad_cli: lightmap: 64 x 64 texels, about 0.2 MB\n", "rad_cli's stderr");
-    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 16 charts, 2660 texels covered: at most 2660 gathers at res 32\n", "rad_cli's stderr");
+    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 16 charts, 2660 texels covered: at most 2660 gathers at res 64\n", "rad_cli's stderr");
     expect(&r, 0, NULL);
     done(&r);
     unlink(lm);

@@ -831,7 +831,7 @@ static void test_lightmap(void **state)
     assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
     assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
     assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, NULL, tmp_path("lm.glb"), NULL,
-                                             NULL, err, sizeof err),
+                                             NULL, NULL, NULL, err, sizeof err),
                      0);
     read_glb(tmp_path("lm.glb"), &g);
     check_structure(&g);

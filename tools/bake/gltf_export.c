@@ -215,11 +215,11 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, fac
 int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                     double *weight)
 {
-    return sc_corner_light_fg(s, NULL, sc, polys, n, rgb, weight);
+    return sc_corner_light_fg(s, NULL, sc, polys, n, rgb, weight, NULL, NULL);
 }
 
 int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
-                       double *rgb, double *weight)
+                       double *rgb, double *weight, sc_fraction_fn progress, void *pctx)
 {
     faces_index fx;
     face_search fs;
@@ -235,6 +235,7 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
     fs.mark = malloc(((size_t)most + 1) * sizeof *fs.mark);
     if (!fs.v || !fs.hit || !fs.mark) rc = -1;
     for (f = 0; rc == 0 && f < sc->nfaces; f++) {
+        if (progress && f % SC_EXPORT_EVERY == 0) progress(pctx, (double)f / sc->nfaces);
         face_vertices(s, &fx, f, &fs);
         for (k = 0; k < sc->faces[f].count; k++)
             corner(s, sc, &fx, &fs, f, sc->faces[f].first + k, rgb, weight);
@@ -325,13 +326,13 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
                    const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
                    void *ctx, char *err, size_t errlen)
 {
-    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, NULL, path, warn, ctx, err, errlen);
+    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, NULL, path, warn, ctx, NULL, NULL, err, errlen);
 }
 
 int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                             const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
                             double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
-                            char *err, size_t errlen)
+                            sc_fraction_fn progress, void *pctx, char *err, size_t errlen)
 {
     double *uv = lm ? malloc(2 * ((size_t)sc->nindices + 1) * sizeof *uv) : NULL;
     unsigned char *use = lm ? malloc((size_t)sc->nmaterials + 1) : NULL, *png = NULL;
@@ -343,7 +344,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
     const char **tex = calloc(mats, sizeof *tex);
     gltf_input in;
     int m, rc = -1;
-    if (rgb && weight && base && tex && sc_corner_light_fg(s, fg, sc, polys, n, rgb, weight) == 0) {
+    if (rgb && weight && base && tex && sc_corner_light_fg(s, fg, sc, polys, n, rgb, weight, progress, pctx) == 0) {
         for (m = 0; m < sc->nmaterials; m++) {
             int textured = maps && maps[m].rgb;
             const obj_material *mt = &sc->materials[m];
@@ -362,10 +363,13 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
         in.texture_image = maps;
         in.warn = warn;
         in.ctx = ctx;
-        if (lm && lightmap_input(lm, sc, maps, uv, use, factor, &png, &in, why, sizeof why) != 0)
+        if (lm && lightmap_input(lm, sc, maps, uv, use, factor, &png, &in, why, sizeof why) != 0) {
             snprintf(err, errlen, "%s: %s", path, why);
-        else
+        } else {
+            if (progress)
+                progress(pctx, 1.0);
             rc = gltf_write(path, &in, err, errlen);
+        }
     } else if (err && errlen) {
         snprintf(err, errlen, "%s: out of memory", path);
     }

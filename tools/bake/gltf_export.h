@@ -24,9 +24,12 @@
 int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                     double *weight);
 /* The same, the light arriving at each element's vertex gathered by FG (NULL: the
- * element's own, as sc_corner_light) on the faces that do not emit. 0 or -1. */
+ * element's own, as sc_corner_light) on the faces that do not emit; PROGRESS (NULL:
+ * none) gets the fraction of the faces done every SC_EXPORT_EVERY faces. 0 or -1. */
 int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
-                       double *rgb, double *weight);
+                       double *rgb, double *weight, sc_fraction_fn progress, void *pctx);
+
+#define SC_EXPORT_EVERY 1024
 
 /* Writes PATH (.glb) from the solved S of SC's POLYS (N) with the textures MAPS
  * (tex_load_materials; NULL: none): _LIGHT the light from sc_corner_light_fg with FG
@@ -44,11 +47,12 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
 /* sc_export_gltf with the lightmap LM (NULL: none) baked over POLYS: TEXCOORD_1 each
  * corner's place on the atlas (lm_corner_uvs), the atlas embedded as PNG (lm_png) and
  * named in the extras of every material that does not emit (gltf_input); COLOR_0's
- * scale into *COLOR_SCALE (NULL: not wanted). */
+ * scale into *COLOR_SCALE (NULL: not wanted); PROGRESS (NULL: none) the export's
+ * fraction (its faces' corners, then 1 before the file is written). */
 int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                             const tex_image *maps, sc_fgather *fg, const lm_atlas *lm,
                             double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
-                            char *err, size_t errlen);
+                            sc_fraction_fn progress, void *pctx, char *err, size_t errlen);
 
 #define RAD_TWIN_GLTF_EXPORT /* the float twin's names of the above (generated): */
 #include "host/scene_float.h"

@@ -172,13 +172,32 @@ static void groups_free(groups_t *gr)
     free(gr->order);
 }
 
-static const double *order_area; /* qsort's context: the groups' areas */
+typedef struct {
+    double area;
+    int root;
+} seed_t;
 
-static int area_cmp(const void *x, const void *y)
+static int seed_cmp(const void *x, const void *y)
 {
-    int p = *(const int *)x, q = *(const int *)y;
-    if (order_area[p] != order_area[q]) return order_area[p] > order_area[q] ? -1 : 1;
-    return p - q;
+    const seed_t *p = x, *q = y;
+    if (p->area != q->area) return p->area > q->area ? -1 : 1;
+    return p->root - q->root;
+}
+
+/* GR's roots in order, largest area first (then lowest index). 0 or -1. */
+static int order_seeds(groups_t *gr)
+{
+    seed_t *sd = malloc(((size_t)gr->nroots + 1) * sizeof *sd);
+    int i;
+    if (!sd) return -1;
+    for (i = 0; i < gr->nroots; i++) {
+        sd[i].root = gr->order[i];
+        sd[i].area = gr->area[gr->order[i]];
+    }
+    qsort(sd, (size_t)gr->nroots, sizeof *sd, seed_cmp);
+    for (i = 0; i < gr->nroots; i++) gr->order[i] = sd[i].root;
+    free(sd);
+    return 0;
 }
 
 /* Counting sort of N items by KEY[i] in 0..M-1 (-1: left out) into FIRST (M + 1) and
@@ -228,9 +247,8 @@ static int make_groups(const lm_atlas *a, const geom_poly *g, const edge_t *e, i
                 }
             i = end;
         }
-        order_area = gr->area;
-        qsort(gr->order, (size_t)gr->nroots, sizeof *gr->order, area_cmp);
-        if (bucket(root, NULL, n, n, &gr->first, &gr->polys) == 0 && bucket(from, to, m, n, &gr->nfirst, &gr->next) == 0)
+        if (order_seeds(gr) == 0 && bucket(root, NULL, n, n, &gr->first, &gr->polys) == 0 &&
+            bucket(from, to, m, n, &gr->nfirst, &gr->next) == 0)
             rc = 0;
     }
     free(root);

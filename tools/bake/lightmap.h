@@ -66,8 +66,8 @@
  * decisions depend only on the values gathered before it: any split of each pass's
  * gathers over threads gives the same bits. A tolerance of 0 gathers every texel.
  *
- * Memory: 30 bytes a texel (owner, sample, polygon, colour, state) and a few words a
- * polygon.
+ * Memory: 30 bytes a texel (owner, sample, polygon, colour, state) and a few words and
+ * a plane (32 bytes) a polygon.
  */
 #ifndef RAD_TOOLS_LIGHTMAP_H
 #define RAD_TOOLS_LIGHTMAP_H

@@ -36,6 +36,7 @@
 #include "host/defaults.h"
 #include "host/obj_polys.h"
 #include "host/parallel.h"
+#include "bench/level.h"
 #include "bench/plot.h"
 #include "rad/rad.h"
 #include "reference/reference.h"
@@ -1460,7 +1461,7 @@ static long lm_layout(const bscene *sc, double tol, lm_atlas *a)
 }
 
 /* CornellBox-Original (SC, NULL when absent) baked into 512 x 512 texels: the whole
- * adaptive bake (the default tolerance, gather resolution 32) on one thread and on two,
+ * adaptive bake (the default tolerance and gather resolution) on one thread and on two,
  * then per gather resolution the time of a gather over a subset of rows (every STEP-th
  * of the every-texel bake: it would take minutes at 64), on one thread and on two (the
  * same rows split in two sets). */
@@ -1475,9 +1476,9 @@ static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     int i, one[1] = {0}, two[2] = {0, 1};
     out(rp, "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 x 512 texels, "
         "solved as above (fixed build, to 0.001), a gather `sc_gather` with the ambient term. The whole bake at "
-        "the defaults (gather resolution 32, `--lightmap-tol` %g: the adaptive passes), once on one thread and "
+        "the defaults (gather resolution %d, `--lightmap-tol` %g: the adaptive passes), once on one thread and "
         "once on two (each pass's rows in two sets), wall time of the gathers' passes (the planning between them "
-        "included, not the solve nor the layout):\n\n", LM_TOL);
+        "included, not the solve nor the layout):\n\n", DEF_GATHER_RES, LM_TOL);
     if (!sc) {
         out(rp, "skipped: %s not found.\n", shared);
         return;
@@ -1487,10 +1488,10 @@ static void report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     sc_solve(s, 1000000, 0.001, NULL, NULL);
     fprintf(stderr, "rad_bench: lightmap, the whole adaptive bake ...\n");
     covered = lm_layout(sc, LM_TOL, &a);
-    t1 = lm_rows(s, &a, 32, 1, one, 1, 1, &n1, &cpu);
+    t1 = lm_rows(s, &a, DEF_GATHER_RES, 1, one, 1, 1, &n1, &cpu);
     lm_free(&a);
     lm_layout(sc, LM_TOL, &a);
-    t2 = lm_rows(s, &a, 32, 2, two, 2, 1, &n2, &cpu2);
+    t2 = lm_rows(s, &a, DEF_GATHER_RES, 2, two, 2, 1, &n2, &cpu2);
     if (getloadavg(&load, 1) != 1) load = -1;
     out(rp, "| charts | texels covered | gathers | of the covered | us per gather | s, 1 thread | s, 2 threads | "
         "speed-up | load average |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
@@ -1818,6 +1819,292 @@ static void report_textures(report_t *rp, const char *self)
 }
 
 /* Index of the scene named NAME, or -1. */
+/* ---- rad_bench --gather-res: the lightmap's gather resolution against res 256 ------ */
+
+#define GR_SIZE 128 /* the atlas's texels a side */
+#define GR_EVERY 3  /* the texels compared: those with (x + y) % GR_EVERY == 0 */
+
+/* A room 6 x 3 x 4 with a cornice (0.2 x 0.2, 0.2 below the ceiling) and a shelf
+ * (at 1.2, 0.15 deep) along its walls, a 1 x 1 lamp in the ceiling's middle. */
+static sc_poly *gen_cornice_room(int *n)
+{
+    static const double white[3] = {0.75, 0.74, 0.72}, lamp[3] = {12, 11, 9};
+    sc_poly *p = calloc(64, sizeof *p);
+    double lo[3] = {-3, 0, -2}, hi[3] = {3, 3, 2}, v[4][3] = {{-0.5, 2.99, -0.5}, {0.5, 2.99, -0.5},
+                                                              {0.5, 2.99, 0.5}, {-0.5, 2.99, 0.5}};
+    int k;
+    if (!p) return NULL;
+    *n = 0;
+    add_box(p, n, lo, hi, 1, -1, white);
+    for (k = 0; k < 4; k++) { /* along the walls x = -3, x = 3, z = -2, z = 2 */
+        double a[3], b[3], c[3], d[3];
+        int ax = k < 2 ? 0 : 2, hs = k % 2, o = 2 - ax;
+        a[ax] = hs ? hi[ax] - 0.2 : lo[ax];
+        b[ax] = hs ? hi[ax] : lo[ax] + 0.2;
+        a[o] = lo[o];
+        b[o] = hi[o];
+        a[1] = 2.6;
+        b[1] = 2.8;
+        add_box(p, n, a, b, 0, -1, white);
+        c[ax] = hs ? hi[ax] - 0.15 : lo[ax];
+        d[ax] = hs ? hi[ax] : lo[ax] + 0.15;
+        c[o] = lo[o] + 0.5;
+        d[o] = hi[o] - 0.5;
+        c[1] = 1.2;
+        d[1] = 1.26;
+        add_box(p, n, c, d, 0, -1, white);
+    }
+    add_quad(p, n, (const double(*)[3])v, white, lamp);
+    return p;
+}
+
+/* The light at the compared covered texels of A gathered at RES into E (3 a texel, in
+ * order); the processor seconds a gather. */
+static double gr_gather(sc_solver *s, const lm_atlas *a, int res, double *e)
+{
+    sc_gatherer *g = sc_gatherer_new(s, res, 0);
+    double t, p[3];
+    long m = 0;
+    int x, y;
+    if (!g) exit(1);
+    t = thread_cpu();
+    for (y = 0; y < a->size; y++)
+        for (x = 0; x < a->size; x++) {
+            size_t at = (size_t)y * a->size + (size_t)x;
+            if ((x + y) % GR_EVERY || !lm_texel_point(a, x, y, p)) continue;
+            if (sc_gather(g, p, &a->planes[4 * (size_t)a->poly[at]], 1, &e[3 * m++]) != 0) exit(1);
+        }
+    t = (thread_cpu() - t) / (m ? m : 1);
+    sc_gatherer_free(g);
+    return t;
+}
+
+/* One scene's row per resolution: rms and max of the texels' channel-sum differences
+ * from res 256, over the mean channel sum (so a dark texel counts for what it shows),
+ * and the processor time a gather. */
+static void gr_scene(report_t *rp, const char *name, const sc_poly *polys, int n)
+{
+    static const int res[4] = {16, 32, 48, 64};
+    sc_opts o = {0};
+    lm_opts lo = {GR_SIZE, 0.0, 0, 0.0, 0.0};
+    lm_atlas a;
+    char err[512];
+    sc_solver *s;
+    double *ref, *e, mean = 0.0, tref;
+    long m = 0, i;
+    int x, y, r;
+    o.res = 128;
+    if (!(s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err)) || lm_build(&a, polys, n, &lo, err, sizeof err)) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+    sc_solve(s, 1000000, 0.001, NULL, NULL);
+    for (y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3];
+            m += (x + y) % GR_EVERY == 0 && lm_texel_point(&a, x, y, p);
+        }
+    ref = malloc(3 * (size_t)m * sizeof *ref);
+    e = malloc(3 * (size_t)m * sizeof *e);
+    if (!ref || !e) exit(1);
+    fprintf(stderr, "rad_bench: gather resolution: %s, %ld texels at res 256 ...\n", name, m);
+    tref = gr_gather(s, &a, 256, ref);
+    for (i = 0; i < 3 * m; i++) mean += ref[i] / m;
+    for (r = 0; r < 4; r++) {
+        double t = gr_gather(s, &a, res[r], e), ss = 0.0, mx = 0.0, load = -1;
+        for (i = 0; i < m; i++) {
+            double d = fabs(e[3 * i] + e[3 * i + 1] + e[3 * i + 2] - ref[3 * i] - ref[3 * i + 1] - ref[3 * i + 2]);
+            ss += d * d;
+            mx = fmax(mx, d);
+        }
+        if (getloadavg(&load, 1) != 1) load = -1;
+        out(rp, "| %s | %d | %ld | %.2f%% | %.1f%% | %.1f | %.1f | %.2f |\n", name, res[r], m, 100 * sqrt(ss / m) / mean,
+            100 * mx / mean, 1e6 * t, 1e6 * tref, load);
+    }
+    free(ref);
+    free(e);
+    lm_free(&a);
+    sc_destroy(s);
+}
+
+/* rad_bench --gather-res [SHARED]: the table to stdout. */
+static int gather_res_bench(int argc, char **argv)
+{
+    static report_t rp;
+    const char *shared = argc > 2 ? argv[2] : "../shared/scenes/CornellBox-Original.obj";
+    sc_poly *p;
+    int n;
+    out(&rp, "Lightmap texels gathered at resolution 16 to 64 against 256 (`rad_bench --gather-res`): a %d x %d atlas, "
+        "every covered texel's sample with (x + y) %% %d == 0, the solve to 0.001 at res 128. rms and max of the "
+        "difference in a texel's channel sum, over the mean channel sum of the texels compared; processor "
+        "microseconds a gather (at 256 in its own column).\n\n"
+        "| scene | gather res | texels | rms | max | us per gather | us at 256 | load average |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n", GR_SIZE, GR_SIZE, GR_EVERY);
+    if (!(p = gen_cornice_room(&n))) return 1;
+    gr_scene(&rp, "room with cornices and shelves", p, n);
+    free(p);
+    if ((p = load_obj(shared, &n, NULL)) != NULL) {
+        gr_scene(&rp, "CornellBox-Original", p, n);
+        free(p);
+    } else {
+        out(&rp, "\n%s: not found, skipped.\n", shared);
+    }
+    fputs(rp.md, stdout);
+    return 0;
+}
+
+/* ---- rad_bench --level: a level of Sponza's class ---------------------------------- */
+
+#define LEVEL_SIZE 1024 /* the lightmap's texels a side */
+
+/* A run's progress on stderr every 10 s: the solve's shots and unshot fraction. */
+typedef struct {
+    double t0, last;
+} level_prog;
+
+static int level_shot(void *ctx, int shots, double unshot)
+{
+    level_prog *p = ctx;
+    double t = host_now();
+    if (t - p->last >= 10.0) {
+        fprintf(stderr, "rad_bench: level: %d shots, unshot %.4f, %.0f s\n", shots, unshot, t - p->t0);
+        p->last = t;
+    }
+    return 0;
+}
+
+/* The bake's gathers on this thread, stopping once STOP seconds of them have passed
+ * (0: never): their count and progress every 10 s. */
+typedef struct {
+    sc_gatherer *g;
+    long gathers;
+    double t0, last, stop;
+} level_bake;
+
+static int level_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    level_bake *b = ctx;
+    double t;
+    if ((++b->gathers & 63) == 0 && (t = host_now()) - b->last >= 10.0) {
+        fprintf(stderr, "rad_bench: level: lightmap, %ld gathers, %.0f s\n", b->gathers, t - b->t0);
+        b->last = t;
+        if (b->stop > 0 && t - b->t0 >= b->stop) return 1;
+    }
+    return sc_gather(b->g, p, n, 1, rgb);
+}
+
+/* One level (POLYS, N of them, lit by LIGHTS) measured and reported as a table row:
+ * the solve to 0.01 at rad_cli's hemi-cube defaults, the core's memory and the
+ * process's peak, the 1024 x 1024 atlas's charts and layout time, and its bake (the
+ * adaptive default, gather resolution DEF_GATHER_RES, one thread), cut short after STOP
+ * seconds when STOP > 0. Times are this thread's processor seconds (the machine may
+ * be shared) and wall seconds. */
+static void level_row(report_t *rp, const char *name, const sc_poly *polys, int n, const sc_light *lights, int nl,
+                      double stop)
+{
+    sc_opts o = {0};
+    sc_stats st;
+    lm_opts lo = {LEVEL_SIZE, 0.0, 0, LM_TOL, 0.0};
+    level_prog pg;
+    level_bake b;
+    lm_atlas a;
+    char err[512];
+    struct rusage ru;
+    sc_solver *s;
+    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1;
+    long covered;
+    int done, x, y;
+    o.res = DEF_RES;
+    o.coarse = DEF_COARSE;
+    o.coarse_res = DEF_COARSE_FLOOR(DEF_RES);
+    o.lights = lights;
+    o.nlights = nl;
+    fprintf(stderr, "rad_bench: level: %s, %d polygons: solving to 0.01 ...\n", name, n);
+    c0 = thread_cpu();
+    w0 = pg.t0 = pg.last = host_now();
+    if (!(s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err))) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+    sc_solve(s, 10000000, 0.01, level_shot, &pg);
+    solve_cpu = thread_cpu() - c0;
+    solve_wall = host_now() - w0;
+    sc_get_stats(s, &st);
+    fprintf(stderr, "rad_bench: level: solved in %.1f s; the lightmap's layout ...\n", solve_wall);
+    c0 = thread_cpu();
+    if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+    lay_cpu = thread_cpu() - c0;
+    for (covered = 0, y = 0; y < a.size; y++)
+        for (x = 0; x < a.size; x++) {
+            double p[3];
+            covered += lm_texel_point(&a, x, y, p);
+        }
+    memset(&b, 0, sizeof b);
+    if (!(b.g = sc_gatherer_new(s, DEF_GATHER_RES, 0))) exit(1);
+    c0 = thread_cpu();
+    b.t0 = b.last = host_now();
+    b.stop = stop;
+    done = lm_bake(&a, level_gather, &b) == 0;
+    bake_cpu = thread_cpu() - c0;
+    bake_wall = host_now() - b.t0;
+    getrusage(RUSAGE_SELF, &ru);
+    if (getloadavg(&load, 1) != 1) load = -1;
+    out(rp, "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | %s%.1f (%.1f) | %.0f | %.1f "
+        "| %.2f |\n", name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall, (st.pool_bytes + st.work_bytes) / 1048576.0,
+        ru.ru_maxrss / 1024.0, a.ncharts, lay_cpu, covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
+        1e6 * bake_cpu / (b.gathers ? b.gathers : 1), 1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6,
+        load);
+    sc_gatherer_free(b.g);
+    lm_free(&a);
+    sc_destroy(s);
+}
+
+/* rad_bench --level [STOP] [SCENE]: the generated atrium (tools/bench/level.h) and, when
+ * SCENE (default ../shared/scenes/sponza.obj) is there, that scene under the same sun
+ * and sky; each bake cut short after STOP seconds when STOP > 0. The table to stdout. */
+static int level_bench(int argc, char **argv)
+{
+    static report_t rp;
+    sc_light lights[LEVEL_LIGHTS];
+    obj_scene keep;
+    const char *scene = "../shared/scenes/sponza.obj";
+    double stop = 0.0;
+    sc_poly *p;
+    int n, i;
+    for (i = 2; i < argc; i++) {
+        char *end;
+        double v = strtod(argv[i], &end);
+        if (*end == '\0' && end != argv[i] && v >= 0) stop = v;
+        else scene = argv[i];
+    }
+    if (!(p = level_atrium(&n, lights))) return 1;
+    out(&rp, "A level of Sponza's class (`rad_bench --level`): the generated two-storey atrium "
+        "(tools/bench/level.h) under a sun and a %d-direction sky, solved to an unshot fraction of 0.01 at rad_cli's "
+        "hemi-cube defaults (res %d, coarse shots), then baked into a %d x %d lightmap at the defaults (adaptive, "
+        "tolerance %g, gather resolution %d) on one thread. Times are processor seconds of the one thread (wall "
+        "seconds in brackets: the machine may be shared); memory is the core's pools and work buffer, and the "
+        "process's peak resident size; the every-texel estimate is the covered texels times the time per gather "
+        "(an upper bound of the adaptive bake).\n\n"
+        "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | charts | layout s | "
+        "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | load average |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES);
+    level_row(&rp, "generated atrium", p, n, lights, LEVEL_LIGHTS, stop);
+    free(p);
+    if ((p = load_obj(scene, &n, &keep)) != NULL) {
+        level_row(&rp, scene, p, n, lights, LEVEL_LIGHTS, stop);
+        free(p);
+        obj_free(&keep);
+    } else {
+        out(&rp, "\n%s: not found, skipped.\n", scene);
+    }
+    fputs(rp.md, stdout);
+    return 0;
+}
+
 static int scene_named(const bscene *scenes, int ns, const char *name)
 {
     int i;
@@ -1842,6 +2129,8 @@ int main(int argc, char **argv)
         fputs(rp.md, stdout);
         return 0;
     }
+    if (argc > 1 && strcmp(argv[1], "--level") == 0) return level_bench(argc, argv);
+    if (argc > 1 && strcmp(argv[1], "--gather-res") == 0) return gather_res_bench(argc, argv);
 
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */

@@ -15,7 +15,6 @@
 #include "host/obj_polys.h"
 #include "progress.h"
 
-
 /* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
  * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. */
 typedef struct {
@@ -298,8 +297,18 @@ static int build_atlas(run_t *r, struct bake_state *b, const lm_opts *lo)
     if (rc < 0) fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
     return rc;
 }
+/* bake_prepare's work, timed into r->t_layout. */
+static int prepare(run_t *r);
 
 int bake_prepare(run_t *r)
+{
+    double t = host_now();
+    int rc = prepare(r);
+    r->t_layout = host_now() - t;
+    return rc;
+}
+
+static int prepare(run_t *r)
 {
     const opts_t *o = r->o;
     lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,

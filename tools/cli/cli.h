@@ -153,6 +153,8 @@ typedef struct {
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
     double t_vertices, t_ply, t_lightmap, t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
+    double t_layout; /* --stats: bake_prepare (the lightmap's charts, packing and samples; the probes' points),
+                      * between the meshing and the solve */
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
     struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */

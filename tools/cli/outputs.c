@@ -267,12 +267,14 @@ int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, 
 int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
 {
     char err[1024];
-    double t = host_now();
+    progress_t pg;
     unsigned long before = ambient_terms(r->s);
-    int rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm,
-                                     &r->ot.gltf_scale, r->o->gltf, warn, (void *)r->o, err, sizeof err);
+    int rc;
+    progress_begin(&pg, "writing glTF", r->o->quiet);
+    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm, &r->ot.gltf_scale,
+                                 r->o->gltf, warn, (void *)r->o, progress_fraction, &pg, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
-    r->ot.t_gltf += host_now() - t;
+    r->ot.t_gltf += progress_end(&pg);
     r->ot.export_ambient += ambient_terms(r->s) - before;
     return rc < 0 ? -1 : 0;
 }

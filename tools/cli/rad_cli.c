@@ -627,8 +627,9 @@ static void print_times(const run_t *r)
     const opts_t *o = r->o;
     printf("time: load %.3fs  mesh %.3fs", r->t_load - r->t0, r->t_mesh - r->t_load);
     if (r->rows_mode) printf("  rows %.3fs", r->t_rows);
-    printf("  solve %.3fs  render %.3fs  write %.3fs", r->t_solve - r->t_mesh - r->t_rows, r->ot.t_render,
-           r->ot.t_write);
+    if (o->lightmap || o->probes || o->probe_file) printf("  layout %.3fs", r->t_layout);
+    printf("  solve %.3fs  render %.3fs  write %.3fs", r->t_solve - r->t_mesh - r->t_layout - r->t_rows,
+           r->ot.t_render, r->ot.t_write);
     if (r->ot.fg && (o->ply || o->gltf)) printf("  vertex gathers %.3fs", r->t_vertices);
     if (o->csv) printf("  csv %.3fs", r->ot.t_csv);
     if (o->ply) printf("  ply %.3fs", r->t_ply);

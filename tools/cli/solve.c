@@ -179,6 +179,7 @@ int solve_step(run_t *r)
 {
     solve_progress pg;
     int rc = 0;
+    double t0 = host_now();
     progress_start(&pg, r->o, r->rows_mode ? "form factors" : "solving");
     if (!r->rows_mode) {
         solve_shoot(r, &pg);
@@ -186,7 +187,7 @@ int solve_step(run_t *r)
         if (rows_step(r, &pg) < 0) return -1;
         sc_get_stats(r->s, &r->st);
         r->raster_before_solve = r->st.raster_calls;
-        r->t_rows = host_now() - r->t_mesh;
+        r->t_rows = host_now() - t0;
         progress_start(&pg, r->o, "solving");
         if (!r->groups_mode) rc = (r->work = solve_rows(r, &pg)) < 0 ? -1 : 0;
         else rc = solve_groups(r, &pg);

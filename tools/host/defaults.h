@@ -16,9 +16,12 @@
 #define DEF_ROWS_RES 128
 #define DEF_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
 
-/* The gathers' resolution (lightmap texels, probes) without --gather: 0.84% from Lambert
- * at 64 (tests/test_bake.c). */
-#define DEF_GATHER_RES 32
+/* The gather resolution of --lightmap's texels and the probes without --gather, chosen
+ * by the texels' error against resolution 256 (rad_bench --gather-res; docs/cli.md):
+ * the lowest of 16, 32, 48, 64 within 2% rms on a room with cornices and on
+ * CornellBox-Original (32: 1.9% and 4.4%, its worst texels 9% and 24% off: the
+ * streaks under cornices), at about twice the time of a gather at 32. */
+#define DEF_GATHER_RES 64
 /* The lightmap atlas' side in texels, and the image's width and height. */
 #define DEF_LIGHTMAP_SIZE 512
 #define DEF_IMAGE_SIZE    512

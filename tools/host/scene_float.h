@@ -117,14 +117,14 @@ int scf_export_ply(scf_solver *s, const double *rgb, const char *path, int forma
 int scf_corner_light(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                      double *weight);
 int scf_corner_light_fg(scf_solver *s, scf_fgather *fg, const obj_scene *sc, const sc_poly *polys,
-                        int n, double *rgb, double *weight);
+                        int n, double *rgb, double *weight, sc_fraction_fn progress, void *pctx);
 int scf_export_gltf(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                     const tex_image *maps, scf_fgather *fg, const char *path, gltf_warn_fn warn,
                     void *ctx, char *err, size_t errlen);
 int scf_export_gltf_lightmap(scf_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
                              const tex_image *maps, scf_fgather *fg, const lm_atlas *lm,
                              double *color_scale, const char *path, gltf_warn_fn warn, void *ctx,
-                             char *err, size_t errlen);
+                             sc_fraction_fn progress, void *pctx, char *err, size_t errlen);
 #endif
 
 #endif
