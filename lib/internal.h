@@ -227,15 +227,17 @@ typedef struct {
     rad_energy_t u[3];
     uint32_t saturations;
     uint32_t shot;         /* rad_scene_t.shot_serial of the shot it was rendered for */
-    uint32_t part, nparts; /* rad_shot_part's */
+    uint32_t part, nparts; /* rad_shot_part's; a batch's cube: its shooter K of N */
+    uint32_t patch;        /* a batch's cube: the patch it was rendered for */
 } rad__part_head_t;
-#define RAD__PART_HEAD 56u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
+#define RAD__PART_HEAD 64u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
 /* States are words a zeroed or unwritten buffer is unlikely to hold, so that a part
  * never rendered is told from one rendered (rad_shot_end returns RAD_ERR_STATE). */
 #define RAD__PART_RENDERED 0x72610001u
 #define RAD__PART_AIMED    0x72610002u
 #define RAD__PART_RECEIVED 0x72610003u
 #define RAD__PART_SHOT     0x72610004u
+#define RAD__CUBE_RENDERED 0x72610005u /* a batch's cube (rad_batch_render) */
 
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
  * cube's rows into BUF (RAD_PART_BYTES); merging the elements [E0, E1) fills s->acc

@@ -119,22 +119,42 @@ static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb, rad_energy_t
     return sat;
 }
 
-/* The patch whose shot moves the most power (its unshot power plus the overshoot, in
- * magnitude, summed over channels), or RAD_INDEX_NONE; TOTAL gets the magnitude of all
- * unshot power. Choosing by the shot, not by the unshot power alone, skips a patch
- * whose debt is just what it expects back: shooting it would move nothing.
+/* Inserts patch P, whose shot moves U, into the N best so far (BEST, their shots in
+ * MOVE, most first) kept to MAX entries, after those that move as much: the earlier
+ * patch first on a tie. Returns the new count. */
+static uint32_t rank(uint32_t *best, rad_energy_t *move, uint32_t n, uint32_t max, uint32_t p,
+                     rad_energy_t u)
+{
+    uint32_t i = n < max ? n : max - 1u;
+    while (i > 0 && move[i - 1u] < u) {
+        best[i] = best[i - 1u];
+        move[i] = move[i - 1u];
+        i--;
+    }
+    best[i] = p;
+    move[i] = u;
+    return n < max ? n + 1u : n;
+}
+
+/* The MAX patches whose shots move the most power (each its unshot power plus the
+ * overshoot, in magnitude, summed over channels), most first, into BEST (their shots
+ * in MOVE); returns how many moved any. TOTAL gets the magnitude of all unshot power.
+ * Choosing by the shot, not by the unshot power alone, skips a patch whose debt is
+ * just what it expects back: shooting it would move nothing.
  *
  * A channel's overshoot is at most E = rad__energy(A, area), A the largest |AMB[c]|:
  * rad__energy is monotone in both arguments, reflectances are below 1, halvings and
  * the clamp only shrink it. So a patch's shot is at most the sum over channels of
  * |unshot| + E, each term and sum rounded the same way as the shot's (monotone in both
- * builds), and a patch whose bound is not above the best so far cannot be chosen: the
- * choice is the full scan's. E with the largest patch area (amb_max_area, kept while
- * solving) rules most patches out without a product of their own; E with the patch's
- * own area, most of the rest, before the six products of the overshoot. */
-static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
+ * builds), and a patch whose bound is not above the MAX-th best so far (0 until there
+ * are MAX) cannot be chosen: the choice is the full scan's. E with the largest patch
+ * area (amb_max_area, kept while solving) rules most patches out without a product of
+ * their own; E with the patch's own area, most of the rest, before the six products of
+ * the overshoot. */
+static uint32_t select_shooters(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total,
+                                uint32_t max, uint32_t *best, rad_energy_t *move)
 {
-    uint32_t p, c, best = RAD_INDEX_NONE;
+    uint32_t p, c, n = 0;
     rad_energy_t most = 0, sum = 0;
     rad_real_t a = 0;
     rad_energy_t emax;
@@ -158,12 +178,20 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
         rho = rad__patch_rho(s, p);
         for (c = 0; c < 3; c++) u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
         if (u > most) {
-            most = u;
-            best = p;
+            n = rank(best, move, n, max, p, u);
+            if (n == max) most = move[max - 1u];
         }
     }
     *total = sum;
-    return best;
+    return n;
+}
+
+/* The patch whose shot moves the most power (select_shooters), or RAD_INDEX_NONE. */
+static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
+{
+    uint32_t best;
+    rad_energy_t move;
+    return select_shooters(s, amb, total, 1, &best, &move) ? best : RAD_INDEX_NONE;
 }
 
 /* Overshooting's estimate of the power coming back, the ambient term, assumes that
@@ -226,8 +254,25 @@ static void start_solving(rad_scene_t *s)
     s->over_net = s->emitted;
 }
 
-/* The shooter for the next shot (RAD_INDEX_NONE: none), after the ambient term AMB and
- * the back-off's watch; TOTAL gets the magnitude of all unshot power. */
+/* The MAX shooters of the next shots into BEST (MOVE: select_shooters'), after the
+ * ambient term AMB and the back-off's watch (once for them all); TOTAL gets the
+ * magnitude of all unshot power. Returns how many (0: none). */
+static uint32_t next_shooters(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total, uint32_t max,
+                              uint32_t *best, rad_energy_t *move)
+{
+    uint32_t n;
+    rad_energy_t net = 0;
+    int clamped;
+    keep_area_sums(s);
+    clamped = shot_ambient(s, amb, &net) != 0;
+    n = select_shooters(s, amb, total, max, best, move);
+    if (n && back_off(s, *total, net, clamped)) n = select_shooters(s, amb, total, max, best, move);
+    return n;
+}
+
+/* The shooter for the next shot (RAD_INDEX_NONE: none), as next_shooters with MAX 1.
+ * (Written out, not through it: its locals would then sit in rad__shoot's frame
+ * under every shot's render, past a Cortex-M0's 16 KB.) */
 static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p;
@@ -306,11 +351,11 @@ static int shoots_emission(const rad_scene_t *s, const rad_patch_t *pt)
 
 /* Coarse shots (rad_config_t.coarse): the level of patch P's shot taken at unshot
  * total TOTAL, each level at an eighth of the last's fraction (so the light shot at
- * level L is at most about 8^-(L-1) COARSE of the emitted), set up by
- * rad__cube_level. The emitters' own light, the direct light, is the most any shots
+ * level L is at most about 8^-(L-1) COARSE of the emitted; shot_level sets it up
+ * through rad__cube_level). The emitters' own light, the direct light, is the most any shots
  * carry: a patch shooting its emission stays at res (its later shots, of light it
  * reflects, coarsen as any other's). Called before the shot is aimed. */
-static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
+static unsigned level_of(const rad_scene_t *s, uint32_t p, rad_energy_t total)
 {
     rad_real_t frac = rad__energy_ratio(total, s->emitted), lim = s->cfg.coarse;
     unsigned level = 0;
@@ -319,7 +364,13 @@ static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
         level++;
         lim /= 8;
     }
-    rad__cube_level(s, level);
+    return level;
+}
+
+/* Sets the cube's level for patch P's shot (level_of). */
+static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
+{
+    rad__cube_level(s, level_of(s, p, total));
 }
 
 /* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
@@ -422,6 +473,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     RAD__CHECK_SCENE(s);
     if (!patch) return RAD_ERR_ARG;
     s->shot_patch = RAD_INDEX_NONE;
+    s->batch_n = 0; /* a batch begun is void now */
     if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
@@ -444,7 +496,7 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     if (!buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
-    if (patch != s->shot_patch) return RAD_ERR_STATE;
+    if (patch != s->shot_patch || s->batch_n) return RAD_ERR_STATE;
     return rad__cube_part(s, patch, part, nparts, buf);
 }
 
@@ -463,7 +515,7 @@ static int shot_args(const rad_scene_t *s, uint32_t patch, void *const *bufs, un
     if (!bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++)
         if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
-    if (patch != s->shot_patch) return RAD_ERR_STATE;
+    if (patch != s->shot_patch || s->batch_n) return RAD_ERR_STATE;
     for (k = 0; k < nparts; k++) {
         const rad__part_head_t *h = (const rad__part_head_t *)bufs[k];
         if (h->shot != s->shot_serial || h->part != k || h->nparts != nparts) return RAD_ERR_STATE;
@@ -574,4 +626,114 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
     }
     s->shot_patch = RAD_INDEX_NONE;
     return 1;
+}
+
+/* ---- batch shooting (rad_batch_begin) ------------------------------------------ */
+
+/* The check word of a batch: its count N and patches P[0..N-1] in order, folded. */
+static uint16_t batch_check(const uint32_t *p, unsigned n)
+{
+    uint32_t h = n;
+    unsigned k;
+    for (k = 0; k < n; k++) h = (h ^ (p[k] + 1u)) * 0x9E3779B1u;
+    return (uint16_t)(h >> 16);
+}
+
+int rad_batch_begin(rad_scene_t *s, rad_real_t tol, unsigned k, uint32_t *patches)
+{
+    rad_energy_t total, move[RAD_BATCH_MAX];
+    rad_real_t amb[3];
+    uint32_t n, i;
+    unsigned level;
+    int lit;
+    RAD__CHECK_SCENE(s);
+    if (!patches || k == 0 || k > RAD_BATCH_MAX) return RAD_ERR_ARG;
+    s->shot_patch = RAD_INDEX_NONE; /* a shot or batch begun is void now */
+    s->batch_n = 0;
+    if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
+    if (s->band_rows != 0) return RAD_ERR_STATE;
+    rad__freeze(s);
+    lit = rad__lights_shoot(s, UINT32_MAX); /* as rad_shot_begin */
+    if (lit < 0) return lit;
+    start_solving(s);
+    n = next_shooters(s, amb, &total, k, patches, move);
+    if (n == 0 || rad__energy_ratio(total, s->emitted) <= tol) return 0;
+    /* one cube resolution for the batch: its finest shot's */
+    level = level_of(s, patches[0], total);
+    for (i = 1; i < n; i++) {
+        unsigned l = level_of(s, patches[i], total);
+        level = l < level ? l : level;
+    }
+    rad__cube_level(s, level);
+    s->shot_patch = patches[0];
+    s->batch_n = (uint16_t)n;
+    s->batch_check = batch_check(patches, n);
+    s->shot_serial++; /* buffers rendered for an earlier shot or batch are stale */
+    return (int)n;
+}
+
+int rad_batch_render(const rad_scene_t *s, uint32_t patch, unsigned k, void *buf, size_t bytes)
+{
+    rad__part_head_t *h = (rad__part_head_t *)buf;
+    int rc;
+    RAD__CHECK_SCENE(s);
+    if (!buf || patch >= s->n_patches || bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
+        return RAD_ERR_ARG;
+    if (s->shot_patch == RAD_INDEX_NONE || k >= s->batch_n) return RAD_ERR_STATE;
+    rc = rad__cube_part(s, patch, 0, 1, buf);
+    h->part = k;
+    h->nparts = s->batch_n;
+    h->patch = patch;
+    h->state = RAD__CUBE_RENDERED;
+    return rc;
+}
+
+/* Whether BUFS are the batch's N cubes in order (rad_batch_end's checks). */
+static int batch_ready(const rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    uint32_t p[RAD_BATCH_MAX];
+    unsigned k;
+    if (s->shot_patch == RAD_INDEX_NONE || n != s->batch_n) return 0;
+    for (k = 0; k < n; k++) {
+        const rad__part_head_t *h = head(bufs, k);
+        if (h->state != RAD__CUBE_RENDERED || h->shot != s->shot_serial || h->part != k ||
+            h->nparts != n || h->patch >= s->n_patches)
+            return 0;
+        p[k] = h->patch;
+    }
+    return batch_check(p, n) == s->batch_check;
+}
+
+/* The batch's shot K: patch P, overshooting by the ambient term as the shots before
+ * it left it, through the cube in BUFS[K] (rad__cube_merge fills s->acc from it as
+ * rad__shot_cube would). */
+static void batch_shot(rad_scene_t *s, void *const *bufs, unsigned k)
+{
+    rad__part_head_t *h = head(bufs, k);
+    rad_real_t amb[3];
+    rad_energy_t u[3];
+    uint32_t e;
+    s->stats.raster_calls += h->calls;
+    s->stats.raster_pixels += h->pixels;
+    shot_ambient(s, amb, 0);
+    aim(s, h->patch, amb, u);
+    if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
+    rad__cube_merge(s, &bufs[k], 1, 0, s->n_elements);
+    for (e = 0; e < s->n_elements; e++)
+        if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
+    h->state = RAD__PART_SHOT;
+}
+
+int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    unsigned k;
+    RAD__CHECK_SCENE(s);
+    if (!bufs || n == 0 || n > RAD_BATCH_MAX || s->band_rows != 0) return RAD_ERR_ARG;
+    for (k = 0; k < n; k++)
+        if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
+    if (!batch_ready(s, bufs, n)) return RAD_ERR_STATE;
+    for (k = 0; k < n; k++) batch_shot(s, bufs, k);
+    s->shot_patch = RAD_INDEX_NONE;
+    s->batch_n = 0;
+    return (int)n;
 }

@@ -50,6 +50,7 @@
 #define sc_solution_free scf_solution_free
 #define sc_mix scf_mix
 #define sc_solve_parallel scf_solve_parallel
+#define sc_solve_batch scf_solve_batch
 #define sc_gatherer scf_gatherer
 #define sc_gatherer_new scf_gatherer_new
 #define sc_gatherer_free scf_gatherer_free

@@ -62,5 +62,7 @@ unsigned long scf_gatherer_saturations(scf_gatherer *g);
 
 int scf_solve_parallel(scf_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress,
     void *ctx);
+int scf_solve_batch(scf_solver *s, int threads, int batch, int max_shots, double tol,
+    sc_progress_fn progress, void *ctx);
 
 #endif
