@@ -672,67 +672,200 @@ int rad_batch_begin(rad_scene_t *s, rad_real_t tol, unsigned k, uint32_t *patche
     return (int)n;
 }
 
+/* A batch buffer's accumulators (RAD_BATCH_BYTES: after a part buffer's bytes). */
+static rad_ff_t *batch_acc(const rad_scene_t *s, void *buf)
+{
+    return (rad_ff_t *)(void *)((unsigned char *)buf + RAD_PART_BYTES(s->cfg.res));
+}
+
 int rad_batch_render(const rad_scene_t *s, uint32_t patch, unsigned k, void *buf, size_t bytes)
 {
     rad__part_head_t *h = (rad__part_head_t *)buf;
-    int rc;
     RAD__CHECK_SCENE(s);
-    if (!buf || patch >= s->n_patches || bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
+    if (!buf || patch >= s->n_patches || bytes < RAD_BATCH_BYTES(s->cfg.res, s->n_elements) ||
+        ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
     if (s->shot_patch == RAD_INDEX_NONE || k >= s->batch_n) return RAD_ERR_STATE;
-    rc = rad__cube_part(s, patch, 0, 1, buf);
+    h->seen = rad__cube_list(s, patch, buf, batch_acc(s, buf));
     h->part = k;
     h->nparts = s->batch_n;
     h->patch = patch;
+    h->rparts = 0;
     h->state = RAD__CUBE_RENDERED;
-    return rc;
+    return (int)h->calls;
 }
 
-/* Whether BUFS are the batch's N cubes in order (rad_batch_end's checks). */
-static int batch_ready(const rad_scene_t *s, void *const *bufs, unsigned n)
+/* Whether BUFS are the batch's N cubes in order, each in state STATE or (unless 0)
+ * STATE2: the checks of rad_batch_aim, _receive_part and _end after their arguments'. */
+static int batch_ready(const rad_scene_t *s, void *const *bufs, unsigned n, uint32_t state,
+                       uint32_t state2)
 {
     uint32_t p[RAD_BATCH_MAX];
     unsigned k;
     if (s->shot_patch == RAD_INDEX_NONE || n != s->batch_n) return 0;
     for (k = 0; k < n; k++) {
         const rad__part_head_t *h = head(bufs, k);
-        if (h->state != RAD__CUBE_RENDERED || h->shot != s->shot_serial || h->part != k ||
-            h->nparts != n || h->patch >= s->n_patches)
+        if ((h->state != state && (!state2 || h->state != state2)) || h->shot != s->shot_serial ||
+            h->part != k || h->nparts != n || h->patch >= s->n_patches || h->seen > s->n_elements)
             return 0;
         p[k] = h->patch;
     }
     return batch_check(p, n) == s->batch_check;
 }
 
-/* The batch's shot K: patch P, overshooting by the ambient term as the shots before
- * it left it, through the cube in BUFS[K] (rad__cube_merge fills s->acc from it as
- * rad__shot_cube would). */
-static void batch_shot(rad_scene_t *s, void *const *bufs, unsigned k)
-{
-    rad__part_head_t *h = head(bufs, k);
-    rad_real_t amb[3];
-    rad_energy_t u[3];
-    uint32_t e;
-    s->stats.raster_calls += h->calls;
-    s->stats.raster_pixels += h->pixels;
-    shot_ambient(s, amb, 0);
-    aim(s, h->patch, amb, u);
-    if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
-    rad__cube_merge(s, &bufs[k], 1, 0, s->n_elements);
-    for (e = 0; e < s->n_elements; e++)
-        if (s->acc[e] > 0) rad__receive(s, u, e, s->acc[e]);
-    h->state = RAD__PART_SHOT;
-}
-
-int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n)
+/* The arguments' checks of the batch calls: 0, or the error. */
+static int batch_args(const rad_scene_t *s, void *const *bufs, unsigned n)
 {
     unsigned k;
     RAD__CHECK_SCENE(s);
     if (!bufs || n == 0 || n > RAD_BATCH_MAX || s->band_rows != 0) return RAD_ERR_ARG;
     for (k = 0; k < n; k++)
         if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
-    if (!batch_ready(s, bufs, n)) return RAD_ERR_STATE;
-    for (k = 0; k < n; k++) batch_shot(s, bufs, k);
+    return RAD_OK;
+}
+
+/* The first of the N entries of IDS (rising) at E or above. */
+static uint32_t first_at(const rad_index_t *ids, uint32_t n, uint32_t e)
+{
+    uint32_t lo = 0, hi = n;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        if (ids[mid] < e)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Shot J's receipts, as receive_element's, for the elements [E0, E1): into the scene,
+ * or (UNSHOT given) only into UNSHOT, their patch's unshot power, nothing else written
+ * but the saturations SAT. */
+static void batch_receipts(rad_scene_t *s, void *const *bufs, unsigned j, uint32_t e0, uint32_t e1,
+                           rad_energy_t *unshot, uint32_t *sat)
+{
+    const rad__part_head_t *h = head(bufs, j);
+    rad_index_t *ids;
+    rad_ff_t *ffs;
+    uint32_t i;
+    rad__cube_lists(s, bufs[j], &ids, &ffs);
+    for (i = first_at(ids, h->seen, e0); i < h->seen && ids[i] < e1; i++) {
+        const rad_element_t *el = &s->pools.elements[ids[i]];
+        const rad_rgb_t *rho;
+        rad__area_div_t a;
+        uint32_t c;
+        if (!unshot) {
+            receive_element(s, h->u, ids[i], ffs[i], sat);
+            continue;
+        }
+        rho = rad__element_rho(s, ids[i]);
+        a = rad__area_div(el->area);
+        for (c = 0; c < 3; c++)
+            (void)receive(sat, h->u[c], ffs[i], rad__channel(rho, c), &a, 0, &unshot[c]);
+    }
+}
+
+/* Aims the batch's shots in order, with the ambient term at its start (for K = 1, the
+ * shot's own): shot K's power is its patch's unshot power after the receipts of the
+ * shots before it, worked out here for its own elements alone (the receipts proper
+ * come after, on any threads: batch_receive). Into each head its power U and what its
+ * patch is left owing (LEFT). */
+static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    rad_real_t amb[3];
+    unsigned k, j;
+    shot_ambient(s, amb, 0);
+    for (k = 0; k < n; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        rad_patch_t *pt = &s->pools.patches[h->patch];
+        rad_energy_t now[3];
+        uint32_t sat = 0, c;
+        for (c = 0; c < 3; c++) now[c] = pt->unshot[c];
+        for (j = 0; j < k; j++)
+            batch_receipts(s, bufs, j, pt->first_element, pt->first_element + pt->n_elements,
+                           pt->unshot, &sat);
+        aim(s, h->patch, amb, h->u);
+        for (c = 0; c < 3; c++) {
+            h->left[c] = pt->unshot[c];
+            pt->unshot[c] = now[c]; /* until batch_receive */
+        }
+        s->stats.raster_calls += h->calls;
+        s->stats.raster_pixels += h->pixels;
+        if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
+        h->saturations = 0;
+        h->state = RAD__CUBE_AIMED;
+    }
+}
+
+/* Part PART of NPARTS of the receipts (receive_range's run of whole patches), shot
+ * after shot: each shooter in the run left owing at its place in the order, then the
+ * elements of the run each shot's cube lists receive. Saturations into BUFS[PART]. */
+static int batch_receive(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+{
+    rad__part_head_t *r = head(bufs, part);
+    uint32_t e0, e1, sat = 0, c;
+    unsigned j;
+    receive_range(s, part, nparts, &e0, &e1);
+    for (j = 0; j < n; j++) {
+        const rad__part_head_t *h = head(bufs, j);
+        rad_patch_t *pt = &s->pools.patches[h->patch];
+        if (pt->first_element >= e0 && pt->first_element < e1)
+            for (c = 0; c < 3; c++) pt->unshot[c] = h->left[c];
+        batch_receipts(s, bufs, j, e0, e1, 0, &sat);
+    }
+    r->saturations = sat;
+    r->rparts = nparts;
+    r->state = RAD__CUBE_RECEIVED;
+    return (int)n;
+}
+
+int rad_batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (!batch_ready(s, bufs, n, RAD__CUBE_RENDERED, 0)) return RAD_ERR_STATE;
+    batch_aim(s, bufs, n);
+    return (int)n;
+}
+
+/* The parts the batch's receipts were cut into so far (0: none yet). */
+static unsigned batch_parts(void *const *bufs, unsigned n)
+{
+    unsigned k;
+    for (k = 0; k < n; k++)
+        if (head(bufs, k)->state == RAD__CUBE_RECEIVED) return head(bufs, k)->rparts;
+    return 0;
+}
+
+int rad_batch_receive_part(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+{
+    unsigned np;
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (nparts == 0 || nparts > n || part >= nparts) return RAD_ERR_ARG;
+    if (!batch_ready(s, bufs, n, RAD__CUBE_AIMED, RAD__CUBE_RECEIVED)) return RAD_ERR_STATE;
+    np = batch_parts(bufs, n);
+    if ((np && np != nparts) || head(bufs, part)->state != RAD__CUBE_AIMED) return RAD_ERR_STATE;
+    return batch_receive(s, bufs, n, part, nparts);
+}
+
+int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    unsigned k, np;
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (batch_ready(s, bufs, n, RAD__CUBE_RENDERED, 0))
+        batch_aim(s, bufs, n);
+    else if (!batch_ready(s, bufs, n, RAD__CUBE_AIMED, RAD__CUBE_RECEIVED))
+        return RAD_ERR_STATE;
+    np = batch_parts(bufs, n);
+    if (np == 0) np = 1; /* all at once */
+    for (k = 0; k < np; k++)
+        if (head(bufs, k)->state == RAD__CUBE_AIMED) batch_receive(s, bufs, n, k, np);
+    for (k = 0; k < n; k++) {
+        if (head(bufs, k)->state == RAD__CUBE_RECEIVED) s->stats.saturations += head(bufs, k)->saturations;
+        head(bufs, k)->state = RAD__PART_SHOT;
+    }
     s->shot_patch = RAD_INDEX_NONE;
     s->batch_n = 0;
     return (int)n;

@@ -1243,15 +1243,16 @@ static const int batch_ks[] = {1, 2, 4, 8, 16, 32};
 #define BATCH_KS ((int)(sizeof batch_ks / sizeof batch_ks[0]))
 
 /* The scene solved to 0.001 in batches of K on this one thread, each call timed on the
- * thread's processor clock: into SERIAL rad_batch_begin and rad_batch_end (what the
- * calling thread does alone), into WORK every cube's render, into CRIT the renders as
- * two threads share them (each cube, in order, to the one with less so far): what two
- * free cores could do is (SERIAL + WORK) / (SERIAL + CRIT). */
+ * thread's processor clock: into SERIAL rad_batch_begin, _aim and _end (what the
+ * calling thread does alone), into WORK every cube's render and both parts of the
+ * receipts, into CRIT the renders as two threads share them (each cube, in order, to
+ * the one with less so far) and the longer part of the receipts: what two free cores
+ * could do is (SERIAL + WORK) / (SERIAL + CRIT). */
 static void batch_split(const bscene *sc, const sc_opts *o, int k, double *serial, double *work, double *crit)
 {
     sc_solver *h = fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
-    size_t bytes = RAD_PART_BYTES(s->cfg.res);
+    size_t bytes = RAD_BATCH_BYTES(s->cfg.res, s->n_elements);
     void *bufs[RAD_BATCH_MAX];
     uint32_t p[RAD_BATCH_MAX];
     double t, q[2];
@@ -1272,6 +1273,17 @@ static void batch_split(const bscene *sc, const sc_opts *o, int k, double *seria
             c = thread_cpu() - t;
             *work += c;
             q[q[1] < q[0]] += c;
+        }
+        *crit += q[0] > q[1] ? q[0] : q[1];
+        t = thread_cpu();
+        rad_batch_aim(s, bufs, (unsigned)n);
+        *serial += thread_cpu() - t;
+        q[0] = q[1] = 0;
+        for (i = 0; i < (n < 2 ? n : 2); i++) {
+            t = thread_cpu();
+            rad_batch_receive_part(s, bufs, (unsigned)n, (unsigned)i, n < 2 ? 1u : 2u);
+            q[i] = thread_cpu() - t;
+            *work += q[i];
         }
         *crit += q[0] > q[1] ? q[0] : q[1];
         t = thread_cpu();

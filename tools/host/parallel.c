@@ -12,9 +12,10 @@
  * thread runs a part never changes its bits. A worker that cannot start leaves its
  * part to the others. The counters are GCC/clang __atomic builtins (acquire/release).
  *
- * The batch solve (sc_solve_batch) has one stage a batch: its parts are the batch's
- * whole hemi-cubes (rad_batch_render), claimed as above; the calling thread then
- * shoots them in order (rad_batch_end). */
+ * The batch solve (sc_solve_batch) has two stages a batch, as a shot: rendering, whose
+ * parts are the batch's whole hemi-cubes (rad_batch_render), then (after the calling
+ * thread's rad_batch_aim) receiving, a run of whole patches' elements a thread
+ * (rad_batch_receive_part). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
@@ -36,8 +37,9 @@
 typedef struct {
     rad_scene_t *s;
     uint32_t patch;
-    int batch;                       /* 1: each stage renders a batch's cubes */
-    uint32_t patches[RAD_BATCH_MAX]; /* the batch's shooters (rad_batch_begin) */
+    int batch;                       /* 1: a batch solve's stages */
+    uint32_t patches[RAD_BATCH_MAX]; /* the batch's shooters (rad_batch_begin), */
+    unsigned n;                      /* how many */
     unsigned nparts;
     size_t bytes;
     void *bufs[MAX_THREADS];
@@ -51,8 +53,10 @@ static void store(int *p, int v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
 /* Part PART's share of stage STAGE. */
 static void run_stage(crew_t *c, int stage, unsigned part)
 {
-    if (c->batch)
+    if (c->batch && stage % 2)
         rad_batch_render(c->s, c->patches[part], part, c->bufs[part], c->bytes);
+    else if (c->batch)
+        rad_batch_receive_part(c->s, c->bufs, c->n, part, c->nparts);
     else if (stage % 2)
         rad_shot_part(c->s, c->patch, part, c->nparts, c->bufs[part], c->bytes);
     else
@@ -111,7 +115,7 @@ static int crew_start(crew_t *c, sc_solver *h, int batch, int threads, int nbufs
     c->patch = 0;
     c->batch = batch;
     c->nparts = (unsigned)nbufs;
-    c->bytes = RAD_PART_BYTES(c->s->cfg.res);
+    c->bytes = batch ? RAD_BATCH_BYTES(c->s->cfg.res, c->s->pools.max_elements) : RAD_PART_BYTES(c->s->cfg.res);
     c->stage = 0;
     c->claim = c->finished = 0;
     for (k = 0; k < nbufs; k++) {
@@ -182,9 +186,12 @@ int sc_solve_batch(sc_solver *h, int threads, int batch, int max_shots, double t
         /* the last batch is cut to end at MAX_SHOTS */
         unsigned k = (unsigned)(max_shots - shots < batch ? max_shots - shots : batch);
         if ((n = rad_batch_begin(s, t, k, c.patches)) <= 0) break;
-        c.nparts = (unsigned)n;
+        c.n = c.nparts = (unsigned)n;
         stage_all(&c, ++stage);
-        if ((n = rad_batch_end(s, c.bufs, c.nparts)) < 0) break;
+        if ((n = rad_batch_aim(s, c.bufs, c.n)) < 0) break;
+        c.nparts = c.n < (unsigned)threads ? c.n : (unsigned)threads;
+        stage_all(&c, ++stage);
+        if ((n = rad_batch_end(s, c.bufs, c.n)) < 0) break;
         shots += n;
         if (progress && progress(ctx, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)))) break;
     }
