@@ -396,7 +396,7 @@ static const option_t options[] = {
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels, --gather's gathers and textures too", opt_threads},
+    {"--threads", NULL, "N", "render the hemi-cubes on N threads: a batch's whole cubes (--batch),\nor with --batch 1 each shot's by rows; same result (1);\n--lightmap's texels, --gather's gathers and textures too", opt_threads},
     {"--batch", NULL, "K",
      "shoot in batches of the K patches that move the most, their\n"
      "hemi-cubes rendered at once on --threads (" DEF_STR(DEF_BATCH) "; 1..32; the same\n"

@@ -25,7 +25,7 @@
 
 /* Shots a batch (rad_batch_begin; rad_cli --batch): chosen by measurement, rad_bench's
  * batch table and docs/new-batch.md. */
-#define DEF_BATCH 1
+#define DEF_BATCH 4
 
 /* A default written into help text: DEF_STR(DEF_RES) is "192". */
 #define DEF_STR_(x) #x
