@@ -378,13 +378,13 @@ static int half_row_has(const uint32_t *bounds, uint32_t h, uint32_t e0, uint32_
 }
 
 /* Adds each pixel's delta form factor in region REG of the item buffer IBUF (laid out
- * as the work buffer's) to its element's sum, for the elements [E0, E0 + N), skipping
+ * as the work buffer's) to its element's sum in ACC (a parameter, not s->acc: a store
+ * through it cannot change it), for the elements [E0, E0 + N), skipping
  * the half rows BOUNDS rules out (see half_row_has). */
-static void accumulate(rad_scene_t *s, const rad_index_t *ibuf, const region_t *reg, uint32_t e0,
-                       uint32_t n, const uint32_t *bounds)
+static void accumulate(const rad_scene_t *s, rad_ff_t *acc, const rad_index_t *ibuf,
+                       const region_t *reg, uint32_t e0, uint32_t n, const uint32_t *bounds)
 {
     uint32_t res = s->cube_res, q = res / 2u, i, h;
-    rad_ff_t *acc = s->acc; /* local: a store through it cannot change it */
     int r;
     if (q == 0) return; /* rad_init keeps res >= 8: for the analyzer, which cannot see it */
     /* h, the row's first half row: offsets are whole rows, so each row adds two */
@@ -583,7 +583,7 @@ void rad__shot_cube(rad_scene_t *s, uint32_t p)
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
         render_scene(s, &cv, reg, nreg, p);
-        for (r = 0; r < nreg; r++) accumulate(s, s->ibuf, &reg[r], 0, s->n_elements, 0);
+        for (r = 0; r < nreg; r++) accumulate(s, s->acc, s->ibuf, &reg[r], 0, s->n_elements, 0);
     }
 }
 
@@ -681,6 +681,44 @@ void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_
     for (k = 0; k < nparts; k++) {
         nreg = part_regions(s, k, nparts, reg);
         for (r = 0; r < nreg; r++)
-            accumulate(s, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0, part_z(s, bufs[k]));
+            accumulate(s, s->acc, part_ids(s, bufs[k]), &reg[r], e0, e1 - e0, part_z(s, bufs[k]));
     }
+}
+
+/* ---- a batch's cube (rad_batch_render) ----------------------------------------- */
+
+void rad__cube_lists(const rad_scene_t *s, void *buf, rad_index_t **ids, rad_ff_t **ffs)
+{
+    *ids = part_ids(s, buf);
+    *ffs = (rad_ff_t *)(void *)part_z(s, buf);
+}
+
+uint32_t rad__cube_list(const rad_scene_t *s, uint32_t p, void *buf, rad_ff_t *acc)
+{
+    region_t reg[5];
+    rad_stats_t st = {0};
+    canvas_t cv = part_canvas(s, buf);
+    rad__part_head_t *h = (rad__part_head_t *)buf;
+    unsigned r, nreg = part_regions(s, 0, 1, reg);
+    uint32_t e, n = 0;
+    rad_index_t *ids;
+    rad_ff_t *ffs;
+
+    cv.st = &st;
+    for (e = 0; e < s->n_elements; e++) acc[e] = 0;
+    for (r = 0; r < nreg; r++) clear_region(&cv, &reg[r]);
+    render_scene(s, &cv, reg, nreg, p);
+    for (r = 0; r < nreg; r++) accumulate(s, acc, cv.ids, &reg[r], 0, s->n_elements, 0);
+    /* The pixels are done with. Each element listed covers a pixel at least, so the
+     * list fits in the item buffer (ids) and the depth buffer (sums, a word each). */
+    rad__cube_lists(s, buf, &ids, &ffs);
+    for (e = 0; e < s->n_elements; e++)
+        if (acc[e] > 0) {
+            ids[n] = (rad_index_t)e;
+            ffs[n++] = acc[e];
+        }
+    h->calls = st.raster_calls;
+    h->pixels = st.raster_pixels;
+    h->shot = s->shot_serial;
+    return n;
 }

@@ -11,6 +11,8 @@
 #define rad__shoot           radf__shoot
 #define rad__cube_part       radf__cube_part
 #define rad__cube_merge      radf__cube_merge
+#define rad__cube_list       radf__cube_list
+#define rad__cube_lists      radf__cube_lists
 #define rad__cube_level      radf__cube_level
 #define rad__shot_cube       radf__shot_cube
 #define rad__surface_corners radf__surface_corners
@@ -252,15 +254,22 @@ typedef struct {
     rad_energy_t u[3];
     uint32_t saturations;
     uint32_t shot;         /* rad_scene_t.shot_serial of the shot it was rendered for */
-    uint32_t part, nparts; /* rad_shot_part's */
+    uint32_t part, nparts; /* rad_shot_part's; a batch's cube: its shooter K of N */
+    uint32_t patch;        /* a batch's cube: the patch it was rendered for, */
+    uint32_t seen;         /* how many elements it sees (rad__cube_list), */
+    uint32_t rparts;       /* the parts of the receipts when this is one (rad_batch_receive_part) */
+    rad_energy_t left[3];  /* and what its patch is left owing when it shoots */
 } rad__part_head_t;
-#define RAD__PART_HEAD 56u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
+#define RAD__PART_HEAD 96u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
 /* States are words a zeroed or unwritten buffer is unlikely to hold, so that a part
  * never rendered is told from one rendered (rad_shot_end returns RAD_ERR_STATE). */
 #define RAD__PART_RENDERED 0x72610001u
 #define RAD__PART_AIMED    0x72610002u
 #define RAD__PART_RECEIVED 0x72610003u
 #define RAD__PART_SHOT     0x72610004u
+#define RAD__CUBE_RENDERED 0x72610005u /* a batch's cube: rendered (rad_batch_render), */
+#define RAD__CUBE_AIMED    0x72610006u /* aimed (rad_batch_aim), its part of the receipts */
+#define RAD__CUBE_RECEIVED 0x72610007u /* done (rad_batch_receive_part); then _PART_SHOT */
 
 /* One shot's cube in parts (hemicube.c): part PART of NPARTS renders its run of the
  * cube's rows into BUF (RAD_PART_BYTES); merging the elements [E0, E1) fills s->acc
@@ -268,6 +277,12 @@ typedef struct {
  * pass's order, whatever the range. Needs all five faces in one pass (band_rows 0). */
 int rad__cube_part(const rad_scene_t *s, uint32_t p, unsigned part, unsigned nparts, void *buf);
 void rad__cube_merge(rad_scene_t *s, void *const *bufs, unsigned nparts, uint32_t e0, uint32_t e1);
+/* A batch's cube (solve.c): patch P's whole cube rendered into BUF (RAD_PART_BYTES),
+ * its pixels summed per element into ACC (n_elements entries, as rad__hemicube sums
+ * them into s->acc, bit for bit), then the elements of sum above 0 listed in BUF in
+ * order, with their sums: rad__cube_lists points at the two lists. Returns how many. */
+uint32_t rad__cube_list(const rad_scene_t *s, uint32_t p, void *buf, rad_ff_t *acc);
+void rad__cube_lists(const rad_scene_t *s, void *buf, rad_index_t **ids, rad_ff_t **ffs);
 
 /* The 3 or 4 corners of surface SF's vertex lattice (mesh.c): every vertex of the
  * surface is a rounded convex combination of them. Returns how many, indices in K. */

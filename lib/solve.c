@@ -119,22 +119,42 @@ static uint32_t shot_ambient(const rad_scene_t *s, rad_real_t *amb, rad_energy_t
     return sat;
 }
 
-/* The patch whose shot moves the most power (its unshot power plus the overshoot, in
- * magnitude, summed over channels), or RAD_INDEX_NONE; TOTAL gets the magnitude of all
- * unshot power. Choosing by the shot, not by the unshot power alone, skips a patch
- * whose debt is just what it expects back: shooting it would move nothing.
+/* Inserts patch P, whose shot moves U, into the N best so far (BEST, their shots in
+ * MOVE, most first) kept to MAX entries, after those that move as much: the earlier
+ * patch first on a tie. Returns the new count. */
+static uint32_t rank(uint32_t *best, rad_energy_t *move, uint32_t n, uint32_t max, uint32_t p,
+                     rad_energy_t u)
+{
+    uint32_t i = n < max ? n : max - 1u;
+    while (i > 0 && move[i - 1u] < u) {
+        best[i] = best[i - 1u];
+        move[i] = move[i - 1u];
+        i--;
+    }
+    best[i] = p;
+    move[i] = u;
+    return n < max ? n + 1u : n;
+}
+
+/* The MAX patches whose shots move the most power (each its unshot power plus the
+ * overshoot, in magnitude, summed over channels), most first, into BEST (their shots
+ * in MOVE); returns how many moved any. TOTAL gets the magnitude of all unshot power.
+ * Choosing by the shot, not by the unshot power alone, skips a patch whose debt is
+ * just what it expects back: shooting it would move nothing.
  *
  * A channel's overshoot is at most E = rad__energy(A, area), A the largest |AMB[c]|:
  * rad__energy is monotone in both arguments, reflectances are below 1, halvings and
  * the clamp only shrink it. So a patch's shot is at most the sum over channels of
  * |unshot| + E, each term and sum rounded the same way as the shot's (monotone in both
- * builds), and a patch whose bound is not above the best so far cannot be chosen: the
- * choice is the full scan's. E with the largest patch area (amb_max_area, kept while
- * solving) rules most patches out without a product of their own; E with the patch's
- * own area, most of the rest, before the six products of the overshoot. */
-static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
+ * builds), and a patch whose bound is not above the MAX-th best so far (0 until there
+ * are MAX) cannot be chosen: the choice is the full scan's. E with the largest patch
+ * area (amb_max_area, kept while solving) rules most patches out without a product of
+ * their own; E with the patch's own area, most of the rest, before the six products of
+ * the overshoot. */
+static uint32_t select_shooters(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total,
+                                uint32_t max, uint32_t *best, rad_energy_t *move)
 {
-    uint32_t p, c, best = RAD_INDEX_NONE;
+    uint32_t p, c, n = 0;
     rad_energy_t most = 0, sum = 0;
     rad_real_t a = 0;
     rad_energy_t emax;
@@ -158,12 +178,20 @@ static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_
         rho = rad__patch_rho(s, p);
         for (c = 0; c < 3; c++) u += rad__eabs(pt->unshot[c] + overshoot(s, pt, rho, amb, c));
         if (u > most) {
-            most = u;
-            best = p;
+            n = rank(best, move, n, max, p, u);
+            if (n == max) most = move[max - 1u];
         }
     }
     *total = sum;
-    return best;
+    return n;
+}
+
+/* The patch whose shot moves the most power (select_shooters), or RAD_INDEX_NONE. */
+static uint32_t select_shooter(const rad_scene_t *s, const rad_real_t *amb, rad_energy_t *total)
+{
+    uint32_t best;
+    rad_energy_t move;
+    return select_shooters(s, amb, total, 1, &best, &move) ? best : RAD_INDEX_NONE;
 }
 
 /* Overshooting's estimate of the power coming back, the ambient term, assumes that
@@ -226,8 +254,25 @@ static void start_solving(rad_scene_t *s)
     s->over_net = s->emitted;
 }
 
-/* The shooter for the next shot (RAD_INDEX_NONE: none), after the ambient term AMB and
- * the back-off's watch; TOTAL gets the magnitude of all unshot power. */
+/* The MAX shooters of the next shots into BEST (MOVE: select_shooters'), after the
+ * ambient term AMB and the back-off's watch (once for them all); TOTAL gets the
+ * magnitude of all unshot power. Returns how many (0: none). */
+static uint32_t next_shooters(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total, uint32_t max,
+                              uint32_t *best, rad_energy_t *move)
+{
+    uint32_t n;
+    rad_energy_t net = 0;
+    int clamped;
+    keep_area_sums(s);
+    clamped = shot_ambient(s, amb, &net) != 0;
+    n = select_shooters(s, amb, total, max, best, move);
+    if (n && back_off(s, *total, net, clamped)) n = select_shooters(s, amb, total, max, best, move);
+    return n;
+}
+
+/* The shooter for the next shot (RAD_INDEX_NONE: none), as next_shooters with MAX 1.
+ * (Written out, not through it: its locals would then sit in rad__shoot's frame
+ * under every shot's render, past a Cortex-M0's 16 KB.) */
 static uint32_t next_shooter(rad_scene_t *s, rad_real_t *amb, rad_energy_t *total)
 {
     uint32_t p;
@@ -306,11 +351,11 @@ static int shoots_emission(const rad_scene_t *s, const rad_patch_t *pt)
 
 /* Coarse shots (rad_config_t.coarse): the level of patch P's shot taken at unshot
  * total TOTAL, each level at an eighth of the last's fraction (so the light shot at
- * level L is at most about 8^-(L-1) COARSE of the emitted), set up by
- * rad__cube_level. The emitters' own light, the direct light, is the most any shots
+ * level L is at most about 8^-(L-1) COARSE of the emitted; shot_level sets it up
+ * through rad__cube_level). The emitters' own light, the direct light, is the most any shots
  * carry: a patch shooting its emission stays at res (its later shots, of light it
  * reflects, coarsen as any other's). Called before the shot is aimed. */
-static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
+static unsigned level_of(const rad_scene_t *s, uint32_t p, rad_energy_t total)
 {
     rad_real_t frac = rad__energy_ratio(total, s->emitted), lim = s->cfg.coarse;
     unsigned level = 0;
@@ -319,7 +364,13 @@ static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
         level++;
         lim /= 8;
     }
-    rad__cube_level(s, level);
+    return level;
+}
+
+/* Sets the cube's level for patch P's shot (level_of). */
+static void shot_level(rad_scene_t *s, uint32_t p, rad_energy_t total)
+{
+    rad__cube_level(s, level_of(s, p, total));
 }
 
 /* Shoots patch P's unshot power, overshooting by ambient radiosity AMB, through its
@@ -422,6 +473,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     RAD__CHECK_SCENE(s);
     if (!patch) return RAD_ERR_ARG;
     s->shot_patch = RAD_INDEX_NONE;
+    s->batch_n = 0; /* a batch begun is void now */
     if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
@@ -444,7 +496,7 @@ int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned 
     if (!buf || part >= nparts || patch >= s->n_patches || s->band_rows != 0 ||
         bytes < RAD_PART_BYTES(s->cfg.res) || ((uintptr_t)buf & 7u))
         return RAD_ERR_ARG;
-    if (patch != s->shot_patch) return RAD_ERR_STATE;
+    if (patch != s->shot_patch || s->batch_n) return RAD_ERR_STATE;
     return rad__cube_part(s, patch, part, nparts, buf);
 }
 
@@ -463,7 +515,7 @@ static int shot_args(const rad_scene_t *s, uint32_t patch, void *const *bufs, un
     if (!bufs || nparts == 0 || patch >= s->n_patches || s->band_rows != 0) return RAD_ERR_ARG;
     for (k = 0; k < nparts; k++)
         if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
-    if (patch != s->shot_patch) return RAD_ERR_STATE;
+    if (patch != s->shot_patch || s->batch_n) return RAD_ERR_STATE;
     for (k = 0; k < nparts; k++) {
         const rad__part_head_t *h = (const rad__part_head_t *)bufs[k];
         if (h->shot != s->shot_serial || h->part != k || h->nparts != nparts) return RAD_ERR_STATE;
@@ -574,4 +626,247 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
     }
     s->shot_patch = RAD_INDEX_NONE;
     return 1;
+}
+
+/* ---- batch shooting (rad_batch_begin) ------------------------------------------ */
+
+/* The check word of a batch: its count N and patches P[0..N-1] in order, folded. */
+static uint16_t batch_check(const uint32_t *p, unsigned n)
+{
+    uint32_t h = n;
+    unsigned k;
+    for (k = 0; k < n; k++) h = (h ^ (p[k] + 1u)) * 0x9E3779B1u;
+    return (uint16_t)(h >> 16);
+}
+
+int rad_batch_begin(rad_scene_t *s, rad_real_t tol, unsigned k, uint32_t *patches)
+{
+    rad_energy_t total, move[RAD_BATCH_MAX];
+    rad_real_t amb[3];
+    uint32_t n, i;
+    unsigned level;
+    int lit;
+    RAD__CHECK_SCENE(s);
+    if (!patches || k == 0 || k > RAD_BATCH_MAX) return RAD_ERR_ARG;
+    s->shot_patch = RAD_INDEX_NONE; /* a shot or batch begun is void now */
+    s->batch_n = 0;
+    if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
+    if (s->band_rows != 0) return RAD_ERR_STATE;
+    rad__freeze(s);
+    lit = rad__lights_shoot(s, UINT32_MAX); /* as rad_shot_begin */
+    if (lit < 0) return lit;
+    start_solving(s);
+    n = next_shooters(s, amb, &total, k, patches, move);
+    if (n == 0 || rad__energy_ratio(total, s->emitted) <= tol) return 0;
+    /* one cube resolution for the batch: its finest shot's */
+    level = level_of(s, patches[0], total);
+    for (i = 1; i < n; i++) {
+        unsigned l = level_of(s, patches[i], total);
+        level = l < level ? l : level;
+    }
+    rad__cube_level(s, level);
+    s->shot_patch = patches[0];
+    s->batch_n = (uint16_t)n;
+    s->batch_check = batch_check(patches, n);
+    s->shot_serial++; /* buffers rendered for an earlier shot or batch are stale */
+    return (int)n;
+}
+
+/* A batch buffer's accumulators (RAD_BATCH_BYTES: after a part buffer's bytes). */
+static rad_ff_t *batch_acc(const rad_scene_t *s, void *buf)
+{
+    return (rad_ff_t *)(void *)((unsigned char *)buf + RAD_PART_BYTES(s->cfg.res));
+}
+
+int rad_batch_render(const rad_scene_t *s, uint32_t patch, unsigned k, void *buf, size_t bytes)
+{
+    rad__part_head_t *h = (rad__part_head_t *)buf;
+    RAD__CHECK_SCENE(s);
+    if (!buf || patch >= s->n_patches || bytes < RAD_BATCH_BYTES(s->cfg.res, s->n_elements) ||
+        ((uintptr_t)buf & 7u))
+        return RAD_ERR_ARG;
+    if (s->shot_patch == RAD_INDEX_NONE || k >= s->batch_n) return RAD_ERR_STATE;
+    h->seen = rad__cube_list(s, patch, buf, batch_acc(s, buf));
+    h->part = k;
+    h->nparts = s->batch_n;
+    h->patch = patch;
+    h->rparts = 0;
+    h->state = RAD__CUBE_RENDERED;
+    return (int)h->calls;
+}
+
+/* Whether BUFS are the batch's N cubes in order, each in state STATE or (unless 0)
+ * STATE2: the checks of rad_batch_aim, _receive_part and _end after their arguments'. */
+static int batch_ready(const rad_scene_t *s, void *const *bufs, unsigned n, uint32_t state,
+                       uint32_t state2)
+{
+    uint32_t p[RAD_BATCH_MAX];
+    unsigned k;
+    if (s->shot_patch == RAD_INDEX_NONE || n != s->batch_n) return 0;
+    for (k = 0; k < n; k++) {
+        const rad__part_head_t *h = head(bufs, k);
+        if ((h->state != state && (!state2 || h->state != state2)) || h->shot != s->shot_serial ||
+            h->part != k || h->nparts != n || h->patch >= s->n_patches || h->seen > s->n_elements)
+            return 0;
+        p[k] = h->patch;
+    }
+    return batch_check(p, n) == s->batch_check;
+}
+
+/* The arguments' checks of the batch calls: 0, or the error. */
+static int batch_args(const rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    unsigned k;
+    RAD__CHECK_SCENE(s);
+    if (!bufs || n == 0 || n > RAD_BATCH_MAX || s->band_rows != 0) return RAD_ERR_ARG;
+    for (k = 0; k < n; k++)
+        if (!bufs[k] || ((uintptr_t)bufs[k] & 7u)) return RAD_ERR_ARG;
+    return RAD_OK;
+}
+
+/* The first of the N entries of IDS (rising) at E or above. */
+static uint32_t first_at(const rad_index_t *ids, uint32_t n, uint32_t e)
+{
+    uint32_t lo = 0, hi = n;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        if (ids[mid] < e)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Shot J's receipts, as receive_element's, for the elements [E0, E1): into the scene,
+ * or (UNSHOT given) only into UNSHOT, their patch's unshot power, nothing else written
+ * but the saturations SAT. */
+static void batch_receipts(rad_scene_t *s, void *const *bufs, unsigned j, uint32_t e0, uint32_t e1,
+                           rad_energy_t *unshot, uint32_t *sat)
+{
+    const rad__part_head_t *h = head(bufs, j);
+    rad_index_t *ids;
+    rad_ff_t *ffs;
+    uint32_t i;
+    rad__cube_lists(s, bufs[j], &ids, &ffs);
+    for (i = first_at(ids, h->seen, e0); i < h->seen && ids[i] < e1; i++) {
+        const rad_element_t *el = &s->pools.elements[ids[i]];
+        const rad_rgb_t *rho;
+        rad__area_div_t a;
+        uint32_t c;
+        if (!unshot) {
+            receive_element(s, h->u, ids[i], ffs[i], sat);
+            continue;
+        }
+        rho = rad__element_rho(s, ids[i]);
+        a = rad__area_div(el->area);
+        for (c = 0; c < 3; c++)
+            (void)receive(sat, h->u[c], ffs[i], rad__channel(rho, c), &a, 0, &unshot[c]);
+    }
+}
+
+/* Aims the batch's shots in order, with the ambient term at its start (for K = 1, the
+ * shot's own): shot K's power is its patch's unshot power after the receipts of the
+ * shots before it, worked out here for its own elements alone (the receipts proper
+ * come after, on any threads: batch_receive). Into each head its power U and what its
+ * patch is left owing (LEFT). */
+static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    rad_real_t amb[3];
+    unsigned k, j;
+    shot_ambient(s, amb, 0);
+    for (k = 0; k < n; k++) {
+        rad__part_head_t *h = head(bufs, k);
+        rad_patch_t *pt = &s->pools.patches[h->patch];
+        rad_energy_t now[3];
+        uint32_t sat = 0, c;
+        for (c = 0; c < 3; c++) now[c] = pt->unshot[c];
+        for (j = 0; j < k; j++)
+            batch_receipts(s, bufs, j, pt->first_element, pt->first_element + pt->n_elements,
+                           pt->unshot, &sat);
+        aim(s, h->patch, amb, h->u);
+        for (c = 0; c < 3; c++) {
+            h->left[c] = pt->unshot[c];
+            pt->unshot[c] = now[c]; /* until batch_receive */
+        }
+        s->stats.raster_calls += h->calls;
+        s->stats.raster_pixels += h->pixels;
+        if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
+        h->saturations = 0;
+        h->state = RAD__CUBE_AIMED;
+    }
+}
+
+/* Part PART of NPARTS of the receipts (receive_range's run of whole patches), shot
+ * after shot: each shooter in the run left owing at its place in the order, then the
+ * elements of the run each shot's cube lists receive. Saturations into BUFS[PART]. */
+static int batch_receive(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+{
+    rad__part_head_t *r = head(bufs, part);
+    uint32_t e0, e1, sat = 0, c;
+    unsigned j;
+    receive_range(s, part, nparts, &e0, &e1);
+    for (j = 0; j < n; j++) {
+        const rad__part_head_t *h = head(bufs, j);
+        rad_patch_t *pt = &s->pools.patches[h->patch];
+        if (pt->first_element >= e0 && pt->first_element < e1)
+            for (c = 0; c < 3; c++) pt->unshot[c] = h->left[c];
+        batch_receipts(s, bufs, j, e0, e1, 0, &sat);
+    }
+    r->saturations = sat;
+    r->rparts = nparts;
+    r->state = RAD__CUBE_RECEIVED;
+    return (int)n;
+}
+
+int rad_batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (!batch_ready(s, bufs, n, RAD__CUBE_RENDERED, 0)) return RAD_ERR_STATE;
+    batch_aim(s, bufs, n);
+    return (int)n;
+}
+
+/* The parts the batch's receipts were cut into so far (0: none yet). */
+static unsigned batch_parts(void *const *bufs, unsigned n)
+{
+    unsigned k;
+    for (k = 0; k < n; k++)
+        if (head(bufs, k)->state == RAD__CUBE_RECEIVED) return head(bufs, k)->rparts;
+    return 0;
+}
+
+int rad_batch_receive_part(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+{
+    unsigned np;
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (nparts == 0 || nparts > n || part >= nparts) return RAD_ERR_ARG;
+    if (!batch_ready(s, bufs, n, RAD__CUBE_AIMED, RAD__CUBE_RECEIVED)) return RAD_ERR_STATE;
+    np = batch_parts(bufs, n);
+    if ((np && np != nparts) || head(bufs, part)->state != RAD__CUBE_AIMED) return RAD_ERR_STATE;
+    return batch_receive(s, bufs, n, part, nparts);
+}
+
+int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n)
+{
+    unsigned k, np;
+    int rc = batch_args(s, bufs, n);
+    if (rc < 0) return rc;
+    if (batch_ready(s, bufs, n, RAD__CUBE_RENDERED, 0))
+        batch_aim(s, bufs, n);
+    else if (!batch_ready(s, bufs, n, RAD__CUBE_AIMED, RAD__CUBE_RECEIVED))
+        return RAD_ERR_STATE;
+    np = batch_parts(bufs, n);
+    if (np == 0) np = 1; /* all at once */
+    for (k = 0; k < np; k++)
+        if (head(bufs, k)->state == RAD__CUBE_AIMED) batch_receive(s, bufs, n, k, np);
+    for (k = 0; k < n; k++) {
+        if (head(bufs, k)->state == RAD__CUBE_RECEIVED) s->stats.saturations += head(bufs, k)->saturations;
+        head(bufs, k)->state = RAD__PART_SHOT;
+    }
+    s->shot_patch = RAD_INDEX_NONE;
+    s->batch_n = 0;
+    return (int)n;
 }

@@ -527,7 +527,7 @@ static void test_dirty_buffers(void **st)
 }
 
 /* The public calls refused_calls makes, each on a scene that must be refused. */
-#define CALLS 29
+#define CALLS 34
 
 /* Every call taking a scene, on scene S: how many of them refused it with RAD_ERR_STATE
  * (printed one by one; rad_unshot_fraction, which returns a value, counts when 0). The
@@ -541,7 +541,7 @@ static int refused_calls(rad_scene_t *s, const char *what)
     static rad_index_t ids[4];
     static uint16_t ffs[4];
     static unsigned char gwork[RAD_GATHER_SH_BYTES(8)];
-    static uint64_t part_mem[RAD_PART_BYTES(32) / 8 + 1];
+    static uint64_t part_mem[RAD_BATCH_BYTES(32, NE) / 8 + 1];
     rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}, pt = V(0, 0, 0), up = V(0, 1, 0);
     rad_camera_t cam = {.eye = {0, 0, Q(3)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
                         .tan_half_fov = Q(1.0)};
@@ -568,6 +568,11 @@ static int refused_calls(rad_scene_t *s, const char *what)
     rc[n++] = rad_shot_aim(s, 0, bufs, 1);
     rc[n++] = rad_shot_receive_part(s, 0, bufs, 1, 0);
     rc[n++] = rad_shot_end(s, 0, bufs, 1);
+    rc[n++] = rad_batch_begin(s, 0, 1, &patch);
+    rc[n++] = rad_batch_render(s, 0, 0, part_mem, sizeof part_mem);
+    rc[n++] = rad_batch_aim(s, bufs, 1);
+    rc[n++] = rad_batch_receive_part(s, bufs, 1, 0, 1);
+    rc[n++] = rad_batch_end(s, bufs, 1);
     rc[n++] = rad_ambient(s, &c);
     rc[n++] = rad_element_radiosity(s, 0, 0, &c);
     rc[n++] = rad_shade_vertices(s, 0, vrgb, NV);

@@ -328,6 +328,10 @@ typedef struct {
     uint32_t over_wait;     /* shooter selections since over_low was lowered */
     uint32_t over_sat;      /* stats.saturations at the last selection */
     uint32_t over_halvings; /* the overshoot is scaled by 2^-over_halvings */
+    /* the batch between rad_batch_begin and rad_batch_end (lib/solve.c): its count of
+     * shooters (0: none begun) and a check word of their patches in order (here, in
+     * the gap before the next 8-aligned field: a Cortex-M0's 16 KB has no room) */
+    uint16_t batch_n, batch_check;
     /* the ambient term's sums over the patches of area and of reflectance times area,
      * and the largest patch area (amb_max_area, above), valid while solving when amb_ok
      * (above): cleared by the freeze and by every change of a patch's reflectance */
@@ -463,7 +467,7 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol);
  * NPARTS parts, each rendered by rad_shot_part for this shot as part K of NPARTS at
  * BUFS[K] (a buffer records its shot, part and count). */
 #define RAD_PART_BYTES(res)                   \
-    (56u + (size_t)(res) * sizeof(uint32_t) + \
+    (96u + (size_t)(res) * sizeof(uint32_t) + \
      (size_t)RAD_PIXELS_ALL(res) * (sizeof(uint32_t) + sizeof(rad_index_t)))
 int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch);
 int rad_shot_part(const rad_scene_t *s, uint32_t patch, unsigned part, unsigned nparts, void *buf,
@@ -481,6 +485,49 @@ int rad_shot_end(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned npa
 int rad_shot_aim(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts);
 int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, unsigned nparts,
                           unsigned part);
+
+/* Batch shooting, for threads of the caller's: K shots whose hemi-cubes render at once,
+ * each whole on any thread. rad_batch_begin picks the batch: the K patches whose shots
+ * move the most power (the rule of rad_shoot, ranked; ties to the lower index), into
+ * PATCHES in that order (K entries, 1..RAD_BATCH_MAX), and returns how many it found
+ * (fewer when fewer patches hold power; 0 once the unshot fraction is at most TOL).
+ * rad_batch_render renders the hemi-cube of PATCH, the batch's shooter K, into BUF
+ * (8-aligned, RAD_BATCH_BYTES(res, n_elements) bytes: a part buffer, then a form
+ * factor sum per element), sums its pixels per element and lists the elements it
+ * sees, reading the scene only, so a batch's cubes may render at once in any order
+ * and the merging is done on their threads too. rad_batch_end, after every cube,
+ * shoots the
+ * batch's patches one after the other in the order picked, each with its unshot power
+ * as the shots before it left it, through the cube in BUFS[K]; returns the shots (N,
+ * all of them). A cube depends on the geometry
+ * and its patch alone, so the result is the same bits whatever thread rendered which
+ * cube and whenever, in both builds; and K = 1 is rad_shoot's shot bit for bit. A
+ * batch's cubes share one resolution: the finest of its shots' coarse levels
+ * (rad_config_t.coarse). Needs band_rows 0, as rad_shot_begin. rad_batch_render
+ * returns RAD_ERR_ARG on a bad argument and RAD_ERR_STATE with no batch begun or K past
+ * its count; rad_batch_end returns RAD_ERR_ARG on a bad argument and RAD_ERR_STATE,
+ * shooting nothing, unless BUFS are the N = rad_batch_begin's count buffers, BUFS[K]
+ * rendered for this batch as shooter K of its patch. A batch ends with rad_batch_end
+ * and is void once the scene is shot, restarted or solved otherwise. */
+#define RAD_BATCH_MAX 32
+#define RAD_BATCH_BYTES(res, elements) \
+    (RAD_PART_BYTES(res) + (size_t)(elements) * sizeof(rad_ff_t))
+int rad_batch_begin(rad_scene_t *s, rad_real_t tol, unsigned k, uint32_t *patches);
+int rad_batch_render(const rad_scene_t *s, uint32_t patch, unsigned k, void *buf, size_t bytes);
+int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n);
+/* rad_batch_end in parts, for the same threads, as rad_shot_aim and _receive_part:
+ * rad_batch_aim (one thread, after every cube) works out every shot's power in order;
+ * then rad_batch_receive_part, PART of NPARTS (1..N) at once on any threads, has the
+ * elements of its run of whole patches receive the batch's shots in order (records
+ * its saturations in BUFS[PART]); rad_batch_end, after all of them, counts them and
+ * ends the batch. rad_batch_end does whatever was not done, so calling it alone is the
+ * serial batch; the result is bit for bit the same. Each returns N, or RAD_ERR_ARG,
+ * or RAD_ERR_STATE for a call out of that order (a part done twice, another NPARTS).
+ * A batch's shots take the ambient term (the overshoot's) at its start: for K = 1,
+ * its shot's own. */
+int rad_batch_aim(rad_scene_t *s, void *const *bufs, unsigned n);
+int rad_batch_receive_part(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part,
+                           unsigned nparts);
 
 /* Unshot power as a fraction of the emitted power (0 when nothing emits): the sum of
  * every patch's channels in magnitude, so power owed counts as much as power held. */

@@ -40,6 +40,11 @@
 #define rad_gather_sh         radf_gather_sh
 #define rad_shot_aim          radf_shot_aim
 #define rad_shot_receive_part radf_shot_receive_part
+#define rad_batch_begin       radf_batch_begin
+#define rad_batch_render      radf_batch_render
+#define rad_batch_end         radf_batch_end
+#define rad_batch_aim         radf_batch_aim
+#define rad_batch_receive_part radf_batch_receive_part
 #define rad_use_lights        radf_use_lights
 #define rad_add_light         radf_add_light
 #define rad_set_light         radf_set_light

@@ -1380,6 +1380,184 @@ static void report_parallel(report_t *rp, const bscene *scenes, int ns, const br
     }
 }
 
+/* ---- batch shooting ------------------------------------------------------------ */
+
+/* Shots a batch in the batch tables: K = 1 (the serial solve's bits) and the rest. */
+static const int batch_ks[] = {1, 2, 4, 8, 16, 32};
+#define BATCH_KS ((int)(sizeof batch_ks / sizeof batch_ks[0]))
+
+/* The scene solved to 0.001 in batches of K on this one thread, each call timed on the
+ * thread's processor clock: into SERIAL rad_batch_begin, _aim and _end (what the
+ * calling thread does alone), into WORK every cube's render and both parts of the
+ * receipts, into CRIT the renders as two threads share them (each cube, in order, to
+ * the one with less so far) and the longer part of the receipts: what two free cores
+ * could do is (SERIAL + WORK) / (SERIAL + CRIT). */
+static void batch_split(const bscene *sc, const sc_opts *o, int k, double *serial, double *work, double *crit)
+{
+    sc_solver *h = fixed_solver(sc, sc->polys, o);
+    rad_scene_t *s = sc_core(h);
+    size_t bytes = RAD_BATCH_BYTES(s->cfg.res, s->n_elements);
+    void *bufs[RAD_BATCH_MAX];
+    uint32_t p[RAD_BATCH_MAX];
+    double t, q[2];
+    int i, n;
+    for (i = 0; i < k; i++)
+        if (!(bufs[i] = malloc(bytes))) exit(1);
+    *serial = *work = *crit = 0;
+    for (;;) {
+        t = thread_cpu();
+        n = rad_batch_begin(s, RAD_REAL(0.001), (unsigned)k, p);
+        *serial += thread_cpu() - t;
+        if (n <= 0) break;
+        q[0] = q[1] = 0;
+        for (i = 0; i < n; i++) {
+            double c;
+            t = thread_cpu();
+            rad_batch_render(s, p[i], (unsigned)i, bufs[i], bytes);
+            c = thread_cpu() - t;
+            *work += c;
+            q[q[1] < q[0]] += c;
+        }
+        *crit += q[0] > q[1] ? q[0] : q[1];
+        t = thread_cpu();
+        rad_batch_aim(s, bufs, (unsigned)n);
+        *serial += thread_cpu() - t;
+        q[0] = q[1] = 0;
+        for (i = 0; i < (n < 2 ? n : 2); i++) {
+            t = thread_cpu();
+            rad_batch_receive_part(s, bufs, (unsigned)n, (unsigned)i, n < 2 ? 1u : 2u);
+            q[i] = thread_cpu() - t;
+            *work += q[i];
+        }
+        *crit += q[0] > q[1] ? q[0] : q[1];
+        t = thread_cpu();
+        rad_batch_end(s, bufs, (unsigned)n);
+        *serial += thread_cpu() - t;
+    }
+    for (i = 0; i < k; i++) free(bufs[i]);
+    sc_destroy(h);
+}
+
+/* One solve of SC at O to 0.001 in batches of K on THREADS threads (K 0: sc_solve, the
+ * serial solve): wall seconds; the solver into *OUT (the caller destroys it). */
+static double batch_solve(const bscene *sc, const sc_opts *o, int k, int threads, sc_solver **out)
+{
+    sc_solver *h = fixed_solver(sc, sc->polys, o);
+    double t0 = host_now();
+    if (k) sc_solve_batch(h, threads, k, 1000000, 0.001, NULL, NULL);
+    else sc_solve(h, 1000000, 0.001, NULL, NULL);
+    t0 = host_now() - t0;
+    *out = h;
+    return t0;
+}
+
+/* The 1-minute load average, or -1. */
+static double load_now(void)
+{
+    double load = -1;
+    return getloadavg(&load, 1) == 1 ? load : -1;
+}
+
+/* Batch shooting against K = 1 on CornellBox-Original at rad_cli's defaults: shots and
+ * time to 0.001 on one and two threads, accuracy against res 512. */
+static void report_batch_k(report_t *rp, const bscene *sc)
+{
+    static const double floor[2] = {0.1, 0.01};
+    sc_opts o = row_opts(scene_opts(sc), &peer_rows[1]), r;
+    sc_solver *ref, *h;
+    sc_stats st;
+    uint64_t want[2] = {0, 0};
+    double t1[BATCH_KS], t2[BATCH_KS];
+    int i;
+    o.max_element = 0; /* rad_cli's default mesh */
+    r = o;
+    r.res = 512;
+    r.coarse = 0;
+    fprintf(stderr, "rad_bench: batch shooting: the res-512 reference ...\n");
+    ref = solved(sc, &r, 1e-4);
+    out(rp, "\nBatch shooting (rad_batch_begin; rad_cli --batch K): each batch shoots the K patches whose shots "
+        "move the most, their hemi-cubes rendered at once (on any threads: the same bits) and shot in order. "
+        "CornellBox-Original at rad_cli's defaults (res %d, coarse shots, its mesh), fixed build, to 0.001, one "
+        "run each: shots and seconds on one and on two threads (sc_solve_batch; K = 1 is the serial solve's "
+        "bits), and the error of r + g + b per element against a solve of the same mesh at res 512 to 1e-4 "
+        "(rms and largest over the elements above 10%% of the brightest non-emitting one). Load average (1 minute) "
+        "at the start: %.2f on %ld cores.\n\n| K | shots | shots / K=1 | s, 1 thread | s, 2 threads | 2 threads / 1 "
+        "| time / K=1 (2 threads) | rms | max |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        DEF_RES, load_now(), sysconf(_SC_NPROCESSORS_ONLN));
+    for (i = 0; i < BATCH_KS; i++) {
+        sc_solver *h2;
+        double rms[2], mx[2];
+        int shots;
+        t1[i] = batch_solve(sc, &o, batch_ks[i], 1, &h);
+        t2[i] = batch_solve(sc, &o, batch_ks[i], 2, &h2);
+        if (sc_checksum(h2) != sc_checksum(h)) {
+            fprintf(stderr, "rad_bench: batch K=%d differs on two threads!\n", batch_ks[i]);
+            exit(1);
+        }
+        if (i == 0) {
+            sc_solver *ser;
+            batch_solve(sc, &o, 0, 1, &ser);
+            want[0] = sc_checksum(ser);
+            sc_destroy(ser);
+            if (sc_checksum(h) != want[0]) {
+                fprintf(stderr, "rad_bench: batch K=1 differs from the serial solve!\n");
+                exit(1);
+            }
+        }
+        sc_get_stats(h, &st);
+        shots = st.shots;
+        if (i == 0) want[1] = (uint64_t)shots;
+        element_accuracy(sc, ref, h, floor, rms, mx);
+        out(rp, "| %d | %d | %.2f | %.3f | %.3f | %.2f | %.2f | %.2f%% | %.2f%% |\n", batch_ks[i], shots,
+            shots / (double)want[1], t1[i], t2[i], t1[i] / t2[i], t2[i] / t2[0], 100 * rms[0], 100 * mx[0]);
+        sc_destroy(h);
+        sc_destroy(h2);
+    }
+    out(rp, "\nLoad average at the end: %.2f.\n", load_now());
+    sc_destroy(ref);
+}
+
+/* The batch solve's speed on one and two threads: each scene at its settings (res 128)
+ * and at rad_cli's (res 192, coarse shots), serial against batches of DEF_BATCH_BENCH. */
+static void report_batch_speed(report_t *rp, const bscene *scenes, int ns)
+{
+    int i, j, m;
+    out(rp, "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to 0.001, one run each, "
+        "with the load average (1 minute) when the row was measured (the workers spin: other processes on the "
+        "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread is the same solve through "
+        "the batch calls. The bound is what two free cores could give whatever the load: the batch solve's "
+        "processor time on one thread over its critical path on two (rad_batch_begin and _end on one, the "
+        "cubes of each batch shared between two), timed on one thread's processor clock.\n\n| scene | settings | "
+        "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 threads | load average "
+        "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (i = 0; i < ns; i++) {
+        if (strncmp(scenes[i].name, "CornellBox-Original", 19) && strncmp(scenes[i].name, "generated hall", 14))
+            continue;
+        for (m = 0; m < 2; m++) {
+            sc_opts o = m ? row_opts(scene_opts(&scenes[i]), &peer_rows[1]) : scene_opts(&scenes[i]);
+            sc_solver *h;
+            sc_stats st;
+            double serial = batch_solve(&scenes[i], &o, 0, 1, &h);
+            sc_get_stats(h, &st);
+            sc_destroy(h);
+            for (j = 0; j < BATCH_KS; j++) {
+                int k = batch_ks[j];
+                double t1, t2, s, w, c, load = load_now();
+                if (k != 1 && k != 4 && k != 8 && k != 16) continue;
+                fprintf(stderr, "rad_bench: batch speed: %s, K %d ...\n", scenes[i].name, k);
+                t1 = batch_solve(&scenes[i], &o, k, 1, &h);
+                sc_destroy(h);
+                t2 = batch_solve(&scenes[i], &o, k, 2, &h);
+                sc_destroy(h);
+                batch_split(&scenes[i], &o, k, &s, &w, &c);
+                out(rp, "| %s | %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n",
+                    m || j ? "" : scenes[i].name, j ? "" : m ? "rad_cli's (192, coarse)" : "res 128",
+                    st.elements, k, serial, t1, t2, t1 / t2, serial / t2, load, (s + w) / (s + c));
+            }
+        }
+    }
+}
+
 /* ---- lightmap baking ---------------------------------------------------------- */
 
 /* A lightmap bake's worker: the marked texels of rows Y % STEP == FIRST through a
@@ -2155,6 +2333,8 @@ int main(int argc, char **argv)
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
     report_parallel(&rp, scenes, ns, fx);
+    if (orig >= 0) report_batch_k(&rp, &scenes[orig]);
+    report_batch_speed(&rp, scenes, ns);
     report_large(&rp);
     report_textures(&rp, argv[0]);
     report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);

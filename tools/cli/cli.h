@@ -76,6 +76,7 @@ typedef struct {
     int nviews, pending_cam;        /* pending_cam: a --camera still waiting for its -o */
     sc_camera pending;
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
+    int batch;                      /* --batch: shots whose hemi-cubes render at once */
     double tol, exposure, max_patch, max_element;
     double coarse;                  /* --coarse (0: never; -1: not given), --coarse-res (0: not given) */
     int coarse_res;

@@ -169,6 +169,7 @@ static void opt_tol(opts_t *o, const char *opt, const char *val)
 
 static void opt_max_shots(opts_t *o, const char *opt, const char *val) { o->max_shots = (int)parse_int(opt, val, 0, 1000000000); }
 static void opt_threads(opts_t *o, const char *opt, const char *val) { o->threads = (int)parse_int(opt, val, 1, 64); }
+static void opt_batch(opts_t *o, const char *opt, const char *val) { o->batch = (int)parse_int(opt, val, 1, RAD_BATCH_MAX); }
 static void opt_no_overshoot(opts_t *o, const char *opt, const char *val) { (void)opt, (void)val, o->no_overshoot = 1; }
 
 static void opt_emit(opts_t *o, const char *opt, const char *val)
@@ -456,7 +457,11 @@ static const option_t options[] = {
     {"--max-element", NULL, "L", "longest element edge (scene extent / 24)", opt_max_element},
     {"--tol", NULL, "F", "stop when the unshot fraction is below F (0.001)", opt_tol},
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
-    {"--threads", NULL, "N", "render each shot's hemi-cube on N threads, same result (1);\n--lightmap's texels, --gather's gathers and textures too", opt_threads},
+    {"--threads", NULL, "N", "render the hemi-cubes on N threads: a batch's whole cubes (--batch),\nor with --batch 1 each shot's by rows; same result (1);\n--lightmap's texels, --gather's gathers and textures too", opt_threads},
+    {"--batch", NULL, "K",
+     "shoot in batches of the K patches that move the most, their\n"
+     "hemi-cubes rendered at once on --threads (" DEF_STR(DEF_BATCH) "; 1..32; the same\n"
+     "bits for any --threads, and K 1 is the serial solve's)", opt_batch},
     {"--no-overshoot", NULL, NULL,
      "shoot only the unshot power (Cohen et al. 1988); by default\n"
      "each shot adds the power expected back (fewer shots)", opt_no_overshoot},
@@ -638,6 +643,7 @@ static void set_defaults(opts_t *o, int argc)
     o->tol = 0.001;
     o->max_shots = 1000000;
     o->threads = 1;
+    o->batch = DEF_BATCH;
     o->coarse = -1; /* not given: cli_shot_settings */
     o->lightmap_tol = LM_TOL;
     o->lightmap_pad = -1;

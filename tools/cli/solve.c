@@ -63,12 +63,14 @@ static void check_converged(run_t *r, int shots)
     if (shots >= r->o->max_shots && st.unshot > r->o->tol + TOL_SLACK(r->o->tol)) r->unconverged++;
 }
 
-/* Shooting with hemi-cubes; threads split each shot's cube by rows: the same bits. */
+/* Shooting with hemi-cubes: in batches whose cubes render on the threads, or, one shot
+ * at a time, threads split each shot's cube by rows: the same bits for any threads. */
 static void solve_shoot(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     int shots = -1;
-    if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, progress, pg);
+    if (o->batch >= 2) shots = sc_solve_batch(r->s, o->threads, o->batch, o->max_shots, o->tol, progress, pg);
+    else if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, progress, pg);
     if (shots < 0) shots = sc_solve(r->s, o->max_shots, o->tol, progress, pg);
     r->work = shots;
     check_converged(r, shots);

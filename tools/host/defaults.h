@@ -26,6 +26,10 @@
 #define DEF_LIGHTMAP_SIZE 512
 #define DEF_IMAGE_SIZE    512
 
+/* Shots a batch (rad_batch_begin; rad_cli --batch): chosen by measurement, rad_bench's
+ * batch table and docs/new-batch.md. */
+#define DEF_BATCH 4
+
 /* A default written into help text: DEF_STR(DEF_RES) is "192". */
 #define DEF_STR_(x) #x
 #define DEF_STR(x)  DEF_STR_(x)

@@ -73,6 +73,7 @@
 #define sc_solution scf_solution
 #define sc_solution_free scf_solution_free
 #define sc_solve scf_solve
+#define sc_solve_batch scf_solve_batch
 #define sc_solve_parallel scf_solve_parallel
 #define sc_solve_started scf_solve_started
 #define sc_solver scf_solver

@@ -10,7 +10,12 @@
  * time slice, and the calling thread then does its part instead of waiting for it
  * (waiting made a solve ten times slower than one thread beside another job). Which
  * thread runs a part never changes its bits. A worker that cannot start leaves its
- * part to the others. The counters are GCC/clang __atomic builtins (acquire/release). */
+ * part to the others. The counters are GCC/clang __atomic builtins (acquire/release).
+ *
+ * The batch solve (sc_solve_batch) has two stages a batch, as a shot: rendering, whose
+ * parts are the batch's whole hemi-cubes (rad_batch_render), then (after the calling
+ * thread's rad_batch_aim) receiving, a run of whole patches' elements a thread
+ * (rad_batch_receive_part). */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
@@ -32,6 +37,9 @@
 typedef struct {
     rad_scene_t *s;
     uint32_t patch;
+    int batch;                       /* 1: a batch solve's stages */
+    uint32_t patches[RAD_BATCH_MAX]; /* the batch's shooters (rad_batch_begin), */
+    unsigned n;                      /* how many */
     unsigned nparts;
     size_t bytes;
     void *bufs[MAX_THREADS];
@@ -45,7 +53,11 @@ static void store(int *p, int v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
 /* Part PART's share of stage STAGE. */
 static void run_stage(crew_t *c, int stage, unsigned part)
 {
-    if (stage % 2)
+    if (c->batch && stage % 2)
+        rad_batch_render(c->s, c->patches[part], part, c->bufs[part], c->bytes);
+    else if (c->batch)
+        rad_batch_receive_part(c->s, c->bufs, c->n, part, c->nparts);
+    else if (stage % 2)
         rad_shot_part(c->s, c->patch, part, c->nparts, c->bufs[part], c->bytes);
     else
         rad_shot_receive_part(c->s, c->patch, c->bufs, c->nparts, part);
@@ -93,6 +105,44 @@ static void stage_all(crew_t *c, int stage)
     while (__atomic_load_n(&c->finished, __ATOMIC_ACQUIRE) != tag + c->nparts) sched_yield();
 }
 
+/* The crew of THREADS threads over the scene of H with NBUFS part buffers, BATCH
+ * set: the workers started (STARTED), or 0 when a buffer cannot be had. */
+static int crew_start(crew_t *c, sc_solver *h, int batch, int threads, int nbufs, pthread_t *tid,
+                      int *started)
+{
+    int k, ok = 1;
+    c->s = sc_core(h);
+    c->patch = 0;
+    c->batch = batch;
+    c->nparts = (unsigned)nbufs;
+    c->bytes = batch ? RAD_BATCH_BYTES(c->s->cfg.res, c->s->pools.max_elements) : RAD_PART_BYTES(c->s->cfg.res);
+    c->stage = 0;
+    c->claim = c->finished = 0;
+    for (k = 0; k < nbufs; k++) {
+        c->bufs[k] = malloc(c->bytes);
+        ok = ok && c->bufs[k];
+    }
+    for (k = 1; k < threads && ok; k++) started[k] = pthread_create(&tid[k], NULL, work, c) == 0;
+    return ok;
+}
+
+/* Ends the crew crew_start began (OK: its return) and frees its buffers. */
+static void crew_end(crew_t *c, int ok, int threads, int nbufs, pthread_t *tid, const int *started)
+{
+    int k;
+    if (ok) {
+        store(&c->stage, -1);
+        for (k = 1; k < threads; k++) if (started[k]) pthread_join(tid[k], NULL);
+    }
+    for (k = 0; k < nbufs; k++) free(c->bufs[k]);
+}
+
+/* THREADS into 1..MAX_THREADS. */
+static int clamp_threads(int threads)
+{
+    return threads < 1 ? 1 : threads > MAX_THREADS ? MAX_THREADS : threads;
+}
+
 int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx)
 {
     rad_scene_t *s = sc_core(h);
@@ -100,23 +150,12 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
     pthread_t tid[MAX_THREADS];
     int started[MAX_THREADS];
     rad_real_t t = RAD_REAL(tol);
-    int k, shots = 0, ok = 1;
+    int shots = 0, ok;
 
-    if (threads < 1) threads = 1;
-    if (threads > MAX_THREADS) threads = MAX_THREADS;
+    threads = clamp_threads(threads);
     if (s->band_rows != 0) return -1;
     sc_solve_started(h, tol);
-    c.s = s;
-    c.patch = 0;
-    c.nparts = (unsigned)threads;
-    c.bytes = RAD_PART_BYTES(s->cfg.res);
-    c.stage = 0;
-    c.claim = c.finished = 0;
-    for (k = 0; k < threads; k++) {
-        c.bufs[k] = malloc(c.bytes);
-        ok = ok && c.bufs[k];
-    }
-    for (k = 1; k < threads && ok; k++) started[k] = pthread_create(&tid[k], NULL, work, &c) == 0;
+    ok = crew_start(&c, h, 0, threads, threads, tid, started);
     while (ok && shots < max_shots && rad_shot_begin(s, t, &c.patch) == 1) {
         stage_all(&c, 2 * shots + 1);
         rad_shot_aim(s, c.patch, c.bufs, c.nparts);
@@ -125,10 +164,37 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
         shots++;
         if (progress && progress(ctx, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)))) break;
     }
-    if (ok) {
-        store(&c.stage, -1);
-        for (k = 1; k < threads; k++) if (started[k]) pthread_join(tid[k], NULL);
-    }
-    for (k = 0; k < threads; k++) free(c.bufs[k]);
+    crew_end(&c, ok, threads, threads, tid, started);
     return ok ? shots : -1;
+}
+
+int sc_solve_batch(sc_solver *h, int threads, int batch, int max_shots, double tol, sc_progress_fn progress,
+                   void *ctx)
+{
+    rad_scene_t *s = sc_core(h);
+    crew_t c;
+    pthread_t tid[MAX_THREADS];
+    int started[MAX_THREADS];
+    rad_real_t t = RAD_REAL(tol);
+    int shots = 0, stage = 0, n = 0, ok;
+
+    threads = clamp_threads(threads);
+    if (batch < 1 || batch > RAD_BATCH_MAX || s->band_rows != 0) return -1;
+    sc_solve_started(h, tol);
+    ok = crew_start(&c, h, 1, threads, batch, tid, started);
+    while (ok && shots < max_shots) {
+        /* the last batch is cut to end at MAX_SHOTS */
+        unsigned k = (unsigned)(max_shots - shots < batch ? max_shots - shots : batch);
+        if ((n = rad_batch_begin(s, t, k, c.patches)) <= 0) break;
+        c.n = c.nparts = (unsigned)n;
+        stage_all(&c, ++stage);
+        if ((n = rad_batch_aim(s, c.bufs, c.n)) < 0) break;
+        c.nparts = c.n < (unsigned)threads ? c.n : (unsigned)threads;
+        stage_all(&c, ++stage);
+        if ((n = rad_batch_end(s, c.bufs, c.n)) < 0) break;
+        shots += n;
+        if (progress && progress(ctx, shots, RAD_TO_DOUBLE(rad_unshot_fraction(s)))) break;
+    }
+    crew_end(&c, ok, threads, batch, tid, started);
+    return ok && n >= 0 ? shots : -1;
 }

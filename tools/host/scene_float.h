@@ -76,6 +76,8 @@ unsigned long scf_gatherer_saturations(scf_gatherer *g);
 #define RAD_TWIN_PARALLEL_DONE
 int scf_solve_parallel(scf_solver *s, int threads, int max_shots, double tol,
                        sc_progress_fn progress, void *ctx);
+int scf_solve_batch(scf_solver *s, int threads, int batch, int max_shots, double tol,
+                    sc_progress_fn progress, void *ctx);
 #endif
 
 #if defined(RAD_TWIN_FGATHER) && !defined(RAD_TWIN_FGATHER_DONE)
