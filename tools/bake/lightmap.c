@@ -531,8 +531,11 @@ static void tri_sample(const tri_t *t, const double c[2], double m, double q[2],
 /* Samples the texels of chart C within a texel of triangle T (those it touches, and
  * their ring), keeping each texel's nearest sample; BEST (the rectangle's texels)
  * holds the distances so far. */
-static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *t, int poly, double m, float *best)
+static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *tri, int poly, double m, float *best)
 {
+    /* A copy: GCC 12's -Wstringop-overflow under -fsanitize=undefined (make check's soak
+     * build) took T's corners for a region of 16 bytes when read through the pointer. */
+    const tri_t copy = *tri, *t = &copy;
     double lo[2], hi[2];
     int i, j, k;
     for (k = 0; k < 2; k++) { /* clamped to the rectangle (a file's UVs may lie far off) */
