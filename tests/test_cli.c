@@ -1664,10 +1664,9 @@ static void test_lights_file(void **state)
     expect_status(&r, 2);
     CHECK_CONTAINS(r.err, "none.json: cannot open: No such file or directory", "a lights file that is not there");
     run_free(&r);
-    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("bad.png"),
+    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("ff.png"),
         tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "do not work with stored form factors yet", "a lights file with --save-ff");
+    expect_status(&r, 0); /* lights work with stored rows (tests/test_relight.c measures them) */
     run_free(&r);
     RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--dump-radiosity", tmp_path("good.json"), "-o",
         tmp_path("bad.png"), tmp_path("floor.obj"));
@@ -1843,7 +1842,11 @@ static void test_sky_hdr(void **state)
     print_message("--sky-hdr lit toward +X: the wall facing +X %.6f, rho pi L / 2 %.6f (%+.3f%%); facing -X %.6f\n",
                   mean, 0.5 * pi, 100 * (mean / (0.5 * pi) - 1), csv_surface_red(tmp_path("east.csv"), 1));
     CHECK_NEAR(mean, 0.5 * pi, 0.5 * pi * 0.022, "the wall facing +X (east) under the eastern half of the sky");
-    CHECK_LE(csv_surface_red(tmp_path("east.csv"), 1), 0, "the wall facing -X (west) under the eastern half");
+    /* Not exactly 0: back faces shadow lights a quarter pixel behind the lit faces, which
+     * lets light through along contact edges, at most a row of pixels along each
+     * (docs/library.md, lights): measured 1.0e-4 against the lit wall's 1.57. */
+    CHECK_LE(csv_surface_red(tmp_path("east.csv"), 1), 1e-3 * 0.5 * pi,
+             "the wall facing -X (west) under the eastern half");
 
     /* a lights file's "sky-hdr", its map named from the file's folder: the same bits */
     write_text(tmp_path("sky.json"), "{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"map.hdr\"}]}");
@@ -1874,10 +1877,9 @@ static void test_sky_hdr(void **state)
     expect_status(&r, 2);
     CHECK_CONTAINS(r.err, "map.hdr: image too large for the memory budget", "a map over the memory budget");
     run_free(&r);
-    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("bad.png"),
+    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("ff.png"),
         tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "do not work with stored form factors yet", "--sky-hdr with --save-ff");
+    expect_status(&r, 0); /* a map's suns are lights: they work with stored rows */
     run_free(&r);
 }
 
