@@ -2,7 +2,7 @@
 /* libFuzzer harness: rad_cli's --views and --animate parsers (tools/cli/views.c) on
  * arbitrary bytes.
  *
- * Input: one byte choosing the parser (even: views_parse, odd: frames_parse), then the
+ * Input: one byte choosing the parser (even: cli_views_parse, odd: cli_frames_parse), then the
  * file's text. The frames parser knows two light groups, "lamp" and "other", with
  * intensities (1,1,1) and (0.5,0.5,0.5), as rad_cli has them after --light-group.
  *
@@ -82,7 +82,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         c.lo = text;
         c.hi = text + size - 1;
         c.n = 0;
-        n = views_parse(text, size - 1, NAME, on_view, &c, err, sizeof err);
+        n = cli_views_parse(text, size - 1, NAME, on_view, &c, err, sizeof err);
         if (n < 0) check_error(err);
         else CHECK(n == c.n);
     } else {
@@ -96,14 +96,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             groups[0].k[k] = 1.0;
             groups[1].k[k] = 0.5;
         }
-        n = frames_parse(text, size - 1, NAME, groups, 2, &fr, err, sizeof err);
+        n = cli_frames_parse(text, size - 1, NAME, groups, 2, &fr, err, sizeof err);
         if (n < 0) check_error(err);
         for (i = 0; i < n; i++) {
             check_camera(&fr[i].cam);
             for (g = 0; g < 2; g++)
                 for (k = 0; k < 3; k++) CHECK(fr[i].k[g][k] >= 0 && fr[i].k[g][k] < 32768);
         }
-        if (n >= 0) frames_free(fr, n);
+        if (n >= 0) cli_frames_free(fr, n);
     }
     free(text);
     return 0;

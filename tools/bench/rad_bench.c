@@ -686,7 +686,7 @@ static void dir_of(const char *path, char *out, size_t n)
 #define PEER_CMDS 7
 #define PEER_RPK  2
 
-/* rad_cli's defaults (cli/cli.h): the emitters' shots at res 192, the others at 96, 48
+/* rad_cli's defaults (host/defaults.h): the emitters' shots at res 192, the others at 96, 48
  * and 24 as the unshot fraction falls below 1, 1/8 and 1/64 (chosen on
  * CornellBox-Original: more accurate than every shot at 128, about half its time; see
  * the peer table's accuracy column). */

@@ -59,9 +59,9 @@ struct bake_state {
     int npts;
 };
 
-char *probes_output(const char *scene)
+char *cli_probes_output(const char *scene)
 {
-    char *png = default_output(scene), *out = png ? malloc(strlen(png) + 9) : NULL;
+    char *png = cli_default_output(scene), *out = png ? malloc(strlen(png) + 9) : NULL;
     if (out) {
         memcpy(out, png, strlen(png) - 4);
         strcpy(out + strlen(png) - 4, ".probes.json");
@@ -297,10 +297,10 @@ static int build_atlas(run_t *r, struct bake_state *b, const lm_opts *lo)
     if (rc < 0) fprintf(stderr, PROG ": %s: %s\n", o->lightmap, err);
     return rc;
 }
-/* bake_prepare's work, timed into r->t_layout. */
+/* cli_bake_prepare's work, timed into r->t_layout. */
 static int prepare(run_t *r);
 
-int bake_prepare(run_t *r)
+int cli_bake_prepare(run_t *r)
 {
     double t = host_now();
     int rc = prepare(r);
@@ -327,7 +327,7 @@ static int prepare(run_t *r)
     return o->probes || o->probe_file ? read_probes(r, b) : 0;
 }
 
-int bake_step(run_t *r)
+int cli_bake_step(run_t *r)
 {
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
@@ -348,13 +348,13 @@ int bake_step(run_t *r)
     return rc;
 }
 
-int bake_export_gltf(run_t *r, gltf_warn_fn warn)
+int cli_bake_export_gltf(run_t *r, gltf_warn_fn warn)
 {
     if (!r->o->gltf || !r->bake || !r->bake->has_atlas) return 0;
-    return write_gltf(r, &r->bake->atlas, warn);
+    return cli_write_gltf(r, &r->bake->atlas, warn);
 }
 
-void bake_free(run_t *r)
+void cli_bake_free(run_t *r)
 {
     if (!r->bake) return;
     if (r->bake->has_atlas) lm_free(&r->bake->atlas);

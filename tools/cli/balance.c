@@ -35,7 +35,7 @@ static double patch_power(const run_t *r, int p)
     return area * (ke[0] + ke[1] + ke[2]);
 }
 
-double emitted_share_landing(run_t *r)
+double cli_emitted_share_landing(run_t *r)
 {
     int p, n = sc_patch_count(r->s);
     uint32_t emitting = 0, stride, cubes = BALANCE_PIXELS / ((uint32_t)r->so.res * (uint32_t)r->so.res), k = 0;

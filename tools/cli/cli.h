@@ -93,7 +93,7 @@ typedef struct {
     sc_light *lights;               /* --sun, --point, --spot, --sky, --sky-hdr's suns and
                                        --lights files' lights, in the command line's order */
     int nlights, max_lights;
-    const char **light_files;       /* --lights and --sky-hdr files (check_collisions) */
+    const char **light_files;       /* --lights and --sky-hdr files (cli_check_collisions) */
     int nlight_files;
     /* stored form factors and relighting */
     const char *save_ff, *load_ff, *animate;
@@ -154,7 +154,7 @@ typedef struct {
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
     double t_vertices, t_ply, t_lightmap, t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
-    double t_layout; /* --stats: bake_prepare (the lightmap's charts, packing and samples; the probes' points),
+    double t_layout; /* --stats: cli_bake_prepare (the lightmap's charts, packing and samples; the probes' points),
                       * between the meshing and the solve */
     double landing;                 /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
@@ -165,14 +165,14 @@ typedef struct {
 
 /* ---- options.c ---- */
 /* Reads the command line into O; prints usage and exits 2 on a usage error. */
-void parse_args(int argc, char **argv, opts_t *o);
-void die_usage(const char *msg, const char *arg);
-void add_view(opts_t *o, const sc_camera *cam, const char *out);
+void cli_parse_args(int argc, char **argv, opts_t *o);
+void cli_die_usage(const char *msg, const char *arg);
+void cli_add_view(opts_t *o, const sc_camera *cam, const char *out);
 /* The outputs of the run against its inputs (the scene, its libraries and textures,
  * --views, --animate, --probe-file, --load-ff) and each other, by file identity:
  * one line on stderr and -1 for the first that would write over another. */
-int check_collisions(const opts_t *o, const obj_scene *sc);
-void free_opts(opts_t *o);
+int cli_check_collisions(const opts_t *o, const obj_scene *sc);
+void cli_free_opts(opts_t *o);
 
 /* ---- lights.c ---- */
 /* The kinds of light the options and --lights files give; each's values in the
@@ -205,87 +205,87 @@ int cli_read_lights(opts_t *o, const char *path, char *err, size_t errlen);
 /* ---- views.c: parsers that take a buffer (the fuzz harness calls them) ---- */
 /* N comma-separated finite numbers, or N-1 when OPT_LAST is set; anything else (junk,
  * a trailing comma, more values) fails. Returns the count or -1. */
-int parse_list(const char *s, double *v, int n, int opt_last);
+int cli_parse_list(const char *s, double *v, int n, int opt_last);
 /* A camera from EX,EY,EZ,LX,LY,LZ[,FOV] (K values): up is +y, or -z when looking straight
  * up or down. Returns 0 for a zero view direction or a field of view outside 8..170. */
-int set_camera(sc_camera *c, const double *v, int k);
-group_t *find_group(group_t *g, int n, const char *name, size_t len);
+int cli_set_camera(sc_camera *c, const double *v, int k);
+group_t *cli_find_group(group_t *g, int n, const char *name, size_t len);
 /* Called for each view line: the camera, the output name (a string inside TEXT) and
- * the line. Nonzero stops the parse: views_parse fails with "NAME:LINE: " + WHY. */
+ * the line. Nonzero stops the parse: cli_views_parse fails with "NAME:LINE: " + WHY. */
 typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen);
 /* --views: TEXT (LEN bytes, NUL after them, modified in place: output names point into
  * it) one view a line "EX EY EZ LX LY LZ [FOV] OUTPUT", '#' lines are comments to their
  * end. Returns the views, or -1 with "NAME:LINE: what" in err. */
-int views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen);
+int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen);
 /* --animate: TEXT as above, a frame a line "EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]",
- * intensities starting from the groups' own. *FRAMES is malloc'd (frames_free). Returns
+ * intensities starting from the groups' own. *FRAMES is malloc'd (cli_frames_free). Returns
  * the frames (at least one), or -1 with err and nothing to free. */
-int frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
+int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
                  char *err, size_t errlen);
-void frames_free(frame_t *frames, int n);
+void cli_frames_free(frame_t *frames, int n);
 
 /* ---- outputs.c ---- */
 
-const char *ext_of(const char *path);
+const char *cli_ext_of(const char *path);
 /* PATH with SEP + MID inserted before its extension: out.png -> out.MID.png (malloc'd;
  * exits on out of memory). */
-char *insert_name(const char *path, const char *sep, const char *mid);
+char *cli_insert_name(const char *path, const char *sep, const char *mid);
 /* --animate's frame I: -o's name + _0000, _0001, ... (malloc'd). */
-char *frame_name(const opts_t *o, int i);
-char *default_output(const char *scene);
+char *cli_frame_name(const opts_t *o, int i);
+char *cli_default_output(const char *scene);
 /* Every output of the run checked before the solve; exits 1 on the first that cannot be
  * written. */
-void check_outputs(const opts_t *o);
+void cli_check_outputs(const opts_t *o);
 /* The names made from them: --animate's frames and --each-group's images (once the
  * frames and groups are known, still before the solve). */
-void check_group_outputs(const opts_t *o);
+void cli_check_group_outputs(const opts_t *o);
 /* Renders CAM and writes PATH (NULL: only render, to fix the exposure). One exposure
  * for every output, from the first view rendered (or --exposure), so views match. */
-int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot);
+int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot);
 /* Renders every view and frame once, small, before the solve: a camera the core refuses
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
-int check_cameras(sc_solver *s, const opts_t *o);
+int cli_check_cameras(sc_solver *s, const opts_t *o);
 /* --dump-radiosity: a row per element, the radiosities from sc_shade_elements (the
  * ambient term computed once); its time added to OT's t_csv. 0 or -1 (said). */
-int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot);
+int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot);
 /* --export-gltf: the .glb of the input's meshes (sc_export_gltf_lightmap, with the
  * lightmap LM or NULL); WARN gets the writer's warnings; its time added to t_gltf.
  * 0 or -1 (said). */
-int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn);
+int cli_write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn);
 /* --stats: the exports' line (times), when any was written. */
-void print_export_stats(const opts_t *o, const out_t *ot);
+void cli_print_export_stats(const opts_t *o, const out_t *ot);
 /* --export-ply: the meshed scene, its vertex colours from sc_vertex_colours (gathered
  * with FG when --gather is given), 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear)
  * binary float radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
-int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
               const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front
  * faces of elements (1 in a closed scene), from up to 64 hemi-cubes at res 128; -1 when
  * nothing emits. Renders hemi-cubes: call it after the solve's statistics are kept. */
-double emitted_share_landing(run_t *r);
+double cli_emitted_share_landing(run_t *r);
 
 /* ---- bake.c ---- */
 /* Before the solve: the lightmap's atlas laid out (an atlas that cannot fit fails
  * now, not after the solve). 0, or -1 after one line on stderr. Nothing asked: 0. */
-int bake_prepare(run_t *r);
+int cli_bake_prepare(run_t *r);
 /* --lightmap and --probes / --probe-file: baked from the solution (after the views);
  * 0, or -1 after one line on stderr. Nothing asked: 0. */
-int bake_step(run_t *r);
+int cli_bake_step(run_t *r);
 /* --export-gltf with --lightmap: the .glb written after the bake, with TEXCOORD_1 and
  * the atlas (sc_export_gltf_lightmap); WARN gets the writer's warnings. 0 (nothing to
  * do, or written) or -1 (said). */
-int bake_export_gltf(run_t *r, gltf_warn_fn warn);
-void bake_free(run_t *r);
-/* The scene's name + .probes.json (malloc'd), as default_output. */
-char *probes_output(const char *scene);
+int cli_bake_export_gltf(run_t *r, gltf_warn_fn warn);
+void cli_bake_free(run_t *r);
+/* The scene's name + .probes.json (malloc'd), as cli_default_output. */
+char *cli_probes_output(const char *scene);
 
 /* ---- solve.c ---- */
 /* The solve, by shooting or from the rows (computed, loaded or saved), each light group
  * alone then mixed. 0, or -1 after one line on stderr. */
-int solve_step(run_t *r);
+int cli_solve_step(run_t *r);
 /* Sets the mix of the groups with intensities K (one RGB per group); 0 or -1. */
-int mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n);
+int cli_mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n);
 
 #endif

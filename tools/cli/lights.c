@@ -104,7 +104,7 @@ sc_light *cli_new_light(opts_t *o)
     if (o->nlights == o->max_lights) {
         int cap = o->max_lights ? 2 * o->max_lights : 16;
         sc_light *l;
-        if (o->nlights >= CLI_MAX_LIGHTS) die_usage("more lights than rad_cli takes (65535 in all)", NULL);
+        if (o->nlights >= CLI_MAX_LIGHTS) cli_die_usage("more lights than rad_cli takes (65535 in all)", NULL);
         l = realloc(o->lights, (size_t)cap * sizeof *l);
         if (!l) {
             fprintf(stderr, PROG ": out of memory\n");

@@ -26,11 +26,11 @@ typedef struct {
 static void usage(FILE *f);
 static void print_option(FILE *f, const option_t *p);
 
-/* The option whose value is being read, for die_usage: NULL between options. */
+/* The option whose value is being read, for cli_die_usage: NULL between options. */
 static const option_t *parsing;
 
 /* A usage error: the message, the help of the option at fault, and where the rest is. */
-void die_usage(const char *msg, const char *arg)
+void cli_die_usage(const char *msg, const char *arg)
 {
     fprintf(stderr, PROG ": %s%s%s\n", msg, arg ? ": " : "", arg ? arg : "");
     if (parsing) print_option(stderr, parsing);
@@ -47,7 +47,7 @@ static long parse_int(const char *opt, const char *s, long lo, long hi)
     if (end == s || *end || errno || v < lo || v > hi) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s wants a whole number from %ld to %ld", opt, lo, hi);
-        die_usage(msg, s);
+        cli_die_usage(msg, s);
     }
     return v;
 }
@@ -59,7 +59,7 @@ static int parse_res(const char *opt, const char *s)
     if (v % 2) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s must be even", opt);
-        die_usage(msg, s);
+        cli_die_usage(msg, s);
     }
     return (int)v;
 }
@@ -67,17 +67,17 @@ static int parse_res(const char *opt, const char *s)
 static double parse_pos(const char *opt, const char *s)
 {
     double v;
-    if (parse_list(s, &v, 1, 0) != 1 || !(v > 0)) {
+    if (cli_parse_list(s, &v, 1, 0) != 1 || !(v > 0)) {
         char msg[96];
         snprintf(msg, sizeof msg, "%s wants a positive number", opt);
-        die_usage(msg, s);
+        cli_die_usage(msg, s);
     }
     return v;
 }
 
-void add_view(opts_t *o, const sc_camera *cam, const char *out)
+void cli_add_view(opts_t *o, const sc_camera *cam, const char *out)
 {
-    if (o->nviews >= MAX_VIEWS) die_usage("too many views", NULL);
+    if (o->nviews >= MAX_VIEWS) cli_die_usage("too many views", NULL);
     o->views[o->nviews].has_cam = cam != NULL;
     if (cam) o->views[o->nviews].cam = *cam;
     o->views[o->nviews].out = out;
@@ -108,18 +108,18 @@ static void opt_help(opts_t *o, const char *opt, const char *val)
 static void opt_output(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
-    add_view(o, o->pending_cam ? &o->pending : NULL, val);
+    cli_add_view(o, o->pending_cam ? &o->pending : NULL, val);
     o->pending_cam = 0;
 }
 
 static void opt_camera(opts_t *o, const char *opt, const char *val)
 {
     double v[7];
-    int k = parse_list(val, v, 7, 1);
+    int k = cli_parse_list(val, v, 7, 1);
     (void)opt;
-    if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
-    if (k < 0 || !set_camera(&o->pending, v, k))
-        die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, FOV 8..170", val);
+    if (o->pending_cam) cli_die_usage("--camera without its -o FILE", NULL);
+    if (k < 0 || !cli_set_camera(&o->pending, v, k))
+        cli_die_usage("--camera wants EX,EY,EZ,LX,LY,LZ[,FOV], eye and look-at apart, FOV 8..170", val);
     o->pending_cam = 1;
     o->ncams++;
 }
@@ -149,8 +149,8 @@ static void opt_res(opts_t *o, const char *opt, const char *val)
 static void opt_coarse(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
-    if (parse_list(val, &o->coarse, 1, 0) != 1 || !(o->coarse >= 0 && o->coarse <= 64))
-        die_usage("--coarse wants a number in [0, 64]", val);
+    if (cli_parse_list(val, &o->coarse, 1, 0) != 1 || !(o->coarse >= 0 && o->coarse <= 64))
+        cli_die_usage("--coarse wants a number in [0, 64]", val);
 }
 
 static void opt_coarse_res(opts_t *o, const char *opt, const char *val)
@@ -164,7 +164,7 @@ static void opt_max_element(opts_t *o, const char *opt, const char *val) { o->ma
 static void opt_tol(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
-    if (parse_list(val, &o->tol, 1, 0) != 1 || !(o->tol >= 0 && o->tol < 1)) die_usage("--tol wants a number in [0, 1)", val);
+    if (cli_parse_list(val, &o->tol, 1, 0) != 1 || !(o->tol >= 0 && o->tol < 1)) cli_die_usage("--tol wants a number in [0, 1)", val);
 }
 
 static void opt_max_shots(opts_t *o, const char *opt, const char *val) { o->max_shots = (int)parse_int(opt, val, 0, 1000000000); }
@@ -177,8 +177,8 @@ static void opt_emit(opts_t *o, const char *opt, const char *val)
     const char *eq = strrchr(val, '=');
     double v[3];
     (void)opt;
-    if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || v[0] < 0 || v[1] < 0 || v[2] < 0)
-        die_usage("--emit wants NAME=R,G,B with R, G, B >= 0", val);
+    if (!eq || eq == val || cli_parse_list(eq + 1, v, 3, 0) != 3 || v[0] < 0 || v[1] < 0 || v[2] < 0)
+        cli_die_usage("--emit wants NAME=R,G,B with R, G, B >= 0", val);
     o->emit[o->nemit++] = (char *)val;
 }
 
@@ -192,7 +192,7 @@ static void light_option(opts_t *o, const char *opt, const char *val, int kind, 
     if (bad >= 0) {
         char msg[224];
         snprintf(msg, sizeof msg, "%s wants %s", opt, says && k >= 0 && bad >= field ? says : want);
-        die_usage(msg, val);
+        cli_die_usage(msg, val);
     }
     cli_light_make(o, kind, v);
 }
@@ -200,7 +200,7 @@ static void light_option(opts_t *o, const char *opt, const char *val, int kind, 
 /* N values, the last optional (NAN when left out): the count or -1. */
 static int light_list(const char *val, double *v, int n)
 {
-    int k = parse_list(val, v, n, 1);
+    int k = cli_parse_list(val, v, n, 1);
     if (k == n - 1) v[n - 1] = NAN;
     return k;
 }
@@ -216,7 +216,7 @@ static void opt_sun(opts_t *o, const char *opt, const char *val)
 static void opt_point(opts_t *o, const char *opt, const char *val)
 {
     double v[6];
-    light_option(o, opt, val, CLI_LIGHT_POINT, v, parse_list(val, v, 6, 0), "X,Y,Z,R,G,B with intensities >= 0", 2,
+    light_option(o, opt, val, CLI_LIGHT_POINT, v, cli_parse_list(val, v, 6, 0), "X,Y,Z,R,G,B with intensities >= 0", 2,
                  NULL);
 }
 
@@ -235,7 +235,7 @@ static void opt_sky(opts_t *o, const char *opt, const char *val)
     static const int counts[4] = {3, 4, 6, 7};
     double v[7];
     int k;
-    for (k = 0; k < 4 && parse_list(val, v, counts[k], 0) != counts[k]; k++) continue;
+    for (k = 0; k < 4 && cli_parse_list(val, v, counts[k], 0) != counts[k]; k++) continue;
     if (k < 4) {
         if (counts[k] == 4) v[6] = v[3];
         if (counts[k] < 6) v[3] = v[4] = v[5] = NAN;
@@ -252,11 +252,11 @@ static void die_light_file(const char *err)
     exit(CLI_EXIT_USAGE);
 }
 
-/* A file of lights (--lights, --sky-hdr) kept for check_collisions: a copy of PATH. */
+/* A file of lights (--lights, --sky-hdr) kept for cli_check_collisions: a copy of PATH. */
 static const char *light_file(opts_t *o, const char *path, size_t len)
 {
     char *s = malloc(len + 1);
-    if (!s) die_usage("out of memory", NULL);
+    if (!s) cli_die_usage("out of memory", NULL);
     memcpy(s, path, len);
     s[len] = '\0';
     o->light_files[o->nlight_files++] = s;
@@ -280,7 +280,7 @@ static void opt_sky_hdr(opts_t *o, const char *opt, const char *val)
         if (c == 0 || n >= sizeof num) break;
         memcpy(num, val + c, n);
         num[n] = '\0';
-        if (parse_list(num, &t[k], 1, 0) != 1) break;
+        if (cli_parse_list(num, &t[k], 1, 0) != 1) break;
         len = c - 1;
         k++;
     }
@@ -292,7 +292,7 @@ static void opt_sky_hdr(opts_t *o, const char *opt, const char *val)
     if (len == 0 || cli_light_check(CLI_LIGHT_SKY_HDR, v) >= 0) {
         char msg[160];
         snprintf(msg, sizeof msg, "%s wants FILE[,N[,SCALE]]: N a whole number 3..768, SCALE > 0", opt);
-        die_usage(msg, val);
+        cli_die_usage(msg, val);
     }
     file = light_file(o, val, len);
     if (cli_add_sky_map(o, file, isnan(v[1]) ? 0 : (int)v[1], isnan(v[2]) ? 1.0 : v[2], err, sizeof err) < 0)
@@ -314,7 +314,7 @@ static void opt_solver(opts_t *o, const char *opt, const char *val)
     (void)opt;
     if (strcmp(val, "shoot") == 0) o->gauss_seidel = 0;
     else if (strcmp(val, "gauss-seidel") == 0) o->gauss_seidel = 1;
-    else die_usage("--solver wants shoot or gauss-seidel", val);
+    else cli_die_usage("--solver wants shoot or gauss-seidel", val);
 }
 
 /* --light-group NAME=MAT1,MAT2,...: checked here, materials resolved with the scene. */
@@ -325,14 +325,14 @@ static void opt_light_group(opts_t *o, const char *opt, const char *val)
     size_t len;
     (void)opt;
     if (!eq || !good_group_name(val, (size_t)(eq - val)))
-        die_usage("--light-group wants NAME=MAT1,MAT2,... with NAME of letters, digits, '_', '-' (up to 63)", val);
+        cli_die_usage("--light-group wants NAME=MAT1,MAT2,... with NAME of letters, digits, '_', '-' (up to 63)", val);
     len = (size_t)(eq - val);
     if (len == strlen(OTHER_GROUP) && strncmp(val, OTHER_GROUP, len) == 0)
-        die_usage("--light-group: 'other' is the group of the emitters in no group; choose another name", val);
-    if (find_group(o->groups, o->ngroups, val, len)) die_usage("--light-group: a group name given twice", val);
+        cli_die_usage("--light-group: 'other' is the group of the emitters in no group; choose another name", val);
+    if (cli_find_group(o->groups, o->ngroups, val, len)) cli_die_usage("--light-group: a group name given twice", val);
     for (p = eq + 1;; p++) /* no empty material names: "a,,b", ",a", "a," */
         if ((*p == ',' || *p == '\0') && (p == eq + 1 || p[-1] == ','))
-            die_usage("--light-group: an empty material name", val);
+            cli_die_usage("--light-group: an empty material name", val);
         else if (*p == '\0') break;
     g = &o->groups[o->ngroups++];
     memcpy(g->name, val, len);
@@ -347,9 +347,9 @@ static void opt_group_intensity(opts_t *o, const char *opt, const char *val)
     const char *eq = strrchr(val, '=');
     double v[3];
     (void)opt;
-    if (!eq || eq == val || parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) ||
+    if (!eq || eq == val || cli_parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) ||
         v[0] >= 32768 || v[1] >= 32768 || v[2] >= 32768)
-        die_usage("--group-intensity wants NAME=R,G,B with R, G, B in [0, 32768)", val);
+        cli_die_usage("--group-intensity wants NAME=R,G,B with R, G, B in [0, 32768)", val);
     o->gint[o->ngint++] = (char *)val;
 }
 
@@ -362,8 +362,8 @@ static void opt_quiet(opts_t *o, const char *opt, const char *val) { (void)opt, 
 static void opt_lightmap(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
-    if (strcasecmp(ext_of(val), ".png") && strcasecmp(ext_of(val), ".ppm") && strcasecmp(ext_of(val), ".hdr"))
-        die_usage("--lightmap wants a .png, .ppm or .hdr file", val);
+    if (strcasecmp(cli_ext_of(val), ".png") && strcasecmp(cli_ext_of(val), ".ppm") && strcasecmp(cli_ext_of(val), ".hdr"))
+        cli_die_usage("--lightmap wants a .png, .ppm or .hdr file", val);
     o->lightmap = val;
 }
 
@@ -377,8 +377,8 @@ static void opt_lightmap_pad(opts_t *o, const char *opt, const char *val)
 static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 {
     (void)opt;
-    if (parse_list(val, &o->lightmap_tol, 1, 0) != 1 || !(o->lightmap_tol >= 0 && o->lightmap_tol <= 1))
-        die_usage("--lightmap-tol wants a number in [0, 1]", val);
+    if (cli_parse_list(val, &o->lightmap_tol, 1, 0) != 1 || !(o->lightmap_tol >= 0 && o->lightmap_tol <= 1))
+        cli_die_usage("--lightmap-tol wants a number in [0, 1]", val);
 }
 
 static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
@@ -387,7 +387,7 @@ static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
     if (!strcmp(val, "auto")) o->lightmap_uv = LIGHTMAP_UV_AUTO;
     else if (!strcmp(val, "file")) o->lightmap_uv = LIGHTMAP_UV_FILE;
     else if (!strcmp(val, "rad")) o->lightmap_uv = LIGHTMAP_UV_RAD;
-    else die_usage("--lightmap-uv wants auto, file or rad", val);
+    else cli_die_usage("--lightmap-uv wants auto, file or rad", val);
 }
 
 static void opt_gather(opts_t *o, const char *opt, const char *val)
@@ -399,7 +399,7 @@ static void opt_probes(opts_t *o, const char *opt, const char *val)
 {
     char err[160];
     (void)opt;
-    if (pr_parse_grid(val, o->probe_dims, err, sizeof err) < 0) die_usage(err, NULL);
+    if (pr_parse_grid(val, o->probe_dims, err, sizeof err) < 0) cli_die_usage(err, NULL);
     o->probes = 1;
 }
 
@@ -596,31 +596,31 @@ static void resolve_intensities(opts_t *o)
     for (i = 0; i < o->ngint; i++) {
         const char *eq = strrchr(o->gint[i], '=');
         size_t len = (size_t)(eq - o->gint[i]);
-        group_t *g = find_group(o->groups, o->ngroups, o->gint[i], len);
+        group_t *g = cli_find_group(o->groups, o->ngroups, o->gint[i], len);
         for (j = 0; j < i; j++)
-            if (strncmp(o->gint[j], o->gint[i], len + 1) == 0) die_usage("--group-intensity: a group given twice", o->gint[i]);
+            if (strncmp(o->gint[j], o->gint[i], len + 1) == 0) cli_die_usage("--group-intensity: a group given twice", o->gint[i]);
         if (!g && !(len == strlen(OTHER_GROUP) && strncmp(o->gint[i], OTHER_GROUP, len) == 0))
-            die_usage("--group-intensity: no --light-group of that name (or 'other')", o->gint[i]);
-        if (g) parse_list(eq + 1, g->k, 3, 0);
+            cli_die_usage("--group-intensity: no --light-group of that name (or 'other')", o->gint[i]);
+        if (g) cli_parse_list(eq + 1, g->k, 3, 0);
     }
 }
 
 /* The combinations that cannot work, refused before anything is read. */
 static void check_combinations(opts_t *o)
 {
-    if (!o->scene) die_usage("no scene given", NULL);
-    if (o->pending_cam) die_usage("--camera without its -o FILE", NULL);
+    if (!o->scene) cli_die_usage("no scene given", NULL);
+    if (o->pending_cam) cli_die_usage("--camera without its -o FILE", NULL);
     if (!strcmp(o->scene, "-") && o->nviews == 0 && !o->views_file)
-        die_usage("a scene on standard input (-) has no name to name outputs after: give -o FILE", NULL);
+        cli_die_usage("a scene on standard input (-) has no name to name outputs after: give -o FILE", NULL);
     if (!strcmp(o->scene, "-") && (o->probes || o->probe_file) && !o->probes_out)
-        die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
-    if (o->save_ff && o->load_ff) die_usage("--save-ff and --load-ff exclude each other", NULL);
-    if (o->ply_linear && !o->ply) die_usage("--ply-linear needs --export-ply FILE", NULL);
-    if (o->each_group && o->nuser_groups == 0) die_usage("--each-group needs at least one --light-group", NULL);
+        cli_die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
+    if (o->save_ff && o->load_ff) cli_die_usage("--save-ff and --load-ff exclude each other", NULL);
+    if (o->ply_linear && !o->ply) cli_die_usage("--ply-linear needs --export-ply FILE", NULL);
+    if (o->each_group && o->nuser_groups == 0) cli_die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
-        if (o->ncams || o->views_file) die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
-        if (o->nviews > 1) die_usage("--animate writes frames from one -o name", NULL);
-        if (o->each_group) die_usage("--animate and --each-group exclude each other", NULL);
+        if (o->ncams || o->views_file) cli_die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
+        if (o->nviews > 1) cli_die_usage("--animate writes frames from one -o name", NULL);
+        if (o->each_group) cli_die_usage("--animate and --each-group exclude each other", NULL);
     }
 }
 
@@ -657,7 +657,7 @@ static void set_defaults(opts_t *o, int argc)
     }
 }
 
-void parse_args(int argc, char **argv, opts_t *o)
+void cli_parse_args(int argc, char **argv, opts_t *o)
 {
     int i;
     set_defaults(o, argc);
@@ -666,20 +666,20 @@ void parse_args(int argc, char **argv, opts_t *o)
         const option_t *p = a[0] == '-' && a[1] ? find_option(a) : NULL;
         if (p) {
             parsing = p;
-            if (p->arg && i + 1 >= argc) die_usage("option needs a value", a);
+            if (p->arg && i + 1 >= argc) cli_die_usage("option needs a value", a);
             p->fn(o, a, p->arg ? argv[++i] : NULL);
             parsing = NULL;
-        } else if (a[0] == '-' && a[1]) die_usage("unknown option", a);
-        else if (o->scene) die_usage("more than one scene given", a);
+        } else if (a[0] == '-' && a[1]) cli_die_usage("unknown option", a);
+        else if (o->scene) cli_die_usage("more than one scene given", a);
         else o->scene = a;
     }
     check_combinations(o);
     resolve_intensities(o);
 }
 
-void free_opts(opts_t *o)
+void cli_free_opts(opts_t *o)
 {
-    frames_free(o->frames, o->nframes);
+    cli_frames_free(o->frames, o->nframes);
     free(o->views_text);
     free(o->default_out);
     free(o->probes_default);

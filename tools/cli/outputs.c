@@ -16,15 +16,15 @@
 #include "host/tex_render.h"
 #include "progress.h"
 
-const char *ext_of(const char *path)
+const char *cli_ext_of(const char *path)
 {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
     return dot && (!slash || dot > slash) ? dot : "";
 }
 
-char *insert_name(const char *path, const char *sep, const char *mid)
+char *cli_insert_name(const char *path, const char *sep, const char *mid)
 {
-    const char *ext = ext_of(path);
+    const char *ext = cli_ext_of(path);
     size_t base = (size_t)(ext - path);
     char *out = malloc(strlen(path) + strlen(sep) + strlen(mid) + 1);
     if (!out) {
@@ -38,14 +38,14 @@ char *insert_name(const char *path, const char *sep, const char *mid)
     return out;
 }
 
-char *frame_name(const opts_t *o, int i)
+char *cli_frame_name(const opts_t *o, int i)
 {
     char num[32];
     snprintf(num, sizeof num, "%04d", i);
-    return insert_name(o->views[0].out, "_", num);
+    return cli_insert_name(o->views[0].out, "_", num);
 }
 
-char *default_output(const char *scene)
+char *cli_default_output(const char *scene)
 {
     const char *base = strrchr(scene, '/');
     const char *dot;
@@ -68,8 +68,8 @@ char *default_output(const char *scene)
 static const char *image_format(const char *path)
 {
     struct stat st;
-    if (strcasecmp(ext_of(path), ".png") == 0) return "png";
-    if (strcasecmp(ext_of(path), ".ppm") == 0) return "ppm";
+    if (strcasecmp(cli_ext_of(path), ".png") == 0) return "png";
+    if (strcasecmp(cli_ext_of(path), ".ppm") == 0) return "ppm";
     if (strncmp(path, "/dev/", 5) == 0 || strncmp(path, "/proc/self/fd/", 14) == 0) return "png";
     if (stat(path, &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))) return "png";
     return NULL;
@@ -91,7 +91,7 @@ static void check_output(const char *path, int image)
     }
 }
 
-void check_outputs(const opts_t *o)
+void cli_check_outputs(const opts_t *o)
 {
     int i;
     for (i = 0; i < o->nviews; i++) check_output(o->views[i].out, 1);
@@ -103,17 +103,17 @@ void check_outputs(const opts_t *o)
     if (o->probes_out) check_output(o->probes_out, 0);
 }
 
-void check_group_outputs(const opts_t *o)
+void cli_check_group_outputs(const opts_t *o)
 {
     int i, g;
     for (i = 0; o->animate && i < o->nframes; i++) {
-        char *path = frame_name(o, i);
+        char *path = cli_frame_name(o, i);
         check_output(path, 1);
         free(path);
     }
     for (g = 0; o->each_group && g < o->ngroups; g++)
         for (i = 0; i < o->nviews; i++) {
-            char *path = insert_name(o->views[i].out, ".", o->groups[g].name);
+            char *path = cli_insert_name(o->views[i].out, ".", o->groups[g].name);
             check_output(path, 1);
             free(path);
         }
@@ -146,14 +146,14 @@ static int try_camera(sc_solver *s, const opts_t *o, const sc_camera *cam, const
     return 0;
 }
 
-int check_cameras(sc_solver *s, const opts_t *o)
+int cli_check_cameras(sc_solver *s, const opts_t *o)
 {
     float *buf = malloc((size_t)o->width * o->height * 3 * sizeof *buf);
     int i, rc = buf ? 0 : -1;
     if (!buf) fprintf(stderr, PROG ": out of memory\n");
     for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++) rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
     for (i = 0; rc == 0 && o->animate && i < o->nframes; i++) {
-        char *path = frame_name(o, i);
+        char *path = cli_frame_name(o, i);
         rc = try_camera(s, o, &o->frames[i].cam, path, buf);
         free(path);
     }
@@ -161,7 +161,7 @@ int check_cameras(sc_solver *s, const opts_t *o)
     return rc;
 }
 
-int render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot)
+int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot)
 {
     char err[1024];
     double t1 = host_now();
@@ -245,7 +245,7 @@ static int out_commit(fio_out *fo)
     return 0;
 }
 
-int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot)
+int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot)
 {
     double t = host_now();
     unsigned long before = ambient_terms(s);
@@ -264,7 +264,7 @@ int write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, 
     return rc;
 }
 
-int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
+int cli_write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
 {
     char err[1024];
     progress_t pg;
@@ -279,7 +279,7 @@ int write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
     return rc < 0 ? -1 : 0;
 }
 
-void print_export_stats(const opts_t *o, const out_t *ot)
+void cli_print_export_stats(const opts_t *o, const out_t *ot)
 {
     if (!o->csv && !o->gltf) return;
     printf("exports:");
@@ -289,7 +289,7 @@ void print_export_stats(const opts_t *o, const out_t *ot)
 
 /* The vertex colours are sc_vertex_colours': each core vertex's radiosity (Gouraud), or
  * gathered with FG. */
-int write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
+int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
               const sc_stats *st)
 {
     char err[1024];

@@ -106,10 +106,10 @@ static void outputs(const opts_t *o, list_t *out)
         else if (v->out == o->default_out) add(out, v->out, NULL, "the default image (the scene's name + .png; -o sets it)");
         else add(out, v->out, NULL, "the image of -o");
     }
-    for (i = 0; o->animate && i < o->nframes; i++) add(out, NULL, frame_name(o, i), "frame %d of --animate (-o's name + _%04d)", i, i);
+    for (i = 0; o->animate && i < o->nframes; i++) add(out, NULL, cli_frame_name(o, i), "frame %d of --animate (-o's name + _%04d)", i, i);
     for (g = 0; o->each_group && g < o->ngroups; g++)
         for (i = 0; i < o->nviews; i++)
-            add(out, NULL, insert_name(o->views[i].out, ".", o->groups[g].name), "the image of group %s (--each-group)",
+            add(out, NULL, cli_insert_name(o->views[i].out, ".", o->groups[g].name), "the image of group %s (--each-group)",
                 o->groups[g].name);
     add(out, o->ply, NULL, "--export-ply");
     add(out, o->csv, NULL, "--dump-radiosity");
@@ -119,7 +119,7 @@ static void outputs(const opts_t *o, list_t *out)
     add(out, o->probes_out, NULL, "--probes-out");
 }
 
-int check_collisions(const opts_t *o, const obj_scene *sc)
+int cli_check_collisions(const opts_t *o, const obj_scene *sc)
 {
     list_t in = {NULL, 0, 0, 0}, out = {NULL, 0, 0, 0};
     int i, j, rc = 0;

@@ -54,7 +54,7 @@ static int apply_emit(const opts_t *o, obj_scene *sc)
         if (len >= sizeof name) len = sizeof name - 1;
         memcpy(name, o->emit[i], len);
         name[len] = '\0';
-        parse_list(eq + 1, v, 3, 0);
+        cli_parse_list(eq + 1, v, 3, 0);
         m = obj_find_material(sc, name);
         if (m < 0) {
             fprintf(stderr, PROG ": %s: --emit: no material named '%s' (--list-materials shows them)\n", o->scene, name);
@@ -203,7 +203,7 @@ static int other_intensity(run_t *r, int other)
                             "so there is no group 'other'\n", o->scene);
             return -1;
         }
-        parse_list(eq + 1, o->groups[other - 1].k, 3, 0);
+        cli_parse_list(eq + 1, o->groups[other - 1].k, 3, 0);
     }
     return 0;
 }
@@ -270,7 +270,7 @@ static int add_file_view(void *ctx, const sc_camera *cam, const char *out, int l
         snprintf(why, whylen, "%.300s is outside the current folder; --allow-outside-paths writes it", out);
         return 1;
     }
-    add_view(o, cam, out);
+    cli_add_view(o, cam, out);
     o->views[o->nviews - 1].line = line;
     return 0;
 }
@@ -280,7 +280,7 @@ static int read_views(opts_t *o)
     char err[1024];
     size_t len;
     if (read_text(o->views_file, &o->views_text, &len) < 0) return -1;
-    if (views_parse(o->views_text, len, o->views_file, add_file_view, o, err, sizeof err) < 0) {
+    if (cli_views_parse(o->views_text, len, o->views_file, add_file_view, o, err, sizeof err) < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
     }
@@ -293,7 +293,7 @@ static int read_frames(opts_t *o)
     size_t len;
     int n;
     if (read_text(o->animate, &o->frames_text, &len) < 0) return -1;
-    n = frames_parse(o->frames_text, len, o->animate, o->groups, o->ngroups, &o->frames, err, sizeof err);
+    n = cli_frames_parse(o->frames_text, len, o->animate, o->groups, o->ngroups, &o->frames, err, sizeof err);
     if (n < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
@@ -519,7 +519,7 @@ static int build_step(run_t *r)
     }
     for (i = 0; i < o->nviews; i++)
         if (!o->views[i].has_cam) o->views[i].cam = def;
-    return check_cameras(r->s, o);
+    return cli_check_cameras(r->s, o);
 }
 
 /* ---- outputs --------------------------------------------------------------------- */
@@ -529,12 +529,12 @@ static int render_frames(run_t *r)
     const opts_t *o = r->o;
     int i, rc = 0;
     for (i = 0; rc == 0 && i < o->nframes; i++) {
-        char *path = frame_name(o, i);
-        rc = mix_groups(r, r->sol, (const double(*)[3])o->frames[i].k, o->ngroups);
-        if (rc == 0) rc = render_view(r->s, o, &o->frames[i].cam, path, r->ambient, &r->ot);
+        char *path = cli_frame_name(o, i);
+        rc = cli_mix_groups(r, r->sol, (const double(*)[3])o->frames[i].k, o->ngroups);
+        if (rc == 0) rc = cli_render_view(r->s, o, &o->frames[i].cam, path, r->ambient, &r->ot);
         free(path);
     }
-    if (rc == 0) rc = mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups); /* for the CSV and PLY */
+    if (rc == 0) rc = cli_mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups); /* for the CSV and PLY */
     return rc;
 }
 
@@ -542,16 +542,16 @@ static int render_frames(run_t *r)
 static int render_each_group(run_t *r)
 {
     const opts_t *o = r->o;
-    int g, i, rc = render_view(r->s, o, &o->views[0].cam, NULL, r->ambient, &r->ot);
+    int g, i, rc = cli_render_view(r->s, o, &o->views[0].cam, NULL, r->ambient, &r->ot);
     for (g = 0; rc == 0 && g < o->ngroups; g++) {
-        rc = mix_groups(r, &r->sol[g], (const double(*)[3])&r->ks[g], 1);
+        rc = cli_mix_groups(r, &r->sol[g], (const double(*)[3])&r->ks[g], 1);
         for (i = 0; rc == 0 && i < o->nviews; i++) {
-            char *path = insert_name(o->views[i].out, ".", o->groups[g].name);
-            rc = render_view(r->s, o, &o->views[i].cam, path, r->ambient, &r->ot);
+            char *path = cli_insert_name(o->views[i].out, ".", o->groups[g].name);
+            rc = cli_render_view(r->s, o, &o->views[i].cam, path, r->ambient, &r->ot);
             free(path);
         }
     }
-    if (rc == 0) rc = mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups);
+    if (rc == 0) rc = cli_mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups);
     return rc;
 }
 
@@ -587,13 +587,13 @@ static int output_step(run_t *r)
     if (o->animate) rc = render_frames(r);
     else if (o->each_group) rc = render_each_group(r);
     else
-        for (i = 0; rc == 0 && i < o->nviews; i++) rc = render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
+        for (i = 0; rc == 0 && i < o->nviews; i++) rc = cli_render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && r->ot.fg && (o->ply || o->gltf)) rc = gather_vertices(r);
-    if (rc == 0 && o->csv) rc = write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st, &r->ot);
+    if (rc == 0 && o->csv) rc = cli_write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st, &r->ot);
     t = host_now();
-    if (rc == 0 && o->ply) rc = write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
+    if (rc == 0 && o->ply) rc = cli_write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
     r->t_ply = host_now() - t;
-    if (rc == 0 && o->gltf && !o->lightmap) rc = write_gltf(r, NULL, obj_warning); /* else after the bake */
+    if (rc == 0 && o->gltf && !o->lightmap) rc = cli_write_gltf(r, NULL, obj_warning); /* else after the bake */
     return rc < 0 ? -1 : 0;
 }
 
@@ -662,7 +662,7 @@ static void print_stats(const run_t *r)
         printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
                100 * r->landing);
     print_times(r);
-    print_export_stats(o, &r->ot);
+    cli_print_export_stats(o, &r->ot);
     printf("memory: pools %zu bytes, work buffer %zu bytes\n", st->pool_bytes, st->work_bytes);
 }
 
@@ -674,7 +674,7 @@ static void print_stats(const run_t *r)
 
 static void balance_step(run_t *r)
 {
-    r->landing = emitted_share_landing(r);
+    r->landing = cli_emitted_share_landing(r);
     if (r->landing >= 0 && r->landing < LANDING_WARN && !r->o->quiet)
         fprintf(stderr, PROG ": warning: %s: only %.0f%% of the emitted light reaches a face from its front: the rest "
                         "leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
@@ -718,14 +718,14 @@ static void free_run(run_t *r)
     free(r->ot.img);
     free(r->ot.rgb8);
     sc_fgather_free(r->ot.fg);
-    bake_free(r);
+    cli_bake_free(r);
     if (r->s) sc_destroy(r->s);
     free(r->polys);
     free(r->lights);
     for (g = 0; r->maps && g < r->sc.nmaterials; g++) tex_free(&r->maps[g]);
     free(r->maps);
     if (r->have_scene) obj_free(&r->sc);
-    free_opts(r->o);
+    cli_free_opts(r->o);
 }
 
 /* The views: --views' file, or the default view; every output name checked. */
@@ -733,18 +733,18 @@ static int views_step(opts_t *o)
 {
     if (o->views_file && read_views(o) < 0) return -1;
     if (o->nviews == 0) {
-        o->default_out = default_output(o->scene);
+        o->default_out = cli_default_output(o->scene);
         if (!o->default_out) {
             fprintf(stderr, PROG ": out of memory\n");
             return -1;
         }
-        add_view(o, NULL, o->default_out);
+        cli_add_view(o, NULL, o->default_out);
     }
-    if ((o->probes || o->probe_file) && !o->probes_out && !(o->probes_out = o->probes_default = probes_output(o->scene))) {
+    if ((o->probes || o->probe_file) && !o->probes_out && !(o->probes_out = o->probes_default = cli_probes_output(o->scene))) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    if (!o->list) check_outputs(o);
+    if (!o->list) cli_check_outputs(o);
     return 0;
 }
 
@@ -756,7 +756,7 @@ int main(int argc, char **argv)
     memset(&r, 0, sizeof r);
     r.o = &o;
     r.t0 = host_now();
-    parse_args(argc, argv, &o);
+    cli_parse_args(argc, argv, &o);
     r.ambient = !o.no_ambient;
     r.rows_mode = o.save_ff || o.load_ff || o.gauss_seidel || o.nuser_groups || o.animate;
     r.groups_mode = o.nuser_groups || o.animate;
@@ -766,15 +766,15 @@ int main(int argc, char **argv)
         free_run(&r);
         return CLI_EXIT_OK;
     }
-    if (rc == 0) check_group_outputs(&o);
-    if (rc == 0) rc = check_collisions(&o, &r.sc);
+    if (rc == 0) cli_check_group_outputs(&o);
+    if (rc == 0) rc = cli_check_collisions(&o, &r.sc);
     if (rc == 0) rc = build_step(&r);
-    if (rc == 0) rc = bake_prepare(&r);
-    if (rc == 0) rc = solve_step(&r);
+    if (rc == 0) rc = cli_bake_prepare(&r);
+    if (rc == 0) rc = cli_solve_step(&r);
     solved = rc == 0;
     if (rc == 0) rc = output_step(&r);
-    if (rc == 0) rc = bake_step(&r);
-    if (rc == 0) rc = bake_export_gltf(&r, obj_warning);
+    if (rc == 0) rc = cli_bake_step(&r);
+    if (rc == 0) rc = cli_bake_export_gltf(&r, obj_warning);
     if (solved) balance_step(&r);
     if (o.stats && solved) print_stats(&r);
     if (rc == 0) rc = verdict(&r);

@@ -113,7 +113,7 @@ static int rows_step(run_t *r, solve_progress *pg)
     return 0;
 }
 
-int mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n)
+int cli_mix_groups(run_t *r, sc_solution *const *sol, const double (*k)[3], int n)
 {
     char err[256];
     if (sc_mix(r->s, sol, k, n, err, sizeof err) < 0) {
@@ -174,10 +174,10 @@ static int solve_groups(run_t *r, solve_progress *pg)
         }
         memcpy(r->ks[g], o->groups[g].k, sizeof r->ks[g]);
     }
-    return mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups);
+    return cli_mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups);
 }
 
-int solve_step(run_t *r)
+int cli_solve_step(run_t *r)
 {
     solve_progress pg;
     int rc = 0;

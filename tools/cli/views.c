@@ -12,7 +12,7 @@
 #define SPACE " \t\r\v\f"
 #define MAX_INTENSITY 32768.0 /* --group-intensity's bound: [0, 32768) */
 
-int parse_list(const char *s, double *v, int n, int opt_last)
+int cli_parse_list(const char *s, double *v, int n, int opt_last)
 {
     int k = 0;
     for (;;) {
@@ -29,7 +29,7 @@ int parse_list(const char *s, double *v, int n, int opt_last)
     return (k == n || (opt_last && k == n - 1)) ? k : -1;
 }
 
-int set_camera(sc_camera *c, const double *v, int k)
+int cli_set_camera(sc_camera *c, const double *v, int k)
 {
     double d[3], len2 = 0, side;
     int a;
@@ -47,7 +47,7 @@ int set_camera(sc_camera *c, const double *v, int k)
     return len2 > 0 && c->fov_deg >= 8.0 && c->fov_deg <= 170.0; /* the core's 1/16..16 */
 }
 
-group_t *find_group(group_t *g, int n, const char *name, size_t len)
+group_t *cli_find_group(group_t *g, int n, const char *name, size_t len)
 {
     int i;
     for (i = 0; i < n; i++)
@@ -118,10 +118,10 @@ static int view_line(char *line, sc_camera *c, const char **out)
     for (k = 0; k < nt - 1; k++)
         if (!parse_number(tok[k], &v[k])) return 0;
     *out = tok[nt - 1];
-    return set_camera(c, v, nt - 1);
+    return cli_set_camera(c, v, nt - 1);
 }
 
-int views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen)
+int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen)
 {
     char *p = text, *line;
     int ln = 0, n = 0;
@@ -153,7 +153,7 @@ int views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx
 static int frame_intensity(const char *tok, const char *eq, group_t *groups, int ngroups, double (*k)[3],
                            const char *where, char *err, size_t errlen)
 {
-    group_t *gp = find_group(groups, ngroups, tok, (size_t)(eq - tok));
+    group_t *gp = cli_find_group(groups, ngroups, tok, (size_t)(eq - tok));
     double v[3];
     if (!gp) {
         size_t used;
@@ -164,7 +164,7 @@ static int frame_intensity(const char *tok, const char *eq, group_t *groups, int
         if (used < errlen) snprintf(err + used, errlen - used, "%s)", ngroups ? "" : "the scene has no emitter");
         return -1;
     }
-    if (parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) || v[0] >= MAX_INTENSITY ||
+    if (cli_parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) || v[0] >= MAX_INTENSITY ||
         v[1] >= MAX_INTENSITY || v[2] >= MAX_INTENSITY) {
         snprintf(err, errlen, "%s: %s: intensity wants R,G,B in [0, 32768)", where, tok);
         return -1;
@@ -197,7 +197,7 @@ static int frame_line(char *line, group_t *groups, int ngroups, frame_t *fr, con
             break;
         }
     }
-    if (!tok && (nv < 6 || !set_camera(&fr->cam, v, nv))) {
+    if (!tok && (nv < 6 || !cli_set_camera(&fr->cam, v, nv))) {
         snprintf(err, errlen, "%s: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, "
                               "FOV 8..170", where);
         tok = line;
@@ -209,14 +209,14 @@ static int frame_line(char *line, group_t *groups, int ngroups, frame_t *fr, con
     return 0;
 }
 
-void frames_free(frame_t *frames, int n)
+void cli_frames_free(frame_t *frames, int n)
 {
     int i;
     for (i = 0; i < n; i++) free(frames[i].k);
     free(frames);
 }
 
-int frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
+int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
                  char *err, size_t errlen)
 {
     char *p = text, *line;
@@ -231,14 +231,14 @@ int frames_parse(char *text, size_t len, const char *name, group_t *groups, int 
             frame_t *nf = realloc(fr, (size_t)(cap = cap ? 2 * cap : 64) * sizeof *nf);
             if (!nf) {
                 snprintf(err, errlen, "out of memory");
-                frames_free(fr, n);
+                cli_frames_free(fr, n);
                 return -1;
             }
             fr = nf;
         }
         snprintf(where, sizeof where, "%.480s:%d", name, ln);
         if (frame_line(line, groups, ngroups, &fr[n], where, err, errlen) < 0) {
-            frames_free(fr, n);
+            cli_frames_free(fr, n);
             return -1;
         }
         n++;
