@@ -53,7 +53,7 @@ TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c 
               tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \
-              $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/obj_polys.c \
+              $(filter-out $(TWIN_SRCS),$(wildcard tools/bake/*.c)) tools/host/polys.c \
               tools/host/geom.c tools/host/clock.c tools/host/sky_map.c tools/bench/plot.c tools/bench/level.c
 TOOL_HDRS  := $(wildcard tools/*/*.h)
 TEST_SRCS  := $(wildcard tests/test_*.c)

@@ -36,7 +36,7 @@
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/scene.h"
 #include "tmpdir.h"
 
@@ -205,7 +205,7 @@ static sc_solver *solve(const obj_scene *sc, int *n_elements)
     sc_stats st;
     char err[512];
     int n;
-    sc_poly *p = obj_to_polys(sc, &n, NULL, NULL);
+    sc_poly *p = polys_from_obj(sc, &n, NULL, NULL);
     sc_solver *h;
     assert_non_null(p);
     memset(&o, 0, sizeof o);
@@ -920,7 +920,7 @@ static void test_lightmap_file_uv(void **state)
     write_uv_gltf(tmp_path("uvq.gltf"), 1);
     if (assimp_scene_load(tmp_path("uvq.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
     assert_non_null(sc.uv2);
-    polys = obj_to_polys(&sc, &n, NULL, NULL);
+    polys = polys_from_obj(&sc, &n, NULL, NULL);
     assert_non_null(polys);
     CHECK_INT_EQ(n, 6, "polygons of the three quads");
     uv = lm_poly_file_uvs(&sc, polys, n);

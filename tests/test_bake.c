@@ -21,7 +21,7 @@
 #include "bake/probes.h"
 #include "formats/file_io.h"
 #include "formats/hdr.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/scene.h"
 #include "reference/reference.h"
 

@@ -15,7 +15,7 @@
 #include "rad/rad.h"
 #include "scenes.h"
 #include "formats/obj.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "balance.h"
 #include "tmpdir.h"
 
@@ -75,7 +75,7 @@ static sc_poly *bundled_box(int *n, double rho)
     sc_poly *p;
     int i;
     assert_int_equal(obj_load("examples/cornell_box.obj", &sc, NULL, NULL, err, sizeof err), 0);
-    p = obj_to_polys(&sc, n, NULL, NULL);
+    p = polys_from_obj(&sc, n, NULL, NULL);
     obj_free(&sc);
     assert_non_null(p);
     for (i = 0; i < *n; i++) {

@@ -32,7 +32,7 @@
 #include "check.h"
 #include "formats/obj.h"
 #include "host/fgather.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/parallel.h"
 #include "host/scene.h"
 #include "host/tex_render.h"
@@ -60,7 +60,7 @@ static void scene_load(scene_t *s, const char *path)
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     int i, k, a;
     if (obj_load(path, &s->sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
-    s->p = obj_to_polys(&s->sc, &s->n, NULL, NULL);
+    s->p = polys_from_obj(&s->sc, &s->n, NULL, NULL);
     assert_non_null(s->p);
     for (i = 0; i < s->n; i++)
         for (k = 0; k < s->p[i].n; k++)

@@ -30,7 +30,7 @@
 #include "formats/file_io.h"
 #include "formats/image.h"
 #include "formats/obj.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "check.h"
 #include "tmpdir.h"
 
@@ -1091,7 +1091,7 @@ static void poly_warning(void *ctx, int line, const char *msg)
 }
 
 /* Clips the star of *ARG vertices: rc is what obj_triangulate returns; msg is
- * obj_to_polys' warning, if any. */
+ * polys_from_obj' warning, if any. */
 static void clip_star(void *arg, child_result *r)
 {
     int n = *(int *)arg, np = 0, *tri = malloc(sizeof(int) * 3 * (size_t)n);
@@ -1104,7 +1104,7 @@ static void clip_star(void *arg, child_result *r)
         snprintf(r->msg, sizeof r->msg, "%s", err);
     } else {
         r->rc = obj_triangulate(&sc, &sc.faces[0], tri);
-        p = obj_to_polys(&sc, &np, poly_warning, r);
+        p = polys_from_obj(&sc, &np, poly_warning, r);
         free(p);
     }
     obj_free(&sc);

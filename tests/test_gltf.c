@@ -21,7 +21,7 @@
 #include "formats/obj.h"
 #include "formats/texture.h"
 #include "bake/gltf_export.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "tmpdir.h"
 #include "assimp.h"
 #include "check.h"
@@ -399,7 +399,7 @@ static sc_solver *solved(const char *name, obj_scene *sc, sc_poly **polys, int *
     char err[600];
     sc_solver *s;
     assert_int_equal(obj_load(tmp_path(name), sc, NULL, NULL, err, sizeof err), 0);
-    *polys = obj_to_polys(sc, n, NULL, NULL);
+    *polys = polys_from_obj(sc, n, NULL, NULL);
     s = sc_create(*polys, *n, o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, shots, tol, NULL, NULL);
@@ -585,7 +585,7 @@ static void test_solution_colours(void **state)
     assert_ptr_equal(maps[3].rgb, maps[0].rgb);
     assert_int_equal(maps[3].clamp, 1); /* with its own options */
     assert_int_equal(maps[0].clamp, 0);
-    polys = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
+    polys = polys_from_obj_tex(&sc, maps, &n, NULL, NULL);
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 100000, 1e-3, NULL, NULL);
@@ -1017,7 +1017,7 @@ static void test_linear_export(void **state)
             snprintf(name, sizeof name, "grid%d.obj", sides[t]);
             write_grid(name, sides[t]);
             assert_int_equal(obj_load(tmp_path(name), &sc, NULL, NULL, err, sizeof err), 0);
-            polys = obj_to_polys(&sc, &n, NULL, NULL);
+            polys = polys_from_obj(&sc, &n, NULL, NULL);
             s = w->create(polys, n, &o);
             assert_non_null(s);
             w->stats(s, &st);
@@ -1342,7 +1342,7 @@ static void test_bmp_texture(void **state)
                           "usemtl floor\nf 4/1 3/2 2/3 1/4\nusemtl lamp\nf 5 6 7 8\n");
     assert_int_equal(obj_load(tmp_path("bmp.obj"), &sc, NULL, NULL, err, sizeof err), 0);
     assert_int_equal(tex_load_materials(&sc, maps, NULL, NULL, 1), 1);
-    polys = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
+    polys = polys_from_obj_tex(&sc, maps, &n, NULL, NULL);
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 1000, 1e-3, NULL, NULL);

@@ -9,7 +9,7 @@
 #include <cmocka.h>
 
 #include "check.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/parallel.h"
 #include "rad/rad.h"
 #include "scenes.h"
@@ -20,7 +20,7 @@ static sc_poly *cornell(int *n)
     char err[256];
     sc_poly *p;
     assert_int_equal(obj_load("examples/cornell_box.obj", &sc, NULL, NULL, err, sizeof err), 0);
-    p = obj_to_polys(&sc, n, NULL, NULL);
+    p = polys_from_obj(&sc, n, NULL, NULL);
     obj_free(&sc);
     assert_non_null(p);
     return p;

@@ -22,7 +22,7 @@
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/ply.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/ply_export.h"
 #include "rad/rad.h"
 #include "tmpdir.h"
@@ -223,7 +223,7 @@ static void solve_file(const char *path, double max_element, solved *z)
     char err[600];
     sc_opts o = { .max_element = max_element, .res = 32 };
     assert_int_equal(obj_load(path, &z->sc, NULL, NULL, err, sizeof err), 0);
-    z->polys = obj_to_polys(&z->sc, &z->npolys, NULL, NULL);
+    z->polys = polys_from_obj(&z->sc, &z->npolys, NULL, NULL);
     assert_non_null(z->polys);
     z->s = sc_create(z->polys, z->npolys, &o, NULL, NULL, err, sizeof err);
     assert_non_null(z->s);

@@ -40,7 +40,7 @@
 #include "tmpdir.h"
 #include "formats/obj.h"
 #include "host/clock.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "reference/reference.h"
 #include "host/scene.h"
 
@@ -99,7 +99,7 @@ static void scene_load(scene_t *s, const char *path)
 {
     char err[512];
     if (obj_load(path, &s->sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
-    s->p = obj_to_polys(&s->sc, &s->n, NULL, NULL);
+    s->p = polys_from_obj(&s->sc, &s->n, NULL, NULL);
     assert_non_null(s->p);
 }
 
@@ -131,10 +131,10 @@ static void polys_set(scene_t *s, int m, const double *rho, const double *emit)
 static void relight(sc_solver *h, const scene_t *s, int m, const double *rho, const double *emit)
 {
     char err[256];
-    obj_material_match mt;
+    polys_material_match mt;
     mt.sc = &s->sc;
     mt.material = m;
-    if (sc_set_surfaces(h, obj_match_material, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
+    if (sc_set_surfaces(h, polys_match_material, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
 }
 
 static sc_solver *make(const scene_t *s, double max_element, int res)
@@ -569,16 +569,16 @@ static void test_set_surfaces_errors(void **state)
     scene_t s;
     sc_solver *h;
     char err[256];
-    obj_material_match mt;
+    polys_material_match mt;
     const double inf[3] = {HUGE_VAL, 1, 1}, neg[3] = {-1, 0, 0};
     (void)state;
     scene_load(&s, CORNELL);
     h = make(&s, 0.1, 32);
     mt.sc = &s.sc;
     mt.material = material_of(&s, "light");
-    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, NULL, inf, err, sizeof err), -1);
+    assert_int_equal(sc_set_surfaces(h, polys_match_material, &mt, NULL, inf, err, sizeof err), -1);
     CHECK_CONTAINS(err, "finite", "the error message");
-    assert_int_equal(sc_set_surfaces(h, obj_match_material, &mt, neg, NULL, err, sizeof err), -1);
+    assert_int_equal(sc_set_surfaces(h, polys_match_material, &mt, neg, NULL, err, sizeof err), -1);
     assert_int_equal(sc_rows_gauss_seidel(h, 10, 0.001, err, sizeof err), -1); /* no rows yet */
     CHECK_CONTAINS(err, "rows", "the error message");
     assert_int_equal(sc_rows_save(h, tmp_path("none.ff"), err, sizeof err), -1);

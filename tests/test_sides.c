@@ -27,7 +27,7 @@
 #include "formats/file_io.h"
 #include "formats/obj.h"
 #include "host/fgather.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/scene.h"
 
 TMPDIR_GROUP("sides")
@@ -71,7 +71,7 @@ static void panel_scene(scene_t *t)
     write_file(tmp_path("panel.mtl"), panel_mtl);
     memset(t, 0, sizeof *t);
     if (obj_load(tmp_path("panel.obj"), &t->sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
-    t->p = obj_to_polys(&t->sc, &t->n, NULL, NULL);
+    t->p = polys_from_obj(&t->sc, &t->n, NULL, NULL);
     assert_non_null(t->p);
     memset(&o, 0, sizeof o);
     o.res = 128;
@@ -365,7 +365,7 @@ static void test_winding_by_normals(void **state)
 }
 
 /* A one-sided panel facing up between a red lamp above and a blue one below. With
- * --two-sided (obj_two_sided, as rad_cli does) each side is a face: the top receives
+ * --two-sided (polys_two_sided, as rad_cli does) each side is a face: the top receives
  * only red, the bottom only blue, and the lightmap's charts of the two sides mirror
  * each other: their mean E within 1% (the scene is its own mirror image through the
  * panel's plane, but for the cube's turns and rounding: measured equal to 5 digits). Before,
@@ -418,9 +418,9 @@ static void test_two_sided(void **state)
     CHECK_INT_EQ(lit[1], lit[0], "rad_cli --two-sided: panel elements lit blue alone, as many as red");
     /* the lightmap of both sides */
     if (obj_load(tmp_path("panel2.obj"), &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
-    CHECK_INT_EQ(obj_two_sided(&sc), 0, "obj_two_sided");
-    CHECK_INT_EQ(sc.nfaces, 6, "faces after obj_two_sided");
-    p = obj_to_polys(&sc, &n, NULL, NULL);
+    CHECK_INT_EQ(polys_two_sided(&sc), 0, "polys_two_sided");
+    CHECK_INT_EQ(sc.nfaces, 6, "faces after polys_two_sided");
+    p = polys_from_obj(&sc, &n, NULL, NULL);
     assert_non_null(p);
     memset(&o, 0, sizeof o);
     o.res = 128;

@@ -20,7 +20,7 @@
 #include "formats/image.h"
 #include "formats/obj.h"
 #include "formats/texture.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/tex_render.h"
 #include "scenes.h"
 #include "tmpdir.h"
@@ -551,7 +551,7 @@ static void load_textured(const char *name, textured *t)
     assert_int_equal(obj_load(tmp_path(name), &t->sc, NULL, NULL, err, sizeof err), 0);
     assert_true(t->sc.nmaterials <= 8);
     tex_load_materials(&t->sc, t->maps, NULL, NULL, 1);
-    t->p = obj_to_polys_tex(&t->sc, t->maps, &t->n, NULL, NULL);
+    t->p = polys_from_obj_tex(&t->sc, t->maps, &t->n, NULL, NULL);
     assert_non_null(t->p);
 }
 

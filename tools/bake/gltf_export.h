@@ -19,7 +19,7 @@
  * channel (0 where the reflectance is 0); at a corner, the area-weighted mean over the
  * elements of the corner's face that have a vertex there (the nearest element if none
  * has). A face that emits gets its radiosity itself, to be shown with a base colour of 1.
- * S must have been made from POLYS (N of them, tags = face indices: obj_to_polys).
+ * S must have been made from POLYS (N of them, tags = face indices: polys_from_obj).
  * Returns 0, or -1 when out of memory. */
 int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n, double *rgb,
                     double *weight);

@@ -162,7 +162,7 @@ typedef struct {
 } lm_file_report;
 int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, const lm_opts *o,
                   lm_file_report *rep, char *err, size_t errlen);
-/* lm_build_file's UV array for POLYS (tags = face indices of SC, obj_to_polys) from SC's
+/* lm_build_file's UV array for POLYS (tags = face indices of SC, polys_from_obj) from SC's
  * second UV set (obj_scene.uv2): each polygon corner takes the UV of its face's first
  * corner at the same position. NULL when out of memory or SC has none. */
 double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n);
@@ -201,7 +201,7 @@ void lm_lookup(const lm_atlas *a, const double xy[2], double rgb[3]);
 int lm_write(const lm_atlas *a, const char *path, double exposure, char *err, size_t errlen);
 
 /* Each face corner of SC (whose faces the atlas's polygons came from: tags = face
- * indices, obj_to_polys) as a glTF UV on the atlas ([0, 1], origin at the top left),
+ * indices, polys_from_obj) as a glTF UV on the atlas ([0, 1], origin at the top left),
  * into UV[2 * corner]: on the polygon of its face that has the corner's vertex (the
  * face's first polygon if none has; (0, 0) for a face without one); an atlas of
  * lm_build_file: the corner's own second UV (obj_scene.uv2; (0, 0) where none). 0, or

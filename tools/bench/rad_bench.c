@@ -34,7 +34,7 @@
 #include "formats/texture.h"
 #include "host/clock.h"
 #include "host/defaults.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/parallel.h"
 #include "bench/level.h"
 #include "bench/plot.h"
@@ -363,11 +363,11 @@ static void set_emitters(const bscene *sc, sc_solver *s, const double *emit)
     int m;
     for (m = 0; m < sc->obj->nmaterials; m++) {
         const double *ke = sc->obj->materials[m].ke;
-        obj_material_match mm;
+        polys_material_match mm;
         if (!(ke[0] + ke[1] + ke[2] > 0)) continue;
         mm.sc = sc->obj;
         mm.material = m;
-        if (sc_set_surfaces(s, obj_match_material, &mm, NULL, emit, err, sizeof err) < 0) {
+        if (sc_set_surfaces(s, polys_match_material, &mm, NULL, emit, err, sizeof err) < 0) {
             fprintf(stderr, "rad_bench: %s\n", err);
             exit(1);
         }
@@ -436,7 +436,7 @@ static sc_poly *load_obj(const char *path, int *n, obj_scene *keep)
     char err[512];
     sc_poly *p;
     if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) return NULL;
-    p = obj_to_polys(&sc, n, NULL, NULL);
+    p = polys_from_obj(&sc, n, NULL, NULL);
     if (keep) *keep = sc;
     else obj_free(&sc);
     return p;
@@ -1840,7 +1840,7 @@ static int write_kd_mtl(const char *dir, const char *obj)
         obj_free(&sc);
         return -1;
     }
-    p = obj_to_polys_tex(&sc, maps, &n, NULL, NULL);
+    p = polys_from_obj_tex(&sc, maps, &n, NULL, NULL);
     snprintf(path, sizeof path, "%s/kd.mtl", dir);
     f = p ? fopen(path, "w") : NULL;
     for (m = 0; f && m < sc.nmaterials; m++)
@@ -1892,7 +1892,7 @@ static void tex_shots(const char *dir, texbench_t *tb)
         snprintf(path, sizeof path, "%s/%s", dir, obj[v]);
         if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) continue;
         if (v == 0) tex_load_materials(&sc, maps, NULL, NULL, 1);
-        p = v == 0 ? obj_to_polys_tex(&sc, maps, &n, NULL, NULL) : obj_to_polys(&sc, &n, NULL, NULL);
+        p = v == 0 ? polys_from_obj_tex(&sc, maps, &n, NULL, NULL) : polys_from_obj(&sc, &n, NULL, NULL);
         if (v == 1)
             for (m = 0; p && m < n; m++) /* --no-textures: Kd 0 shows 0.5 grey (obj_map_fallback) */
                 if (p[m].emit[0] == 0) p[m].rho[0] = p[m].rho[1] = p[m].rho[2] = 0.5;

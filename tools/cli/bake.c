@@ -12,7 +12,7 @@
 #include "formats/file_io.h"
 #include "host/clock.h"
 #include "bake/gltf_export.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "progress.h"
 
 /* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
@@ -316,7 +316,7 @@ static int prepare(run_t *r)
     struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;
     b = r->bake = calloc(1, sizeof *b);
-    if (b) b->polys = obj_to_polys(&r->sc, &b->n, NULL, NULL); /* warned of when built */
+    if (b) b->polys = polys_from_obj(&r->sc, &b->n, NULL, NULL); /* warned of when built */
     if (!b || !b->polys) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;

@@ -15,7 +15,7 @@
 #include "formats/file_io.h"
 #include "host/clock.h"
 #include "bake/gltf_export.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/tex_render.h"
 #include "rad/rad.h"
 #include "progress.h"
@@ -352,11 +352,11 @@ static int orient_faces(run_t *r)
     double area = 0.0;
     int n;
     if (o->two_sided) {
-        if (obj_two_sided(&r->sc) == 0) return 0;
+        if (polys_two_sided(&r->sc) == 0) return 0;
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    n = obj_orient_by_normals(&r->sc, &area);
+    n = polys_orient_by_normals(&r->sc, &area);
     if (n > 0 && !o->quiet)
         fprintf(stderr, PROG ": warning: %s: %d faces (%.1f%% of the area) were wound against their vn normals and were "
                         "flipped (a face is lit on one side; --two-sided lights both)\n", o->scene, n, 100.0 * area);
@@ -486,7 +486,7 @@ static int build_step(run_t *r)
     sc_camera def;
     sc_poly *polys;
     if (check_face_count(r) < 0) return -1;
-    polys = obj_to_polys_tex(&r->sc, r->ot.maps, &npolys, o->quiet ? NULL : poly_warning, o);
+    polys = polys_from_obj_tex(&r->sc, r->ot.maps, &npolys, o->quiet ? NULL : poly_warning, o);
     if (!polys) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "host/clock.h"
-#include "host/obj_polys.h"
+#include "host/polys.h"
 #include "host/parallel.h"
 #include "progress.h"
 
@@ -139,11 +139,11 @@ static int light_group(run_t *r, int g)
         }
     }
     for (m = 0; m < sc->nmaterials; m++) {
-        obj_material_match mm;
+        polys_material_match mm;
         if (r->group_of[m] < 0) continue;
         mm.sc = sc;
         mm.material = m;
-        if (sc_set_surfaces(r->s, obj_match_material, &mm, NULL, r->group_of[m] == g ? sc->materials[m].ke : dark, err,
+        if (sc_set_surfaces(r->s, polys_match_material, &mm, NULL, r->group_of[m] == g ? sc->materials[m].ke : dark, err,
                             sizeof err) < 0) {
             fprintf(stderr, PROG ": %s: %s: %s\n", r->o->scene, sc->materials[m].name, err);
             return -1;

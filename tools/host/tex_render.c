@@ -162,7 +162,7 @@ int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps
         const rad_surface_t *sf = &core->pools.surfaces[si];
         int f, k;
         const tex_image *t = surface_map(s, sc, maps, sf, &f);
-        /* one element: the face's own mean already (obj_to_polys_tex); joined to a
+        /* one element: the face's own mean already (polys_from_obj_tex); joined to a
            group: it reflects as the group's receiver */
         if (!t || sf->n_elements < 2 || sf->n_patches == 0)
             continue;

@@ -27,7 +27,7 @@ int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps
  * each core vertex's coordinates in its face's texture (barycentric in the face's
  * triangle that holds it best), and with elements' own reflectances one of those, so
  * three or four renders in all. S was made from SC's faces
- * (obj_to_polys_tex, tags = faces) with MAPS (tex_load_materials). 0 or -1 with err. */
+ * (polys_from_obj_tex, tags = faces) with MAPS (tex_load_materials). 0 or -1 with err. */
 int sc_render_textured(sc_solver *s, const obj_scene *sc, const tex_image *maps,
                        const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
                        size_t errlen);

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
-/* rad host glue: OBJ faces to the core's polygons (see obj_polys.h). */
-#include "host/obj_polys.h"
+/* rad host glue: OBJ faces to the core's polygons (see polys.h). */
+#include "host/polys.h"
 
 #include <limits.h>
 #include <math.h>
@@ -77,13 +77,13 @@ static void make_poly(const obj_scene *sc, int f, const int *verts, int n, textu
     tex_reflectance(m->kd, tx->whole[fc->material], p->rho);
 }
 
-sc_poly *obj_to_polys(const obj_scene *sc, int *n, obj_poly_warn_fn warn, void *ctx)
+sc_poly *polys_from_obj(const obj_scene *sc, int *n, polys_warn_fn warn, void *ctx)
 {
-    return obj_to_polys_tex(sc, NULL, n, warn, ctx);
+    return polys_from_obj_tex(sc, NULL, n, warn, ctx);
 }
 
-sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
-                          obj_poly_warn_fn warn, void *ctx)
+sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n,
+                          polys_warn_fn warn, void *ctx)
 {
     int f, cap = 0, cnt = 0, *tri = NULL, tcap = 0;
     textures tx;
@@ -127,9 +127,9 @@ sc_poly *obj_to_polys_tex(const obj_scene *sc, const tex_image *maps, int *n,
     return p;
 }
 
-int obj_match_material(void *ctx, int tag)
+int polys_match_material(void *ctx, int tag)
 {
-    const obj_material_match *m = ctx;
+    const polys_material_match *m = ctx;
     return tag >= 0 && tag < m->sc->nfaces && m->sc->faces[tag].material == m->material;
 }
 
@@ -159,7 +159,7 @@ static void reverse_face(obj_scene *sc, const obj_face *fc)
     }
 }
 
-int obj_orient_by_normals(obj_scene *sc, double *area)
+int polys_orient_by_normals(obj_scene *sc, double *area)
 {
     double total = 0.0, turned = 0.0;
     int f, k, n = 0;
@@ -187,7 +187,7 @@ int obj_orient_by_normals(obj_scene *sc, double *area)
     return n;
 }
 
-int obj_two_sided(obj_scene *sc)
+int polys_two_sided(obj_scene *sc)
 {
     int nf = sc->nfaces, ni = sc->nindices, nn = sc->nnormals, f, k;
     int has_uv = sc->uv_indices != NULL, has_n = sc->normal_indices != NULL; /* NULL: none (a scene by hand) */
