@@ -39,7 +39,7 @@ typedef struct {
 
 static void put(buf *b, const void *data, size_t n)
 {
-    if (b->failed)
+    if (b->failed || !n) /* an empty buffer's DATA may be NULL, which memcpy may not take */
         return;
     if (b->n + n > b->cap) {
         size_t cap = b->cap ? b->cap : 4096;
