@@ -49,7 +49,8 @@ ASSIMP_LIBS   := $(shell pkg-config --exists assimp 2>/dev/null && pkg-config --
 LIB_SRCS   := $(wildcard lib/*.c)
 LIB_HDRS   := $(wildcard lib/*.h include/rad/*.h)
 # Host glue built once per build of the core (fixed: sc_*, float: scf_*).
-TWIN_SRCS  := tools/host/scene.c tools/host/parallel.c tools/bake/gltf_export.c \
+TWIN_SRCS  := tools/host/scene.c tools/host/scene_rows.c tools/host/scene_relight.c \
+              tools/host/scene_gather.c tools/host/parallel.c tools/bake/gltf_export.c \
               tools/host/tex_render.c tools/host/ply_export.c tools/host/fgather.c
 # Host helpers built once.
 TOOL_SRCS  := $(wildcard tools/formats/*.c tools/reference/*.c) \

@@ -16,7 +16,7 @@
  *    24  4        entries M (non-zero form factors over all rows)
  *    28  4        reserved, 0
  *    32  8        geometry fingerprint: FNV-1a 64 of the meshed scene as the core
- *                 holds it (see the glue, tools/host/scene.c: counts, every vertex
+ *                 holds it (see the glue, tools/host/scene_rows.c: counts, every vertex
  *                 coordinate's bits, every element's vertex indices, patch and surface,
  *                 every patch's surface and element range)
  *    40  4(P+1)   row starts: row p is entries start[p] .. start[p+1]-1;

@@ -5,7 +5,8 @@
  * tools/host/fgather.h,
  * tools/host/tex_render.h,
  * tools/host/ply_export.h,
- * tools/bake/gltf_export.h.
+ * tools/bake/gltf_export.h,
+ * tools/host/scene_impl.h.
  *
  * Compiled with RAD_FLOAT=1, a file that includes this before the host glue's headers
  * defines and calls the float twin's functions (scf_*) under the fixed build's names.
@@ -15,6 +16,15 @@
 #define RAD_TOOLS_FLOAT_NAMES_H
 
 #define RAD_HOST_FLOAT_NAMES 1
+#define sc__emit_ch scf__emit_ch
+#define sc__fits_core scf__fits_core
+#define sc__light_peak scf__light_peak
+#define sc__light_to_core scf__light_to_core
+#define sc__rgb_out scf__rgb_out
+#define sc__rho_ch scf__rho_ch
+#define sc__shade_flags scf__shade_flags
+#define sc__to_core scf__to_core
+#define sc__unmix scf__unmix
 #define sc_checksum scf_checksum
 #define sc_core scf_core
 #define sc_corner_light scf_corner_light

@@ -1,59 +1,19 @@
 /* SPDX-License-Identifier: MIT */
-/* rad host glue (see scene.h): compiled once per build of the core. */
+/* rad host glue (see scene.h): the scene built from polygons and lights, solved by
+ * shooting, and its results queried and rendered. Compiled once per build of the core;
+ * stored rows, relighting and gathering are in scene_rows.c, scene_relight.c and
+ * scene_gather.c. */
 #if defined(RAD_FLOAT) && RAD_FLOAT
 #include "host/float_names.h"
 #endif
-#include "host/scene.h"
+#include "host/scene_impl.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "formats/ff_file.h"
-#include "formats/file_io.h"
 #include "rad/rad.h"
-
-
-#define CORE_HALF_EXTENT 32.0   /* scene scaled into +-32: half the core's range */
-#define CORE_EMIT_PEAK 256.0    /* brightest emission channel, well inside 4096 */
-#define RHO_MAX (65535.0 / 65536.0)
-
-struct sc_solver {
-    rad_scene_t s;
-    rad_pools_t pools;
-    int *tags;                  /* per surface */
-    double *emit;               /* per surface: emission in caller units (3 each) */
-    double scale, off[3], escale;
-    double escale0;             /* escale of the scene as built */
-    double epeak;               /* the brightest emission escale maps to the core's peak */
-    int skipped, split, clamped;
-    /* stored form factors */
-    rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
-    int has_rows;
-    unsigned long rows_raster;  /* hemi-cube polygons rendered for the rows */
-    rad_ff_t *gs;               /* Gauss-Seidel matrix, RAD_GS_ENTRIES(patches) */
-    size_t gs_entries;
-    int mixed;                  /* elements hold a mix with the ambient term baked in */
-    int skipped_emitters;       /* emitting polygons the core could not mesh */
-    int solve_kind;             /* 0: none yet, 1: shooting to tol, 2 / 3: Gauss-Seidel
-                                   converged / stopped at its sweep limit */
-    double tol;                 /* the last solve's tolerance */
-    double mem_limit;           /* rows + matrix bytes; 0: half the physical memory */
-    /* faces below the core's own minimum area (RAD_SMALL_FACES; see join_poly) */
-    unsigned char *tiny;        /* per surface: 1 below TINY_AREA, | 2 in a group */
-    double *area;               /* per surface: its area from its vertices, in core units^2 */
-    int n_tiny;
-    rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
-    unsigned long ambient_terms; /* sc_stats.ambient_terms */
-    rad_light_t *lights;        /* the lights in the core's units (sc_opts.lights), or NULL */
-    sc_light *src;              /* and in the caller's, as now set (sc_set_light) */
-    int nlights, light_res;     /* light_res: the scene's res, for light_to_core */
-    void *cull;                 /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
-    uint32_t cull_surfaces;     /* the scene it was built for: its surfaces and scale */
-    int cull_shift;
-};
 
 typedef struct {
     sc_warn_fn warn;
@@ -125,7 +85,7 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
            h->area;
 }
 
-static rad_real_t emit_ch(struct sc_solver *h, double e)
+rad_real_t sc__emit_ch(struct sc_solver *h, double e)
 {
     /* Emissions so small that 256 / peak overflows still scale by their ratio to the
      * peak (results in caller units then underflow to 0). */
@@ -133,13 +93,13 @@ static rad_real_t emit_ch(struct sc_solver *h, double e)
     return RAD_REAL(v > 4096.0 ? 4096.0 : v);
 }
 
-static rad_real_t rho_ch(struct sc_solver *h, double r)
+rad_real_t sc__rho_ch(struct sc_solver *h, double r)
 {
     if (r >= 1.0) { h->clamped++; r = RHO_MAX; }
     return RAD_REAL(r);
 }
 
-static void to_core(const struct sc_solver *h, const double *p, rad_vec3_t *v)
+void sc__to_core(const struct sc_solver *h, const double *p, rad_vec3_t *v)
 {
     v->x = RAD_REAL((p[0] - h->off[0]) * h->scale);
     v->y = RAD_REAL((p[1] - h->off[1]) * h->scale);
@@ -208,7 +168,7 @@ static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const 
 static double poly_core(const struct sc_solver *h, const sc_poly *q, rad_vec3_t *v)
 {
     int i;
-    for (i = 0; i < q->n; i++) to_core(h, q->v[i], &v[i]);
+    for (i = 0; i < q->n; i++) sc__to_core(h, q->v[i], &v[i]);
     return poly_area(v, q->n, NULL);
 }
 
@@ -220,8 +180,8 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
     rad_rgb_t rho, em;
     int rc;
     poly_core(h, q, v);
-    rho.r = rho_ch(h, q->rho[0]); rho.g = rho_ch(h, q->rho[1]); rho.b = rho_ch(h, q->rho[2]);
-    em.r = emit_ch(h, q->emit[0]); em.g = emit_ch(h, q->emit[1]); em.b = emit_ch(h, q->emit[2]);
+    rho.r = sc__rho_ch(h, q->rho[0]); rho.g = sc__rho_ch(h, q->rho[1]); rho.b = sc__rho_ch(h, q->rho[2]);
+    em.r = sc__emit_ch(h, q->emit[0]); em.g = sc__emit_ch(h, q->emit[1]); em.b = sc__emit_ch(h, q->emit[2]);
     rc = rad_add_polygon(&h->s, v, (unsigned)q->n, &rho, &em);
     if (rc >= 0) { keep_surface(h, rc, q, v, q->n); return RAD_OK; }
     if (q->n == 4 && (rc == RAD_ERR_NONPLANAR || rc == RAD_ERR_DEGENERATE)) {
@@ -440,9 +400,7 @@ static double light_k(const struct sc_solver *h, const sc_light *l)
     return l->type == RAD_LIGHT_SUN || l->type == RAD_LIGHT_SKY ? 1.0 : h->scale * h->scale;
 }
 
-/* The brightest of light L as an emission in the core's units before escale (a sky's
- * irradiance: at most pi times its brightest radiance). */
-static double light_peak(const struct sc_solver *h, const sc_light *l)
+double sc__light_peak(const struct sc_solver *h, const sc_light *l)
 {
     double k = light_k(h, l) * (l->type == RAD_LIGHT_SKY ? 3.14159265358979323846 : 1.0), peak = 0;
     int a;
@@ -450,8 +408,7 @@ static double light_peak(const struct sc_solver *h, const sc_light *l)
     return peak;
 }
 
-/* Light I (h->src) into the core's units at the current escale, into C. */
-static void light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c)
+void sc__light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c)
 {
     const sc_light *l = &h->src[i];
     double k = light_k(h, l) * h->escale;
@@ -469,7 +426,7 @@ static void light_to_core(const struct sc_solver *h, int i, int res, rad_light_t
         c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
     }
     if (l->dome) c->res = (uint16_t)res; /* cfg.res */
-    to_core(h, l->pos, &c->position);
+    sc__to_core(h, l->pos, &c->position);
     if (d > 0) {
         c->direction.x = RAD_REAL(l->dir[0] / d);
         c->direction.y = RAD_REAL(l->dir[1] / d);
@@ -520,7 +477,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
             snprintf(err, errlen, "light %d: a zero direction", i + 1);
             return -1;
         }
-        peak = fmax(peak, light_peak(h, l));
+        peak = fmax(peak, sc__light_peak(h, l));
     }
     if (peak > h->epeak) {
         h->epeak = peak;
@@ -535,7 +492,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
     memcpy(h->src, o->lights, (size_t)o->nlights * sizeof *h->src);
     h->nlights = o->nlights;
     h->light_res = o->res ? o->res : RAD_DEFAULT_RES;
-    for (i = 0; i < o->nlights; i++) light_to_core(h, i, h->light_res, &h->lights[i]);
+    for (i = 0; i < o->nlights; i++) sc__light_to_core(h, i, h->light_res, &h->lights[i]);
     return 0;
 }
 
@@ -732,7 +689,7 @@ void sc_destroy(sc_solver *h)
     free(h);
 }
 
-static void unmix(struct sc_solver *h)
+void sc__unmix(struct sc_solver *h)
 {
     if (h->mixed) sc_restart(h); /* also puts the emissions back at their scale */
 }
@@ -747,7 +704,7 @@ int sc_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, v
 {
     int done = 0;
     rad_real_t t = RAD_REAL(tol);
-    unmix(h);
+    sc__unmix(h);
     sc_solve_started(h, tol);
     while (done < max_shots) {
         int k = rad_shoot(&h->s, progress ? 1u : (uint32_t)(max_shots - done), t);
@@ -788,15 +745,14 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
                                     h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
 }
 
-static void rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
+void sc__rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
 {
     o[0] = RAD_TO_DOUBLE(c->r) / h->escale;
     o[1] = RAD_TO_DOUBLE(c->g) / h->escale;
     o[2] = RAD_TO_DOUBLE(c->b) / h->escale;
 }
 
-/* The core's flags for AMBIENT; each call with the term is a computation of it. */
-static int shade_flags(struct sc_solver *h, int ambient)
+int sc__shade_flags(struct sc_solver *h, int ambient)
 {
     int f = ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
     h->ambient_terms += f != 0;
@@ -806,8 +762,8 @@ static int shade_flags(struct sc_solver *h, int ambient)
 void sc_element_rgb(sc_solver *h, int e, int ambient, double rgb[3])
 {
     rad_rgb_t c = {0, 0, 0};
-    rad_element_radiosity(&h->s, (uint32_t)e, shade_flags(h, ambient), &c); /* a group's face: the group's */
-    rgb_out(h, &c, rgb);
+    rad_element_radiosity(&h->s, (uint32_t)e, sc__shade_flags(h, ambient), &c); /* a group's face: the group's */
+    sc__rgb_out(h, &c, rgb);
 }
 
 double sc_element_area(sc_solver *h, int e)
@@ -872,9 +828,9 @@ int sc_set_element_rho(sc_solver *h, int e, const double rho[3], char *err, size
             return -1;
         }
     }
-    r.r = rho_ch(h, rho[0]);
-    r.g = rho_ch(h, rho[1]);
-    r.b = rho_ch(h, rho[2]);
+    r.r = sc__rho_ch(h, rho[0]);
+    r.g = sc__rho_ch(h, rho[1]);
+    r.b = sc__rho_ch(h, rho[2]);
     if ((rc = rad_set_element_reflectance(&h->s, (uint32_t)e, &r)) < 0) {
         snprintf(err, errlen, "element %d: %s", e, rad_strerror(rc));
         return -1;
@@ -891,13 +847,12 @@ void sc_element_rho(sc_solver *h, int e, double rho[3])
     rho[2] = RAD_TO_DOUBLE(r->b);
 }
 
-/* A double that RAD_REAL converts without overflow (and not NaN). */
-static int fits_core(double x) { return x > -32767.0 && x < 32767.0; }
+int sc__fits_core(double x) { return x > -32767.0 && x < 32767.0; }
 
 static rad_rgb_t *shade_core(struct sc_solver *h, int ambient)
 {
     rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v);
-    if (v) rad_shade_vertices(&h->s, shade_flags(h, ambient), v, h->s.n_vertices);
+    if (v) rad_shade_vertices(&h->s, sc__shade_flags(h, ambient), v, h->s.n_vertices);
     return v;
 }
 
@@ -906,8 +861,8 @@ int sc_shade_elements(sc_solver *h, int ambient, double *rgb)
     rad_rgb_t *c = malloc((h->s.n_elements ? h->s.n_elements : 1) * sizeof *c);
     uint32_t e;
     if (!c) return -1;
-    rad_shade_elements(&h->s, shade_flags(h, ambient), c, h->s.n_elements);
-    for (e = 0; e < h->s.n_elements; e++) rgb_out(h, &c[e], &rgb[3 * e]);
+    rad_shade_elements(&h->s, sc__shade_flags(h, ambient), c, h->s.n_elements);
+    for (e = 0; e < h->s.n_elements; e++) sc__rgb_out(h, &c[e], &rgb[3 * e]);
     free(c);
     return 0;
 }
@@ -917,7 +872,7 @@ int sc_shade(sc_solver *h, int ambient, double *rgb)
     rad_rgb_t *v = shade_core(h, ambient);
     uint32_t i;
     if (!v) return -1;
-    for (i = 0; i < h->s.n_vertices; i++) rgb_out(h, &v[i], &rgb[3 * i]);
+    for (i = 0; i < h->s.n_vertices; i++) sc__rgb_out(h, &v[i], &rgb[3 * i]);
     free(v);
     return 0;
 }
@@ -929,13 +884,13 @@ static int render_core(struct sc_solver *h, const sc_camera *cam, const rad_rgb_
 {
     rad_camera_t c;
     double t = tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0);
-    int a, rc = RAD_ERR_ARG, ok = fits_core(t) && fits_core(cam->up[0]) && fits_core(cam->up[1]) && fits_core(cam->up[2]);
+    int a, rc = RAD_ERR_ARG, ok = sc__fits_core(t) && sc__fits_core(cam->up[0]) && sc__fits_core(cam->up[1]) && sc__fits_core(cam->up[2]);
     /* Values past Q16.16 cannot even be converted: the core's refusal, without it. */
     for (a = 0; a < 3; a++)
-        ok = ok && fits_core((cam->eye[a] - h->off[a]) * h->scale) && fits_core((cam->target[a] - h->off[a]) * h->scale);
+        ok = ok && sc__fits_core((cam->eye[a] - h->off[a]) * h->scale) && sc__fits_core((cam->target[a] - h->off[a]) * h->scale);
     if (ok) {
-        to_core(h, cam->eye, &c.eye);
-        to_core(h, cam->target, &c.target);
+        sc__to_core(h, cam->eye, &c.eye);
+        sc__to_core(h, cam->target, &c.target);
         c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
         c.tan_half_fov = RAD_REAL(t);
         rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
@@ -955,7 +910,7 @@ int sc_render(sc_solver *h, const sc_camera *cam, int ambient, int w, int hgt, f
         rc = render_core(h, cam, v, w, hgt, fb, z, err, errlen);
         for (i = 0; rc >= 0 && i < (size_t)w * hgt; i++) {
             double o[3];
-            rgb_out(h, &fb[i], o);
+            sc__rgb_out(h, &fb[i], o);
             rgb[3 * i] = (float)o[0]; rgb[3 * i + 1] = (float)o[1]; rgb[3 * i + 2] = (float)o[2];
         }
     } else {
@@ -1026,563 +981,3 @@ int sc_patch(sc_solver *h, int p, int *first_element, double *area)
     *area = RAD_TO_DOUBLE(q->area);
     return 0;
 }
-
-/* ---- stored form factors --------------------------------------------------------- */
-
-#if RAD_FLOAT
-#define FF_KIND FF_FILE_KIND_FLOAT
-#else
-#define FF_KIND FF_FILE_KIND_FIXED
-#endif
-
-static void rows_free(struct sc_solver *h)
-{
-    free(h->rows.start); free(h->rows.ids); free(h->rows.ffs);
-    memset(&h->rows, 0, sizeof h->rows);
-    h->has_rows = 0;
-    h->rows_raster = 0;
-}
-
-/* Room for ENTRIES entries (contents kept). 0 or -1 (out of memory: nothing changed). */
-static int rows_reserve(struct sc_solver *h, uint32_t entries)
-{
-    rad_index_t *ids = realloc(h->rows.ids, (entries ? entries : 1) * sizeof *ids);
-    uint16_t *ffs;
-    if (!ids) return -1;
-    h->rows.ids = ids;
-    ffs = realloc(h->rows.ffs, (entries ? entries : 1) * sizeof *ffs);
-    if (!ffs) return -1;
-    h->rows.ffs = ffs;
-    h->rows.max_entries = entries;
-    return 0;
-}
-
-static uint32_t bits32(rad_real_t r)
-{
-    uint32_t b;
-    memcpy(&b, &r, sizeof b); /* Q16.16 int32, or IEEE float: 4 bytes either way */
-    return b;
-}
-
-static uint32_t idx32(rad_index_t i) { return i == RAD_INDEX_NONE ? 0xFFFFFFFFu : (uint32_t)i; }
-
-/* The meshed geometry as the core holds it (see ff_file.h). */
-static uint64_t fingerprint(const struct sc_solver *h)
-{
-    const rad_scene_t *s = &h->s;
-    uint64_t x = FF_FILE_FNV_START;
-    uint32_t i, k;
-    typedef char real_is_4_bytes[sizeof(rad_real_t) == 4 ? 1 : -1];
-    (void)sizeof(real_is_4_bytes);
-    x = ff_file_fnv_u32(x, s->n_surfaces);
-    x = ff_file_fnv_u32(x, s->n_patches);
-    x = ff_file_fnv_u32(x, s->n_elements);
-    x = ff_file_fnv_u32(x, s->n_vertices);
-    for (i = 0; i < s->n_vertices; i++) {
-        const rad_vec3_t *v = &s->pools.vertices[i];
-        x = ff_file_fnv_u32(x, bits32(v->x));
-        x = ff_file_fnv_u32(x, bits32(v->y));
-        x = ff_file_fnv_u32(x, bits32(v->z));
-    }
-    for (i = 0; i < s->n_elements; i++) {
-        const rad_element_t *e = &s->pools.elements[i];
-        for (k = 0; k < 4; k++) x = ff_file_fnv_u32(x, idx32(e->v[k]));
-        x = ff_file_fnv_u32(x, idx32(e->patch));
-        x = ff_file_fnv_u32(x, idx32(e->surface));
-    }
-    for (i = 0; i < s->n_patches; i++) {
-        const rad_patch_t *p = &s->pools.patches[i];
-        x = ff_file_fnv_u32(x, idx32(p->surface));
-        x = ff_file_fnv_u32(x, idx32(p->first_element));
-        x = ff_file_fnv_u32(x, idx32(p->n_elements));
-    }
-    return x;
-}
-
-static void ff_info(const struct sc_solver *h, ff_file_info *in)
-{
-    memset(in, 0, sizeof *in);
-    in->kind = FF_KIND;
-    in->res = h->s.cfg.res;
-    in->patches = h->s.n_patches;
-    in->elements = h->s.n_elements;
-    in->vertices = h->s.n_vertices;
-    in->entries = h->has_rows ? h->rows.start[h->s.n_patches] : 0;
-    in->fingerprint = fingerprint(h);
-}
-
-void sc_set_memory_limit(sc_solver *h, double bytes)
-{
-    h->mem_limit = bytes > 0 ? bytes : 0;
-}
-
-/* The memory limit in bytes: the one set, else fio_memory_budget (half the physical
- * memory). */
-static double memory_limit(const struct sc_solver *h)
-{
-    return h->mem_limit > 0 ? h->mem_limit : fio_memory_budget();
-}
-
-/* Refuses (-1 with err) WHAT needing BYTES over the memory limit; the fix is named. */
-static int within_memory(const struct sc_solver *h, double bytes, const char *what, const char *fix, char *err,
-                         size_t errlen)
-{
-    double lim = memory_limit(h);
-    if (bytes <= lim) return 0;
-    snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what, bytes / 1e6, lim / 1e6,
-             h->mem_limit > 0 ? "" : getenv("RAD_MEMORY_BUDGET") ? " (RAD_MEMORY_BUDGET)" : " (half the physical memory)",
-             fix);
-    return -1;
-}
-
-/* A sound bound: a row holds at most one entry per element and one per pixel of the
- * hemi-cube (3 res^2: the top face and four half sides), each an id and a code. */
-static int rows_fit(const struct sc_solver *h, char *err, size_t errlen)
-{
-    const rad_scene_t *s = &h->s;
-    double pixels = 3.0 * s->cfg.res * s->cfg.res, per_row = s->n_elements < pixels ? s->n_elements : pixels;
-    double bytes = ((double)s->n_patches + 1.0) * sizeof *h->rows.start +
-                   (double)s->n_patches * per_row * (sizeof *h->rows.ids + sizeof *h->rows.ffs);
-    char what[96];
-    snprintf(what, sizeof what, "the form factor rows (%u patches x up to %.0f entries)", s->n_patches, per_row);
-    return within_memory(h, bytes, what,
-                         "lower the hemi-cube resolution (--res) or coarsen the mesh (--max-element, --max-patch)",
-                         err, errlen);
-}
-
-int sc_gauss_seidel_check(sc_solver *h, char *err, size_t errlen)
-{
-    uint32_t np = h->s.n_patches;
-    if (np > 16384u) {
-        snprintf(err, errlen, "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch size or shoot)", np);
-        return -1;
-    }
-    return within_memory(h, (double)RAD_GS_ENTRIES(np) * sizeof *h->gs, "the Gauss-Seidel matrix",
-                         "raise the patch size (--max-patch) or shoot", err, errlen);
-}
-
-int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen)
-{
-    rad_scene_t *s = &h->s;
-    uint32_t np = s->n_patches, ne = s->n_elements;
-    unsigned long calls0 = s->stats.raster_calls;
-    /* First guess: each patch sees a quarter of the elements (a closed room: about
-     * half); grown by doubling, rows already stored are kept. */
-    uint64_t cap = (uint64_t)np * (ne / 4u + 1u);
-    if (rows_fit(h, err, errlen) < 0) return -1;
-    rows_free(h);
-    if (cap > 0xFFFFFFFFu) cap = 0xFFFFFFFFu;
-    h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
-    if (!h->rows.start || rows_reserve(h, (uint32_t)cap) < 0) {
-        snprintf(err, errlen, "out of memory for the form factor rows");
-        rows_free(h);
-        return -1;
-    }
-    h->rows.max_rows = np;
-    h->rows.n_rows = 0;
-    for (;;) {
-        int rc = rad_rows_compute(s, &h->rows, progress ? 1u : np);
-        if (rc == 0) break;
-        if (rc == RAD_ERR_FULL) {
-            uint64_t more = 2u * (uint64_t)h->rows.max_entries;
-            if (more < (uint64_t)h->rows.max_entries + ne) more = (uint64_t)h->rows.max_entries + ne;
-            if (h->rows.max_entries == 0xFFFFFFFFu) {
-                snprintf(err, errlen, "the form factor rows need more than 2^32 entries: raise the element size");
-                rows_free(h);
-                return -1;
-            }
-            if (more > 0xFFFFFFFFu) more = 0xFFFFFFFFu;
-            if (rows_reserve(h, (uint32_t)more) < 0) {
-                snprintf(err, errlen, "out of memory for %llu form factor entries", (unsigned long long)more);
-                rows_free(h);
-                return -1;
-            }
-            continue;
-        }
-        if (rc < 0) {
-            snprintf(err, errlen, "cannot compute the form factor rows: %s", rad_strerror(rc));
-            rows_free(h);
-            return -1;
-        }
-        if (progress && progress(ctx, (int)h->rows.n_rows, (int)np)) {
-            snprintf(err, errlen, "stopped");
-            rows_free(h);
-            return -1;
-        }
-    }
-    rows_reserve(h, h->rows.start[np]); /* shrink to fit (a failure keeps the larger) */
-    h->has_rows = 1;
-    h->rows_raster = s->stats.raster_calls - calls0;
-    return 0;
-}
-
-int sc_rows_save(sc_solver *h, const char *path, char *err, size_t errlen)
-{
-    ff_file_info in;
-    if (!h->has_rows) { snprintf(err, errlen, "%s: no form factor rows to save", path); return -1; }
-    ff_info(h, &in);
-    return ff_file_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs, err, errlen);
-}
-
-int sc_rows_load(sc_solver *h, const char *path, char *err, size_t errlen)
-{
-    ff_file_t f;
-    ff_file_info want;
-    uint32_t np = h->s.n_patches;
-    if (ff_file_load(path, &f, err, errlen) < 0) return -1;
-    rows_free(h);
-    ff_info(h, &want);
-    if (ff_file_match(&f, &want, path, err, errlen) < 0) { ff_file_free(&f); return -1; }
-    h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
-    if (!h->rows.start || rows_reserve(h, f.info.entries) < 0) {
-        snprintf(err, errlen, "%s: out of memory for %u form factor entries", path, f.info.entries);
-        rows_free(h);
-        ff_file_free(&f);
-        return -1;
-    }
-    ff_file_rows(&f, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs);
-    ff_file_free(&f);
-    h->rows.max_rows = np;
-    h->rows.n_rows = np;
-    h->has_rows = 1;
-    h->rows_raster = 0;
-    return 0;
-}
-
-void sc_get_rows_stats(sc_solver *h, sc_rows_stats *st)
-{
-    memset(st, 0, sizeof *st);
-    if (!h->has_rows) return;
-    st->rows = (int)h->rows.n_rows;
-    st->entries = h->rows.start[h->rows.n_rows];
-    st->bytes = ((size_t)h->rows.n_rows + 1u) * sizeof *h->rows.start +
-                (size_t)st->entries * (sizeof *h->rows.ids + sizeof *h->rows.ffs);
-    st->matrix_bytes = h->gs_entries * sizeof *h->gs;
-    st->raster_calls = h->rows_raster;
-}
-
-int sc_rows_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, void *ctx)
-{
-    int done = 0;
-    rad_real_t t = RAD_REAL(tol);
-    if (!h->has_rows) return -1;
-    unmix(h);
-    sc_solve_started(h, tol);
-    while (done < max_shots) {
-        int k = rad_rows_shoot(&h->s, &h->rows, progress ? 16u : (uint32_t)(max_shots - done), t);
-        if (k <= 0) break;
-        done += k;
-        if (progress && progress(ctx, done, RAD_TO_DOUBLE(rad_unshot_fraction(&h->s)))) break;
-    }
-    return done;
-}
-
-int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size_t errlen)
-{
-    uint32_t np = h->s.n_patches;
-    size_t need = RAD_GS_ENTRIES(np);
-    int rc;
-    if (!h->has_rows) { snprintf(err, errlen, "Gauss-Seidel needs the form factor rows"); return -1; }
-    if (sc_gauss_seidel_check(h, err, errlen) < 0) return -1;
-    if (h->gs_entries < need) {
-        free(h->gs);
-        h->gs = malloc(need * sizeof *h->gs);
-        h->gs_entries = h->gs ? need : 0;
-        if (!h->gs) {
-            snprintf(err, errlen, "out of memory for the %u x %u Gauss-Seidel matrix", np, np);
-            return -1;
-        }
-    }
-    unmix(h); /* Gauss-Seidel starts from the emission */
-    rc = rad_rows_gauss_seidel(&h->s, &h->rows, h->gs, h->gs_entries, (uint32_t)(max_iter > 0 ? max_iter : 1),
-                               RAD_REAL(tol));
-    if (rc < 0) { snprintf(err, errlen, "Gauss-Seidel: %s", rad_strerror(rc)); return -1; }
-    h->solve_kind = rc < (max_iter > 0 ? max_iter : 1) ? 2 : 3;
-    h->tol = tol;
-    return rc;
-}
-
-int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double *rho, const double *emit,
-                     char *err, size_t errlen)
-{
-    rad_rgb_t r;
-    uint32_t i;
-    int n = 0, k, rc;
-    for (k = 0; k < 3; k++)
-        if ((rho && !(rho[k] >= 0 && rho[k] <= 1e30)) || (emit && !(emit[k] >= 0 && emit[k] <= 1e30))) {
-            snprintf(err, errlen, "reflectance and emission must be finite and >= 0");
-            return -1;
-        }
-    if (rho) { r.r = rho_ch(h, rho[0]); r.g = rho_ch(h, rho[1]); r.b = rho_ch(h, rho[2]); }
-    for (i = 0; emit && (emit[0] > 0 || emit[1] > 0 || emit[2] > 0) && i < h->s.n_surfaces; i++)
-        if ((h->tiny[i] & 2) && match(ctx, h->tags[i])) {
-            snprintf(err, errlen, "surface %u (tag %d) is one of a group of faces below the core's precision, "
-                     "shot together, which cannot emit", i, h->tags[i]);
-            return -1;
-        }
-    for (i = 0; i < h->s.n_surfaces; i++) {
-        if (!match(ctx, h->tags[i])) continue;
-        if (rho && (rc = rad_set_surface(&h->s, i, &r, NULL)) < 0) {
-            snprintf(err, errlen, "surface %u: %s", i, rad_strerror(rc));
-            return -1;
-        }
-        if (emit) memcpy(&h->emit[3 * i], emit, 3 * sizeof *emit);
-        n++;
-    }
-    sc_restart(h);
-    return n;
-}
-
-/* Emissions to the core at a scale that maps the brightest to CORE_EMIT_PEAK, as at
- * create: a relit scene (or one light group alone) keeps the core's full precision
- * however dim it is. Results map back through the same scale. */
-void sc_restart(sc_solver *h)
-{
-    double peak = 0;
-    uint32_t i;
-    int k;
-    for (i = 0; i < 3u * h->s.n_surfaces; i++)
-        if (h->emit[i] > peak) peak = h->emit[i];
-    for (k = 0; k < h->nlights; k++) peak = fmax(peak, light_peak(h, &h->src[k]));
-    if (peak > 0) {
-        h->epeak = peak;
-        h->escale = CORE_EMIT_PEAK / peak;
-    }
-    for (i = 0; i < h->s.n_surfaces; i++) {
-        rad_rgb_t e;
-        e.r = emit_ch(h, h->emit[3 * i]); e.g = emit_ch(h, h->emit[3 * i + 1]); e.b = emit_ch(h, h->emit[3 * i + 2]);
-        rad_set_surface(&h->s, i, NULL, &e); /* in range by construction */
-    }
-    rad_restart(&h->s);
-    for (k = 0; k < h->nlights; k++) { /* after the restart: always taken */
-        rad_light_t c;
-        light_to_core(h, k, h->light_res, &c);
-        rad_set_light(&h->s, (uint32_t)k, &c); /* in range by construction */
-    }
-    h->mixed = 0;
-}
-
-int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, char *err, size_t errlen)
-{
-    int k;
-    if (i < 0 || i >= h->nlights) {
-        snprintf(err, errlen, "no light %d (the scene has %d)", i + 1, h->nlights);
-        return -1;
-    }
-    for (k = 0; k < 3; k++)
-        if ((rgb && !(rgb[k] >= 0 && rgb[k] <= 1e30)) || (horizon && !(horizon[k] >= 0 && horizon[k] <= 1e30))) {
-            snprintf(err, errlen, "light %d: intensities must be finite and >= 0", i + 1);
-            return -1;
-        }
-    if (rgb) memcpy(h->src[i].rgb, rgb, sizeof h->src[i].rgb);
-    if (horizon) memcpy(h->src[i].horizon, horizon, sizeof h->src[i].horizon);
-    sc_restart(h);
-    return 0;
-}
-
-struct sc_solution {
-    uint32_t n;
-    double escale;              /* the scale its radiosities are in */
-    rad_rgb_t rgb[1];           /* n entries, core units */
-};
-
-sc_solution *sc_keep(sc_solver *h, int ambient)
-{
-    uint32_t n = h->s.n_elements;
-    struct sc_solution *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
-    if (!k) return NULL;
-    k->n = n;
-    k->escale = h->escale;
-    rad_shade_elements(&h->s, shade_flags(h, ambient), k->rgb, n);
-    return k;
-}
-
-void sc_solution_free(sc_solution *k) { free(k); }
-
-int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3], int n, char *err,
-            size_t errlen)
-{
-    uint32_t ne = h->s.n_elements, e;
-    double *out = malloc((ne ? ne : 1u) * 3u * sizeof *out), top = 0, scale, shift;
-    int i, c;
-    if (!out) { snprintf(err, errlen, "out of memory"); return -1; }
-    for (i = 0; i < n; i++) {
-        for (c = 0; c < 3; c++)
-            if (!(intensity[i][c] >= 0 && intensity[i][c] <= 1e30)) {
-                snprintf(err, errlen, "intensity %g is not a finite number >= 0", intensity[i][c]);
-                free(out);
-                return -1;
-            }
-        if (!groups[i] || groups[i]->n != ne) {
-            snprintf(err, errlen, "a solution of another scene");
-            free(out);
-            return -1;
-        }
-    }
-    /* In double, in caller units: each solution has its own scale (its brightest
-     * emitter at the core's peak), and no intensity is rounded to Q16.16. */
-    for (e = 0; e < ne; e++) {
-        double v[3] = {0, 0, 0};
-        for (i = 0; i < n; i++) {
-            const rad_rgb_t *g = &groups[i]->rgb[e];
-            v[0] += intensity[i][0] * RAD_TO_DOUBLE(g->r) / groups[i]->escale;
-            v[1] += intensity[i][1] * RAD_TO_DOUBLE(g->g) / groups[i]->escale;
-            v[2] += intensity[i][2] * RAD_TO_DOUBLE(g->b) / groups[i]->escale;
-        }
-        for (c = 0; c < 3; c++) {
-            out[3 * e + c] = v[c];
-            if (v[c] > top) top = v[c];
-        }
-    }
-    /* Back into the core (it shades and renders) at the scale the scene was built with,
-     * or lower if the mix is brighter than the core's radiosity range takes. The
-     * elements' radiosities are in the core's scale, the caller's times 2^power_shift
-     * (the last solve's: 0 when an emission is the brightest, more when a light's
-     * irradiance on the surfaces, rad.h: Scale, is the core's peak). */
-    shift = ldexp(1.0, h->s.power_shift);
-    scale = h->escale0;
-    if (!isfinite(scale) || top * scale * shift > 16384.0) scale = top > 0 ? 16384.0 / (top * shift) : 1.0;
-    h->escale = scale;
-    for (e = 0; e < ne; e++) {
-        rad_rgb_t *b = &h->pools.elements[e].radiosity;
-        b->r = RAD_REAL(out[3 * e] * scale * shift);
-        b->g = RAD_REAL(out[3 * e + 1] * scale * shift);
-        b->b = RAD_REAL(out[3 * e + 2] * scale * shift);
-    }
-    /* rad_element_t.radiosity is the caller's pools' memory, which the glue owns; the
-     * core's emissions still stand at the last solve's scale: solving again restarts. */
-    h->mixed = 1;
-    free(out);
-    return 0;
-}
-
-/* ---- gathering (rad_gather, rad_gather_sh): lightmap texels and probes ------------- */
-
-struct sc_gatherer {
-    struct sc_solver *h;
-    rad_gather_t g;
-    void *work;
-    void *cull_work; /* rad_gather_cull's, or NULL */
-};
-
-/* Surfaces from which a new gatherer draws through the hierarchy: in rad_bench's cull
- * report (gathers at res 32 in grids of rooms; two runs) the culled gather took 1.23
- * to 1.27 times as long as drawing all at 27 surfaces, 0.76 to 1.09 at 116, 0.63 to
- * 0.67 at 480 and 0.22 at 1,952. */
-#define CULL_SURFACES 200
-
-/* Gatherers may be made in threads of their own: the hierarchy is built once, under
- * this lock, and only read after. */
-static pthread_mutex_t cull_lock = PTHREAD_MUTEX_INITIALIZER;
-
-/* H's hierarchy for the scene as it stands, built on first use; NULL when it cannot be
- * (geometry not frozen, out of memory) or when the scene changed since (its surfaces
- * or scale; gatherers may still read the old one). */
-static const void *solver_cull(struct sc_solver *h)
-{
-    const void *c;
-    pthread_mutex_lock(&cull_lock);
-    if (!h->cull) {
-        size_t bytes = RAD_CULL_BYTES(h->s.n_surfaces);
-        void *b = malloc(bytes);
-        if (b && rad_cull_build(&h->s, b, bytes) >= 0) {
-            h->cull = b;
-            h->cull_surfaces = h->s.n_surfaces;
-            h->cull_shift = h->s.length_shift;
-        } else {
-            free(b);
-        }
-    }
-    c = h->cull && h->cull_surfaces == h->s.n_surfaces && h->cull_shift == h->s.length_shift ? h->cull : NULL;
-    pthread_mutex_unlock(&cull_lock);
-    return c;
-}
-
-int sc_gatherer_cull(sc_gatherer *q, int on)
-{
-    const void *c = on ? solver_cull(q->h) : NULL;
-    size_t bytes;
-    if (!c) {
-        rad_gather_cull(&q->g, NULL, NULL, 0);
-        return on ? -1 : 0;
-    }
-    bytes = RAD_GATHER_CULL_BYTES(q->g.res, q->h->s.n_surfaces);
-    free(q->cull_work);
-    if (!(q->cull_work = malloc(bytes)) || rad_gather_cull(&q->g, c, q->cull_work, bytes) < 0) {
-        rad_gather_cull(&q->g, NULL, NULL, 0);
-        return -1;
-    }
-    return 0;
-}
-
-sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
-{
-    struct sc_gatherer *q = calloc(1, sizeof *q);
-    size_t bytes;
-    if (!q || res < 8 || res > RAD_MAX_RES || (res & 1)) {
-        free(q);
-        return NULL;
-    }
-    bytes = sphere ? RAD_GATHER_SH_BYTES(res) : RAD_GATHER_BYTES(res);
-    q->h = h;
-    q->work = malloc(bytes);
-    if (!q->work || rad_gather_init(&q->g, (unsigned)res, sphere ? RAD_GATHER_SH : 0u, q->work, bytes) < 0) {
-        sc_gatherer_free(q);
-        return NULL;
-    }
-    /* without its hierarchy a gather draws every surface: the same values */
-    if (h->s.n_surfaces >= CULL_SURFACES) sc_gatherer_cull(q, 1);
-    return q;
-}
-
-void sc_gatherer_free(sc_gatherer *q)
-{
-    if (q) {
-        free(q->work);
-        free(q->cull_work);
-    }
-    free(q);
-}
-
-/* P in the core's frame; -1 outside it, else the flags: the ambient term unless mixed
- * (then it is baked in). */
-static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3_t *c)
-{
-    struct sc_solver *h = q->h;
-    int a;
-    for (a = 0; a < 3; a++)
-        if (!fits_core((p[a] - h->off[a]) * h->scale)) return -1;
-    to_core(h, p, c);
-    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
-}
-
-int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
-{
-    return sc_gather_on(q, p, n, -1, ambient, rgb);
-}
-
-int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient, double rgb[3])
-{
-    rad_vec3_t c, nc;
-    rad_rgb_t out;
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    int flags = gather_frame(q, p, ambient, &c);
-    if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
-    nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface, flags, &out) < 0)
-        return -1;
-    rgb_out(q->h, &out, rgb);
-    return 0;
-}
-
-int sc_gather_sh(sc_gatherer *q, const double p[3], int ambient, double sh[9][3])
-{
-    rad_vec3_t c;
-    rad_rgb_t out[9];
-    int k, flags = gather_frame(q, p, ambient, &c);
-    if (flags < 0 || rad_gather_sh(&q->h->s, &q->g, &c, RAD_INDEX_NONE, flags, out) < 0) return -1;
-    for (k = 0; k < 9; k++) rgb_out(q->h, &out[k], sh[k]);
-    return 0;
-}
-
-unsigned long sc_gatherer_saturations(sc_gatherer *q) { return q->g.stats.saturations; }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* rad host glue: scenes of double-precision polygons solved through the core.
  *
- * tools/host/scene.c is compiled twice, once against the fixed library (names sc_*)
+ * tools/host/scene*.c are compiled twice, once against the fixed library (names sc_*)
  * and once against the float twin (names scf_*), so a tool or test can run the same
  * scene through both. It owns the pools (malloc'd, grown until the scene fits),
  * scales the scene into the core's coordinate range (the radiosity solution does not

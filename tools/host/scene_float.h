@@ -5,7 +5,8 @@
  * tools/host/fgather.h,
  * tools/host/tex_render.h,
  * tools/host/ply_export.h,
- * tools/bake/gltf_export.h.
+ * tools/bake/gltf_export.h,
+ * tools/host/scene_impl.h.
  *
  * The float twin's declarations (built against librad_float), for programs that hold
  * both builds. Each twin header ends by defining its RAD_TWIN_ mark and including this
