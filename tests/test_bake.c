@@ -1156,8 +1156,9 @@ static int cli(const char *args, char **err)
     return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
-/* The options: a lightmap and probes written; a size of 0, a tolerance above 1 or a
- * padding above 64 a usage error, an atlas too small for the charts an error naming
+/* The options: a lightmap and probes written; a size of 0, a tolerance above 1, a
+ * padding above 64 or a lightmap option without --lightmap a usage error, an atlas
+ * too small for the charts an error naming
  * them before the solve, and then no file; the lightmap baked on 3 threads is the same
  * file as on one. */
 static void test_cli_bake(void **state)
@@ -1177,6 +1178,11 @@ static void test_cli_bake(void **state)
     free(err);
     CHECK_INT_EQ(cli("--lightmap-pad 65", &err), 2, "exit status of --lightmap-pad 65 (%s)", err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-pad wants a whole number from 0 to 64", "the message");
+    free(err);
+    /* a lightmap option without the lightmap would be ignored: refused instead */
+    CHECK_INT_EQ(cli("--lightmap-uv rad", &err), 2, "exit status of --lightmap-uv without --lightmap (%s)",
+                 err ? err : "");
+    CHECK_CONTAINS(err, "--lightmap-uv needs --lightmap FILE", "the message");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
     CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");

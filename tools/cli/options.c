@@ -367,23 +367,28 @@ static void opt_lightmap(opts_t *o, const char *opt, const char *val)
     o->lightmap = val;
 }
 
-static void opt_lightmap_size(opts_t *o, const char *opt, const char *val) { o->lightmap_size = (int)parse_int(opt, val, 1, 8192); }
+static void opt_lightmap_size(opts_t *o, const char *opt, const char *val)
+{
+    o->lightmap_size = (int)parse_int(opt, val, 1, 8192);
+    o->lightmap_opt = opt;
+}
 
 static void opt_lightmap_pad(opts_t *o, const char *opt, const char *val)
 {
     o->lightmap_pad = (int)parse_int(opt, val, 0, LM_MAX_PADDING);
+    o->lightmap_opt = opt;
 }
 
 static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 {
-    (void)opt;
+    o->lightmap_opt = opt;
     if (cli_parse_list(val, &o->lightmap_tol, 1, 0) != 1 || !(o->lightmap_tol >= 0 && o->lightmap_tol <= 1))
         cli_die_usage("--lightmap-tol wants a number in [0, 1]", val);
 }
 
 static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
 {
-    (void)opt;
+    o->lightmap_opt = opt;
     if (!strcmp(val, "auto")) o->lightmap_uv = LIGHTMAP_UV_AUTO;
     else if (!strcmp(val, "file")) o->lightmap_uv = LIGHTMAP_UV_FILE;
     else if (!strcmp(val, "rad")) o->lightmap_uv = LIGHTMAP_UV_RAD;
@@ -616,6 +621,11 @@ static void check_combinations(opts_t *o)
         cli_die_usage("a scene on standard input (-) has no name to name outputs after: give --probes-out FILE", NULL);
     if (o->save_ff && o->load_ff) cli_die_usage("--save-ff and --load-ff exclude each other", NULL);
     if (o->ply_linear && !o->ply) cli_die_usage("--ply-linear needs --export-ply FILE", NULL);
+    if (o->lightmap_opt && !o->lightmap) {
+        char m[64];
+        snprintf(m, sizeof m, "%s needs --lightmap FILE", o->lightmap_opt);
+        cli_die_usage(m, NULL);
+    }
     if (o->each_group && o->nuser_groups == 0) cli_die_usage("--each-group needs at least one --light-group", NULL);
     if (o->animate) {
         if (o->ncams || o->views_file) cli_die_usage("--animate takes its cameras from its file: no --camera or --views", NULL);
