@@ -3,11 +3,11 @@
  * a two-storey atrium, deterministic, every polygon a quad, metres with +Y up.
  *
  * A courtyard of 24 x 24 m open to the sky, ringed on two storeys (5 m each) by a
- * gallery 6 m deep behind an arcade: 32 columns a storey (24 facets in 10 rings, a
- * plinth and a capital), round arches between them (their soffits 24 segments of half
- * a cylinder, their spandrels faced on both sides), a moulded cornice of 6 facets along
+ * gallery 6 m deep behind an arcade: 32 columns a storey (32 facets in 22 rings, a
+ * plinth and a capital), round arches between them (their soffits 32 segments of half
+ * a cylinder, their spandrels faced on both sides), a moulded cornice of 8 facets along
  * the courtyard at each storey's top, the galleries' floor slab and roof (both sides),
- * and the outer walls, floors and walls tiled in 0.4 m quads like a modelled floor. Lit
+ * and the outer walls, floors and walls tiled in 1 m quads like a modelled floor. Lit
  * by a sun from 50 degrees up and a sky; nothing emits. */
 #ifndef RAD_TOOLS_LEVEL_H
 #define RAD_TOOLS_LEVEL_H
