@@ -772,7 +772,8 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
  *     position; a pixel of solid angle dw (its delta solid angle, the cube's quadrant
  *     sums exact) gives the element it sees I dw of power (times the spot's falloff);
  *   - a sun renders an orthographic item buffer of about RES x RES pixels (in tiles
- *     of the scene's res) over the square that the scene's corners project to,
+ *     of the scene's res; by default with pixels of at most 1/16 the side of the
+ *     scene's smallest elements: res below) over the square that the scene's corners project to,
  *     across its direction; a pixel of area a (perpendicular to the light) gives the
  *     element it sees E a;
  *   - a sky is a fixed dome of N = 3 m^2 such suns over the hemisphere about its up
@@ -787,7 +788,8 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
  *     (pi L for a uniform sky), and a plane that sees whole cells their light exactly
  *     (a grey sky); a vertical wall, whose plane cuts cells, receives
  *     (pi / 2 - 2 / 3) H + 2 Z / 3 within 0.3% at 192 directions. Each direction is
- *     a sun's shot of one raster over the whole scene (RES, default the scene's res).
+ *     a sun's shot of one raster over the whole scene (RES; by default as a sun's,
+ *     each of the N rasters sqrt N times coarser: their errors average).
  * Surfaces are one-sided: an element receives only on its front (the side its normal
  * points to), but a face turned away from the light shadows as any other (a one-sided
  * roof facing into a room keeps the sun out), drawn a quarter of a pixel's footprint
@@ -808,8 +810,14 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
 #define RAD_LIGHT_SKY   4 /* radiance from every direction above the horizon */
 struct rad_light_s {
     uint16_t type; /* RAD_LIGHT_* */
-    uint16_t res;  /* 0: default (point, spot, sky: the scene's res; sun: 4 res, at most
-                    * RAD_MAX_RES); else even, 8..RAD_MAX_RES. A sun's raster is
+    uint16_t res;  /* 0: default (point, spot: the scene's res; sun, sky: pixels of
+                    * at most 1/16 the side (square root of the area) of the smallest
+                    * 1% of the elements, to a power of two in area, each of a light's
+                    * N rasters (a sun's disc: 16; a sky's directions; dirs below)
+                    * sqrt N times coarser, within 4 res (sky, dome sun: res)..8192: a pixel's
+                    * centre decides which element it counts for, so an element of side
+                    * a gets about p / a of its light wrong, p the pixel's side); else
+                    * even, 8..RAD_MAX_RES (sun, sky: 8..8192). A sun's raster is
                     * K x K tiles of the scene's res, K = RES / res rounded up; a point
                     * light's face above the scene's res needs 2 RES pixels a pass in
                     * the work buffer (rad_scene_t.pass_pixels), else RES is halved
@@ -837,7 +845,10 @@ struct rad_light_s {
                         * [0, RAD_EMISSION_LIMIT] (equal to intensity: a uniform sky;
                         * a light zeroed then filled in has H = 0: L = Z cos t) */
     uint32_t dirs;     /* sky: its count of directions, rounded down to 3 m^2
-                        * (3, 12, 27, 48, 75, ...), 3..768; 0: the default, 192 */
+                        * (3, 12, 27, 48, 75, ...), 3..768; 0: the default, 192.
+                        * sun: 0..768, the count of suns it is one of (a sky dome
+                        * built of suns), whose rasters' errors average: its default
+                        * raster is sqrt(dirs) times coarser (res above); 0, 1: alone */
 };
 
 /* Hands S an array LIGHTS of MAX entries for rad_add_light (kept by the scene from then

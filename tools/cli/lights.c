@@ -176,7 +176,7 @@ int cli_add_sky_map(opts_t *o, const char *path, int dirs, double scale, char *e
     for (i = 0; i < n; i++) {
         sc_light *l = cli_new_light(o);
         l->type = RAD_LIGHT_SUN;
-        l->dome = 1;
+        l->dome = n;
         memcpy(l->dir, suns[i].dir, sizeof l->dir);
         memcpy(l->rgb, suns[i].e, sizeof l->rgb);
     }

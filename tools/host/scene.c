@@ -420,12 +420,13 @@ void sc__light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c
      * the direct light 11% rms (79% max) off I cos t / r^2 per element, at 4 res
      * 1.2% (10%). The core's default is the scene's res (the same bits
      * in any work buffer); the glue's buffer holds the 2 x 4 res pixels a pass
-     * that a point light's finer cube needs. A sun is 4 res by default. */
+     * that a point light's finer cube needs. Suns and skies take the core's
+     * default (lib/light.c: fine enough for the smallest elements). */
     if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
         int r = 4 * res;
         c->res = (uint16_t)(r < RAD_MAX_RES ? r : RAD_MAX_RES);
     }
-    if (l->dome) c->res = (uint16_t)res; /* cfg.res */
+    c->dirs = (uint32_t)l->dome; /* a sky's: below */
     sc__to_core(h, l->pos, &c->position);
     if (d > 0) {
         c->direction.x = RAD_REAL(l->dir[0] / d);

@@ -27,8 +27,9 @@ typedef struct {
  * +Y); RGB a point's or spot's intensity (per steradian), a sun's irradiance on a plane
  * facing it or a sky's zenith radiance; a spot's cone by the cosines of its outer and
  * inner half angles; a sun's disc by RADIUS; a sky's HORIZON radiance and DIRS (0: the
- * core's default); DOME: a sun of a sky's dome (rad_cli --sky-hdr), drawn at the
- * scene's res as the core's sky draws its own (not at a sun's 4 res). */
+ * core's default); DOME: for a sun of a sky's dome (rad_cli --sky-hdr), the count of
+ * the dome's suns (rad_light_t.dirs: each raster coarser, as the core's sky draws its
+ * own), else 0. */
 typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
