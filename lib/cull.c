@@ -40,10 +40,10 @@
 
 #define CULL_MAGIC 0x6C6C7563u /* "cull" */
 #define LEAF       0x80000000u /* a node's link: a leaf's surface, else its second child */
-#define TILES      16u /* tiles along a face's width: each ceil(res / 16) pixels a side */
+#define TILES      16u         /* tiles along a face's width: each ceil(res / 16) pixels a side */
 /* Depth of the tree: at most 1 + ceil(log2 n) <= 33 for n < 2^32, so the nodes
  * waiting while the traversal goes down (one a level) are at most 32. */
-#define STACK 34u
+#define STACK      34u
 
 typedef struct {
     uint32_t magic, surfaces, nodes;
@@ -385,7 +385,8 @@ static void box_reach(const face_t *f, const rad_real_t *c, const rad_real_t *h,
 static rad_real_t tile_far(const face_t *f, uint32_t tx, uint32_t ty)
 {
     rad_real_t d;
-    uint32_t x0 = tx * f->tile, y0 = ty * f->tile, x1 = x0 + f->tile, y1 = y0 + f->tile, x, y, m = 0xFFFFFFFFu;
+    uint32_t x0 = tx * f->tile, y0 = ty * f->tile, x1 = x0 + f->tile, y1 = y0 + f->tile, x, y,
+             m = 0xFFFFFFFFu;
     if (x1 > f->res) x1 = f->res;
     if (y1 > f->rows) y1 = f->rows;
     for (y = y0; y < y1; y++) {
@@ -446,7 +447,8 @@ static rad_real_t box_distance(const face_t *f, const node_t *nd)
     rad_real_t m = 0;
     unsigned a;
     for (a = 0; a < 3; a++) {
-        rad_real_t e = coord(&f->e->c, a), out = nd->lo[a] - e > e - nd->hi[a] ? nd->lo[a] - e : e - nd->hi[a];
+        rad_real_t e = coord(&f->e->c, a),
+                   out = nd->lo[a] - e > e - nd->hi[a] ? nd->lo[a] - e : e - nd->hi[a];
         if (out > m) m = out;
     }
     return m;

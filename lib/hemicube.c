@@ -598,7 +598,8 @@ void rad__hemicube(rad_scene_t *s, uint32_t p)
 /* A part's buffer: its head, a row of id steps, then depth and ids laid out as all
  * five faces. RAD_PART_BYTES counts RAD__PART_HEAD bytes for the head. */
 typedef char rad__part_head_fits[sizeof(rad__part_head_t) <= RAD__PART_HEAD &&
-                                         RAD__PART_HEAD % 8u == 0 && RAD_PART_BYTES(0) == RAD__PART_HEAD
+                                         RAD__PART_HEAD % 8u == 0 &&
+                                         RAD_PART_BYTES(0) == RAD__PART_HEAD
                                      ? 1
                                      : -1];
 

@@ -260,7 +260,7 @@ typedef struct {
     uint32_t rparts;       /* the parts of the receipts when this is one (rad_batch_receive_part) */
     rad_energy_t left[3];  /* and what its patch is left owing when it shoots */
 } rad__part_head_t;
-#define RAD__PART_HEAD 96u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
+#define RAD__PART_HEAD     96u /* RAD_PART_BYTES's head: sizeof(rad__part_head_t) (hemicube.c) */
 /* States are words a zeroed or unwritten buffer is unlikely to hold, so that a part
  * never rendered is told from one rendered (rad_shot_end returns RAD_ERR_STATE). */
 #define RAD__PART_RENDERED 0x72610001u
@@ -310,9 +310,9 @@ static inline int rad__live(const rad_scene_t *s)
 }
 /* The first check of every public call taking scene S: RAD_ERR_ARG when S is null,
  * RAD_ERR_STATE when rad_init has not set it up. */
-#define RAD__CHECK_SCENE(s)                     \
-    do {                                        \
-        if (!(s)) return RAD_ERR_ARG;           \
+#define RAD__CHECK_SCENE(s)                      \
+    do {                                         \
+        if (!(s)) return RAD_ERR_ARG;            \
         if (!rad__live(s)) return RAD_ERR_STATE; \
     } while (0)
 

@@ -61,8 +61,8 @@
  * 8..ORTHO_MAX_RES (sun, sky: tiles). */
 static int res_ok(const rad_light_t *l)
 {
-    const uint32_t most = l->type == RAD_LIGHT_SUN || l->type == RAD_LIGHT_SKY ? ORTHO_MAX_RES
-                                                                               : RAD_MAX_RES;
+    const uint32_t most =
+        l->type == RAD_LIGHT_SUN || l->type == RAD_LIGHT_SKY ? ORTHO_MAX_RES : RAD_MAX_RES;
     return l->res == 0 || (l->res >= 8u && l->res <= most && !(l->res & 1u));
 }
 
@@ -204,8 +204,7 @@ int rad_use_lights(rad_scene_t *s, rad_light_t *lights, uint32_t max)
 static int light_ok(const rad_light_t *l)
 {
     rad_vec3_t u;
-    if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SKY || !res_ok(l))
-        return RAD_ERR_ARG;
+    if (!l || l->type < RAD_LIGHT_SUN || l->type > RAD_LIGHT_SKY || !res_ok(l)) return RAD_ERR_ARG;
     if (l->type == RAD_LIGHT_SKY && (l->dirs > SKY_MAX_DIRS || (l->dirs && l->dirs < 3u)))
         return RAD_ERR_ARG;
     if (l->type == RAD_LIGHT_SUN && l->dirs > SKY_MAX_DIRS) return RAD_ERR_ARG;
@@ -222,7 +221,8 @@ static int light_ok(const rad_light_t *l)
     if (l->type == RAD_LIGHT_SPOT &&
         !(cosine_ok(l->cos_outer) && cosine_ok(l->cos_inner) && l->cos_outer <= l->cos_inner))
         return RAD_ERR_RANGE;
-    if (l->type == RAD_LIGHT_SUN && !(l->radius >= 0 && l->radius <= RAD__Q(0.25))) return RAD_ERR_RANGE;
+    if (l->type == RAD_LIGHT_SUN && !(l->radius >= 0 && l->radius <= RAD__Q(0.25)))
+        return RAD_ERR_RANGE;
     return RAD_OK;
 }
 
@@ -399,7 +399,8 @@ static void draw_surface(rad_scene_t *s, const view_t *v, const rad__target_t *t
             rad__lattice_face(&lat, rad__face_axis[v->face], rad__face_sign[v->face]);
         tl.lat = &lat;
     }
-    rad__draw(&s->stats, &tl, fr, cv, n, any, (rad_index_t)rad__group_element(s, sf, sf->first_element));
+    rad__draw(&s->stats, &tl, fr, cv, n, any,
+              (rad_index_t)rad__group_element(s, sf, sf->first_element));
 }
 
 /* The spot's falloff at cosine C of the angle to its axis (rad.h). */
@@ -515,7 +516,8 @@ static void sun_view(const rad_scene_t *s, view_t *v)
     v->vc = lo.y + (hi.y - lo.y) / 2;
     du = hi.x - v->uc;
     dv = hi.y - v->vc;
-    v->tiles = (ortho_res(v->l, du > dv ? du : dv, v->small, v->shots, v->want) + v->res - 1u) / v->res;
+    v->tiles =
+        (ortho_res(v->l, du > dv ? du : dv, v->small, v->shots, v->want) + v->res - 1u) / v->res;
     /* a tile's half width, rounded up (the centre's rounding, the division's) */
     ht = rad__div(du > dv ? du : dv, rad__from_int((int32_t)v->tiles), 0) + 4 * RAD__EPS;
     v->h = ht < RAD__NEAR ? RAD__NEAR : ht;
@@ -593,7 +595,8 @@ static void light_power(rad_scene_t *s, const view_t *v, rad_energy_t *u)
             rad_energy_t e = rad__energy_refl(rad__energy(i, 2 * v->hw), 2 * v->hw);
             if (l->type == RAD_LIGHT_SKY) { /* Z wz + H wh, then (2 hw)^2 */
                 rad_energy_t h = rad__energy(rad__channel(&l->horizon, c), 2 * v->hw);
-                e = rad__energy_ff(e, v->wz) + rad__energy_ff(rad__energy_refl(h, 2 * v->hw), v->wh);
+                e = rad__energy_ff(e, v->wz) +
+                    rad__energy_ff(rad__energy_refl(h, 2 * v->hw), v->wh);
             }
             u[c] = energy_shift(e, s->power_shift, &s->stats.saturations);
         } else { /* lengths scale by 2^length_shift, so I by its square: E stays */
@@ -614,9 +617,9 @@ static int light_position(const rad_scene_t *s, const rad_light_t *l, rad_vec3_t
 /* The sun's disc: 8 points of Vogel's spiral over the unit disc (radius
  * sqrt((k + 1/2) / 8), angle k times the golden angle) and their opposites, in Q16. */
 #define SUN_SAMPLES 16u
-static const int32_t disc[8][2] = {{16384, 0},       {-20925, 19169}, {3203, -36495},
-                                   {26375, 34401},   {-48401, -8561}, {45849, -29166},
-                                   {-15336, 57048},  {-29247, -56313}};
+static const int32_t disc[8][2] = {{16384, 0},      {-20925, 19169}, {3203, -36495},
+                                   {26375, 34401},  {-48401, -8561}, {45849, -29166},
+                                   {-15336, 57048}, {-29247, -56313}};
 
 /* View V's shot, each channel's power divided by PARTS: its raster's weights into
  * s->acc, then every element that sees it receives its share, and the power arriving
@@ -635,8 +638,7 @@ static void shoot_view(rad_scene_t *s, view_t *v, const bufs_t *b, uint32_t part
         rad_ff_t f = s->acc[e];
         if (!(f > 0)) continue;
         if (v->ortho) /* the pixel count over all the tiles' (< 2^27), in Q2.30 */
-            f = rad__ff_from_q30(
-                (uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
+            f = rad__ff_from_q30((uint32_t)((((uint64_t)rad__ff_to_q30(f) << 30) + nn / 2u) / nn));
         rad__receive(s, u, e, f);
         got = rad__esum(got, rad__energy_ff(u[0], f) + rad__energy_ff(u[1], f) +
                                  rad__energy_ff(u[2], f));
@@ -759,7 +761,8 @@ static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
         sn = (vb << 30) / len;
         asin1 = asin2;
         v->wz = rad__ff_from_q30((uint32_t)(((((ac * two_pi) >> 28) / n) << 30) / c));
-        v->wh = rad__ff_from_q30((uint32_t)((((((au > ac ? au - ac : 0) * two_pi) >> 28) / n) << 30) / c));
+        v->wh = rad__ff_from_q30(
+            (uint32_t)((((((au > ac ? au - ac : 0) * two_pi) >> 28) / n) << 30) / c));
         for (j = 0; j < n; j++) { /* the light travels down: -(c up + sn (cos f0 + sin f1)) */
             const rad_real_t a0 = real_q30(((int64_t)sn * sin_q30(4u * j + 2u + n, 4u * n)) >> 30);
             const rad_real_t a1 = real_q30(((int64_t)sn * sin_q30(2u * j + 1u, 2u * n)) >> 30);
@@ -841,8 +844,7 @@ int rad__lights_check(const rad_scene_t *s, uint32_t first)
     uint32_t k;
     rad_vec3_t c;
     for (k = first; k < s->n_lights; k++)
-        if (is_point(&s->lights[k]) && !light_position(s, &s->lights[k], &c))
-            return RAD_ERR_RANGE;
+        if (is_point(&s->lights[k]) && !light_position(s, &s->lights[k], &c)) return RAD_ERR_RANGE;
     return RAD_OK;
 }
 
@@ -905,9 +907,11 @@ rad_real_t rad__lights_peak(const rad_scene_t *s)
     for (k = 0; k < s->n_lights; k++) {
         const rad_light_t *l = &s->lights[k];
         if (l->type == RAD_LIGHT_SKY) /* at most pi times its brightest radiance */
-            p = rad__mul(RAD__Q(3.14159265), brightest(&l->intensity) > brightest(&l->horizon)
-                                                 ? brightest(&l->intensity)
-                                                 : brightest(&l->horizon), 0);
+            p = rad__mul(RAD__Q(3.14159265),
+                         brightest(&l->intensity) > brightest(&l->horizon)
+                             ? brightest(&l->intensity)
+                             : brightest(&l->horizon),
+                         0);
         else
             p = l->type == RAD_LIGHT_SUN ? brightest(&l->intensity) : point_peak(s, l);
         if (p > m) m = p;

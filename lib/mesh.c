@@ -10,18 +10,18 @@
  */
 #include "internal.h"
 
-#define MIN_AREA       RAD__Q(1.0 / 4096.0)  /* smallest surface accepted, in units^2 */
-#define MIN_SMALL      RAD__Q(1.0 / 65536.0) /* with RAD_SMALL_FACES, for reflectors (rad.h) */
-#define MIN_ELEMENT    RAD__Q(1.0 / 65536.0) /* smallest max_element setting: 1 LSB */
-#define MAX_SETTING    RAD__Q(2 * RAD_INPUT_LIMIT) /* largest max_element, max_patch */
+#define MIN_AREA         RAD__Q(1.0 / 4096.0)  /* smallest surface accepted, in units^2 */
+#define MIN_SMALL        RAD__Q(1.0 / 65536.0) /* with RAD_SMALL_FACES, for reflectors (rad.h) */
+#define MIN_ELEMENT      RAD__Q(1.0 / 65536.0) /* smallest max_element setting: 1 LSB */
+#define MAX_SETTING      RAD__Q(2 * RAD_INPUT_LIMIT) /* largest max_element, max_patch */
 /* Elements along a polygon's side: lattices of up to 2^15 a side keep every count of
  * rad_surface_t in 16-bit indices and the vertex count, (2^15 + 1)^2, in 32 bits. */
-#define MAX_SIDE       32768u
+#define MAX_SIDE         32768u
 /* The geometry's shift while it is added: down to 2^-7, for coordinates of up to
  * RAD_INPUT_LIMIT (2^13) within RAD_COORD_LIMIT (2^6). */
 #define MIN_LENGTH_SHIFT (-7)
 /* A group's area grows by less than MIN_AREA a join: below this it cannot overflow. */
-#define MAX_GROUP_AREA RAD__Q(16384.0)
+#define MAX_GROUP_AREA   RAD__Q(16384.0)
 
 static int in_range(rad_real_t v, rad_real_t lo, rad_real_t hi)
 {
@@ -625,8 +625,7 @@ static void element_rho_reset(rad_scene_t *s, const rad_surface_t *sf)
 {
     uint32_t i;
     if (!s->element_rho) return;
-    for (i = 0; i < sf->n_elements; i++)
-        s->element_rho[sf->first_element + i] = sf->reflectance;
+    for (i = 0; i < sf->n_elements; i++) s->element_rho[sf->first_element + i] = sf->reflectance;
     for (i = 0; i < sf->n_patches; i++)
         s->element_rho[s->pools.max_elements + sf->first_patch + i] = sf->reflectance;
 }

@@ -175,8 +175,8 @@ int rad_rows_gauss_seidel(rad_scene_t *s, const rad_rows_t *rows, rad_ff_t *matr
             const rad_rgb_t *rho = rad__patch_rho(s, k);
             unsigned c;
             for (c = 0; c < 3; c++) {
-                rad_real_t v = gather(s, matrix, b, k, c, rad__channel(&em, c),
-                                      rad__channel(rho, c));
+                rad_real_t v =
+                    gather(s, matrix, b, k, c, rad__channel(&em, c), rad__channel(rho, c));
                 rad_real_t d = v > b[3 * k + c] ? v - b[3 * k + c] : b[3 * k + c] - v;
                 /* Relative to each value, so dim patches converge as well as bright ones. */
                 /* (saturating: v * tol may already be the largest value) */

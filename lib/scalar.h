@@ -515,7 +515,8 @@ static inline rad__area_div_t rad__area_div(rad_real_t area)
 {
     return area;
 }
-static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area, uint32_t *sat)
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area,
+                                            uint32_t *sat)
 {
     (void)sat;
     return u / *area;
@@ -741,7 +742,9 @@ static inline rad__recip_t rad__recip(rad_real_t d)
  * <= 2^62. */
 static inline int32_t rad__proj(rad_real_t num, rad__recip_t inv, uint32_t scale)
 {
-    return num > 0 ? (int32_t)((rad__mulu64_32(rad__mulu64_32(inv, (uint32_t)num), scale) + ((uint64_t)1 << 45)) >> 46)
+    return num > 0 ? (int32_t)((rad__mulu64_32(rad__mulu64_32(inv, (uint32_t)num), scale) +
+                                ((uint64_t)1 << 45)) >>
+                               46)
                    : 0;
 }
 /* w = 2^30 NEAR / d = 2^38 / d (NEAR = 2^8 in Q16.16) = inv / 2^8. */
@@ -784,7 +787,8 @@ static inline rad__area_div_t rad__area_div(rad_real_t area)
  * rounded: (U 2^16 + A / 2) / A, whose numerator is below 2^63. A quotient of 2^32 or
  * more (n >> 32 >= A, outside rad__udiv_inv's range) saturates, as does one past
  * INT32_MAX. */
-static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area, uint32_t *sat)
+static inline rad_real_t rad__energy_to_rad(rad_energy_t u, const rad__area_div_t *area,
+                                            uint32_t *sat)
 {
     uint64_t n = ((uint64_t)u << 16) + (area->den >> 1);
     uint32_t q = n >> 32 < area->den ? rad__udiv_inv(n, area) : 0xFFFFFFFFu;
@@ -897,7 +901,7 @@ static inline rad_real_t rad__scale2(rad_real_t v, int n, uint32_t *sat)
  * floor(v / ab)), so a scale reached in steps is the scale reached at once. */
 static inline rad_real_t rad__floor2(rad_real_t v, unsigned n)
 {
-    return v >= 0 ? v >> n : -(rad_real_t)(((uint32_t)-(int64_t)v + (1u << n) - 1u) >> n);
+    return v >= 0 ? v >> n : -(rad_real_t)(((uint32_t) - (int64_t)v + (1u << n) - 1u) >> n);
 }
 /* Area A (Q16.16) times 2^(2N), -16 <= N <= 16, as Q16.16 in int64 (exact upwards,
  * rounded to nearest downwards). */

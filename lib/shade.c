@@ -148,8 +148,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     uint32_t e, i, sat = 0;
 
     RAD__CHECK_SCENE(s);
-    if (!vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER ||
-        h > RAD_MAX_RASTER)
+    if (!vrgb || !cam || !fb || !zbuf || w < 1 || h < 1 || w > RAD_MAX_RASTER || h > RAD_MAX_RASTER)
         return RAD_ERR_ARG;
     /* The camera in the core's scale (exact: a shift; saturation is out of range). */
     eye = rad__scale2_vec(cam->eye, s->length_shift, &sat);

@@ -84,7 +84,9 @@ static void ambient(const rad_scene_t *s, rad_real_t *amb, uint32_t *sat, rad_en
         rad_real_t a = rad__mul(rad__energy_ratio(rad__eabs(unshot[c]), area), inter, sat);
         amb[c] = unshot[c] < 0 ? -a : a;
     }
-    if (net) *net = rad__esum(rad__esum(rad__eabs(unshot[0]), rad__eabs(unshot[1])), rad__eabs(unshot[2]));
+    if (net)
+        *net =
+            rad__esum(rad__esum(rad__eabs(unshot[0]), rad__eabs(unshot[1])), rad__eabs(unshot[2]));
 }
 
 /* Halvings after which overshooting stops (2^-16 of the estimate is below a Q16.16
@@ -419,7 +421,7 @@ int rad_shoot(rad_scene_t *s, uint32_t max_shots, rad_real_t tol)
         s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
         return rad__lights_solve(s, 0, max_shots, tol);
     }
-    if (s->emitted == 0) return 0; /* nothing can be shot: the scene stays open */
+    if (s->emitted == 0) return 0;  /* nothing can be shot: the scene stays open */
     s->shot_patch = RAD_INDEX_NONE; /* a shot begun in parts is void now */
     return rad__shoot(s, 0, max_shots, tol);
 }
@@ -473,7 +475,7 @@ int rad_shot_begin(rad_scene_t *s, rad_real_t tol, uint32_t *patch)
     RAD__CHECK_SCENE(s);
     if (!patch) return RAD_ERR_ARG;
     s->shot_patch = RAD_INDEX_NONE;
-    s->batch_n = 0; /* a batch begun is void now */
+    s->batch_n = 0;                                           /* a batch begun is void now */
     if (s->emitted == 0 && !rad__lights_pending(s)) return 0; /* as rad_shoot */
     if (s->band_rows != 0) return RAD_ERR_STATE;
     rad__freeze(s);
@@ -800,7 +802,8 @@ static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
 /* Part PART of NPARTS of the receipts (receive_range's run of whole patches), shot
  * after shot: each shooter in the run left owing at its place in the order, then the
  * elements of the run each shot's cube lists receive. Saturations into BUFS[PART]. */
-static int batch_receive(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+static int batch_receive(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part,
+                         unsigned nparts)
 {
     rad__part_head_t *r = head(bufs, part);
     uint32_t e0, e1, sat = 0, c;
@@ -837,7 +840,8 @@ static unsigned batch_parts(void *const *bufs, unsigned n)
     return 0;
 }
 
-int rad_batch_receive_part(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part, unsigned nparts)
+int rad_batch_receive_part(rad_scene_t *s, void *const *bufs, unsigned n, unsigned part,
+                           unsigned nparts)
 {
     unsigned np;
     int rc = batch_args(s, bufs, n);
@@ -863,7 +867,8 @@ int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n)
     for (k = 0; k < np; k++)
         if (head(bufs, k)->state == RAD__CUBE_AIMED) batch_receive(s, bufs, n, k, np);
     for (k = 0; k < n; k++) {
-        if (head(bufs, k)->state == RAD__CUBE_RECEIVED) s->stats.saturations += head(bufs, k)->saturations;
+        if (head(bufs, k)->state == RAD__CUBE_RECEIVED)
+            s->stats.saturations += head(bufs, k)->saturations;
         head(bufs, k)->state = RAD__PART_SHOT;
     }
     s->shot_patch = RAD_INDEX_NONE;

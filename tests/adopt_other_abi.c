@@ -16,9 +16,15 @@ static unsigned char work[RAD_WORK_BYTES(8, RAD_PIXELS_ALL(8), 64)];
 
 int adopt_other_init(adopt_other_t *out)
 {
-    rad_pools_t pools = {.surfaces = surfaces, .max_surfaces = 4, .patches = patches,
-                         .max_patches = 16, .elements = elements, .max_elements = 64,
-                         .vertices = vertices, .max_vertices = 64, .work = work,
+    rad_pools_t pools = {.surfaces = surfaces,
+                         .max_surfaces = 4,
+                         .patches = patches,
+                         .max_patches = 16,
+                         .elements = elements,
+                         .max_elements = 64,
+                         .vertices = vertices,
+                         .max_vertices = 64,
+                         .work = work,
                          .work_bytes = sizeof work};
     const rad_config_t cfg = {.res = 8};
     rad_scene_t s;

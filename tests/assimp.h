@@ -20,8 +20,7 @@ static inline void assimp_reads(const char *path)
     rc = system(cmd);
     if (rc != 0) {
         snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("assimp.txt"));
-        if (system(cmd)) {
-        }
+        if (system(cmd)) {}
     }
     assert_int_equal(rc, 0);
 }

@@ -15,7 +15,8 @@
  * made or lost (clamps, debts never paid) plus the power still unshot. Writes the
  * absorbed and escaped parts of the emitted; returns |emitted - absorbed - escaped| /
  * emitted, or -1 when out of memory. */
-static inline double balance(sc_solver *s, const sc_poly *polys, double *out_absorbed, double *out_escaped)
+static inline double balance(sc_solver *s, const sc_poly *polys, double *out_absorbed,
+                             double *out_escaped)
 {
     const rad_scene_t *c = sc_core(s);
     sc_stats st;

@@ -30,16 +30,15 @@
 #include <stdint.h>
 #include <string.h>
 
-#define CHECK_CMP_(type, fmt, measured, op, bound, ...)                                    \
-    do {                                                                                   \
-        const type check_m_ = (type)(measured);                                            \
-        const type check_b_ = (type)(bound);                                               \
-        if (!(check_m_ op check_b_)) {                                                     \
-            print_error(__VA_ARGS__);                                                      \
-            print_error(": measured " fmt ", required " #op " " fmt "\n", check_m_,        \
-                        check_b_);                                                         \
-            fail();                                                                        \
-        }                                                                                  \
+#define CHECK_CMP_(type, fmt, measured, op, bound, ...)                                        \
+    do {                                                                                       \
+        const type check_m_ = (type)(measured);                                                \
+        const type check_b_ = (type)(bound);                                                   \
+        if (!(check_m_ op check_b_)) {                                                         \
+            print_error(__VA_ARGS__);                                                          \
+            print_error(": measured " fmt ", required " #op " " fmt "\n", check_m_, check_b_); \
+            fail();                                                                            \
+        }                                                                                      \
     } while (0)
 
 #define CHECK_LE(m, b, ...) CHECK_CMP_(double, "%.9g", m, <=, b, __VA_ARGS__)
@@ -56,40 +55,40 @@
 #define CHECK_INT_NE(m, b, ...) CHECK_CMP_(intmax_t, "%jd", m, !=, b, __VA_ARGS__)
 
 #define CHECK_TEXT_(text, part, found, ...)                                                 \
-    do {                                                                                   \
-        const char *check_t_ = (text);                                                     \
-        const char *check_p_ = (part);                                                     \
-        if ((strstr(check_t_, check_p_) != NULL) != (found)) {                             \
-            print_error(__VA_ARGS__);                                                      \
-            print_error(": \"%s\" %s in:\n%s\n", check_p_, (found) ? "not found" : "found",   \
-                        check_t_);                                                         \
-            fail();                                                                        \
-        }                                                                                  \
+    do {                                                                                    \
+        const char *check_t_ = (text);                                                      \
+        const char *check_p_ = (part);                                                      \
+        if ((strstr(check_t_, check_p_) != NULL) != (found)) {                              \
+            print_error(__VA_ARGS__);                                                       \
+            print_error(": \"%s\" %s in:\n%s\n", check_p_, (found) ? "not found" : "found", \
+                        check_t_);                                                          \
+            fail();                                                                         \
+        }                                                                                   \
     } while (0)
 
 #define CHECK_CONTAINS(text, part, ...) CHECK_TEXT_(text, part, 1, __VA_ARGS__)
 #define CHECK_LACKS(text, part, ...)    CHECK_TEXT_(text, part, 0, __VA_ARGS__)
 
-#define CHECK_THAT(cond, ...)                                                              \
-    do {                                                                                   \
-        if (!(cond)) {                                                                     \
-            print_error(__VA_ARGS__);                                                      \
-            print_error("\n");                                                            \
-            fail();                                                                        \
-        }                                                                                  \
+#define CHECK_THAT(cond, ...)         \
+    do {                              \
+        if (!(cond)) {                \
+            print_error(__VA_ARGS__); \
+            print_error("\n");        \
+            fail();                   \
+        }                             \
     } while (0)
 
-#define CHECK_NEAR(measured, expected, tol, ...)                                           \
-    do {                                                                                   \
-        const double check_m_ = (measured);                                                \
-        const double check_e_ = (expected);                                                \
-        const double check_t_ = (tol);                                                     \
-        if (!(fabs(check_m_ - check_e_) <= check_t_)) {                                    \
-            print_error(__VA_ARGS__);                                                      \
-            print_error(": measured %.17g, expected %.17g, off by %.3g, allowed %.3g\n",   \
-                        check_m_, check_e_, fabs(check_m_ - check_e_), check_t_);          \
-            fail();                                                                        \
-        }                                                                                  \
+#define CHECK_NEAR(measured, expected, tol, ...)                                                   \
+    do {                                                                                           \
+        const double check_m_ = (measured);                                                        \
+        const double check_e_ = (expected);                                                        \
+        const double check_t_ = (tol);                                                             \
+        if (!(fabs(check_m_ - check_e_) <= check_t_)) {                                            \
+            print_error(__VA_ARGS__);                                                              \
+            print_error(": measured %.17g, expected %.17g, off by %.3g, allowed %.3g\n", check_m_, \
+                        check_e_, fabs(check_m_ - check_e_), check_t_);                            \
+            fail();                                                                                \
+        }                                                                                          \
     } while (0)
 
 #endif

@@ -6,7 +6,7 @@
 #
 # Debian packages on top of the README's install line: clang libclang-rt-dev (libFuzzer and clang's
 # sanitizer runtimes: a Recommends of clang, so --no-install-recommends leaves them
-# out), valgrind, cppcheck, clang-tidy; llvm (llvm-symbolizer) for readable stack
+# out), valgrind, cppcheck, clang-tidy, clang-format; llvm (llvm-symbolizer) for readable stack
 # traces is optional.
 #
 # Every stage builds in its own directory under $(CHECKDIR) through a recursive make of
@@ -19,7 +19,8 @@
 #                   overflow, which gcc leaves out of -fsanitize=undefined), no recovery
 #   check-valgrind  gcc -O1 -g under valgrind memcheck, leaks included: VALGRIND_TESTS
 #   check-clang     clang -Werror, the whole suite, and the core's nm check
-#   check-lint      cppcheck and clang-tidy on lib/, fixed and float builds
+#   check-lint      cppcheck and clang-tidy on lib/, fixed and float builds; clang-format
+#                   (.clang-format) on every C source but the generated twin names
 #   check-idx16     -DRAD_INDEX_BITS=16: the whole suite
 #   check-small     -DRAD_INDEX_BITS=16 -DRAD_MAX_RES=64 (the Cortex-M0 shape): the
 #                   programs that need no hemi-cube above 64 (SMALL_TESTS), including
@@ -130,8 +131,11 @@ check-clang-run:
 	esac
 
 # Static analysis of the core, in both builds. Reasons for the suppressed warnings are in
-# tests/cppcheck-suppressions.txt and .clang-tidy.
+# tests/cppcheck-suppressions.txt and .clang-tidy. The house style (.clang-format) on
+# every C source; tools/host/twin_names.py writes the two generated headers.
 CHECK_LINT_DEFS := -DRAD_FLOAT=0 -DRAD_FLOAT=1
+FORMAT_SRCS := $(filter-out tools/host/float_names.h tools/host/scene_float.h, \
+    $(sort $(shell find lib include ports tools tests -name '*.[ch]' -not -path 'tests/data/*')))
 check-lint:
 	@+$(CHECK_STAGE) lint $(CHECKDIR)/lint.log $(CHECK_MAKE) check-lint-run
 check-lint-run:
@@ -150,8 +154,10 @@ check-lint-run:
 	    >$(CHECKDIR)/lint/tidy.out 2>&1 || rc=1; \
 	  grep -v 'warnings generated' $(CHECKDIR)/lint/tidy.out || true; \
 	done; \
+	echo "== clang-format --dry-run (.clang-format), $(words $(FORMAT_SRCS)) files"; \
+	clang-format --dry-run -Werror $(FORMAT_SRCS) || rc=1; \
 	if [ $$rc -ne 0 ]; then echo "lint: findings above"; exit 1; fi; \
-	echo "cppcheck and clang-tidy: no findings in lib/ (fixed and float builds)"
+	echo "cppcheck and clang-tidy: no findings in lib/ (fixed and float builds); clang-format: none"
 
 check-idx16:
 	@+$(CHECK_STAGE) idx16 $(CHECKDIR)/idx16.log $(CHECK_MAKE) check-idx16-run

@@ -37,8 +37,7 @@ static inline void gltf_validates(const char *path)
     int rc = gltf_validator(&path, 1);
     if (rc > 0) {
         snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("validate.txt"));
-        if (system(cmd)) {
-        }
+        if (system(cmd)) {}
     }
     assert_true(rc <= 0);
 }
@@ -51,8 +50,7 @@ static inline void gltf_refused(const char *const *paths, const char *const *wha
     FILE *f;
     size_t len;
     int rc = gltf_validator(paths, n), i;
-    if (rc < 0)
-        return;
+    if (rc < 0) return;
     f = fopen(tmp_path("validate.txt"), "rb");
     assert_non_null(f);
     len = fread(text, 1, sizeof text - 1, f);
@@ -67,9 +65,9 @@ static inline void gltf_refused(const char *const *paths, const char *const *wha
             size_t ll = end ? (size_t)(end - line) : strlen(line), pl = strlen(paths[i]);
             char one[1024];
             snprintf(one, sizeof one, "%.*s", (int)ll, line);
-            found = !strncmp(one, paths[i], pl) && one[pl] == ':' && strstr(one + pl, what[i]) != NULL;
-            if (found)
-                print_message("refused: %s\n", one);
+            found =
+                !strncmp(one, paths[i], pl) && one[pl] == ':' && strstr(one + pl, what[i]) != NULL;
+            if (found) print_message("refused: %s\n", one);
             line = end ? end + 1 : NULL;
         }
         if (!found)

@@ -9,10 +9,15 @@
 
 #define quad ref_quad
 
-static inline void set_mat(sc_poly *p, double r, double g, double b, double er, double eg, double eb)
+static inline void set_mat(sc_poly *p, double r, double g, double b, double er, double eg,
+                           double eb)
 {
-    p->rho[0] = r; p->rho[1] = g; p->rho[2] = b;
-    p->emit[0] = er; p->emit[1] = eg; p->emit[2] = eb;
+    p->rho[0] = r;
+    p->rho[1] = g;
+    p->rho[2] = b;
+    p->emit[0] = er;
+    p->emit[1] = eg;
+    p->emit[2] = eb;
 }
 
 /* Axis-aligned box [x0,x1]x[y0,y1]x[z0,z1]; inward: faces look into the box (a room),

@@ -23,8 +23,7 @@ typedef struct {
     rad_pools_t p;
 } pools_t;
 
-static void pools_make(pools_t *g, uint32_t ns, uint32_t np, uint32_t ne, uint32_t nv,
-                       size_t work)
+static void pools_make(pools_t *g, uint32_t ns, uint32_t np, uint32_t ne, uint32_t nv, size_t work)
 {
     g->p.surfaces = calloc(ns ? ns : 1, sizeof(rad_surface_t));
     g->p.patches = calloc(np ? np : 1, sizeof(rad_patch_t));
@@ -92,8 +91,8 @@ static void test_abi_words(void **st)
                      RAD_ERR_ABI);
     assert_int_equal(rad_init_abi(&s, &g.p, &res8, sizeof s, sizeof(rad_index_t), !RAD_FLOAT),
                      RAD_ERR_ABI);
-    assert_int_equal(
-        rad_init_abi(&s, &g.p, &res8, sizeof s, 2 * sizeof(rad_index_t), RAD_FLOAT), RAD_ERR_ABI);
+    assert_int_equal(rad_init_abi(&s, &g.p, &res8, sizeof s, 2 * sizeof(rad_index_t), RAD_FLOAT),
+                     RAD_ERR_ABI);
     assert_int_equal(rad_init_abi(NULL, &g.p, &res8, sizeof s, sizeof(rad_index_t), RAD_FLOAT),
                      RAD_ERR_ARG);
     assert_int_equal(rad_init(&s, &g.p, &res8), RAD_OK);
@@ -145,11 +144,11 @@ static void test_plan_matches_mesh(void **st)
         rad_scene_t s;
         int shrink;
         for (i = 0; i < np; i++)
-            assert_int_equal(rad_plan_polygon(cfg, p[i].v, p[i].n, &grey,
-                                              p[i].emits ? &glow : NULL, &total),
-                             RAD_OK);
-        print_message("config %u: planned %u surfaces, %u patches, %u elements, %u vertices\n",
-                      c, total.surfaces, total.patches, total.elements, total.vertices);
+            assert_int_equal(
+                rad_plan_polygon(cfg, p[i].v, p[i].n, &grey, p[i].emits ? &glow : NULL, &total),
+                RAD_OK);
+        print_message("config %u: planned %u surfaces, %u patches, %u elements, %u vertices\n", c,
+                      total.surfaces, total.patches, total.elements, total.vertices);
         for (shrink = 0; shrink < 2; shrink++) {
             uint32_t n_acc = total.elements > total.vertices ? total.elements : total.vertices;
             pools_make(&g, total.surfaces, total.patches, total.elements - (uint32_t)shrink,
@@ -160,9 +159,9 @@ static void test_plan_matches_mesh(void **st)
                 uint32_t ns = s.n_surfaces, npt = s.n_patches, ne = s.n_elements;
                 uint32_t nv = s.n_vertices;
                 int rc;
-                assert_int_equal(rad_plan_polygon(cfg, p[i].v, p[i].n, &grey,
-                                                  p[i].emits ? &glow : NULL, &one),
-                                 RAD_OK);
+                assert_int_equal(
+                    rad_plan_polygon(cfg, p[i].v, p[i].n, &grey, p[i].emits ? &glow : NULL, &one),
+                    RAD_OK);
                 rc = rad_add_polygon(&s, p[i].v, p[i].n, &grey, p[i].emits ? &glow : NULL);
                 if (shrink && i == np - 1) {
                     assert_int_equal(rc, RAD_ERR_FULL);
@@ -281,10 +280,22 @@ static void test_alignment_refused(void **st)
         rad_pools_t p = g.p;
         unsigned char *b;
         switch (k) {
-        case 0: b = (unsigned char *)p.surfaces; p.surfaces = (rad_surface_t *)(void *)(b + 1); break;
-        case 1: b = (unsigned char *)p.patches; p.patches = (rad_patch_t *)(void *)(b + 1); break;
-        case 2: b = (unsigned char *)p.elements; p.elements = (rad_element_t *)(void *)(b + 1); break;
-        default: b = (unsigned char *)p.vertices; p.vertices = (rad_vec3_t *)(void *)(b + 1); break;
+        case 0:
+            b = (unsigned char *)p.surfaces;
+            p.surfaces = (rad_surface_t *)(void *)(b + 1);
+            break;
+        case 1:
+            b = (unsigned char *)p.patches;
+            p.patches = (rad_patch_t *)(void *)(b + 1);
+            break;
+        case 2:
+            b = (unsigned char *)p.elements;
+            p.elements = (rad_element_t *)(void *)(b + 1);
+            break;
+        default:
+            b = (unsigned char *)p.vertices;
+            p.vertices = (rad_vec3_t *)(void *)(b + 1);
+            break;
         }
         p.max_surfaces = p.max_patches = p.max_elements = p.max_vertices = 4;
         memset(&s, 0x5A, sizeof s);
@@ -319,7 +330,8 @@ static void solve_box(size_t off, rad_rgb_t *out, uint32_t n)
     g.p.work_bytes = bytes;
     assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
     assert_int_equal(s.band_rows, 0);
-    for (i = 0; i < 6; i++) assert_int_equal(rad_add_polygon(&s, f[i], 4, &grey, i == 1 ? &glow : NULL), i);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(rad_add_polygon(&s, f[i], 4, &grey, i == 1 ? &glow : NULL), i);
     assert_int_equal(rad_shoot(&s, 20, 0), 20);
     assert_int_equal(s.n_elements, n);
     for (e = 0; e < n; e++) assert_int_equal(rad_element_radiosity(&s, e, 0, &out[e]), RAD_OK);
@@ -427,8 +439,8 @@ static const rad_real_t seven_tenths = RAD_REAL_RATIO(7, 10);
 static void test_real_ratio(void **st)
 {
     static const int64_t pairs[][2] = {
-        {7, 10},      {-7, 10},    {1, 131072},  {-1, 131072},   {3, 131072},
-        {-5, 131072}, {1, 3},      {-2, 3},      {32767, 1},     {-32767, 1},
+        {7, 10},        {-7, 10},   {1, 131072}, {-1, 131072},       {3, 131072},
+        {-5, 131072},   {1, 3},     {-2, 3},     {32767, 1},         {-32767, 1},
         {65535, 65536}, {1, 65536}, {0, 7},      {1048575, 1048575}, {-1, 1048575},
     };
     uint64_t x = 0x9E3779B97F4A7C15u;
@@ -438,8 +450,9 @@ static void test_real_ratio(void **st)
     for (i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
         int64_t n = pairs[i][0], d = pairs[i][1];
         rad_real_t a = RAD_REAL_RATIO(n, d), b = RAD_REAL((double)n / (double)d);
-        if (a != b) print_message("RAD_REAL_RATIO(%lld, %lld) = %d, RAD_REAL %d\n",
-                                  (long long)n, (long long)d, (int)a, (int)b);
+        if (a != b)
+            print_message("RAD_REAL_RATIO(%lld, %lld) = %d, RAD_REAL %d\n", (long long)n,
+                          (long long)d, (int)a, (int)b);
         assert_int_equal(a, b);
     }
     for (i = 0; i < 200000; i++) {
@@ -449,9 +462,10 @@ static void test_real_ratio(void **st)
         if (d >= 1048576) d = 1048575;
         n = (int64_t)((x >> 8) % (uint64_t)(32767 * d)) * ((x >> 7) & 1 ? -1 : 1);
         if (RAD_REAL_RATIO(n, d) != RAD_REAL((double)n / (double)d)) {
-            if (bad++ < 5) print_message("RAD_REAL_RATIO(%lld, %lld) = %d, RAD_REAL %d\n",
-                                         (long long)n, (long long)d, (int)RAD_REAL_RATIO(n, d),
-                                         (int)RAD_REAL((double)n / (double)d));
+            if (bad++ < 5)
+                print_message("RAD_REAL_RATIO(%lld, %lld) = %d, RAD_REAL %d\n", (long long)n,
+                              (long long)d, (int)RAD_REAL_RATIO(n, d),
+                              (int)RAD_REAL((double)n / (double)d));
         }
     }
     assert_int_equal(bad, 0);

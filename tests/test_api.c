@@ -15,11 +15,11 @@
 #include "rad/rad.h"
 
 #define GUARD 64
-#define NS 16
-#define NP 256
-#define NE 1024
-#define NV 2048
-#define WORK RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV)
+#define NS    16
+#define NP    256
+#define NE    1024
+#define NV    2048
+#define WORK  RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV)
 
 /* Pools with GUARD bytes of 0xA5 after each, checked after every call. */
 typedef struct {
@@ -42,18 +42,24 @@ static void gcheck(const unsigned char *b, size_t n)
     for (i = 0; i < GUARD; i++) assert_int_equal(b[n + i], 0xA5);
 }
 
-static void pools_make(guarded_t *g, uint32_t ns, uint32_t np, uint32_t ne, uint32_t nv, size_t work)
+static void pools_make(guarded_t *g, uint32_t ns, uint32_t np, uint32_t ne, uint32_t nv,
+                       size_t work)
 {
     g->surf = galloc(ns * sizeof(rad_surface_t));
     g->patch = galloc(np * sizeof(rad_patch_t));
     g->elem = galloc(ne * sizeof(rad_element_t));
     g->vert = galloc(nv * sizeof(rad_vec3_t));
     g->work = galloc(work);
-    g->p.surfaces = (rad_surface_t *)g->surf; g->p.max_surfaces = ns;
-    g->p.patches = (rad_patch_t *)g->patch; g->p.max_patches = np;
-    g->p.elements = (rad_element_t *)g->elem; g->p.max_elements = ne;
-    g->p.vertices = (rad_vec3_t *)g->vert; g->p.max_vertices = nv;
-    g->p.work = g->work; g->p.work_bytes = work;
+    g->p.surfaces = (rad_surface_t *)g->surf;
+    g->p.max_surfaces = ns;
+    g->p.patches = (rad_patch_t *)g->patch;
+    g->p.max_patches = np;
+    g->p.elements = (rad_element_t *)g->elem;
+    g->p.max_elements = ne;
+    g->p.vertices = (rad_vec3_t *)g->vert;
+    g->p.max_vertices = nv;
+    g->p.work = g->work;
+    g->p.work_bytes = work;
 }
 
 static void pools_check(const guarded_t *g)
@@ -67,14 +73,20 @@ static void pools_check(const guarded_t *g)
 
 static void pools_free(guarded_t *g)
 {
-    free(g->surf); free(g->patch); free(g->elem); free(g->vert); free(g->work);
+    free(g->surf);
+    free(g->patch);
+    free(g->elem);
+    free(g->vert);
+    free(g->work);
 }
 
 #define Q(x) RAD_REAL(x)
 static rad_vec3_t V(double x, double y, double z)
 {
     rad_vec3_t v;
-    v.x = Q(x); v.y = Q(y); v.z = Q(z);
+    v.x = Q(x);
+    v.y = Q(y);
+    v.z = Q(z);
     return v;
 }
 
@@ -93,12 +105,17 @@ static void add_cube_with(rad_scene_t *s, const rad_rgb_t *rho, const rad_rgb_t 
         {V(-4, -4, 4), V(-4, 4, 4), V(4, 4, 4), V(4, -4, 4)},
     };
     int i;
-    for (i = 0; i < 6; i++) assert_int_equal(rad_add_polygon(s, f[i], 4, rho, i == 1 ? em : NULL), i);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(rad_add_polygon(s, f[i], 4, rho, i == 1 ? em : NULL), i);
 }
 
-static void add_cube(rad_scene_t *s) { add_cube_with(s, &grey, &light); }
+static void add_cube(rad_scene_t *s)
+{
+    add_cube_with(s, &grey, &light);
+}
 
-static const rad_config_t cfg = {.max_patch = RAD_REAL(4.0), .max_element = RAD_REAL(2.0), .res = 32};
+static const rad_config_t cfg = {
+    .max_patch = RAD_REAL(4.0), .max_element = RAD_REAL(2.0), .res = 32};
 
 static void test_init_errors(void **st)
 {
@@ -110,38 +127,56 @@ static void test_init_errors(void **st)
     pools_make(&g, NS, NP, NE, NV, WORK);
     assert_int_equal(rad_init(NULL, &g.p, &cfg), RAD_ERR_ARG);
     assert_int_equal(rad_init(&s, NULL, &cfg), RAD_ERR_ARG);
-    p = g.p; p.elements = NULL;
+    p = g.p;
+    p.elements = NULL;
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
-    p = g.p; p.work = NULL;
+    p = g.p;
+    p.work = NULL;
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
-    p = g.p; p.max_elements = 0xFFFFFFFFu;       /* beyond the index type */
+    p = g.p;
+    p.max_elements = 0xFFFFFFFFu; /* beyond the index type */
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_ARG);
-    c = cfg; c.res = 31;                          /* odd */
+    c = cfg;
+    c.res = 31; /* odd */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.res = 6;
+    c = cfg;
+    c.res = 6;
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.res = RAD_MAX_RES + 2;
+    c = cfg;
+    c.res = RAD_MAX_RES + 2;
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_element = -1;                  /* below one LSB */
+    c = cfg;
+    c.max_element = -1; /* below one LSB */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_element = 1; c.max_patch = 0;  /* one LSB: any unit is the caller's */
+    c = cfg;
+    c.max_element = 1;
+    c.max_patch = 0; /* one LSB: any unit is the caller's */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
     assert_int_equal(s.cfg.max_patch, 4);
-    c = cfg; c.max_patch = Q(1.0);                /* smaller than an element */
+    c = cfg;
+    c.max_patch = Q(1.0); /* smaller than an element */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.flags = 2;                         /* no such flag */
+    c = cfg;
+    c.flags = 2; /* no such flag */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
     /* Out of range with the default patch size (0): refused before 4 * max_element is
      * formed (it overflowed in the fixed build: found by fuzz_core). */
-    c = cfg; c.max_patch = 0; c.max_element = -Q(16384.0);
+    c = cfg;
+    c.max_patch = 0;
+    c.max_element = -Q(16384.0);
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0) + 1; /* 2 RAD_INPUT_LIMIT */
+    c = cfg;
+    c.max_patch = 0;
+    c.max_element = Q(16384.0) + 1; /* 2 RAD_INPUT_LIMIT */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_ERR_ARG);
-    c = cfg; c.max_patch = 0; c.max_element = Q(16384.0); /* the default patch: the most */
+    c = cfg;
+    c.max_patch = 0;
+    c.max_element = Q(16384.0); /* the default patch: the most */
     assert_int_equal(rad_init(&s, &g.p, &c), RAD_OK);
     assert_int_equal(s.cfg.max_patch, Q(16384.0));
     /* Work: the table and accumulators fit, but not one row of a face. */
-    p = g.p; p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
+    p = g.p;
+    p.work_bytes = RAD_WORK_BYTES(32, 0, NV);
     assert_int_equal(rad_init(&s, &p, &cfg), RAD_ERR_WORK);
     /* One row fits: banded to a single row. */
     p.work_bytes = RAD_WORK_BYTES(32, 32, NV);
@@ -173,41 +208,61 @@ static void test_add_errors(void **st)
     assert_int_equal(rad_add_polygon(&s, ok, 2, NULL, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_add_polygon(&s, ok, 5, NULL, NULL), RAD_ERR_ARG);
     /* Coordinates: RAD_INPUT_LIMIT (8192.0) is the limit, one LSB more is out. */
-    v[0] = V(8184, 0, 0); v[1] = V(8192, 0, 0); v[2] = V(8184, 8, 0);
+    v[0] = V(8184, 0, 0);
+    v[1] = V(8192, 0, 0);
+    v[2] = V(8184, 8, 0);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), 0);
-    memcpy(v, ok, sizeof v); v[1].y = Q(8192.0) + 1;
+    memcpy(v, ok, sizeof v);
+    v[1].y = Q(8192.0) + 1;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
-    memcpy(v, ok, sizeof v); v[0].z = INT32_MIN;
+    memcpy(v, ok, sizeof v);
+    v[0].z = INT32_MIN;
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_RANGE);
     /* Reflectance in [0, 1), emission in [0, 4096]. */
-    bad = grey; bad.g = Q(1.0);
+    bad = grey;
+    bad.g = Q(1.0);
     assert_int_equal(rad_add_polygon(&s, ok, 4, &bad, NULL), RAD_ERR_RANGE);
-    bad = grey; bad.b = -1;
+    bad = grey;
+    bad.b = -1;
     assert_int_equal(rad_add_polygon(&s, ok, 4, &bad, NULL), RAD_ERR_RANGE);
-    bad = light; bad.r = Q(4096.0) + 1;
+    bad = light;
+    bad.r = Q(4096.0) + 1;
     assert_int_equal(rad_add_polygon(&s, ok, 4, NULL, &bad), RAD_ERR_RANGE);
-    bad = light; bad.g = -5;
+    bad = light;
+    bad.g = -5;
     assert_int_equal(rad_add_polygon(&s, ok, 4, NULL, &bad), RAD_ERR_RANGE);
     /* Degenerate: a point, collinear, a repeated vertex, below the minimum area. */
     v[0] = v[1] = v[2] = V(1, 1, 1);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
-    v[0] = V(0, 0, 0); v[1] = V(1, 1, 1); v[2] = V(2, 2, 2);
+    v[0] = V(0, 0, 0);
+    v[1] = V(1, 1, 1);
+    v[2] = V(2, 2, 2);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
-    memcpy(v, ok, sizeof v); v[2] = v[1];
+    memcpy(v, ok, sizeof v);
+    v[2] = v[1];
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_DEGENERATE);
-    v[0] = V(0, 0, 0); v[1] = V(0.01, 0, 0); v[2] = V(0, 0.01, 0); /* area 5e-5 < 1/4096 */
+    v[0] = V(0, 0, 0);
+    v[1] = V(0.01, 0, 0);
+    v[2] = V(0, 0.01, 0); /* area 5e-5 < 1/4096 */
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
     /* Non-planar (a corner lifted by a quarter of the side), non-convex, bow-tie. */
-    memcpy(v, ok, sizeof v); v[2].z = Q(0.25);
+    memcpy(v, ok, sizeof v);
+    v[2].z = Q(0.25);
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
-    memcpy(v, ok, sizeof v); v[2] = V(0.3, 0.3, 0);
+    memcpy(v, ok, sizeof v);
+    v[2] = V(0.3, 0.3, 0);
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), RAD_ERR_NONPLANAR);
-    v[0] = V(0, 0, 0); v[1] = V(1, 1, 0); v[2] = V(1, 0, 0); v[3] = V(0, 1, 0);
+    v[0] = V(0, 0, 0);
+    v[1] = V(1, 1, 0);
+    v[2] = V(1, 0, 0);
+    v[3] = V(0, 1, 0);
     CHECK_INT_LT(rad_add_polygon(&s, v, 4, NULL, NULL), 0,
                  "rad_add_polygon of a bow-tie quad: an error");
     /* Far out, a polygon is measured at its own scale (2^-7 at 8192, rad.h): a
      * triangle of area 0.5 there is 2^-15 square units, below 1/4096. */
-    v[0] = V(8000, 0, 0); v[1] = V(8001, 0, 0); v[2] = V(8000, 1, 0);
+    v[0] = V(8000, 0, 0);
+    v[1] = V(8001, 0, 0);
+    v[2] = V(8000, 1, 0);
     assert_int_equal(rad_add_polygon(&s, v, 3, NULL, NULL), RAD_ERR_DEGENERATE);
     /* A lattice of more than 32768 elements a side: no pool holds it. */
     {
@@ -222,7 +277,8 @@ static void test_add_errors(void **st)
     /* Nothing was added by any of these, except the in-range triangle above. */
     assert_int_equal(s.n_surfaces, 1);
     /* A slightly bent quad (1/200 of its side) is accepted as planar. */
-    memcpy(v, ok, sizeof v); v[2].z = Q(0.005);
+    memcpy(v, ok, sizeof v);
+    v[2].z = Q(0.005);
     assert_int_equal(rad_add_polygon(&s, v, 4, NULL, NULL), 1);
     pools_check(&g);
     pools_free(&g);
@@ -261,7 +317,8 @@ static void test_full_pools(void **st)
 {
     /* Each pool in turn too small for the cube: RAD_ERR_FULL, counts untouched, and
      * a smaller polygon still goes in afterwards. */
-    static const uint32_t sizes[4][4] = {{2, NP, NE, NV}, {NS, 22, NE, NV}, {NS, NP, 90, NV}, {NS, NP, NE, 140}};
+    static const uint32_t sizes[4][4] = {
+        {2, NP, NE, NV}, {NS, 22, NE, NV}, {NS, NP, 90, NV}, {NS, NP, NE, 140}};
     int k;
     (void)st;
     for (k = 0; k < 4; k++) {
@@ -271,15 +328,21 @@ static void test_full_pools(void **st)
         rad_vec3_t small[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
         uint32_t ns, np, ne, nv;
         int i, rc = 0;
-        pools_make(&g, sizes[k][0], sizes[k][1], sizes[k][2], sizes[k][3], RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV));
+        pools_make(&g, sizes[k][0], sizes[k][1], sizes[k][2], sizes[k][3],
+                   RAD_WORK_BYTES(32, RAD_PIXELS_ALL(32), NV));
         assert_int_equal(rad_init(&s, &g.p, &cfg), RAD_OK);
         for (i = 0; i < 6 && rc >= 0; i++) {
-            ns = s.n_surfaces; np = s.n_patches; ne = s.n_elements; nv = s.n_vertices;
+            ns = s.n_surfaces;
+            np = s.n_patches;
+            ne = s.n_elements;
+            nv = s.n_vertices;
             rc = rad_add_polygon(&s, big, 4, &grey, &light);
         }
         assert_int_equal(rc, RAD_ERR_FULL);
-        assert_int_equal(s.n_surfaces, ns); assert_int_equal(s.n_patches, np);
-        assert_int_equal(s.n_elements, ne); assert_int_equal(s.n_vertices, nv);
+        assert_int_equal(s.n_surfaces, ns);
+        assert_int_equal(s.n_patches, np);
+        assert_int_equal(s.n_elements, ne);
+        assert_int_equal(s.n_vertices, nv);
         if (k != 0)
             CHECK_INT_GE(rad_add_polygon(&s, small, 3, &grey, NULL), 0,
                          "pool %d full: a smaller polygon still goes in", k);
@@ -297,8 +360,8 @@ static void test_calls_and_guards(void **st)
     rad_rgb_t amb, out, *vrgb, *fb;
     rad_ff_t *ff;
     uint32_t *zb, e;
-    rad_camera_t cam = {.eye = {0, 0, Q(3.9)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
-                        .tan_half_fov = Q(1.0)};
+    rad_camera_t cam = {
+        .eye = {0, 0, Q(3.9)}, .target = {0, 0, 0}, .up = {0, Q(1), 0}, .tan_half_fov = Q(1.0)};
     rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)};
     unsigned char *vb, *fbb, *zbb, *ffb;
     (void)st;
@@ -329,10 +392,13 @@ static void test_calls_and_guards(void **st)
     vb = galloc(s.n_vertices * sizeof *vrgb);
     vrgb = (rad_rgb_t *)vb;
     assert_int_equal(rad_shade_vertices(&s, 0, vrgb, s.n_vertices - 1), RAD_ERR_ARG);
-    assert_int_equal(rad_shade_vertices(&s, RAD_SHADE_AMBIENT, vrgb, s.n_vertices), (int)s.n_vertices);
+    assert_int_equal(rad_shade_vertices(&s, RAD_SHADE_AMBIENT, vrgb, s.n_vertices),
+                     (int)s.n_vertices);
     gcheck(vb, s.n_vertices * sizeof *vrgb);
-    fbb = galloc(40 * 30 * sizeof *fb); zbb = galloc(40 * 30 * sizeof *zb);
-    fb = (rad_rgb_t *)fbb; zb = (uint32_t *)zbb;
+    fbb = galloc(40 * 30 * sizeof *fb);
+    zbb = galloc(40 * 30 * sizeof *zb);
+    fb = (rad_rgb_t *)fbb;
+    zb = (uint32_t *)zbb;
     assert_int_equal(rad_render(&s, vrgb, &cam, fb, zb, 0, 30), RAD_ERR_ARG);
     assert_int_equal(rad_render(&s, vrgb, &cam, fb, zb, RAD_MAX_RASTER + 1, 30), RAD_ERR_ARG);
     assert_int_equal(rad_render(&s, NULL, &cam, fb, zb, 40, 30), RAD_ERR_ARG);
@@ -340,11 +406,14 @@ static void test_calls_and_guards(void **st)
         rad_camera_t c2 = cam;
         c2.target = c2.eye; /* no direction */
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
-        c2 = cam; c2.up = V(0, 0, 1); /* up along the view */
+        c2 = cam;
+        c2.up = V(0, 0, 1); /* up along the view */
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
-        c2 = cam; c2.eye.x = Q(300); /* beyond 4 * 64 */
+        c2 = cam;
+        c2.eye.x = Q(300); /* beyond 4 * 64 */
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
-        c2 = cam; c2.tan_half_fov = 0;
+        c2 = cam;
+        c2.tan_half_fov = 0;
         assert_int_equal(rad_render(&s, vrgb, &c2, fb, zb, 40, 30), RAD_ERR_ARG);
     }
     CHECK_INT_GT(rad_render(&s, vrgb, &cam, fb, zb, 40, 30), 0,
@@ -360,7 +429,10 @@ static void test_calls_and_guards(void **st)
     assert_int_equal(rad_set_surface(&s, 6, &grey, NULL), RAD_ERR_ARG);
     assert_int_equal(rad_restart(NULL), RAD_ERR_ARG);
     pools_check(&g);
-    free(vb); free(fbb); free(zbb); free(ffb);
+    free(vb);
+    free(fbb);
+    free(zbb);
+    free(ffb);
     pools_free(&g);
 }
 
@@ -450,7 +522,8 @@ static void test_overshoot_debt(void **st)
         assert_int_equal(rad_shoot(&s, 1, 0), 1);
         for (ch = 0; ch < 3; ch++) {
             rad_energy_t u = s.pools.patches[shooter].unshot[ch];
-            if (k) CHECK_INT_EQ(u, 0, "the plain shooter's unshot power, channel %d", ch);
+            if (k)
+                CHECK_INT_EQ(u, 0, "the plain shooter's unshot power, channel %d", ch);
             else /* a closed grey cube: the ambient term is > 0 */
                 CHECK_INT_LT(u, 0, "the overshooting shooter's unshot power (owed), channel %d",
                              ch);
@@ -514,7 +587,8 @@ static void test_dirty_buffers(void **st)
         CHECK_INT_LE(n, NE, "elements of the cube");
         for (e = 0; e < n; e++) {
             const rad_rgb_t *b = &s.pools.elements[e].radiosity;
-            if (k == 0) want[e] = *b;
+            if (k == 0)
+                want[e] = *b;
             else {
                 assert_int_equal(b->r, want[e].r);
                 assert_int_equal(b->g, want[e].g);
@@ -543,16 +617,24 @@ static int refused_calls(rad_scene_t *s, const char *what)
     static unsigned char gwork[RAD_GATHER_SH_BYTES(8)];
     static uint64_t part_mem[RAD_BATCH_BYTES(32, NE) / 8 + 1];
     rad_vec3_t tri[3] = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0)}, pt = V(0, 0, 0), up = V(0, 1, 0);
-    rad_camera_t cam = {.eye = {0, 0, Q(3)}, .target = {0, 0, 0}, .up = {0, Q(1), 0},
-                        .tan_half_fov = Q(1.0)};
+    rad_camera_t cam = {
+        .eye = {0, 0, Q(3)}, .target = {0, 0, 0}, .up = {0, Q(1), 0}, .tan_half_fov = Q(1.0)};
     rad_rows_t rows = {start, ids, ffs, NP, 4, 0};
     const rad_rgb_t *gr[1] = {groups0};
     void *bufs[1] = {part_mem};
     rad_gather_t g, gs;
     rad_rgb_t c;
     static rad_light_t lights[1];
-    const rad_light_t sun = {RAD_LIGHT_SUN, 0, {0, 0, 0}, {0, -RAD_REAL(1), 0},
-                             {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)}, 0, 0, 0, {0, 0, 0}, 0};
+    const rad_light_t sun = {RAD_LIGHT_SUN,
+                             0,
+                             {0, 0, 0},
+                             {0, -RAD_REAL(1), 0},
+                             {RAD_REAL(1), RAD_REAL(1), RAD_REAL(1)},
+                             0,
+                             0,
+                             0,
+                             {0, 0, 0},
+                             0};
     uint32_t patch = 0;
     int rc[CALLS], n = 0, k, refused = 0;
     assert_int_equal(rad_gather_init(&g, 8, 0, gwork, sizeof gwork), RAD_OK);
@@ -623,7 +705,8 @@ static void test_scene_not_set_up(void **st)
     }
     memset(s, 0xA5, sizeof *s);
     assert_int_equal(rad_init(s, &g.p, &bad), RAD_ERR_ARG);
-    CHECK_INT_EQ(refused_calls(s, "init failed"), CALLS, "calls refusing a scene whose rad_init failed");
+    CHECK_INT_EQ(refused_calls(s, "init failed"), CALLS,
+                 "calls refusing a scene whose rad_init failed");
     assert_int_equal(rad_init(s, &g.p, &cfg), RAD_OK);
     add_cube(s);
     assert_int_equal(rad_shoot(s, 5, 0), 5);
@@ -660,7 +743,9 @@ static void test_rows_refused(void **st)
     rows.max_rows = NP;
     rows.max_entries = max;
     rows.n_rows = 0;
-    assert_non_null(rows.start); assert_non_null(rows.ids); assert_non_null(rows.ffs);
+    assert_non_null(rows.start);
+    assert_non_null(rows.ids);
+    assert_non_null(rows.ffs);
     assert_int_equal(rad_rows_compute(&s, &rows, 2), 2);
     /* resuming from a stored offset beyond max_entries: would write past ids */
     i = rows.start[2];
@@ -696,7 +781,9 @@ static void test_rows_refused(void **st)
     assert_int_equal(rad_rows_shoot(&s, &rows, 10, 0), 10);
     pools_check(&g);
     pools_free(&g);
-    free(rows.start); free(rows.ids); free(rows.ffs);
+    free(rows.start);
+    free(rows.ids);
+    free(rows.ffs);
 }
 
 /* rad_shot_end (and rad_shot_aim, _receive_part, _part) out of order: RAD_ERR_STATE
@@ -736,12 +823,15 @@ static void test_shot_end_misuse(void **st)
     assert_int_equal(rad_shot_end(&s, other, bufs, PARTS), RAD_ERR_STATE);
     assert_int_equal(rad_shot_aim(&s, other, bufs, PARTS), RAD_ERR_STATE);
     /* the same part twice, parts swapped, or fewer parts than rendered */
-    mixed[0] = bufs[0]; mixed[1] = bufs[0];
+    mixed[0] = bufs[0];
+    mixed[1] = bufs[0];
     assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
-    mixed[0] = bufs[1]; mixed[1] = bufs[0];
+    mixed[0] = bufs[1];
+    mixed[1] = bufs[0];
     assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
     assert_int_equal(rad_shot_end(&s, p, bufs, 1), RAD_ERR_STATE);
-    mixed[0] = bufs[0]; mixed[1] = zero;
+    mixed[0] = bufs[0];
+    mixed[1] = zero;
     assert_int_equal(rad_shot_end(&s, p, mixed, PARTS), RAD_ERR_STATE);
     assert_int_equal(checksum(&s), before);
     assert_int_equal(s.stats.shots, shots);
@@ -752,11 +842,13 @@ static void test_shot_end_misuse(void **st)
     /* buffers of an earlier shot of the same patch, after a new begin */
     before = checksum(&s);
     assert_int_equal(rad_shot_begin(&s, 0, &p), 1);
-    for (k = 0; k < PARTS; k++) CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
+    for (k = 0; k < PARTS; k++)
+        CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
     assert_int_equal(rad_shot_begin(&s, 0, &p), 1); /* begun again: those parts are stale */
     assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
     /* and a serial shot in between voids the shot begun */
-    for (k = 0; k < PARTS; k++) CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
+    for (k = 0; k < PARTS; k++)
+        CHECK_INT_GE(rad_shot_part(&s, p, k, PARTS, bufs[k], bytes), 0, "part");
     assert_int_equal(rad_shoot(&s, 1, 0), 1);
     assert_int_equal(rad_shot_end(&s, p, bufs, PARTS), RAD_ERR_STATE);
     CHECK_INT_EQ(s.stats.shots, shots + 2, "shots: one in parts, one serial");
@@ -782,18 +874,12 @@ static void test_strerror(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_init_errors),
-        cmocka_unit_test(test_add_errors),
-        cmocka_unit_test(test_scaled_down_fits),
-        cmocka_unit_test(test_full_pools),
-        cmocka_unit_test(test_calls_and_guards),
-        cmocka_unit_test(test_restart_relight),
-        cmocka_unit_test(test_saturation_counted),
-        cmocka_unit_test(test_overshoot_debt),
-        cmocka_unit_test(test_dirty_buffers),
-        cmocka_unit_test(test_scene_not_set_up),
-        cmocka_unit_test(test_rows_refused),
-        cmocka_unit_test(test_shot_end_misuse),
+        cmocka_unit_test(test_init_errors),        cmocka_unit_test(test_add_errors),
+        cmocka_unit_test(test_scaled_down_fits),   cmocka_unit_test(test_full_pools),
+        cmocka_unit_test(test_calls_and_guards),   cmocka_unit_test(test_restart_relight),
+        cmocka_unit_test(test_saturation_counted), cmocka_unit_test(test_overshoot_debt),
+        cmocka_unit_test(test_dirty_buffers),      cmocka_unit_test(test_scene_not_set_up),
+        cmocka_unit_test(test_rows_refused),       cmocka_unit_test(test_shot_end_misuse),
         cmocka_unit_test(test_strerror),
     };
     return cmocka_run_group_tests_name("api", tests, NULL, NULL);

@@ -47,8 +47,8 @@ TMPDIR_GROUP("assimp")
 /* A mesh of a node: triangles on local vertices, one material. */
 typedef struct {
     const char *node;
-    double t[3], s[3];   /* the node's translation and scale (no rotation) */
-    int material;        /* 0 wall, 1 lamp, 2 block */
+    double t[3], s[3]; /* the node's translation and scale (no rotation) */
+    int material;      /* 0 wall, 1 lamp, 2 block */
     int nv, nt;
     float v[8][3];
     unsigned short tri[12][3];
@@ -62,17 +62,47 @@ static const double mat_ke[3][3] = {{0, 0, 0}, {1, 0.75, 0.5}, {0, 0, 0}};
  * a lamp under the ceiling (a unit square scaled to 1 x 1 and moved up), and a block
  * mirrored on x (its faces wound so that, mirrored, they face out). */
 static const part_t parts[3] = {
-    {"room", {0, 0, 0}, {1, 1, 1}, 0, 8, 8,
-     {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}, {-2, 3, -2}, {2, 3, -2}, {2, 3, 2}, {-2, 3, 2}},
+    {"room",
+     {0, 0, 0},
+     {1, 1, 1},
+     0,
+     8,
+     8,
+     {{-2, 0, -2},
+      {2, 0, -2},
+      {2, 0, 2},
+      {-2, 0, 2},
+      {-2, 3, -2},
+      {2, 3, -2},
+      {2, 3, 2},
+      {-2, 3, 2}},
      {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {0, 4, 7}, {0, 7, 3}}},
-    {"lamp", {0.5, 2.875, 0.25}, {2, 1, 2}, 1, 4, 2,
+    {"lamp",
+     {0.5, 2.875, 0.25},
+     {2, 1, 2},
+     1,
+     4,
+     2,
      {{-0.25, 0, -0.25}, {0.25, 0, -0.25}, {0.25, 0, 0.25}, {-0.25, 0, 0.25}},
      {{0, 1, 2}, {0, 2, 3}}},
-    {"block", {-0.5, 0, 0.5}, {-1, 1, 1}, 2, 8, 10,
+    {"block",
+     {-0.5, 0, 0.5},
+     {-1, 1, 1},
+     2,
+     8,
+     10,
      {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}},
      /* outward as written; the mirror turns them inward and the loader back out */
-     {{4, 6, 5}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
-      {3, 0, 4}, {3, 4, 7}}},
+     {{4, 6, 5},
+      {4, 7, 6},
+      {0, 1, 5},
+      {0, 5, 4},
+      {1, 2, 6},
+      {1, 6, 5},
+      {2, 3, 7},
+      {2, 7, 6},
+      {3, 0, 4},
+      {3, 4, 7}}},
 };
 
 static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -118,15 +148,17 @@ static void write_gltf_bin(const char *path, const char *bin, const char *uri)
                 parts[i].s[1], parts[i].s[2]);
     fprintf(f, "],\n\"meshes\":[");
     for (i = 0; i < 3; i++)
-        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"indices\":%d,"
-                   "\"material\":%d}]}",
+        fprintf(f,
+                "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"indices\":%d,"
+                "\"material\":%d}]}",
                 i ? "," : "", 2 * i, 2 * i + 1, parts[i].material);
     fprintf(f, "],\n\"materials\":[");
     for (i = 0; i < 3; i++)
-        fprintf(f, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%g,%g,%g,1],"
-                   "\"metallicFactor\":0},\"emissiveFactor\":[%g,%g,%g]}",
-                i ? "," : "", mat_names[i], mat_kd[i][0], mat_kd[i][1], mat_kd[i][2],
-                mat_ke[i][0], mat_ke[i][1], mat_ke[i][2]);
+        fprintf(f,
+                "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%g,%g,%g,1],"
+                "\"metallicFactor\":0},\"emissiveFactor\":[%g,%g,%g]}",
+                i ? "," : "", mat_names[i], mat_kd[i][0], mat_kd[i][1], mat_kd[i][2], mat_ke[i][0],
+                mat_ke[i][1], mat_ke[i][2]);
     fprintf(f, "],\n\"accessors\":[");
     for (i = 0; i < 3; i++) {
         float lo[3] = {1e9f, 1e9f, 1e9f}, hi[3] = {-1e9f, -1e9f, -1e9f};
@@ -136,16 +168,18 @@ static void write_gltf_bin(const char *path, const char *bin, const char *uri)
                 lo[k] = fminf(lo[k], parts[i].v[v][k]);
                 hi[k] = fmaxf(hi[k], parts[i].v[v][k]);
             }
-        fprintf(f, "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\","
-                   "\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]},"
-                   "{\"bufferView\":%d,\"componentType\":5123,\"count\":%d,\"type\":\"SCALAR\"}",
+        fprintf(f,
+                "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\","
+                "\"min\":[%g,%g,%g],\"max\":[%g,%g,%g]},"
+                "{\"bufferView\":%d,\"componentType\":5123,\"count\":%d,\"type\":\"SCALAR\"}",
                 i ? "," : "", 2 * i, parts[i].nv, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
                 2 * i + 1, 3 * parts[i].nt);
     }
     fprintf(f, "],\n\"bufferViews\":[");
     for (i = 0; i < 3; i++)
-        fprintf(f, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d},"
-                   "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}",
+        fprintf(f,
+                "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d},"
+                "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}",
                 i ? "," : "", off[i][0], parts[i].nv * 12, off[i][1], parts[i].nt * 6);
     fprintf(f, "],\n\"buffers\":[{\"byteLength\":%zu,\"uri\":\"", len);
     if (bin) {
@@ -247,8 +281,8 @@ static void test_gltf_matches_obj(void **state)
             CHECK_NEAR(a.materials[j].kd[k], mat_kd[i][k], 1e-7, "%s Kd[%d]", mat_names[i], k);
             CHECK_NEAR(a.materials[j].ke[k], mat_ke[i][k], 1e-7, "%s Ke[%d]", mat_names[i], k);
         }
-        CHECK_NEAR(a.materials[j].area, b.materials[obj_find_material(&b, mat_names[i])].area,
-                   1e-9, "area of %s", mat_names[i]);
+        CHECK_NEAR(a.materials[j].area, b.materials[obj_find_material(&b, mat_names[i])].area, 1e-9,
+                   "area of %s", mat_names[i]);
     }
     for (i = 0; i < a.nfaces; i++) {
         obj_vec3 na = obj_face_normal(&a, &a.faces[i]), nb = obj_face_normal(&b, &b.faces[i]);
@@ -260,8 +294,8 @@ static void test_gltf_matches_obj(void **state)
     }
     ha = solve(&a, &ea);
     hb = solve(&b, &eb);
-    print_message("glTF %d faces, %d elements; OBJ %d faces, %d elements\n", a.nfaces, ea,
-                  b.nfaces, eb);
+    print_message("glTF %d faces, %d elements; OBJ %d faces, %d elements\n", a.nfaces, ea, b.nfaces,
+                  eb);
     CHECK_INT_EQ(ea, eb, "elements of the glTF's solve against the OBJ's");
     for (i = 0; i < ea; i++) {
         double ra[3], rb[3];
@@ -281,7 +315,8 @@ static int material_of_kd(const obj_scene *sc, int m)
 {
     int j;
     for (j = 0; j < sc->nmaterials; j++)
-        if (fabs(sc->materials[j].kd[0] - mat_kd[m][0]) < 1e-6 && fabs(sc->materials[j].kd[1] - mat_kd[m][1]) < 1e-6 &&
+        if (fabs(sc->materials[j].kd[0] - mat_kd[m][0]) < 1e-6 &&
+            fabs(sc->materials[j].kd[1] - mat_kd[m][1]) < 1e-6 &&
             fabs(sc->materials[j].kd[2] - mat_kd[m][2]) < 1e-6)
             return j;
     return -1;
@@ -298,7 +333,8 @@ static void material_flux(sc_solver *h, const obj_scene *sc, int ne, double flux
         int mat = sc->faces[sc_element_tag(h, e)].material;
         sc_element_rgb(h, e, 1, rgb);
         for (m = 0; m < 3; m++)
-            if (material_of_kd(sc, m) == mat) flux[m] += (rgb[0] + rgb[1] + rgb[2]) * sc_element_area(h, e);
+            if (material_of_kd(sc, m) == mat)
+                flux[m] += (rgb[0] + rgb[1] + rgb[2]) * sc_element_area(h, e);
     }
 }
 
@@ -338,10 +374,11 @@ static void test_exported_formats(void **state)
         for (i = 0; i < 3; i++) {
             int ja = material_of_kd(&a, i), jb = obj_find_material(&b, mat_names[i]);
             CHECK_INT_GE(ja, 0, ".%s: a material of Kd %s's", ext[e], mat_names[i]);
-            print_message(".%s: material %s as %s, area %.9g, the OBJ's %.9g\n", ext[e], mat_names[i],
-                          a.materials[ja].name, a.materials[ja].area, b.materials[jb].area);
-            CHECK_NEAR(a.materials[ja].area, b.materials[jb].area, 1e-6 * 48, ".%s area of Kd %s", ext[e],
-                       mat_names[i]);
+            print_message(".%s: material %s as %s, area %.9g, the OBJ's %.9g\n", ext[e],
+                          mat_names[i], a.materials[ja].name, a.materials[ja].area,
+                          b.materials[jb].area);
+            CHECK_NEAR(a.materials[ja].area, b.materials[jb].area, 1e-6 * 48, ".%s area of Kd %s",
+                       ext[e], mat_names[i]);
         }
         ha = solve(&a, &ea);
         hb = solve(&b, &eb);
@@ -354,13 +391,15 @@ static void test_exported_formats(void **state)
                 sc_element_rgb(hb, i, 1, rb);
                 for (k = 0; k < 3; k++) differ += ra[k] != rb[k];
             }
-        CHECK_INT_EQ(differ, 0, ".%s element channels whose radiosity differs from the OBJ's", ext[e]);
+        CHECK_INT_EQ(differ, 0, ".%s element channels whose radiosity differs from the OBJ's",
+                     ext[e]);
         material_flux(ha, &a, ea, fa);
         material_flux(hb, &b, eb, fb);
         for (i = 0; i < 3; i++) {
-            print_message(".%s: %s flux %.9g, the OBJ's %.9g (%.2g)\n", ext[e], mat_names[i], fa[i], fb[i],
-                          fabs(fa[i] - fb[i]) / fb[i]);
-            CHECK_NEAR(fa[i], fb[i], 1e-3 * fb[i], ".%s flux of %s against the OBJ's", ext[e], mat_names[i]);
+            print_message(".%s: %s flux %.9g, the OBJ's %.9g (%.2g)\n", ext[e], mat_names[i], fa[i],
+                          fb[i], fabs(fa[i] - fb[i]) / fb[i]);
+            CHECK_NEAR(fa[i], fb[i], 1e-3 * fb[i], ".%s flux of %s against the OBJ's", ext[e],
+                       mat_names[i]);
         }
         sc_destroy(ha);
         sc_destroy(hb);
@@ -424,7 +463,8 @@ static void test_bad_files(void **state)
     fclose(f);
     free(text);
     expect_refused(tmp_path("cut.gltf"), "");
-    refuse_text("empty.gltf", "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[]}],\"scene\":0}\n", "");
+    refuse_text("empty.gltf",
+                "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[]}],\"scene\":0}\n", "");
     expect_refused(tmp_path("missing.glb"), "No such file");
     /* COLLADA and 3DS: not a file of theirs, and (with assimp-utils) the exporter's
      * files cut in half */
@@ -438,8 +478,8 @@ static void test_bad_files(void **state)
             char cmd[1024], name[32];
             snprintf(name, sizeof name, "half.%s", ext[e]);
             struct stat st;
-            snprintf(cmd, sizeof cmd, "assimp export '%s' '%s' >/dev/null 2>&1", tmp_path("half.obj"),
-                     tmp_path(name));
+            snprintf(cmd, sizeof cmd, "assimp export '%s' '%s' >/dev/null 2>&1",
+                     tmp_path("half.obj"), tmp_path(name));
             CHECK_INT_EQ(system(cmd), 0, "assimp export to .%s", ext[e]);
             assert_int_equal(stat(tmp_path(name), &st), 0);
             assert_int_equal(truncate(tmp_path(name), st.st_size / 2), 0);
@@ -482,10 +522,12 @@ static void test_gltf_lights(void **state)
         "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
         "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":["
         "{\"type\":\"point\",\"color\":[1,0.5,0.25],\"intensity\":5},"
-        "{\"type\":\"spot\",\"intensity\":7,\"spot\":{\"innerConeAngle\":0.3,\"outerConeAngle\":0.6}},"
+        "{\"type\":\"spot\",\"intensity\":7,\"spot\":{\"innerConeAngle\":0.3,\"outerConeAngle\":0."
+        "6}},"
         "{\"type\":\"directional\",\"intensity\":3}]}},"
         "\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2,3]}],\"nodes\":["
-        "{\"name\":\"bulb\",\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+        "{\"name\":\"bulb\",\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{"
+        "\"light\":0}}},"
         "{\"name\":\"lamp\",\"translation\":[0,2,0],\"rotation\":[-0.70710678,0,0,0.70710678],"
         "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
         "{\"name\":\"sun\",\"rotation\":[-0.70710678,0,0,0.70710678],"
@@ -550,8 +592,9 @@ static int holds(const char *d, size_t n, const char *part)
  * as a PNG although no file of that name exists. */
 static void test_embedded_texture(void **state)
 {
-    static const unsigned char rgb[4 * 2 * 3] = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 0,
-                                                 0, 255, 255, 255, 0, 255, 128, 128, 128, 10, 20, 30};
+    static const unsigned char rgb[4 * 2 * 3] = {255, 0,   0,   0,   255, 0,   0,   0,
+                                                 255, 255, 255, 0,   0,   255, 255, 255,
+                                                 0,   255, 128, 128, 128, 10,  20,  30};
     static const float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     static const float uv[4][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
     static const unsigned short idx[6] = {0, 1, 2, 0, 2, 3};
@@ -573,19 +616,20 @@ static void test_embedded_texture(void **state)
     len = 92 + npng;
     f = fopen(tmp_path("tex.gltf"), "w");
     assert_non_null(f);
-    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
-               "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":"
-               "{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,\"material\":0}]}],"
-               "\"materials\":[{\"name\":\"tiles\",\"pbrMetallicRoughness\":{\"baseColorTexture\":"
-               "{\"index\":0}}}],\"textures\":[{\"source\":0}],"
-               "\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"}],"
-               "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
-               "\"min\":[0,0,0],\"max\":[1,1,0]},{\"bufferView\":1,\"componentType\":5126,\"count\":4,"
-               "\"type\":\"VEC2\"},{\"bufferView\":2,\"componentType\":5123,\"count\":6,"
-               "\"type\":\"SCALAR\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},"
-               "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":80,"
-               "\"byteLength\":12},{\"buffer\":0,\"byteOffset\":92,\"byteLength\":%zu}],"
-               "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,",
+    fprintf(f,
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+            "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":"
+            "{\"POSITION\":0,\"TEXCOORD_0\":1},\"indices\":2,\"material\":0}]}],"
+            "\"materials\":[{\"name\":\"tiles\",\"pbrMetallicRoughness\":{\"baseColorTexture\":"
+            "{\"index\":0}}}],\"textures\":[{\"source\":0}],"
+            "\"images\":[{\"bufferView\":3,\"mimeType\":\"image/png\"}],"
+            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+            "\"min\":[0,0,0],\"max\":[1,1,0]},{\"bufferView\":1,\"componentType\":5126,\"count\":4,"
+            "\"type\":\"VEC2\"},{\"bufferView\":2,\"componentType\":5123,\"count\":6,"
+            "\"type\":\"SCALAR\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},"
+            "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":32},{\"buffer\":0,\"byteOffset\":80,"
+            "\"byteLength\":12},{\"buffer\":0,\"byteOffset\":92,\"byteLength\":%zu}],"
+            "\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,",
             npng, len);
     put_b64(f, buf, len);
     fprintf(f, "\"}]}\n");
@@ -664,25 +708,29 @@ static void test_cli_file_lights(void **state)
     memcpy(buf + 48, idx, 12);
     f = fopen(tmp_path("lit.gltf"), "w");
     assert_non_null(f);
-    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
-               "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\","
-               "\"color\":[1,0.5,0.25],\"intensity\":3}]}},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
-               "\"nodes\":[{\"name\":\"floor\",\"mesh\":0},{\"name\":\"bulb\",\"translation\":[0.5,1,0],"
-               "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}],"
-               "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
-               "\"material\":0}]}],\"materials\":[{\"name\":\"floor\",\"pbrMetallicRoughness\":"
-               "{\"baseColorFactor\":[0.5,0.5,0.5,1]}}],"
-               "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
-               "\"min\":[-2,0,-2],\"max\":[2,0,2]},{\"bufferView\":1,\"componentType\":5123,\"count\":6,"
-               "\"type\":\"SCALAR\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},"
-               "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12}],"
-               "\"buffers\":[{\"byteLength\":60,\"uri\":\"data:application/octet-stream;base64,");
+    fprintf(
+        f,
+        "{\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\","
+        "\"color\":[1,0.5,0.25],\"intensity\":3}]}},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+        "\"nodes\":[{\"name\":\"floor\",\"mesh\":0},{\"name\":\"bulb\",\"translation\":[0.5,1,0],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}],"
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,"
+        "\"material\":0}]}],\"materials\":[{\"name\":\"floor\",\"pbrMetallicRoughness\":"
+        "{\"baseColorFactor\":[0.5,0.5,0.5,1]}}],"
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\","
+        "\"min\":[-2,0,-2],\"max\":[2,0,2]},{\"bufferView\":1,\"componentType\":5123,\"count\":6,"
+        "\"type\":\"SCALAR\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":48},"
+        "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12}],"
+        "\"buffers\":[{\"byteLength\":60,\"uri\":\"data:application/octet-stream;base64,");
     put_b64(f, buf, 60);
     fprintf(f, "\"}]}\n");
     assert_int_equal(fclose(f), 0);
     f = fopen(tmp_path("lit.obj"), "w");
     assert_non_null(f);
-    fprintf(f, "mtllib lit.mtl\nv -2 0 -2\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nusemtl floor\nf 1 2 3\nf 1 3 4\n");
+    fprintf(
+        f,
+        "mtllib lit.mtl\nv -2 0 -2\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nusemtl floor\nf 1 2 3\nf 1 3 4\n");
     assert_int_equal(fclose(f), 0);
     f = fopen(tmp_path("lit.mtl"), "w");
     assert_non_null(f);
@@ -700,7 +748,8 @@ static void test_cli_file_lights(void **state)
     print_message("glTF with its light: %d elements; OBJ with --point: %d\n", na, nb);
     CHECK_INT_EQ(na, nb, "elements of the two solves");
     CHECK_INT_GT(na, 0, "elements");
-    for (i = 0; i < na; i++) CHECK_NEAR(a[i], b[i], 0, "element %d's red, the file's light against --point", i);
+    for (i = 0; i < na; i++)
+        CHECK_NEAR(a[i], b[i], 0, "element %d's red, the file's light against --point", i);
     /* A lone floor sees nothing of itself: each element's radiosity is its direct
      * light, 0.5 I cos t / r^2 at its centre (I = 3, 1 above (0.5, 0, 0)). The light's
      * cube is 4 res = 768 (the glue's choice at rad_cli's res 192): measured 1.2% rms;
@@ -728,16 +777,18 @@ static void test_cli_file_lights(void **state)
      * out but not the file's: the same bits as the OBJ with the options in that order. */
     f = fopen(tmp_path("more.json"), "w");
     assert_non_null(f);
-    fprintf(f, "{\"lights\": [{\"type\": \"point\", \"position\": [-1, 2, 1], \"intensity\": [2, 2, 2]}]}\n");
+    fprintf(f, "{\"lights\": [{\"type\": \"point\", \"position\": [-1, 2, 1], \"intensity\": [2, "
+               "2, 2]}]}\n");
     assert_int_equal(fclose(f), 0);
     for (i = 0; i < 2; i++) {
         snprintf(cmd, sizeof cmd,
-                 "build/rad_cli '%s' --lights '%s' %s --quiet --width 8 --height 8 -o '%s' --dump-radiosity '%s' && "
+                 "build/rad_cli '%s' --lights '%s' %s --quiet --width 8 --height 8 -o '%s' "
+                 "--dump-radiosity '%s' && "
                  "build/rad_cli '%s' --point -1,2,1,2,2,2 %s --quiet --width 8 --height 8 -o '%s' "
                  "--dump-radiosity '%s'",
-                 tmp_path("lit.gltf"), tmp_path("more.json"), i ? "--no-file-lights" : "", tmp_path("d.png"),
-                 tmp_path("d.csv"), tmp_path("lit.obj"), i ? "" : "--point 0.5,1,0,3,1.5,0.75", tmp_path("e.png"),
-                 tmp_path("e.csv"));
+                 tmp_path("lit.gltf"), tmp_path("more.json"), i ? "--no-file-lights" : "",
+                 tmp_path("d.png"), tmp_path("d.csv"), tmp_path("lit.obj"),
+                 i ? "" : "--point 0.5,1,0,3,1.5,0.75", tmp_path("e.png"), tmp_path("e.csv"));
         CHECK_INT_EQ(system(cmd), 0, "rad_cli on the glTF with --lights%s and the OBJ with --point",
                      i ? " --no-file-lights" : "");
         na = csv_rgb(tmp_path("d.csv"), a, NULL, NULL, 4096);
@@ -791,36 +842,49 @@ static void write_uv_gltf(const char *path, int uv1)
         memcpy(buf + len + 80, idx, 12);
         len += 92;
     }
-    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],\"nodes\":[");
-    for (q = 0; q < 3; q++) fprintf(f, "%s{\"name\":\"%s\",\"mesh\":%d}", q ? "," : "", uvq_name[q], q);
+    fprintf(f, "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1,2]}],"
+               "\"nodes\":[");
+    for (q = 0; q < 3; q++)
+        fprintf(f, "%s{\"name\":\"%s\",\"mesh\":%d}", q ? "," : "", uvq_name[q], q);
     fprintf(f, "],\"meshes\":[");
     for (q = 0; q < 3; q++) {
-        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"TEXCOORD_0\":%d", q ? "," : "", 3 * q,
-                3 * q + 1);
+        fprintf(f, "%s{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"TEXCOORD_0\":%d",
+                q ? "," : "", 3 * q, 3 * q + 1);
         if (uv1) fprintf(f, ",\"TEXCOORD_1\":%d", 3 * q + 1);
         fprintf(f, "},\"indices\":%d,\"material\":%d}]}", 3 * q + 2, q);
     }
-    fprintf(f, "],\"materials\":[{\"name\":\"floor\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.5,0.5,1]}},"
-               "{\"name\":\"wall\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.75,0.25,0.25,1]}},"
-               "{\"name\":\"lamp\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
-               "\"emissiveFactor\":[1,1,1]}],\"accessors\":[");
+    fprintf(f,
+            "],\"materials\":[{\"name\":\"floor\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0."
+            "5,0.5,0.5,1]}},"
+            "{\"name\":\"wall\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.75,0.25,0.25,1]}},"
+            "{\"name\":\"lamp\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},"
+            "\"emissiveFactor\":[1,1,1]}],\"accessors\":[");
     for (q = 0; q < 3; q++) {
         float lo[3], hi[3];
         for (k = 0; k < 3; k++) {
-            lo[k] = fminf(fminf(uvq_pos[q][0][k], uvq_pos[q][1][k]), fminf(uvq_pos[q][2][k], uvq_pos[q][3][k]));
-            hi[k] = fmaxf(fmaxf(uvq_pos[q][0][k], uvq_pos[q][1][k]), fmaxf(uvq_pos[q][2][k], uvq_pos[q][3][k]));
+            lo[k] = fminf(fminf(uvq_pos[q][0][k], uvq_pos[q][1][k]),
+                          fminf(uvq_pos[q][2][k], uvq_pos[q][3][k]));
+            hi[k] = fmaxf(fmaxf(uvq_pos[q][0][k], uvq_pos[q][1][k]),
+                          fmaxf(uvq_pos[q][2][k], uvq_pos[q][3][k]));
         }
-        fprintf(f, "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":[%g,%g,%g],"
-                   "\"max\":[%g,%g,%g]},{\"bufferView\":%d,\"componentType\":5126,\"count\":4,\"type\":\"VEC2\"},"
-                   "{\"bufferView\":%d,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}",
-                q ? "," : "", 3 * q, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], 3 * q + 1, 3 * q + 2);
+        fprintf(f,
+                "%s{\"bufferView\":%d,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":"
+                "[%g,%g,%g],"
+                "\"max\":[%g,%g,%g]},{\"bufferView\":%d,\"componentType\":5126,\"count\":4,"
+                "\"type\":\"VEC2\"},"
+                "{\"bufferView\":%d,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\"}",
+                q ? "," : "", 3 * q, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2], 3 * q + 1,
+                3 * q + 2);
     }
     fprintf(f, "],\"bufferViews\":[");
     for (q = 0; q < 3; q++)
-        fprintf(f, "%s{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":%d,"
-                   "\"byteLength\":32},{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":12}",
-                q ? "," : "", 92 * q, 92 * q + 48, 92 * q + 80);
-    fprintf(f, "],\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,", len);
+        fprintf(
+            f,
+            "%s{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":48},{\"buffer\":0,\"byteOffset\":%d,"
+            "\"byteLength\":32},{\"buffer\":0,\"byteOffset\":%d,\"byteLength\":12}",
+            q ? "," : "", 92 * q, 92 * q + 48, 92 * q + 80);
+    fprintf(f, "],\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,",
+            len);
     put_b64(f, buf, len);
     fprintf(f, "\"}]}\n");
     assert_int_equal(fclose(f), 0);
@@ -888,11 +952,13 @@ static void uv_faults(const sc_poly *polys, int n, const double *uv)
         w[8 * 3 + 4] = 0.5 * (w[8 * 3] + w[8 * 3 + 2]);
         w[8 * 3 + 5] = 0.5 * (w[8 * 3 + 1] + w[8 * 3 + 3]);
         if (lm_build_file(&a, polys, n, w, &lo, &rep, err, sizeof err) < 0) fail_msg("%s", err);
-        print_message("faulty UVs (corner at %g): outside %ld, overlap %ld, zero area %ld, missing %ld\n",
-                      w[8 * 2 + 2], rep.outside, rep.overlap, rep.zero_area, rep.missing);
+        print_message(
+            "faulty UVs (corner at %g): outside %ld, overlap %ld, zero area %ld, missing %ld\n",
+            w[8 * 2 + 2], rep.outside, rep.overlap, rep.zero_area, rep.missing);
         CHECK_INT_EQ(rep.outside, 1, "corners outside [0, 1]");
-        CHECK_INT_EQ(rep.zero_area, 1 + pass, "triangles of no UV area (at 10^30 the wall's first too: "
-                                              "its area is 10^-31 of its sides' squares)");
+        CHECK_INT_EQ(rep.zero_area, 1 + pass,
+                     "triangles of no UV area (at 10^30 the wall's first too: "
+                     "its area is 10^-31 of its sides' squares)");
         CHECK_INT_EQ(rep.missing, 0, "polygons without UVs");
         CHECK_INT_GE(rep.overlap, 650, "texels inside two polygons' UVs");
         CHECK_INT_LE(rep.overlap, 676, "texels inside two polygons' UVs");
@@ -918,17 +984,21 @@ static void test_lightmap_file_uv(void **state)
     (void)state;
     if (!assimp_scene_available()) skip();
     write_uv_gltf(tmp_path("uvq.gltf"), 1);
-    if (assimp_scene_load(tmp_path("uvq.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    if (assimp_scene_load(tmp_path("uvq.gltf"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
     assert_non_null(sc.uv2);
     polys = polys_from_obj(&sc, &n, NULL, NULL);
     assert_non_null(polys);
     CHECK_INT_EQ(n, 6, "polygons of the three quads");
     uv = lm_poly_file_uvs(&sc, polys, n);
     assert_non_null(uv);
-    if (lm_build_file(&a, polys, n, uv, &lo, &rep, err, sizeof err) < 0) fail_msg("lm_build_file: %s", err);
-    print_message("file UVs: %d charts, texel %g; outside %ld, overlap %ld, zero area %ld, missing %ld\n",
-                  a.file_charts, a.texel, rep.outside, rep.overlap, rep.zero_area, rep.missing);
-    CHECK_INT_EQ(a.file_charts, 3, "the file's charts: one per quad (its two triangles share a UV edge)");
+    if (lm_build_file(&a, polys, n, uv, &lo, &rep, err, sizeof err) < 0)
+        fail_msg("lm_build_file: %s", err);
+    print_message(
+        "file UVs: %d charts, texel %g; outside %ld, overlap %ld, zero area %ld, missing %ld\n",
+        a.file_charts, a.texel, rep.outside, rep.overlap, rep.zero_area, rep.missing);
+    CHECK_INT_EQ(a.file_charts, 3,
+                 "the file's charts: one per quad (its two triangles share a UV edge)");
     CHECK_INT_EQ(rep.outside + rep.overlap + rep.zero_area + rep.missing, 0, "faults in clean UVs");
     assert_int_equal(lm_bake(&a, gather_point, NULL), 0);
     /* the centre of each quad's rectangle: the sample is the texel's centre mapped by
@@ -946,14 +1016,21 @@ static void test_lightmap_file_uv(void **state)
         at = (size_t)y * 64 + (size_t)x;
         /* the point of texel (x + 1/2, y + 1/2): invert the quad's UV map */
         for (i = 0; i < 3; i++) want[i] = ctr[i];
-        if (q == 0) want[0] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.2, want[2] += (y + 0.5 - cuvq[1] * 64) / 64 / 0.2;
-        if (q == 1) want[2] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.2, want[1] -= (y + 0.5 - cuvq[1] * 64) / 64 / 0.2;
-        if (q == 2) want[0] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.4, want[2] += (y + 0.5 - cuvq[1] * 64) / 64 / 0.4;
+        if (q == 0)
+            want[0] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.2,
+                want[2] += (y + 0.5 - cuvq[1] * 64) / 64 / 0.2;
+        if (q == 1)
+            want[2] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.2,
+                want[1] -= (y + 0.5 - cuvq[1] * 64) / 64 / 0.2;
+        if (q == 2)
+            want[0] += (x + 0.5 - cuvq[0] * 64) / 64 / 0.4,
+                want[2] += (y + 0.5 - cuvq[1] * 64) / 64 / 0.4;
         for (i = 0; i < 3; i++) d = fmax(d, fabs(a.rgb[3 * at + i] - 5.0 - want[i]));
-        print_message("%s: texel (%d, %d) holds %g %g %g, want %g %g %g (off %.2g)\n", uvq_name[q], x, y,
-                      a.rgb[3 * at] - 5.0, a.rgb[3 * at + 1] - 5.0, a.rgb[3 * at + 2] - 5.0, want[0], want[1], want[2],
-                      d);
-        CHECK_LE(d, ldexp(3.0, -12) + 1e-5, "%s: the texel's point from its place on the file's UVs", uvq_name[q]);
+        print_message("%s: texel (%d, %d) holds %g %g %g, want %g %g %g (off %.2g)\n", uvq_name[q],
+                      x, y, a.rgb[3 * at] - 5.0, a.rgb[3 * at + 1] - 5.0, a.rgb[3 * at + 2] - 5.0,
+                      want[0], want[1], want[2], d);
+        CHECK_LE(d, ldexp(3.0, -12) + 1e-5,
+                 "%s: the texel's point from its place on the file's UVs", uvq_name[q]);
         CHECK_INT_EQ(obj_find_material(&sc, uvq_name[q]), sc.faces[polys[a.poly[at]].tag].material,
                      "the texel's face's material is %s's", uvq_name[q]);
     }
@@ -976,8 +1053,10 @@ static void test_lightmap_file_uv(void **state)
     for (i = 0; i < 64 * 64; i++) { /* the bottom right quarter: nothing there */
         int x = i % 64, y = i / 64;
         if (x < 32 || y < 32) continue;
-        CHECK_THAT(a.owner[i] < 0 && a.rgb[3 * i] == 0.0f && a.rgb[3 * i + 1] == 0.0f && a.rgb[3 * i + 2] == 0.0f,
-                   "texel (%d, %d) of the empty quarter: owner %d, light %g", x, y, a.owner[i], a.rgb[3 * i]);
+        CHECK_THAT(a.owner[i] < 0 && a.rgb[3 * i] == 0.0f && a.rgb[3 * i + 1] == 0.0f &&
+                       a.rgb[3 * i + 2] == 0.0f,
+                   "texel (%d, %d) of the empty quarter: owner %d, light %g", x, y, a.owner[i],
+                   a.rgb[3 * i]);
     }
     cuv = malloc(2 * (size_t)sc.nindices * sizeof *cuv);
     assert_non_null(cuv);
@@ -1017,8 +1096,10 @@ static void test_lightmap_file_uv(void **state)
         poly_means(&b, n, mb);
         for (i = 0; i < n; i++) {
             double rel = fabs(ma[i] - mb[i]) / fmax(mb[i], 1e-30);
-            print_message("polygon %d (%s): mean light %.5g on the file's UVs, %.5g on rad's charts (%.2f%%)\n", i,
-                          sc.materials[sc.faces[polys[i].tag].material].name, ma[i], mb[i], 100 * rel);
+            print_message("polygon %d (%s): mean light %.5g on the file's UVs, %.5g on rad's "
+                          "charts (%.2f%%)\n",
+                          i, sc.materials[sc.faces[polys[i].tag].material].name, ma[i], mb[i],
+                          100 * rel);
             if (mb[i] > 0.0) worst = fmax(worst, rel);
         }
         print_message("worst %.3f%%\n", 100 * worst);
@@ -1055,8 +1136,10 @@ static int bake_cli(const char *name, const char *extra, char *line, size_t n)
     snprintf(out, sizeof out, "%s.png", scene);
     snprintf(lm, sizeof lm, "%s_lm.png", scene);
     snprintf(errf, sizeof errf, "%s.err", scene);
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
-                              "--lightmap-size 32 %s 2>'%s'", scene, out, lm, extra, errf);
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli '%s' --quiet --width 8 --height 8 -o '%s' --lightmap '%s' "
+             "--lightmap-size 32 %s 2>'%s'",
+             scene, out, lm, extra, errf);
     rc = system(cmd);
     f = fopen(errf, "r");
     assert_non_null(f);
@@ -1076,7 +1159,8 @@ static void test_lightmap_uv_cli(void **state)
                  "rad_cli --lightmap-uv file on a scene without a second UV set");
     CHECK_CONTAINS(line, "nouv.gltf", "the error names the scene");
     CHECK_CONTAINS(line, "no second UV set", "the error says what is missing");
-    CHECK_INT_EQ(access(tmp_path("nouv.gltf.png"), F_OK), -1, "no image written (refused before the solve)");
+    CHECK_INT_EQ(access(tmp_path("nouv.gltf.png"), F_OK), -1,
+                 "no image written (refused before the solve)");
     CHECK_INT_EQ(bake_cli("nouv.gltf", "", line, sizeof line), 0,
                  "rad_cli --lightmap-uv auto (the default) on rad's charts");
     write_uv_gltf(tmp_path("uv.gltf"), 1);
@@ -1084,12 +1168,14 @@ static void test_lightmap_uv_cli(void **state)
                  "rad_cli --lightmap-uv file --two-sided");
     CHECK_CONTAINS(line, "--two-sided", "the error names --two-sided");
     snprintf(extra, sizeof extra, "--export-gltf '%s'", tmp_path("uv.glb"));
-    CHECK_INT_EQ(bake_cli("uv.gltf", extra, line, sizeof line), 0, "rad_cli --lightmap --export-gltf on the file's UVs");
+    CHECK_INT_EQ(bake_cli("uv.gltf", extra, line, sizeof line), 0,
+                 "rad_cli --lightmap --export-gltf on the file's UVs");
     {
         obj_scene sc;
         char err[512];
         int c, q;
-        if (assimp_scene_load(tmp_path("uv.glb"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+        if (assimp_scene_load(tmp_path("uv.glb"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+            fail_msg("%s", err);
         assert_non_null(sc.uv2);
         for (c = 0; c < sc.nindices; c++) {
             const obj_vec3 *v = &sc.verts[sc.indices[c]];
@@ -1099,8 +1185,10 @@ static void test_lightmap_uv_cli(void **state)
             for (q = 0; q < 2; q++)
                 if (!strcmp(sc.materials[sc.faces[f2].material].name, uvq_name[q])) break;
             uvq_uv(q, p, w);
-            CHECK_NEAR(sc.uv2[c].u, w[0], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 u", c, uvq_name[q]);
-            CHECK_NEAR(1.0 - sc.uv2[c].v, w[1], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 v", c, uvq_name[q]);
+            CHECK_NEAR(sc.uv2[c].u, w[0], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 u", c,
+                       uvq_name[q]);
+            CHECK_NEAR(1.0 - sc.uv2[c].v, w[1], 1e-6, "the .glb's corner %d (%s): TEXCOORD_1 v", c,
+                       uvq_name[q]);
         }
         obj_free(&sc);
     }
@@ -1119,7 +1207,8 @@ static int face_at(const obj_scene *sc, const double *p, double *d)
             c[1] += v->y / sc->faces[f].count;
             c[2] += v->z / sc->faces[f].count;
         }
-        e = sqrt((c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) + (c[2] - p[2]) * (c[2] - p[2]));
+        e = sqrt((c[0] - p[0]) * (c[0] - p[0]) + (c[1] - p[1]) * (c[1] - p[1]) +
+                 (c[2] - p[2]) * (c[2] - p[2]));
         if (e < *d) {
             *d = e;
             best = f;
@@ -1143,11 +1232,13 @@ static void test_export_keeps_nodes(void **state)
     (void)state;
     if (!assimp_scene_available()) skip();
     write_gltf(tmp_path("nodes.gltf"));
-    if (assimp_scene_load(tmp_path("nodes.gltf"), NULL, &a, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    if (assimp_scene_load(tmp_path("nodes.gltf"), NULL, &a, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
     memset(&in, 0, sizeof in);
     in.sc = &a;
     if (gltf_write(tmp_path("nodes.glb"), &in, err, sizeof err) < 0) fail_msg("%s", err);
-    if (assimp_scene_load(tmp_path("nodes.glb"), NULL, &b, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    if (assimp_scene_load(tmp_path("nodes.glb"), NULL, &b, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
     CHECK_INT_EQ(a.nnodes, 4, "nodes read from the room's glTF");
     CHECK_INT_EQ(b.nnodes, a.nnodes, "nodes of the exported .glb");
     for (i = 0; i < a.nnodes; i++) {
@@ -1155,13 +1246,16 @@ static void test_export_keeps_nodes(void **state)
         print_message("node %d %s (parent %s): %s (parent %s)\n", i, x->name,
                       x->parent >= 0 ? a.nodes[x->parent].name : "-", y->name,
                       y->parent >= 0 ? b.nodes[y->parent].name : "-");
-        CHECK_THAT(!strcmp(y->name, x->name), "node %d's name: %s, the input's %s", i, y->name, x->name);
+        CHECK_THAT(!strcmp(y->name, x->name), "node %d's name: %s, the input's %s", i, y->name,
+                   x->name);
         CHECK_INT_EQ(y->parent, x->parent, "node %s's parent", x->name);
-        for (k = 0; k < 16; k++) CHECK_EQ(y->local[k], x->local[k], "node %s's matrix[%d]", x->name, k);
+        for (k = 0; k < 16; k++)
+            CHECK_EQ(y->local[k], x->local[k], "node %s's matrix[%d]", x->name, k);
     }
     CHECK_EQ(a.nodes[3].local[0], -1, "the block's mirror (scale -1 on x)");
     CHECK_EQ(a.nodes[2].local[13], 2.875, "the lamp's translation in y");
-    for (i = 0; i < 3; i++) CHECK_INT_GE(obj_find_material(&b, mat_names[i]), 0, "material %s kept", mat_names[i]);
+    for (i = 0; i < 3; i++)
+        CHECK_INT_GE(obj_find_material(&b, mat_names[i]), 0, "material %s kept", mat_names[i]);
     CHECK_INT_EQ(b.nfaces, a.nfaces, "faces of the .glb");
     for (f = 0; f < b.nfaces; f++) {
         obj_vec3 nb = obj_face_normal(&b, &b.faces[f]), na;
@@ -1174,11 +1268,14 @@ static void test_export_keeps_nodes(void **state)
             c[2] += v->z / 3;
         }
         g = face_at(&a, c, &d);
-        CHECK_LE(d, 1e-6, "exported face %d (node %s) lies where an input face was", f, b.names[b.faces[f].object]);
+        CHECK_LE(d, 1e-6, "exported face %d (node %s) lies where an input face was", f,
+                 b.names[b.faces[f].object]);
         na = obj_face_normal(&a, &a.faces[g]);
         dot = (na.x * nb.x + na.y * nb.y + na.z * nb.z) /
-              sqrt((na.x * na.x + na.y * na.y + na.z * na.z) * (nb.x * nb.x + nb.y * nb.y + nb.z * nb.z));
-        CHECK_NEAR(dot, 1, 1e-9, "exported face %d (node %s) faces as the input's", f, b.names[b.faces[f].object]);
+              sqrt((na.x * na.x + na.y * na.y + na.z * na.z) *
+                   (nb.x * nb.x + nb.y * nb.y + nb.z * nb.z));
+        CHECK_NEAR(dot, 1, 1e-9, "exported face %d (node %s) faces as the input's", f,
+                   b.names[b.faces[f].object]);
     }
     obj_free(&a);
     obj_free(&b);
@@ -1195,12 +1292,21 @@ static void test_dae_second_uv(void **state)
         "  <library_geometries>\n"
         "    <geometry id=\"quad\" name=\"quad\">\n"
         "      <mesh>\n"
-        "        <source id=\"pos\"><float_array id=\"pos-a\" count=\"12\">-1 0 -1 -1 0 1 1 0 1 1 0 -1</float_array>\n"
-        "          <technique_common><accessor source=\"#pos-a\" count=\"4\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
-        "        <source id=\"uv0\"><float_array id=\"uv0-a\" count=\"8\">0 0 0 1 1 1 1 0</float_array>\n"
-        "          <technique_common><accessor source=\"#uv0-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
-        "        <source id=\"uv1\"><float_array id=\"uv1-a\" count=\"8\">0.25 0.75 0.25 0.25 0.75 0.25 0.75 0.75</float_array>\n"
-        "          <technique_common><accessor source=\"#uv1-a\" count=\"4\" stride=\"2\"><param name=\"S\" type=\"float\"/><param name=\"T\" type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"pos\"><float_array id=\"pos-a\" count=\"12\">-1 0 -1 -1 0 1 1 0 1 1 "
+        "0 -1</float_array>\n"
+        "          <technique_common><accessor source=\"#pos-a\" count=\"4\" stride=\"3\"><param "
+        "name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" "
+        "type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv0\"><float_array id=\"uv0-a\" count=\"8\">0 0 0 1 1 1 1 "
+        "0</float_array>\n"
+        "          <technique_common><accessor source=\"#uv0-a\" count=\"4\" stride=\"2\"><param "
+        "name=\"S\" type=\"float\"/><param name=\"T\" "
+        "type=\"float\"/></accessor></technique_common></source>\n"
+        "        <source id=\"uv1\"><float_array id=\"uv1-a\" count=\"8\">0.25 0.75 0.25 0.25 0.75 "
+        "0.25 0.75 0.75</float_array>\n"
+        "          <technique_common><accessor source=\"#uv1-a\" count=\"4\" stride=\"2\"><param "
+        "name=\"S\" type=\"float\"/><param name=\"T\" "
+        "type=\"float\"/></accessor></technique_common></source>\n"
         "        <vertices id=\"verts\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
         "        <triangles count=\"2\">\n"
         "          <input semantic=\"VERTEX\" source=\"#verts\" offset=\"0\"/>\n"
@@ -1212,7 +1318,8 @@ static void test_dae_second_uv(void **state)
         "    </geometry>\n"
         "  </library_geometries>\n"
         "  <library_visual_scenes>\n"
-        "    <visual_scene id=\"scene\"><node id=\"floor\" name=\"floor\"><instance_geometry url=\"#quad\"/></node></visual_scene>\n"
+        "    <visual_scene id=\"scene\"><node id=\"floor\" name=\"floor\"><instance_geometry "
+        "url=\"#quad\"/></node></visual_scene>\n"
         "  </library_visual_scenes>\n"
         "  <scene><instance_visual_scene url=\"#scene\"/></scene>\n"
         "</COLLADA>\n";
@@ -1224,7 +1331,8 @@ static void test_dae_second_uv(void **state)
     (void)state;
     if (!assimp_scene_available()) skip();
     write_text("two.dae", dae);
-    if (assimp_scene_load(tmp_path("two.dae"), NULL, &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    if (assimp_scene_load(tmp_path("two.dae"), NULL, &sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
     CHECK_INT_EQ(sc.nfaces, 2, "triangles of the quad");
     assert_non_null(sc.uv2);
     for (c = 0; c < sc.nindices; c++) {

@@ -58,7 +58,8 @@ static float *hdr_known(int w, int h)
     for (i = 0; p && i < w * h; i++) {
         for (k = 0; k < 3; k++) {
             x = x * 1664525u + 1013904223u;
-            p[3 * i + k] = (float)ldexp(0.5 + (x >> 8) / 33554432.0, (int)((x >> 4) % 81) - 40 - 6 * k);
+            p[3 * i + k] =
+                (float)ldexp(0.5 + (x >> 8) / 33554432.0, (int)((x >> 4) % 81) - 40 - 6 * k);
         }
         if (i % 7 == 0) p[3 * i + 1] = 0.0f;
         if (i % 11 == 0) p[3 * i] = p[3 * i + 1] = p[3 * i + 2] = 0.0f;
@@ -78,7 +79,9 @@ static double hdr_check_close(const float *want, const float *got, int w, int h)
         double m = fmax(got[3 * i], fmax(got[3 * i + 1], got[3 * i + 2]));
         for (k = 0; k < 3; k++) {
             double d = fabs((double)got[3 * i + k] - want[3 * i + k]);
-            CHECK_LE(d, ldexp(m, -8), "pixel %d channel %d: |read - written| against 2^-8 of the largest channel", i, k);
+            CHECK_LE(d, ldexp(m, -8),
+                     "pixel %d channel %d: |read - written| against 2^-8 of the largest channel", i,
+                     k);
             if (m > 0.0 && d / m > worst) worst = d / m;
         }
     }
@@ -173,12 +176,12 @@ static void test_hdr_bad_input(void **state)
     CHECK_CONTAINS(err, "not a Radiance HDR", "the message");
 }
 
-
 /* ---- lightmaps ---------------------------------------------------------------------- */
 
 /* A quad A B C D (counter-clockwise seen from its lit side) of reflectance RHO and
  * emission EMIT (grey). */
-static sc_poly quad(const double *a, const double *b, const double *c, const double *d, double rho, double emit)
+static sc_poly quad(const double *a, const double *b, const double *c, const double *d, double rho,
+                    double emit)
 {
     sc_poly q;
     int k;
@@ -196,7 +199,8 @@ static sc_poly quad(const double *a, const double *b, const double *c, const dou
 }
 
 /* A horizontal quad at height Y over [X0, X1] x [Z0, Z1], lit side up (UP 1) or down. */
-static sc_poly flat(double x0, double x1, double z0, double z1, double y, int up, double rho, double emit)
+static sc_poly flat(double x0, double x1, double z0, double z1, double y, int up, double rho,
+                    double emit)
 {
     double a[3] = {x0, y, z0}, b[3] = {x0, y, z1}, c[3] = {x1, y, z1}, d[3] = {x1, y, z0};
     return up ? quad(a, b, c, d, rho, emit) : quad(d, c, b, a, rho, emit);
@@ -217,8 +221,8 @@ static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb
 
 /* Builds and bakes A over solver S's solution (SIZE texels a side, gather resolution
  * RES, adaptive tolerance TOL, chart crease CREASE: lm_opts): the gathers done. */
-static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int res, double tol, double crease,
-                      lm_atlas *a)
+static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int res, double tol,
+                      double crease, lm_atlas *a)
 {
     lm_opts lo = {size, 0.0, 0, tol, crease};
     char err[256] = "";
@@ -287,14 +291,16 @@ static void test_lightmap_lambert(void **state)
             if (!lm_texel_point(&a, x, y, p) || a.owner[at] != a.poly_chart[0]) continue;
             want = ff_up(p, &polys[1]);
             rel = fabs(a.rgb[3 * at + 1] - want) / want;
-            CHECK_LE(rel, 0.01, "texel %d,%d at (%.3f, %.3f, %.3f): E %.6f against F %.6f", x, y, p[0], p[1], p[2],
-                     a.rgb[3 * at + 1], want);
+            CHECK_LE(rel, 0.01, "texel %d,%d at (%.3f, %.3f, %.3f): E %.6f against F %.6f", x, y,
+                     p[0], p[1], p[2], a.rgb[3 * at + 1], want);
             if (rel > worst) worst = rel;
             n++;
         }
-    printf("lightmap under a square emitter: %d texels, worst %.4f%% from Lambert's form factor (bound 1%%)\n", n,
-           100.0 * worst);
-    CHECK_INT_GE(n, (int)pow(floor(4.0 / a.texel), 2), "floor texels compared (the floor is 4 / %g texels wide)", a.texel);
+    printf("lightmap under a square emitter: %d texels, worst %.4f%% from Lambert's form factor "
+           "(bound 1%%)\n",
+           n, 100.0 * worst);
+    CHECK_INT_GE(n, (int)pow(floor(4.0 / a.texel), 2),
+                 "floor texels compared (the floor is 4 / %g texels wide)", a.texel);
     lm_free(&a);
 }
 
@@ -367,19 +373,24 @@ static void test_lightmap_no_seams(void **state)
     for (p = 0; p < n; p++)
         for (q = 0; q < n; q++)
             for (k = 0; k < polys[p].n; k++) {
-                if (p == q || a.poly_chart[p] == a.poly_chart[q] || !shared_edge(&polys[p], k, &polys[q], &l)) continue;
+                if (p == q || a.poly_chart[p] == a.poly_chart[q] ||
+                    !shared_edge(&polys[p], k, &polys[q], &l))
+                    continue;
                 edges++;
                 for (t = 1; t <= 9; t++) {
                     double w = t / 10.0, x[3], uvp[2], uvq[2], cp[3], cq[3], rel;
                     int c;
-                    for (c = 0; c < 3; c++) x[c] = polys[p].v[k][c] + w * (polys[p].v[(k + 1) % polys[p].n][c] - polys[p].v[k][c]);
+                    for (c = 0; c < 3; c++)
+                        x[c] = polys[p].v[k][c] +
+                               w * (polys[p].v[(k + 1) % polys[p].n][c] - polys[p].v[k][c]);
                     lm_uv(&a, p, x, uvp);
                     lm_uv(&a, q, x, uvq);
                     lm_lookup(&a, uvp, cp);
                     lm_lookup(&a, uvq, cq);
                     rel = fabs(cp[1] - cq[1]) / fmax(cp[1], cq[1]);
-                    CHECK_LE(rel, 0.02, "polygons %d and %d at (%.3f, %.3f, %.3f): %.6f against %.6f", p, q, x[0], x[1],
-                             x[2], cp[1], cq[1]);
+                    CHECK_LE(rel, 0.02,
+                             "polygons %d and %d at (%.3f, %.3f, %.3f): %.6f against %.6f", p, q,
+                             x[0], x[1], x[2], cp[1], cq[1]);
                     if (rel > worst) worst = rel;
                 }
             }
@@ -388,7 +399,8 @@ static void test_lightmap_no_seams(void **state)
             lo = fmin(lo, a.rgb[3 * p + 1]);
             hi = fmax(hi, a.rgb[3 * p + 1]);
         }
-    printf("lightmap seams: terrain texels %.4f..%.4f; %d shared edges (each seen from both sides) of %d charts, worst %.3f%% (bound 2%%)\n",
+    printf("lightmap seams: terrain texels %.4f..%.4f; %d shared edges (each seen from both sides) "
+           "of %d charts, worst %.3f%% (bound 2%%)\n",
            lo, hi, edges, a.ncharts, 100.0 * worst);
     CHECK_INT_EQ(edges, 2 * (3 * TN * TN - 2 * TN), "shared edges found, from both sides");
     lm_free(&a);
@@ -421,22 +433,26 @@ static void test_lightmap_no_leaks(void **state)
     double worst = -HUGE_VAL;
     (void)state;
     polys[0] = flat(0, 4, 0, 4, 0, 1, 0.5, 0.0);
-    polys[1] = quad(w0, w3, w2, w1, 0.5, 0.0); /* faces +x, into the room */
+    polys[1] = quad(w0, w3, w2, w1, 0.5, 0.0);  /* faces +x, into the room */
     polys[2] = quad(e0, e3, e2, e1, 0.0, 10.0); /* faces +x, at the wall's back */
     polys[3] = flat(1, 3, 1, 3, 3, 0, 0.0, 1.0);
     bake_scene(polys, 4, 128, 64, 0.0, &a);
     for (i = 0; i < 40; i++) {
-        double z = 0.05 + 3.9 * i / 39.0, x0[3] = {1e-3 * a.texel, 0, z}, x1[3] = {1.001 * a.texel, 0, z};
+        double z = 0.05 + 3.9 * i / 39.0, x0[3] = {1e-3 * a.texel, 0, z},
+               x1[3] = {1.001 * a.texel, 0, z};
         double uv0[2], uv1[2], c0[3], c1[3];
         lm_uv(&a, 0, x0, uv0);
         lm_uv(&a, 0, x1, uv1);
         lm_lookup(&a, uv0, c0);
         lm_lookup(&a, uv1, c1);
-        CHECK_LE(c0[1], 1.02 * c1[1], "floor at the wall, z = %.3f (bilinear), against 1.02 x one texel further in", z);
+        CHECK_LE(c0[1], 1.02 * c1[1],
+                 "floor at the wall, z = %.3f (bilinear), against 1.02 x one texel further in", z);
         if (c0[1] / c1[1] > worst) worst = c0[1] / c1[1];
         n++;
     }
-    printf("lightmap leaks: %d floor points at the wall, at most %.4f of the next one in (bound 1.02)\n", n, worst);
+    printf("lightmap leaks: %d floor points at the wall, at most %.4f of the next one in (bound "
+           "1.02)\n",
+           n, worst);
     lm_free(&a);
 }
 
@@ -483,8 +499,8 @@ static void test_lightmap_adaptive(void **state)
             same &= !memcmp(&ad.rgb[3 * i], &ex.rgb[3 * i], 3 * sizeof *ad.rgb);
             continue;
         }
-        CHECK_THAT(ad.state[i] & LM_LERPED, "texel %d,%d gathered or interpolated", (int)(i % ex.size),
-                   (int)(i / ex.size));
+        CHECK_THAT(ad.state[i] & LM_LERPED, "texel %d,%d gathered or interpolated",
+                   (int)(i % ex.size), (int)(i / ex.size));
         for (k = 0; k < 3; k++) {
             top = fmax(top, ex.rgb[3 * i + k]);
             d = fmax(d, fabs(ad.rgb[3 * i + k] - ex.rgb[3 * i + k]));
@@ -495,7 +511,8 @@ static void test_lightmap_adaptive(void **state)
         lerped++;
     }
     rms = sqrt(sq / (lerped ? lerped : 1));
-    printf("lightmap adaptive (tolerance %g) against every texel: %d of %d texels gathered (%.1f%%), %d interpolated: "
+    printf("lightmap adaptive (tolerance %g) against every texel: %d of %d texels gathered "
+           "(%.1f%%), %d interpolated: "
            "worst %.2f%%, rms %.2f%% (bounds 7%%, 1%%; gathered at most 90%%)\n",
            LM_TOL, na, ne, 100.0 * na / ne, lerped, 100.0 * worst, 100.0 * rms);
     CHECK_INT_EQ(ne, covered, "the every-texel bake's gathers: the covered texels");
@@ -524,12 +541,14 @@ static void test_lightmap_packing(void **state)
     for (i = 0; i < a.ncharts; i++) {
         const lm_chart *c = &a.charts[i];
         CHECK_THAT(c->x >= 0 && c->y >= 0 && c->x + c->w <= a.size && c->y + c->h <= a.size,
-                   "chart %d's rectangle %d,%d %dx%d inside the atlas of %d", i, c->x, c->y, c->w, c->h, a.size);
+                   "chart %d's rectangle %d,%d %dx%d inside the atlas of %d", i, c->x, c->y, c->w,
+                   c->h, a.size);
         for (j = 0; j < i; j++) {
             const lm_chart *d = &a.charts[j];
-            int apart = c->x >= d->x + d->w || d->x >= c->x + c->w || c->y >= d->y + d->h || d->y >= c->y + c->h;
-            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d apart", i, j, c->x, c->y, c->w,
-                       c->h, d->x, d->y, d->w, d->h);
+            int apart = c->x >= d->x + d->w || d->x >= c->x + c->w || c->y >= d->y + d->h ||
+                        d->y >= c->y + c->h;
+            CHECK_THAT(apart, "charts %d and %d: rectangles %d,%d %dx%d and %d,%d %dx%d apart", i,
+                       j, c->x, c->y, c->w, c->h, d->x, d->y, d->w, d->h);
         }
     }
     for (i = 0; i < n; i++) {
@@ -538,10 +557,11 @@ static void test_lightmap_packing(void **state)
             double uv[2];
             lm_uv(&a, i, polys[i].v[k], uv);
             int e = a.padding + 1; /* the gutter and the ring */
-            CHECK_THAT(uv[0] >= c->x + e - 1e-9 && uv[0] <= c->x + c->w - e + 1e-9 && uv[1] >= c->y + e - 1e-9 &&
-                           uv[1] <= c->y + c->h - e + 1e-9,
-                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring and gutter (to 1e-9)", i, k, uv[0],
-                       uv[1]);
+            CHECK_THAT(uv[0] >= c->x + e - 1e-9 && uv[0] <= c->x + c->w - e + 1e-9 &&
+                           uv[1] >= c->y + e - 1e-9 && uv[1] <= c->y + c->h - e + 1e-9,
+                       "polygon %d vertex %d at %.3f,%.3f inside its rectangle's ring and gutter "
+                       "(to 1e-9)",
+                       i, k, uv[0], uv[1]);
         }
         for (j = 0; j < 10; j++)
             for (k = 0; k < 10 - j; k++) {
@@ -557,7 +577,8 @@ static void test_lightmap_packing(void **state)
                 points++;
             }
     }
-    printf("lightmap packing: %d charts in %dx%d at a texel of %.4f, %d polygon points in covered texels\n",
+    printf("lightmap packing: %d charts in %dx%d at a texel of %.4f, %d polygon points in covered "
+           "texels\n",
            a.ncharts, a.size, a.size, a.texel, points);
     lm_free(&a);
 }
@@ -575,7 +596,8 @@ static int tessellated(sc_poly *polys, double x0, double rho)
         for (j = 0; j < res[r]; j++)
             for (i = 0; i < res[r]; i++) {
                 double a[3] = {ox + s * i, 0, oz + s * j}, b[3] = {ox + s * i, 0, oz + s * (j + 1)};
-                double c[3] = {ox + s * (i + 1), 0, oz + s * (j + 1)}, d[3] = {ox + s * (i + 1), 0, oz + s * j};
+                double c[3] = {ox + s * (i + 1), 0, oz + s * (j + 1)},
+                       d[3] = {ox + s * (i + 1), 0, oz + s * j};
                 polys[n] = quad(a, b, c, d, rho, 0.0);
                 if (r % 2) { /* two triangles: a b c and a c d */
                     polys[n].n = 3;
@@ -605,12 +627,15 @@ static void test_lightmap_charts(void **state)
     polys[n++] = quad(w0, w1, w2, w3, 0.5, 0); /* x = 0, facing +x */
     CHECK_INT_EQ(lm_build(&a, polys, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
     for (i = 1; i < plane; i++)
-        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[0], "polygon %d of the tessellated square: its chart", i);
+        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[0],
+                     "polygon %d of the tessellated square: its chart", i);
     CHECK_THAT(a.poly_chart[plane] != a.poly_chart[0], "the square apart has a chart of its own");
-    CHECK_THAT(a.poly_chart[plane + 1] != a.poly_chart[0], "the wall (a 90 degree bend) has a chart of its own");
+    CHECK_THAT(a.poly_chart[plane + 1] != a.poly_chart[0],
+               "the wall (a 90 degree bend) has a chart of its own");
     CHECK_INT_EQ(a.ncharts, 3, "charts");
-    printf("lightmap charts: %d polygons (a square in %d with T-junctions, a square apart, a wall): %d charts\n", n,
-           plane, a.ncharts);
+    printf("lightmap charts: %d polygons (a square in %d with T-junctions, a square apart, a "
+           "wall): %d charts\n",
+           n, plane, a.ncharts);
     lm_free(&a);
 }
 
@@ -673,12 +698,13 @@ static void test_lightmap_merged_light(void **state)
                 lm_lookup(&a[m], uv, e[m]);
             }
             rel = fabs(e[0][1] - e[1][1]) / e[1][1];
-            CHECK_LE(rel, 0.005, "at (%.1f, 0, %.1f): tessellated %.6f against one quad %.6f", x[0], x[2], e[0][1],
-                     e[1][1]);
+            CHECK_LE(rel, 0.005, "at (%.1f, 0, %.1f): tessellated %.6f against one quad %.6f", x[0],
+                     x[2], e[0][1], e[1][1]);
             worst = fmax(worst, rel);
         }
-    printf("lightmap merged light: %d and %d charts, 1521 points, worst %.4f%% apart (bound 0.5%%)\n", charts[0],
-           charts[1], 100.0 * worst);
+    printf(
+        "lightmap merged light: %d and %d charts, 1521 points, worst %.4f%% apart (bound 0.5%%)\n",
+        charts[0], charts[1], 100.0 * worst);
     lm_free(&a[0]);
     lm_free(&a[1]);
 }
@@ -686,7 +712,8 @@ static void test_lightmap_merged_light(void **state)
 #define TURN 6.283185307179586 /* radians a turn */
 
 /* Quad A B C D turned (reversed) so that its lit side faces along WANT. */
-static sc_poly facing(const double *a, const double *b, const double *c, const double *d, const double *want)
+static sc_poly facing(const double *a, const double *b, const double *c, const double *d,
+                      const double *want)
 {
     double e[3], f[3], nn[3];
     int k;
@@ -698,7 +725,7 @@ static sc_poly facing(const double *a, const double *b, const double *c, const d
     nn[1] = e[2] * f[0] - e[0] * f[2];
     nn[2] = e[0] * f[1] - e[1] * f[0];
     return nn[0] * want[0] + nn[1] * want[1] + nn[2] * want[2] >= 0 ? quad(a, b, c, d, 0.5, 0.0)
-                                                                     : quad(d, c, b, a, 0.5, 0.0);
+                                                                    : quad(d, c, b, a, 0.5, 0.0);
 }
 
 /* Quad of corners at angles A (about the y axis), radii R and heights Y, turned to
@@ -723,7 +750,8 @@ static int cylinder(sc_poly *p, int seg)
     for (i = 0; i < seg; i++)
         for (j = 0; j < 4; j++) {
             double a0 = TURN * i / seg, a1 = TURN * (i + 1) / seg, mid = 0.5 * (a0 + a1);
-            double a[4] = {a0, a1, a1, a0}, r[4] = {1, 1, 1, 1}, y[4] = {0.5 * j, 0.5 * j, 0.5 * j + 0.5, 0.5 * j + 0.5};
+            double a[4] = {a0, a1, a1, a0}, r[4] = {1, 1, 1, 1},
+                   y[4] = {0.5 * j, 0.5 * j, 0.5 * j + 0.5, 0.5 * j + 0.5};
             double want[3] = {cos(mid), 0.0, sin(mid)};
             p[n++] = ring_quad(a, r, y, want);
         }
@@ -738,7 +766,8 @@ static int ramp(sc_poly *p, int seg, double da, double rise)
     for (i = 0; i < seg; i++)
         for (j = 0; j < 2; j++) {
             double a0 = da * i, a1 = da * (i + 1), y0 = rise * a0 / TURN, y1 = rise * a1 / TURN;
-            double a[4] = {a0, a1, a1, a0}, r[4] = {1 + 0.5 * j, 1 + 0.5 * j, 1.5 + 0.5 * j, 1.5 + 0.5 * j};
+            double a[4] = {a0, a1, a1, a0},
+                   r[4] = {1 + 0.5 * j, 1 + 0.5 * j, 1.5 + 0.5 * j, 1.5 + 0.5 * j};
             double y[4] = {y0, y1, y1, y0}, up[3] = {0, 1, 0};
             p[n++] = ring_quad(a, r, y, up);
         }
@@ -765,11 +794,15 @@ static double texel_nearness(const lm_atlas *a, const sc_poly *p, int n)
                            t * ((1 - s) * p[i].v[3][k] + s * p[i].v[2][k]);
                 CHECK_INT_EQ(lm_uv(a, i, x, uv), 0, "lm_uv of quad %d", i);
                 CHECK_INT_EQ(lm_texel_point(a, (int)floor(uv[0]), (int)floor(uv[1]), q), 1,
-                             "quad %d at (%.3f, %.3f, %.3f): its texel covered", i, x[0], x[1], x[2]);
-                d = sqrt((q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) + (q[2] - x[2]) * (q[2] - x[2])) /
+                             "quad %d at (%.3f, %.3f, %.3f): its texel covered", i, x[0], x[1],
+                             x[2]);
+                d = sqrt((q[0] - x[0]) * (q[0] - x[0]) + (q[1] - x[1]) * (q[1] - x[1]) +
+                         (q[2] - x[2]) * (q[2] - x[2])) /
                     a->texel;
-                CHECK_LE(d, 2.0, "quad %d at (%.3f, %.3f, %.3f): its texel's sample %.3f texels away (chart %d)", i, x[0],
-                         x[1], x[2], d, a->poly_chart[i]);
+                CHECK_LE(
+                    d, 2.0,
+                    "quad %d at (%.3f, %.3f, %.3f): its texel's sample %.3f texels away (chart %d)",
+                    i, x[0], x[1], x[2], d, a->poly_chart[i]);
                 worst = fmax(worst, d);
             }
     return worst;
@@ -787,8 +820,9 @@ static void smooth_shape(const char *what, const sc_poly *p, int n, int lo, int 
     CHECK_INT_GE(a.ncharts, lo, "charts of %s", what);
     CHECK_INT_LE(a.ncharts, hi, "charts of %s", what);
     worst = texel_nearness(&a, p, n);
-    printf("lightmap smooth charts: %s (%d quads): %d charts (bounds %d..%d), samples within %.2f texels\n", what, n,
-           a.ncharts, lo, hi, worst);
+    printf("lightmap smooth charts: %s (%d quads): %d charts (bounds %d..%d), samples within %.2f "
+           "texels\n",
+           what, n, a.ncharts, lo, hi, worst);
     lm_free(&a);
 }
 
@@ -809,25 +843,32 @@ static void test_lightmap_smooth_charts(void **state)
     double worst;
     (void)state;
     for (i = 0; i < 12; i++)
-        for (j = 0; j < 12; j++) polys[n++] = flat(0.5 * i, 0.5 * (i + 1), 0.5 * j, 0.5 * (j + 1), 0, 1, 0.5, 0);
+        for (j = 0; j < 12; j++)
+            polys[n++] = flat(0.5 * i, 0.5 * (i + 1), 0.5 * j, 0.5 * (j + 1), 0, 1, 0.5, 0);
     floor_n = n;
     for (i = 0; i < 3; i++)
         for (j = 0; j < 3; j++) {
-            double a0[3] = {0, j, 2.0 * i}, a1[3] = {0, j, 2.0 * i + 2}, a2[3] = {0, j + 1, 2.0 * i + 2},
-                   a3[3] = {0, j + 1, 2.0 * i}, b0[3] = {2.0 * i, j, 0}, b1[3] = {2.0 * i + 2, j, 0},
-                   b2[3] = {2.0 * i + 2, j + 1, 0}, b3[3] = {2.0 * i, j + 1, 0}, px[3] = {1, 0, 0}, pz[3] = {0, 0, 1};
+            double a0[3] = {0, j, 2.0 * i}, a1[3] = {0, j, 2.0 * i + 2},
+                   a2[3] = {0, j + 1, 2.0 * i + 2}, a3[3] = {0, j + 1, 2.0 * i},
+                   b0[3] = {2.0 * i, j, 0}, b1[3] = {2.0 * i + 2, j, 0},
+                   b2[3] = {2.0 * i + 2, j + 1, 0}, b3[3] = {2.0 * i, j + 1, 0}, px[3] = {1, 0, 0},
+                   pz[3] = {0, 0, 1};
             polys[n++] = facing(a0, a1, a2, a3, px);
             polys[n++] = facing(b0, b1, b2, b3, pz);
         }
     walls = n - floor_n;
     CHECK_INT_EQ(lm_build(&a, polys, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
-    for (i = 1; i < floor_n; i++) CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[0], "floor quad %d: its chart", i);
+    for (i = 1; i < floor_n; i++)
+        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[0], "floor quad %d: its chart", i);
     for (i = floor_n + 2; i < n; i++)
-        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[floor_n + (i - floor_n) % 2], "wall quad %d: its wall's chart", i);
+        CHECK_INT_EQ(a.poly_chart[i], a.poly_chart[floor_n + (i - floor_n) % 2],
+                     "wall quad %d: its wall's chart", i);
     CHECK_INT_EQ(a.ncharts, 3, "charts of the floor and the L of walls");
     worst = texel_nearness(&a, polys, n);
-    printf("lightmap smooth charts: a floor of %d quads and an L of two walls of %d: %d charts, samples within %.2f "
-           "texels\n", floor_n, walls, a.ncharts, worst);
+    printf("lightmap smooth charts: a floor of %d quads and an L of two walls of %d: %d charts, "
+           "samples within %.2f "
+           "texels\n",
+           floor_n, walls, a.ncharts, worst);
     lm_free(&a);
 
     smooth_shape("a cylinder of 24 facets", polys, cylinder(polys, 24), 8, 23);
@@ -854,19 +895,23 @@ static void test_lightmap_smooth_light(void **state)
         for (k = 0; k <= polys[p].n; k++) {
             double x[3], uv[2], e[2][3], rel;
             for (c = 0; c < 3; c++)
-                x[c] = k == polys[p].n ? (polys[p].v[0][c] + polys[p].v[1][c] + polys[p].v[2][c]) / 3.0
-                                       : 0.5 * (polys[p].v[k][c] + polys[p].v[(k + 1) % 3][c]);
+                x[c] = k == polys[p].n
+                           ? (polys[p].v[0][c] + polys[p].v[1][c] + polys[p].v[2][c]) / 3.0
+                           : 0.5 * (polys[p].v[k][c] + polys[p].v[(k + 1) % 3][c]);
             for (m = 0; m < 2; m++) {
                 lm_uv(&a[m], p, x, uv);
                 lm_lookup(&a[m], uv, e[m]);
             }
             rel = fabs(e[0][1] - e[1][1]) / fmax(e[0][1], e[1][1]);
-            CHECK_LE(rel, 0.02, "triangle %d at (%.3f, %.3f, %.3f): one chart %.6f against coplanar charts %.6f", p,
-                     x[0], x[1], x[2], e[1][1], e[0][1]);
+            CHECK_LE(
+                rel, 0.02,
+                "triangle %d at (%.3f, %.3f, %.3f): one chart %.6f against coplanar charts %.6f", p,
+                x[0], x[1], x[2], e[1][1], e[0][1]);
             worst = fmax(worst, rel);
             points++;
         }
-    printf("lightmap smooth light: the terrain as %d chart(s) against %d, %d points, worst %.3f%% apart (bound 2%%)\n",
+    printf("lightmap smooth light: the terrain as %d chart(s) against %d, %d points, worst %.3f%% "
+           "apart (bound 2%%)\n",
            a[1].ncharts - 1, a[0].ncharts - 1, points, 100.0 * worst);
     lm_free(&a[0]);
     lm_free(&a[1]);
@@ -894,8 +939,9 @@ static void test_lightmap_level_charts(void **state)
     o.crease = -1.0;
     CHECK_INT_EQ(lm_build(&a, p, n, &o, err, sizeof err), 0, "lm_build (%s)", err);
     CHECK_INT_GE(a.ncharts, smooth + 1, "coplanar charts of the level: more than smooth ones");
-    printf("lightmap level: %d polygons, %d charts (coplanar only: %d) in 1024 x 1024 (bound 2999)\n", n, smooth,
-           a.ncharts);
+    printf(
+        "lightmap level: %d polygons, %d charts (coplanar only: %d) in 1024 x 1024 (bound 2999)\n",
+        n, smooth, a.ncharts);
     lm_free(&a);
     free(p);
 }
@@ -941,7 +987,8 @@ static void test_lightmap_gutter(void **state)
                     size_t b = (size_t)(y + dy) * a.size + (size_t)(x + dx);
                     if (x + dx < 0 || y + dy < 0 || x + dx >= a.size || y + dy >= a.size) continue;
                     CHECK_THAT(a.rgb[3 * b + other] == 0.0f,
-                               "texel %d,%d (%d,%d from chart %d's covered texel) holds %g of the other chart",
+                               "texel %d,%d (%d,%d from chart %d's covered texel) holds %g of the "
+                               "other chart",
                                x + dx, y + dy, dx, dy, a.owner[at], a.rgb[3 * b + other]);
                     checked++;
                 }
@@ -959,17 +1006,23 @@ static void test_lightmap_gutter(void **state)
                         if (!isnan(a.sample[2 * b])) has[a.poly[b]] = 1;
                     }
                 CHECK_THAT(!(has[0] && sum[1] > 0) && !(has[1] && sum[0] > 0),
-                           "mip level %d texel %d,%d: a chart's covered texels mixed with the other's light "
-                           "(red %g, green %g)", m, x >> m, y >> m, sum[0], sum[1]);
+                           "mip level %d texel %d,%d: a chart's covered texels mixed with the "
+                           "other's light "
+                           "(red %g, green %g)",
+                           m, x >> m, y >> m, sum[0], sum[1]);
             }
-    printf("lightmap gutter: padding %d, %d texel pairs within it clean, mip levels 1..%d clean\n", a.padding,
-           checked, levels);
+    printf("lightmap gutter: padding %d, %d texel pairs within it clean, mip levels 1..%d clean\n",
+           a.padding, checked, levels);
     CHECK_INT_EQ(levels >= 2, 1, "mip levels kept clean by the default padding (1 and 2 at least)");
     lm_free(&a);
     for (m = 64; m <= 1024; m *= 2) { /* the default by size */
         o.size = m;
         CHECK_INT_EQ(lm_build(&a, polys, 2, &o, err, sizeof err), 0, "lm_build (%s)", err);
-        CHECK_INT_EQ(a.padding, m < 256 ? 1 : m < 512 ? 2 : 4, "the default padding at %d texels (size / 128 in 1..4)", m);
+        CHECK_INT_EQ(a.padding,
+                     m < 256   ? 1
+                     : m < 512 ? 2
+                               : 4,
+                     "the default padding at %d texels (size / 128 in 1..4)", m);
         lm_free(&a);
     }
 }
@@ -982,30 +1035,36 @@ static void test_lightmap_bad_sizes(void **state)
     char err[256] = "";
     int n = terrain(polys);
     /* coplanar charts only: every triangle of the terrain its own */
-    lm_opts zero = {0, 0.0, 0, LM_TOL, -1}, big = {8193, 0.0, 0, LM_TOL, -1}, small = {8, 0.0, 0, LM_TOL, -1};
-    lm_opts fine = {64, 0.001, 0, LM_TOL, -1}, o64 = {64, 0.0, 0, LM_TOL, -1}, tol = {64, 0.0, 0, 1.5, -1};
+    lm_opts zero = {0, 0.0, 0, LM_TOL, -1}, big = {8193, 0.0, 0, LM_TOL, -1},
+            small = {8, 0.0, 0, LM_TOL, -1};
+    lm_opts fine = {64, 0.001, 0, LM_TOL, -1}, o64 = {64, 0.0, 0, LM_TOL, -1},
+            tol = {64, 0.0, 0, 1.5, -1};
     lm_opts crease = {64, 0.0, 0, LM_TOL, 61};
     (void)state;
     CHECK_INT_EQ(lm_build(&a, polys, n, &zero, err, sizeof err), -1, "a size of 0 refused");
     CHECK_CONTAINS(err, "a lightmap size of 0 is outside 1..8192", "the message");
     CHECK_INT_EQ(lm_build(&a, polys, n, &big, err, sizeof err), -1, "a size of 8193 refused");
     CHECK_CONTAINS(err, "a lightmap size of 8193 is outside 1..8192", "the message");
-    CHECK_INT_EQ(lm_build(&a, polys, n, &small, err, sizeof err), -1, "129 charts in 8 x 8 texels refused");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &small, err, sizeof err), -1,
+                 "129 charts in 8 x 8 texels refused");
     CHECK_CONTAINS(err, "cannot fit 129 charts", "the message");
-    CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1, "a texel of 0.001 in 64 x 64 refused");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &fine, err, sizeof err), -1,
+                 "a texel of 0.001 in 64 x 64 refused");
     CHECK_CONTAINS(err, "cannot fit 129 charts at a texel of 0.001", "the message");
     CHECK_INT_EQ(lm_build(&a, polys, n, &tol, err, sizeof err), -1, "a tolerance of 1.5 refused");
     CHECK_CONTAINS(err, "a lightmap tolerance of 1.5 is outside 0..1", "the message");
     tol.tol = NAN;
     CHECK_INT_EQ(lm_build(&a, polys, n, &tol, err, sizeof err), -1, "a tolerance of NaN refused");
-    CHECK_INT_EQ(lm_build(&a, polys, n, &crease, err, sizeof err), -1, "a crease of 61 degrees refused");
+    CHECK_INT_EQ(lm_build(&a, polys, n, &crease, err, sizeof err), -1,
+                 "a crease of 61 degrees refused");
     CHECK_CONTAINS(err, "a chart crease of 61 degrees is outside 0..60", "the message");
     crease.crease = NAN;
     CHECK_INT_EQ(lm_build(&a, polys, n, &crease, err, sizeof err), -1, "a crease of NaN refused");
     assert_null(a.rgb);
     memset(polys, 0, sizeof polys[0]);
     polys[0].n = 3; /* three vertices at the origin */
-    CHECK_INT_EQ(lm_build(&a, polys, 1, &o64, err, sizeof err), -1, "polygons of no extent refused");
+    CHECK_INT_EQ(lm_build(&a, polys, 1, &o64, err, sizeof err), -1,
+                 "polygons of no extent refused");
     CHECK_CONTAINS(err, "the polygons have no extent", "the message");
 }
 
@@ -1025,7 +1084,8 @@ static int cube(sc_poly *q, double lo, double hi, int inward, double emit)
             v[k][c] = vs[k];
         }
         /* (b, c) counter-clockwise seen from +a: the normal +a (the hi side out, the lo in). */
-        q[n] = plus ? quad(v[0], v[1], v[2], v[3], 0.0, emit) : quad(v[3], v[2], v[1], v[0], 0.0, emit);
+        q[n] = plus ? quad(v[0], v[1], v[2], v[3], 0.0, emit)
+                    : quad(v[3], v[2], v[1], v[0], 0.0, emit);
         n++;
     }
     return n;
@@ -1074,25 +1134,32 @@ static void test_probes_grid(void **state)
     CHECK_INT_EQ(pr_parse_grid("4,4,4", dims, err, sizeof err), 0, "grid 4,4,4 (%s)", err);
     pts = pr_grid_points(polys, n, dims);
     assert_non_null(pts);
-    CHECK_INT_EQ(pr_bake(polys, n, pts, 64, sh_cb, &b, pr, err, sizeof err), 0, "pr_bake (%s)", err);
+    CHECK_INT_EQ(pr_bake(polys, n, pts, 64, sh_cb, &b, pr, err, sizeof err), 0, "pr_bake (%s)",
+                 err);
     for (i = 0; i < 64; i++) {
-        int in = fabs(pr[i].p[0] - 0.5) < 1e-12 && fabs(pr[i].p[1] - 0.5) < 1e-12 && fabs(pr[i].p[2] - 0.5) < 1e-12;
+        int in = fabs(pr[i].p[0] - 0.5) < 1e-12 && fabs(pr[i].p[1] - 0.5) < 1e-12 &&
+                 fabs(pr[i].p[2] - 0.5) < 1e-12;
         CHECK_NEAR(pr[i].p[0], -1.5 + (i % 4), 1e-12, "probe %d's x", i);
         CHECK_NEAR(pr[i].p[2], -1.5 + i / 16, 1e-12, "probe %d's z", i);
-        CHECK_INT_EQ(pr[i].inside, in, "probe %d at (%g, %g, %g) flagged inside", i, pr[i].p[0], pr[i].p[1], pr[i].p[2]);
+        CHECK_INT_EQ(pr[i].inside, in, "probe %d at (%g, %g, %g) flagged inside", i, pr[i].p[0],
+                     pr[i].p[1], pr[i].p[2]);
         CHECK_NEAR(pr[i].back, in ? 1.0 : 0.0, 1e-12, "probe %d's rays meeting back faces", i);
         inside += pr[i].inside;
         if (in) continue;
         for (k = 0; k < 9; k++) {
-            double want = k ? 0.0 : sqrt(16.0 * atan(1.0)), d = fabs(pr[i].sh[k][1] - want) / sqrt(16.0 * atan(1.0));
+            double want = k ? 0.0 : sqrt(16.0 * atan(1.0)),
+                   d = fabs(pr[i].sh[k][1] - want) / sqrt(16.0 * atan(1.0));
             CHECK_LE(d, 0.01, "probe %d SH[%d] %.6f against %.6f", i, k, pr[i].sh[k][1], want);
             if (d > worst) worst = d;
         }
     }
-    printf("probes: 64 in a glowing room, %d inside the box; SH within %.4f%% of sqrt(4 pi) and zeros (bound 1%%)\n",
+    printf("probes: 64 in a glowing room, %d inside the box; SH within %.4f%% of sqrt(4 pi) and "
+           "zeros (bound 1%%)\n",
            inside, 100.0 * worst);
-    CHECK_INT_EQ(pr_write_json(tmp_path("probes.json"), pr, 64, dims, err, sizeof err), 0, "pr_write_json (%s)", err);
-    CHECK_INT_EQ(fio_read_all(tmp_path("probes.json"), 1u << 20, &json, &len, err, sizeof err), 0, "read back (%s)", err);
+    CHECK_INT_EQ(pr_write_json(tmp_path("probes.json"), pr, 64, dims, err, sizeof err), 0,
+                 "pr_write_json (%s)", err);
+    CHECK_INT_EQ(fio_read_all(tmp_path("probes.json"), 1u << 20, &json, &len, err, sizeof err), 0,
+                 "read back (%s)", err);
     CHECK_INT_EQ(count_of(json, "{\"p\": ["), 64, "probes in the JSON");
     CHECK_INT_EQ(count_of(json, "\"inside\": true"), 1, "probes flagged inside in the JSON");
     CHECK_CONTAINS(json, "\"grid\": [4, 4, 4]", "the grid in the JSON");
@@ -1134,7 +1201,8 @@ static void test_probes_input(void **state)
     CHECK_CONTAINS(err, "no probes in the file", "the message");
     CHECK_INT_EQ(pr_parse_grid("0,2,2", dims, err, sizeof err), -1, "a grid of 0 refused");
     CHECK_CONTAINS(err, "a grid of 0 along an axis is outside 1..256", "the message");
-    CHECK_INT_EQ(pr_parse_grid("101,100,100", dims, err, sizeof err), -1, "1,010,000 probes refused");
+    CHECK_INT_EQ(pr_parse_grid("101,100,100", dims, err, sizeof err), -1,
+                 "1,010,000 probes refused");
     CHECK_CONTAINS(err, "a grid of 1010000 probes is above 1000000", "the message");
     CHECK_INT_EQ(pr_parse_grid("4,4", dims, err, sizeof err), -1, "two numbers refused");
     CHECK_CONTAINS(err, "is not NX,NY,NZ", "the message");
@@ -1149,7 +1217,8 @@ static int cli(const char *args, char **err)
     char cmd[2048];
     size_t len;
     int st;
-    snprintf(cmd, sizeof cmd, "build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --quiet -o %s %s 2> %s",
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --quiet -o %s %s 2> %s",
              tmp_path("cli.png"), args, tmp_path("cli.err"));
     st = system(cmd);
     if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
@@ -1170,27 +1239,33 @@ static void test_cli_bake(void **state)
     double peak = 0.0;
     struct stat st;
     (void)state;
-    CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)", err ? err : "");
+    CHECK_INT_EQ(cli("--lightmap-size 0", &err), 2, "exit status of --lightmap-size 0 (%s)",
+                 err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-size wants a whole number from 1 to 8192", "the message");
     free(err);
-    CHECK_INT_EQ(cli("--lightmap-tol 1.5", &err), 2, "exit status of --lightmap-tol 1.5 (%s)", err ? err : "");
+    CHECK_INT_EQ(cli("--lightmap-tol 1.5", &err), 2, "exit status of --lightmap-tol 1.5 (%s)",
+                 err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-tol wants a number in [0, 1]", "the message");
     free(err);
-    CHECK_INT_EQ(cli("--lightmap-pad 65", &err), 2, "exit status of --lightmap-pad 65 (%s)", err ? err : "");
+    CHECK_INT_EQ(cli("--lightmap-pad 65", &err), 2, "exit status of --lightmap-pad 65 (%s)",
+                 err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-pad wants a whole number from 0 to 64", "the message");
     free(err);
     /* a lightmap option without the lightmap would be ignored: refused instead */
-    CHECK_INT_EQ(cli("--lightmap-uv rad", &err), 2, "exit status of --lightmap-uv without --lightmap (%s)",
-                 err ? err : "");
+    CHECK_INT_EQ(cli("--lightmap-uv rad", &err), 2,
+                 "exit status of --lightmap-uv without --lightmap (%s)", err ? err : "");
     CHECK_CONTAINS(err, "--lightmap-uv needs --lightmap FILE", "the message");
     free(err);
     snprintf(args, sizeof args, "--lightmap %s --lightmap-size 2", lm);
-    CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)", err ? err : "");
+    CHECK_INT_EQ(cli(args, &err), 1, "exit status of an atlas of 2 x 2 texels (%s)",
+                 err ? err : "");
     CHECK_CONTAINS(err, "cannot fit", "the message");
     CHECK_INT_EQ(stat(lm, &st), -1, "no lightmap file after the error");
-    CHECK_INT_EQ(stat(tmp_path("cli.png"), &st), -1, "no image either: the atlas is laid out before the solve");
+    CHECK_INT_EQ(stat(tmp_path("cli.png"), &st), -1,
+                 "no image either: the atlas is laid out before the solve");
     free(err);
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --probes 2,2,2 --probes-out %s", lm, pj);
+    snprintf(args, sizeof args,
+             "--lightmap %s --lightmap-size 64 --gather 8 --probes 2,2,2 --probes-out %s", lm, pj);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake (%s)", err ? err : "");
     free(err);
     CHECK_INT_EQ(hdr_read(lm, &im, NULL, 0), 0, "the lightmap read back");
@@ -1203,14 +1278,17 @@ static void test_cli_bake(void **state)
     free(json);
     /* On 3 threads, the same file to the bit; at 128 texels and a tolerance of 0.2 the
      * adaptive passes interpolate (9366 of the 11,236 texels gathered). */
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2", lm);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2",
+             lm);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 1 thread (%s)", err ? err : "");
     free(err);
     CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &one, &len, NULL, 0), 0, "the lightmap's bytes");
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2 --threads 3", lm);
+    snprintf(args, sizeof args,
+             "--lightmap %s --lightmap-size 128 --gather 8 --lightmap-tol 0.2 --threads 3", lm);
     CHECK_INT_EQ(cli(args, &err), 0, "exit status of a bake on 3 threads (%s)", err ? err : "");
     free(err);
-    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0, "the 3 threads' lightmap's bytes");
+    CHECK_INT_EQ(fio_read_all(lm, 1u << 20, &three, &len3, NULL, 0), 0,
+                 "the 3 threads' lightmap's bytes");
     CHECK_INT_EQ(len3, len, "bytes of the lightmap on 3 threads");
     assert_memory_equal(one, three, len);
     free(one);
@@ -1227,7 +1305,8 @@ static int cli_progress(const char *env, const char *args, char **err, char **ou
     size_t len;
     int st;
     snprintf(cmd, sizeof cmd,
-             "%s build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --width 64 --height 64 -o %s %s > %s 2> %s",
+             "%s build/rad_cli examples/cornell_box.obj --res 16 --tol 0.05 --width 64 --height 64 "
+             "-o %s %s > %s 2> %s",
              env, tmp_path("cli.png"), args, tmp_path("cli.out"), tmp_path("cli.err"));
     st = system(cmd);
     if (fio_read_all(tmp_path("cli.err"), 1u << 20, err, &len, NULL, 0) != 0) *err = NULL;
@@ -1240,8 +1319,8 @@ static int cli_progress(const char *env, const char *args, char **err, char **ou
 static void no_progress(const char *env, const char *more, const char *why, int quiet)
 {
     char args[1024], *err = NULL, *out = NULL;
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --export-gltf %s %s", tmp_path("lm.hdr"),
-             tmp_path("q.glb"), more);
+    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --export-gltf %s %s",
+             tmp_path("lm.hdr"), tmp_path("q.glb"), more);
     CHECK_INT_EQ(cli_progress(env, args, &err, &out), 0, "exit status %s", why);
     CHECK_LACKS(err, "solving", "stderr %s", why);
     CHECK_LACKS(err, "lightmap pass", "stderr %s", why);
@@ -1255,15 +1334,19 @@ static void no_progress(const char *env, const char *more, const char *why, int 
 static void test_cli_progress(void **state)
 {
     /* every stage of this run on --stats' time line */
-    static const char *const stages[] = {"time: load ", "  mesh ", "  layout ", "  solve ", "  render ", "  write ",
-                                         "  vertex gathers ", "  csv ", "  lightmap ", "  gltf "};
+    static const char *const stages[] = {"time: load ", "  mesh ",  "  layout ",         "  solve ",
+                                         "  render ",   "  write ", "  vertex gathers ", "  csv ",
+                                         "  lightmap ", "  gltf "};
     char args[1024], *err = NULL, *out = NULL;
     int i;
     const char *lm = tmp_path("lm.hdr");
     (void)state;
-    snprintf(args, sizeof args, "--lightmap %s --lightmap-size 64 --gather 8 --stats --export-gltf %s --dump-radiosity %s",
-             lm, tmp_path("p.glb"), tmp_path("p.csv"));
-    CHECK_INT_EQ(cli_progress("RAD_PROGRESS_DELAY=0", args, &err, &out), 0, "exit status (%s)", err ? err : "");
+    snprintf(
+        args, sizeof args,
+        "--lightmap %s --lightmap-size 64 --gather 8 --stats --export-gltf %s --dump-radiosity %s",
+        lm, tmp_path("p.glb"), tmp_path("p.csv"));
+    CHECK_INT_EQ(cli_progress("RAD_PROGRESS_DELAY=0", args, &err, &out), 0, "exit status (%s)",
+                 err ? err : "");
     CHECK_CONTAINS(err, "rad_cli: solving ", "the solve's progress");
     CHECK_CONTAINS(err, "rad_cli: lightmap pass 1 ", "the first lightmap pass's progress");
     CHECK_CONTAINS(err, "rad_cli: gathering the view ", "the view's gathers' progress");
@@ -1271,8 +1354,8 @@ static void test_cli_progress(void **state)
     CHECK_CONTAINS(err, "rad_cli: writing glTF ", "the glTF export's progress");
     for (i = 0; i < (int)(sizeof stages / sizeof *stages); i++)
         CHECK_CONTAINS(out, stages[i], "--stats' time line: the stage \"%s\"", stages[i]);
-    printf("progress at delay 0: %d lines on stderr; --stats timed %d stages\n", count_of(err, "\n"),
-           (int)(sizeof stages / sizeof *stages));
+    printf("progress at delay 0: %d lines on stderr; --stats timed %d stages\n",
+           count_of(err, "\n"), (int)(sizeof stages / sizeof *stages));
     free(err);
     free(out);
     no_progress("RAD_PROGRESS_DELAY=0", "--quiet", "with --quiet", 1);
@@ -1282,24 +1365,15 @@ static void test_cli_progress(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hdr_round_trip),
-        cmocka_unit_test(test_hdr_rle_smaller),
-        cmocka_unit_test(test_hdr_bad_input),
-        cmocka_unit_test(test_lightmap_lambert),
-        cmocka_unit_test(test_lightmap_no_seams),
-        cmocka_unit_test(test_lightmap_no_leaks),
-        cmocka_unit_test(test_lightmap_adaptive),
-        cmocka_unit_test(test_lightmap_packing),
-        cmocka_unit_test(test_lightmap_bad_sizes),
-        cmocka_unit_test(test_lightmap_gutter),
-        cmocka_unit_test(test_lightmap_charts),
-        cmocka_unit_test(test_lightmap_merged_light),
-        cmocka_unit_test(test_lightmap_smooth_charts),
-        cmocka_unit_test(test_lightmap_smooth_light),
-        cmocka_unit_test(test_lightmap_level_charts),
-        cmocka_unit_test(test_probes_grid),
-        cmocka_unit_test(test_probes_input),
-        cmocka_unit_test(test_cli_bake),
+        cmocka_unit_test(test_hdr_round_trip),         cmocka_unit_test(test_hdr_rle_smaller),
+        cmocka_unit_test(test_hdr_bad_input),          cmocka_unit_test(test_lightmap_lambert),
+        cmocka_unit_test(test_lightmap_no_seams),      cmocka_unit_test(test_lightmap_no_leaks),
+        cmocka_unit_test(test_lightmap_adaptive),      cmocka_unit_test(test_lightmap_packing),
+        cmocka_unit_test(test_lightmap_bad_sizes),     cmocka_unit_test(test_lightmap_gutter),
+        cmocka_unit_test(test_lightmap_charts),        cmocka_unit_test(test_lightmap_merged_light),
+        cmocka_unit_test(test_lightmap_smooth_charts), cmocka_unit_test(test_lightmap_smooth_light),
+        cmocka_unit_test(test_lightmap_level_charts),  cmocka_unit_test(test_probes_grid),
+        cmocka_unit_test(test_probes_input),           cmocka_unit_test(test_cli_bake),
         cmocka_unit_test(test_cli_progress),
     };
     return cmocka_run_group_tests_name("bake", tests, group_setup, group_teardown);

@@ -39,17 +39,17 @@
 
 extern char **environ;
 
-#define FIXED "build/rad_cli"
-#define FLOAT "build/rad_cli_float"
+#define FIXED   "build/rad_cli"
+#define FLOAT   "build/rad_cli_float"
 #define CORNELL "examples/cornell_box.obj"
-#define DATA "tests/data/cli/"
+#define DATA    "tests/data/cli/"
 
 /* Coarse solver settings for the Cornell box: elements of 0.1 m (patches 0.4 m, the
  * default 4x) and a 32x32 hemi-cube. Coarse but every feature the tests look at (the
  * coloured walls, the light, the darkened floor next to the blocks) is still there. */
 #define COARSE "--max-element", "0.1", "--res", "32"
 
-#define MAX_ARGS 64
+#define MAX_ARGS      64
 #define RUN_TIMEOUT_S 120.0 /* a run that takes longer is hung: it is killed and fails */
 
 /* ---- temporary directory ------------------------------------------------------ */
@@ -64,8 +64,7 @@ static char *slurp(const char *path, size_t *len)
     FILE *f = fopen(path, "rb");
     char *buf = NULL;
     size_t n = 0, cap = 0, got;
-    if (!f)
-        return NULL;
+    if (!f) return NULL;
     do {
         if (cap - n < 4096) {
             char *nb = realloc(buf, cap + 65536);
@@ -82,8 +81,7 @@ static char *slurp(const char *path, size_t *len)
     } while (got > 0);
     fclose(f);
     buf[n] = '\0';
-    if (len)
-        *len = n;
+    if (len) *len = n;
     return buf;
 }
 
@@ -109,8 +107,7 @@ static int count_tmp_files(const char *prefix)
     int n = 0;
     assert_non_null(d);
     while ((de = readdir(d)) != NULL)
-        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0)
-            n++;
+        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0) n++;
     closedir(d);
     return n;
 }
@@ -119,8 +116,8 @@ static int count_tmp_files(const char *prefix)
 
 typedef struct {
     pid_t pid;
-    int status;         /* exit status; 128 + signal if killed by one */
-    char *out, *err;    /* captured stdout and stderr */
+    int status;      /* exit status; 128 + signal if killed by one */
+    char *out, *err; /* captured stdout and stderr */
     char outpath[256], errpath[256];
 } run_t;
 
@@ -153,12 +150,15 @@ static void run_start(run_t *r, const char *bin, const char *const *args)
     argv[n] = NULL;
     assert_int_equal(posix_spawn_file_actions_init(&fa), 0);
     assert_int_equal(posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0), 0);
-    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 1, r->outpath, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
-    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 2, r->errpath, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
+    assert_int_equal(
+        posix_spawn_file_actions_addopen(&fa, 1, r->outpath, O_WRONLY | O_CREAT | O_TRUNC, 0600),
+        0);
+    assert_int_equal(
+        posix_spawn_file_actions_addopen(&fa, 2, r->errpath, O_WRONLY | O_CREAT | O_TRUNC, 0600),
+        0);
     rc = posix_spawn(&r->pid, bin, &fa, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0)
-        fail_msg("posix_spawn %s: %s", bin, strerror(rc));
+    if (rc != 0) fail_msg("posix_spawn %s: %s", bin, strerror(rc));
 }
 
 /* Waits for the run (killing it after RUN_TIMEOUT_S) and reads what it printed. */
@@ -170,12 +170,11 @@ static void run_finish(run_t *r)
     clock_gettime(CLOCK_MONOTONIC, &t0);
     for (;;) {
         w = waitpid(r->pid, &st, WNOHANG);
-        if (w == r->pid)
-            break;
-        if (w < 0 && errno != EINTR)
-            fail_msg("waitpid: %s", strerror(errno));
+        if (w == r->pid) break;
+        if (w < 0 && errno != EINTR) fail_msg("waitpid: %s", strerror(errno));
         clock_gettime(CLOCK_MONOTONIC, &t);
-        if ((double)(t.tv_sec - t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - t0.tv_nsec) > RUN_TIMEOUT_S) {
+        if ((double)(t.tv_sec - t0.tv_sec) + 1e-9 * (double)(t.tv_nsec - t0.tv_nsec) >
+            RUN_TIMEOUT_S) {
             kill(r->pid, SIGKILL);
             waitpid(r->pid, &st, 0);
             fail_msg("run timed out after %.0f s", RUN_TIMEOUT_S);
@@ -203,15 +202,15 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
 }
 
 /* RUN(&r, BIN, "arg", ...): runs BIN with the arguments and waits for it. */
-#define RUN(r, bin, ...) run_args((r), (bin), (const char *const[]){__VA_ARGS__, NULL})
+#define RUN(r, bin, ...)   run_args((r), (bin), (const char *const[]){__VA_ARGS__, NULL})
 #define START(r, bin, ...) run_start((r), (bin), (const char *const[]){__VA_ARGS__, NULL})
 
 /* The run must have exited with STATUS; on mismatch, show what it printed. */
 static void expect_status_at(const run_t *r, int status, const char *file, int line)
 {
-    if (r->status == status)
-        return;
-    print_error("exit status %d, expected %d\nstdout: %s\nstderr: %s\n", r->status, status, r->out, r->err);
+    if (r->status == status) return;
+    print_error("exit status %d, expected %d\nstdout: %s\nstderr: %s\n", r->status, status, r->out,
+                r->err);
     _fail(file, line);
 }
 #define expect_status(r, s) expect_status_at((r), (s), __FILE__, __LINE__)
@@ -219,8 +218,7 @@ static void expect_status_at(const run_t *r, int status, const char *file, int l
 static int count_lines(const char *s)
 {
     int n = 0;
-    for (; *s; s++)
-        n += *s == '\n';
+    for (; *s; s++) n += *s == '\n';
     return n;
 }
 
@@ -234,11 +232,9 @@ static int has_line(const char *text, const char *prefix)
 {
     const char *p = text;
     while (p && *p) {
-        if (starts_with(p, prefix))
-            return 1;
+        if (starts_with(p, prefix)) return 1;
         p = strchr(p, '\n');
-        if (p)
-            p++;
+        if (p) p++;
     }
     return 0;
 }
@@ -248,8 +244,7 @@ static int has_line(const char *text, const char *prefix)
 static void load_img(const char *path, img_t *im)
 {
     char e[512];
-    if (img_read(path, im, e, sizeof e) < 0)
-        fail_msg("img_read: %s", e);
+    if (img_read(path, im, e, sizeof e) < 0) fail_msg("img_read: %s", e);
 }
 
 static const unsigned char *px(const img_t *im, int x, int y)
@@ -281,10 +276,8 @@ static void region_mean(const img_t *im, rect_t r, int linear, double m[3])
     m[0] = m[1] = m[2] = 0;
     for (y = y0; y < y1; y++)
         for (x = x0; x < x1; x++, n++)
-            for (c = 0; c < 3; c++)
-                m[c] += linear ? srgb_decode(px(im, x, y)[c]) : px(im, x, y)[c];
-    for (c = 0; c < 3; c++)
-        m[c] /= (double)n;
+            for (c = 0; c < 3; c++) m[c] += linear ? srgb_decode(px(im, x, y)[c]) : px(im, x, y)[c];
+    for (c = 0; c < 3; c++) m[c] /= (double)n;
 }
 
 static double luma(const double m[3])
@@ -312,10 +305,22 @@ static long centroid(const img_t *im, pix_pred pred, double *cx, double *cy)
     return n;
 }
 
-static int is_white(const unsigned char *p) { return p[0] >= 250 && p[1] >= 250 && p[2] >= 250; }
-static int is_red(const unsigned char *p) { return p[0] > 60 && p[0] > 2 * p[1] && p[0] > 2 * p[2]; }
-static int is_green(const unsigned char *p) { return p[1] > 60 && p[1] > p[0] + 20 && p[1] > 2 * p[2]; }
-static int is_blue(const unsigned char *p) { return p[2] > 40 && p[2] > 2 * p[0] && p[2] > 2 * p[1]; }
+static int is_white(const unsigned char *p)
+{
+    return p[0] >= 250 && p[1] >= 250 && p[2] >= 250;
+}
+static int is_red(const unsigned char *p)
+{
+    return p[0] > 60 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
+}
+static int is_green(const unsigned char *p)
+{
+    return p[1] > 60 && p[1] > p[0] + 20 && p[1] > 2 * p[2];
+}
+static int is_blue(const unsigned char *p)
+{
+    return p[2] > 40 && p[2] > 2 * p[0] && p[2] > 2 * p[1];
+}
 /* Lit, unsaturated, not the lamp: the white floor of orient.obj. */
 static int is_grey(const unsigned char *p)
 {
@@ -343,7 +348,8 @@ static void expect_same_pixels(const img_t *a, const img_t *b)
 
 static int same_pixels(const img_t *a, const img_t *b)
 {
-    return a->w == b->w && a->h == b->h && memcmp(a->rgb, b->rgb, (size_t)a->w * (size_t)a->h * 3) == 0;
+    return a->w == b->w && a->h == b->h &&
+           memcmp(a->rgb, b->rgb, (size_t)a->w * (size_t)a->h * 3) == 0;
 }
 
 /* The file starts with the PNG signature / the P6 magic. */
@@ -363,7 +369,8 @@ static void parse_counts(const char *out, int *patches, int *elements, int *vert
 {
     const char *p = strstr(out, "patches ");
     assert_non_null(p);
-    assert_int_equal(sscanf(p, "patches %d elements %d vertices %d", patches, elements, vertices), 3);
+    assert_int_equal(sscanf(p, "patches %d elements %d vertices %d", patches, elements, vertices),
+                     3);
     CHECK_INT_GT(*patches, 0, "--stats patches");
     CHECK_INT_GE(*elements, *patches, "--stats elements against patches");
     CHECK_INT_GT(*vertices, 0, "--stats vertices");
@@ -401,7 +408,8 @@ static void test_cornell_box(void **state)
     const int corner = 2; /* px: the margin is ~2.4% = 3 px at 128, so 2x2 is outside */
     (void)state;
     need(FIXED);
-    RUN(&r, FIXED, "--quiet", "--width", "128", "--height", "128", COARSE, "-o", tmp_path("cornell.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "128", "--height", "128", COARSE, "-o",
+        tmp_path("cornell.png"), CORNELL);
     expect_status(&r, 0);
     assert_string_equal(r.err, "");
     run_free(&r);
@@ -425,8 +433,8 @@ static void test_cornell_box(void **state)
      * 8-bit values. */
     region_mean(&im, GREEN_WALL, 0, green);
     region_mean(&im, GREEN_WALL, 1, greenl);
-    print_message("green wall 8-bit %.0f %.0f %.0f, linear G/R %.2f\n", green[0], green[1], green[2],
-                  greenl[1] / greenl[0]);
+    print_message("green wall 8-bit %.0f %.0f %.0f, linear G/R %.2f\n", green[0], green[1],
+                  green[2], greenl[1] / greenl[0]);
     CHECK_GT(greenl[1], 1.5 * greenl[0], "green wall: linear G against 1.5 R");
     CHECK_GT(green[1], 1.2 * green[0], "green wall: 8-bit G against 1.2 R");
     CHECK_GT(green[1], 1.5 * green[2], "green wall: 8-bit G against 1.5 B");
@@ -442,9 +450,9 @@ static void test_cornell_box(void **state)
     for (y = 0; y < im.h; y++)
         for (x = 0; x < im.w; x++) {
             double fx = (x + 0.5) / im.w, fy = (y + 0.5) / im.h;
-            int in = fx >= LIGHT_WINDOW.x0 && fx < LIGHT_WINDOW.x1 && fy >= LIGHT_WINDOW.y0 && fy < LIGHT_WINDOW.y1;
-            if (is_white(px(&im, x, y)))
-                *(in ? &inside : &outside) += 1;
+            int in = fx >= LIGHT_WINDOW.x0 && fx < LIGHT_WINDOW.x1 && fy >= LIGHT_WINDOW.y0 &&
+                     fy < LIGHT_WINDOW.y1;
+            if (is_white(px(&im, x, y))) *(in ? &inside : &outside) += 1;
         }
     print_message("near-white pixels: %d at the light, %d elsewhere\n", inside, outside);
     CHECK_INT_GE(inside, 20, "near-white pixels at the light (it is ~20 x 4 px at this size)");
@@ -510,7 +518,8 @@ static void check_orientation(const char *path, int front)
     nl = centroid(&im, is_white, &lx, &ly);
     nb = centroid(&im, is_blue, &bx, &by);
     ng = centroid(&im, is_grey, &gx, &gy);
-    print_message("%s view: lamp %ld px at (%.2f, %.2f), wall %ld px at (%.2f, %.2f), floor %ld px at (%.2f, %.2f)\n",
+    print_message("%s view: lamp %ld px at (%.2f, %.2f), wall %ld px at (%.2f, %.2f), floor %ld px "
+                  "at (%.2f, %.2f)\n",
                   front ? "front" : "back", nl, lx, ly, nb, bx, by, ng, gx, gy);
     /* Minimum sizes: about a fifth of what each covers at 96 x 96 in both views (the
      * test prints the counts), plenty to locate them. */
@@ -534,7 +543,8 @@ static void check_orientation(const char *path, int front)
      * its side) is brighter on the lamp's side. */
     left = grey_luma(&im, (rect_t){0.0, 0.5, 0.4, 1.0});
     right = grey_luma(&im, (rect_t){0.6, 0.5, 1.0, 1.0});
-    print_message("%s view: floor luma left %.0f right %.0f\n", front ? "front" : "back", left, right);
+    print_message("%s view: floor luma left %.0f right %.0f\n", front ? "front" : "back", left,
+                  right);
     if (front)
         CHECK_GT(left, right + 20,
                  "front view: floor luma on the lamp's side (left) against the right + 20");
@@ -551,8 +561,9 @@ static void test_orientation(void **state)
     need(FIXED);
     /* Exposure 2: the lamp (Ke 10) clips to white, the brightest floor (radiosity
      * ~0.26 a channel) stays near 190, so "white" finds the lamp only. */
-    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", "--exposure", "2", "--camera", "0,0.6,3,0,0.6,0", "-o",
-        tmp_path("front.png"), "--camera", "0,0.6,-3,0,0.6,0", "-o", tmp_path("back.png"), DATA "orient.obj");
+    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", "--exposure", "2", "--camera",
+        "0,0.6,3,0,0.6,0", "-o", tmp_path("front.png"), "--camera", "0,0.6,-3,0,0.6,0", "-o",
+        tmp_path("back.png"), DATA "orient.obj");
     expect_status(&r, 0);
     run_free(&r);
     check_orientation(tmp_path("front.png"), 1);
@@ -573,11 +584,12 @@ static void test_ppm_matches_png(void **state)
     need(FIXED);
     /* One run writing both formats of the same view, and a second run writing PPM only:
      * the three must hold the same pixels (the solve is deterministic). */
-    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt.png"), "-o",
-        tmp_path("fmt.ppm"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt.png"),
+        "-o", tmp_path("fmt.ppm"), CORNELL);
     expect_status(&r, 0);
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt2.PPM"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "80", "--height", "48", COARSE, "-o", tmp_path("fmt2.PPM"),
+        CORNELL);
     expect_status(&r, 0);
     run_free(&r);
 
@@ -639,12 +651,12 @@ static void test_threads_same_result(void **state)
 
 /* The default eye is at (-0.278, 0.274, 0.696) looking down -z at the box's centre.
  * CAM_L and CAM_R translate it 0.12 m left and right, looking straight ahead. */
-#define CAM_L "-0.40,0.274,0.70,-0.40,0.274,-0.28"
-#define CAM_R "-0.16,0.274,0.70,-0.16,0.274,-0.28"
+#define CAM_L     "-0.40,0.274,0.70,-0.40,0.274,-0.28"
+#define CAM_R     "-0.16,0.274,0.70,-0.16,0.274,-0.28"
 /* A fixed exposure: one run with several views uses the first view's automatic
  * exposure for all, so views rendered alone only match with a fixed one. 3.0 is close
  * to the automatic exposure of the default view (3.29, printed in the PLY header). */
-#define EXPOSURE "3.0"
+#define EXPOSURE  "3.0"
 #define VIEW_ARGS "--quiet", "--width", "96", "--height", "96", COARSE, "--exposure", EXPOSURE
 
 static void test_multiple_cameras(void **state)
@@ -655,8 +667,8 @@ static void test_multiple_cameras(void **state)
     char views[1024];
     (void)state;
     need(FIXED);
-    RUN(&r, FIXED, VIEW_ARGS, "--camera", CAM_L, "-o", tmp_path("cam_l.png"), "--camera", CAM_R, "-o",
-        tmp_path("cam_r.png"), CORNELL);
+    RUN(&r, FIXED, VIEW_ARGS, "--camera", CAM_L, "-o", tmp_path("cam_l.png"), "--camera", CAM_R,
+        "-o", tmp_path("cam_r.png"), CORNELL);
     expect_status(&r, 0);
     run_free(&r);
     /* Each view alone. */
@@ -676,7 +688,8 @@ static void test_multiple_cameras(void **state)
              "-0.16 0.274 0.70 -0.16 0.274 -0.28 30 %s\n",
              tmp_path("view_l.png"), tmp_path("view_r.png"), tmp_path("view_narrow.png"));
     write_text(tmp_path("views.txt"), views);
-    RUN(&r, FIXED, VIEW_ARGS, "--views", tmp_path("views.txt"), "--allow-outside-paths", CORNELL); /* /tmp */
+    RUN(&r, FIXED, VIEW_ARGS, "--views", tmp_path("views.txt"), "--allow-outside-paths",
+        CORNELL); /* /tmp */
     expect_status(&r, 0);
     run_free(&r);
 
@@ -705,8 +718,8 @@ static void test_multiple_cameras(void **state)
     CHECK_INT_GT(centroid(&rt, is_red, &rrx, &rry), 200, "red pixels, right camera");
     CHECK_INT_GT(centroid(&l, is_green, &lgx, &lgy), 200, "green pixels, left camera");
     CHECK_INT_GT(centroid(&rt, is_green, &rgx, &rgy), 200, "green pixels, right camera");
-    print_message("red wall centroid x: left camera %.3f, right camera %.3f; green: %.3f, %.3f\n", lrx, rrx, lgx,
-                  rgx);
+    print_message("red wall centroid x: left camera %.3f, right camera %.3f; green: %.3f, %.3f\n",
+                  lrx, rrx, lgx, rgx);
     CHECK_GT(lrx, rrx + 0.04, "red wall centroid x: left camera against right camera + 0.04");
     CHECK_GT(lgx, rgx + 0.04, "green wall centroid x: left camera against right camera + 0.04");
     /* still the left wall, and the right one */
@@ -741,8 +754,8 @@ static void test_dump_radiosity(void **state)
     double obj_area = 0, csv_area = 0, light_min = HUGE_VAL, other_max = 0, *mat_area;
     (void)state;
     need(FIXED);
-    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--dump-radiosity",
-        tmp_path("rad.csv"), "-o", tmp_path("rad.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE,
+        "--dump-radiosity", tmp_path("rad.csv"), "-o", tmp_path("rad.png"), CORNELL);
     expect_status(&r, 0);
     parse_counts(r.out, &patches, &elements, &vertices);
     run_free(&r);
@@ -765,8 +778,9 @@ static void test_dump_radiosity(void **state)
         assert_non_null(next); /* every row ends with a newline */
         *next++ = '\0';
         CHECK_INT_LT(n, elements, "CSV rows against --stats elements");
-        if (sscanf(line, "%d,%d,\"%63[^\"]\",%lf,%lf,%lf,%lf,%lf,%lf,%lf%n", &w->element, &w->surface, w->material,
-                   &w->area, &w->c[0], &w->c[1], &w->c[2], &w->rgb[0], &w->rgb[1], &w->rgb[2], &used) != 10 ||
+        if (sscanf(line, "%d,%d,\"%63[^\"]\",%lf,%lf,%lf,%lf,%lf,%lf,%lf%n", &w->element,
+                   &w->surface, w->material, &w->area, &w->c[0], &w->c[1], &w->c[2], &w->rgb[0],
+                   &w->rgb[1], &w->rgb[2], &used) != 10 ||
             line[used] != '\0')
             fail_msg("bad CSV row %d: %s", n + 1, line);
         assert_int_equal(w->element, n); /* elements in order, numbered from 0 */
@@ -803,15 +817,15 @@ static void test_dump_radiosity(void **state)
         n++;
     }
     assert_int_equal(n, elements); /* one row per element of --stats */
-    print_message("%d rows; light radiosity (r+g+b) >= %.3g, everything else <= %.3g\n", n, light_min, other_max);
+    print_message("%d rows; light radiosity (r+g+b) >= %.3g, everything else <= %.3g\n", n,
+                  light_min, other_max);
     CHECK_LT(light_min, HUGE_VAL, "the light's least radiosity (r+g+b): some light element");
     CHECK_GT(light_min, other_max,
              "the light's least radiosity (r+g+b) against everything else's most");
 
     /* The elements tile the polygons: their areas add up to the OBJ's (1e-3 relative:
      * the mesh is built in the core's fixed-point coordinates, ~1e-5 relative). */
-    for (f = 0; f < sc.nfaces; f++)
-        obj_area += obj_face_area(&sc, &sc.faces[f]);
+    for (f = 0; f < sc.nfaces; f++) obj_area += obj_face_area(&sc, &sc.faces[f]);
     print_message("total area: CSV %.6f, OBJ %.6f m^2\n", csv_area, obj_area);
     CHECK_NEAR(csv_area, obj_area, 1e-3 * obj_area, "the CSV's total area against the OBJ's (m^2)");
     for (m = 0; m < sc.nmaterials; m++)
@@ -829,8 +843,7 @@ static void test_dump_radiosity(void **state)
 static char *next_line(char **p)
 {
     char *s = *p, *nl;
-    if (!*s)
-        return NULL;
+    if (!*s) return NULL;
     nl = strchr(s, '\n');
     if (nl) {
         *nl = '\0';
@@ -848,7 +861,7 @@ static void test_export_ply(void **state)
     int patches, elements, vertices, nv = -1, nf = -1, i, k;
     double exposure = 0;
     static const char *const props[] = {
-        "property float x", "property float y", "property float z",
+        "property float x",   "property float y",     "property float z",
         "property uchar red", "property uchar green", "property uchar blue",
     };
     (void)state;
@@ -866,17 +879,18 @@ static void test_export_ply(void **state)
     assert_string_equal(next_line(&p), "format ascii 1.0");
     l = next_line(&p);
     assert_non_null(l);
-    assert_int_equal(sscanf(l, "comment rad radiosity, sRGB vertex colours at exposure %lf", &exposure), 1);
+    assert_int_equal(
+        sscanf(l, "comment rad radiosity, sRGB vertex colours at exposure %lf", &exposure), 1);
     CHECK_GT(exposure, 0, "the PLY header's exposure");
     l = next_line(&p);
     assert_int_equal(sscanf(l, "element vertex %d", &nv), 1);
-    for (i = 0; i < 6; i++)
-        assert_string_equal(next_line(&p), props[i]);
+    for (i = 0; i < 6; i++) assert_string_equal(next_line(&p), props[i]);
     l = next_line(&p);
     assert_int_equal(sscanf(l, "element face %d", &nf), 1);
     assert_string_equal(next_line(&p), "property list uchar int vertex_indices");
     assert_string_equal(next_line(&p), "end_header");
-    print_message("PLY: %d vertices, %d faces; --stats: %d vertices, %d elements\n", nv, nf, vertices, elements);
+    print_message("PLY: %d vertices, %d faces; --stats: %d vertices, %d elements\n", nv, nf,
+                  vertices, elements);
     assert_int_equal(nv, vertices);
     assert_int_equal(nf, elements);
 
@@ -885,7 +899,8 @@ static void test_export_ply(void **state)
         int c[3], used = 0;
         l = next_line(&p);
         assert_non_null(l);
-        if (sscanf(l, "%lf %lf %lf %d %d %d%n", &x, &y, &z, &c[0], &c[1], &c[2], &used) != 6 || l[used] != '\0')
+        if (sscanf(l, "%lf %lf %lf %d %d %d%n", &x, &y, &z, &c[0], &c[1], &c[2], &used) != 6 ||
+            l[used] != '\0')
             fail_msg("bad PLY vertex line %d: %s", i, l);
         for (k = 0; k < 3; k++) {
             CHECK_INT_GE(c[k], 0, "PLY vertex %d: colour channel %d", i, k);
@@ -893,7 +908,8 @@ static void test_export_ply(void **state)
         }
         CHECK_THAT(x > -0.557 && x < 1e-6 && y > -1e-6 && y < 0.549 && z > -0.56 && z < 1e-6,
                    "PLY vertex %d at %g %g %g: inside the box (x -0.556..0, y 0..0.549, "
-                   "z -0.559..0)", i, x, y, z);
+                   "z -0.559..0)",
+                   i, x, y, z);
     }
     for (i = 0; i < nf; i++) {
         int cnt, idx, used = 0, pos;
@@ -901,8 +917,7 @@ static void test_export_ply(void **state)
         assert_non_null(l);
         assert_int_equal(sscanf(l, "%d%n", &cnt, &used), 1);
         CHECK_THAT(cnt == 3 || cnt == 4,
-                   "PLY face %d has %d corners: elements are triangles or quads", i,
-                   cnt);
+                   "PLY face %d has %d corners: elements are triangles or quads", i, cnt);
         pos = used;
         for (k = 0; k < cnt; k++) {
             assert_int_equal(sscanf(l + pos, "%d%n", &idx, &used), 1);
@@ -918,7 +933,8 @@ static void test_export_ply(void **state)
 
 /* ---- 7. materials and emission ------------------------------------------------ */
 
-static void expect_material(const char *out, const char *name, const double kd[3], const double ke[3])
+static void expect_material(const char *out, const char *name, const double kd[3],
+                            const double ke[3])
 {
     char want[64], got[64];
     double v[6];
@@ -927,12 +943,12 @@ static void expect_material(const char *out, const char *name, const double kd[3
     snprintf(want, sizeof want, "%s ", name);
     while (l && !starts_with(l, want)) {
         l = strchr(l, '\n');
-        if (l)
-            l++;
+        if (l) l++;
     }
-    if (!l)
-        fail_msg("--list-materials does not list %s:\n%s", name, out);
-    assert_int_equal(sscanf(l, "%63s %lf %lf %lf %lf %lf %lf", got, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]), 7);
+    if (!l) fail_msg("--list-materials does not list %s:\n%s", name, out);
+    assert_int_equal(
+        sscanf(l, "%63s %lf %lf %lf %lf %lf %lf", got, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]),
+        7);
     for (i = 0; i < 3; i++) {
         /* Printed with %.4g: 4 significant digits. */
         CHECK_NEAR(v[i], kd[i], 1e-4 * (1 + kd[i]), "material %s: Kd channel %d", name, i);
@@ -943,9 +959,9 @@ static void expect_material(const char *out, const char *name, const double kd[3
 static void test_list_materials(void **state)
 {
     run_t r;
-    static const double white[3] = {0.74, 0.73, 0.70}, red[3] = {0.62, 0.07, 0.05}, green[3] = {0.15, 0.45, 0.10},
-                        lightkd[3] = {0.78, 0.78, 0.78}, zero[3] = {0, 0, 0}, lightke[3] = {18.0, 12.8, 4.4},
-                        set[3] = {1, 2.5, 3};
+    static const double white[3] = {0.74, 0.73, 0.70}, red[3] = {0.62, 0.07, 0.05},
+                        green[3] = {0.15, 0.45, 0.10}, lightkd[3] = {0.78, 0.78, 0.78},
+                        zero[3] = {0, 0, 0}, lightke[3] = {18.0, 12.8, 4.4}, set[3] = {1, 2.5, 3};
     (void)state;
     need(FIXED);
     RUN(&r, FIXED, "--list-materials", CORNELL);
@@ -973,8 +989,8 @@ static void test_emit_lights_dark_scene(void **state)
     (void)state;
     need(FIXED);
     /* Without an emitter: a black image, exit 0, and a warning. */
-    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o", tmp_path("dark.png"),
-        DATA "dark.obj");
+    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o",
+        tmp_path("dark.png"), DATA "dark.obj");
     expect_status(&r, 0);
     CHECK_CONTAINS(r.err, "no material emits", "rad_cli's stderr");
     run_free(&r);
@@ -983,8 +999,8 @@ static void test_emit_lights_dark_scene(void **state)
     img_free(&im);
 
     /* --emit makes the lamp a light: the floor and wall are lit, no warning. */
-    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "--emit", "lamp=10,10,10",
-        "-o", tmp_path("lit.png"), DATA "dark.obj");
+    RUN(&r, FIXED, "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "--emit",
+        "lamp=10,10,10", "-o", tmp_path("lit.png"), DATA "dark.obj");
     expect_status(&r, 0);
     CHECK_LACKS(r.err, "no material emits", "rad_cli's stderr");
     run_free(&r);
@@ -995,8 +1011,8 @@ static void test_emit_lights_dark_scene(void **state)
      * black pixels); the rest is empty space. Require 10%. */
     CHECK_INT_LT(black, 48 * 48 * 9 / 10, "black pixels of the 48 x 48 view lit by --emit");
     /* orient.obj is dark.obj with Ke 10 10 10 on the lamp in its MTL: the same picture. */
-    RUN(&r, FIXED, "--quiet", "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0", "-o",
-        tmp_path("lit_mtl.png"), DATA "orient.obj");
+    RUN(&r, FIXED, "--quiet", "--width", "48", "--height", "48", "--camera", "0,0.6,3,0,0.6,0",
+        "-o", tmp_path("lit_mtl.png"), DATA "orient.obj");
     expect_status(&r, 0);
     run_free(&r);
     load_img(tmp_path("lit_mtl.png"), &ref);
@@ -1027,7 +1043,8 @@ static void check_help_sections(const char *out)
             char heading[256];
             snprintf(heading, sizeof heading, "%.*s", (int)(n < 255 ? n : 255), line);
             headings++;
-            CHECK_THAT(starts_with(next, "  -"), "--help's section \"%s\" has no option of its own", heading);
+            CHECK_THAT(starts_with(next, "  -"), "--help's section \"%s\" has no option of its own",
+                       heading);
             CHECK_LACKS(heading, "tools/", "--help's heading names a source folder");
         }
         line = next;
@@ -1036,23 +1053,25 @@ static void check_help_sections(const char *out)
 }
 
 /* Usage error: exit 2, "PROG: reason" first, the usage text, nothing on stdout. */
-static void expect_usage_error_at(const char *bin, const char *prog, const char *const *args, const char *file,
-                                  int line)
+static void expect_usage_error_at(const char *bin, const char *prog, const char *const *args,
+                                  const char *file, int line)
 {
     run_t r;
     char prefix[64];
     run_args(&r, bin, args);
     snprintf(prefix, sizeof prefix, "%s: ", prog);
-    if (r.status != 2 || !strstr(r.err, "usage:") || !starts_with(r.err, prefix) || r.out[0] != '\0') {
-        print_error("%s %s ...: status %d (expected 2)\nstdout: %s\nstderr: %s\n", bin, args[0] ? args[0] : "",
-                    r.status, r.out, r.err);
+    if (r.status != 2 || !strstr(r.err, "usage:") || !starts_with(r.err, prefix) ||
+        r.out[0] != '\0') {
+        print_error("%s %s ...: status %d (expected 2)\nstdout: %s\nstderr: %s\n", bin,
+                    args[0] ? args[0] : "", r.status, r.out, r.err);
         run_free(&r);
         _fail(file, line);
     }
     run_free(&r);
 }
-#define expect_usage_error(bin, prog, ...) \
-    expect_usage_error_at((bin), (prog), (const char *const[]){__VA_ARGS__, NULL}, __FILE__, __LINE__)
+#define expect_usage_error(bin, prog, ...)                                                   \
+    expect_usage_error_at((bin), (prog), (const char *const[]){__VA_ARGS__, NULL}, __FILE__, \
+                          __LINE__)
 
 /* A usage error is short: the message, the help of the option at fault (its own
  * lines only), and where the rest is; the 130-line help is for --help. */
@@ -1068,7 +1087,8 @@ static void test_usage_error_short(void **state)
         run_t r;
         const char *args[] = {bad[i][0], bad[i][1], CORNELL, NULL};
         run_args(&r, FIXED, args);
-        print_message("%s %s: status %d, %d lines on stderr\n", bad[i][0], bad[i][1], r.status, count_lines(r.err));
+        print_message("%s %s: status %d, %d lines on stderr\n", bad[i][0], bad[i][1], r.status,
+                      count_lines(r.err));
         CHECK_INT_EQ(r.status, 2, "exit status of a usage error");
         CHECK_CONTAINS(r.err, "rad_cli --help lists the options", "the pointer to --help");
         if (bad[i][2]) CHECK_CONTAINS(r.err, bad[i][2], "the option's own help");
@@ -1089,19 +1109,21 @@ static void test_usage_errors(void **state)
     for (b = 0; b < 2; b++) {
         const char *bin = bins[b][0], *prog = bins[b][1];
         const char *out = tmp_path("usage.png");
-        expect_usage_error(bin, prog, "--quiet");                           /* no scene */
-        expect_usage_error(bin, prog, "--bogus", CORNELL);                  /* unknown option */
-        expect_usage_error(bin, prog, "--res", "7", CORNELL);               /* below 8 */
+        expect_usage_error(bin, prog, "--quiet");                            /* no scene */
+        expect_usage_error(bin, prog, "--bogus", CORNELL);                   /* unknown option */
+        expect_usage_error(bin, prog, "--res", "7", CORNELL);                /* below 8 */
         expect_usage_error(bin, prog, "--res", "10", "--res", "9", CORNELL); /* odd */
-        expect_usage_error(bin, prog, "--coarse-res", "25", CORNELL);       /* odd */
-        expect_usage_error(bin, prog, "--gather", "31", CORNELL);           /* odd */
+        expect_usage_error(bin, prog, "--coarse-res", "25", CORNELL);        /* odd */
+        expect_usage_error(bin, prog, "--gather", "31", CORNELL);            /* odd */
         expect_usage_error(bin, prog, "--width", "0", CORNELL);
         expect_usage_error(bin, prog, "--height", "-3", CORNELL);
         expect_usage_error(bin, prog, "--width", "12x", CORNELL);
         expect_usage_error(bin, prog, "--camera", "1,2,3,4,5", "-o", out, CORNELL); /* 5 numbers */
         expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6", CORNELL);          /* no -o */
-        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6", "--camera", "1,2,3,4,5,7", "-o", out, CORNELL);
-        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6,200", "-o", out, CORNELL); /* FOV out of range */
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6", "--camera", "1,2,3,4,5,7", "-o",
+                           out, CORNELL);
+        expect_usage_error(bin, prog, "--camera", "1,2,3,4,5,6,200", "-o", out,
+                           CORNELL); /* FOV out of range */
         expect_usage_error(bin, prog, "--exposure", "0", CORNELL);
         expect_usage_error(bin, prog, "--emit", "light=1,2", CORNELL);
         expect_usage_error(bin, prog, "--tol", "1", CORNELL);
@@ -1124,8 +1146,9 @@ static void expect_runtime_error_at(const run_t *r, const char *prefix, const ch
     if (r->status == 1 && starts_with(r->err, prefix) && count_lines(r->err) == 1 &&
         r->err[strlen(r->err) - 1] == '\n' && r->out[0] == '\0')
         return;
-    print_error("status %d (expected 1), stderr (expected one line starting \"%s\"):\n%s\nstdout: %s\n", r->status,
-                prefix, r->err, r->out);
+    print_error(
+        "status %d (expected 1), stderr (expected one line starting \"%s\"):\n%s\nstdout: %s\n",
+        r->status, prefix, r->err, r->out);
     _fail(file, line);
 }
 #define expect_runtime_error(r, prefix) expect_runtime_error_at((r), (prefix), __FILE__, __LINE__)
@@ -1175,7 +1198,8 @@ static void test_unwritable_output(void **state)
     (void)state;
     need(FIXED);
     /* A directory that does not exist: exit 1, the path in a one-line message, no file. */
-    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", "/nonexistent_dir/x.png", CORNELL);
+    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "-o", "/nonexistent_dir/x.png",
+        CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
     CHECK_CONTAINS(r.err, "/nonexistent_dir/x.png", "rad_cli's stderr");
     CHECK_THAT(!file_exists("/nonexistent_dir/x.png"), "%s is not written",
@@ -1194,8 +1218,8 @@ static void test_unwritable_output(void **state)
      * from beyond 4 times its coordinate range) leaves an existing output as it was. */
     write_text(tmp_path("keep.png"), "not replaced\n");
     before = slurp(tmp_path("keep.png"), &n0);
-    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "--camera", "0,0.2,1000,0,0.2,0", "-o",
-        tmp_path("keep.png"), CORNELL);
+    RUN(&r, FIXED, "--width", "16", "--height", "16", COARSE, "--camera", "0,0.2,1000,0,0.2,0",
+        "-o", tmp_path("keep.png"), CORNELL);
     expect_runtime_error(&r, "rad_cli: ");
     CHECK_CONTAINS(r.err, tmp_path("keep.png"), "rad_cli's stderr");
     run_free(&r);
@@ -1248,8 +1272,7 @@ static twin_diff compare(const img_t *a, const img_t *b)
         w5 += m <= 5;
         d.mean_abs += m;
         d.mean_signed += s;
-        if (m > d.max_diff)
-            d.max_diff = m;
+        if (m > d.max_diff) d.max_diff = m;
     }
     d.within1 = (double)w1 / (double)n;
     d.within5 = (double)w5 / (double)n;
@@ -1263,12 +1286,10 @@ static twin_diff compare(const img_t *a, const img_t *b)
                     for (x = bx; x < bx + 16; x++)
                         s += (double)px(a, x, y)[c] - (double)px(b, x, y)[c];
                 s = fabs(s) / 256.0;
-                if (s > d.block_max)
-                    d.block_max = s;
+                if (s > d.block_max) d.block_max = s;
             }
     return d;
 }
-
 
 /* Default settings, 256x256, the same fixed exposure for both (3.0, near this view's
  * automatic exposure, so the image uses the whole 8-bit range). Target: >= 99% of
@@ -1284,9 +1305,12 @@ static void test_twin_agreement(void **state)
     need(FLOAT);
     twin_images(&fx, &fl);
     d = compare(&fx, &fl);
-    print_message("fixed vs float, 256x256, defaults, exposure " EXPOSURE ": %.2f%% of channels within 1 level "
-                  "(%.2f%% within 5), max difference %d, mean |diff| %.3f, mean diff %+.3f, worst 16x16 block %.2f\n",
-                  100 * d.within1, 100 * d.within5, d.max_diff, d.mean_abs, d.mean_signed, d.block_max);
+    print_message("fixed vs float, 256x256, defaults, exposure " EXPOSURE
+                  ": %.2f%% of channels within 1 level "
+                  "(%.2f%% within 5), max difference %d, mean |diff| %.3f, mean diff %+.3f, worst "
+                  "16x16 block %.2f\n",
+                  100 * d.within1, 100 * d.within5, d.max_diff, d.mean_abs, d.mean_signed,
+                  d.block_max);
     CHECK_INT_LT(count_black(&fx), 256 * 256 / 4,
                  "black pixels of the fixed build's image (a real picture)");
     CHECK_GE(d.within1, 0.99, "fraction of 8-bit channels within 1 level, fixed against float");
@@ -1305,22 +1329,23 @@ static void test_stats_and_quiet(void **state)
     run_t r;
     (void)state;
     need(FIXED);
-    RUN(&r, FIXED, "--stats", "--quiet", "--width", "16", "--height", "16", COARSE, "-o", tmp_path("stats.png"),
-        CORNELL);
+    RUN(&r, FIXED, "--stats", "--quiet", "--width", "16", "--height", "16", COARSE, "-o",
+        tmp_path("stats.png"), CORNELL);
     expect_status(&r, 0);
     CHECK_THAT(has_line(r.out, "patches "), "the output has a line starting \"%s\":\n%s",
                "patches ", r.out);
     CHECK_THAT(has_line(r.out, "shots "), "the output has a line starting \"%s\":\n%s", "shots ",
                r.out);
-    CHECK_THAT(has_line(r.out, "time: "), "the output has a line starting \"%s\":\n%s", "time: ",
-               r.out);
+    CHECK_THAT(has_line(r.out, "time: "), "the output has a line starting \"%s\":\n%s",
+               "time: ", r.out);
     CHECK_THAT(has_line(r.out, "memory: "), "the output has a line starting \"%s\":\n%s",
                "memory: ", r.out);
     assert_string_equal(r.err, ""); /* --quiet: nothing on stderr */
     run_free(&r);
 
     /* --quiet also silences the "no material emits" warning. */
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "-o", tmp_path("quiet_dark.png"), DATA "dark.obj");
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "-o", tmp_path("quiet_dark.png"),
+        DATA "dark.obj");
     expect_status(&r, 0);
     assert_string_equal(r.err, "");
     assert_string_equal(r.out, "");
@@ -1338,7 +1363,8 @@ static void test_trailing_list_items(void **state)
     need(FIXED);
     expect_usage_error(FIXED, "rad_cli", "--exposure", "1.5,junk", "-o", out, CORNELL);
     expect_usage_error(FIXED, "rad_cli", "--exposure", "1.5,", "-o", out, CORNELL);
-    expect_usage_error(FIXED, "rad_cli", "--camera", "-0.27,0.27,1.2,-0.27,0.27,0,45,99", "-o", out, CORNELL);
+    expect_usage_error(FIXED, "rad_cli", "--camera", "-0.27,0.27,1.2,-0.27,0.27,0,45,99", "-o", out,
+                       CORNELL);
     expect_usage_error(FIXED, "rad_cli", "--emit", "light=1,2,3,4", "-o", out, CORNELL);
 }
 
@@ -1348,8 +1374,8 @@ static void test_camera_looking_down(void **state)
     run_t r;
     (void)state;
     need(FIXED);
-    RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", COARSE, "--camera", "-0.278,1.5,-0.28,-0.278,0,-0.28",
-        "-o", tmp_path("down.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", COARSE, "--camera",
+        "-0.278,1.5,-0.28,-0.278,0,-0.28", "-o", tmp_path("down.png"), CORNELL);
     expect_status(&r, 0);
     run_free(&r);
 }
@@ -1371,10 +1397,11 @@ static void test_render_cracks(void **state)
     for (k = 0; k < 2; k++)
         for (y = 1; y < 255; y++)
             for (x = 1; x < 255; x++) {
-#define BLACK(i, xx, yy) (px((i), (xx), (yy))[0] == 0 && px((i), (xx), (yy))[1] == 0 && px((i), (xx), (yy))[2] == 0)
+#define BLACK(i, xx, yy) \
+    (px((i), (xx), (yy))[0] == 0 && px((i), (xx), (yy))[1] == 0 && px((i), (xx), (yy))[2] == 0)
                 const img_t *im = ims[k];
-                if (BLACK(im, x, y) && !BLACK(im, x - 1, y) && !BLACK(im, x + 1, y) && !BLACK(im, x, y - 1) &&
-                    !BLACK(im, x, y + 1))
+                if (BLACK(im, x, y) && !BLACK(im, x - 1, y) && !BLACK(im, x + 1, y) &&
+                    !BLACK(im, x, y - 1) && !BLACK(im, x, y + 1))
                     fail_msg("%s: isolated black pixel at (%d, %d)", k ? "float" : "fixed", x, y);
 #undef BLACK
             }
@@ -1398,8 +1425,8 @@ static double csv_mean_red(const char *path, double *area_out)
         char mat[64];
         char *next = strchr(line, '\n');
         if (next) *next++ = '\0';
-        assert_int_equal(sscanf(line, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1],
-                                &c[2], &rgb[0], &rgb[1], &rgb[2]),
+        assert_int_equal(sscanf(line, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf, mat,
+                                &a, &c[0], &c[1], &c[2], &rgb[0], &rgb[1], &rgb[2]),
                          10);
         sum += rgb[0] * a;
         area += a;
@@ -1441,23 +1468,26 @@ static void test_sky(void **state)
     (void)state;
     need(FIXED);
     write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
-    write_text(tmp_path("floor.obj"),
-               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    write_text(
+        tmp_path("floor.obj"),
+        "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
     for (k = 0; k < sizeof good / sizeof good[0]; k++) {
-        RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sky", good[k].val, "--dump-radiosity",
-            tmp_path("sky.csv"), "-o", tmp_path("sky.png"), tmp_path("floor.obj"));
+        RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sky", good[k].val,
+            "--dump-radiosity", tmp_path("sky.csv"), "-o", tmp_path("sky.png"),
+            tmp_path("floor.obj"));
         expect_status(&r, 0);
         run_free(&r);
         mean = csv_mean_red(tmp_path("sky.csv"), &area);
-        print_message("--sky %s: mean radiosity %.6f, the law's %.6f (%+.3f%%, bound 2.2%%)\n", good[k].val, mean,
-                      good[k].want, 100 * (mean / good[k].want - 1));
+        print_message("--sky %s: mean radiosity %.6f, the law's %.6f (%+.3f%%, bound 2.2%%)\n",
+                      good[k].val, mean, good[k].want, 100 * (mean / good[k].want - 1));
         CHECK_NEAR(area, 256, 0.01, "the floor's area");
-        CHECK_NEAR(mean, good[k].want, good[k].want * 0.022, "the floor's mean radiosity under --sky %s", good[k].val);
+        CHECK_NEAR(mean, good[k].want, good[k].want * 0.022,
+                   "the floor's mean radiosity under --sky %s", good[k].val);
     }
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         if (bad[k].more)
-            RUN(&r, FIXED, "--sky", bad[k].val, bad[k].more, tmp_path("sky.ff"), "-o", tmp_path("bad.png"),
-                tmp_path("floor.obj"));
+            RUN(&r, FIXED, "--sky", bad[k].val, bad[k].more, tmp_path("sky.ff"), "-o",
+                tmp_path("bad.png"), tmp_path("floor.obj"));
         else
             RUN(&r, FIXED, "--sky", bad[k].val, "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
         expect_status(&r, 2);
@@ -1490,8 +1520,9 @@ static void test_lights(void **state)
     (void)state;
     need(FIXED);
     write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
-    write_text(tmp_path("floor.obj"),
-               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    write_text(
+        tmp_path("floor.obj"),
+        "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
     snprintf(sun, sizeof sun, "%.9f,%.9f,0,2,2,2", sin(t), -cos(t));
     RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", sun, "--dump-radiosity",
         tmp_path("sun.csv"), "-o", tmp_path("sun.png"), tmp_path("floor.obj"));
@@ -1499,36 +1530,40 @@ static void test_lights(void **state)
     run_free(&r);
     mean = csv_mean_red(tmp_path("sun.csv"), &area);
     want = 0.5 * 2 * cos(t);
-    print_message("--sun at 60 degrees: mean radiosity %.6f, rho E cos t %.6f (%+.3f%%)\n", mean, want,
-                  100 * (mean / want - 1));
+    print_message("--sun at 60 degrees: mean radiosity %.6f, rho E cos t %.6f (%+.3f%%)\n", mean,
+                  want, 100 * (mean / want - 1));
     CHECK_NEAR(area, 256, 0.01, "the floor's area");
     CHECK_NEAR(mean, want, want * 0.0062, "the floor's mean radiosity under --sun");
 
     /* with an angular radius of 5 degrees: its directions tilt by up to 5 degrees, so
      * cos t loses at most 1 - cos 5 = 0.38% more */
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", "0,-1,0,2,2,2,5", "--dump-radiosity",
-        tmp_path("disc.csv"), "-o", tmp_path("disc.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--sun", "0,-1,0,2,2,2,5",
+        "--dump-radiosity", tmp_path("disc.csv"), "-o", tmp_path("disc.png"),
+        tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     mean = csv_mean_red(tmp_path("disc.csv"), &area);
-    print_message("--sun of angular radius 5 degrees: mean radiosity %.6f, rho E %.6f (%+.3f%%)\n", mean, 1.0,
-                  100 * (mean - 1));
-    CHECK_NEAR(mean, 1.0 - 0.0019, 0.0062 + 0.0019, "the floor's mean radiosity under a --sun of radius 5 degrees");
+    print_message("--sun of angular radius 5 degrees: mean radiosity %.6f, rho E %.6f (%+.3f%%)\n",
+                  mean, 1.0, 100 * (mean - 1));
+    CHECK_NEAR(mean, 1.0 - 0.0019, 0.0062 + 0.0019,
+               "the floor's mean radiosity under a --sun of radius 5 degrees");
 
-    RUN(&r, FIXED, "--width", "16", "--height", "16", "--point", "0,4,0,10,10,10", "--dump-radiosity",
-        tmp_path("point.csv"), "-o", tmp_path("point.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--width", "16", "--height", "16", "--point", "0,4,0,10,10,10",
+        "--dump-radiosity", tmp_path("point.csv"), "-o", tmp_path("point.png"),
+        tmp_path("floor.obj"));
     expect_status(&r, 0);
     CHECK_LACKS(r.err, "no material emits", "rad_cli's stderr with a --point light");
     run_free(&r);
     mean = csv_mean_red(tmp_path("point.csv"), &area);
     want = 0.5 * 10 * 4 * asin(64.0 / 80) / 256;
-    print_message("--point at height 4: mean radiosity %.6f, rho I w / A %.6f (%+.3f%%)\n", mean, want,
-                  100 * (mean / want - 1));
+    print_message("--point at height 4: mean radiosity %.6f, rho I w / A %.6f (%+.3f%%)\n", mean,
+                  want, 100 * (mean / want - 1));
     CHECK_NEAR(mean, want, want * 0.01, "the floor's mean radiosity under --point");
 
     /* threads shoot the lights first too (rad_shot_begin): the same bits as serially */
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--threads", "2", "--point", "0,4,0,10,10,10",
-        "--dump-radiosity", tmp_path("point2.csv"), "-o", tmp_path("point2.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--threads", "2", "--point",
+        "0,4,0,10,10,10", "--dump-radiosity", tmp_path("point2.csv"), "-o", tmp_path("point2.png"),
+        tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     {
@@ -1541,15 +1576,17 @@ static void test_lights(void **state)
     }
 
     /* a spot pointing away from the floor leaves it dark */
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--spot", "0,4,0,0,1,0,10,10,10,30,0.2",
-        "--dump-radiosity", tmp_path("spot.csv"), "-o", tmp_path("spot.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--spot",
+        "0,4,0,0,1,0,10,10,10,30,0.2", "--dump-radiosity", tmp_path("spot.csv"), "-o",
+        tmp_path("spot.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     CHECK_LE(csv_mean_red(tmp_path("spot.csv"), &area), 0, "the floor behind a spot's cone");
 
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
-        RUN(&r, FIXED, bad[k].opt, bad[k].val, bad[k].more ? bad[k].more : "--quiet", bad[k].more ? tmp_path("x.ff") : "--quiet",
-            "-o", tmp_path("x.png"), tmp_path("floor.obj"));
+        RUN(&r, FIXED, bad[k].opt, bad[k].val, bad[k].more ? bad[k].more : "--quiet",
+            bad[k].more ? tmp_path("x.ff") : "--quiet", "-o", tmp_path("x.png"),
+            tmp_path("floor.obj"));
         expect_status(&r, 2);
         CHECK_CONTAINS(r.err, bad[k].says, "rad_cli %s %s", bad[k].opt, bad[k].val);
         run_free(&r);
@@ -1590,7 +1627,8 @@ static void test_lights_file(void **state)
         {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1],}]}",
          "bad.json:1:73: a ',' before '}'"},
         {"{\"lights\": []} []", "bad.json:1:16: '[' after the JSON value"},
-        {"{\"lights\": [{\"type\": \"point\", \"position\": [0,4,0],\n \"position\": [0,4,0], \"intensity\": [1,1,1]}]}",
+        {"{\"lights\": [{\"type\": \"point\", \"position\": [0,4,0],\n \"position\": [0,4,0], "
+         "\"intensity\": [1,1,1]}]}",
          "bad.json:2:2: the name \"position\" given twice in one object (first at 1:31)"},
         {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": \"white\"}]}",
          "bad.json:1:66: lights[0].irradiance: wants an array of 3 numbers, found a string"},
@@ -1598,15 +1636,21 @@ static void test_lights_file(void **state)
          "lights[0].irradiance: wants an array of 3 numbers, found 2 items"},
         {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,null], \"irradiance\": [1,1,1]}]}",
          "bad.json:1:48: lights[0].direction[2]: wants a number, found null"},
-        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], \"color\": 1}]}",
-         "bad.json:1:75: lights[0]: a sun has no \"color\" (it takes type, direction, irradiance, angle)"},
-        {"{\"lights\": [{\"type\": \"lamp\"}]}", "bad.json:1:22: lights[0].type: wants \"sun\", \"point\""},
-        {"{\"lights\": [{\"direction\": [0,-1,0]}]}", "bad.json:1:13: lights[0].type: wants \"sun\""},
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], "
+         "\"color\": 1}]}",
+         "bad.json:1:75: lights[0]: a sun has no \"color\" (it takes type, direction, irradiance, "
+         "angle)"},
+        {"{\"lights\": [{\"type\": \"lamp\"}]}",
+         "bad.json:1:22: lights[0].type: wants \"sun\", \"point\""},
+        {"{\"lights\": [{\"direction\": [0,-1,0]}]}",
+         "bad.json:1:13: lights[0].type: wants \"sun\""},
         {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,0,0], \"irradiance\": [1,1,1]}]}",
          "bad.json:1:42: lights[0].direction: wants the way the light travels, not zero"},
-        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], \"angle\": 15}]}",
+        {"{\"lights\": [{\"type\": \"sun\", \"direction\": [0,-1,0], \"irradiance\": [1,1,1], "
+         "\"angle\": 15}]}",
          "bad.json:1:84: lights[0].angle: wants the sun's angular radius in degrees, 0..14"},
-        {"{\"lights\": [{\"type\": \"spot\", \"position\": [0,4,0], \"direction\": [0,-1,0], \"intensity\": [1,1,1]}]}",
+        {"{\"lights\": [{\"type\": \"spot\", \"position\": [0,4,0], \"direction\": [0,-1,0], "
+         "\"intensity\": [1,1,1]}]}",
          "bad.json:1:13: lights[0]: a spot wants \"angle\""},
         {"{\"lights\": [{\"type\": \"point\", \"position\": [0,4,0], \"intensity\": [1,-1,1]}]}",
          "lights[0].intensity: wants the intensity per steradian, each >= 0"},
@@ -1614,16 +1658,20 @@ static void test_lights_file(void **state)
          "lights[0].directions: wants a whole number of directions, 3..768"},
         {"{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"nothere.hdr\"}]}",
          "bad.json:1:41: lights[0].file: "},
-        {"{\"lights\": [], \"suns\": []}", "bad.json:1:16: an unknown name \"suns\" (the file holds \"lights\")"},
-        {"[{\"type\": \"sun\"}]", "bad.json:1:1: wants an object {\"lights\": [...]}, found an array"},
+        {"{\"lights\": [], \"suns\": []}",
+         "bad.json:1:16: an unknown name \"suns\" (the file holds \"lights\")"},
+        {"[{\"type\": \"sun\"}]",
+         "bad.json:1:1: wants an object {\"lights\": [...]}, found an array"},
         {"{\"lights\": [{\"type\": \"sun\\u0000\"}]}", "bad.json:1:26: \\u0000 (NUL) in a string"},
         {"", "bad.json:1:1: no JSON value: the file is empty"},
     };
     static const char good[] =
         "{\"lights\": [\n"
-        "  {\"type\": \"sky\", \"radiance\": [0.6, 0.7, 1.0], \"horizon\": [1, 1, 1], \"directions\": 12},\n"
+        "  {\"type\": \"sky\", \"radiance\": [0.6, 0.7, 1.0], \"horizon\": [1, 1, 1], "
+        "\"directions\": 12},\n"
         "  {\"type\": \"point\", \"position\": [2, 3, 1], \"intensity\": [4, 3, 2]},\n"
-        "  {\"type\": \"spot\", \"position\": [-2, 3, 0], \"direction\": [0.2, -1, 0], \"intensity\": [9, 9, 6],\n"
+        "  {\"type\": \"spot\", \"position\": [-2, 3, 0], \"direction\": [0.2, -1, 0], "
+        "\"intensity\": [9, 9, 6],\n"
         "   \"angle\": 35, \"softness\": 0.25}\n"
         "]}\n";
     const char *outs[2][3] = {{"lf.csv", "lf.ply", "lf.png"}, {"lo.csv", "lo.ply", "lo.png"}};
@@ -1632,18 +1680,21 @@ static void test_lights_file(void **state)
     int f;
     (void)state;
     need(FIXED);
-    write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl post\nKd 0.7 0.3 0.2\n");
-    write_text(tmp_path("floor.obj"), "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\n"
-                                      "f 1 2 3 4\nusemtl post\nv -1 0 1\nv 1 0 1\nv 1 4 1\nv -1 4 1\nf 5 6 7 8\n");
+    write_text(tmp_path("floor.mtl"),
+               "newmtl floor\nKd 0.5 0.5 0.5\nnewmtl post\nKd 0.7 0.3 0.2\n");
+    write_text(tmp_path("floor.obj"),
+               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\n"
+               "f 1 2 3 4\nusemtl post\nv -1 0 1\nv 1 0 1\nv 1 4 1\nv -1 4 1\nf 5 6 7 8\n");
     write_text(tmp_path("good.json"), good);
-    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--lights", tmp_path("good.json"), "--point",
-        "0,5,3,6,6,6", "--dump-radiosity", tmp_path(outs[0][0]), "--export-ply", tmp_path(outs[0][1]), "-o",
-        tmp_path(outs[0][2]), tmp_path("floor.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--lights", tmp_path("good.json"),
+        "--point", "0,5,3,6,6,6", "--dump-radiosity", tmp_path(outs[0][0]), "--export-ply",
+        tmp_path(outs[0][1]), "-o", tmp_path(outs[0][2]), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
-    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--sky", "0.6,0.7,1.0,1,1,1,12", "--point",
-        "2,3,1,4,3,2", "--spot", "-2,3,0,0.2,-1,0,9,9,6,35,0.25", "--point", "0,5,3,6,6,6", "--dump-radiosity",
-        tmp_path(outs[1][0]), "--export-ply", tmp_path(outs[1][1]), "-o", tmp_path(outs[1][2]), tmp_path("floor.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sun", "0.5,-1,0.2,2,2,2,0.27", "--sky", "0.6,0.7,1.0,1,1,1,12",
+        "--point", "2,3,1,4,3,2", "--spot", "-2,3,0,0.2,-1,0,9,9,6,35,0.25", "--point",
+        "0,5,3,6,6,6", "--dump-radiosity", tmp_path(outs[1][0]), "--export-ply",
+        tmp_path(outs[1][1]), "-o", tmp_path(outs[1][2]), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     for (f = 0; f < 3; f++) expect_same_file(tmp_path(outs[0][f]), tmp_path(outs[1][f]));
@@ -1651,8 +1702,8 @@ static void test_lights_file(void **state)
 
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         write_text(tmp_path("bad.json"), bad[k].text);
-        RUN(&r, FIXED, "--lights", tmp_path("bad.json"), "--dump-radiosity", tmp_path("bad.csv"), "-o",
-            tmp_path("bad.png"), tmp_path("floor.obj"));
+        RUN(&r, FIXED, "--lights", tmp_path("bad.json"), "--dump-radiosity", tmp_path("bad.csv"),
+            "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
         expect_status(&r, 2);
         CHECK_CONTAINS(r.err, bad[k].says, "bad lights file %zu: %s", k, bad[k].text);
         CHECK_INT_EQ(count_lines(r.err), 1, "bad lights file %zu: lines on stderr (%s)", k, r.err);
@@ -1660,18 +1711,21 @@ static void test_lights_file(void **state)
                    "bad lights file %zu: no output written", k);
         run_free(&r);
     }
-    RUN(&r, FIXED, "--lights", tmp_path("none.json"), "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
-    expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "none.json: cannot open: No such file or directory", "a lights file that is not there");
-    run_free(&r);
-    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("ff.png"),
+    RUN(&r, FIXED, "--lights", tmp_path("none.json"), "-o", tmp_path("bad.png"),
         tmp_path("floor.obj"));
+    expect_status(&r, 2);
+    CHECK_CONTAINS(r.err, "none.json: cannot open: No such file or directory",
+                   "a lights file that is not there");
+    run_free(&r);
+    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--save-ff", tmp_path("x.ff"), "-o",
+        tmp_path("ff.png"), tmp_path("floor.obj"));
     expect_status(&r, 0); /* lights work with stored rows (tests/test_relight.c measures them) */
     run_free(&r);
-    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--dump-radiosity", tmp_path("good.json"), "-o",
-        tmp_path("bad.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--lights", tmp_path("good.json"), "--dump-radiosity", tmp_path("good.json"),
+        "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
     expect_status(&r, 1);
-    CHECK_CONTAINS(r.err, "would write over a --lights or --sky-hdr file", "--dump-radiosity over the lights file");
+    CHECK_CONTAINS(r.err, "would write over a --lights or --sky-hdr file",
+                   "--dump-radiosity over the lights file");
     run_free(&r);
     {
         char *still = slurp(tmp_path("good.json"), NULL);
@@ -1696,9 +1750,18 @@ static void write_map(const char *path, double l, int (*lit)(int x, int y))
     CHECK_INT_EQ(hdr_write(path, m, 64, 32, err, sizeof err), 0, "hdr_write %s (%s)", path, err);
 }
 
-static int map_all(int x, int y) { return (void)x, (void)y, 1; }
-static int map_cap(int x, int y) { return (void)x, y < 8; }                   /* zenith angle < 45 degrees */
-static int map_east(int x, int y) { return y < 16 && x >= 16 && x < 48; }   /* the half toward +X */
+static int map_all(int x, int y)
+{
+    return (void)x, (void)y, 1;
+}
+static int map_cap(int x, int y)
+{
+    return (void)x, y < 8;
+} /* zenith angle < 45 degrees */
+static int map_east(int x, int y)
+{
+    return y < 16 && x >= 16 && x < 48;
+} /* the half toward +X */
 
 /* The area-weighted mean red radiosity of surface SF in --dump-radiosity's CSV. */
 static double csv_surface_red(const char *path, int sf_want)
@@ -1710,8 +1773,8 @@ static double csv_surface_red(const char *path, int sf_want)
         double a, c[3], rgb[3];
         int el, sf;
         char mat[64];
-        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1],
-                                &c[2], &rgb[0], &rgb[1], &rgb[2]),
+        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf,%lf", &el, &sf,
+                                mat, &a, &c[0], &c[1], &c[2], &rgb[0], &rgb[1], &rgb[2]),
                          10);
         if (sf == sf_want) sum += rgb[0] * a, area += a;
     }
@@ -1729,8 +1792,8 @@ static int csv_reds(const char *path, double *v, int n)
         double a, c[3];
         int el, sf;
         char mat[64];
-        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a, &c[0], &c[1], &c[2],
-                                &v[k]),
+        assert_int_equal(sscanf(line + 1, "%d,%d,%63[^,],%lf,%lf,%lf,%lf,%lf", &el, &sf, mat, &a,
+                                &c[0], &c[1], &c[2], &v[k]),
                          8);
         k++;
     }
@@ -1764,7 +1827,8 @@ static void test_sky_hdr(void **state)
         {"map.hdr,192,0", "--sky-hdr wants FILE[,N[,SCALE]]"},
         {",192", "--sky-hdr wants FILE[,N[,SCALE]]"},
         {"trunc.hdr", "trunc.hdr: truncated or corrupt pixel data"},
-        {"huge.hdr", "huge.hdr: truncated or corrupt pixel data: shorter than the header's size needs"},
+        {"huge.hdr",
+         "huge.hdr: truncated or corrupt pixel data: shorter than the header's size needs"},
         {"notmap.hdr", "notmap.hdr: not a Radiance HDR"},
         {"missing.hdr", "missing.hdr: cannot open"},
     };
@@ -1779,20 +1843,22 @@ static void test_sky_hdr(void **state)
     (void)state;
     need(FIXED);
     write_text(tmp_path("floor.mtl"), "newmtl floor\nKd 0.5 0.5 0.5\n");
-    write_text(tmp_path("floor.obj"),
-               "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
-    write_text(tmp_path("walls.obj"), "mtllib floor.mtl\nusemtl floor\nv 1 0 2\nv 1 0 -2\nv 1 4 -2\nv 1 4 2\n"
-                                      "f 1 2 3 4\nv -1 0 -2\nv -1 0 2\nv -1 4 2\nv -1 4 -2\nf 5 6 7 8\n");
+    write_text(
+        tmp_path("floor.obj"),
+        "mtllib floor.mtl\nusemtl floor\nv -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3 4\n");
+    write_text(tmp_path("walls.obj"),
+               "mtllib floor.mtl\nusemtl floor\nv 1 0 2\nv 1 0 -2\nv 1 4 -2\nv 1 4 2\n"
+               "f 1 2 3 4\nv -1 0 -2\nv -1 0 2\nv -1 4 2\nv -1 4 -2\nf 5 6 7 8\n");
     write_map(tmp_path("map.hdr"), 2.0, map_all);
     write_map(tmp_path("cap.hdr"), 2.0, map_cap);
     write_map(tmp_path("east.hdr"), 2.0, map_east);
 
-    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity", tmp_path("hdr.csv"), "-o",
-        tmp_path("hdr.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity",
+        tmp_path("hdr.csv"), "-o", tmp_path("hdr.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
-    RUN(&r, FIXED, LIT_ARGS, "--sky", "2,2,2", "--dump-radiosity", tmp_path("sky.csv"), "-o", tmp_path("sky.png"),
-        tmp_path("floor.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sky", "2,2,2", "--dump-radiosity", tmp_path("sky.csv"), "-o",
+        tmp_path("sky.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     n = csv_reds(tmp_path("hdr.csv"), a, MAXEL);
@@ -1803,45 +1869,55 @@ static void test_sky_hdr(void **state)
         ta += a[i];
         tb += b[i];
     }
-    print_message("--sky-hdr of a uniform map against --sky: elements within %.3f%%, the floor %+.4f%%\n", 100 * worst,
-                  100 * (ta / tb - 1));
-    CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, --sky-hdr against --sky");
+    print_message(
+        "--sky-hdr of a uniform map against --sky: elements within %.3f%%, the floor %+.4f%%\n",
+        100 * worst, 100 * (ta / tb - 1));
+    CHECK_LE(worst, 0.005,
+             "the largest relative difference of an element's radiosity, --sky-hdr against --sky");
     CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, --sky-hdr against --sky");
 
     /* the float twin on the same map: its suns' directions round apart by as much */
     need(FLOAT);
-    RUN(&r, FLOAT, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity", tmp_path("hdrf.csv"), "-o",
-        tmp_path("hdrf.png"), tmp_path("floor.obj"));
+    RUN(&r, FLOAT, LIT_ARGS, "--sky-hdr", tmp_path("map.hdr"), "--dump-radiosity",
+        tmp_path("hdrf.csv"), "-o", tmp_path("hdrf.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
-    CHECK_INT_EQ(csv_reds(tmp_path("hdrf.csv"), b, MAXEL), n, "elements under --sky-hdr, float twin");
+    CHECK_INT_EQ(csv_reds(tmp_path("hdrf.csv"), b, MAXEL), n,
+                 "elements under --sky-hdr, float twin");
     for (i = 0, worst = 0, tb = 0; i < n; i++) {
         worst = fmax(worst, fabs(a[i] / b[i] - 1));
         tb += b[i];
     }
-    print_message("--sky-hdr, fixed against the float twin: elements within %.3f%%, the floor %+.4f%%\n", 100 * worst,
-                  100 * (ta / tb - 1));
-    CHECK_LE(worst, 0.005, "the largest relative difference of an element's radiosity, fixed against float");
+    print_message(
+        "--sky-hdr, fixed against the float twin: elements within %.3f%%, the floor %+.4f%%\n",
+        100 * worst, 100 * (ta / tb - 1));
+    CHECK_LE(worst, 0.005,
+             "the largest relative difference of an element's radiosity, fixed against float");
     CHECK_NEAR(ta / tb, 1, 1e-4, "the floor's radiosity, fixed against float");
 
     snprintf(path, sizeof path, "%s,192,0.5", tmp_path("cap.hdr"));
-    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", path, "--dump-radiosity", tmp_path("cap.csv"), "-o", tmp_path("cap.png"),
-        tmp_path("floor.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", path, "--dump-radiosity", tmp_path("cap.csv"), "-o",
+        tmp_path("cap.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     mean = csv_surface_red(tmp_path("cap.csv"), 0);
-    print_message("--sky-hdr of a 45 degree cap, SCALE 0.5: the floor %.6f, rho pi L / 2 %.6f (%+.3f%%)\n", mean,
-                  0.5 * pi / 2, 100 * (mean / (0.5 * pi / 2) - 1));
-    CHECK_NEAR(mean, 0.5 * pi / 2, 0.5 * pi / 2 * 0.022, "the floor under a cap of 45 degrees at SCALE 0.5");
+    print_message(
+        "--sky-hdr of a 45 degree cap, SCALE 0.5: the floor %.6f, rho pi L / 2 %.6f (%+.3f%%)\n",
+        mean, 0.5 * pi / 2, 100 * (mean / (0.5 * pi / 2) - 1));
+    CHECK_NEAR(mean, 0.5 * pi / 2, 0.5 * pi / 2 * 0.022,
+               "the floor under a cap of 45 degrees at SCALE 0.5");
 
-    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("east.hdr"), "--dump-radiosity", tmp_path("east.csv"), "-o",
-        tmp_path("east.png"), tmp_path("walls.obj"));
+    RUN(&r, FIXED, LIT_ARGS, "--sky-hdr", tmp_path("east.hdr"), "--dump-radiosity",
+        tmp_path("east.csv"), "-o", tmp_path("east.png"), tmp_path("walls.obj"));
     expect_status(&r, 0);
     run_free(&r);
     mean = csv_surface_red(tmp_path("east.csv"), 0);
-    print_message("--sky-hdr lit toward +X: the wall facing +X %.6f, rho pi L / 2 %.6f (%+.3f%%); facing -X %.6f\n",
-                  mean, 0.5 * pi, 100 * (mean / (0.5 * pi) - 1), csv_surface_red(tmp_path("east.csv"), 1));
-    CHECK_NEAR(mean, 0.5 * pi, 0.5 * pi * 0.022, "the wall facing +X (east) under the eastern half of the sky");
+    print_message("--sky-hdr lit toward +X: the wall facing +X %.6f, rho pi L / 2 %.6f (%+.3f%%); "
+                  "facing -X %.6f\n",
+                  mean, 0.5 * pi, 100 * (mean / (0.5 * pi) - 1),
+                  csv_surface_red(tmp_path("east.csv"), 1));
+    CHECK_NEAR(mean, 0.5 * pi, 0.5 * pi * 0.022,
+               "the wall facing +X (east) under the eastern half of the sky");
     /* Not exactly 0: back faces shadow lights a quarter pixel behind the lit faces, which
      * lets light through along contact edges, at most a row of pixels along each
      * (docs/library.md, lights): measured 1.0e-4 against the lit wall's 1.57. */
@@ -1849,36 +1925,42 @@ static void test_sky_hdr(void **state)
              "the wall facing -X (west) under the eastern half");
 
     /* a lights file's "sky-hdr", its map named from the file's folder: the same bits */
-    write_text(tmp_path("sky.json"), "{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"map.hdr\"}]}");
-    RUN(&r, FIXED, LIT_ARGS, "--lights", tmp_path("sky.json"), "--dump-radiosity", tmp_path("file.csv"), "-o",
-        tmp_path("file.png"), tmp_path("floor.obj"));
+    write_text(tmp_path("sky.json"),
+               "{\"lights\": [{\"type\": \"sky-hdr\", \"file\": \"map.hdr\"}]}");
+    RUN(&r, FIXED, LIT_ARGS, "--lights", tmp_path("sky.json"), "--dump-radiosity",
+        tmp_path("file.csv"), "-o", tmp_path("file.png"), tmp_path("floor.obj"));
     expect_status(&r, 0);
     run_free(&r);
     expect_same_file(tmp_path("file.csv"), tmp_path("hdr.csv"));
 
     write_text(tmp_path("trunc.hdr"), "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 2\nabcdefgh");
-    write_text(tmp_path("huge.hdr"), "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 32768\n\2\2\200\0");
+    write_text(tmp_path("huge.hdr"),
+               "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 32768 +X 32768\n\2\2\200\0");
     write_text(tmp_path("notmap.hdr"), "P6\n1 1\n255\nabc");
     for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         snprintf(path, sizeof path, "%s", bad[k].val[0] == ',' ? bad[k].val : tmp_path(bad[k].val));
-        RUN(&r, FIXED, "--sky-hdr", path, "--dump-radiosity", tmp_path("bad.csv"), "-o", tmp_path("bad.png"),
-            tmp_path("floor.obj"));
+        RUN(&r, FIXED, "--sky-hdr", path, "--dump-radiosity", tmp_path("bad.csv"), "-o",
+            tmp_path("bad.png"), tmp_path("floor.obj"));
         expect_status(&r, 2);
         CHECK_CONTAINS(r.err, bad[k].says, "--sky-hdr %s", bad[k].val);
-        if (bad[k].says[0] != '-') /* a bad map: one line; a bad value: the usage follows, as for every option */
-            CHECK_INT_EQ(count_lines(r.err), 1, "--sky-hdr %s: lines on stderr (%s)", bad[k].val, r.err);
-        CHECK_THAT(!file_exists(tmp_path("bad.png")) && !file_exists(tmp_path("bad.csv")), "--sky-hdr %s: no output",
-                   bad[k].val);
+        if (bad[k].says[0] !=
+            '-') /* a bad map: one line; a bad value: the usage follows, as for every option */
+            CHECK_INT_EQ(count_lines(r.err), 1, "--sky-hdr %s: lines on stderr (%s)", bad[k].val,
+                         r.err);
+        CHECK_THAT(!file_exists(tmp_path("bad.png")) && !file_exists(tmp_path("bad.csv")),
+                   "--sky-hdr %s: no output", bad[k].val);
         run_free(&r);
     }
     setenv("RAD_MEMORY_BUDGET", "10000", 1); /* the 64 x 32 map's floats take 24,576 bytes */
-    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "-o", tmp_path("bad.png"), tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "-o", tmp_path("bad.png"),
+        tmp_path("floor.obj"));
     unsetenv("RAD_MEMORY_BUDGET");
     expect_status(&r, 2);
-    CHECK_CONTAINS(r.err, "map.hdr: image too large for the memory budget", "a map over the memory budget");
+    CHECK_CONTAINS(r.err, "map.hdr: image too large for the memory budget",
+                   "a map over the memory budget");
     run_free(&r);
-    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "--save-ff", tmp_path("x.ff"), "-o", tmp_path("ff.png"),
-        tmp_path("floor.obj"));
+    RUN(&r, FIXED, "--sky-hdr", tmp_path("map.hdr"), "--save-ff", tmp_path("x.ff"), "-o",
+        tmp_path("ff.png"), tmp_path("floor.obj"));
     expect_status(&r, 0); /* a map's suns are lights: they work with stored rows */
     run_free(&r);
 }
@@ -1904,7 +1986,9 @@ int main(void)
         cmocka_unit_test(test_trailing_list_items),
         cmocka_unit_test(test_camera_looking_down),
         cmocka_unit_test(test_render_cracks),
-        cmocka_unit_test(test_lights), cmocka_unit_test(test_sky), cmocka_unit_test(test_lights_file),
+        cmocka_unit_test(test_lights),
+        cmocka_unit_test(test_sky),
+        cmocka_unit_test(test_lights_file),
         cmocka_unit_test(test_sky_hdr),
     };
     return cmocka_run_group_tests_name("cli", tests, group_setup, group_teardown);

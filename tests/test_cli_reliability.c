@@ -31,11 +31,11 @@
 #include "formats/image.h"
 #include "tmpdir.h"
 
-#define CLI "build/rad_cli"
-#define CORNELL "examples/cornell_box.obj"
+#define CLI      "build/rad_cli"
+#define CORNELL  "examples/cornell_box.obj"
 /* Small and quick: every feature these cases look at survives it. */
-#define SMALL "--max-element", "0.1", "--res", "32", "--width", "32", "--height", "32"
-#define HANG_S 120 /* a run still going after this is hung (a whole solve here takes < 1 s) */
+#define SMALL    "--max-element", "0.1", "--res", "32", "--width", "32", "--height", "32"
+#define HANG_S   120 /* a run still going after this is hung (a whole solve here takes < 1 s) */
 #define MAX_ARGS 48
 
 TMPDIR_GROUP("cli_reliability")
@@ -75,7 +75,8 @@ static void child(const char *outp, const char *errp, long fsize, char **argv)
 {
     int in = open(child_stdin, O_RDONLY), out = open(outp, O_WRONLY | O_CREAT | O_TRUNC, 0600),
         err = open(errp, O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    if (in < 0 || out < 0 || err < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(126);
+    if (in < 0 || out < 0 || err < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0)
+        _exit(126);
     if (fsize > 0) {
         struct rlimit rl;
         rl.rlim_cur = rl.rlim_max = (rlim_t)fsize;
@@ -114,7 +115,7 @@ static void run(result_t *r, long fsize, const char *const *args)
     r->err = read_whole(errp);
 }
 
-#define RUN(r, ...) run((r), 0, (const char *const[]){__VA_ARGS__, NULL})
+#define RUN(r, ...)             run((r), 0, (const char *const[]){__VA_ARGS__, NULL})
 #define RUN_FULL(r, fsize, ...) run((r), (fsize), (const char *const[]){__VA_ARGS__, NULL})
 
 static void done(result_t *r)
@@ -127,19 +128,19 @@ static void done(result_t *r)
 static void expect(const result_t *r, int status, const char *line)
 {
     if (r->status == status && (!line || strcmp(r->err, line) == 0)) return;
-    fail_msg("exit %d, expected %d\nstderr:   %swanted:   %s\nstdout: %s", r->status, status, r->err,
-             line ? line : "(any)\n", r->out);
+    fail_msg("exit %d, expected %d\nstderr:   %swanted:   %s\nstdout: %s", r->status, status,
+             r->err, line ? line : "(any)\n", r->out);
 }
 
 /* Exit STATUS and one line on stderr starting with PREFIX and holding WORDS. */
 static void expect_line(const result_t *r, int status, const char *prefix, const char *words)
 {
     const char *nl = strchr(r->err, '\n');
-    if (r->status == status && strncmp(r->err, prefix, strlen(prefix)) == 0 && nl && nl[1] == '\0' &&
-        (!words || strstr(r->err, words)))
+    if (r->status == status && strncmp(r->err, prefix, strlen(prefix)) == 0 && nl &&
+        nl[1] == '\0' && (!words || strstr(r->err, words)))
         return;
-    fail_msg("exit %d, expected %d\nstderr: %swanted one line: %s...%s...\n", r->status, status, r->err, prefix,
-             words ? words : "");
+    fail_msg("exit %d, expected %d\nstderr: %swanted one line: %s...%s...\n", r->status, status,
+             r->err, prefix, words ? words : "");
 }
 
 /* No file in the temporary folder starts with PREFIX (a temporary file left behind). */
@@ -149,7 +150,8 @@ static void none_starting(const char *prefix)
     struct dirent *de;
     assert_non_null(d);
     while ((de = readdir(d)) != NULL)
-        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0) fail_msg("left behind: %s", de->d_name);
+        if (strncmp(de->d_name, prefix, strlen(prefix)) == 0)
+            fail_msg("left behind: %s", de->d_name);
     closedir(d);
 }
 
@@ -177,7 +179,8 @@ static void test_views_not_a_file(void **state)
     expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
     done(&r);
     assert_int_equal(mkfifo(fifo, 0600), 0);
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views", fifo); /* no writer: must not block */
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("v.png"), "--views",
+        fifo); /* no writer: must not block */
     expect(&r, 1, line_of("rad_cli: %s: not a regular file (a FIFO or pipe)\n", fifo, NULL));
     done(&r);
     CHECK_THAT(!exists(tmp_path("v.png")), "no image after the failed runs");
@@ -220,7 +223,8 @@ static void test_inputs_not_regular(void **state)
     expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
     done(&r);
     CHECK_THAT(!exists(tmp_path("n.png")), "no image after the refused inputs");
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--probe-file", "/dev/zero", "--probes-out", tmp_path("p.json"));
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("n.png"), "--probe-file", "/dev/zero", "--probes-out",
+        tmp_path("p.json"));
     expect(&r, 1, "rad_cli: /dev/zero: not a regular file (a character device or terminal)\n");
     done(&r);
     unlink(tmp_path("n.png"));
@@ -233,7 +237,8 @@ static void test_inputs_not_regular(void **state)
         text = malloc(n + 32);
         assert_non_null(at);
         assert_non_null(text);
-        sprintf(text, "%.*smtllib examples/cornell_box.mtl%s", (int)(at - obj), obj, at + strlen("mtllib cornell_box.mtl"));
+        sprintf(text, "%.*smtllib examples/cornell_box.mtl%s", (int)(at - obj), obj,
+                at + strlen("mtllib cornell_box.mtl"));
         write_file(tmp_path("stdin.obj"), text);
         free(text);
         free(obj);
@@ -247,8 +252,11 @@ static void test_inputs_not_regular(void **state)
     done(&r);
     RUN(&r, "-", SMALL);
     child_stdin = "/dev/null";
-    snprintf(want, sizeof want, "rad_cli: a scene on standard input (-) has no name to name outputs after: give -o FILE\n");
-    CHECK_THAT(r.status == 2 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr %.200s", r.status, r.err);
+    snprintf(
+        want, sizeof want,
+        "rad_cli: a scene on standard input (-) has no name to name outputs after: give -o FILE\n");
+    CHECK_THAT(r.status == 2 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr %.200s",
+               r.status, r.err);
     done(&r);
     RUN(&r, "-", SMALL, "-o", tmp_path("n.png")); /* standard input a device: refused */
     expect(&r, 1, "rad_cli: -: standard input is a device: pipe or redirect a file into it\n");
@@ -266,8 +274,8 @@ static void test_views_long_comment(void **state)
     assert_non_null(text);
     memset(text, 'x', 4095);
     text[0] = '#';
-    snprintf(text + 4095, 8192 - 4095, " 0 0.27 1.2 0 0.27 0 %s\n0 0.27 1.2 0 0.27 0 %s\n", tmp_path("tail.png"),
-             tmp_path("real.png"));
+    snprintf(text + 4095, 8192 - 4095, " 0 0.27 1.2 0 0.27 0 %s\n0 0.27 1.2 0 0.27 0 %s\n",
+             tmp_path("tail.png"), tmp_path("real.png"));
     write_file(path, text);
     free(text);
     RUN(&r, CORNELL, SMALL, "--views", path, "--allow-outside-paths"); /* outputs in /tmp */
@@ -301,15 +309,21 @@ static void test_probe_file_before_solve(void **state)
     (void)state;
     strcpy(pf, tmp_path("probes.txt"));
     write_file(pf, "# probes\n-0.28 0.27 -0.28\n1 2\n");
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"), "--stats");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out",
+        tmp_path("pr.json"), "--stats");
     expect(&r, 1, line_of("rad_cli: %s:3: a probe is three numbers, X Y Z\n", pf, NULL));
     CHECK_THAT(!*r.out, "no --stats (no solve): stdout '%s'", r.out);
     done(&r);
     CHECK_THAT(!exists(tmp_path("pr.png")) && !exists(tmp_path("pr.json")), "nothing written");
-    write_file(pf, "-0.28 0.27 -0.28\n\n  # above the ceiling:\n-0.28 0.6 -0.28\n-0.1 0.1 -0.1\n-0.28 -0.01 -0.28\n");
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out", tmp_path("pr.json"));
-    snprintf(want, sizeof want, "rad_cli: warning: %s:4: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
-             "-0.5592 to 0 0.5488 0), the first here, -0.28 0.6 -0.28: they see the scene from outside\n", pf);
+    write_file(pf, "-0.28 0.27 -0.28\n\n  # above the ceiling:\n-0.28 0.6 -0.28\n-0.1 0.1 "
+                   "-0.1\n-0.28 -0.01 -0.28\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("pr.png"), "--probe-file", pf, "--probes-out",
+        tmp_path("pr.json"));
+    snprintf(want, sizeof want,
+             "rad_cli: warning: %s:4: 2 of 4 probes lie outside the scene's bounding box (-0.556 0 "
+             "-0.5592 to 0 0.5488 0), the first here, -0.28 0.6 -0.28: they see the scene from "
+             "outside\n",
+             pf);
     CHECK_THAT(!strncmp(r.err, want, strlen(want)), "stderr starts\n%s\nwant\n%s", r.err, want);
     done(&r);
     unlink(tmp_path("pr.png"));
@@ -326,20 +340,28 @@ static void test_lightmap_estimate(void **state)
     char lm[320];
     (void)state;
     strcpy(lm, tmp_path("lm.png"));
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "64");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size",
+        "64");
     CHECK_CONTAINS(r.err, "rad_cli: lightmap: 64 x 64 texels, about 0.2 MB\n", "rad_cli's stderr");
-    CHECK_CONTAINS(r.err, "rad_cli: lightmap: 16 charts, 2660 texels covered: at most 2660 gathers at res 64\n", "rad_cli's stderr");
+    CHECK_CONTAINS(
+        r.err,
+        "rad_cli: lightmap: 16 charts, 2660 texels covered: at most 2660 gathers at res 64\n",
+        "rad_cli's stderr");
     expect(&r, 0, NULL);
     done(&r);
     unlink(lm);
     unlink(tmp_path("lm_view.png"));
     assert_int_equal(setenv("RAD_MEMORY_BUDGET", "1e9", 1), 0);
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size", "8192", "--stats");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("lm_view.png"), "--lightmap", lm, "--lightmap-size",
+        "8192", "--stats");
     unsetenv("RAD_MEMORY_BUDGET");
-    expect(&r, 1, line_of("rad_cli: %s: --lightmap-size 8192 needs about 2550.1 MB for its 8192 x 8192 texels, over "
-                          "the memory budget of 1000.0 MB (RAD_MEMORY_BUDGET): lower --lightmap-size\n", lm, NULL));
-    CHECK_THAT(!*r.out && !exists(lm) && !exists(tmp_path("lm_view.png")), "no solve, nothing written: stdout '%s'",
-               r.out);
+    expect(&r, 1,
+           line_of("rad_cli: %s: --lightmap-size 8192 needs about 2550.1 MB for its 8192 x 8192 "
+                   "texels, over "
+                   "the memory budget of 1000.0 MB (RAD_MEMORY_BUDGET): lower --lightmap-size\n",
+                   lm, NULL));
+    CHECK_THAT(!*r.out && !exists(lm) && !exists(tmp_path("lm_view.png")),
+               "no solve, nothing written: stdout '%s'", r.out);
     done(&r);
 }
 
@@ -370,18 +392,22 @@ static void test_texture_outside_not_embedded(void **state)
     strcpy(glb, tmp_path("room.glb"));
     strcpy(secret, tmp_path("secret.png"));
     assert_int_equal(mkdir(tmp_path("room"), 0700), 0);
-    write_file(obj, "mtllib room.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv -1 2 1\nv 1 2 1\n"
-                    "v 1 2 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
-                    "f 5 6 7 8\n");
-    write_file(tmp_path("room/room.mtl"), "newmtl floor\nKd 0 0 0\nmap_Kd ../secret.png\nnewmtl lamp\nKe 1 1 1\n");
+    write_file(
+        obj,
+        "mtllib room.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv -1 2 1\nv 1 2 1\n"
+        "v 1 2 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+        "f 5 6 7 8\n");
+    write_file(tmp_path("room/room.mtl"),
+               "newmtl floor\nKd 0 0 0\nmap_Kd ../secret.png\nnewmtl lamp\nKe 1 1 1\n");
     assert_int_equal(img_write_as(secret, "png", rgb, 2, 2, e, sizeof e), 0);
     assert_int_equal(fio_read_all(secret, FIO_LIMIT_TEXT, &png, &n, e, sizeof e), 0);
     RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb);
-    snprintf(want, sizeof want, "rad_cli: warning: %s:3: map_Kd: %s/../secret.png is outside the scene's folder "
-             "%s/room; using Kd 0.5 0.5 0.5; --allow-outside-paths reads it\n", tmp_path("room/room.mtl"),
-             tmp_path("room"), root);
-    CHECK_THAT(r.status == 0 && !strncmp(r.err, want, strlen(want)), "exit %d, stderr\n%s\nwant first\n%s", r.status,
-               r.err, want);
+    snprintf(want, sizeof want,
+             "rad_cli: warning: %s:3: map_Kd: %s/../secret.png is outside the scene's folder "
+             "%s/room; using Kd 0.5 0.5 0.5; --allow-outside-paths reads it\n",
+             tmp_path("room/room.mtl"), tmp_path("room"), root);
+    CHECK_THAT(r.status == 0 && !strncmp(r.err, want, strlen(want)),
+               "exit %d, stderr\n%s\nwant first\n%s", r.status, r.err, want);
     done(&r);
     CHECK_THAT(!holds(glb, png, n), "%s does not hold the %zu bytes of %s", glb, n, secret);
     RUN(&r, obj, SMALL, "-o", tmp_path("room.png"), "--export-gltf", glb, "--allow-outside-paths");
@@ -437,52 +463,84 @@ static void test_outputs_over_inputs(void **state)
     strcpy(png, tmp_path("tex.png"));
     strcpy(views, tmp_path("two.views"));
     strcpy(ff, tmp_path("tex.ff"));
-    write_file(obj, "mtllib tex.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\n"
-                    "v -1 2 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
-                    "f 5 6 7 8\n");
+    write_file(
+        obj,
+        "mtllib tex.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 2 -1\nv 1 2 -1\nv 1 2 1\n"
+        "v -1 2 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl floor\nf 1/1 4/4 3/3 2/2\nusemtl lamp\n"
+        "f 5 6 7 8\n");
     write_file(mtl, "newmtl floor\nKd 0.5 0.5 0.5\nmap_Kd tex.png\nnewmtl lamp\nKe 1 1 1\n");
     assert_int_equal(img_write_as(png, "png", rgb, 2, 2, e, sizeof e), 0);
     /* over the scene, its library and its texture (the same file under another name) */
-    REFUSED(obj, line_of("rad_cli: %s: --export-ply would write over the scene %s (the same file): give it another "
-                         "name\n", obj, obj), obj, SMALL, "-o", tmp_path("o.png"), "--export-ply", obj);
-    REFUSED(mtl, line_of("rad_cli: %s: --dump-radiosity would write over the scene's material library %s (the same "
-                         "file): give it another name\n", mtl, mtl), obj, SMALL, "-o", tmp_path("o.png"),
-            "--dump-radiosity", mtl);
+    REFUSED(obj,
+            line_of("rad_cli: %s: --export-ply would write over the scene %s (the same file): give "
+                    "it another "
+                    "name\n",
+                    obj, obj),
+            obj, SMALL, "-o", tmp_path("o.png"), "--export-ply", obj);
+    REFUSED(mtl,
+            line_of("rad_cli: %s: --dump-radiosity would write over the scene's material library "
+                    "%s (the same "
+                    "file): give it another name\n",
+                    mtl, mtl),
+            obj, SMALL, "-o", tmp_path("o.png"), "--dump-radiosity", mtl);
     snprintf(dotted, sizeof dotted, "%s/./tex.png", tmpdir);
-    snprintf(text, sizeof text, "rad_cli: %s: the image of -o would write over the texture of material 'floor' "
-             "(%s:3) %s (the same file): give it another name\n", dotted, mtl, png);
+    snprintf(text, sizeof text,
+             "rad_cli: %s: the image of -o would write over the texture of material 'floor' "
+             "(%s:3) %s (the same file): give it another name\n",
+             dotted, mtl, png);
     REFUSED(NULL, text, obj, SMALL, "-o", dotted);
     assert_int_equal(symlink(obj, tmp_path("link.png")), 0); /* a link to the scene */
-    REFUSED(obj, line_of("rad_cli: %s: the image of -o would write over the scene %s (the same file): give it another "
-                         "name\n", tmp_path("link.png"), obj), obj, SMALL, "-o", tmp_path("link.png"));
+    REFUSED(obj,
+            line_of("rad_cli: %s: the image of -o would write over the scene %s (the same file): "
+                    "give it another "
+                    "name\n",
+                    tmp_path("link.png"), obj),
+            obj, SMALL, "-o", tmp_path("link.png"));
     /* over the --views file and a --load-ff file */
     snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n", tmp_path("v1.png"));
     write_file(views, text);
-    REFUSED(views, line_of("rad_cli: %s: --export-gltf would write over the --views file %s (the same file): give it "
-                           "another name\n", views, views), obj, SMALL, "--views", views, "--allow-outside-paths",
-            "--export-gltf", views);
+    REFUSED(views,
+            line_of("rad_cli: %s: --export-gltf would write over the --views file %s (the same "
+                    "file): give it "
+                    "another name\n",
+                    views, views),
+            obj, SMALL, "--views", views, "--allow-outside-paths", "--export-gltf", views);
     RUN(&r, obj, SMALL, "-o", tmp_path("o.png"), "--save-ff", ff);
     expect(&r, 0, NULL);
     done(&r);
-    REFUSED(NULL, line_of("rad_cli: %s: --dump-radiosity would write over the --load-ff file %s (the same file): give "
-                          "it another name\n", ff, ff), obj, SMALL, "-o", tmp_path("o2.png"), "--load-ff", ff,
-            "--dump-radiosity", ff);
+    REFUSED(NULL,
+            line_of("rad_cli: %s: --dump-radiosity would write over the --load-ff file %s (the "
+                    "same file): give "
+                    "it another name\n",
+                    ff, ff),
+            obj, SMALL, "-o", tmp_path("o2.png"), "--load-ff", ff, "--dump-radiosity", ff);
     /* outputs over each other: two views to one (new) file, -o and --lightmap */
-    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n0 1 3 0 1 0 %s/./v2.png\n", tmp_path("v2.png"), tmpdir);
+    snprintf(text, sizeof text, "0 1 3 0 1 0 %s\n0 1 3 0 1 0 %s/./v2.png\n", tmp_path("v2.png"),
+             tmpdir);
     write_file(views, text);
     snprintf(dotted, sizeof dotted, "%s/./v2.png", tmpdir);
-    snprintf(text, sizeof text, "rad_cli: %s: the image of %s:1 (--views) and the image of %s:2 (--views) write the "
-             "same file: give one another name\n", dotted, views, views);
+    snprintf(text, sizeof text,
+             "rad_cli: %s: the image of %s:1 (--views) and the image of %s:2 (--views) write the "
+             "same file: give one another name\n",
+             dotted, views, views);
     REFUSED(NULL, text, obj, SMALL, "--views", views, "--allow-outside-paths");
-    REFUSED(NULL, line_of("rad_cli: %s: the image of -o and --lightmap write the same file: give one another name\n",
-                          tmp_path("x.png"), NULL), obj, SMALL, "-o", tmp_path("x.png"), "--lightmap", tmp_path("x.png"));
+    REFUSED(NULL,
+            line_of("rad_cli: %s: the image of -o and --lightmap write the same file: give one "
+                    "another name\n",
+                    tmp_path("x.png"), NULL),
+            obj, SMALL, "-o", tmp_path("x.png"), "--lightmap", tmp_path("x.png"));
     /* --views outside the current folder (the tests run in the repository; /tmp is outside) */
     snprintf(text, sizeof text, "# a view\n0 1 3 0 1 0 %s\n", tmp_path("v3.png"));
     write_file(views, text);
-    REFUSED(NULL, line_of("rad_cli: %s:2: %s is outside the current folder; --allow-outside-paths writes it\n", views,
-                          tmp_path("v3.png")), obj, SMALL, "--views", views);
-    CHECK_THAT(!exists(tmp_path("x.png")) && !exists(tmp_path("v2.png")) && !exists(tmp_path("v3.png"))
-               && !exists(tmp_path("o2.png")), "no output of the refused runs");
+    REFUSED(
+        NULL,
+        line_of(
+            "rad_cli: %s:2: %s is outside the current folder; --allow-outside-paths writes it\n",
+            views, tmp_path("v3.png")),
+        obj, SMALL, "--views", views);
+    CHECK_THAT(!exists(tmp_path("x.png")) && !exists(tmp_path("v2.png")) &&
+                   !exists(tmp_path("v3.png")) && !exists(tmp_path("o2.png")),
+               "no output of the refused runs");
     RUN(&r, obj, SMALL, "--views", views, "--allow-outside-paths");
     expect(&r, 0, NULL); /* a warning: the lamp faces down, the floor up, little lands */
     CHECK_THAT(exists(tmp_path("v3.png")), "with the option the view is written");
@@ -518,22 +576,26 @@ static void test_long_names_refused_before_solve(void **state)
     result_t r;
     (void)state;
     for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        RUN(&r, CORNELL, SMALL, "--stats", cases[i][0], cases[i][1], cases[i][2] ? cases[i][2] : "--quiet",
-            cases[i][3] ? cases[i][3] : "--quiet");
-        expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n", cases[i][1], NULL));
+        RUN(&r, CORNELL, SMALL, "--stats", cases[i][0], cases[i][1],
+            cases[i][2] ? cases[i][2] : "--quiet", cases[i][3] ? cases[i][3] : "--quiet");
+        expect(&r, 1,
+               line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
+                       cases[i][1], NULL));
         assert_string_equal(r.out, "");
         done(&r);
     }
     /* Names made from -o: the group's name or the frame number makes them too long. */
     RUN(&r, CORNELL, SMALL, "--stats", "-o", ok, "--light-group", "lamp=light", "--each-group");
-    expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
-                          long_name(249, ".lamp.png"), NULL));
+    expect(&r, 1,
+           line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
+                   long_name(249, ".lamp.png"), NULL));
     assert_string_equal(r.out, "");
     done(&r);
     write_file(tmp_path("frames.txt"), "0 0.27 1.2 0 0.27 0\n");
     RUN(&r, CORNELL, SMALL, "--stats", "-o", ok, "--animate", tmp_path("frames.txt"));
-    expect(&r, 1, line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
-                          long_name(249, "_0000.png"), NULL));
+    expect(&r, 1,
+           line_of("rad_cli: %s: name too long for its temporary file (.tmpXXXXXX)\n",
+                   long_name(249, "_0000.png"), NULL));
     assert_string_equal(r.out, "");
     done(&r);
     CHECK_THAT(!exists(ok), "%s is not written", ok);
@@ -563,7 +625,9 @@ static void test_camera_refused_before_solve(void **state)
  * file intact byte for byte, no temporary file left. */
 static void test_full_disk_keeps_old_file(void **state)
 {
-    static const char *const opt[2] = {"--dump-radiosity", "--export-ply"}, *const ext[2] = {"old.csv", "old.ply"};
+    static const char *const opt[2] = {"--dump-radiosity", "--export-ply"}, *const ext[2] = {
+                                                                                "old.csv",
+                                                                                "old.ply"};
     int k;
     (void)state;
     for (k = 0; k < 2; k++) {
@@ -605,14 +669,17 @@ static const char *box_scene(const char *name, const char *rho, int inward)
     int i;
     size_t n;
     snprintf(mtl, sizeof mtl, "%s.mtl", name);
-    n = (size_t)snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n"
-                                            "v 1 1 1\nv 0 1 1\nusemtl wall\n", mtl);
-    for (i = 0; i < 5; i++) n += (size_t)snprintf(text + n, sizeof text - n, "f %s\n", inward ? in[i] : out[i]);
+    n = (size_t)snprintf(text, sizeof text,
+                         "mtllib %s\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\n"
+                         "v 1 1 1\nv 0 1 1\nusemtl wall\n",
+                         mtl);
+    for (i = 0; i < 5; i++)
+        n += (size_t)snprintf(text + n, sizeof text - n, "f %s\n", inward ? in[i] : out[i]);
     snprintf(text + n, sizeof text - n, "usemtl lamp\nf 1 4 8 5\n");
     snprintf(path, sizeof path, "%s", tmp_path(name));
     write_file(path, text);
-    snprintf(text, sizeof text, "newmtl wall\nKd %s %s %s\nnewmtl lamp\nKd %s %s %s\nKe 1 1 1\n", rho, rho, rho, rho,
-             rho, rho);
+    snprintf(text, sizeof text, "newmtl wall\nKd %s %s %s\nnewmtl lamp\nKd %s %s %s\nKe 1 1 1\n",
+             rho, rho, rho, rho, rho, rho);
     write_file(tmp_path(mtl), text);
     return path;
 }
@@ -625,12 +692,15 @@ static void test_exit_not_converged(void **state)
     (void)state;
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"), "--max-shots", "2");
     expect_line(&r, 3, "rad_cli: " CORNELL ": not converged: the unshot fraction is ",
-                "above --tol 0.001, at --max-shots 2; the outputs show that partial solution (raise --max-shots or --tol)");
-    assert_int_equal(img_read(tmp_path("short.png"), &im, e, sizeof e), 0); /* written all the same */
+                "above --tol 0.001, at --max-shots 2; the outputs show that partial solution "
+                "(raise --max-shots or --tol)");
+    assert_int_equal(img_read(tmp_path("short.png"), &im, e, sizeof e),
+                     0); /* written all the same */
     assert_int_equal(im.w, 32);
     img_free(&im);
     done(&r);
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"), "--max-shots", "2", "--light-group", "l=light");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"), "--max-shots", "2", "--light-group",
+        "l=light");
     expect_line(&r, 3, "rad_cli: " CORNELL ": not converged: ", "(in a light group)");
     done(&r);
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("short.png"));
@@ -660,13 +730,18 @@ static void test_emission_limit(void **state)
     result_t r;
     (void)state;
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e100,1,1");
-    expect(&r, 1, "rad_cli: " CORNELL ": material 'light': emission 1e+100 is above the limit of 1e+30 (the image "
-                  "would overflow); scale every emission down: radiosity is linear in it\n");
+    expect(&r, 1,
+           "rad_cli: " CORNELL
+           ": material 'light': emission 1e+100 is above the limit of 1e+30 (the image "
+           "would overflow); scale every emission down: radiosity is linear in it\n");
     done(&r);
     /* It used to say 'must be finite and >= 0' there, and leak. */
-    RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e31,1,1", "--light-group", "l=light");
-    expect(&r, 1, "rad_cli: " CORNELL ": material 'light': emission 1e+31 is above the limit of 1e+30 (the image "
-                  "would overflow); scale every emission down: radiosity is linear in it\n");
+    RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e31,1,1", "--light-group",
+        "l=light");
+    expect(&r, 1,
+           "rad_cli: " CORNELL
+           ": material 'light': emission 1e+31 is above the limit of 1e+30 (the image "
+           "would overflow); scale every emission down: radiosity is linear in it\n");
     done(&r);
     CHECK_THAT(!exists(tmp_path("e.png")), "no image from a refused emission");
     RUN(&r, CORNELL, SMALL, "-o", tmp_path("e.png"), "--emit", "light=1e30,1e30,1e30");
@@ -757,15 +832,17 @@ static void test_default_camera_frames_meshed(void **state)
     /* docs/cli.md's default camera for a square image: along -Z, backed off until the
      * box's front face fills the frame with a 5% margin. */
     fit = h[1] > h[0] ? h[1] : h[0];
-    snprintf(cam, sizeof cam, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c[0], c[1], c[2] + h[2] + 1.05 * fit / t, c[0],
-             c[1], c[2]);
-    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "-o", tmp_path("far_default.png"));
-    snprintf(line, sizeof line, "rad_cli: warning: %s:%d: skipped a degenerate polygon (degenerate polygon)\n", scene,
+    snprintf(cam, sizeof cam, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", c[0], c[1],
+             c[2] + h[2] + 1.05 * fit / t, c[0], c[1], c[2]);
+    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "-o",
+        tmp_path("far_default.png"));
+    snprintf(line, sizeof line,
+             "rad_cli: warning: %s:%d: skipped a degenerate polygon (degenerate polygon)\n", scene,
              lines + 5); /* the face after a blank line and three vertices */
     expect(&r, 0, line);
     done(&r);
-    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "--camera", cam, "-o", tmp_path("far_cam.png"),
-        "--quiet");
+    RUN(&r, scene, "--res", "16", "--width", "32", "--height", "32", "--camera", cam, "-o",
+        tmp_path("far_cam.png"), "--quiet");
     expect(&r, 0, "");
     done(&r);
     same_image(tmp_path("far_default.png"), tmp_path("far_cam.png"));
@@ -786,14 +863,15 @@ static void test_exposure_shared_and_printed(void **state)
     char x[64];
     double exposure;
     (void)state;
-    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0,0.27,1.2,0,0.27,0", "-o", tmp_path("x1.png"), "--camera",
-        "0.2,0.1,0.5,0,0.4,0,60", "-o", tmp_path("x2.png"));
+    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0,0.27,1.2,0,0.27,0", "-o", tmp_path("x1.png"),
+        "--camera", "0.2,0.1,0.5,0,0.4,0,60", "-o", tmp_path("x2.png"));
     expect(&r, 0, "");
     exposure = stat_value(r.out, "\nexposure ");
     assert_non_null(strstr(r.out, " (automatic, from the first view)\n"));
     done(&r);
     snprintf(x, sizeof x, "%.17g", exposure);
-    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0.2,0.1,0.5,0,0.4,0,60", "-o", tmp_path("x3.png"), "--exposure", x);
+    RUN(&r, CORNELL, SMALL, "--stats", "--camera", "0.2,0.1,0.5,0,0.4,0,60", "-o",
+        tmp_path("x3.png"), "--exposure", x);
     expect(&r, 0, "");
     assert_non_null(strstr(r.out, " (--exposure)\n"));
     done(&r);
@@ -808,18 +886,22 @@ static void test_outward_room_warns(void **state)
     const char *out = box_scene("outward.obj", "0.7", 0), *in;
     double share;
     (void)state;
-    RUN(&r, out, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o", tmp_path("o.png"),
-        "--stats");
-    expect(&r, 0, line_of("rad_cli: warning: %s: only 0%% of the emitted light reaches a face from its front: the "
-                          "rest leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
-                          "counter-clockwise seen from their lit side)\n", out, NULL));
+    RUN(&r, out, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o",
+        tmp_path("o.png"), "--stats");
+    expect(&r, 0,
+           line_of("rad_cli: warning: %s: only 0%% of the emitted light reaches a face from its "
+                   "front: the "
+                   "rest leaves the scene or meets faces seen from behind (radiosity is one-sided: "
+                   "wind faces "
+                   "counter-clockwise seen from their lit side)\n",
+                   out, NULL));
     share = stat_value(r.out, "emitted light reaching front faces ");
     /* Every wall faces away from the lamp: no front face is seen, whatever the rounding. */
     CHECK_EQ(share, 0.0, "share of the light landing in the outward room");
     done(&r);
     in = box_scene("inward.obj", "0.7", 1);
-    RUN(&r, in, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o", tmp_path("i.png"),
-        "--stats");
+    RUN(&r, in, "--res", "16", "--width", "16", "--height", "16", "--max-element", "0.25", "-o",
+        tmp_path("i.png"), "--stats");
     expect(&r, 0, "");
     share = stat_value(r.out, "emitted light reaching front faces ");
     /* A closed box: each row sums to one (the delta form factor table sums to exactly 1);
@@ -840,7 +922,8 @@ static void test_help_matches_docs(void **state)
     (void)state;
     RUN(&r, "--help");
     expect(&r, 0, "");
-    assert_non_null(strstr(r.out, "Exit status: 0 success; 1 runtime or input error; 2 usage error; 3 outputs"));
+    assert_non_null(strstr(
+        r.out, "Exit status: 0 success; 1 runtime or input error; 2 usage error; 3 outputs"));
     assert_non_null(strstr(r.out, "the default camera looks along -Z at the centre of"));
     for (p = doc; (p = strstr(p, "\n| `-")) != NULL; p++) {
         const char *end = strchr(p + 3, '|'), *q; /* the row's first column */

@@ -31,10 +31,10 @@
 
 /* What one scene's comparisons found. */
 typedef struct {
-    long gathers, probes;    /* compared */
-    long differ;             /* gathers or probes whose values or buffers differ */
-    long first;              /* the first that differs (-1: none) */
-    unsigned long calls[2];  /* raster calls: every surface drawn, culled */
+    long gathers, probes;   /* compared */
+    long differ;            /* gathers or probes whose values or buffers differ */
+    long first;             /* the first that differs (-1: none) */
+    unsigned long calls[2]; /* raster calls: every surface drawn, culled */
     unsigned surfaces;
 } cres;
 
@@ -45,9 +45,9 @@ typedef struct {
     unsigned surfaces;
 } csizes;
 
-#define DECLARE(B)                                      \
+#define DECLARE(B)                                   \
     int scene_cull_##B(int scene, int res, cres *r); \
-    int sizes_cull_##B(csizes *z);                  \
+    int sizes_cull_##B(csizes *z);                   \
     int host_gathers_##B(const sc_poly *p, int n, long *failed, long *differ)
 DECLARE(fixed);
 DECLARE(float);
@@ -111,7 +111,8 @@ static world_t *world_new(double element)
 
 /* A quad with corners P + U, P + U + V, ... counter-clockwise seen from the side its
  * normal U x V points to: corners P, P + U, P + U + V, P + V. */
-static int quad(world_t *w, const double *p, const double *u, const double *v, double rho, double emit)
+static int quad(world_t *w, const double *p, const double *u, const double *v, double rho,
+                double emit)
 {
     rad_vec3_t c[4];
     rad_rgb_t r, e;
@@ -215,11 +216,13 @@ static int coplanar(world_t *w)
  * but what touches its walls' planes (the floors and walls of the rooms along x). */
 static int rooms(world_t *w)
 {
-    static const double size[3] = {4, 4, 3}, edge[3] = {1, 1, 1}, lu[3] = {1, 0, 0}, lv[3] = {0, -1, 0};
+    static const double size[3] = {4, 4, 3}, edge[3] = {1, 1, 1}, lu[3] = {1, 0, 0},
+                        lv[3] = {0, -1, 0};
     int i, j;
     for (j = 0; j < 3; j++)
         for (i = 0; i < 3; i++) {
-            double room[3] = {4.0 * i, 4.5 * j, 0}, cube[3] = {4.0 * i + 1 + 0.5 * j, 4.5 * j + 1.5, 0};
+            double room[3] = {4.0 * i, 4.5 * j, 0},
+                   cube[3] = {4.0 * i + 1 + 0.5 * j, 4.5 * j + 1.5, 0};
             double lp[3] = {4.0 * i + 1.5, 4.5 * j + 2.5, 2.95};
             if (box(w, room, size, 1, 0.5) < 0 || box(w, cube, edge, 0, 0.4) < 0 ||
                 quad(w, lp, lu, lv, 0.2, 5) < 0)
@@ -266,7 +269,8 @@ static void point_of(int scene, int k, int n, double *p, double *nrm)
 static int same_face(const rad_gather_t *g, const rad_gather_t *h)
 {
     size_t px = (size_t)g->res * g->res;
-    return !memcmp(g->zbuf, h->zbuf, px * sizeof *g->zbuf) && !memcmp(g->ibuf, h->ibuf, px * sizeof *g->ibuf);
+    return !memcmp(g->zbuf, h->zbuf, px * sizeof *g->zbuf) &&
+           !memcmp(g->ibuf, h->ibuf, px * sizeof *g->ibuf);
 }
 
 /* Gathers plain (G) and culled (H) alike; counts into R whether they differ. */
@@ -355,9 +359,9 @@ int TW(sizes_cull)(csizes *z)
     rad_rgb_t out;
     int rc = -1;
     memset(z, 0, sizeof *z);
-    if (!w || !v || cornell(w) < 0 || cornell(v) < 0 || quad(v, (const double[3]){1, 1, 1},
-                                                             (const double[3]){1, 0, 0},
-                                                             (const double[3]){0, 1, 0}, 0.5, 0) < 0)
+    if (!w || !v || cornell(w) < 0 || cornell(v) < 0 ||
+        quad(v, (const double[3]){1, 1, 1}, (const double[3]){1, 0, 0}, (const double[3]){0, 1, 0},
+             0.5, 0) < 0)
         goto out;
     z->early = rad_cull_build(&w->s, buf, sizeof w->cull);
     if (rad_shoot(&w->s, 5, 0) < 0 || rad_shoot(&v->s, 5, 0) < 0) goto out;
@@ -411,7 +415,8 @@ int TW(host_gathers)(const sc_poly *p, int n, long *failed, long *differ)
         return -1;
     }
     for (k = 0; k < 30; k++) {
-        double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k}, nrm[3] = {k % 3 - 1.0, 1, 0.3};
+        double pt[3] = {0.5 + 0.5 * k, 0.3 + 0.45 * k, 15.5 - 0.5 * k},
+               nrm[3] = {k % 3 - 1.0, 1, 0.3};
         double a[3], c[3];
         *failed += sc_gatherer_cull(g, 0) != 0 || sc_gather(g, pt, nrm, 1, a) != 0;
         *failed += sc_gatherer_cull(g, 1) != 0 || sc_gather(g, pt, nrm, 1, c) != 0;
@@ -425,8 +430,8 @@ int TW(host_gathers)(const sc_poly *p, int n, long *failed, long *differ)
 #if !RAD_FLOAT
 /* ---- the tests (fixed half) --------------------------------------------------------- */
 
-static const char *const names[NSCENES] = {"Cornell box",  "box of boxes", "coplanar ties",
-                                           "points on surfaces", "one surface", "grid of rooms"};
+static const char *const names[NSCENES] = {"Cornell box",        "box of boxes", "coplanar ties",
+                                           "points on surfaces", "one surface",  "grid of rooms"};
 
 /* Scene SCENE at RES in both builds: every gather the same culled; returns the raster
  * calls (all drawn, culled) of the fixed build. */
@@ -443,7 +448,8 @@ static void check_scene_calls(int scene, int res, unsigned long *calls)
                      build, names[scene], res, r.differ, r.gathers, r.probes, r.first);
         print_message("%s %s (%u surfaces) res %d: %ld gathers, %ld probes the same; raster calls "
                       "%lu all, %lu culled\n",
-                      build, names[scene], r.surfaces, res, r.gathers, r.probes, r.calls[0], r.calls[1]);
+                      build, names[scene], r.surfaces, res, r.gathers, r.probes, r.calls[0],
+                      r.calls[1]);
         if (b == 0 && calls) memcpy(calls, r.calls, sizeof r.calls);
     }
 }
@@ -494,8 +500,9 @@ static void test_rooms(void **st)
     (void)st;
     check_scene_calls(ROOMS, 32, calls);
     if (calls[1] >= calls[0])
-        fail_msg("grid of rooms: %lu raster calls culled, not below %lu drawing all: nothing hidden", calls[1],
-                 calls[0]);
+        fail_msg(
+            "grid of rooms: %lu raster calls culled, not below %lu drawing all: nothing hidden",
+            calls[1], calls[0]);
 }
 
 static void test_sizes(void **st)
@@ -505,27 +512,35 @@ static void test_sizes(void **st)
     for (b = 0; b < 2; b++) {
         csizes z;
         const char *build = b ? "float" : "fixed";
-        if ((b ? sizes_cull_float(&z) : sizes_cull_fixed(&z)) != 0) fail_msg("%s: setup failed", build);
-        if (z.early != RAD_ERR_STATE) fail_msg("%s: built before the geometry froze: %d", build, z.early);
+        if ((b ? sizes_cull_float(&z) : sizes_cull_fixed(&z)) != 0)
+            fail_msg("%s: setup failed", build);
+        if (z.early != RAD_ERR_STATE)
+            fail_msg("%s: built before the geometry froze: %d", build, z.early);
         if (z.short_build != RAD_ERR_WORK)
             fail_msg("%s: RAD_CULL_BYTES - 1 gave %d, not RAD_ERR_WORK", build, z.short_build);
-        if (z.misaligned != RAD_ERR_ALIGN) fail_msg("%s: a misaligned buffer gave %d", build, z.misaligned);
+        if (z.misaligned != RAD_ERR_ALIGN)
+            fail_msg("%s: a misaligned buffer gave %d", build, z.misaligned);
         if (z.built != (int)(2 * z.surfaces - 1))
-            fail_msg("%s: RAD_CULL_BYTES exactly gave %d, not %u nodes", build, z.built, 2 * z.surfaces - 1);
+            fail_msg("%s: RAD_CULL_BYTES exactly gave %d, not %u nodes", build, z.built,
+                     2 * z.surfaces - 1);
         if (!z.guard_ok) fail_msg("%s: bytes past a buffer's size were written", build);
         if (z.short_work != RAD_ERR_WORK)
-            fail_msg("%s: RAD_GATHER_CULL_BYTES - 1 gave %d, not RAD_ERR_WORK", build, z.short_work);
-        if (z.exact_work != RAD_OK) fail_msg("%s: RAD_GATHER_CULL_BYTES exactly gave %d", build, z.exact_work);
-        if (z.odd_work != RAD_ERR_ARG) fail_msg("%s: a buffer that is no hierarchy gave %d", build, z.odd_work);
+            fail_msg("%s: RAD_GATHER_CULL_BYTES - 1 gave %d, not RAD_ERR_WORK", build,
+                     z.short_work);
+        if (z.exact_work != RAD_OK)
+            fail_msg("%s: RAD_GATHER_CULL_BYTES exactly gave %d", build, z.exact_work);
+        if (z.odd_work != RAD_ERR_ARG)
+            fail_msg("%s: a buffer that is no hierarchy gave %d", build, z.odd_work);
         if (z.other_scene != RAD_ERR_STATE)
-            fail_msg("%s: another scene's hierarchy gave %d, not RAD_ERR_STATE", build, z.other_scene);
+            fail_msg("%s: another scene's hierarchy gave %d, not RAD_ERR_STATE", build,
+                     z.other_scene);
     }
 }
 
 /* A quad of sc_poly P[N] at (X0, Y0, Z0) spanning DU, DV along the axes after AX,
  * turned over when FLIP; returns N + 1. */
-static int host_poly(sc_poly *p, int n, double x0, double y0, double z0, int ax, double du, double dv, int flip,
-                     double rho, double emit)
+static int host_poly(sc_poly *p, int n, double x0, double y0, double z0, int ax, double du,
+                     double dv, int flip, double rho, double emit)
 {
     int u = (ax + 1) % 3, v = (ax + 2) % 3, k;
     static const int cu[4] = {0, 1, 1, 0}, cv[4] = {0, 0, 1, 1};
@@ -571,14 +586,16 @@ static void test_host(void **st)
     n = host_poly(p, n, 6, 15.9, 6, 1, 4, 4, 1, 0.2, 6); /* the lamp, facing down */
     for (k = 0; k < 2; k++)
         for (j = 0; j < 4; j++)
-            for (i = 0; i < 4; i++) n = host_cube(p, n, 1.5 + 3.6 * i, 2 + 6 * k, 1.5 + 3.6 * j, 1.5, 0, 0.4);
+            for (i = 0; i < 4; i++)
+                n = host_cube(p, n, 1.5 + 3.6 * i, 2 + 6 * k, 1.5 + 3.6 * j, 1.5, 0, 0.4);
     for (b = 0; b < 2; b++) {
         long failed, differ;
-        int rc = b ? host_gathers_float(p, n, &failed, &differ) : host_gathers_fixed(p, n, &failed, &differ);
+        int rc = b ? host_gathers_float(p, n, &failed, &differ)
+                   : host_gathers_fixed(p, n, &failed, &differ);
         if (rc != 0) fail_msg("%s host: the scene failed", b ? "float" : "fixed");
         if (failed || differ)
-            fail_msg("%s host, %d polygons: %ld calls failed, %ld of 30 gathers differ culled", b ? "float" : "fixed", n,
-                     failed, differ);
+            fail_msg("%s host, %d polygons: %ld calls failed, %ld of 30 gathers differ culled",
+                     b ? "float" : "fixed", n, failed, differ);
     }
     free(p);
 }
@@ -586,9 +603,10 @@ static void test_host(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cornell),    cmocka_unit_test(test_boxes), cmocka_unit_test(test_coplanar),
-        cmocka_unit_test(test_on_surface), cmocka_unit_test(test_one),   cmocka_unit_test(test_rooms),
-        cmocka_unit_test(test_sizes),      cmocka_unit_test(test_host),
+        cmocka_unit_test(test_cornell),  cmocka_unit_test(test_boxes),
+        cmocka_unit_test(test_coplanar), cmocka_unit_test(test_on_surface),
+        cmocka_unit_test(test_one),      cmocka_unit_test(test_rooms),
+        cmocka_unit_test(test_sizes),    cmocka_unit_test(test_host),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,10 +41,16 @@ static double mean_radiosity(void *s, int twin)
     sc_stats st;
     double sum = 0, area = 0;
     int e;
-    if (twin) scf_get_stats(s, &st); else sc_get_stats(s, &st);
+    if (twin)
+        scf_get_stats(s, &st);
+    else
+        sc_get_stats(s, &st);
     for (e = 0; e < st.elements; e++) {
         double rgb[3], a = twin ? scf_element_area(s, e) : sc_element_area(s, e);
-        if (twin) scf_element_rgb(s, e, 0, rgb); else sc_element_rgb(s, e, 0, rgb);
+        if (twin)
+            scf_element_rgb(s, e, 0, rgb);
+        else
+            sc_element_rgb(s, e, 0, rgb);
         sum += rgb[0] * a;
         area += a;
     }
@@ -52,8 +58,8 @@ static double mean_radiosity(void *s, int twin)
 }
 
 /* POLYS solved in both builds to TOL with a cap of 20,000 shots, and their stats. */
-static void solve_twins(const sc_poly *polys, int n, const sc_opts *o, double tol, sc_solver **s, scf_solver **f,
-                        sc_stats *a, sc_stats *b)
+static void solve_twins(const sc_poly *polys, int n, const sc_opts *o, double tol, sc_solver **s,
+                        scf_solver **f, sc_stats *a, sc_stats *b)
 {
     char err[256];
     *s = sc_create(polys, n, o, NULL, NULL, err, sizeof err);
@@ -89,8 +95,8 @@ static sc_poly *bundled_box(int *n, double rho)
  * converged within MAX_SHOTS, without a saturation, and the fixed solution must meet
  * the energy balance within BOUND; both means within 1% of plain shooting's (which
  * never overshoots) to 1e-4. */
-static void check_bright(const char *name, const sc_poly *polys, int n, const sc_opts *o, int max_shots,
-                         double bound)
+static void check_bright(const char *name, const sc_poly *polys, int n, const sc_opts *o,
+                         int max_shots, double bound)
 {
     char err[256];
     sc_opts plain_o = *o;
@@ -110,11 +116,14 @@ static void check_bright(const char *name, const sc_poly *polys, int n, const sc
     assert_true(off >= 0);
     m[0] = mean_radiosity(s, 0);
     m[1] = mean_radiosity(f, 1);
-    print_message("%s: fixed %d shots (unshot %.5f, %lu back-offs, %lu saturations), float %d shots (%.5f, %lu, "
-                  "%lu); absorbed %.4f + escaped %.4f of the emitted: off by %.3f%% (bound %.1f%%); means %.5f "
+    print_message("%s: fixed %d shots (unshot %.5f, %lu back-offs, %lu saturations), float %d "
+                  "shots (%.5f, %lu, "
+                  "%lu); absorbed %.4f + escaped %.4f of the emitted: off by %.3f%% (bound "
+                  "%.1f%%); means %.5f "
                   "and %.5f, plain shooting's %.5f (%d shots to 1e-4)\n",
-                  name, a.shots, a.unshot, a.backoffs, a.saturations, b.shots, b.unshot, b.backoffs, b.saturations,
-                  absorbed, escaped, 100 * off, 100 * bound, m[0], m[1], m[2], plain_shots);
+                  name, a.shots, a.unshot, a.backoffs, a.saturations, b.shots, b.unshot, b.backoffs,
+                  b.saturations, absorbed, escaped, 100 * off, 100 * bound, m[0], m[1], m[2],
+                  plain_shots);
     assert_int_equal(a.solved, 1);
     assert_int_equal(a.converged, 1);
     assert_int_equal(b.converged, 1);
@@ -171,8 +180,8 @@ static void test_no_backoff(void **st)
     sc_poly *p = bundled_box(&n, 0);
     (void)st;
     solve_twins(p, n, &o, 1e-4, &s, &f, &a, &b);
-    print_message("bundled Cornell box to 1e-4: %d / %d shots, back-offs %lu / %lu\n", a.shots, b.shots, a.backoffs,
-                  b.backoffs);
+    print_message("bundled Cornell box to 1e-4: %d / %d shots, back-offs %lu / %lu\n", a.shots,
+                  b.shots, a.backoffs, b.backoffs);
     assert_int_equal(a.converged, 1);
     assert_int_equal(b.converged, 1);
     assert_int_equal(a.backoffs, 0);
@@ -196,8 +205,8 @@ static void test_not_converged(void **st)
     assert_int_equal(a.solved, 0);
     assert_int_equal(sc_solve(s, 50, 0.001, NULL, NULL), 50);
     sc_get_stats(s, &a);
-    print_message("open box Kd 0.998 after 50 shots: unshot %.4f (tol %.4f), converged %d\n", a.unshot, a.tol,
-                  a.converged);
+    print_message("open box Kd 0.998 after 50 shots: unshot %.4f (tol %.4f), converged %d\n",
+                  a.unshot, a.tol, a.converged);
     assert_int_equal(a.solved, 1);
     assert_true(a.unshot > 0.001);
     assert_int_equal(a.converged, 0);
@@ -240,15 +249,21 @@ static void test_lost_lamp(void **st)
         void *s = twin ? (void *)scf_create(p, 2, &o, collect, &w, err, sizeof err)
                        : (void *)sc_create(p, 2, &o, collect, &w, err, sizeof err);
         assert_non_null(s);
-        if (twin) scf_get_stats(s, &a); else sc_get_stats(s, &a);
-        print_message("%s: %d warnings, the first (tag %d): %s; skipped emitters %d\n", twin ? "float" : "fixed",
-                      w.n, w.tag, w.msg, a.skipped_emitters);
+        if (twin)
+            scf_get_stats(s, &a);
+        else
+            sc_get_stats(s, &a);
+        print_message("%s: %d warnings, the first (tag %d): %s; skipped emitters %d\n",
+                      twin ? "float" : "fixed", w.n, w.tag, w.msg, a.skipped_emitters);
         assert_true(w.n >= 1);
         assert_int_equal(w.tag, 42);
         assert_non_null(strstr(w.msg, "emits light"));
         assert_true(a.skipped_emitters >= 1);
         assert_int_equal(a.skipped_emitters, a.skipped);
-        if (twin) scf_destroy(s); else sc_destroy(s);
+        if (twin)
+            scf_destroy(s);
+        else
+            sc_destroy(s);
     }
 }
 
@@ -264,7 +279,9 @@ static void test_outlier_vertex(void **st)
     set_mat(&p[0], 0.5, 0.5, 0.5, 1, 1, 1);
     set_mat(&p[1], 0.5, 0.5, 0.5, 0, 0, 0);
     set_mat(&p[2], 0.5, 0.5, 0.5, 0, 0, 0);
-    p[0].tag = 0; p[1].tag = 1; p[2].tag = 2;
+    p[0].tag = 0;
+    p[1].tag = 1;
+    p[2].tag = 2;
     assert_null(sc_create(p, 3, NULL, NULL, NULL, err, sizeof err));
     print_message("%s\n", err);
     assert_non_null(strstr(err, "spans 2e+30 units"));
@@ -338,8 +355,8 @@ static void cli(const char *name, const char *opts, int status, char *err, size_
     FILE *f;
     size_t got;
     int rc;
-    snprintf(cmd, sizeof cmd, "build/rad_cli %s %s -o %s --width 32 --height 32 2>&1 >/dev/null", tmp_path(name),
-             opts, tmp_path("out.png"));
+    snprintf(cmd, sizeof cmd, "build/rad_cli %s %s -o %s --width 32 --height 32 2>&1 >/dev/null",
+             tmp_path(name), opts, tmp_path("out.png"));
     f = popen(cmd, "r");
     assert_non_null(f);
     got = fread(err, 1, n - 1, f);
@@ -372,29 +389,34 @@ static void test_cli_reports(void **st)
     char err[4096], want[400];
     (void)st;
     if (access("build/rad_cli", X_OK) != 0) skip();
-    write_file(tmp_path("lamp.mtl"), "newmtl white\nKd 0.5 0.5 0.5\nnewmtl light\nKe 100 100 100\n");
-    write_file(tmp_path("lamp.obj"), "mtllib lamp.mtl\nusemtl white\n"
-                                     "v -1000 0 -1000\nv -1000 0 1000\nv 1000 0 1000\nv 1000 0 -1000\nf 1 2 3 4\n"
-                                     "usemtl light\nv 0 10 0\nv 0.001 10 0\nv 0.001 10 0.001\nv 0 10 0.001\n"
-                                     "f 8 7 6 5\n");
+    write_file(tmp_path("lamp.mtl"),
+               "newmtl white\nKd 0.5 0.5 0.5\nnewmtl light\nKe 100 100 100\n");
+    write_file(tmp_path("lamp.obj"),
+               "mtllib lamp.mtl\nusemtl white\n"
+               "v -1000 0 -1000\nv -1000 0 1000\nv 1000 0 1000\nv 1000 0 -1000\nf 1 2 3 4\n"
+               "usemtl light\nv 0 10 0\nv 0.001 10 0\nv 0.001 10 0.001\nv 0 10 0.001\n"
+               "f 8 7 6 5\n");
     cli("lamp.obj", "--res 16", 0, err, sizeof err);
     snprintf(want, sizeof want, "rad_cli: warning: %s:13: skipped", tmp_path("lamp.obj"));
     assert_non_null(strstr(err, want));
     assert_non_null(strstr(err, "emits light (100 100 100): its light is lost"));
 
-    write_file(tmp_path("bright.mtl"), "newmtl white\nKd 0.998 0.998 0.998\nnewmtl light\nKd 0.5 0.5 0.5\nKe 5 5 5\n");
-    write_file(tmp_path("bright.obj"), "mtllib bright.mtl\nusemtl white\n"
-                                       "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n"
-                                       "v 0 1 0\nv 0 1 -1\nv 1 1 -1\nv 1 1 0\nf 5 6 7 8\n"
-                                       "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nf 9 10 11 12\n"
-                                       "usemtl light\nv 0.4 0.99 -0.4\nv 0.4 0.99 -0.6\nv 0.6 0.99 -0.6\n"
-                                       "v 0.6 0.99 -0.4\nf 13 14 15 16\n");
+    write_file(tmp_path("bright.mtl"),
+               "newmtl white\nKd 0.998 0.998 0.998\nnewmtl light\nKd 0.5 0.5 0.5\nKe 5 5 5\n");
+    write_file(tmp_path("bright.obj"),
+               "mtllib bright.mtl\nusemtl white\n"
+               "v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nf 1 2 3 4\n"
+               "v 0 1 0\nv 0 1 -1\nv 1 1 -1\nv 1 1 0\nf 5 6 7 8\n"
+               "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\nf 9 10 11 12\n"
+               "usemtl light\nv 0.4 0.99 -0.4\nv 0.4 0.99 -0.6\nv 0.6 0.99 -0.6\n"
+               "v 0.6 0.99 -0.4\nf 13 14 15 16\n");
     cli("bright.obj", "--res 16 --max-shots 20", 3, err, sizeof err);
     assert_non_null(strstr(err, ": not converged: the unshot fraction is "));
     assert_non_null(strstr(err, "at --max-shots 20"));
 
-    write_file(tmp_path("far.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nv 0 0 1\nv 1 0 1\n"
-                                    "v 1e30 1 1\nf 5 6 7\n");
+    write_file(tmp_path("far.obj"),
+               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nv 0 0 1\nv 1 0 1\n"
+               "v 1e30 1 1\nf 5 6 7\n");
     cli("far.obj", "", 1, err, sizeof err);
     assert_non_null(strstr(err, "the scene spans 2e+30 units"));
 }
@@ -402,14 +424,10 @@ static void test_cli_reports(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_open_box),
-        cmocka_unit_test(test_cornell_998),
-        cmocka_unit_test(test_no_backoff),
-        cmocka_unit_test(test_not_converged),
-        cmocka_unit_test(test_lost_lamp),
-        cmocka_unit_test(test_outlier_vertex),
-        cmocka_unit_test(test_rows_memory),
-        cmocka_unit_test(test_gauss_seidel_limit),
+        cmocka_unit_test(test_open_box),    cmocka_unit_test(test_cornell_998),
+        cmocka_unit_test(test_no_backoff),  cmocka_unit_test(test_not_converged),
+        cmocka_unit_test(test_lost_lamp),   cmocka_unit_test(test_outlier_vertex),
+        cmocka_unit_test(test_rows_memory), cmocka_unit_test(test_gauss_seidel_limit),
         cmocka_unit_test(test_cli_reports),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

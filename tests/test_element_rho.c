@@ -35,7 +35,8 @@ static void box(world_t *w, const rad_rgb_t *rho, const rad_rgb_t *em)
 /* A pattern of four reflectances, element by element. */
 static rad_rgb_t pattern(uint32_t e)
 {
-    static const double r[4][3] = {{0.2, 0.7, 0.4}, {0.9, 0.3, 0.6}, {0.5, 0.5, 0.1}, {0.05, 0.8, 0.95}};
+    static const double r[4][3] = {
+        {0.2, 0.7, 0.4}, {0.9, 0.3, 0.6}, {0.5, 0.5, 0.1}, {0.05, 0.8, 0.95}};
     return C(r[e % 4][0], r[e % 4][1], r[e % 4][2]);
 }
 
@@ -95,10 +96,14 @@ static void test_one_shot(void **st)
             if (fabs(ch(&rb, k) - ch(&ra, k)) > spread) spread = fabs(ch(&rb, k) - ch(&ra, k));
         }
     }
-    print_message("one shot: element radiosity against the surface's times rho_j / 0.5: worst %.2f LSB "
-                  "(bound 2); largest change %.3f\n", worst, spread);
-    CHECK_LE(worst, 2.0, "one shot: element radiosity, in LSB, against the shot at 0.5 times rho_j / 0.5");
-    CHECK_GE(spread, 1.0, "one shot: the elements' own reflectance changed their radiosity (core scale)");
+    print_message(
+        "one shot: element radiosity against the surface's times rho_j / 0.5: worst %.2f LSB "
+        "(bound 2); largest change %.3f\n",
+        worst, spread);
+    CHECK_LE(worst, 2.0,
+             "one shot: element radiosity, in LSB, against the shot at 0.5 times rho_j / 0.5");
+    CHECK_GE(spread, 1.0,
+             "one shot: the elements' own reflectance changed their radiosity (core scale)");
     free(a);
     free(b);
 }
@@ -130,9 +135,12 @@ static void test_closed_box_uniform(void **st)
         }
         area += a;
     }
-    print_message("closed box, elements 0.5 on surfaces 0.2: mean %.5f (want 2, bound 0.5%%), worst element "
-                  "%.2f%% (bound 5%%)\n", mean / area, 100 * worst);
-    CHECK_LE(fabs(mean / area / 2 - 1), 0.005, "closed box: the area-weighted mean against 1 / (1 - 0.5)");
+    print_message(
+        "closed box, elements 0.5 on surfaces 0.2: mean %.5f (want 2, bound 0.5%%), worst element "
+        "%.2f%% (bound 5%%)\n",
+        mean / area, 100 * worst);
+    CHECK_LE(fabs(mean / area / 2 - 1), 0.005,
+             "closed box: the area-weighted mean against 1 / (1 - 0.5)");
     CHECK_LE(worst, 0.05, "closed box: the worst element against 1 / (1 - 0.5)");
     free(w);
 }
@@ -168,10 +176,14 @@ static void test_closed_box_balance(void **st)
     }
     for (k = 0; k < 3; k++)
         if (fabs(absorbed[k] / emitted - 1) > worst) worst = fabs(absorbed[k] / emitted - 1);
-    print_message("closed box, four reflectances: absorbed / emitted within %.3f%% (bound 0.5%%); red "
-                  "radiosity %.3f..%.3f\n", 100 * worst, lo, hi);
-    CHECK_LE(worst, 0.005, "closed box of differing elements: absorbed over emitted power, minus 1");
-    CHECK_GE(hi - lo, 0.5, "closed box of differing elements: red radiosity spread (0.05 to 0.9 reflect)");
+    print_message(
+        "closed box, four reflectances: absorbed / emitted within %.3f%% (bound 0.5%%); red "
+        "radiosity %.3f..%.3f\n",
+        100 * worst, lo, hi);
+    CHECK_LE(worst, 0.005,
+             "closed box of differing elements: absorbed over emitted power, minus 1");
+    CHECK_GE(hi - lo, 0.5,
+             "closed box of differing elements: red radiosity spread (0.05 to 0.9 reflect)");
     free(w);
 }
 
@@ -200,7 +212,8 @@ static void test_ambient_part(void **st)
             if (d > worst) worst = d;
         }
     }
-    print_message("ambient part: within %.2f LSB of rho_e times the ambient term (bound 2)\n", worst);
+    print_message("ambient part: within %.2f LSB of rho_e times the ambient term (bound 2)\n",
+                  worst);
     CHECK_LE(worst, 2.0, "shown ambient part against the element's rho times rad_ambient, in LSB");
     free(w);
 }
@@ -225,7 +238,8 @@ static void test_gauss_seidel(void **st)
     CHECK_INT_EQ(rad_rows_compute(&w->s, &rows, NP), (int)w->s.n_patches, "rows stored");
     m = malloc(RAD_GS_ENTRIES(w->s.n_patches) * sizeof *m);
     assert_non_null(m);
-    assert_true(rad_rows_gauss_seidel(&w->s, &rows, m, RAD_GS_ENTRIES(w->s.n_patches), 200, RAD_REAL(1e-4)) > 0);
+    assert_true(rad_rows_gauss_seidel(&w->s, &rows, m, RAD_GS_ENTRIES(w->s.n_patches), 200,
+                                      RAD_REAL(1e-4)) > 0);
     for (e = 0; e < w->s.n_elements; e++) {
         rad_rgb_t b;
         double a = RAD_TO_DOUBLE(w->s.pools.elements[e].area);
@@ -233,8 +247,10 @@ static void test_gauss_seidel(void **st)
         mean += a * ch(&b, 1);
         area += a;
     }
-    print_message("Gauss-Seidel, elements 0.5 on surfaces 0.2: mean %.5f (want 2, bound 0.5%%)\n", mean / area);
-    CHECK_LE(fabs(mean / area / 2 - 1), 0.005, "Gauss-Seidel closed box: the mean against 1 / (1 - 0.5)");
+    print_message("Gauss-Seidel, elements 0.5 on surfaces 0.2: mean %.5f (want 2, bound 0.5%%)\n",
+                  mean / area);
+    CHECK_LE(fabs(mean / area / 2 - 1), 0.005,
+             "Gauss-Seidel closed box: the mean against 1 / (1 - 0.5)");
     free(m);
     free(w);
 }
@@ -273,13 +289,16 @@ static void test_uniform_same_bits(void **st)
         for (i = 0; i < 2; i++) {
             rad_gather_t gt;
             assert_int_equal(rad_gather_init(&gt, 32, 0, gw, sizeof gw), RAD_OK);
-            assert_int_equal(rad_gather(&w[i]->s, &gt, &at, &up, RAD_INDEX_NONE, RAD_SHADE_AMBIENT, &ga[i]), RAD_OK);
+            assert_int_equal(
+                rad_gather(&w[i]->s, &gt, &at, &up, RAD_INDEX_NONE, RAD_SHADE_AMBIENT, &ga[i]),
+                RAD_OK);
         }
         assert_true(ga[0].r > 0);
         assert_memory_equal(&ga[0], &ga[1], sizeof ga[0]);
     }
-    print_message("uniform element array: %d shots, %u elements, the same bits as without (and a gather)\n",
-                  shots[0], (unsigned)w[0]->s.n_elements);
+    print_message(
+        "uniform element array: %d shots, %u elements, the same bits as without (and a gather)\n",
+        shots[0], (unsigned)w[0]->s.n_elements);
     free(w[0]);
     free(w[1]);
 }
@@ -295,7 +314,8 @@ static void test_uniform_same_bits(void **st)
 static void test_ambient_follows_reflectance(void **st)
 {
     const rad_vec3_t lamp[4] = {V(-8, 31, -8), V(8, 31, -8), V(8, 31, 8), V(-8, 31, 8)};
-    const double rr[3] = {0.6, 0.3, 0.2}, gg[3] = {0.2, 0.7, 0.3}, wall = 4096, total = 6 * wall + 256;
+    const double rr[3] = {0.6, 0.3, 0.2}, gg[3] = {0.2, 0.7, 0.3}, wall = 4096,
+                 total = 6 * wall + 256;
     const rad_rgb_t r = C(rr[0], rr[1], rr[2]), g = C(gg[0], gg[1], gg[2]), em = C(50, 40, 30);
     int arr, k;
     (void)st;
@@ -326,7 +346,8 @@ static void test_ambient_follows_reflectance(void **st)
                           arr ? "rad_set_element_reflectance" : "rad_set_surface", k, got, want);
             worst = fmax(worst, fabs(got / want - 1));
         }
-        CHECK_LE(worst, 0.005, "ambient term after a reflectance change mid-solve against (A - R) / (A - R')");
+        CHECK_LE(worst, 0.005,
+                 "ambient term after a reflectance change mid-solve against (A - R) / (A - R')");
         free(w);
     }
 }
@@ -341,24 +362,29 @@ static void test_errors(void **st)
     CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &ok), RAD_ERR_STATE, "set without an array");
     CHECK_INT_EQ(rad_use_element_reflectance(NULL, w->rho), RAD_ERR_ARG, "use on NULL");
     CHECK_INT_EQ(rad_use_element_reflectance(&w->s, NULL), RAD_ERR_ARG, "use of NULL");
-    CHECK_INT_EQ(rad_use_element_reflectance(&w->s, (rad_rgb_t *)(void *)((char *)w->rho + 1)), RAD_ERR_ALIGN,
-                 "use of a misaligned array");
+    CHECK_INT_EQ(rad_use_element_reflectance(&w->s, (rad_rgb_t *)(void *)((char *)w->rho + 1)),
+                 RAD_ERR_ALIGN, "use of a misaligned array");
     CHECK_INT_EQ(rad_use_element_reflectance(&w->s, w->rho), RAD_OK, "use after adding");
-    assert_int_equal(w->rho[w->s.n_elements - 1].r, ok.r); /* elements added before: their surface's */
+    assert_int_equal(w->rho[w->s.n_elements - 1].r,
+                     ok.r); /* elements added before: their surface's */
     CHECK_INT_EQ(rad_use_element_reflectance(&w->s, w->rho), RAD_ERR_STATE, "use twice");
-    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, w->s.n_elements, &ok), RAD_ERR_ARG, "element past the last");
+    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, w->s.n_elements, &ok), RAD_ERR_ARG,
+                 "element past the last");
     CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, NULL), RAD_ERR_ARG, "NULL reflectance");
     CHECK_INT_EQ(rad_set_element_reflectance(NULL, 0, &ok), RAD_ERR_ARG, "NULL scene");
     CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &bad), RAD_ERR_RANGE, "reflectance 1");
-    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &neg), RAD_ERR_RANGE, "negative reflectance");
+    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &neg), RAD_ERR_RANGE,
+                 "negative reflectance");
     assert_int_equal(w->rho[0].g, ok.g); /* refused: unchanged */
     assert_true(rad_shoot(&w->s, 1, 0) == 1);
-    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &ok), RAD_OK, "set while solving (for the next restart)");
+    CHECK_INT_EQ(rad_set_element_reflectance(&w->s, 0, &ok), RAD_OK,
+                 "set while solving (for the next restart)");
     {
         world_t *v = world(32, 16);
         box(v, &ok, &em);
         assert_true(rad_shoot(&v->s, 1, 0) == 1);
-        CHECK_INT_EQ(rad_use_element_reflectance(&v->s, v->rho), RAD_ERR_STATE, "use after the geometry froze");
+        CHECK_INT_EQ(rad_use_element_reflectance(&v->s, v->rho), RAD_ERR_STATE,
+                     "use after the geometry froze");
         free(v);
     }
     free(w);

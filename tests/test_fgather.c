@@ -38,13 +38,13 @@
 #include "host/tex_render.h"
 #include "rad/rad.h"
 
-#define CORNELL "examples/cornell_box.obj"
-#define RES 128       /* rad_cli's hemi-cube */
-#define TOL 0.001     /* rad_cli's --tol */
+#define CORNELL     "examples/cornell_box.obj"
+#define RES         128   /* rad_cli's hemi-cube */
+#define TOL         0.001 /* rad_cli's --tol */
 /* The gather cube: at 32 the lamp aliases and the gather is worse than interpolation
  * (rms 0.076 against 0.067); 128 gives 0.020 at twice the time. */
-#define GATHER_RES 64
-#define THREADS 2     /* the test machine's cores */
+#define GATHER_RES  64
+#define THREADS     2   /* the test machine's cores */
 #define IMAGE_BOUND 0.5 /* the vertices' goal, for a view */
 
 typedef struct {
@@ -151,7 +151,8 @@ static int apart(const scene_t *s, const double *p, int tag, double d)
 }
 
 /* The barycentric weights of P in triangle A, B, C (projected on its plane). */
-static void barycentric(const double *a, const double *b, const double *c, const double *p, double *w)
+static void barycentric(const double *a, const double *b, const double *c, const double *p,
+                        double *w)
 {
     double e1[3], e2[3], d[3], d11 = 0, d12 = 0, d22 = 0, d1 = 0, d2 = 0, det;
     int k;
@@ -173,8 +174,8 @@ static void barycentric(const double *a, const double *b, const double *c, const
 
 /* The fine solution's rendered value at P on surface SURF: its elements' triangles
  * (a quad as the renderer's fan from its first vertex), the one holding P best. */
-static void fine_at(sc_solver *f, const int *first, const int *count, int surf, const double *vrgb, const double *p,
-                    double *out)
+static void fine_at(sc_solver *f, const int *first, const int *count, int surf, const double *vrgb,
+                    const double *p, double *out)
 {
     double best = -HUGE_VAL;
     int i, t, k;
@@ -190,12 +191,14 @@ static void fine_at(sc_solver *f, const int *first, const int *count, int surf, 
             if (lo <= best) continue;
             best = lo;
             for (k = 0; k < 3; k++)
-                out[k] = w[0] * vrgb[3 * v[0] + k] + w[1] * vrgb[3 * v[t] + k] + w[2] * vrgb[3 * v[t + 1] + k];
+                out[k] = w[0] * vrgb[3 * v[0] + k] + w[1] * vrgb[3 * v[t] + k] +
+                         w[2] * vrgb[3 * v[t + 1] + k];
         }
     }
     /* Both meshes' vertices are rounded to the core's 2^-16 of 1/64 of the extent: over a
      * fine element (1/96 of it) a weight may be off by 2^-22 * 96 = 2.3e-5. */
-    CHECK_GE(best, -1e-4, "coarse vertex (%g, %g, %g) inside a fine element of surface %d", p[0], p[1], p[2], surf);
+    CHECK_GE(best, -1e-4, "coarse vertex (%g, %g, %g) inside a fine element of surface %d", p[0],
+             p[1], p[2], surf);
 }
 
 typedef struct {
@@ -240,12 +243,16 @@ static int teardown(void **state)
 
 static void print_errors(const char *what, const err_t *interp, const err_t *gath)
 {
-    print_message("  %s (%d values): element interpolation rms %.4f max %.3f, gather (res %d) rms %.4f max %.3f\n",
+    print_message("  %s (%d values): element interpolation rms %.4f max %.3f, gather (res %d) rms "
+                  "%.4f max %.3f\n",
                   what, interp->n, sqrt(interp->sum2 / interp->n), interp->max, GATHER_RES,
                   sqrt(gath->sum2 / gath->n), gath->max);
 }
 
-static int emits(const rad_surface_t *sf) { return sf->emission.r || sf->emission.g || sf->emission.b; }
+static int emits(const rad_surface_t *sf)
+{
+    return sf->emission.r || sf->emission.g || sf->emission.b;
+}
 
 static void test_sharper_than_mesh(void **state)
 {
@@ -306,14 +313,16 @@ static void test_sharper_than_mesh(void **state)
                 }
         }
     }
-    print_message("Cornell box, %d vertices (%d elements) against %d elements 4x finer; relative error per vertex "
+    print_message("Cornell box, %d vertices (%d elements) against %d elements 4x finer; relative "
+                  "error per vertex "
                   "and channel above 1%% of the brightest:\n",
                   cs.vertices, cs.elements, fs.elements);
     print_errors("every vertex", &e[0][0], &e[1][0]);
     print_errors("apart from other polygons", &e[0][1], &e[1][1]);
     CHECK_INT_GT(e[0][1].n, cs.vertices, "values compared apart from other polygons");
     CHECK_LE(sqrt(e[1][1].sum2 / e[1][1].n), 0.5 * sqrt(e[0][1].sum2 / e[0][1].n),
-             "rms error of the vertex gather against half element interpolation's, apart from other polygons");
+             "rms error of the vertex gather against half element interpolation's, apart from "
+             "other polygons");
     sc_fgather_free(fg);
     free(ref);
     free(interp);
@@ -334,7 +343,8 @@ static const sc_camera view = {{-0.278, 0.274, 0.75}, {-0.278, 0.274, -0.28}, {0
 static int inner_pixel(const rad_scene_t *core, const int *surf, int i)
 {
     int x = i % W, y = i / W, dx, dy;
-    if (x == 0 || y == 0 || x == W - 1 || y == H - 1 || surf[i] < 0 || emits(&core->pools.surfaces[surf[i]]))
+    if (x == 0 || y == 0 || x == W - 1 || y == H - 1 || surf[i] < 0 ||
+        emits(&core->pools.surfaces[surf[i]]))
         return 0;
     for (dy = -1; dy <= 1; dy++)
         for (dx = -1; dx <= 1; dx++)
@@ -371,12 +381,14 @@ static void test_image_sharper(void **state)
                 add_err(&e[0], interp[3 * i + k], ref[3 * i + k]);
                 add_err(&e[1], gath[3 * i + k], ref[3 * i + k]);
             }
-    print_message("a %dx%d view, %ld gathers (%.0f%% of the pixels), against the fine solution's render:\n", W, H,
-                  gathers, 100.0 * gathers / (W * H));
+    print_message(
+        "a %dx%d view, %ld gathers (%.0f%% of the pixels), against the fine solution's render:\n",
+        W, H, gathers, 100.0 * gathers / (W * H));
     print_errors("pixels", &e[0], &e[1]);
     CHECK_INT_GT(e[0].n, W * H, "values compared");
     CHECK_LE(sqrt(e[1].sum2 / e[1].n), IMAGE_BOUND * sqrt(e[0].sum2 / e[0].n),
-             "rms error of the gathered view against %g times the interpolated view's", IMAGE_BOUND);
+             "rms error of the gathered view against %g times the interpolated view's",
+             IMAGE_BOUND);
     sc_fgather_free(fg);
     free(interp);
     free(gath);
@@ -389,7 +401,8 @@ static void test_threads_same_bits(void **state)
 {
     fixture_t *x = *state;
     sc_stats st;
-    sc_fgather *one = sc_fgather_new(x->c, x->s.p, x->s.n, 16, 1, 1), *three = sc_fgather_new(x->c, x->s.p, x->s.n, 16, 3, 1);
+    sc_fgather *one = sc_fgather_new(x->c, x->s.p, x->s.n, 16, 1, 1),
+               *three = sc_fgather_new(x->c, x->s.p, x->s.n, 16, 3, 1);
     double *a, *b;
     float *ia = malloc(3 * 61 * 37 * sizeof *ia), *ib = malloc(3 * 61 * 37 * sizeof *ib);
     char err[512];

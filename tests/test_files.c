@@ -58,8 +58,7 @@ static char *slurp(const char *path, size_t *n)
     FILE *f = fopen(path, "rb");
     char *d;
     long len;
-    if (!f)
-        return NULL;
+    if (!f) return NULL;
     fseek(f, 0, SEEK_END);
     len = ftell(f);
     rewind(f);
@@ -95,11 +94,9 @@ static int count_entries(const char *dir, int *tmp_seen)
     *tmp_seen = 0;
     assert_non_null(d);
     while ((e = readdir(d)) != NULL) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, ".."))
-            continue;
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
         n++;
-        if (strstr(e->d_name, ".tmp"))
-            *tmp_seen = 1;
+        if (strstr(e->d_name, ".tmp")) *tmp_seen = 1;
     }
     closedir(d);
     return n;
@@ -136,7 +133,7 @@ static child_result in_child(child_fn fn, void *arg)
     pid = fork();
     CHECK_INT_GE(pid, 0, "fork: %s", strerror(errno));
     if (pid == 0) {
-        static const int crashes[] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
+        static const int crashes[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
         size_t i;
         for (i = 0; i < sizeof crashes / sizeof crashes[0]; i++)
             signal(crashes[i], SIG_DFL); /* a crash ends the child, not CMocka's handler */
@@ -267,19 +264,16 @@ static void read_stdin(void *arg, child_result *r)
     size_t n = 0;
     int fds[2];
     if (!strcmp(what, "pipe")) {
-        if (pipe(fds) != 0 || write(fds[1], "v 1 2 3\n", 8) != 8)
-            _exit(2);
+        if (pipe(fds) != 0 || write(fds[1], "v 1 2 3\n", 8) != 8) _exit(2);
         close(fds[1]);
         dup2(fds[0], 0);
     } else {
         int fd = open(what, O_RDONLY);
-        if (fd < 0)
-            _exit(2);
+        if (fd < 0) _exit(2);
         dup2(fd, 0);
     }
     r->rc = fio_read_stdin(FIO_LIMIT_TEXT, &d, &n, r->msg, sizeof r->msg);
-    if (r->rc == 0)
-        snprintf(r->msg, sizeof r->msg, "%zu bytes: %s", n, d);
+    if (r->rc == 0) snprintf(r->msg, sizeof r->msg, "%zu bytes: %s", n, d);
     free(d);
 }
 
@@ -330,8 +324,10 @@ static void test_read_sparse_giant(void **state)
     make_sparse(p, (off_t)20 * 1000 * 1000 * 1000);
     r = in_child(read_path, (void *)p);
     assert_int_equal(r.rc, -1);
-    CHECK_CONTAINS(r.msg, "giant.obj: larger than the limit of 16 MiB (16777216 bytes): "
-                       "20000000000 bytes", "the message");
+    CHECK_CONTAINS(r.msg,
+                   "giant.obj: larger than the limit of 16 MiB (16777216 bytes): "
+                   "20000000000 bytes",
+                   "the message");
     unlink(p);
 }
 
@@ -342,8 +338,7 @@ static void test_read_sparse_giant(void **state)
 static int put_text(const char *path, const char *text, char *err, size_t errlen)
 {
     fio_out *o = fio_out_open(path, err, errlen);
-    if (!o)
-        return -1;
+    if (!o) return -1;
     fputs(text, fio_out_stream(o));
     return fio_out_commit(o, err, errlen);
 }
@@ -429,7 +424,8 @@ static void test_out_dangling_symlink(void **state)
     unlink(link);
     assert_int_equal(symlink("no/such/file", link), 0);
     assert_int_equal(put_text(link, "x", err, sizeof err), -1);
-    CHECK_CONTAINS(err, "dangling.txt: cannot write: a symbolic link to a missing file", "the message");
+    CHECK_CONTAINS(err, "dangling.txt: cannot write: a symbolic link to a missing file",
+                   "the message");
     assert_int_equal(fio_check_out(link, err, sizeof err), -1);
 }
 
@@ -474,7 +470,8 @@ static void test_out_dev_null(void **state)
     assert_int_equal(fio_check_out("/dev/null", err, sizeof err), 0);
     assert_int_equal(put_text("/dev/null", "gone", err, sizeof err), 0);
     assert_int_equal(stat("/dev/null", &after), 0);
-    CHECK_THAT(S_ISCHR(after.st_mode), "/dev/null is still a character device: mode 0%o", (unsigned)after.st_mode);
+    CHECK_THAT(S_ISCHR(after.st_mode), "/dev/null is still a character device: mode 0%o",
+               (unsigned)after.st_mode);
     assert_int_equal(after.st_rdev, before.st_rdev);
     assert_int_equal(after.st_ino, before.st_ino);
 }
@@ -497,7 +494,7 @@ static void test_out_dev_full(void **state)
 static void fifo_reader(int rfd, int res)
 {
     unsigned char b[4096];
-    unsigned long tally[2] = { 0, 0 };
+    unsigned long tally[2] = {0, 0};
     ssize_t k, i;
     struct pollfd pf;
     alarm(HANG_SECONDS);
@@ -519,7 +516,7 @@ static void fifo_reader(int rfd, int res)
 /* The reader PID got N bytes hashing to WANT: what it sends back on RES (then closed). */
 static void expect_reader(int res, pid_t pid, unsigned long n, unsigned long want)
 {
-    unsigned long tally[2] = { 0, 0 };
+    unsigned long tally[2] = {0, 0};
     int status;
     assert_int_equal(read(res, tally, sizeof tally), (ssize_t)sizeof tally);
     close(res);
@@ -612,7 +609,8 @@ static void test_out_missing_folder(void **state)
     CHECK_CONTAINS(err, "a.png: cannot write into '", "the message");
     CHECK_CONTAINS(err, "no_such_folder': No such file or directory", "the message");
     assert_null(fio_out_open(p, err, sizeof err));
-    CHECK_CONTAINS(err, "a.png: cannot create temporary file: No such file or directory", "the message");
+    CHECK_CONTAINS(err, "a.png: cannot create temporary file: No such file or directory",
+                   "the message");
 }
 
 /* fio_check_out writes nothing. */
@@ -632,8 +630,7 @@ static void test_check_out_writes_nothing(void **state)
 static void first_warning(void *ctx, const char *msg)
 {
     child_result *r = ctx;
-    if (r->rc++ == 0)
-        snprintf(r->msg, sizeof r->msg, "%s", msg);
+    if (r->rc++ == 0) snprintf(r->msg, sizeof r->msg, "%s", msg);
 }
 
 static void load_obj(void *arg, child_result *r)
@@ -649,15 +646,14 @@ static void load_obj(void *arg, child_result *r)
 static void load_obj_warnings(void *arg, child_result *r)
 {
     obj_scene sc;
-    obj_opts o = { 1 };
+    obj_opts o = {1};
     char err[512];
     if (obj_load_opts(arg, &o, &sc, first_warning, r, err, sizeof err) != 0) {
         r->rc = -1;
         snprintf(r->msg, sizeof r->msg, "%s", err);
         return;
     }
-    if (sc.nfaces != 1)
-        r->rc = -100 - sc.nfaces;
+    if (sc.nfaces != 1) r->rc = -100 - sc.nfaces;
     obj_free(&sc);
 }
 
@@ -709,8 +705,10 @@ static void test_fifo_inputs(void **state)
     assert_int_equal(mkfifo(f, 0600), 0);
     r = in_child(load_obj_warnings, (void *)obj);
     assert_int_equal(r.rc, 1);
-    snprintf(want, sizeof want, "%s:1: cannot read material library 'lib.fifo': not a regular file "
-             "(a FIFO or pipe)", obj);
+    snprintf(want, sizeof want,
+             "%s:1: cannot read material library 'lib.fifo': not a regular file "
+             "(a FIFO or pipe)",
+             obj);
     assert_string_equal(r.msg, want);
 }
 
@@ -727,8 +725,10 @@ static void test_dev_zero_inputs(void **state)
     assert_string_equal(r.msg, "/dev/zero: not a regular file (a character device or terminal)");
     r = in_child(load_obj_warnings, (void *)obj);
     assert_int_equal(r.rc, 1);
-    snprintf(want, sizeof want, "%s:1: cannot read material library '/dev/zero': not a regular file "
-             "(a character device or terminal)", obj);
+    snprintf(want, sizeof want,
+             "%s:1: cannot read material library '/dev/zero': not a regular file "
+             "(a character device or terminal)",
+             obj);
     assert_string_equal(r.msg, want);
     r = in_child(read_img, "/dev/zero");
     assert_int_equal(r.rc, -1);
@@ -739,20 +739,26 @@ static void test_dev_zero_inputs(void **state)
  * from its header (zeros: bad magic) or from the size its header implies. */
 static void test_sparse_giants(void **state)
 {
-    const char *ff = tmp_path("giant.ff"), *img = tmp_path("giant.png"), *obj = tmp_path("giant2.obj");
+    const char *ff = tmp_path("giant.ff"), *img = tmp_path("giant.png"),
+               *obj = tmp_path("giant2.obj");
     const off_t big = (off_t)20 * 1000 * 1000 * 1000;
     ff_file_info info;
-    uint32_t start[2] = { 0, 0 };
+    uint32_t start[2] = {0, 0};
     char err[256];
     child_result r;
     (void)state;
     make_sparse(obj, big);
     r = in_child(load_obj, (void *)obj);
     assert_int_equal(r.rc, -1);
-    CHECK_CONTAINS(r.msg, "giant2.obj: larger than the limit of 1024 MiB (1073741824 bytes): 20000000000 bytes", "the message");
+    CHECK_CONTAINS(
+        r.msg,
+        "giant2.obj: larger than the limit of 1024 MiB (1073741824 bytes): 20000000000 bytes",
+        "the message");
     make_sparse(img, big);
     r = in_child(read_img, (void *)img);
-    CHECK_CONTAINS(r.msg, "giant.png: larger than the limit of 256 MiB (268435456 bytes): 20000000000 bytes", "the message");
+    CHECK_CONTAINS(
+        r.msg, "giant.png: larger than the limit of 256 MiB (268435456 bytes): 20000000000 bytes",
+        "the message");
     make_sparse(ff, big);
     r = in_child(load_ff, (void *)ff);
     assert_int_equal(r.rc, -1);
@@ -765,7 +771,10 @@ static void test_sparse_giants(void **state)
     make_sparse(ff, big);
     r = in_child(load_ff, (void *)ff);
     assert_int_equal(r.rc, -1);
-    CHECK_CONTAINS(r.msg, "giant.ff: corrupt: 20000000000 bytes, its header (1 rows, 0 entries) says 56: not read", "the message");
+    CHECK_CONTAINS(
+        r.msg,
+        "giant.ff: corrupt: 20000000000 bytes, its header (1 rows, 0 entries) says 56: not read",
+        "the message");
     unlink(ff);
     unlink(img);
     unlink(obj);
@@ -868,7 +877,8 @@ static void test_writers_devices(void **state)
     assert_int_equal(img_write(tmp_path("null.png"), rgb, IW, IH, err, sizeof err), 0);
     assert_int_equal(save_empty_rows("/dev/null", 3, err, sizeof err), 0);
     assert_int_equal(stat("/dev/null", &after), 0);
-    CHECK_THAT(S_ISCHR(after.st_mode), "/dev/null is still a character device: mode 0%o", (unsigned)after.st_mode);
+    CHECK_THAT(S_ISCHR(after.st_mode), "/dev/null is still a character device: mode 0%o",
+               (unsigned)after.st_mode);
     assert_int_equal(after.st_rdev, before.st_rdev);
     assert_int_equal(after.st_ino, before.st_ino);
     assert_int_equal(img_write(tmp_path("full.png"), rgb, IW, IH, err, sizeof err), -1);
@@ -892,8 +902,7 @@ static void test_img_write_fifo(void **state)
     assert_int_equal(img_write(ref, rgb, IW, IH, err, sizeof err), 0);
     d = slurp(ref, &n);
     assert_non_null(d);
-    for (i = 0; i < n; i++)
-        want = want * 31 + (unsigned char)d[i];
+    for (i = 0; i < n; i++) want = want * 31 + (unsigned char)d[i];
     free(d);
     unlink(p);
     assert_int_equal(mkfifo(p, 0600), 0);
@@ -956,10 +965,8 @@ static int write_raw(const char *path, char *err, size_t errlen)
 {
     fio_out *o = fio_out_open(path, err, errlen);
     int i;
-    if (!o)
-        return -3;
-    for (i = 0; i < 100000; i++)
-        putc('n', fio_out_stream(o));
+    if (!o) return -3;
+    for (i = 0; i < 100000; i++) putc('n', fio_out_stream(o));
     return fio_out_commit(o, err, errlen);
 }
 
@@ -987,8 +994,8 @@ static void write_past_limit(void *arg, child_result *r)
  * no temporary file stays. */
 static void test_writers_full_disk(void **state)
 {
-    static const char *const names[] = { "old.bin", "old.png", "old.ppm", "old.ff" };
-    static const int kinds[] = { FULL_RAW, FULL_IMAGE, FULL_IMAGE, FULL_FF };
+    static const char *const names[] = {"old.bin", "old.png", "old.ppm", "old.ff"};
+    static const int kinds[] = {FULL_RAW, FULL_IMAGE, FULL_IMAGE, FULL_FF};
     const char *dir = fresh_dir("w_full");
     unsigned char old[2000];
     char *d, path[400];
@@ -997,8 +1004,7 @@ static void test_writers_full_disk(void **state)
     size_t n, i, k;
     int tmp_seen;
     (void)state;
-    for (i = 0; i < sizeof old; i++)
-        old[i] = (unsigned char)(i * 7);
+    for (i = 0; i < sizeof old; i++) old[i] = (unsigned char)(i * 7);
     for (k = 0; k < 4; k++) {
         snprintf(path, sizeof path, "%s/%s", dir, names[k]);
         write_file(path, old, sizeof old);
@@ -1033,14 +1039,16 @@ static void load_many_materials(void *arg, child_result *r)
     r->rc = sc.nmaterials;
     for (i = 0; i < NMATS; i++) { /* every name at its index, with its own Kd */
         snprintf(name, sizeof name, "m%d", i);
-        if (obj_find_material(&sc, name) != i || sc.materials[i].kd[0] != (double)(i % 1000) / 1000) {
-            snprintf(r->msg, sizeof r->msg, "%s found at %d, Kd %g", name, obj_find_material(&sc, name),
-                     sc.materials[i].kd[0]);
+        if (obj_find_material(&sc, name) != i ||
+            sc.materials[i].kd[0] != (double)(i % 1000) / 1000) {
+            snprintf(r->msg, sizeof r->msg, "%s found at %d, Kd %g", name,
+                     obj_find_material(&sc, name), sc.materials[i].kd[0]);
             r->rc = -2;
             break;
         }
     }
-    if (r->rc >= 0 && (obj_find_material(&sc, "m200000") != -1 || sc.faces[0].material != NMATS - 1))
+    if (r->rc >= 0 &&
+        (obj_find_material(&sc, "m200000") != -1 || sc.faces[0].material != NMATS - 1))
         r->rc = -3;
     obj_free(&sc);
 }
@@ -1053,14 +1061,15 @@ static void test_many_materials(void **state)
     int i;
     (void)state;
     assert_non_null(m);
-    for (i = 0; i < NMATS; i++)
-        fprintf(m, "newmtl m%d\nKd %g 0 0\n", i, (double)(i % 1000) / 1000);
+    for (i = 0; i < NMATS; i++) fprintf(m, "newmtl m%d\nKd %g 0 0\n", i, (double)(i % 1000) / 1000);
     assert_int_equal(fclose(m), 0);
-    write_file(tmp_path("mats.obj"), "mtllib mats.mtl\n" "usemtl m199999\n" TRIANGLE,
-               strlen("mtllib mats.mtl\n" "usemtl m199999\n" TRIANGLE));
+    write_file(tmp_path("mats.obj"),
+               "mtllib mats.mtl\n"
+               "usemtl m199999\n" TRIANGLE,
+               strlen("mtllib mats.mtl\n"
+                      "usemtl m199999\n" TRIANGLE));
     r = in_child(load_many_materials, NULL);
-    if (r.rc != NMATS)
-        print_error("rc %d: %s\n", r.rc, r.msg);
+    if (r.rc != NMATS) print_error("rc %d: %s\n", r.rc, r.msg);
     assert_int_equal(r.rc, NMATS);
 }
 
@@ -1077,8 +1086,7 @@ static char *star_face(int n, size_t *len)
         k += (size_t)sprintf(t + k, "v %.9f %.9f 0\n", cos(a), sin(a));
     }
     k += (size_t)sprintf(t + k, "f");
-    for (i = 1; i <= n; i++)
-        k += (size_t)sprintf(t + k, " %d", i);
+    for (i = 1; i <= n; i++) k += (size_t)sprintf(t + k, " %d", i);
     t[k++] = '\n';
     *len = k;
     return t;
@@ -1121,8 +1129,8 @@ static void test_huge_face(void **state)
     char want[128];
     (void)state;
     assert_int_equal(r.rc, OBJ_TOO_MANY_VERTICES);
-    snprintf(want, sizeof want, "line %d: skipped a face of more than %d vertices (split it)", n + 1,
-             OBJ_MAX_FACE_VERTICES);
+    snprintf(want, sizeof want, "line %d: skipped a face of more than %d vertices (split it)",
+             n + 1, OBJ_MAX_FACE_VERTICES);
     assert_string_equal(r.msg, want);
     n = OBJ_MAX_FACE_VERTICES;
     r = in_child(clip_star, &n);
@@ -1134,11 +1142,11 @@ static void test_huge_face(void **state)
  * material from the same library, the same faces on the same lines. */
 static void test_line_ends_and_bom(void **state)
 {
-    static const char *const eols[] = { "\n", "\r\n", "\r" };
-    static const char *const obj_lines[] = { "# scene", "mtllib le.mtl", "v 0 0 0", "v 1 0 0",
-                                             "v 0 1 0", "v 1 1 0", "usemtl red", "f 1 2 3",
-                                             "f 2 4 3", NULL };
-    static const char *const mtl_lines[] = { "newmtl red", "Kd 0.5 0.25 0.125", NULL };
+    static const char *const eols[] = {"\n", "\r\n", "\r"};
+    static const char *const obj_lines[] = {
+        "# scene", "mtllib le.mtl", "v 0 0 0", "v 1 0 0", "v 0 1 0",
+        "v 1 1 0", "usemtl red",    "f 1 2 3", "f 2 4 3", NULL};
+    static const char *const mtl_lines[] = {"newmtl red", "Kd 0.5 0.25 0.125", NULL};
     char text[512], err[256];
     obj_scene sc;
     int e, bom, i;
@@ -1150,10 +1158,12 @@ static void test_line_ends_and_bom(void **state)
             child_result warns;
             memset(&warns, 0, sizeof warns);
             for (n = 0, i = 0; mtl_lines[i]; i++)
-                n += (size_t)sprintf(text + n, "%s%s%s", bom && !i ? "\xEF\xBB\xBF" : "", mtl_lines[i], eols[e]);
+                n += (size_t)sprintf(text + n, "%s%s%s", bom && !i ? "\xEF\xBB\xBF" : "",
+                                     mtl_lines[i], eols[e]);
             write_file(tmp_path("le.mtl"), text, n);
             for (n = 0, i = 0; obj_lines[i]; i++)
-                n += (size_t)sprintf(text + n, "%s%s%s", bom && !i ? "\xEF\xBB\xBF" : "", obj_lines[i], eols[e]);
+                n += (size_t)sprintf(text + n, "%s%s%s", bom && !i ? "\xEF\xBB\xBF" : "",
+                                     obj_lines[i], eols[e]);
             f = fopen(tmp_path("le.obj"), "wb");
             assert_non_null(f);
             assert_int_equal(fwrite(text, 1, n, f), n);
@@ -1168,9 +1178,10 @@ static void test_line_ends_and_bom(void **state)
             assert_int_equal(sc.faces[1].line, 9);
             assert_int_equal(sc.nmaterials, 1);
             assert_int_equal(sc.materials[0].defined, 1);
-            CHECK_THAT(sc.materials[0].kd[0] == 0.5 && sc.materials[0].kd[1] == 0.25 && sc.materials[0].kd[2] == 0.125,
-                       "eol %d bom %d: Kd %g %g %g, the library's 0.5 0.25 0.125", e, bom, sc.materials[0].kd[0],
-                       sc.materials[0].kd[1], sc.materials[0].kd[2]);
+            CHECK_THAT(sc.materials[0].kd[0] == 0.5 && sc.materials[0].kd[1] == 0.25 &&
+                           sc.materials[0].kd[2] == 0.125,
+                       "eol %d bom %d: Kd %g %g %g, the library's 0.5 0.25 0.125", e, bom,
+                       sc.materials[0].kd[0], sc.materials[0].kd[1], sc.materials[0].kd[2]);
             assert_int_equal(sc.faces[1].material, 0);
             assert_int_equal(sc.unknown_statements, 0);
             obj_free(&sc);

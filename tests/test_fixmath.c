@@ -17,21 +17,38 @@ __extension__ typedef unsigned __int128 u128;
 static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
 static uint64_t rnd(void)
 {
-    rng_state ^= rng_state << 13; rng_state ^= rng_state >> 7; rng_state ^= rng_state << 17;
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
     return rng_state;
 }
 
 /* Signed Q16.16 edge values within the core's coordinate range (|c| <= 64.0). */
-static const int32_t edges[] = {0, 1, -1, 2, -2, 255, 256, -256, 32767, 32768, -32768, 65535, 65536,
-                                -65536, 65537, 1 << 20, -(1 << 20), (1 << 22) - 1, 1 << 22, -(1 << 22)};
+static const int32_t edges[] = {
+    0,      1,     -1,    2,      -2,    255,     256,        -256,          32767,   32768,
+    -32768, 65535, 65536, -65536, 65537, 1 << 20, -(1 << 20), (1 << 22) - 1, 1 << 22, -(1 << 22)};
 #define NEDGES (sizeof edges / sizeof edges[0])
 
-static double q(int32_t v) { return v / 65536.0; }
+static double q(int32_t v)
+{
+    return v / 65536.0;
+}
 
 static void test_isqrt(void **st)
 {
-    static const uint64_t t[] = {0, 1, 2, 3, 4, 15, 16, 17, 0xFFFFFFFFull, 0x100000000ull,
-                                 0x3FFFFFFFFFFFFFFFull, 0x4000000000000000ull, 0xFFFFFFFFFFFFFFFFull};
+    static const uint64_t t[] = {0,
+                                 1,
+                                 2,
+                                 3,
+                                 4,
+                                 15,
+                                 16,
+                                 17,
+                                 0xFFFFFFFFull,
+                                 0x100000000ull,
+                                 0x3FFFFFFFFFFFFFFFull,
+                                 0x4000000000000000ull,
+                                 0xFFFFFFFFFFFFFFFFull};
     size_t i;
     (void)st;
     /* Random values of every length, and squares of random roots, one less and 2r more
@@ -58,8 +75,8 @@ static void test_bitlen(void **st)
     (void)st;
     CHECK_INT_EQ(rad__bitlen64(0), 0, "rad__bitlen64(0)");
     for (i = 0; i < 64 * 3 + 100000; i++) {
-        uint64_t v = i < 64 * 3 ? ((uint64_t)1 << (i / 3)) + (uint64_t)(i % 3) - 1u
-                                : rnd() >> (rnd() % 64);
+        uint64_t v =
+            i < 64 * 3 ? ((uint64_t)1 << (i / 3)) + (uint64_t)(i % 3) - 1u : rnd() >> (rnd() % 64);
         unsigned b = rad__bitlen64(v);
         if (v == 0) continue;
         CHECK_THAT(b >= 1 && b <= 64 && v >> (b - 1) == 1,
@@ -90,7 +107,9 @@ static void test_shr_and_div_round(void **st)
     for (i = 0; i < 300000; i++) {
         unsigned n = (unsigned)(i % 30u) + 1u;
         int32_t v = (int32_t)(rnd() % (2u * 0x3FFFFFFFu + 1u)) - 0x3FFFFFFF;
-        if (i % 4 == 0) v = (int32_t)(((rnd() % (1u << (30u - n))) * 2u + 1u) << (n - 1u)) * (rnd() & 1 ? -1 : 1);
+        if (i % 4 == 0)
+            v = (int32_t)(((rnd() % (1u << (30u - n))) * 2u + 1u) << (n - 1u)) *
+                (rnd() & 1 ? -1 : 1);
         CHECK_INT_EQ(rad__shr_round32(v, n), rad__shr_round(v, n), "rad__shr_round32(%ld, %u)",
                      (long)v, n);
     }
@@ -122,7 +141,9 @@ static void test_dot_cross_mul(void **st)
     assert_int_equal(sat, 2);
     {
         rad_vec3_t x = {65536, 0, 0}, y = {0, 65536, 0}, z = rad__cross(x, y);
-        assert_int_equal(z.x, 0); assert_int_equal(z.y, 0); assert_int_equal(z.z, 65536);
+        assert_int_equal(z.x, 0);
+        assert_int_equal(z.y, 0);
+        assert_int_equal(z.z, 65536);
     }
 }
 
@@ -139,7 +160,9 @@ static void test_unit_and_length(void **st)
         v.y = (int32_t)((int64_t)(rnd() % (1u << 25)) - (1 << 24)) >> sh;
         v.z = (int32_t)((int64_t)(rnd() % (1u << 25)) - (1 << 24)) >> sh;
         if (!v.x && !v.y && !v.z) continue;
-        dx = v.x; dy = v.y; dz = v.z;
+        dx = v.x;
+        dy = v.y;
+        dz = v.z;
         l = sqrt(dx * dx + dy * dy + dz * dz);
         CHECK_INT_NE(rad__normalize(v, &u), 0, "rad__normalize of a non-zero vector");
         /* The unit vector is a correctly rounded Q16.16 of v / |v| (error < 1 LSB). */
@@ -170,8 +193,15 @@ static void test_area_normal(void **st)
         b.x = (int32_t)((int64_t)(rnd() % (1u << 24)) - (1 << 23)) >> sh;
         b.y = (int32_t)((int64_t)(rnd() % (1u << 24)) - (1 << 23)) >> sh;
         b.z = (int32_t)((int64_t)(rnd() % (1u << 24)) - (1 << 23)) >> sh;
-        ax = q(a.x); ay = q(a.y); az = q(a.z); bx = q(b.x); by = q(b.y); bz = q(b.z);
-        cx = ay * bz - az * by; cy = az * bx - ax * bz; cz = ax * by - ay * bx;
+        ax = q(a.x);
+        ay = q(a.y);
+        az = q(a.z);
+        bx = q(b.x);
+        by = q(b.y);
+        bz = q(b.z);
+        cx = ay * bz - az * by;
+        cy = az * bx - ax * bz;
+        cz = ax * by - ay * bx;
         l = sqrt(cx * cx + cy * cy + cz * cz);
         if (l < 1e-3) continue;
         /* Half the cross product's length, rounded once to Q16.16 (+ one unit of
@@ -189,7 +219,7 @@ static void test_energy_ops(void **st)
     uint32_t sat = 0;
     (void)st;
     for (i = 0; i < 5000; i++) {
-        uint64_t u = rnd() >> 18;                 /* < 2^46: the unshot power's range */
+        uint64_t u = rnd() >> 18; /* < 2^46: the unshot power's range */
         uint32_t f = (uint32_t)(rnd() % ((1u << 30) + 1u));
         int32_t rho = (int32_t)(rnd() % 65536u);
         int32_t area = (int32_t)(rnd() % 0x7FFFFFFFu) + 1;
@@ -206,7 +236,8 @@ static void test_energy_ops(void **st)
             if (want < 2147483647.0)
                 CHECK_NEAR((double)b, want, 0.5 + want * 1e-15, "rad__energy_to_rad, area %ld",
                            (long)area);
-            else assert_int_equal(b, INT32_MAX);
+            else
+                assert_int_equal(b, INT32_MAX);
         }
     }
     /* Saturation of radiosity is counted. */
@@ -246,7 +277,8 @@ static void test_projection_and_depth(void **st)
                          "rad__depth at depth %ld: at most 2^30", (long)d);
         }
     for (i = 0; i < 2000; i++) {
-        int32_t a = (int32_t)(rnd() % (1u << 26)) - (1 << 25), b = (int32_t)(rnd() % (1u << 26)) - (1 << 25);
+        int32_t a = (int32_t)(rnd() % (1u << 26)) - (1 << 25),
+                b = (int32_t)(rnd() % (1u << 26)) - (1 << 25);
         int32_t da = (int32_t)(rnd() % (1u << 25)) + 1, db = -(int32_t)(rnd() % (1u << 25));
         double want = a + (double)(b - (double)a) * da / ((double)da - db);
         const rad__clip_t c = rad__clip_init(da, db);

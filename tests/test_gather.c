@@ -31,21 +31,21 @@
 /* One gather's results: E per channel, the probe's nine coefficients per channel. */
 typedef struct {
     double e[3], sh[9][3];
-    double tilted[3];    /* scene_emitter: the gather on the normal TILT */
-    double lo, hi;       /* the least and greatest shown element radiosity (red) */
-    double row;          /* sum F B over a patch's hemi-cube row (patch_row) */
-    unsigned long sats;  /* saturations counted by the gatherer */
+    double tilted[3];   /* scene_emitter: the gather on the normal TILT */
+    double lo, hi;      /* the least and greatest shown element radiosity (red) */
+    double row;         /* sum F B over a patch's hemi-cube row (patch_row) */
+    unsigned long sats; /* saturations counted by the gatherer */
 } gres;
 
 #define DECLARE(B)                                                                           \
-    int scene_box_##B(double emit, double rho, int res, const double *pt, const double *nrm,   \
+    int scene_box_##B(double emit, double rho, int res, const double *pt, const double *nrm, \
                       gres *r);                                                              \
     int scene_emitter_##B(const sc_poly *em, double emit, int res, gres *r);                 \
     int scene_patch_row_##B(int res, int patch, gres *r)
 DECLARE(fixed);
 DECLARE(float);
 #undef DECLARE
-#define PI 3.14159265358979323846
+#define PI     3.14159265358979323846
 /* A tilted normal for scene_emitter's second gather. */
 #define TILT_X 0.5
 #define TILT_Y (-0.3)
@@ -53,10 +53,10 @@ DECLARE(float);
 
 /* ---- the scenes, in this build of the core ---------------------------------------- */
 
-#define NS 16
-#define NP 512
-#define NE 4096
-#define NV 8192
+#define NS       16
+#define NP       512
+#define NE       4096
+#define NV       8192
 #define GRES_MAX 128
 
 typedef struct {
@@ -155,8 +155,8 @@ static int probe(world_t *w, const rad_vec3_t *pt, uint32_t skip, int flags, gre
     return 0;
 }
 
-static int hemi(world_t *w, const rad_vec3_t *pt, const rad_vec3_t *n, uint32_t skip,
-                int flags, gres *r)
+static int hemi(world_t *w, const rad_vec3_t *pt, const rad_vec3_t *n, uint32_t skip, int flags,
+                gres *r)
 {
     rad_rgb_t e;
     unsigned turn = w->g.turn;
@@ -213,12 +213,14 @@ int TW(scene_emitter)(const sc_poly *em, double emit, int res, gres *r)
     memset(r, 0, sizeof *r);
     if (!w) return -1;
     /* counter-clockwise seen from the origin's side */
-    for (k = 0; k < 3; k++) c[k] = (em->v[1][(k + 1) % 3] - em->v[0][(k + 1) % 3]) *
-                                       (em->v[2][(k + 2) % 3] - em->v[0][(k + 2) % 3]) -
-                                   (em->v[1][(k + 2) % 3] - em->v[0][(k + 2) % 3]) *
-                                       (em->v[2][(k + 1) % 3] - em->v[0][(k + 1) % 3]);
+    for (k = 0; k < 3; k++)
+        c[k] = (em->v[1][(k + 1) % 3] - em->v[0][(k + 1) % 3]) *
+                   (em->v[2][(k + 2) % 3] - em->v[0][(k + 2) % 3]) -
+               (em->v[1][(k + 2) % 3] - em->v[0][(k + 2) % 3]) *
+                   (em->v[2][(k + 1) % 3] - em->v[0][(k + 1) % 3]);
     for (k = 0; k < em->n; k++) {
-        int j = c[0] * em->v[0][0] + c[1] * em->v[0][1] + c[2] * em->v[0][2] < 0 ? k : em->n - 1 - k;
+        int j =
+            c[0] * em->v[0][0] + c[1] * em->v[0][1] + c[2] * em->v[0][2] < 0 ? k : em->n - 1 - k;
         v[k] = vec(em->v[j][0], em->v[j][1], em->v[j][2]);
     }
     fl[0] = vec(-40, -40, 0);
@@ -445,7 +447,8 @@ static void sh_reference(const sc_poly *p, double *ref)
                 pv[k] = (1 - u) * (v3[k] - v0[k]) + u * (v2[k] - v1[k]);
             }
             r = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-            dw = fabs(q[0] * (pu[1] * pv[2] - pu[2] * pv[1]) + q[1] * (pu[2] * pv[0] - pu[0] * pv[2]) +
+            dw = fabs(q[0] * (pu[1] * pv[2] - pu[2] * pv[1]) +
+                      q[1] * (pu[2] * pv[0] - pu[0] * pv[2]) +
                       q[2] * (pu[0] * pv[1] - pu[1] * pv[0])) /
                  (r * r * r) / ((double)n * n);
             sh_basis(q[0] / r, q[1] / r, q[2] / r, y9);
@@ -478,9 +481,15 @@ static int emitter(int k, sc_poly *p)
     case 4:
         memset(p, 0, sizeof *p);
         p->n = 3;
-        p->v[0][0] = -6; p->v[0][1] = -2; p->v[0][2] = 3;
-        p->v[1][0] = 4;  p->v[1][1] = -4; p->v[1][2] = 7;
-        p->v[2][0] = 1;  p->v[2][1] = 6;  p->v[2][2] = 5;
+        p->v[0][0] = -6;
+        p->v[0][1] = -2;
+        p->v[0][2] = 3;
+        p->v[1][0] = 4;
+        p->v[1][1] = -4;
+        p->v[1][2] = 7;
+        p->v[2][0] = 1;
+        p->v[2][1] = 6;
+        p->v[2][2] = 5;
         return 1;
     default: return 0;
     }
@@ -526,7 +535,8 @@ static void test_under_emitter(void **st)
         ref_point_vector(&em, phi);
         sh_reference(&em, ref);
         for (i = 0; i < 9; i++) big = fmax(big, fabs(ref[i]));
-        CHECK_LE(fabs(fx.sh[0][0] / (y00 * emit * om) - 1), 0.01, "emitter %d's SH0 / (Y00 E om)", k);
+        CHECK_LE(fabs(fx.sh[0][0] / (y00 * emit * om) - 1), 0.01, "emitter %d's SH0 / (Y00 E om)",
+                 k);
         CHECK_LE(fabs(fx.sh[2][0] / (y1 * emit * PI * f) - 1), 0.01,
                  "emitter %d's SH z / (Y1 E pi F)", k);
         CHECK_NEAR(fx.sh[3][0] / (y1 * emit), phi[0], 0.005 * big / y1,
@@ -556,9 +566,10 @@ static void test_under_emitter(void **st)
                        "emitter %d: float SH%d", k, i);
         }
     }
-    print_message("under emitters, res 64: gather / (F E) within %.2f%%, SH within %.2f%% of the "
-                  "largest coefficient, L2 irradiance within %.1f%%, float against fixed within %.1e\n",
-                  100 * w_ff, 100 * w_sh, 100 * w_l2, w_twin);
+    print_message(
+        "under emitters, res 64: gather / (F E) within %.2f%%, SH within %.2f%% of the "
+        "largest coefficient, L2 irradiance within %.1f%%, float against fixed within %.1e\n",
+        100 * w_ff, 100 * w_sh, 100 * w_l2, w_twin);
 }
 
 /* A gather at patch P's centre on its normal, its surface skipped, with turn P, is

@@ -72,16 +72,13 @@ static int j_value(jparser *p);
 
 static int j_string(jparser *p, const char **start, int *len)
 {
-    if (p->s >= p->end || *p->s != '"')
-        return p->bad = 1, -1;
+    if (p->s >= p->end || *p->s != '"') return p->bad = 1, -1;
     *start = ++p->s;
     while (p->s < p->end && *p->s != '"') {
-        if ((unsigned char)*p->s < 0x20)
-            return p->bad = 1, -1;
+        if ((unsigned char)*p->s < 0x20) return p->bad = 1, -1;
         p->s += *p->s == '\\' ? 2 : 1;
     }
-    if (p->s >= p->end)
-        return p->bad = 1, -1;
+    if (p->s >= p->end) return p->bad = 1, -1;
     *len = (int)(p->s - *start);
     p->s++;
     return 0;
@@ -101,15 +98,12 @@ static int j_list(jparser *p, int type, char close)
         int keylen = 0, child;
         j_space(p);
         if (type == J_OBJ) {
-            if (j_string(p, &key, &keylen))
-                return -1;
+            if (j_string(p, &key, &keylen)) return -1;
             j_space(p);
-            if (p->s >= p->end || *p->s++ != ':')
-                return p->bad = 1, -1;
+            if (p->s >= p->end || *p->s++ != ':') return p->bad = 1, -1;
         }
         child = j_value(p);
-        if (child < 0)
-            return -1;
+        if (child < 0) return -1;
         p->n[child].key = key;
         p->n[child].keylen = keylen;
         if (last < 0)
@@ -136,16 +130,12 @@ static int j_value(jparser *p)
     int me;
     char *end;
     j_space(p);
-    if (p->s >= p->end)
-        return p->bad = 1, -1;
-    if (*p->s == '{')
-        return j_list(p, J_OBJ, '}');
-    if (*p->s == '[')
-        return j_list(p, J_ARR, ']');
+    if (p->s >= p->end) return p->bad = 1, -1;
+    if (*p->s == '{') return j_list(p, J_OBJ, '}');
+    if (*p->s == '[') return j_list(p, J_ARR, ']');
     if (*p->s == '"') {
         me = j_new(p, J_STR);
-        if (j_string(p, &p->n[me].str, &p->n[me].len))
-            return -1;
+        if (j_string(p, &p->n[me].str, &p->n[me].len)) return -1;
         return me;
     }
     if (!strncmp(p->s, "true", 4) || !strncmp(p->s, "null", 4) || !strncmp(p->s, "false", 5)) {
@@ -155,8 +145,7 @@ static int j_value(jparser *p)
     }
     me = j_new(p, J_NUM);
     p->n[me].num = strtod(p->s, &end);
-    if (end == p->s)
-        return p->bad = 1, -1;
+    if (end == p->s) return p->bad = 1, -1;
     p->s = end;
     return me;
 }
@@ -164,10 +153,10 @@ static int j_value(jparser *p)
 static int j_get(const jparser *p, int obj, const char *key)
 {
     int c;
-    if (obj < 0 || p->n[obj].type != J_OBJ)
-        return -1;
+    if (obj < 0 || p->n[obj].type != J_OBJ) return -1;
     for (c = p->n[obj].first; c >= 0; c = p->n[c].next)
-        if ((int)strlen(key) == p->n[c].keylen && !strncmp(p->n[c].key, key, (size_t)p->n[c].keylen))
+        if ((int)strlen(key) == p->n[c].keylen &&
+            !strncmp(p->n[c].key, key, (size_t)p->n[c].keylen))
             return c;
     return -1;
 }
@@ -175,20 +164,16 @@ static int j_get(const jparser *p, int obj, const char *key)
 static int j_at(const jparser *p, int arr, int i)
 {
     int c;
-    if (arr < 0 || p->n[arr].type != J_ARR)
-        return -1;
-    for (c = p->n[arr].first; c >= 0 && i > 0; c = p->n[c].next)
-        i--;
+    if (arr < 0 || p->n[arr].type != J_ARR) return -1;
+    for (c = p->n[arr].first; c >= 0 && i > 0; c = p->n[c].next) i--;
     return c;
 }
 
 static int j_count(const jparser *p, int arr)
 {
     int c, n = 0;
-    if (arr < 0)
-        return 0;
-    for (c = p->n[arr].first; c >= 0; c = p->n[c].next)
-        n++;
+    if (arr < 0) return 0;
+    for (c = p->n[arr].first; c >= 0; c = p->n[c].next) n++;
     return n;
 }
 
@@ -312,7 +297,8 @@ static int check_structure(const glb *g)
             int nv = (int)j_num(p, pa, "count", 0), ni = (int)j_num(p, ia, "count", 0), x, c;
             const unsigned char *pd = g->bin + (size_t)j_num(p, pv, "byteOffset", 0);
             const unsigned char *id = g->bin + (size_t)j_num(p, iv, "byteOffset", 0);
-            float lo[3] = { HUGE_VALF, HUGE_VALF, HUGE_VALF }, hi[3] = { -HUGE_VALF, -HUGE_VALF, -HUGE_VALF };
+            float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF},
+                  hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
             assert_true(pa >= 0 && ia >= 0 && nv >= 3 && ni % 3 == 0);
             assert_int_equal(j_num(p, ia, "componentType", 0), 5125);
             assert_int_equal(j_num(p, pr, "mode", 4), 4);
@@ -323,11 +309,11 @@ static int check_structure(const glb *g)
                     hi[c] = f > hi[c] ? f : hi[c];
                 }
             for (c = 0; c < 3; c++) {
-                assert_true((float)p->n[j_at(p, j_get(p, pa, "min"), c)].num == lo[c]); /* 9 digits: a float */
+                assert_true((float)p->n[j_at(p, j_get(p, pa, "min"), c)].num ==
+                            lo[c]); /* 9 digits: a float */
                 assert_true((float)p->n[j_at(p, j_get(p, pa, "max"), c)].num == hi[c]);
             }
-            for (x = 0; x < ni; x++)
-                assert_true(u32(id + 4 * x) < (uint32_t)nv);
+            for (x = 0; x < ni; x++) assert_true(u32(id + 4 * x) < (uint32_t)nv);
             tris += ni / 3;
         }
     }
@@ -339,7 +325,8 @@ static int check_structure(const glb *g)
 static const unsigned char *attribute(const glb *g, int pr, const char *name, int *n)
 {
     const jparser *p = &g->j;
-    int a = j_at(p, j_get(p, g->root, "accessors"), (int)j_num(p, j_get(p, pr, "attributes"), name, -1));
+    int a = j_at(p, j_get(p, g->root, "accessors"),
+                 (int)j_num(p, j_get(p, pr, "attributes"), name, -1));
     int v = j_at(p, j_get(p, g->root, "bufferViews"), (int)j_num(p, a, "bufferView", -1));
     *n = (int)j_num(p, a, "count", 0);
     return a >= 0 && v >= 0 ? g->bin + (size_t)j_num(p, v, "byteOffset", 0) : NULL;
@@ -359,12 +346,13 @@ static double check_colours(const glb *g)
             int pr = j_at(p, prims, k), nc = 0, nl = 0;
             int mat = j_at(p, mats, (int)j_num(p, pr, "material", -1));
             double scale = j_num(p, j_get(p, mat, "extras"), "colorScale", -1);
-            const unsigned char *c = attribute(g, pr, "COLOR_0", &nc), *l = attribute(g, pr, "_LIGHT", &nl);
+            const unsigned char *c = attribute(g, pr, "COLOR_0", &nc),
+                                *l = attribute(g, pr, "_LIGHT", &nl);
             assert_non_null(c);
             assert_non_null(l);
             assert_int_equal(nc, nl);
-            CHECK_THAT(scale >= 1, "material %d's colorScale %g, at least 1", (int)j_num(p, pr, "material", -1),
-                       scale);
+            CHECK_THAT(scale >= 1, "material %d's colorScale %g, at least 1",
+                       (int)j_num(p, pr, "material", -1), scale);
             for (i = 0; i < 3 * nc; i++) {
                 double cv = f32(c + 4 * i), lv = f32(l + 4 * i);
                 top = fmax(top, lv);
@@ -373,8 +361,10 @@ static double check_colours(const glb *g)
                     CHECK_THAT(fabs(cv * scale - lv) <= 4 * FLT_EPSILON * fmax(lv, 1e-30),
                                "COLOR_0 %.9g x colorScale %.9g = _LIGHT %.9g", cv, scale, lv);
                 else
-                    CHECK_THAT(lv >= scale * (1 - 4 * FLT_EPSILON), "_LIGHT %.9g where COLOR_0 is 1: at least "
-                               "the scale %.9g", lv, scale);
+                    CHECK_THAT(lv >= scale * (1 - 4 * FLT_EPSILON),
+                               "_LIGHT %.9g where COLOR_0 is 1: at least "
+                               "the scale %.9g",
+                               lv, scale);
             }
         }
     }
@@ -393,8 +383,8 @@ static void write_text(const char *name, const char *text)
 
 /* The OBJ NAME loaded into SC, its polygons into *POLYS (*N), solved with O to TOL in at
    most SHOTS shots. */
-static sc_solver *solved(const char *name, obj_scene *sc, sc_poly **polys, int *n, const sc_opts *o, int shots,
-                         double tol)
+static sc_solver *solved(const char *name, obj_scene *sc, sc_poly **polys, int *n, const sc_opts *o,
+                         int shots, double tol)
 {
     char err[600];
     sc_solver *s;
@@ -450,7 +440,7 @@ static void test_structure(void **state)
     {
         const jparser *p = &g.j;
         int meshes = j_get(p, g.root, "meshes"), accs = j_get(p, g.root, "accessors");
-        int want[3] = { 12, 12, 4 + 5 }; /* flat faces: 4 a face; the quad 4 + pentagon 5 */
+        int want[3] = {12, 12, 4 + 5}; /* flat faces: 4 a face; the quad 4 + pentagon 5 */
         for (i = 0; i < 3; i++) {
             int pr = j_at(p, j_get(p, j_at(p, meshes, i), "primitives"), 0);
             int at = j_get(p, pr, "attributes");
@@ -492,8 +482,8 @@ static void test_solution_colours(void **state)
                           "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
                           "f 1 2 3 4\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n");
     s = solved("box.obj", &sc, &polys, &n, &o, 100000, 1e-5);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("box.glb"), NULL, NULL, err,
-                                    sizeof err),
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("box.glb"), NULL, NULL,
+                                    err, sizeof err),
                      0);
     read_glb(tmp_path("box.glb"), &g);
     check_structure(&g);
@@ -502,10 +492,11 @@ static void test_solution_colours(void **state)
         int accs = j_get(p, g.root, "accessors"), views = j_get(p, g.root, "bufferViews");
         int pr = j_at(p, j_get(p, j_at(p, j_get(p, g.root, "meshes"), 0), "primitives"), 0);
         int ca = j_at(p, accs, (int)j_num(p, j_get(p, pr, "attributes"), "_LIGHT", -1));
-        int cv = j_at(p, views, (int)j_num(p, ca, "bufferView", -1)), nv = (int)j_num(p, ca, "count", 0);
+        int cv = j_at(p, views, (int)j_num(p, ca, "bufferView", -1)),
+            nv = (int)j_num(p, ca, "count", 0);
         const unsigned char *d = g.bin + (size_t)j_num(p, cv, "byteOffset", 0);
-        const double want[3] = { 1 / 0.5, 2 / 0.5, 3 / 0.5 };
-        double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { 0, 0, 0 }, b[3];
+        const double want[3] = {1 / 0.5, 2 / 0.5, 3 / 0.5};
+        double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {0, 0, 0}, b[3];
         sc_stats st;
         int e, k;
         sc_get_stats(s, &st);
@@ -524,7 +515,8 @@ static void test_solution_colours(void **state)
             assert_true(c >= lo[i % 3] * (1 - 1e-6) && c <= hi[i % 3] * (1 + 1e-6));
         }
         print_message("closed glowing box: _LIGHT against E / (1 - rho), worst %.3g%% (elements "
-                      "%.4f to %.4f of %.1f)\n", 100 * worst, lo[0], hi[0], want[0]);
+                      "%.4f to %.4f of %.1f)\n",
+                      100 * worst, lo[0], hi[0], want[0]);
         /* The elements' own spread about the closed form is the hemi-cube's aliasing
            (docs/library.md: elements' form factors within 4.9% at res 512): measured -2.4% to
            +1.6% here at res 64, so 5% bounds it with the reason stated. */
@@ -532,15 +524,17 @@ static void test_solution_colours(void **state)
         /* every face emits: the scale is the brightest channel, about 6 / (1 - 0.5) here,
            which a vertex of one corner stores as a float (2^-24 relative) */
         {
-            double top = check_colours(&g), scale = j_num(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0),
-                                                                    "extras"), "colorScale", -1);
-            CHECK_NEAR(top, scale, scale * FLT_EPSILON, "the brightest _LIGHT value against colorScale");
+            double top = check_colours(&g),
+                   scale = j_num(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "extras"),
+                                 "colorScale", -1);
+            CHECK_NEAR(top, scale, scale * FLT_EPSILON,
+                       "the brightest _LIGHT value against colorScale");
         }
         { /* an emitter's base colour is 1: COLOR_0 carries its radiosity */
-            int f = j_get(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
-                          "baseColorFactor");
-            for (i = 0; i < 4; i++)
-                assert_true(p->n[j_at(p, f, i)].num == 1);
+            int f = j_get(
+                p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
+                "baseColorFactor");
+            for (i = 0; i < 4; i++) assert_true(p->n[j_at(p, f, i)].num == 1);
         }
     }
     free_glb(&g);
@@ -552,14 +546,14 @@ static void test_solution_colours(void **state)
     /* A room: textured walls (PNG, embedded), a TGA-textured floor (left out), a lamp. */
     {
         unsigned char rgb[4 * 2 * 3];
-        for (i = 0; i < 24; i++)
-            rgb[i] = (unsigned char)(40 + 9 * i);
+        for (i = 0; i < 24; i++) rgb[i] = (unsigned char)(40 + 9 * i);
         assert_int_equal(img_write(tmp_path("w.png"), rgb, 4, 2, NULL, 0), 0);
     }
     {
         /* an uncompressed 2x2 TGA */
-        static const unsigned char tga[18 + 12] = { 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 2, 0, 24, 0,
-                                                    90, 90, 90, 90, 90, 90, 90, 90, 90, 90, 90, 90 };
+        static const unsigned char tga[18 + 12] = {0,  0,  2,  0,  0,  0,  0,  0,  0,  0,
+                                                   0,  0,  2,  0,  2,  0,  24, 0,  90, 90,
+                                                   90, 90, 90, 90, 90, 90, 90, 90, 90, 90};
         FILE *f = fopen(tmp_path("floor.tga"), "wb");
         assert_non_null(f);
         fwrite(tga, 1, sizeof tga, f);
@@ -610,7 +604,8 @@ static void test_solution_colours(void **state)
         assert_true(j_get(p, j_get(p, j_at(p, mats, 2), "extensions"), "KHR_materials_unlit") >= 0);
         {
             /* The embedded image is the file, byte for byte. */
-            int v = j_at(p, j_get(p, g.root, "bufferViews"), (int)j_num(p, j_at(p, imgs, 0), "bufferView", -1));
+            int v = j_at(p, j_get(p, g.root, "bufferViews"),
+                         (int)j_num(p, j_at(p, imgs, 0), "bufferView", -1));
             FILE *f = fopen(tmp_path("w.png"), "rb");
             unsigned char file[4096];
             size_t len = fread(file, 1, sizeof file, f);
@@ -622,8 +617,7 @@ static void test_solution_colours(void **state)
     free_glb(&g);
     gltf_validates(tmp_path("room.glb"));
     assimp_reads(tmp_path("room.glb"));
-    for (i = 0; i < sc.nmaterials; i++)
-        tex_free(&maps[i]);
+    for (i = 0; i < sc.nmaterials; i++) tex_free(&maps[i]);
     sc_destroy(s);
     free(polys);
     obj_free(&sc);
@@ -658,8 +652,7 @@ static double mean_of(const char *png)
     size_t i, n;
     assert_int_equal(img_read(png, &im, err, sizeof err), 0);
     n = (size_t)im.w * im.h * 3;
-    for (i = 0; i < n; i++)
-        sum += im.rgb[i];
+    for (i = 0; i < n; i++) sum += im.rgb[i];
     img_free(&im);
     return sum / n;
 }
@@ -667,9 +660,9 @@ static double mean_of(const char *png)
 static void test_cli(void **state)
 {
     static const unsigned char check[4 * 4 * 3] = {
-        250, 30, 30, 250, 250, 250, 250, 30, 30, 250, 250, 250, 250, 250, 250, 250, 30, 30,
-        250, 250, 250, 250, 30, 30, 250, 30, 30, 250, 250, 250, 250, 30, 30, 250, 250, 250,
-        250, 250, 250, 250, 30, 30, 250, 250, 250, 250, 30, 30 };
+        250, 30,  30,  250, 250, 250, 250, 30,  30,  250, 250, 250, 250, 250, 250, 250,
+        30,  30,  250, 250, 250, 250, 30,  30,  250, 30,  30,  250, 250, 250, 250, 30,
+        30,  250, 250, 250, 250, 250, 250, 250, 30,  30,  250, 250, 250, 250, 30,  30};
     char cmd[2048];
     glb g;
     int rc;
@@ -684,13 +677,16 @@ static void test_cli(void **state)
                         "usemtl walls\nf 1/1 2/2 3/3 4/4\nf 6/1 7/2 3/3 2/4\nf 8/1 5/2 1/3 4/4\n"
                         "f 7/1 8/2 4/3 3/4\nf 5/1 6/2 2/3 1/4\n"
                         "usemtl lamp\nf 12 11 10 9\n");
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
-             "--height 64 --export-gltf '%s' --quiet", tmp_path("c.obj"), tmp_path("c_tex.png"),
-             tmp_path("c.glb"));
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
+             "--height 64 --export-gltf '%s' --quiet",
+             tmp_path("c.obj"), tmp_path("c_tex.png"), tmp_path("c.glb"));
     rc = system(cmd);
     assert_int_equal(rc, 0);
-    snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
-             "--height 64 --no-textures --quiet", tmp_path("c.obj"), tmp_path("c_plain.png"));
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli '%s' --camera 0,0,0.99,0,0,-1,70 -o '%s' --width 64 "
+             "--height 64 --no-textures --quiet",
+             tmp_path("c.obj"), tmp_path("c_plain.png"));
     rc = system(cmd);
     assert_int_equal(rc, 0);
     read_glb(tmp_path("c.glb"), &g);
@@ -731,7 +727,8 @@ static void image_lookup(const img_t *im, const double xy[2], double scale, doub
     for (dy = 0; dy < 2; dy++)
         for (dx = 0; dx < 2; dx++) {
             double w = (dx ? fx - x0 : 1 - (fx - x0)) * (dy ? fy - y0 : 1 - (fy - y0));
-            int x = (int)fmin(fmax(x0 + dx, 0), im->w - 1), y = (int)fmin(fmax(y0 + dy, 0), im->h - 1);
+            int x = (int)fmin(fmax(x0 + dx, 0), im->w - 1),
+                y = (int)fmin(fmax(y0 + dy, 0), im->h - 1);
             for (k = 0; k < 3; k++)
                 rgb[k] += w * scale * srgb_decode8(im->rgb[3 * ((size_t)y * im->w + x) + k]);
         }
@@ -768,24 +765,26 @@ static void blender_shows_lightmap(const char *path, int materials, double scale
         print_message("blender not installed (Debian blender): its import check skipped\n");
         return;
     }
-    snprintf(cmd, sizeof cmd, "blender -b --factory-startup --python-exit-code 1 --python "
-             "tests/blender_lightmap.py -- '%s' > '%s' 2>&1", path, tmp_path("blender.txt"));
+    snprintf(cmd, sizeof cmd,
+             "blender -b --factory-startup --python-exit-code 1 --python "
+             "tests/blender_lightmap.py -- '%s' > '%s' 2>&1",
+             path, tmp_path("blender.txt"));
     if (system(cmd) != 0) {
         snprintf(cmd, sizeof cmd, "cat '%s' >&2", tmp_path("blender.txt"));
-        if (system(cmd)) {
-        }
+        if (system(cmd)) {}
         fail_msg("blender could not import %s", path);
     }
     f = fopen(tmp_path("blender.txt"), "rb");
     assert_non_null(f);
     while (fgets(line, sizeof line, f))
-        if (sscanf(line, "lightmap: %d %lf", &n, &strength) == 2)
-            break;
+        if (sscanf(line, "lightmap: %d %lf", &n, &strength) == 2) break;
     fclose(f);
-    print_message("blender: %d materials show the lightmap as emission, strength %.6g\n", n, strength);
+    print_message("blender: %d materials show the lightmap as emission, strength %.6g\n", n,
+                  strength);
     CHECK_INT_EQ(n, materials, "materials blender shows the lightmap on (emission, second UV map)");
     /* the script rounds to 5 decimals; Blender keeps a float */
-    CHECK_NEAR(strength, scale, 1e-5 + scale * FLT_EPSILON, "blender's Emission Strength against the scale");
+    CHECK_NEAR(strength, scale, 1e-5 + scale * FLT_EPSILON,
+               "blender's Emission Strength against the scale");
 }
 
 /* A lit room with a block (12 charts) baked into a 64 x 64 atlas and exported with it:
@@ -804,7 +803,7 @@ static void test_lightmap(void **state)
     sc_solver *s;
     sc_gatherer *gt;
     sc_opts o = {.max_element = 0.25, .res = 32};
-    lm_opts lo = { 64, 0, 0, LM_TOL, 0 };
+    lm_opts lo = {64, 0, 0, LM_TOL, 0};
     lm_atlas a;
     char err[600];
     img_t im;
@@ -814,24 +813,26 @@ static void test_lightmap(void **state)
     (void)state;
     write_text("lm.mtl", "newmtl wall\nKd 0.6 0.5 0.4\nnewmtl red\nKd 0.7 0.1 0.1\n"
                          "newmtl lamp\nKd 0.5 0.5 0.5\nKe 8 8 8\n");
-    write_text("lm.obj", "mtllib lm.mtl\n"
-                         "v -1 0 -1\nv 1 0 -1\nv 1 2 -1\nv -1 2 -1\n"
-                         "v -1 0 1\nv 1 0 1\nv 1 2 1\nv -1 2 1\n"
-                         "v -0.3 1.99 -0.3\nv 0.3 1.99 -0.3\nv 0.3 1.99 0.3\nv -0.3 1.99 0.3\n"
-                         "v -0.5 0 -0.5\nv 0 0 -0.5\nv 0 0.5 -0.5\nv -0.5 0.5 -0.5\n"
-                         "v -0.5 0 0\nv 0 0 0\nv 0 0.5 0\nv -0.5 0.5 0\nvn 0 1 0\n"
-                         "usemtl wall\no room\nf 1 5 6 2\nf 1 2 3 4\nf 5 8 7 6\nf 1 4 8 5\nf 2 6 7 3\n"
-                         "f 4 3 7 8\n"
-                         "usemtl lamp\no lamp\nf 9 10 11 12\n"
-                         "usemtl red\no block\nf 20//1 19//1 15//1 16//1\nf 13//1 16//1 15//1 14//1\n"
-                         "f 17//1 18//1 19//1 20//1\nf 13//1 17//1 20//1 16//1\nf 14//1 15//1 19//1 18//1\n");
+    write_text("lm.obj",
+               "mtllib lm.mtl\n"
+               "v -1 0 -1\nv 1 0 -1\nv 1 2 -1\nv -1 2 -1\n"
+               "v -1 0 1\nv 1 0 1\nv 1 2 1\nv -1 2 1\n"
+               "v -0.3 1.99 -0.3\nv 0.3 1.99 -0.3\nv 0.3 1.99 0.3\nv -0.3 1.99 0.3\n"
+               "v -0.5 0 -0.5\nv 0 0 -0.5\nv 0 0.5 -0.5\nv -0.5 0.5 -0.5\n"
+               "v -0.5 0 0\nv 0 0 0\nv 0 0.5 0\nv -0.5 0.5 0\nvn 0 1 0\n"
+               "usemtl wall\no room\nf 1 5 6 2\nf 1 2 3 4\nf 5 8 7 6\nf 1 4 8 5\nf 2 6 7 3\n"
+               "f 4 3 7 8\n"
+               "usemtl lamp\no lamp\nf 9 10 11 12\n"
+               "usemtl red\no block\nf 20//1 19//1 15//1 16//1\nf 13//1 16//1 15//1 14//1\n"
+               "f 17//1 18//1 19//1 20//1\nf 13//1 17//1 20//1 16//1\nf 14//1 15//1 19//1 18//1\n");
     s = solved("lm.obj", &sc, &polys, &n, &o, 100000, 1e-3);
     gt = sc_gatherer_new(s, 16, 0);
     assert_non_null(gt);
     assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
     assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
-    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, NULL, tmp_path("lm.glb"), NULL,
-                                             NULL, NULL, NULL, err, sizeof err),
+    assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, NULL,
+                                             tmp_path("lm.glb"), NULL, NULL, NULL, NULL, err,
+                                             sizeof err),
                      0);
     read_glb(tmp_path("lm.glb"), &g);
     check_structure(&g);
@@ -846,25 +847,25 @@ static void test_lightmap(void **state)
             int lm = j_get(p, j_get(p, j_at(p, mats, m), "extras"), "lightmap");
             int lamp = m == 2; /* materials in MTL order: wall, red, lamp */
             assert_true((lm >= 0) == !lamp);
-            if (lm < 0)
-                continue;
+            if (lm < 0) continue;
             assert_int_equal(j_num(p, lm, "texCoord", -1), 1);
             assert_int_equal(j_num(p, lm, "index", -1), 0);
             scale = j_num(p, lm, "scale", -1);
             { /* where importers look: emissive = lightmap x Kd x scale on a black base */
-                static const double kd[2][3] = { { 0.6, 0.5, 0.4 }, { 0.7, 0.1, 0.1 } };
+                static const double kd[2][3] = {{0.6, 0.5, 0.4}, {0.7, 0.1, 0.1}};
                 int mat = j_at(p, mats, m), et = j_get(p, mat, "emissiveTexture");
                 int ef = j_get(p, mat, "emissiveFactor"), ext = j_get(p, mat, "extensions");
                 int bc = j_get(p, j_get(p, mat, "pbrMetallicRoughness"), "baseColorFactor");
                 assert_int_equal(j_num(p, et, "index", -1), 0);
                 assert_int_equal(j_num(p, et, "texCoord", -1), 1);
                 assert_int_equal(j_get(p, ext, "KHR_materials_unlit"), -1);
-                CHECK_EQ(j_num(p, j_get(p, ext, "KHR_materials_emissive_strength"), "emissiveStrength", -1), scale,
-                         "material %d: emissiveStrength against the lightmap's scale", m);
+                CHECK_EQ(j_num(p, j_get(p, ext, "KHR_materials_emissive_strength"),
+                               "emissiveStrength", -1),
+                         scale, "material %d: emissiveStrength against the lightmap's scale", m);
                 for (k = 0; k < 3; k++) {
                     CHECK_EQ(p->n[j_at(p, bc, k)].num, 0, "material %d: baseColorFactor[%d]", m, k);
-                    CHECK_NEAR(p->n[j_at(p, ef, k)].num, kd[m][k], 1e-9, "material %d: emissiveFactor[%d], Kd",
-                               m, k);
+                    CHECK_NEAR(p->n[j_at(p, ef, k)].num, kd[m][k], 1e-9,
+                               "material %d: emissiveFactor[%d], Kd", m, k);
                 }
             }
         }
@@ -873,16 +874,19 @@ static void test_lightmap(void **state)
             assert_int_equal(j_count(p, used), 2); /* the lamp stays unlit */
             assert_true(j_str_is(p, j_at(p, used, 0), "KHR_materials_unlit"));
             assert_true(j_str_is(p, j_at(p, used, 1), "KHR_materials_emissive_strength"));
-            assert_true(j_get(p, j_get(p, j_at(p, mats, 2), "extensions"), "KHR_materials_unlit") >= 0);
+            assert_true(j_get(p, j_get(p, j_at(p, mats, 2), "extensions"), "KHR_materials_unlit") >=
+                        0);
             assert_int_equal(j_get(p, j_at(p, mats, 2), "emissiveTexture"), -1);
         }
         assert_true(scale > 0);
         bound = scale * 0.5 * (2.4 / 1.055) / 255;
         for (m = 0; m < j_count(p, meshes); m++) {
-            int pr = j_at(p, j_get(p, j_at(p, meshes, m), "primitives"), 0), at = j_get(p, pr, "attributes");
+            int pr = j_at(p, j_get(p, j_at(p, meshes, m), "primitives"), 0),
+                at = j_get(p, pr, "attributes");
             int ua = j_at(p, accs, (int)j_num(p, at, "TEXCOORD_1", -1));
             int pa = j_at(p, accs, (int)j_num(p, at, "POSITION", -1));
-            int uv = j_at(p, views, (int)j_num(p, ua, "bufferView", -1)), nv = (int)j_num(p, ua, "count", 0), x;
+            int uv = j_at(p, views, (int)j_num(p, ua, "bufferView", -1)),
+                nv = (int)j_num(p, ua, "count", 0), x;
             const unsigned char *d = g.bin + (size_t)j_num(p, uv, "byteOffset", 0);
             assert_true(ua >= 0 && uv >= 0);
             assert_int_equal(nv, (int)j_num(p, pa, "count", -1));
@@ -897,8 +901,7 @@ static void test_lightmap(void **state)
                 }
                 lm_lookup(&a, xy, want);
                 image_lookup(&im, xy, scale, got);
-                for (k = 0; k < 3; k++)
-                    worst = fmax(worst, fabs(got[k] - want[k]));
+                for (k = 0; k < 3; k++) worst = fmax(worst, fabs(got[k] - want[k]));
                 checked++;
             }
         }
@@ -906,7 +909,8 @@ static void test_lightmap(void **state)
         assert_int_equal(checked, 6 * 4 + 4 + 5 * 4);
     }
     print_message("lightmap in the glb: %d vertices, scale %.4g, largest difference %.3g "
-                  "(bound %.3g: half an sRGB code at its steepest)\n", checked, scale, worst, bound);
+                  "(bound %.3g: half an sRGB code at its steepest)\n",
+                  checked, scale, worst, bound);
     assert_true(worst <= bound);
     img_free(&im);
     free_glb(&g);
@@ -931,16 +935,17 @@ static void write_grid(const char *name, int n)
     assert_non_null(f);
     fprintf(f, "mtllib grid.mtl\n");
     for (j = 0; j <= n; j++)
-        for (i = 0; i <= n; i++)
-            fprintf(f, "v %g 0 %g\n", 4.0 * i / n - 2, 2 - 4.0 * j / n);
+        for (i = 0; i <= n; i++) fprintf(f, "v %g 0 %g\n", 4.0 * i / n - 2, 2 - 4.0 * j / n);
     fprintf(f, "usemtl floor\n");
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
             int a = j * (n + 1) + i + 1;
             fprintf(f, "f %d %d %d %d\n", a, a + 1, a + n + 2, a + n + 1);
         }
-    fprintf(f, "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\nusemtl lamp\n"
-               "f %d %d %d %d\n", (n + 1) * (n + 1) + 1, (n + 1) * (n + 1) + 2, (n + 1) * (n + 1) + 3,
+    fprintf(f,
+            "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\nusemtl lamp\n"
+            "f %d %d %d %d\n",
+            (n + 1) * (n + 1) + 1, (n + 1) * (n + 1) + 2, (n + 1) * (n + 1) + 3,
             (n + 1) * (n + 1) + 4);
     assert_int_equal(fclose(f), 0);
 }
@@ -959,33 +964,55 @@ typedef struct {
 static void *fx_create(const sc_poly *p, int n, const sc_opts *o)
 {
     sc_solver *s = sc_create(p, n, o, NULL, NULL, NULL, 0);
-    if (s)
-        sc_solve(s, 20, 1e-3, NULL, NULL);
+    if (s) sc_solve(s, 20, 1e-3, NULL, NULL);
     return s;
 }
-static void fx_destroy(void *s) { sc_destroy(s); }
-static void fx_stats(void *s, sc_stats *st) { sc_get_stats(s, st); }
+static void fx_destroy(void *s)
+{
+    sc_destroy(s);
+}
+static void fx_stats(void *s, sc_stats *st)
+{
+    sc_get_stats(s, st);
+}
 static int fx_export(void *s, const obj_scene *sc, const sc_poly *p, int n, const char *path)
 {
     return sc_export_gltf(s, sc, p, n, NULL, NULL, path, NULL, NULL, NULL, 0);
 }
-static int fx_all(void *s, double *rgb) { return sc_shade_elements(s, 1, rgb); }
-static void fx_one(void *s, int e, double rgb[3]) { sc_element_rgb(s, e, 1, rgb); }
+static int fx_all(void *s, double *rgb)
+{
+    return sc_shade_elements(s, 1, rgb);
+}
+static void fx_one(void *s, int e, double rgb[3])
+{
+    sc_element_rgb(s, e, 1, rgb);
+}
 static void *fl_create(const sc_poly *p, int n, const sc_opts *o)
 {
     scf_solver *s = scf_create(p, n, o, NULL, NULL, NULL, 0);
-    if (s)
-        scf_solve(s, 20, 1e-3, NULL, NULL);
+    if (s) scf_solve(s, 20, 1e-3, NULL, NULL);
     return s;
 }
-static void fl_destroy(void *s) { scf_destroy(s); }
-static void fl_stats(void *s, sc_stats *st) { scf_get_stats(s, st); }
+static void fl_destroy(void *s)
+{
+    scf_destroy(s);
+}
+static void fl_stats(void *s, sc_stats *st)
+{
+    scf_get_stats(s, st);
+}
 static int fl_export(void *s, const obj_scene *sc, const sc_poly *p, int n, const char *path)
 {
     return scf_export_gltf(s, sc, p, n, NULL, NULL, path, NULL, NULL, NULL, 0);
 }
-static int fl_all(void *s, double *rgb) { return scf_shade_elements(s, 1, rgb); }
-static void fl_one(void *s, int e, double rgb[3]) { scf_element_rgb(s, e, 1, rgb); }
+static int fl_all(void *s, double *rgb)
+{
+    return scf_shade_elements(s, 1, rgb);
+}
+static void fl_one(void *s, int e, double rgb[3])
+{
+    scf_element_rgb(s, e, 1, rgb);
+}
 
 /* The export's cost: the ambient term (a pass over every patch) is computed once per
    export, not once per corner, so the export of a grid of 4N faces makes as many core
@@ -995,10 +1022,10 @@ static void fl_one(void *s, int e, double rgb[3]) { scf_element_rgb(s, e, 1, rgb
    values bit for bit; in both builds of the glue. */
 static void test_linear_export(void **state)
 {
-    static const int sides[2] = { 8, 16 };
+    static const int sides[2] = {8, 16};
     static const twin_ops twins[2] = {
-        { "fixed", fx_create, fx_destroy, fx_stats, fx_export, fx_all, fx_one },
-        { "float", fl_create, fl_destroy, fl_stats, fl_export, fl_all, fl_one } };
+        {"fixed", fx_create, fx_destroy, fx_stats, fx_export, fx_all, fx_one},
+        {"float", fl_create, fl_destroy, fl_stats, fl_export, fl_all, fl_one}};
     int t, b;
     (void)state;
     write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
@@ -1025,8 +1052,9 @@ static void test_linear_export(void **state)
             before = st.ambient_terms;
             assert_int_equal(w->export_glb(s, &sc, polys, n, tmp_path("grid.glb")), 0);
             w->stats(s, &st);
-            print_message("%s export of %d elements: the ambient term computed %lu times (bound 1)\n", w->name,
-                          st.elements, st.ambient_terms - before);
+            print_message(
+                "%s export of %d elements: the ambient term computed %lu times (bound 1)\n",
+                w->name, st.elements, st.ambient_terms - before);
             assert_int_equal(st.ambient_terms - before, 1);
             gltf_validates(tmp_path("grid.glb"));
             rgb = malloc(3 * (size_t)st.elements * sizeof *rgb);
@@ -1035,8 +1063,7 @@ static void test_linear_export(void **state)
             for (e = 0; e < st.elements; e++) {
                 double one[3];
                 w->shade_one(s, e, one);
-                for (k = 0; k < 3; k++)
-                    assert_true(one[k] == rgb[3 * e + k]);
+                for (k = 0; k < 3; k++) assert_true(one[k] == rgb[3 * e + k]);
             }
             free(rgb);
             w->destroy(s);
@@ -1065,12 +1092,13 @@ static void test_corner_search(void **state)
     (void)state;
     at = (size_t)snprintf(text, sizeof text, "mtllib grid.mtl\n");
     for (c = 0; c < 40; c++)
-        at += (size_t)snprintf(text + at, sizeof text - at, "v %.6f 0 %.6f\n", 2 * cos(c * 6.283185307179586 / 40),
+        at += (size_t)snprintf(text + at, sizeof text - at, "v %.6f 0 %.6f\n",
+                               2 * cos(c * 6.283185307179586 / 40),
                                -2 * sin(c * 6.283185307179586 / 40));
-    at += (size_t)snprintf(text + at, sizeof text - at, "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"
-                                                        "usemtl floor\nf");
-    for (c = 0; c < 40; c++)
-        at += (size_t)snprintf(text + at, sizeof text - at, " %d", c + 1);
+    at += (size_t)snprintf(text + at, sizeof text - at,
+                           "v -0.5 2 -0.5\nv 0.5 2 -0.5\nv 0.5 2 0.5\nv -0.5 2 0.5\n"
+                           "usemtl floor\nf");
+    for (c = 0; c < 40; c++) at += (size_t)snprintf(text + at, sizeof text - at, " %d", c + 1);
     snprintf(text + at, sizeof text - at, "\nusemtl lamp\nf 41 42 43 44\n");
     write_text("grid.mtl", "newmtl floor\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe 40 40 40\n");
     write_text("ngon.obj", text);
@@ -1083,27 +1111,25 @@ static void test_corner_search(void **state)
     tol = 1e-5 * 4; /* the floor's extent, 4 across */
     for (c = 0; c < sc.faces[0].count; c++) {
         const obj_vec3 *p = &sc.verts[sc.indices[sc.faces[0].first + c]];
-        double sum[3] = { 0, 0, 0 }, area = 0;
+        double sum[3] = {0, 0, 0}, area = 0;
         int hits = 0;
         for (e = 0; e < st.elements; e++) {
             int v[4], nv, j, near = 0;
             double b[3], rho[3], a;
-            if (sc_element_tag(s, e) != 0)
-                continue;
+            if (sc_element_tag(s, e) != 0) continue;
             nv = sc_element_vertices(s, e, v);
             for (j = 0; j < nv; j++) {
                 double q[3];
                 sc_vertex_pos(s, v[j], q);
                 near |= (q[0] - p->x) * (q[0] - p->x) + (q[1] - p->y) * (q[1] - p->y) +
-                            (q[2] - p->z) * (q[2] - p->z) <= tol * tol;
+                            (q[2] - p->z) * (q[2] - p->z) <=
+                        tol * tol;
             }
-            if (!near)
-                continue;
+            if (!near) continue;
             sc_element_rgb(s, e, 1, b);
             sc_element_rho(s, e, rho);
             a = sc_element_area(s, e);
-            for (k = 0; k < 3; k++)
-                sum[k] += a * (rho[k] > 0 ? b[k] / rho[k] : 0);
+            for (k = 0; k < 3; k++) sum[k] += a * (rho[k] > 0 ? b[k] / rho[k] : 0);
             area += a;
             hits++;
         }
@@ -1113,12 +1139,14 @@ static void test_corner_search(void **state)
             CHECK_THAT(rgb[3 * (sc.faces[0].first + c) + k] == sum[k] / area,
                        "corner %d channel %d: %.17g, the scan's %.17g", c, k,
                        rgb[3 * (sc.faces[0].first + c) + k], sum[k] / area);
-        CHECK_THAT(weight[sc.faces[0].first + c] == area, "corner %d: weight %.17g, the scan's %.17g", c,
-                   weight[sc.faces[0].first + c], area);
+        CHECK_THAT(weight[sc.faces[0].first + c] == area,
+                   "corner %d: weight %.17g, the scan's %.17g", c, weight[sc.faces[0].first + c],
+                   area);
         matched++;
     }
-    print_message("40-gon of %d elements: %d corners as the scan finds them (up to %d elements a corner)\n",
-                  st.elements, matched, most);
+    print_message(
+        "40-gon of %d elements: %d corners as the scan finds them (up to %d elements a corner)\n",
+        st.elements, matched, most);
     free(rgb);
     free(weight);
     sc_destroy(s);
@@ -1130,7 +1158,7 @@ static void test_corner_search(void **state)
    one each (--dump-radiosity and --export-gltf) for N and for 4N faces. */
 static void test_cli_export_stats(void **state)
 {
-    static const int sides[2] = { 8, 16 };
+    static const int sides[2] = {8, 16};
     char cmd[2048], *out, *line;
     int t;
     (void)state;
@@ -1144,10 +1172,11 @@ static void test_cli_export_stats(void **state)
         char name[32];
         snprintf(name, sizeof name, "cgrid%d.obj", sides[t]);
         write_grid(name, sides[t]);
-        snprintf(cmd, sizeof cmd, "build/rad_cli '%s' --quiet --stats --res 32 --max-element 2 --max-patch 2 "
+        snprintf(cmd, sizeof cmd,
+                 "build/rad_cli '%s' --quiet --stats --res 32 --max-element 2 --max-patch 2 "
                  "--width 16 --height 16 -o '%s' --dump-radiosity '%s' --export-gltf '%s' > '%s'",
-                 tmp_path(name), tmp_path("cgrid.png"), tmp_path("cgrid.csv"), tmp_path("cgrid.glb"),
-                 tmp_path("cgrid.txt"));
+                 tmp_path(name), tmp_path("cgrid.png"), tmp_path("cgrid.csv"),
+                 tmp_path("cgrid.glb"), tmp_path("cgrid.txt"));
         assert_int_equal(system(cmd), 0);
         f = fopen(tmp_path("cgrid.txt"), "rb");
         assert_non_null(f);
@@ -1159,23 +1188,28 @@ static void test_cli_export_stats(void **state)
         assert_int_equal(fread(out, 1, (size_t)len, f), (size_t)len);
         fclose(f);
         line = strstr(out, "\nexports:");
-        if (!line || sscanf(line, "\nexports:  COLOR_0 scale %lf  ambient term computed %lu", &scale,
-                            &terms) != 2 ||
+        if (!line ||
+            sscanf(line, "\nexports:  COLOR_0 scale %lf  ambient term computed %lu", &scale,
+                   &terms) != 2 ||
             !(line = strstr(out, "\ntime:")) || !strstr(line, "  csv ") ||
             sscanf(strstr(line, "  csv "), "  csv %lfs", &tc) != 1 || !strstr(line, "  gltf ") ||
             sscanf(strstr(line, "  gltf "), "  gltf %lfs", &tg) != 1)
             fail_msg("no exports line, or no csv and gltf times, in rad_cli --stats:\n%s", out);
-        print_message("rad_cli, %d faces: dump-radiosity %.3fs, export-gltf %.3fs (COLOR_0 scale %g), ambient "
-                      "term computed %lu times (bound 2)\n", sides[t] * sides[t] + 1, tc, tg, scale, terms);
+        print_message("rad_cli, %d faces: dump-radiosity %.3fs, export-gltf %.3fs (COLOR_0 scale "
+                      "%g), ambient "
+                      "term computed %lu times (bound 2)\n",
+                      sides[t] * sides[t] + 1, tc, tg, scale, terms);
         assert_true(tc >= 0 && tg >= 0);
         assert_int_equal(terms, 2);
         /* --stats gives the scale the file's materials carry */
         read_glb(tmp_path("cgrid.glb"), &g);
         { /* --stats prints 6 digits: within half a unit of the 6th */
-            double want = j_num(&g.j, j_get(&g.j, j_at(&g.j, j_get(&g.j, g.root, "materials"), 0), "extras"),
-                                "colorScale", -1);
+            double want =
+                j_num(&g.j, j_get(&g.j, j_at(&g.j, j_get(&g.j, g.root, "materials"), 0), "extras"),
+                      "colorScale", -1);
             CHECK_THAT(want > 1, "a lamp of 40 lights the floor above 1: colorScale %g", want);
-            CHECK_NEAR(scale, want, 5e-6 * want, "--stats' COLOR_0 scale against the file's colorScale");
+            CHECK_NEAR(scale, want, 5e-6 * want,
+                       "--stats' COLOR_0 scale against the file's colorScale");
         }
         check_colours(&g);
         free_glb(&g);
@@ -1195,8 +1229,8 @@ typedef struct {
 
 /* G's file with N bytes at AT replaced by BYTES, written to NAME, which the validator
    must refuse naming WHAT: added to B. */
-static void broken(breaks *b, const glb *g, const char *name, size_t at, const void *bytes, size_t n,
-                   const char *what)
+static void broken(breaks *b, const glb *g, const char *name, size_t at, const void *bytes,
+                   size_t n, const char *what)
 {
     unsigned char *d = malloc(g->size);
     FILE *f = fopen(tmp_path(name), "wb");
@@ -1217,8 +1251,7 @@ static size_t json_at(const glb *g, const char *text)
 {
     size_t i, n = strlen(text), end = 20 + u32(g->file + 12);
     for (i = 20; i + n <= end; i++)
-        if (!memcmp(g->file + i, text, n))
-            return i;
+        if (!memcmp(g->file + i, text, n)) return i;
     fail_msg("'%s' not in the JSON", text);
     return 0;
 }
@@ -1228,7 +1261,7 @@ static size_t json_at(const glb *g, const char *text)
 static void test_validator(void **state)
 {
     static const float two = 2.0f, far = 1e6f;
-    static const unsigned char big[4] = { 0x00, 0xff, 0xff, 0xff };
+    static const unsigned char big[4] = {0x00, 0xff, 0xff, 0xff};
     obj_scene sc;
     sc_poly *polys;
     sc_solver *s;
@@ -1241,15 +1274,15 @@ static void test_validator(void **state)
     (void)state;
     static breaks b;
     const char *null = "/dev/null";
-    if (gltf_validator(&null, 1) < 0)
-        skip();
+    if (gltf_validator(&null, 1) < 0) skip();
     b.n = 0;
     write_text("v.mtl", "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 9 9 9\n");
     write_text("v.obj", "mtllib v.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
                         "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\n"
                         "usemtl wall\nf 4 3 2 1\nusemtl lamp\nf 5 6 7 8\n");
     s = solved("v.obj", &sc, &polys, &n, &o, 1000, 1e-3);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("v.glb"), NULL, NULL, err, sizeof err),
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, NULL, NULL, tmp_path("v.glb"), NULL, NULL,
+                                    err, sizeof err),
                      0);
     gltf_validates(tmp_path("v.glb"));
     read_glb(tmp_path("v.glb"), &g);
@@ -1259,11 +1292,14 @@ static void test_validator(void **state)
     broken(&b, &g, "chunk.glb", 16, "BIN\0", 4, "the first chunk is not JSON");
     broken(&b, &g, "chunklen.glb", 12, "\1\0\0\0", 4, "not a multiple of 4");
     broken(&b, &g, "mode.glb", json_at(&g, "\"mode\":4") + 7, "9", 1, "mode 9");
-    broken(&b, &g, "material.glb", json_at(&g, "\"material\":1") + 11, "7", 1, "material = 7 out of range");
-    broken(&b, &g, "asset.glb", json_at(&g, "\"version\""), "\"vexsion\"", 9, "asset.version missing");
-    broken(&b, &g, "unlit.glb", json_at(&g, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") + 19, "X", 1,
-           "not in extensionsUsed");
-    broken(&b, &g, "factor.glb", json_at(&g, "\"metallicFactor\":0") + 17, "2", 1, "metallicFactor");
+    broken(&b, &g, "material.glb", json_at(&g, "\"material\":1") + 11, "7", 1,
+           "material = 7 out of range");
+    broken(&b, &g, "asset.glb", json_at(&g, "\"version\""), "\"vexsion\"", 9,
+           "asset.version missing");
+    broken(&b, &g, "unlit.glb", json_at(&g, "\"extensionsUsed\":[\"KHR_materials_unlit\"]") + 19,
+           "X", 1, "not in extensionsUsed");
+    broken(&b, &g, "factor.glb", json_at(&g, "\"metallicFactor\":0") + 17, "2", 1,
+           "metallicFactor");
     {
         const jparser *p = &g.j;
         int pr = j_at(p, j_get(p, j_at(p, j_get(p, g.root, "meshes"), 0), "primitives"), 0);
@@ -1275,9 +1311,10 @@ static void test_validator(void **state)
         broken(&b, &g, "position.glb", (size_t)(d - g.file), &far, 4, "(3.6.2.5)");
         d = attribute(&g, pr, "NORMAL", &nv);
         broken(&b, &g, "normal.glb", (size_t)(d - g.file), &two, 4, "not unit length");
-        at = (size_t)(g.bin - g.file) +
-             (size_t)j_num(p, j_at(p, j_get(p, g.root, "bufferViews"), (int)j_num(p, ia, "bufferView", -1)),
-                           "byteOffset", 0);
+        at = (size_t)(g.bin - g.file) + (size_t)j_num(p,
+                                                      j_at(p, j_get(p, g.root, "bufferViews"),
+                                                           (int)j_num(p, ia, "bufferView", -1)),
+                                                      "byteOffset", 0);
         broken(&b, &g, "index.glb", at, big, 4, "indices >= the vertex count");
     }
     gltf_refused(b.path_of, b.what, b.n);
@@ -1292,8 +1329,7 @@ static void test_validator(void **state)
 static void put_le(unsigned char *d, uint32_t v, int n)
 {
     int i;
-    for (i = 0; i < n; i++)
-        d[i] = (unsigned char)(v >> (8 * i));
+    for (i = 0; i < n; i++) d[i] = (unsigned char)(v >> (8 * i));
 }
 
 /* A BMP map_Kd (3 x 2, 24-bit, rows bottom-up and padded to 4 bytes, as BMP stores
@@ -1301,9 +1337,9 @@ static void put_le(unsigned char *d, uint32_t v, int n)
    (8-bit sRGB both, PNG lossless). */
 static void test_bmp_texture(void **state)
 {
-    static const unsigned char want[2][3][3] = { /* row 0 at the top, RGB */
-        { { 255, 0, 0 }, { 0, 255, 0 }, { 0, 0, 255 } },
-        { { 10, 20, 30 }, { 200, 150, 100 }, { 255, 255, 255 } } };
+    static const unsigned char want[2][3][3] = {/* row 0 at the top, RGB */
+                                                {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}},
+                                                {{10, 20, 30}, {200, 150, 100}, {255, 255, 255}}};
     unsigned char bmp[54 + 2 * 12];
     obj_scene sc;
     sc_poly *polys;
@@ -1335,7 +1371,8 @@ static void test_bmp_texture(void **state)
     assert_non_null(f);
     assert_int_equal(fwrite(bmp, 1, sizeof bmp, f), sizeof bmp);
     assert_int_equal(fclose(f), 0);
-    write_text("bmp.mtl", "newmtl floor\nKd 0 0 0\nmap_Kd t.bmp\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("bmp.mtl",
+               "newmtl floor\nKd 0 0 0\nmap_Kd t.bmp\nnewmtl lamp\nKd 0 0 0\nKe 5 5 5\n");
     write_text("bmp.obj", "mtllib bmp.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
                           "v -0.2 1 -0.2\nv 0.2 1 -0.2\nv 0.2 1 0.2\nv -0.2 1 0.2\n"
                           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
@@ -1346,8 +1383,8 @@ static void test_bmp_texture(void **state)
     s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     sc_solve(s, 1000, 1e-3, NULL, NULL);
-    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("bmp.glb"), collect, &warnings, err,
-                                    sizeof err),
+    assert_int_equal(sc_export_gltf(s, &sc, polys, n, maps, NULL, tmp_path("bmp.glb"), collect,
+                                    &warnings, err, sizeof err),
                      0);
     assert_int_equal(warnings, 0);
     gltf_validates(tmp_path("bmp.glb"));
@@ -1355,8 +1392,9 @@ static void test_bmp_texture(void **state)
     read_glb(tmp_path("bmp.glb"), &g);
     {
         const jparser *p = &g.j;
-        int bt = j_get(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
-                       "baseColorTexture");
+        int bt =
+            j_get(p, j_get(p, j_at(p, j_get(p, g.root, "materials"), 0), "pbrMetallicRoughness"),
+                  "baseColorTexture");
         int tex = j_at(p, j_get(p, g.root, "textures"), (int)j_num(p, bt, "index", -1));
         assert_true(bt >= 0 && tex >= 0);
         img = (int)j_num(p, tex, "source", -1);
@@ -1367,23 +1405,26 @@ static void test_bmp_texture(void **state)
     for (y = 0; y < 2; y++)
         for (x = 0; x < 3; x++)
             for (k = 0; k < 3; k++)
-                CHECK_INT_EQ(im.rgb[3 * (3 * y + x) + k], want[y][x][k], "embedded PNG texel (%d, %d) channel %d "
-                             "against the BMP's", x, y, k);
+                CHECK_INT_EQ(im.rgb[3 * (3 * y + x) + k], want[y][x][k],
+                             "embedded PNG texel (%d, %d) channel %d "
+                             "against the BMP's",
+                             x, y, k);
     print_message("BMP map_Kd: embedded as image/png, its 3 x 2 texels the BMP's\n");
     { /* the validator refuses an image whose bytes are not its mimeType's */
         static breaks b;
         const jparser *p = &g.j;
         int v = j_at(p, j_get(p, g.root, "bufferViews"),
                      (int)j_num(p, j_at(p, j_get(p, g.root, "images"), img), "bufferView", -1));
-        broken(&b, &g, "notpng.glb", (size_t)(g.bin - g.file) + (size_t)j_num(p, v, "byteOffset", 0), "BM", 2,
+        broken(&b, &g, "notpng.glb",
+               (size_t)(g.bin - g.file) + (size_t)j_num(p, v, "byteOffset", 0), "BM", 2,
                "are not image/png");
-        broken(&b, &g, "source.glb", json_at(&g, "\"source\":0") + 9, "5", 1, "source = 5 out of range");
+        broken(&b, &g, "source.glb", json_at(&g, "\"source\":0") + 9, "5", 1,
+               "source = 5 out of range");
         gltf_refused(b.path_of, b.what, b.n);
     }
     img_free(&im);
     free_glb(&g);
-    for (k = 0; k < sc.nmaterials; k++)
-        tex_free(&maps[k]);
+    for (k = 0; k < sc.nmaterials; k++) tex_free(&maps[k]);
     sc_destroy(s);
     free(polys);
     obj_free(&sc);
@@ -1392,16 +1433,11 @@ static void test_bmp_texture(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_structure),
-        cmocka_unit_test(test_solution_colours),
-        cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_cli),
-        cmocka_unit_test(test_lightmap),
-        cmocka_unit_test(test_linear_export),
-        cmocka_unit_test(test_corner_search),
-        cmocka_unit_test(test_cli_export_stats),
-        cmocka_unit_test(test_validator),
-        cmocka_unit_test(test_bmp_texture),
+        cmocka_unit_test(test_structure),     cmocka_unit_test(test_solution_colours),
+        cmocka_unit_test(test_errors),        cmocka_unit_test(test_cli),
+        cmocka_unit_test(test_lightmap),      cmocka_unit_test(test_linear_export),
+        cmocka_unit_test(test_corner_search), cmocka_unit_test(test_cli_export_stats),
+        cmocka_unit_test(test_validator),     cmocka_unit_test(test_bmp_texture),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

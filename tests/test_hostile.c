@@ -44,15 +44,18 @@
 
 extern char **environ;
 
-#define CLI "build/rad_cli"
-#define CORNELL "examples/cornell_box.obj"
+#define CLI           "build/rad_cli"
+#define CORNELL       "examples/cornell_box.obj"
 #define RUN_TIMEOUT_S 300.0
 
 /* ---- the temporary directory ------------------------------------------------------ */
 
 TMPDIR_GROUP("hostile")
 
-static int light(void) { return getenv("RAD_TEST_LIGHT") != NULL; }
+static int light(void)
+{
+    return getenv("RAD_TEST_LIGHT") != NULL;
+}
 
 static void write_file(const char *path, const void *data, size_t n)
 {
@@ -62,7 +65,10 @@ static void write_file(const char *path, const void *data, size_t n)
     assert_int_equal(fclose(f), 0);
 }
 
-static void write_text(const char *path, const char *text) { write_file(path, text, strlen(text)); }
+static void write_text(const char *path, const char *text)
+{
+    write_file(path, text, strlen(text));
+}
 
 static char *slurp(const char *path, size_t *len)
 {
@@ -100,7 +106,9 @@ static char *listing(const char *dir)
     closedir(d);
     for (i = 1; i < n; i++)
         for (j = i; j > 0 && strcmp(names[j - 1], names[j]) > 0; j--) {
-            char *t = names[j]; names[j] = names[j - 1]; names[j - 1] = t;
+            char *t = names[j];
+            names[j] = names[j - 1];
+            names[j - 1] = t;
         }
     out = calloc(1, len);
     assert_non_null(out);
@@ -115,7 +123,8 @@ static char *listing(const char *dir)
 /* ---- the loader ------------------------------------------------------------------- */
 
 /* obj_load of TEXT written to NAME: returns its status; ERR gets the message. */
-static int load_text(const char *name, const char *text, size_t len, obj_scene *sc, char *err, size_t errlen)
+static int load_text(const char *name, const char *text, size_t len, obj_scene *sc, char *err,
+                     size_t errlen)
 {
     const char *path = tmp_path(name);
     write_file(path, text, len);
@@ -144,13 +153,16 @@ static void test_obj_truncated(void **st)
     int ok = 0, failed = 0;
     (void)st;
     /* Cut inside a statement: the statement is judged as it stands. */
-    EXPECT_LOAD_ERROR("cut_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2", "4: face needs at least 3 vertices, got 2");
+    EXPECT_LOAD_ERROR("cut_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2",
+                      "4: face needs at least 3 vertices, got 2");
     EXPECT_LOAD_ERROR("cut_number.obj", "v 0 0 0\nv 1.5e", "2: bad number '1.5e'");
     EXPECT_LOAD_ERROR("cut_vertex.obj", "v 0 0 0\nv 1 0", "2: vertex needs 3 coordinates, got 2");
     EXPECT_LOAD_ERROR("cut_continuation.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\",
                       "4: face needs at least 3 vertices, got 2");
-    EXPECT_LOAD_ERROR("cut_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -", "4: bad face vertex '-'");
-    EXPECT_LOAD_ERROR("cut_slash.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/", "4: bad face vertex '3/'");
+    EXPECT_LOAD_ERROR("cut_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -",
+                      "4: bad face vertex '-'");
+    EXPECT_LOAD_ERROR("cut_slash.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/",
+                      "4: bad face vertex '3/'");
     EXPECT_LOAD_ERROR("cut_usemtl.obj", "v 0 0 0\nusemtl", "2: usemtl without a material name");
     EXPECT_LOAD_ERROR("cut_mtllib.obj", "mtllib  \n", "1: mtllib without a file name");
     /* The Cornell box cut after every byte (every 7th in light mode): each prefix loads,
@@ -200,7 +212,8 @@ static void test_obj_binary(void **st)
     }
     /* Every other byte value: lines of unknown statements, loaded, with no faces. */
     for (i = 0; i < sizeof bytes; i++) bytes[i] = (unsigned char)(1 + i % 255);
-    assert_int_equal(load_text("bytes.obj", (const char *)bytes, sizeof bytes, &sc, err, sizeof err), 0);
+    assert_int_equal(
+        load_text("bytes.obj", (const char *)bytes, sizeof bytes, &sc, err, sizeof err), 0);
     assert_int_equal(sc.nfaces, 0);
     assert_int_equal(sc.nverts, 0);
     CHECK_INT_GT(sc.unknown_statements, 0, "unknown statements among lines of every byte value");
@@ -229,8 +242,9 @@ static void test_obj_megabyte_lines(void **st)
     memset(text + n, '1', mb);
     n += mb;
     n += (size_t)sprintf(text + n, " 0 0\n");
-    expect_load_error("long_number.obj", text, n,
-                      "1: number out of range '1111111111111111111111111111111111111111' (limit 1e30)");
+    expect_load_error(
+        "long_number.obj", text, n,
+        "1: number out of range '1111111111111111111111111111111111111111' (limit 1e30)");
     /* A megabyte comment, then a triangle: loads. */
     text[0] = '#';
     memset(text + 1, 'c', mb);
@@ -268,8 +282,9 @@ static void test_obj_index_out_of_range(void **st)
                       "4: vertex index -4 out of range (3 vertices defined so far)");
     EXPECT_LOAD_ERROR("idx_zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
                       "4: vertex index 0 (OBJ indices start at 1)");
-    EXPECT_LOAD_ERROR("idx_huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n",
-                      "4: vertex index 99999999999999999999999 out of range (3 vertices defined so far)");
+    EXPECT_LOAD_ERROR(
+        "idx_huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999\n",
+        "4: vertex index 99999999999999999999999 out of range (3 vertices defined so far)");
     EXPECT_LOAD_ERROR("idx_int_min.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -2147483648\n",
                       "4: vertex index -2147483648 out of range (3 vertices defined so far)");
     EXPECT_LOAD_ERROR("idx_forward.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n",
@@ -305,7 +320,9 @@ static sc_poly *to_polys(const obj_scene *sc)
         p[f].n = 3;
         for (k = 0; k < 3; k++) {
             const obj_vec3 *v = &sc->verts[sc->indices[sc->faces[f].first + k]];
-            p[f].v[k][0] = v->x; p[f].v[k][1] = v->y; p[f].v[k][2] = v->z;
+            p[f].v[k][0] = v->x;
+            p[f].v[k][1] = v->y;
+            p[f].v[k][2] = v->z;
         }
         set_mat(&p[f], 0.5, 0.5, 0.5, f == 0, f == 0, f == 0);
         p[f].tag = f;
@@ -351,7 +368,8 @@ static int lit_room(sc_poly *p, double e, double e2)
 {
     int n = box(p, -1, -1, -1, 1, 1, 1, 1), i;
     for (i = 0; i < n; i++) set_mat(&p[i], 0.6, 0.5, 0.4, 0, 0, 0);
-    p[n] = quad(-0.3, 0.99, -0.3, 0.3, 0.99, -0.3, 0.3, 0.99, 0.3, -0.3, 0.99, 0.3); /* faces down */
+    p[n] =
+        quad(-0.3, 0.99, -0.3, 0.3, 0.99, -0.3, 0.3, 0.99, 0.3, -0.3, 0.99, 0.3); /* faces down */
     set_mat(&p[n++], 0.5, 0.5, 0.5, e, e, e);
     p[n] = quad(0.5, -0.99, 0.5, 0.5, -0.99, 0.7, 0.7, -0.99, 0.7, 0.7, -0.99, 0.5); /* faces up */
     set_mat(&p[n++], 0.5, 0.5, 0.5, e2, 0, 0);
@@ -364,7 +382,7 @@ typedef struct {
     uint64_t sum;
     unsigned long saturations;
     int shots, elements;
-    double rgb0[3];  /* element 0, with the ambient term */
+    double rgb0[3]; /* element 0, with the ambient term */
 } solved_t;
 
 static int solve_scene(int twin, const sc_poly *p, int n, solved_t *out, char *err, size_t errlen)
@@ -426,7 +444,7 @@ static void test_emission_overflow(void **st)
         n = lit_room(p, 1e30, 1e30 / 67108864.0); /* 2^26 weaker */
         assert_int_equal(solve_scene(twin, p, n, &got, err, sizeof err), 0);
         if (!twin) assert_int_equal(got.sum, ref.sum); /* fixed: gone; the float twin keeps it */
-        n = lit_room(p, 1e30, 1e30 / 1024.0);       /* 2^10 weaker: kept */
+        n = lit_room(p, 1e30, 1e30 / 1024.0);          /* 2^10 weaker: kept */
         assert_int_equal(solve_scene(twin, p, n, &got, err, sizeof err), 0);
         assert_int_not_equal(got.sum, ref.sum);
         /* Non-finite or negative emissions are refused with a message. */
@@ -530,9 +548,16 @@ static void test_no_emitter(void **st)
         static rad_element_t el[64];
         static rad_vec3_t vert[256];
         static unsigned char work[RAD_WORK_BYTES(8, RAD_PIXELS_ALL(8), 256)];
-        rad_pools_t pools = {.surfaces = surf, .max_surfaces = 4, .patches = pat, .max_patches = 64,
-                             .elements = el, .max_elements = 64, .vertices = vert,
-                             .max_vertices = 256, .work = work, .work_bytes = sizeof work};
+        rad_pools_t pools = {.surfaces = surf,
+                             .max_surfaces = 4,
+                             .patches = pat,
+                             .max_patches = 64,
+                             .elements = el,
+                             .max_elements = 64,
+                             .vertices = vert,
+                             .max_vertices = 256,
+                             .work = work,
+                             .work_bytes = sizeof work};
         rad_config_t cfg = {.max_patch = RAD_REAL(8.0), .max_element = RAD_REAL(4.0), .res = 8};
         rad_vec3_t v[3] = {{0, 0, 0}, {RAD_REAL(4.0), 0, 0}, {0, RAD_REAL(4.0), 0}};
         rad_rgb_t grey = {RAD_REAL(0.5), RAD_REAL(0.5), RAD_REAL(0.5)}, amb;
@@ -569,9 +594,11 @@ static void test_img_write_unwritable(void **st)
     unsigned char rgb[2 * 2 * 3] = {0};
     char err[256], *sub;
     (void)st;
-    expect_write_error(tmp_path("missing/out.png"), 2, "cannot create temporary file: No such file or directory");
+    expect_write_error(tmp_path("missing/out.png"), 2,
+                       "cannot create temporary file: No such file or directory");
     write_text(tmp_path("a_file"), "x");
-    expect_write_error(tmp_path("a_file/out.png"), 2, "cannot create temporary file: Not a directory");
+    expect_write_error(tmp_path("a_file/out.png"), 2,
+                       "cannot create temporary file: Not a directory");
     assert_int_equal(mkdir(tmp_path("dir.png"), 0755), 0);
     expect_write_error(tmp_path("dir.png"), 2, "is a directory");
     expect_write_error(tmp_path("out.jpg"), 2, "unknown image extension (use .png or .ppm)");
@@ -585,7 +612,8 @@ static void test_img_write_unwritable(void **st)
     /* A read-only directory (meaningless for root, who may write anywhere). */
     if (geteuid() != 0) {
         assert_int_equal(mkdir(tmp_path("ro"), 0555), 0);
-        expect_write_error(tmp_path("ro/out.png"), 2, "cannot create temporary file: Permission denied");
+        expect_write_error(tmp_path("ro/out.png"), 2,
+                           "cannot create temporary file: Permission denied");
         chmod(tmp_path("ro"), 0755);
     }
     remove_tree(tmp_path("dir.png"));
@@ -612,7 +640,9 @@ static void test_bands_bit_exact(void **st)
             double *ff_all = NULL;
             int ne = 0;
             for (r = -1; r < 4; r++) {
-                sc_opts o = {.max_patch = 0.5, .max_element = 0.25, .res = res,
+                sc_opts o = {.max_patch = 0.5,
+                             .max_element = 0.25,
+                             .res = res,
                              .band_rows = r < 0 ? 0 : rows[r]};
                 uint64_t sum;
                 double *ff;
@@ -684,9 +714,16 @@ static void test_index_limits(void **st)
     static rad_element_t el[1];
     static rad_vec3_t vert[1];
     static unsigned char work[1 << 16];
-    rad_pools_t pools = {.surfaces = surf, .max_surfaces = 1, .patches = pat, .max_patches = 1,
-                         .elements = el, .max_elements = 1, .vertices = vert, .max_vertices = 1,
-                         .work = work, .work_bytes = sizeof work};
+    rad_pools_t pools = {.surfaces = surf,
+                         .max_surfaces = 1,
+                         .patches = pat,
+                         .max_patches = 1,
+                         .elements = el,
+                         .max_elements = 1,
+                         .vertices = vert,
+                         .max_vertices = 1,
+                         .work = work,
+                         .work_bytes = sizeof work};
     rad_config_t cfg = {.res = 8};
     rad_scene_t s;
     (void)st;
@@ -718,9 +755,12 @@ static void test_index16_pools(void **st)
     for (i = 0; i < n; i++) {
         double x = (i % 100) * 2.0, y = (i / 100) * 2.0;
         p[i].n = 3;
-        p[i].v[0][0] = x; p[i].v[0][1] = y;
-        p[i].v[1][0] = x + 1; p[i].v[1][1] = y;
-        p[i].v[2][0] = x; p[i].v[2][1] = y + 1;
+        p[i].v[0][0] = x;
+        p[i].v[0][1] = y;
+        p[i].v[1][0] = x + 1;
+        p[i].v[1][1] = y;
+        p[i].v[2][0] = x;
+        p[i].v[2][1] = y + 1;
         set_mat(&p[i], 0.5, 0.5, 0.5, i == 0, i == 0, i == 0);
     }
     s = sc_create(p, n, NULL, NULL, NULL, err, sizeof err);
@@ -756,7 +796,10 @@ static void run_cli(run_t *r, const char *const *args)
     snprintf(outp, sizeof outp, "%s/run%03d.out", tmpdir, seq);
     snprintf(errp, sizeof errp, "%s/run%03d.err", tmpdir, seq++);
     argv[n++] = (char *)CLI;
-    while (args[n - 1] && n < 39) { argv[n] = (char *)args[n - 1]; n++; }
+    while (args[n - 1] && n < 39) {
+        argv[n] = (char *)args[n - 1];
+        n++;
+    }
     argv[n] = NULL;
     assert_int_equal(posix_spawn_file_actions_init(&fa), 0);
     posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
@@ -784,7 +827,11 @@ static void run_cli(run_t *r, const char *const *args)
 }
 #define RUN(r, ...) run_cli((r), (const char *const[]){__VA_ARGS__, NULL})
 
-static void run_free(run_t *r) { free(r->out); free(r->err); }
+static void run_free(run_t *r)
+{
+    free(r->out);
+    free(r->err);
+}
 
 static void expect_cli(const run_t *r, int status, const char *err_line)
 {
@@ -793,7 +840,11 @@ static void expect_cli(const run_t *r, int status, const char *err_line)
                  err_line ? err_line : "(anything)");
 }
 
-static int file_exists(const char *p) { struct stat s; return stat(p, &s) == 0; }
+static int file_exists(const char *p)
+{
+    struct stat s;
+    return stat(p, &s) == 0;
+}
 
 /* A copy of the Cornell box whose light has emission KE ("R G B"). */
 static const char *cornell_with(const char *name, const char *ke)
@@ -807,7 +858,8 @@ static const char *cornell_with(const char *name, const char *ke)
     assert_non_null(at);
     text = malloc(len + 64);
     assert_non_null(text);
-    sprintf(text, "%.*smtllib %s%s", (int)(at - obj), obj, mtl, at + strlen("mtllib cornell_box.mtl"));
+    sprintf(text, "%.*smtllib %s%s", (int)(at - obj), obj, mtl,
+            at + strlen("mtllib cornell_box.mtl"));
     write_text(tmp_path(name), text);
     m = slurp("examples/cornell_box.mtl", NULL);
     assert_non_null(m);
@@ -859,7 +911,8 @@ static void test_cli_huge_emission(void **st)
     RUN(&a, tmp_path("ke31.obj"), "-o", tmp_path("ke31.png"));
     {
         char want[600];
-        snprintf(want, sizeof want, "rad_cli: %s:11: number out of range '1e31' (limit 1e30)\n", tmp_path("ke31.obj.mtl"));
+        snprintf(want, sizeof want, "rad_cli: %s:11: number out of range '1e31' (limit 1e30)\n",
+                 tmp_path("ke31.obj.mtl"));
         expect_cli(&a, 1, want);
     }
     CHECK_THAT(!file_exists(tmp_path("ke31.png")), "%s is not written", tmp_path("ke31.png"));
@@ -902,20 +955,24 @@ static void test_cli_hostile_files(void **st)
     write_text(tmp_path("mb.obj"), text);
     free(text);
     RUN(&r, tmp_path("mb.obj"), "-o", tmp_path("mb.png"));
-    snprintf(want, sizeof want, "rad_cli: %s:1: number out of range '9999999999999999999999999999999999999999' (limit 1e30)\n",
+    snprintf(want, sizeof want,
+             "rad_cli: %s:1: number out of range '9999999999999999999999999999999999999999' (limit "
+             "1e30)\n",
              tmp_path("mb.obj"));
     expect_cli(&r, 1, want);
     run_free(&r);
     /* Out-of-range index. */
     write_text(tmp_path("idx.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n");
     RUN(&r, tmp_path("idx.obj"), "-o", tmp_path("idx.png"));
-    snprintf(want, sizeof want, "rad_cli: %s:4: vertex index -4 out of range (3 vertices defined so far)\n",
+    snprintf(want, sizeof want,
+             "rad_cli: %s:4: vertex index -4 out of range (3 vertices defined so far)\n",
              tmp_path("idx.obj"));
     expect_cli(&r, 1, want);
     run_free(&r);
     /* No light: a warning, a black image, exit 0. */
     write_text(tmp_path("dark.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
-    RUN(&r, tmp_path("dark.obj"), "-o", tmp_path("dark.png"), "--res", "8", "--width", "8", "--height", "8");
+    RUN(&r, tmp_path("dark.obj"), "-o", tmp_path("dark.png"), "--res", "8", "--width", "8",
+        "--height", "8");
     expect_cli(&r, 0, NULL);
     CHECK_CONTAINS(r.err, "no material emits light (Ke), so the image is black",
                    "rad_cli's stderr");
@@ -933,10 +990,13 @@ static void test_cli_pools_full(void **st)
     (void)st;
     need_cli();
     before = listing(tmpdir);
-    RUN(&r, CORNELL, "-o", tmp_path("full.png"), "--max-element", "0.00055", "--max-patch", "0.5", "--res", "16",
-        "--export-ply", tmp_path("full.ply"), "--dump-radiosity", tmp_path("full.csv"));
-    snprintf(want, sizeof want, "rad_cli: %s: the scene needs more than %s elements: raise the element size\n",
-             CORNELL, RAD_INDEX_BITS == 16 ? "65534" : "4000000"); /* the index width caps the pools */
+    RUN(&r, CORNELL, "-o", tmp_path("full.png"), "--max-element", "0.00055", "--max-patch", "0.5",
+        "--res", "16", "--export-ply", tmp_path("full.ply"), "--dump-radiosity",
+        tmp_path("full.csv"));
+    snprintf(want, sizeof want,
+             "rad_cli: %s: the scene needs more than %s elements: raise the element size\n",
+             CORNELL,
+             RAD_INDEX_BITS == 16 ? "65534" : "4000000"); /* the index width caps the pools */
     expect_cli(&r, 1, want);
     after = listing(tmpdir);
     assert_string_equal(after, before);
@@ -965,11 +1025,12 @@ static void test_cli_many_faces(void **st)
     RUN(&r, obj, "-o", tmp_path("many.png"), "--res", "8", "--width", "16", "--height", "16",
         "--max-shots", "1", "--stats", "--quiet");
 #if RAD_INDEX_BITS == 16
-    {   /* more elements than 16-bit indices count: said so, nothing written (past the
+    { /* more elements than 16-bit indices count: said so, nothing written (past the
          * limit in faces alone, on the face's line, before any polygon is built; else
          * once the mesh is planned) */
         expect_cli(&r, 1, NULL);
-        CHECK_THAT(!strncmp(r.err, "rad_cli: ", 9) && strstr(r.err, obj) && strstr(r.err, "65534 elements") &&
+        CHECK_THAT(!strncmp(r.err, "rad_cli: ", 9) && strstr(r.err, obj) &&
+                       strstr(r.err, "65534 elements") &&
                        strchr(r.err, '\n') == r.err + strlen(r.err) - 1,
                    "one line naming the file and the element limit: %s", r.err);
         CHECK_THAT(!file_exists(tmp_path("many.png")), "%s is not written", tmp_path("many.png"));
@@ -1007,7 +1068,8 @@ static void test_cli_cost_bombs(void **st)
     assert_int_equal(setenv("RAD_MEMORY_BUDGET", "1000000", 1), 0);
     RUN(&r, obj, "-o", tmp_path("bomb.png"));
     unsetenv("RAD_MEMORY_BUDGET");
-    CHECK_THAT(r.status == 1 && strstr(r.err, "needs more than the memory budget of 1 MB (") && strstr(r.err, "bomb.obj:"),
+    CHECK_THAT(r.status == 1 && strstr(r.err, "needs more than the memory budget of 1 MB (") &&
+                   strstr(r.err, "bomb.obj:"),
                "exit %d, stderr %s", r.status, r.err);
     run_free(&r);
     CHECK_THAT(!file_exists(tmp_path("bomb.png")), "%s is not written", tmp_path("bomb.png"));
@@ -1019,8 +1081,10 @@ static void test_cli_cost_bombs(void **st)
     for (i = 0; i < nf; i++) fputs("f 1 2 3\n", f);
     assert_int_equal(fclose(f), 0);
     RUN(&r, obj, "-o", tmp_path("bomb.png"), "--quiet");
-    snprintf(want, sizeof want, "rad_cli: %s:%ld: face %ld with an area: more than the %ld elements the solver holds "
-             "(each face is at least one element): simplify or split the scene\n", obj, nf + 3, nf, nf - 1);
+    snprintf(want, sizeof want,
+             "rad_cli: %s:%ld: face %ld with an area: more than the %ld elements the solver holds "
+             "(each face is at least one element): simplify or split the scene\n",
+             obj, nf + 3, nf, nf - 1);
     expect_cli(&r, 1, want);
     run_free(&r);
     CHECK_THAT(!file_exists(tmp_path("bomb.png")), "%s is not written", tmp_path("bomb.png"));

@@ -23,13 +23,15 @@
 
 /* ---- helpers: one fresh temporary directory per test ---- */
 
-typedef struct { char dir[64]; char path[256]; } tmpdir;
+typedef struct {
+    char dir[64];
+    char path[256];
+} tmpdir;
 
 static int setup_dir(void **state)
 {
     tmpdir *t = calloc(1, sizeof *t);
-    if (!t)
-        return -1;
+    if (!t) return -1;
     strcpy(t->dir, "/tmp/rad_test_image_XXXXXX");
     if (!mkdtemp(t->dir)) {
         free(t);
@@ -45,15 +47,12 @@ static void remove_tree(const char *dir)
     DIR *d = opendir(dir);
     struct dirent *e;
     char p[512];
-    if (!d)
-        return;
+    if (!d) return;
     while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
         snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
         chmod(p, 0700);
-        if (unlink(p) != 0)
-            remove_tree(p);
+        if (unlink(p) != 0) remove_tree(p);
     }
     closedir(d);
     rmdir(dir);
@@ -92,8 +91,7 @@ static int has_tmp_file(const char *dir)
     struct dirent *e;
     int found = 0;
     assert_non_null(d);
-    while ((e = readdir(d)) != NULL)
-        found |= strstr(e->d_name, ".tmp") != NULL;
+    while ((e = readdir(d)) != NULL) found |= strstr(e->d_name, ".tmp") != NULL;
     closedir(d);
     return found;
 }
@@ -136,7 +134,8 @@ static void make_image(unsigned char *rgb)
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
             unsigned char *p = rgb + (y * W + x) * 3;
-            p[0] = (unsigned char)(10 + 30 * x), p[1] = (unsigned char)(20 + 40 * y), p[2] = (unsigned char)(x * y + 7);
+            p[0] = (unsigned char)(10 + 30 * x), p[1] = (unsigned char)(20 + 40 * y),
+            p[2] = (unsigned char)(x * y + 7);
         }
     memcpy(rgb, "\xff\x00\x00", 3);
     memcpy(rgb + (W - 1) * 3, "\x00\xff\x00", 3);
@@ -163,14 +162,14 @@ static void roundtrip(tmpdir *t, const char *name)
     assert_int_equal(im.w, W);
     assert_int_equal(im.h, H);
     assert_memory_equal(im.rgb, rgb, sizeof rgb);
-    assert_px(&im, 0, 0, 255, 0, 0);          /* row 0 is the top, column 0 the left */
+    assert_px(&im, 0, 0, 255, 0, 0); /* row 0 is the top, column 0 the left */
     assert_px(&im, W - 1, 0, 0, 255, 0);
     assert_px(&im, 0, H - 1, 0, 0, 255);
     assert_px(&im, W - 1, H - 1, 255, 255, 255);
     assert_px(&im, 3, 2, 100, 100, 13);
     img_free(&im);
     assert_null(im.rgb);
-    img_free(&im);                             /* idempotent */
+    img_free(&im); /* idempotent */
     assert_int_equal(count_entries(t->dir), 1);
 }
 
@@ -198,7 +197,7 @@ static void test_ppm_roundtrip(void **state)
     f = slurp(in_dir(t, "a.ppm"), &n);
     assert_int_equal(n, (long)(sizeof hdr - 1 + W * H * 3));
     assert_memory_equal(f, hdr, sizeof hdr - 1);
-    assert_memory_equal(f + sizeof hdr - 1, "\xff\x00\x00", 3);   /* first pixel stored: top-left */
+    assert_memory_equal(f + sizeof hdr - 1, "\xff\x00\x00", 3); /* first pixel stored: top-left */
     free(f);
 }
 
@@ -220,7 +219,8 @@ static void test_extension_case(void **state)
 
 static void test_unknown_extension(void **state)
 {
-    static const char *const bad[] = {"a.jpg", "noext", "a.png.bak", "a.", "sub.png/x", ".pngx", "a.pn"};
+    static const char *const bad[] = {"a.jpg",     "noext", "a.png.bak", "a.",
+                                      "sub.png/x", ".pngx", "a.pn"};
     tmpdir *t = *state;
     unsigned char rgb[W * H * 3] = {0};
     char err[256], want[300];
@@ -233,21 +233,24 @@ static void test_unknown_extension(void **state)
         assert_int_equal(img_write(p, rgb, W, H, err, sizeof err), -1);
         assert_string_equal(err, want);
     }
-    assert_int_equal(count_entries(t->dir), 1);   /* only sub.png/, nothing written */
+    assert_int_equal(count_entries(t->dir), 1); /* only sub.png/, nothing written */
     assert_int_equal(count_entries(in_dir(t, "sub.png")), 0);
 }
 
 static void test_invalid_sizes(void **state)
 {
-    static const int sizes[][2] = {{0, 5}, {5, 0}, {0, 0}, {-1, 5}, {5, -3}, {INT_MIN, 1},
-                                   {32769, 1}, {1, 32769}, {INT_MAX, INT_MAX}, {65536, 65536}};
+    static const int sizes[][2] = {{0, 5},        {5, 0},     {0, 0},
+                                   {-1, 5},       {5, -3},    {INT_MIN, 1},
+                                   {32769, 1},    {1, 32769}, {INT_MAX, INT_MAX},
+                                   {65536, 65536}};
     tmpdir *t = *state;
     unsigned char rgb[16] = {0};
     char err[256];
     size_t i;
     for (i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         err[0] = '\0';
-        assert_int_equal(img_write(in_dir(t, "s.png"), rgb, sizes[i][0], sizes[i][1], err, sizeof err), -1);
+        assert_int_equal(
+            img_write(in_dir(t, "s.png"), rgb, sizes[i][0], sizes[i][1], err, sizeof err), -1);
         CHECK_CONTAINS(err, "invalid image size", "the error message");
         assert_int_equal(img_write(in_dir(t, "s.ppm"), rgb, sizes[i][0], sizes[i][1], NULL, 0), -1);
     }
@@ -259,7 +262,8 @@ static void test_invalid_sizes(void **state)
         img_t im;
         assert_non_null(wide);
         wide[(IMG_MAX_DIM - 1) * 3 + 2] = 9;
-        assert_int_equal(img_write(in_dir(t, "wide.png"), wide, IMG_MAX_DIM, 1, err, sizeof err), 0);
+        assert_int_equal(img_write(in_dir(t, "wide.png"), wide, IMG_MAX_DIM, 1, err, sizeof err),
+                         0);
         assert_int_equal(img_read(in_dir(t, "wide.png"), &im, err, sizeof err), 0);
         assert_int_equal(im.w, IMG_MAX_DIM);
         assert_memory_equal(im.rgb, wide, IMG_MAX_DIM * 3);
@@ -290,7 +294,7 @@ static void test_unwritable_path(void **state)
     CHECK_THAT(!has_tmp_file(t->dir), "no temporary file left in %s", t->dir);
     assert_int_equal(count_entries(in_dir(t, "d.ppm")), 0);
 
-    if (geteuid() != 0) {   /* root ignores directory permissions */
+    if (geteuid() != 0) { /* root ignores directory permissions */
         assert_int_equal(mkdir(in_dir(t, "ro"), 0500), 0);
         snprintf(p, sizeof p, "%s/ro/x.png", t->dir);
         assert_int_equal(img_write(p, rgb, W, H, err, sizeof err), -1);
@@ -308,8 +312,7 @@ static void test_overwrite_atomic(void **state)
     const char *p = in_dir(t, "o.png");
     size_t i;
     make_image(a);
-    for (i = 0; i < sizeof b; i++)
-        b[i] = (unsigned char)(200 - i);
+    for (i = 0; i < sizeof b; i++) b[i] = (unsigned char)(200 - i);
     assert_int_equal(img_write(p, a, W, H, err, sizeof err), 0);
     assert_int_equal(chmod(p, 0640), 0);
     assert_int_equal(stat(p, &st1), 0);
@@ -341,7 +344,7 @@ static void test_new_file_mode(void **state)
     assert_int_equal(img_write(in_dir(t, "m.ppm"), px, 1, 1, NULL, 0), 0);
     umask(old);
     assert_int_equal(stat(in_dir(t, "m.ppm"), &st), 0);
-    assert_int_equal(st.st_mode & 0777, 0644);   /* not mkstemp's 0600 */
+    assert_int_equal(st.st_mode & 0777, 0644); /* not mkstemp's 0600 */
 }
 
 /* Every proper prefix of a valid file must be rejected cleanly. */
@@ -365,22 +368,28 @@ static void truncations(tmpdir *t, const char *name)
         CHECK_THAT(strncmp(err, t->path, strlen(t->path)) == 0,
                    "%s cut at %ld bytes: the error \"%s\" starts with the path", name, k, err);
         CHECK_INT_GT(strlen(err), strlen(t->path) + 2,
-                     "%s cut at %ld bytes: length of the error \"%s\"",
-                     name, k, err);
+                     "%s cut at %ld bytes: length of the error \"%s\"", name, k, err);
     }
-    spit(in_dir(t, "cut"), full, (size_t)n);     /* and the whole file still reads */
+    spit(in_dir(t, "cut"), full, (size_t)n); /* and the whole file still reads */
     assert_int_equal(img_read(in_dir(t, "cut"), &im, err, sizeof err), 0);
     img_free(&im);
     free(full);
 }
 
-static void test_truncated_png(void **state) { truncations(*state, "t.png"); }
-static void test_truncated_ppm(void **state) { truncations(*state, "t.ppm"); }
+static void test_truncated_png(void **state)
+{
+    truncations(*state, "t.png");
+}
+static void test_truncated_ppm(void **state)
+{
+    truncations(*state, "t.ppm");
+}
 
 static void test_ppm_header(void **state)
 {
     tmpdir *t = *state;
-    static const char ok[] = "P6\n# made by hand\n2 # width\n  1\n#max\n255\n\x01\x02\x03\xfa\xfb\xfc";
+    static const char ok[] =
+        "P6\n# made by hand\n2 # width\n  1\n#max\n255\n\x01\x02\x03\xfa\xfb\xfc";
     char err[256];
     img_t im;
     spit(in_dir(t, "c.ppm"), ok, sizeof ok - 1);
@@ -428,14 +437,11 @@ static void raw_png(const char *path, int w, int h, int depth, int ctype, int in
         fail_msg("libpng could not write %s", path);
     }
     png_init_io(png, fp);
-    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, ctype, interlace, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    if (pal)
-        png_set_PLTE(png, info, pal, npal);
-    if (trns || tc)
-        png_set_tRNS(png, info, trns, ntrns, tc);
-    for (y = 0; y < h; y++)
-        rp[y] = (png_bytep)(rows + (size_t)y * rowbytes);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, ctype, interlace,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (pal) png_set_PLTE(png, info, pal, npal);
+    if (trns || tc) png_set_tRNS(png, info, trns, ntrns, tc);
+    for (y = 0; y < h; y++) rp[y] = (png_bytep)(rows + (size_t)y * rowbytes);
     png_write_info(png, info);
     png_write_image(png, rp);
     png_write_end(png, info);
@@ -448,8 +454,7 @@ static void read_expect(const char *path, int w, int h, const unsigned char *wan
     char err[256] = "";
     img_t im;
     int rc = img_read(path, &im, err, sizeof err);
-    if (rc != 0)
-        fail_msg("%s", err);
+    if (rc != 0) fail_msg("%s", err);
     assert_int_equal(im.w, w);
     assert_int_equal(im.h, h);
     assert_memory_equal(im.rgb, want, (size_t)w * (size_t)h * 3);
@@ -460,23 +465,25 @@ static void test_png_colour_types(void **state)
 {
     tmpdir *t = *state;
     static const unsigned char grey8[] = {0, 128, 255, 7, 8, 9};
-    static const unsigned char grey8_rgb[] = {0,0,0, 128,128,128, 255,255,255, 7,7,7, 8,8,8, 9,9,9};
+    static const unsigned char grey8_rgb[] = {0, 0, 0, 128, 128, 128, 255, 255, 255,
+                                              7, 7, 7, 8,   8,   8,   9,   9,   9};
     static const unsigned char grey16[] = {0xab, 0x12, 0x01, 0xff};
-    static const unsigned char grey16_rgb[] = {0xab,0xab,0xab, 0x01,0x01,0x01};
+    static const unsigned char grey16_rgb[] = {0xab, 0xab, 0xab, 0x01, 0x01, 0x01};
     static const unsigned char ga[] = {10, 0, 20, 255};
-    static const unsigned char ga_rgb[] = {10,10,10, 20,20,20};
+    static const unsigned char ga_rgb[] = {10, 10, 10, 20, 20, 20};
     static const unsigned char rgba[] = {1, 2, 3, 0, 4, 5, 6, 128};
-    static const unsigned char rgba_rgb[] = {1,2,3, 4,5,6};
-    static const unsigned char rgb16[] = {0x10,0xff, 0x20,0x00, 0x30,0x80};
+    static const unsigned char rgba_rgb[] = {1, 2, 3, 4, 5, 6};
+    static const unsigned char rgb16[] = {0x10, 0xff, 0x20, 0x00, 0x30, 0x80};
     static const unsigned char rgb16_rgb[] = {0x10, 0x20, 0x30};
-    static const unsigned char grey1[] = {0xa0};   /* 1 0 1 */
-    static const unsigned char grey1_rgb[] = {255,255,255, 0,0,0, 255,255,255};
+    static const unsigned char grey1[] = {0xa0}; /* 1 0 1 */
+    static const unsigned char grey1_rgb[] = {255, 255, 255, 0, 0, 0, 255, 255, 255};
     static const png_color pal[3] = {{255, 0, 0}, {0, 255, 0}, {0, 0, 255}};
     static const unsigned char trns[3] = {255, 0, 128};
-    static const unsigned char idx4[] = {0x12, 0x00, 0x21, 0x00};   /* rows: 1 2 0 / 2 1 0 */
-    static const unsigned char idx4_rgb[] = {0,255,0, 0,0,255, 255,0,0, 0,0,255, 0,255,0, 255,0,0};
-    static const unsigned char grey2[] = {0x6c};   /* 1 2 3 */
-    static const unsigned char grey2_rgb[] = {85,85,85, 170,170,170, 255,255,255};
+    static const unsigned char idx4[] = {0x12, 0x00, 0x21, 0x00}; /* rows: 1 2 0 / 2 1 0 */
+    static const unsigned char idx4_rgb[] = {0, 255, 0,   0, 0,   255, 255, 0, 0,
+                                             0, 0,   255, 0, 255, 0,   255, 0, 0};
+    static const unsigned char grey2[] = {0x6c}; /* 1 2 3 */
+    static const unsigned char grey2_rgb[] = {85, 85, 85, 170, 170, 170, 255, 255, 255};
     static const unsigned char rgbt[] = {2, 2, 2, 9, 8, 7};
     static const png_color_16 key = {0, 2, 2, 2, 2};
     unsigned char inter[8 * 8 * 3], *p;
@@ -484,32 +491,41 @@ static void test_png_colour_types(void **state)
 
     raw_png(in_dir(t, "g8.png"), 3, 2, 8, PNG_COLOR_TYPE_GRAY, 0, grey8, 3, NULL, 0, NULL, 0, NULL);
     read_expect(t->path, 3, 2, grey8_rgb);
-    raw_png(in_dir(t, "g16.png"), 2, 1, 16, PNG_COLOR_TYPE_GRAY, 0, grey16, 4, NULL, 0, NULL, 0, NULL);
+    raw_png(in_dir(t, "g16.png"), 2, 1, 16, PNG_COLOR_TYPE_GRAY, 0, grey16, 4, NULL, 0, NULL, 0,
+            NULL);
     read_expect(t->path, 2, 1, grey16_rgb);
-    raw_png(in_dir(t, "ga.png"), 2, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, 0, ga, 4, NULL, 0, NULL, 0, NULL);
+    raw_png(in_dir(t, "ga.png"), 2, 1, 8, PNG_COLOR_TYPE_GRAY_ALPHA, 0, ga, 4, NULL, 0, NULL, 0,
+            NULL);
     read_expect(t->path, 2, 1, ga_rgb);
-    raw_png(in_dir(t, "rgba.png"), 2, 1, 8, PNG_COLOR_TYPE_RGB_ALPHA, 0, rgba, 8, NULL, 0, NULL, 0, NULL);
+    raw_png(in_dir(t, "rgba.png"), 2, 1, 8, PNG_COLOR_TYPE_RGB_ALPHA, 0, rgba, 8, NULL, 0, NULL, 0,
+            NULL);
     read_expect(t->path, 2, 1, rgba_rgb);
-    raw_png(in_dir(t, "rgb16.png"), 1, 1, 16, PNG_COLOR_TYPE_RGB, 0, rgb16, 6, NULL, 0, NULL, 0, NULL);
+    raw_png(in_dir(t, "rgb16.png"), 1, 1, 16, PNG_COLOR_TYPE_RGB, 0, rgb16, 6, NULL, 0, NULL, 0,
+            NULL);
     read_expect(t->path, 1, 1, rgb16_rgb);
     raw_png(in_dir(t, "g1.png"), 3, 1, 1, PNG_COLOR_TYPE_GRAY, 0, grey1, 1, NULL, 0, NULL, 0, NULL);
     read_expect(t->path, 3, 1, grey1_rgb);
-    raw_png(in_dir(t, "p4.png"), 3, 2, 4, PNG_COLOR_TYPE_PALETTE, 0, idx4, 2, pal, 3, trns, 3, NULL);
+    raw_png(in_dir(t, "p4.png"), 3, 2, 4, PNG_COLOR_TYPE_PALETTE, 0, idx4, 2, pal, 3, trns, 3,
+            NULL);
     read_expect(t->path, 3, 2, idx4_rgb);
     /* Grey and RGB with a tRNS colour key: the key is dropped, not composited. */
-    raw_png(in_dir(t, "g2t.png"), 3, 1, 2, PNG_COLOR_TYPE_GRAY, 0, grey2, 1, NULL, 0, NULL, 0, &key);
+    raw_png(in_dir(t, "g2t.png"), 3, 1, 2, PNG_COLOR_TYPE_GRAY, 0, grey2, 1, NULL, 0, NULL, 0,
+            &key);
     read_expect(t->path, 3, 1, grey2_rgb);
     raw_png(in_dir(t, "rgbt.png"), 2, 1, 8, PNG_COLOR_TYPE_RGB, 0, rgbt, 6, NULL, 0, NULL, 0, &key);
     read_expect(t->path, 2, 1, rgbt);
-    for (i = 0, p = inter; i < 64 * 3; i++)
-        p[i] = (unsigned char)(i * 7 + 3);
-    raw_png(in_dir(t, "il.png"), 8, 8, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_ADAM7, inter, 24, NULL, 0, NULL, 0, NULL);
+    for (i = 0, p = inter; i < 64 * 3; i++) p[i] = (unsigned char)(i * 7 + 3);
+    raw_png(in_dir(t, "il.png"), 8, 8, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_ADAM7, inter, 24, NULL,
+            0, NULL, 0, NULL);
     read_expect(t->path, 8, 8, inter);
 }
 
 /* ---- tone mapping ---- */
 
-static double srgb_ref(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055; }
+static double srgb_ref(double v)
+{
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
 
 static void test_srgb_encode(void **state)
 {
@@ -533,7 +549,8 @@ static void test_srgb_encode(void **state)
 
 static void test_tonemap(void **state)
 {
-    const float lin[] = {0.0f, 1.0f, -1.0f,  2.0f, 0.5f, 0.001f,  0.0015f, NAN, INFINITY,  0.25f, 0.6f, -INFINITY};
+    const float lin[] = {0.0f,    1.0f, -1.0f,    2.0f,  0.5f, 0.001f,
+                         0.0015f, NAN,  INFINITY, 0.25f, 0.6f, -INFINITY};
     unsigned char out[12];
     size_t i;
     (void)state;
@@ -541,23 +558,23 @@ static void test_tonemap(void **state)
     tonemap(lin, 4, 1.0, out);
     assert_int_equal(out[0], 0);
     assert_int_equal(out[1], 255);
-    assert_int_equal(out[2], 0);      /* negative clamps to 0 */
-    assert_int_equal(out[3], 255);    /* > 1 clamps to 1 */
-    assert_int_equal(out[4], 188);    /* 255 * 0.73536 = 187.52 rounds up */
-    assert_int_equal(out[5], 3);      /* 255 * 12.92 * 0.001 = 3.29 rounds down */
-    assert_int_equal(out[6], 5);      /* 4.94 rounds up */
-    assert_int_equal(out[7], 0);      /* NaN */
+    assert_int_equal(out[2], 0);   /* negative clamps to 0 */
+    assert_int_equal(out[3], 255); /* > 1 clamps to 1 */
+    assert_int_equal(out[4], 188); /* 255 * 0.73536 = 187.52 rounds up */
+    assert_int_equal(out[5], 3);   /* 255 * 12.92 * 0.001 = 3.29 rounds down */
+    assert_int_equal(out[6], 5);   /* 4.94 rounds up */
+    assert_int_equal(out[7], 0);   /* NaN */
     assert_int_equal(out[8], 255);
-    assert_int_equal(out[9], 137);    /* 255 * srgb(0.25) = 136.8 */
+    assert_int_equal(out[9], 137); /* 255 * srgb(0.25) = 136.8 */
     assert_int_equal(out[11], 0);
     for (i = 0; i < 12; i++)
         if (isfinite(lin[i]) && lin[i] >= 0.0f && lin[i] <= 1.0f)
             assert_int_equal(out[i], (int)floor(255.0 * srgb_ref(lin[i]) + 0.5));
-    tonemap(lin, 4, 2.0, out);        /* exposure scales before clamping */
-    assert_int_equal(out[9], 188);    /* 0.25 * 2 = 0.5 */
-    assert_int_equal(out[10], 255);   /* 0.6 * 2 clips */
+    tonemap(lin, 4, 2.0, out);      /* exposure scales before clamping */
+    assert_int_equal(out[9], 188);  /* 0.25 * 2 = 0.5 */
+    assert_int_equal(out[10], 255); /* 0.6 * 2 clips */
     assert_int_equal(out[4], 255);
-    assert_int_equal(out[5], 7);      /* 0.002: 255 * 12.92 * 0.002 = 6.59 */
+    assert_int_equal(out[5], 7); /* 0.002: 255 * 12.92 * 0.002 = 6.59 */
 }
 
 static void test_auto_exposure(void **state)
@@ -573,8 +590,7 @@ static void test_auto_exposure(void **state)
         p[i % 3] = (float)(i + 1);
         p[(i + 1) % 3] = 0.5f;
     }
-    for (i = 100; i < 200; i++)
-        lin[i * 3] = i % 2 ? -5.0f : 0.0f;
+    for (i = 100; i < 200; i++) lin[i * 3] = i % 2 ? -5.0f : 0.0f;
     CHECK_LT(fabs(tonemap_auto_exposure(lin, 200) - 1.0 / 97.0), 1e-12,
              "exposure of 200 pixels: error against 1/97 (the 97th percentile maps to white)");
     CHECK_LT(fabs(tonemap_auto_exposure(lin, 100) - 1.0 / 97.0), 1e-12,
@@ -586,11 +602,10 @@ static void test_auto_exposure(void **state)
     /* 3% bright lights clip, the rest (0.5) maps to 1.0. */
     big = malloc(1000 * 3 * sizeof *big);
     assert_non_null(big);
-    for (i = 0; i < 3000; i++)
-        big[i] = (i / 3) < 970 ? 0.5f : 100.0f;
+    for (i = 0; i < 3000; i++) big[i] = (i / 3) < 970 ? 0.5f : 100.0f;
     CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
              "exposure with 3%% of lights at 100, the rest 0.5");
-    big[970 * 3] = NAN;               /* non-finite values are not "lit" */
+    big[970 * 3] = NAN; /* non-finite values are not "lit" */
     big[971 * 3] = INFINITY;
     CHECK_EQ(tonemap_auto_exposure(big, 1000), 2.0,
              "exposure with a NaN and an infinity among the lights");
@@ -610,8 +625,7 @@ static int is_col(const unsigned char *rgb, int x, int y, const unsigned char c[
 static int count_col(const unsigned char *rgb, const unsigned char c[3])
 {
     int i, n = 0;
-    for (i = 0; i < PW * PH; i++)
-        n += memcmp(rgb + i * 3, c, 3) == 0;
+    for (i = 0; i < PW * PH; i++) n += memcmp(rgb + i * 3, c, 3) == 0;
     return n;
 }
 
@@ -622,16 +636,12 @@ static void find_frame(const unsigned char *rgb, int *x0, int *y1)
     int x, y, n;
     *x0 = *y1 = -1;
     for (x = 0; x < PW && *x0 < 0; x++) {
-        for (y = 0, n = 0; y < PH; y++)
-            n += is_col(rgb, x, y, black);
-        if (n > PH / 2)
-            *x0 = x;
+        for (y = 0, n = 0; y < PH; y++) n += is_col(rgb, x, y, black);
+        if (n > PH / 2) *x0 = x;
     }
     for (y = PH - 1; y >= 0 && *y1 < 0; y--) {
-        for (x = 0, n = 0; x < PW; x++)
-            n += is_col(rgb, x, y, black);
-        if (n > PW / 2)
-            *y1 = y;
+        for (x = 0, n = 0; x < PW; x++) n += is_col(rgb, x, y, black);
+        if (n > PW / 2) *y1 = y;
     }
 }
 
@@ -656,8 +666,7 @@ static void test_plot_lines(void **state)
     int i, x0, y1, top, bot, t2, b2;
     (void)state;
     assert_non_null(rgb);
-    for (i = 0; i < 11; i++)
-        x[i] = i, up[i] = i, down[i] = 10 - i;
+    for (i = 0; i < 11; i++) x[i] = i, up[i] = i, down[i] = 10 - i;
     memset(rgb, 0x55, PW * PH * 3);
     assert_int_equal(plot_render(rgb, PW, PH, s, 2, &o), 0);
     for (i = 0; i < PW * PH * 3; i++)
@@ -685,8 +694,7 @@ static void test_plot_lines(void **state)
     CHECK_INT_GT(b2, PH / 2, "right: the blue line's bottom row");
     CHECK_INT_LT(b2, y1, "right: the blue line's bottom row");
     /* Black text above the frame (title) and below it (tick labels, x label). */
-    for (i = 0, top = 0; i < PW * 20; i++)
-        top += memcmp(rgb + i * 3, "\0\0\0", 3) == 0;
+    for (i = 0, top = 0; i < PW * 20; i++) top += memcmp(rgb + i * 3, "\0\0\0", 3) == 0;
     CHECK_INT_GT(top, 20, "black pixels of the title above the frame");
     free(rgb);
 }
@@ -711,8 +719,7 @@ static void test_plot_legend_and_flat(void **state)
     assert_int_equal(t2, top);
     /* The legend sample is a red run of >= 16 px on a row other than the line's. */
     for (row = 0; row < PH; row++) {
-        if (row == top || row == bot)
-            continue;
+        if (row == top || row == bot) continue;
         for (xx = 0, run = 0; xx < PW; xx++) {
             run = is_col(rgb, xx, row, RED) ? run + 1 : 0;
             best = run > best ? run : best;
@@ -725,7 +732,9 @@ static void test_plot_legend_and_flat(void **state)
 static void test_plot_degenerate(void **state)
 {
     double y[6] = {1, 0, -5, 10, 100, NAN}, neg[3] = {0, -1, -2}, one = 42;
-    plot_series s[3] = {{"a", NULL, y, 6, {255, 0, 0}}, {NULL, NULL, neg, 3, {0, 0, 255}}, {"", NULL, &one, 0, {0, 0, 255}}};
+    plot_series s[3] = {{"a", NULL, y, 6, {255, 0, 0}},
+                        {NULL, NULL, neg, 3, {0, 0, 255}},
+                        {"", NULL, &one, 0, {0, 0, 255}}};
     plot_opts o = {.log_y = 1};
     unsigned char *rgb = malloc(PW * PH * 3), tiny[10 * 10 * 3 + 64];
     int x0, y1, i, tw, th;
@@ -744,8 +753,8 @@ static void test_plot_degenerate(void **state)
     find_frame(rgb, &x0, &y1);
     CHECK_INT_GT(x0, 0, "the frame's left column");
     CHECK_INT_GT(y1, 0, "the frame's bottom row");
-    assert_int_equal(plot_render(rgb, PW, PH, NULL, 0, NULL), 0);   /* no series at all */
-    s[2].n = 1;                                                     /* one point: a dot */
+    assert_int_equal(plot_render(rgb, PW, PH, NULL, 0, NULL), 0); /* no series at all */
+    s[2].n = 1;                                                   /* one point: a dot */
     o.log_y = 0;
     assert_int_equal(plot_render(rgb, PW, PH, &s[2], 1, &o), 0);
     CHECK_INT_GE(count_col(rgb, BLUE), 4, "blue pixels of the one-point dot");
@@ -754,8 +763,7 @@ static void test_plot_degenerate(void **state)
         for (th = 1; th <= 10; th += 3) {
             memset(tiny, 0x55, sizeof tiny);
             assert_int_equal(plot_render(tiny, tw, th, s, 3, &o), 0);
-            for (i = tw * th * 3; i < (int)sizeof tiny; i++)
-                assert_int_equal(tiny[i], 0x55);
+            for (i = tw * th * 3; i < (int)sizeof tiny; i++) assert_int_equal(tiny[i], 0x55);
         }
     /* Extreme values must not overflow the axis arithmetic. */
     y[0] = 1e300, y[1] = -1e300, y[2] = 1e-300, y[3] = DBL_MAX, y[4] = -DBL_MAX;
@@ -783,15 +791,14 @@ static void test_plot_text(void **state)
     (void)state;
     memset(c, 255, sizeof c);
     assert_int_equal(plot_text(c, 12, 10, 2, 1, "-", 1, k), 6);
-    for (x = 0; x < 12; x++) {   /* '-' is the full 5-pixel middle row of its cell */
+    for (x = 0; x < 12; x++) { /* '-' is the full 5-pixel middle row of its cell */
         assert_int_equal(c[((1 + 3) * 12 + x) * 3], x >= 2 && x <= 6 ? 0 : 255);
         assert_int_equal(c[((1 + 2) * 12 + x) * 3], 255);
     }
     memset(c, 255, sizeof c);
-    plot_text(c, 12, 10, 0, 0, "|", 1, k);   /* '|' is column 2, all 7 rows */
-    for (x = 0; x < 10; x++)
-        assert_int_equal(c[(x * 12 + 2) * 3], x < 7 ? 0 : 255);
-    plot_text(c, 12, 10, -100, -100, "clipped \x01\xff", 3, k);   /* off-canvas, odd bytes */
+    plot_text(c, 12, 10, 0, 0, "|", 1, k); /* '|' is column 2, all 7 rows */
+    for (x = 0; x < 10; x++) assert_int_equal(c[(x * 12 + 2) * 3], x < 7 ? 0 : 255);
+    plot_text(c, 12, 10, -100, -100, "clipped \x01\xff", 3, k); /* off-canvas, odd bytes */
 }
 
 static void test_plot_write(void **state)
@@ -820,13 +827,25 @@ static void test_plot_write(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        T(test_png_roundtrip),    T(test_ppm_roundtrip),    T(test_extension_case),
-        T(test_unknown_extension), T(test_invalid_sizes),   T(test_unwritable_path),
-        T(test_overwrite_atomic), T(test_new_file_mode),    T(test_truncated_png),
-        T(test_truncated_ppm),    T(test_ppm_header),       T(test_png_colour_types),
-        cmocka_unit_test(test_srgb_encode), cmocka_unit_test(test_tonemap),
-        cmocka_unit_test(test_auto_exposure), T(test_plot_lines),
-        T(test_plot_legend_and_flat), T(test_plot_degenerate), T(test_plot_text),
+        T(test_png_roundtrip),
+        T(test_ppm_roundtrip),
+        T(test_extension_case),
+        T(test_unknown_extension),
+        T(test_invalid_sizes),
+        T(test_unwritable_path),
+        T(test_overwrite_atomic),
+        T(test_new_file_mode),
+        T(test_truncated_png),
+        T(test_truncated_ppm),
+        T(test_ppm_header),
+        T(test_png_colour_types),
+        cmocka_unit_test(test_srgb_encode),
+        cmocka_unit_test(test_tonemap),
+        cmocka_unit_test(test_auto_exposure),
+        T(test_plot_lines),
+        T(test_plot_legend_and_flat),
+        T(test_plot_degenerate),
+        T(test_plot_text),
         T(test_plot_write),
     };
     return cmocka_run_group_tests_name("image", tests, NULL, NULL);

@@ -26,9 +26,10 @@ static void parse_ok(json_doc *doc, const char *text)
 /* A document of every type, nested, members in the file's order. */
 static void test_values(void **state)
 {
-    static const char text[] = "\xEF\xBB\xBF { \"a\": [1, -0, 2.5e3, -1E-2, 0.1, 1e-400],\r\n"
-                               "  \"b\": {\"x\": true, \"y\": false, \"z\": null},\t\"c\": [], \"d\": {},\n"
-                               "  \"e\": \"\" } \n";
+    static const char text[] =
+        "\xEF\xBB\xBF { \"a\": [1, -0, 2.5e3, -1E-2, 0.1, 1e-400],\r\n"
+        "  \"b\": {\"x\": true, \"y\": false, \"z\": null},\t\"c\": [], \"d\": {},\n"
+        "  \"e\": \"\" } \n";
     const double nums[6] = {1, -0.0, 2500, -0.01, 0.1, 0};
     json_doc doc;
     const json_value *a, *b;
@@ -74,11 +75,12 @@ static void test_strings(void **state)
         size_t len;
     } cases[] = {
         {"\"a\\\"b\\\\c\\/d\\be\\ff\\ng\\rh\\ti\"", "a\"b\\c/d\be\ff\ng\rh\ti", 17},
-        {"\"\\u0041\\u00e9\\u20AC\"", "A\xC3\xA9\xE2\x82\xAC", 6},                /* 1, 2, 3 bytes */
-        {"\"\\uD83D\\uDE00\"", "\xF0\x9F\x98\x80", 4},                            /* a surrogate pair */
-        {"\"\\uDBFF\\uDFFF\"", "\xF4\x8F\xBF\xBF", 4},                            /* U+10FFFF */
-        {"\"\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80\"", "\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80", 9}, /* raw UTF-8 */
-        {"\"\x7F\"", "\x7F", 1},                                                   /* DEL is not a control */
+        {"\"\\u0041\\u00e9\\u20AC\"", "A\xC3\xA9\xE2\x82\xAC", 6}, /* 1, 2, 3 bytes */
+        {"\"\\uD83D\\uDE00\"", "\xF0\x9F\x98\x80", 4},             /* a surrogate pair */
+        {"\"\\uDBFF\\uDFFF\"", "\xF4\x8F\xBF\xBF", 4},             /* U+10FFFF */
+        {"\"\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80\"", "\xC3\xA9\xE2\x82\xAC\xF0\x9F\x98\x80",
+         9},                     /* raw UTF-8 */
+        {"\"\x7F\"", "\x7F", 1}, /* DEL is not a control */
     };
     size_t k;
     (void)state;
@@ -104,9 +106,12 @@ static void test_errors(void **state)
         {"{\"a\": 1,}", "t.json:1:8: a ',' before '}'"},
         {"{\"a\": 1} x", "t.json:1:10: 'x' after the JSON value"},
         {"[1]]", "t.json:1:4: ']' after the JSON value"},
-        {"{\"a\": 1, \"a\": 2}", "t.json:1:10: the name \"a\" given twice in one object (first at 1:2)"},
-        {"{\"b\": 1,\n \"a\": {\"a\": 1}, \"b\": 3}", "t.json:2:17: the name \"b\" given twice in one object (first at 1:2)"},
-        {"{\"a\\nb\\\"\": 1, \"a\\nb\\\"\": 2}", "t.json:1:15: the name \"a\\u000Ab\\\"\" given twice"}, /* quoted */
+        {"{\"a\": 1, \"a\": 2}",
+         "t.json:1:10: the name \"a\" given twice in one object (first at 1:2)"},
+        {"{\"b\": 1,\n \"a\": {\"a\": 1}, \"b\": 3}",
+         "t.json:2:17: the name \"b\" given twice in one object (first at 1:2)"},
+        {"{\"a\\nb\\\"\": 1, \"a\\nb\\\"\": 2}",
+         "t.json:1:15: the name \"a\\u000Ab\\\"\" given twice"}, /* quoted */
         {"[01]", "t.json:1:2: a number with a leading zero"},
         {"[-]", "t.json:1:2: a number wants a digit after its '-'"},
         {"[.5]", "t.json:1:2: expected a value"},
@@ -115,7 +120,8 @@ static void test_errors(void **state)
         {"[+1]", "t.json:1:2: expected a value"},
         {"[1e400]", "t.json:1:2: a number beyond a double's range"},
         {"[-1e400]", "t.json:1:2: a number beyond a double's range"},
-        {"[NaN]", "t.json:1:2: expected a value (a number, a string, true, false, null, [ or {), found 'N'"},
+        {"[NaN]",
+         "t.json:1:2: expected a value (a number, a string, true, false, null, [ or {), found 'N'"},
         {"[tru]", "t.json:1:2: expected a value"},
         {"\"abc", "t.json:1:5: unexpected end of the file: the string opened at 1:1 is not closed"},
         {"\"a\tb\"", "t.json:1:3: a control character (U+0009) in a string"},
@@ -126,18 +132,21 @@ static void test_errors(void **state)
         {"\"\\uD800\\u0041\"", "t.json:1:2: a high surrogate \\uD800 without a low one"},
         {"\"\\uDC00\"", "t.json:1:2: a lone low surrogate \\uDC00"},
         {"\"\\u0000\"", "t.json:1:2: \\u0000 (NUL) in a string is not accepted"},
-        {"\"\xC0\xAF\"", "t.json:1:2: not UTF-8: the byte 0xC0"},        /* overlong '/' */
-        {"\"\xED\xA0\x80\"", "t.json:1:2: not UTF-8: the byte 0xED"},    /* an encoded surrogate */
+        {"\"\xC0\xAF\"", "t.json:1:2: not UTF-8: the byte 0xC0"},         /* overlong '/' */
+        {"\"\xED\xA0\x80\"", "t.json:1:2: not UTF-8: the byte 0xED"},     /* an encoded surrogate */
         {"\"\xF4\x90\x80\x80\"", "t.json:1:2: not UTF-8: the byte 0xF4"}, /* above U+10FFFF */
         {"\"\xE2\x82\"", "t.json:1:2: not UTF-8: the byte 0xE2"},         /* cut short */
-        {"[\xC3\xA9]", "t.json:1:2: expected a value (a number, a string, true, false, null, [ or {), found the byte 0xC3"},
-        {"\"\xC3\xA9\" x", "t.json:1:5: 'x' after the JSON value"},      /* columns count characters */
+        {"[\xC3\xA9]", "t.json:1:2: expected a value (a number, a string, true, false, null, [ or "
+                       "{), found the byte 0xC3"},
+        {"\"\xC3\xA9\" x", "t.json:1:5: 'x' after the JSON value"}, /* columns count characters */
         {"{\"a\" 1}", "t.json:1:6: expected ':' after the name \"a\", found '1'"},
         {"{1: 2}", "t.json:1:2: expected a member's name in double quotes, found '1'"},
         {"[1 2]", "t.json:1:4: expected ',' or ']' in the array opened at 1:1, found '2'"},
-        {"{\"a\": [1,\n 2}", "t.json:2:3: expected ',' or ']' in the array opened at 1:7, found '}'"},
+        {"{\"a\": [1,\n 2}",
+         "t.json:2:3: expected ',' or ']' in the array opened at 1:7, found '}'"},
         {"[1,", "t.json:1:4: unexpected end of the file: a value is missing"},
-        {"{\"a\": 1", "t.json:1:8: expected ',' or '}' in the object opened at 1:1, found the end of the file"},
+        {"{\"a\": 1",
+         "t.json:1:8: expected ',' or '}' in the object opened at 1:1, found the end of the file"},
     };
     size_t k;
     (void)state;
@@ -146,8 +155,9 @@ static void test_errors(void **state)
         char err[256] = "";
         int rc = json_parse(&doc, "t.json", bad[k].text, strlen(bad[k].text), err, sizeof err);
         CHECK_INT_EQ(rc, -1, "json_parse of bad text %zu (%s)", k, bad[k].text);
-        CHECK_THAT(strncmp(err, bad[k].says, strlen(bad[k].says)) == 0, "bad text %zu (%s): said \"%s\", wanted \"%s...\"",
-                   k, bad[k].text, err, bad[k].says);
+        CHECK_THAT(strncmp(err, bad[k].says, strlen(bad[k].says)) == 0,
+                   "bad text %zu (%s): said \"%s\", wanted \"%s...\"", k, bad[k].text, err,
+                   bad[k].says);
         CHECK_THAT(!strchr(err, '\n'), "one line: %s", err);
         assert_null(doc.blocks); /* nothing to free */
     }
@@ -161,7 +171,8 @@ static void test_nul_and_limits(void **state)
     json_doc doc;
     int k;
     (void)state;
-    CHECK_INT_EQ(json_parse(&doc, "t.json", nul, sizeof nul - 1, err, sizeof err), -1, "a NUL inside the text");
+    CHECK_INT_EQ(json_parse(&doc, "t.json", nul, sizeof nul - 1, err, sizeof err), -1,
+                 "a NUL inside the text");
     CHECK_CONTAINS(err, "t.json:1:4: expected a value", "a NUL inside the text");
 
     /* JSON_MAX_DEPTH arrays nest; one more is refused where it opens */
@@ -169,15 +180,16 @@ static void test_nul_and_limits(void **state)
     assert_non_null(deep);
     for (k = 0; k < JSON_MAX_DEPTH; k++) deep[k] = '[', deep[2 * JSON_MAX_DEPTH - 1 - k] = ']';
     deep[2 * JSON_MAX_DEPTH] = '\0';
-    CHECK_INT_EQ(json_parse(&doc, "t.json", deep, strlen(deep), err, sizeof err), 0, "%d nested arrays: %s",
-                 JSON_MAX_DEPTH, err);
+    CHECK_INT_EQ(json_parse(&doc, "t.json", deep, strlen(deep), err, sizeof err), 0,
+                 "%d nested arrays: %s", JSON_MAX_DEPTH, err);
     json_free(&doc);
     memmove(deep + 1, deep, 2 * JSON_MAX_DEPTH + 1);
     deep[0] = '[';
     strcat(deep, "]");
-    CHECK_INT_EQ(json_parse(&doc, "t.json", deep, strlen(deep), err, sizeof err), -1, "%d nested arrays",
-                 JSON_MAX_DEPTH + 1);
-    CHECK_CONTAINS(err, "t.json:1:65: arrays and objects nested more than 64 deep", "one array too deep");
+    CHECK_INT_EQ(json_parse(&doc, "t.json", deep, strlen(deep), err, sizeof err), -1,
+                 "%d nested arrays", JSON_MAX_DEPTH + 1);
+    CHECK_CONTAINS(err, "t.json:1:65: arrays and objects nested more than 64 deep",
+                   "one array too deep");
     free(deep);
 
     /* a number of JSON_MAX_NUMBER characters reads; one more is refused */
@@ -186,13 +198,13 @@ static void test_nul_and_limits(void **state)
     memset(longnum, '1', JSON_MAX_NUMBER);
     longnum[1] = '.';
     longnum[JSON_MAX_NUMBER] = '\0';
-    CHECK_INT_EQ(json_parse(&doc, "t.json", longnum, strlen(longnum), err, sizeof err), 0, "a number of %d characters: %s",
-                 JSON_MAX_NUMBER, err);
+    CHECK_INT_EQ(json_parse(&doc, "t.json", longnum, strlen(longnum), err, sizeof err), 0,
+                 "a number of %d characters: %s", JSON_MAX_NUMBER, err);
     CHECK_NEAR(doc.root.number, 1.0 + 1.0 / 9, 1e-15, "1.111...");
     json_free(&doc);
     strcat(longnum, "1");
-    CHECK_INT_EQ(json_parse(&doc, "t.json", longnum, strlen(longnum), err, sizeof err), -1, "a number of %d characters",
-                 JSON_MAX_NUMBER + 1);
+    CHECK_INT_EQ(json_parse(&doc, "t.json", longnum, strlen(longnum), err, sizeof err), -1,
+                 "a number of %d characters", JSON_MAX_NUMBER + 1);
     CHECK_CONTAINS(err, "a number longer than 400 characters", "a long number");
     free(longnum);
 }
@@ -210,21 +222,24 @@ static void test_many_members(void **state)
     *p++ = '{';
     for (k = 0; k < N; k++) p += sprintf(p, "%s\"k%d\":%d", k ? "," : "", k, k);
     strcpy(p, "}");
-    CHECK_INT_EQ(json_parse(&doc, "t.json", text, strlen(text), err, sizeof err), 0, "%d distinct members: %s", N, err);
+    CHECK_INT_EQ(json_parse(&doc, "t.json", text, strlen(text), err, sizeof err), 0,
+                 "%d distinct members: %s", N, err);
     CHECK_INT_EQ(doc.root.n, N, "the members");
     CHECK_EQ(json_member(&doc.root, "k19999")->number, 19999, "the last member");
     json_free(&doc);
     sprintf(p, ",\"k777\":0}");
-    CHECK_INT_EQ(json_parse(&doc, "t.json", text, strlen(text), err, sizeof err), -1, "a name given again at the end");
-    CHECK_CONTAINS(err, "the name \"k777\" given twice in one object (first at 1:", "the repeated name");
+    CHECK_INT_EQ(json_parse(&doc, "t.json", text, strlen(text), err, sizeof err), -1,
+                 "a name given again at the end");
+    CHECK_CONTAINS(err,
+                   "the name \"k777\" given twice in one object (first at 1:", "the repeated name");
     free(text);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_values),         cmocka_unit_test(test_strings),
-        cmocka_unit_test(test_errors),         cmocka_unit_test(test_nul_and_limits),
+        cmocka_unit_test(test_values),       cmocka_unit_test(test_strings),
+        cmocka_unit_test(test_errors),       cmocka_unit_test(test_nul_and_limits),
         cmocka_unit_test(test_many_members),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -59,16 +59,16 @@ typedef struct {
     double pos[3], dir[3], i[3], cos_outer, cos_inner, radius;
 } tlight;
 typedef struct {
-    int res;                /* the scene's hemi-cube res */
-    double max_element;     /* and patch: 4 times that */
+    int res;            /* the scene's hemi-cube res */
+    double max_element; /* and patch: 4 times that */
     double rho;
     const tpoly *polys;
     int npolys;
     const tlight *lights;
     int nlights;
-    int shots;              /* 0: the lights' shots alone */
-    int band_rows;          /* rad_config_t.band_rows */
-    double tol;             /* the solve's tolerance (0: shots alone decide) */
+    int shots;     /* 0: the lights' shots alone */
+    int band_rows; /* rad_config_t.band_rows */
+    double tol;    /* the solve's tolerance (0: shots alone decide) */
 } tscene;
 
 /* Per element: radiosity (caller units), area, corners (caller units), its polygon. */
@@ -92,10 +92,10 @@ int scene_rows_float(const tscene *sc, int mode, tres *r);
 
 /* ---- the scene, in this build of the core --------------------------------------- */
 
-#define NS 16
-#define NP 1024
-#define NE 4096
-#define NV 8192
+#define NS   16
+#define NP   1024
+#define NE   4096
+#define NV   8192
 #define WRES 256
 
 typedef struct {
@@ -121,9 +121,16 @@ static rad_vec3_t vec(const double *p)
  * lights' array of 4. */
 static int world_init(world_t *w, const rad_config_t *c, int lights)
 {
-    rad_pools_t p = {.surfaces = w->surf, .max_surfaces = NS, .patches = w->patch, .max_patches = NP,
-                     .elements = w->elem, .max_elements = NE, .vertices = w->vert, .max_vertices = NV,
-                     .work = w->work, .work_bytes = sizeof w->work};
+    rad_pools_t p = {.surfaces = w->surf,
+                     .max_surfaces = NS,
+                     .patches = w->patch,
+                     .max_patches = NP,
+                     .elements = w->elem,
+                     .max_elements = NE,
+                     .vertices = w->vert,
+                     .max_vertices = NV,
+                     .work = w->work,
+                     .work_bytes = sizeof w->work};
     int rc = rad_init(&w->s, &p, c);
     return rc == RAD_OK && lights ? rad_use_lights(&w->s, w->lights, 4) : rc;
 }
@@ -249,7 +256,8 @@ int TW(scene_rows)(const tscene *sc, int mode, tres *r)
         rows.start = calloc(rows.max_rows + 1u, sizeof *rows.start);
         rows.ids = calloc(rows.max_entries, sizeof *rows.ids);
         rows.ffs = calloc(rows.max_entries, sizeof *rows.ffs);
-        rc = rows.start && rows.ids && rows.ffs ? rad_rows_compute(&w->s, &rows, rows.max_rows) : -100;
+        rc = rows.start && rows.ids && rows.ffs ? rad_rows_compute(&w->s, &rows, rows.max_rows)
+                                                : -100;
     }
     if (rc >= 0 && mode == ROWS_RELIT) {
         rc = rad_rows_shoot(&w->s, &rows, max_shots(sc), RAD_REAL(sc->tol));
@@ -307,7 +315,8 @@ static tres res_fixed, res_float;
 /* A square of side 2 S in y = Y centred on (CX, CZ), facing up (or down). */
 static tpoly ground(double cx, double y, double cz, double s, int up)
 {
-    tpoly q = {{{cx - s, y, cz - s}, {cx - s, y, cz + s}, {cx + s, y, cz + s}, {cx + s, y, cz - s}}, 4};
+    tpoly q = {{{cx - s, y, cz - s}, {cx - s, y, cz + s}, {cx + s, y, cz + s}, {cx + s, y, cz - s}},
+               4};
     if (!up) {
         double t[3];
         memcpy(t, q.v[1], sizeof t);
@@ -370,7 +379,8 @@ static void test_sun_plane(void **state)
         tscene sc = {64, 1.0, rho, &pl, 1, &sun, 1, 0, 0, 0};
         double dir[3] = {sin(t), -cos(t), 0}, pproj, aproj;
         int e;
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot at %g degrees", angles[a]);
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot at %g degrees",
+                     angles[a]);
         px = sun_pixel(&pl, 1, dir, 1024);
         /* the plane's projection: 32 cos t by 32 */
         aproj = 32 * 32 * cos(t);
@@ -381,12 +391,14 @@ static void test_sun_plane(void **state)
             /* an element of side 1: projected 1 by cos t */
             pe = 2 * (1 + cos(t));
             bound = coverage(pe, px) / ae + 1e-4;
-            if (fabs(ee / (e0 * cos(t)) - 1) / bound > worst) worst = fabs(ee / (e0 * cos(t)) - 1) / bound;
-            CHECK_NEAR(ee, e0 * cos(t), e0 * cos(t) * bound, "element %d's irradiance under a sun at %g degrees", e,
-                       angles[a]);
+            if (fabs(ee / (e0 * cos(t)) - 1) / bound > worst)
+                worst = fabs(ee / (e0 * cos(t)) - 1) / bound;
+            CHECK_NEAR(ee, e0 * cos(t), e0 * cos(t) * bound,
+                       "element %d's irradiance under a sun at %g degrees", e, angles[a]);
         }
         want = e0 * aproj;
-        print_message("sun at %g degrees: plane power %.6g, E cos t A %.6g (%+.4f%%, bound %.4f%%); elements at "
+        print_message("sun at %g degrees: plane power %.6g, E cos t A %.6g (%+.4f%%, bound "
+                      "%.4f%%); elements at "
                       "most %.2f of their bound\n",
                       angles[a], total, want, 100 * (total / want - 1),
                       100 * (coverage(pproj, px) / aproj + 1e-4), worst);
@@ -394,7 +406,8 @@ static void test_sun_plane(void **state)
                    "the plane's power under a sun at %g degrees", angles[a]);
         /* the bound is within 0.5% up to 45 degrees at R = 1024 (0.503% at 60, 0.7% at 75) */
         if (angles[a] <= 45)
-            CHECK_LE(coverage(pproj, px) / aproj + 1e-4, 0.005, "the plane's bound at %g degrees", angles[a]);
+            CHECK_LE(coverage(pproj, px) / aproj + 1e-4, 0.005, "the plane's bound at %g degrees",
+                     angles[a]);
     }
 }
 
@@ -438,9 +451,12 @@ static void test_box_shadow(void **state)
     shadow = 2 * s * (2 * s + 2 * s * tan(t));
     lit = e0 * cos(t) * (48 * 48 - shadow);
     /* the ground's outline and the shadow's, projected (cos t across x) */
-    err = coverage(2 * (48 + 48 * cos(t)), px) + coverage(2 * (2 * s + (2 * s + 2 * s * tan(t)) * cos(t)), px);
-    print_message("box shadow: ground power %.6g, E cos t (A - shadow %.4g) %.6g (%+.4f%%, bound %.4f%%)\n", got,
-                  shadow, lit, 100 * (got / lit - 1), 100 * (err / (48 * 48 * cos(t) - shadow * cos(t)) + 1e-4));
+    err = coverage(2 * (48 + 48 * cos(t)), px) +
+          coverage(2 * (2 * s + (2 * s + 2 * s * tan(t)) * cos(t)), px);
+    print_message(
+        "box shadow: ground power %.6g, E cos t (A - shadow %.4g) %.6g (%+.4f%%, bound %.4f%%)\n",
+        got, shadow, lit, 100 * (got / lit - 1),
+        100 * (err / (48 * 48 * cos(t) - shadow * cos(t)) + 1e-4));
     CHECK_NEAR(got, lit, e0 * err + lit * 1e-4, "the ground's power beside the box's shadow");
 }
 
@@ -449,15 +465,17 @@ static void test_box_shadow(void **state)
 static double tri_solid(const double *a, const double *b, const double *c)
 {
     double la = sqrt(dot3(a, a)), lb = sqrt(dot3(b, b)), lc = sqrt(dot3(c, c));
-    double bc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};
-    double num = dot3(a, bc), den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
+    double bc[3] = {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2],
+                    b[0] * c[1] - b[1] * c[0]};
+    double num = dot3(a, bc),
+           den = la * lb * lc + dot3(a, b) * lc + dot3(a, c) * lb + dot3(b, c) * la;
     return fabs(2 * atan2(num, den));
 }
 
 /* The solid angle of polygon C (N corners) from P, and its extent on the face plane of
  * axes (A, B, D) in face pixels at resolution R (width plus height), its largest c^3. */
-static double poly_solid(const double (*c)[3], int n, const double *p, const double *fa, const double *fb,
-                         const double *fd, int res, double *wh, double *c3max)
+static double poly_solid(const double (*c)[3], int n, const double *p, const double *fa,
+                         const double *fb, const double *fd, int res, double *wh, double *c3max)
 {
     double v[4][3], lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9}, om = 0;
     int k, j;
@@ -503,10 +521,12 @@ static void test_point_plane(void **state)
     (void)state;
     CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the point light's shot");
     for (e = 0; e < res_fixed.n; e++) {
-        double wh, c3, om = poly_solid((const double(*)[3])res_fixed.corner[e], res_fixed.ncorner[e], lp, FA, FB, FD,
-                                       r, &wh, &c3);
+        double wh, c3,
+            om = poly_solid((const double(*)[3])res_fixed.corner[e], res_fixed.ncorner[e], lp, FA,
+                            FB, FD, r, &wh, &c3);
         double want = i0 * om / res_fixed.area[e], got = irradiance(&res_fixed, e, rho);
-        double dw = 4.0 / ((double)r * r) * c3, bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
+        double dw = 4.0 / ((double)r * r) * c3,
+               bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
         double c[3] = {0, 0, 0}, rr, ct;
         int k, j;
         for (k = 0; k < 4; k++)
@@ -518,20 +538,26 @@ static void test_point_plane(void **state)
         if (fabs(got / want - 1) / bound > worst) worst = fabs(got / want - 1) / bound;
         if (fabs(got / want - 1) > worst_rel) worst_rel = fabs(got / want - 1);
         s2 += (got / want - 1) * (got / want - 1);
-        if (getenv("DBG")) print_message("e %d c %.2f %.2f ratio %.4f bound %.4f wh %.1f\n", e, c[0], c[2], got / want, bound, wh);
+        if (getenv("DBG"))
+            print_message("e %d c %.2f %.2f ratio %.4f bound %.4f wh %.1f\n", e, c[0], c[2],
+                          got / want, bound, wh);
         if (getenv("DBG")) continue;
         CHECK_NEAR(got, want, want * bound, "element %d: I x solid angle / area", e);
         /* a unit element at distance >= 8: I cos t / r^2 at its centre within 1% */
         CHECK_NEAR(want, i0 * ct / rr, i0 * ct / rr * 0.01, "element %d: I cos t / r^2", e);
     }
-    print_message("point light: %d elements within %.3f%% (rms %.3f%%) of I w / A (at most %.2f of their bounds); "
+    print_message("point light: %d elements within %.3f%% (rms %.3f%%) of I w / A (at most %.2f of "
+                  "their bounds); "
                   "plane power %+.4f%%\n",
-                  res_fixed.n, 100 * worst_rel, 100 * sqrt(s2 / res_fixed.n), worst, 100 * (tot / tot_want - 1));
+                  res_fixed.n, 100 * worst_rel, 100 * sqrt(s2 / res_fixed.n), worst,
+                  100 * (tot / tot_want - 1));
     {
         double wh, c3, om = poly_solid((const double(*)[3])pl.v, 4, lp, FA, FB, FD, r, &wh, &c3);
-        double dw = 4.0 / ((double)r * r) * c3, bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
+        double dw = 4.0 / ((double)r * r) * c3,
+               bound = ((wh + 2) * dw + om / ((double)r * r)) / om + 1e-4;
         print_message("point light: the plane's solid angle %.6f, bound %.4f%%\n", om, 100 * bound);
-        CHECK_NEAR(tot, tot_want, tot_want * bound, "the plane's power against I times its solid angle");
+        CHECK_NEAR(tot, tot_want, tot_want * bound,
+                   "the plane's power against I times its solid angle");
     }
 }
 
@@ -563,19 +589,21 @@ static void test_spot_cone(void **state)
         }
         if (amin > acos(co) + px) {
             outside++;
-            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d beyond the cone (%.2f degrees)", e,
-                     amin * 180 / PI);
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "element %d beyond the cone (%.2f degrees)",
+                     e, amin * 180 / PI);
         } else if (amax < acos(ci) - px) {
             inside++;
             CHECK_NEAR(irradiance(&res_fixed, e, rho), irradiance(&res_float, e, rho),
-                       irradiance(&res_float, e, rho) * 1e-4, "element %d inside the inner cone", e);
+                       irradiance(&res_float, e, rho) * 1e-4, "element %d inside the inner cone",
+                       e);
         } else {
             CHECK_LE(irradiance(&res_fixed, e, rho), irradiance(&res_float, e, rho) * (1 + 1e-4),
                      "element %d in the falloff", e);
         }
     }
-    print_message("spot: %d elements beyond the cone dark, %d inside the inner cone as the point light\n", outside,
-                  inside);
+    print_message(
+        "spot: %d elements beyond the cone dark, %d inside the inner cone as the point light\n",
+        outside, inside);
     CHECK_INT_GE(outside, 500, "elements beyond the cone");
     CHECK_INT_GE(inside, 10, "elements inside the inner cone");
 }
@@ -613,31 +641,38 @@ static void test_back_faces(void **state)
     p[5] = (tpoly){{{-s, 0, -s}, {s, 0, -s}, {s, 2 * s, -s}, {-s, 2 * s, -s}}, 4};
     for (k = 0; k < 3; k++) {
         double t = sun_deg[k] * PI / 180;
-        l[k] = (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.2 * sin(t)}, {e0, e0, e0}, 0, 0, 0};
+        l[k] = (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.2 * sin(t)},
+                        {e0, e0, e0},  0,   0,         0};
     }
     l[3] = (tlight){RAD_LIGHT_SKY, 512, {e0, e0, e0}, {0, 1, 0}, {e0, e0, e0}, 0, 0, 48};
     l[4] = (tlight){RAD_LIGHT_POINT, 256, {1, 12, -0.5}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
     l[5] = (tlight){RAD_LIGHT_SPOT, 256, {1, 12, -0.5}, {0, -1, 0}, {e0, e0, e0}, 0.5, 0.7, 0};
     for (k = 0; k < 6; k++) {
-        double got = 0, open, bound = k < 3 ? e0 * px_sun * 96 : k == 3 ? 2 * PI * e0 * px_sun * 96
-                                                                  : e0 * 4.0 / (256.0 * 256.0) * 96 * 256 / 8;
+        double got = 0, open,
+               bound = k < 3    ? e0 * px_sun * 96
+                       : k == 3 ? 2 * PI * e0 * px_sun * 96
+                                : e0 * 4.0 / (256.0 * 256.0) * 96 * 256 / 8;
         sc.lights = &l[k];
         sc.npolys = 6;
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d's shot over the closed box", k);
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d's shot over the closed box",
+                     k);
         for (e = inner = 0; e < res_fixed.n; e++) {
             int c, j, edge = 0;
             got += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
             for (c = 0; c < 4; c++) { /* a corner on two of the box's planes lies on an edge */
                 int planes = 0;
-                for (j = 0; j < 3; j++) planes += fabs(fabs(res_fixed.corner[e][c][j] - (j == 1 ? s : 0)) - s) < 1e-6;
+                for (j = 0; j < 3; j++)
+                    planes += fabs(fabs(res_fixed.corner[e][c][j] - (j == 1 ? s : 0)) - s) < 1e-6;
                 edge |= planes >= 2;
             }
             if (edge) continue;
             inner++;
-            CHECK_LE(irradiance(&res_fixed, e, rho), 0, "light %d: element %d of face %d inside the closed box", k, e,
+            CHECK_LE(irradiance(&res_fixed, e, rho), 0,
+                     "light %d: element %d of face %d inside the closed box", k, e,
                      res_fixed.poly[e]);
         }
-        print_message("light %d over the closed box: %d inner elements dark; power inside %.4g (a row of pixels "
+        print_message("light %d over the closed box: %d inner elements dark; power inside %.4g (a "
+                      "row of pixels "
                       "along the edges: %.4g)\n",
                       k, inner, got, bound);
         CHECK_INT_EQ(inner, 6 * 36, "elements more than a unit from the box's edges");
@@ -646,7 +681,8 @@ static void test_back_faces(void **state)
         p[1] = p[5];
         sc.npolys = 5;
         CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d's shot into the open box", k);
-        for (e = 0, open = 0; e < res_fixed.n; e++) open += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
+        for (e = 0, open = 0; e < res_fixed.n; e++)
+            open += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
         print_message("light %d into the open box: power %.4g\n", k, open);
         CHECK_LE(bound, open, "light %d: the power reaching into the box with the roof off", k);
         p[1] = ground(0, 2 * s, 0, s, 0);
@@ -671,7 +707,8 @@ static void test_back_to_back(void **state)
     (void)state;
     for (k = 0; k < 5; k++) {
         double t = k < 4 ? deg[k] * PI / 180 : 0;
-        l = k < 4 ? (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.1}, {e0, e0, e0}, 0, 0, 0}
+        l = k < 4 ? (tlight){RAD_LIGHT_SUN, 512, {0, 0, 0}, {sin(t), -cos(t), 0.1},
+                             {e0, e0, e0},  0,   0,         0}
                   : (tlight){RAD_LIGHT_POINT, 256, {1, 6, 0.5}, {0, 0, 0}, {e0, e0, e0}, 0, 0, 0};
         p[0] = ground(0, 0, 0, 8, 1);
         sc.npolys = 1;
@@ -686,11 +723,13 @@ static void test_back_to_back(void **state)
             CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "light %d on the panel", k);
             for (e = 0; e < res_fixed.n; e++) {
                 if (res_fixed.poly[e] != up) {
-                    CHECK_LE(irradiance(&res_fixed, e, rho), 0, "light %d: element %d of the face turned away", k, e);
+                    CHECK_LE(irradiance(&res_fixed, e, rho), 0,
+                             "light %d: element %d of the face turned away", k, e);
                     continue;
                 }
                 CHECK_NEAR(res_fixed.b[e][0], alone[seen], 0,
-                           "light %d (order %d): element %d of the lit face against the face alone", k, order, seen);
+                           "light %d (order %d): element %d of the lit face against the face alone",
+                           k, order, seen);
                 seen++;
             }
             CHECK_INT_EQ(seen, n, "light %d: the lit face's elements", k);
@@ -709,8 +748,9 @@ static void test_twin(void **state)
 {
     const double t = 40 * PI / 180, rho = 0.6;
     tpoly p[3];
-    tlight l[2] = {{RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0.05},
-                   {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9, 0}};
+    tlight l[2] = {
+        {RAD_LIGHT_SUN, 256, {0, 0, 0}, {sin(t), -cos(t), 0.3}, {30, 20, 10}, 0, 0, 0.05},
+        {RAD_LIGHT_SPOT, 128, {-3, 6, 2}, {0.2, -1, 0.1}, {90, 90, 60}, 0.8, 0.9, 0}};
     tscene sc = {64, 1.0, rho, p, 3, l, 2, 40, 0, 0};
     double sf = 0, sx = 0, worst = 0, px, dir[3];
     int e;
@@ -728,7 +768,8 @@ static void test_twin(void **state)
         int c;
         for (c = 0; c < 3; c++) {
             double a = res_fixed.b[e][c], b = res_float.b[e][c];
-            double pix = 2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) / res_float.area[e];
+            double pix = 2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) /
+                         res_float.area[e];
             double allowed = 0.005 * b + pix;
             sx += a * res_fixed.area[e];
             sf += b * res_float.area[e];
@@ -736,7 +777,8 @@ static void test_twin(void **state)
             CHECK_NEAR(a, b, allowed, "element %d channel %d against the twin", e, c);
         }
     }
-    print_message("twin: elements at most %.3f of their bound, total %+.6f%%\n", worst, 100 * (sx / sf - 1));
+    print_message("twin: elements at most %.3f of their bound, total %+.6f%%\n", worst,
+                  100 * (sx / sf - 1));
     CHECK_NEAR(sx, sf, sf * 5e-4, "the total power against the twin");
 }
 
@@ -749,8 +791,9 @@ static void test_twin(void **state)
  * shadow's edge, 1e-4 for the rounding of the directions (Q16 cosines). */
 static void test_sun_radius(void **state)
 {
-    static const double disc[8][2] = {{16384, 0},      {-20925, 19169}, {3203, -36495},  {26375, 34401},
-                                      {-48401, -8561}, {45849, -29166}, {-15336, 57048}, {-29247, -56313}};
+    static const double disc[8][2] = {{16384, 0},      {-20925, 19169}, {3203, -36495},
+                                      {26375, 34401},  {-48401, -8561}, {45849, -29166},
+                                      {-15336, 57048}, {-29247, -56313}};
     const double e0 = 40, rho = 0.5, rad = 0.25;
     tpoly p[2];
     tlight sun = {RAD_LIGHT_SUN, 1024, {0, 0, 0}, {0, -1, 0}, {e0, e0, e0}, 0, 0, rad};
@@ -763,8 +806,11 @@ static void test_sun_radius(void **state)
     (void)state;
     p[0] = (tpoly){{{-16, 0, -8}, {-16, 0, 8}, {16, 0, 8}, {16, 0, -8}}, 4};
     p[1] = (tpoly){{{-24, 8, -20}, {-24, 8, 20}, {0, 8, 20}, {0, 8, -20}}, 4};
-    for (k = 0; k < 8; k++) c += 2 / sqrt(1 + rad * rad * (disc[k][0] * disc[k][0] + disc[k][1] * disc[k][1]) /
-                                              65536.0 / 65536.0) / 16;
+    for (k = 0; k < 8; k++)
+        c += 2 /
+             sqrt(1 + rad * rad * (disc[k][0] * disc[k][0] + disc[k][1] * disc[k][1]) / 65536.0 /
+                          65536.0) /
+             16;
     CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sun's shot");
     for (e = 0; e < res_fixed.n; e++) {
         double x0 = 1e9, x1 = -1e9, ee = irradiance(&res_fixed, e, rho);
@@ -781,18 +827,19 @@ static void test_sun_radius(void **state)
             lit++;
             /* a unit element's coverage bound, in each of the 16 shots */
             worst = fmax(worst, fabs(ee / (e0 * c) - 1));
-            CHECK_NEAR(ee, e0 * c, e0 * c * (coverage(4, px) + 1e-4), "ground element %d (x %.2f..%.2f) in full sun",
-                       e, x0, x1);
+            CHECK_NEAR(ee, e0 * c, e0 * c * (coverage(4, px) + 1e-4),
+                       "ground element %d (x %.2f..%.2f) in full sun", e, x0, x1);
         } else if (ee > 0.05 * e0 && ee < 0.95 * e0 * c) {
             part++;
         }
     }
     err = e0 * c * (coverage(2 * (32 + 16), px) + coverage(2 * (16 + 16), px));
     want = e0 * c * 16 * 16;
-    print_message("sun of radius 1/4: %d elements dark, %d lit (within %.3f%%, bound %.2f%%), %d in the penumbra; "
+    print_message("sun of radius 1/4: %d elements dark, %d lit (within %.3f%%, bound %.2f%%), %d "
+                  "in the penumbra; "
                   "ground power %.6g, E c 16 x 16 %.6g (%+.4f%%, bound %.4f%%)\n",
-                  dark, lit, 100 * worst, 100 * (coverage(4, px) + 1e-4), part, got, want, 100 * (got / want - 1),
-                  100 * (err / want + 1e-4));
+                  dark, lit, 100 * worst, 100 * (coverage(4, px) + 1e-4), part, got, want,
+                  100 * (got / want - 1), 100 * (err / want + 1e-4));
     CHECK_INT_GE(dark, 150, "elements in the umbra");
     CHECK_INT_GE(lit, 150, "elements in full sun");
     CHECK_INT_GE(part, 32, "elements in the penumbra, partly lit");
@@ -816,7 +863,8 @@ static void test_bands(void **state)
     CHECK_INT_EQ(scene_light_fixed(&sc, &res_float), 2, "the lights' shots in bands of 3 rows");
     for (e = 0; e < res_fixed.n; e++)
         for (c = 0; c < 3; c++)
-            CHECK_NEAR(res_float.b[e][c], res_fixed.b[e][c], 0, "element %d channel %d in bands", e, c);
+            CHECK_NEAR(res_float.b[e][c], res_fixed.b[e][c], 0, "element %d channel %d in bands", e,
+                       c);
 }
 
 /* ---- the sky ---------------------------------------------------------------------- */
@@ -839,9 +887,11 @@ static void dome(int dirs, double z, double h, tdome *t)
     t->n = 0;
     for (i = 0; i < m; i++) {
         const int n = 3 * (2 * i + 1);
-        double r1 = (double)i / m, r2 = (double)(i + 1) / m, c1 = sqrt(1 - r1 * r1), c2 = sqrt(1 - r2 * r2);
+        double r1 = (double)i / m, r2 = (double)(i + 1) / m, c1 = sqrt(1 - r1 * r1),
+               c2 = sqrt(1 - r2 * r2);
         double au = (r2 * r2 - r1 * r1) / 2, ac = (c1 * c1 * c1 - c2 * c2 * c2) / 3;
-        double bu = (asin(r2) - r2 * c2 - asin(r1) + r1 * c1) / 2, bc = (r2 * r2 * r2 - r1 * r1 * r1) / 3;
+        double bu = (asin(r2) - r2 * c2 - asin(r1) + r1 * c1) / 2,
+               bc = (r2 * r2 * r2 - r1 * r1 * r1) / 3;
         double va = h * (au - ac) + z * ac, vb = (h * (bu - bc) + z * bc) * sin(PI / n) / (PI / n);
         double c = va / hypot(va, vb), sn = vb / hypot(va, vb);
         for (j = 0; j < n; j++, t->n++) {
@@ -892,22 +942,27 @@ static void test_sky_open(void **state)
         double total = 0, want = PI * l0 * 32 * 32, err, worst = 0;
         int e;
         dome(counts[a], l0, l0, &t);
-        CHECK_NEAR(dome_on(&t, l0, l0, up), PI * l0, PI * l0 * 1e-12, "the dome's weights over a plane facing up");
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sky's shot (%d directions)", counts[a]);
+        CHECK_NEAR(dome_on(&t, l0, l0, up), PI * l0, PI * l0 * 1e-12,
+                   "the dome's weights over a plane facing up");
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sky's shot (%d directions)",
+                     counts[a]);
         for (e = 0; e < res_fixed.n; e++) {
             double ee = irradiance(&res_fixed, e, rho);
             total += ee * res_fixed.area[e];
             /* an element of side 2: projections' perimeters at most 8 */
             worst = fmax(worst, fabs(ee / (PI * l0) - 1));
-            CHECK_NEAR(ee, PI * l0, dome_coverage(&t, l0, l0, 8, px) / res_fixed.area[e] + PI * l0 * 1e-4,
-                       "element %d's irradiance under a uniform sky of %d directions", e, counts[a]);
+            CHECK_NEAR(
+                ee, PI * l0, dome_coverage(&t, l0, l0, 8, px) / res_fixed.area[e] + PI * l0 * 1e-4,
+                "element %d's irradiance under a uniform sky of %d directions", e, counts[a]);
         }
         err = dome_coverage(&t, l0, l0, 128, px) * 1 + want * 1e-4;
-        print_message("sky of %d directions over an open plane: power %.6g, pi L A %.6g (%+.4f%%, bound %.4f%%); "
+        print_message("sky of %d directions over an open plane: power %.6g, pi L A %.6g (%+.4f%%, "
+                      "bound %.4f%%); "
                       "elements within %.3f%% of pi L (bound %.3f%%)\n",
                       t.n, total, want, 100 * (total / want - 1), 100 * err / want, 100 * worst,
                       100 * (dome_coverage(&t, l0, l0, 8, px) / 4 / (PI * l0) + 1e-4));
-        CHECK_NEAR(total, want, err, "the open plane's power under a uniform sky of %d directions", counts[a]);
+        CHECK_NEAR(total, want, err, "the open plane's power under a uniform sky of %d directions",
+                   counts[a]);
     }
 }
 
@@ -932,10 +987,14 @@ static void test_small_elements(void **state)
     (void)state;
     for (k = 0; k < 3; k++) dn[k] = d[k] / len;
     p[0] = ground(0, 0, 0, 16, 1);
-    for (k = 0; k < 8; k++) { /* facet k faces out: its corners counter-clockwise seen from outside */
+    for (k = 0; k < 8;
+         k++) { /* facet k faces out: its corners counter-clockwise seen from outside */
         double a0 = 2 * PI * k / 8, a1 = 2 * PI * (k + 1) / 8;
-        tpoly f = {{{r0 * cos(a0), 0, r0 * sin(a0)}, {r0 * cos(a0), 8, r0 * sin(a0)},
-                    {r0 * cos(a1), 8, r0 * sin(a1)}, {r0 * cos(a1), 0, r0 * sin(a1)}}, 4};
+        tpoly f = {{{r0 * cos(a0), 0, r0 * sin(a0)},
+                    {r0 * cos(a0), 8, r0 * sin(a0)},
+                    {r0 * cos(a1), 8, r0 * sin(a1)},
+                    {r0 * cos(a1), 0, r0 * sin(a1)}},
+                   4};
         p[1 + k] = f;
     }
     for (k = 0; k < 2; k++) {
@@ -964,9 +1023,11 @@ static void test_small_elements(void **state)
             n++;
         }
         CHECK_INT_GE(n, 24, "facet elements lit by the %s", k ? "sky" : "sun");
-        print_message("%s on a prism's %d facet elements (0.19 x 1) over a 32 x 32 floor: rms %.2f%% (bound %.2f%%)\n",
+        print_message("%s on a prism's %d facet elements (0.19 x 1) over a 32 x 32 floor: rms "
+                      "%.2f%% (bound %.2f%%)\n",
                       k ? "sky of 48 directions" : "sun", n, 100 * sqrt(sum2 / n), 100 * bound);
-        CHECK_LE(sqrt(sum2 / n), bound, "the %s's rms error on the facets' elements", k ? "sky" : "sun");
+        CHECK_LE(sqrt(sum2 / n), bound, "the %s's rms error on the facets' elements",
+                 k ? "sky" : "sun");
     }
 }
 
@@ -979,8 +1040,10 @@ static int sky_box(tpoly *p)
     p[0] = ground(0, 0, 0, 4, 1);
     for (k = 0; k < 4; k++) {
         const double *a = c[k], *b = c[(k + 1) % 4];
-        p[1 + 2 * k] = (tpoly){{{a[0], 0, a[1]}, {b[0], 0, b[1]}, {b[0], 4, b[1]}, {a[0], 4, a[1]}}, 4};
-        p[2 + 2 * k] = (tpoly){{{a[0], 0, a[1]}, {a[0], 4, a[1]}, {b[0], 4, b[1]}, {b[0], 0, b[1]}}, 4};
+        p[1 + 2 * k] =
+            (tpoly){{{a[0], 0, a[1]}, {b[0], 0, b[1]}, {b[0], 4, b[1]}, {a[0], 4, a[1]}}, 4};
+        p[2 + 2 * k] =
+            (tpoly){{{a[0], 0, a[1]}, {a[0], 4, a[1]}, {b[0], 4, b[1]}, {b[0], 0, b[1]}}, 4};
     }
     return 9;
 }
@@ -991,7 +1054,11 @@ static double box_ff(double x, double z)
 {
     sc_poly o;
     memset(&o, 0, sizeof o);
-    o = (sc_poly){{{-4 - x, -4 - z, 4}, {4 - x, -4 - z, 4}, {4 - x, 4 - z, 4}, {-4 - x, 4 - z, 4}}, 4, {0}, {0}, 0};
+    o = (sc_poly){{{-4 - x, -4 - z, 4}, {4 - x, -4 - z, 4}, {4 - x, 4 - z, 4}, {-4 - x, 4 - z, 4}},
+                  4,
+                  {0},
+                  {0},
+                  0};
     return ref_point_ff(&o);
 }
 
@@ -1044,11 +1111,13 @@ static void test_sky_box(void **state)
     (void)state;
     for (a = 0; a < sizeof counts / sizeof counts[0]; a++) {
         dome(counts[a], l0, l0, &t);
-        print_message("sky through the box's opening, %3d directions: floor power %+.3f%% of pi L integral F\n",
+        print_message("sky through the box's opening, %3d directions: floor power %+.3f%% of pi L "
+                      "integral F\n",
                       t.n, 100 * (box_dome(&t, l0, l0) / exact - 1));
     }
     dome(192, l0, l0, &t);
-    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the sky's shot (its default 192 directions)");
+    CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1,
+                 "the sky's shot (its default 192 directions)");
     for (e = 0; e < res_fixed.n; e++) {
         double x = 0, z = 0, f = 0;
         int i, j;
@@ -1066,11 +1135,14 @@ static void test_sky_box(void **state)
     }
     want = box_dome(&t, l0, l0);
     err = dome_coverage(&t, l0, l0, 64, px) + want * 1e-4;
-    print_message("sky through the box's opening: floor power %.6g, the dome's %.6g (%+.4f%%, bound %.4f%%), "
-                  "pi L integral F %.6g (%+.3f%%); elements within %.2f%% of pi L F\n",
-                  got, want, 100 * (got / want - 1), 100 * err / want, exact, 100 * (got / exact - 1), 100 * worst);
+    print_message(
+        "sky through the box's opening: floor power %.6g, the dome's %.6g (%+.4f%%, bound %.4f%%), "
+        "pi L integral F %.6g (%+.3f%%); elements within %.2f%% of pi L F\n",
+        got, want, 100 * (got / want - 1), 100 * err / want, exact, 100 * (got / exact - 1),
+        100 * worst);
     CHECK_NEAR(got, want, err, "the floor's power against the dome's shots through the opening");
-    CHECK_NEAR(got, exact, exact * 0.02, "the floor's power against pi L times its form factor to the opening");
+    CHECK_NEAR(got, exact, exact * 0.02,
+               "the floor's power against pi L times its form factor to the opening");
 }
 
 /* The sky's law, L(t) = H + (Z - H) cos t, on ground open to the sky (16 x 16, facing up)
@@ -1093,7 +1165,8 @@ static void test_sky_gradient(void **state)
     static const double zh[3][2] = {{10, 10}, {0, 10}, {10, 0}};
     static const char *const name[3] = {"uniform", "horizon-only", "zenith-only"};
     static tdome t;
-    const double rho = 0.5, up[3] = {0, 1, 0}, nx[3] = {1, 0, 0}, px = sqrt(16 * 16 + 16 * 16 + 8 * 8.0) / 1024;
+    const double rho = 0.5, up[3] = {0, 1, 0}, nx[3] = {1, 0, 0},
+                 px = sqrt(16 * 16 + 16 * 16 + 8 * 8.0) / 1024;
     double ratio[3];
     tpoly p[2];
     int a, e;
@@ -1104,31 +1177,38 @@ static void test_sky_gradient(void **state)
         const double z = zh[a][0], h = zh[a][1];
         tlight sky = {RAD_LIGHT_SKY, 1024, {h, h, h}, {0, 1, 0}, {z, z, z}, 0, 0, 0};
         tscene sc = {64, 2.0, rho, p, 2, &sky, 1, 0, 0, 0};
-        double g = 0, w = 0, wg = PI * h + 2 * PI * (z - h) / 3, ww = (PI / 2 - 2.0 / 3) * h + 2.0 / 3 * z;
+        double g = 0, w = 0, wg = PI * h + 2 * PI * (z - h) / 3,
+               ww = (PI / 2 - 2.0 / 3) * h + 2.0 / 3 * z;
         double dw, eg, ew;
         dome(192, z, h, &t);
         dw = dome_on(&t, z, h, nx);
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the wall", name[a]);
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the wall",
+                     name[a]);
         for (e = 0; e < res_fixed.n; e++)
             if (res_fixed.poly[e] == 1) w += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
         sc.npolys = 1;
-        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the ground", name[a]);
+        CHECK_INT_EQ(scene_light_fixed(&sc, &res_fixed), 1, "the %s sky's shot on the ground",
+                     name[a]);
         for (e = 0; e < res_fixed.n; e++) g += irradiance(&res_fixed, e, rho) * res_fixed.area[e];
         g /= 256;
         w /= 128;
         eg = dome_coverage(&t, z, h, 64, px) / 256 + wg * 1e-4;
         ew = dome_coverage(&t, z, h, 48, px) / 128 + dw * 1e-4;
         ratio[a] = w / g;
-        print_message("%s sky (Z %g, H %g): ground E %.5g (law %.5g, %+.4f%%, bound %.3f%%); wall E %.5g (dome "
-                      "%.5g, %+.4f%%, bound %.3f%%; law %.5g, dome %+.3f%%); wall / ground %.4f (law %.4f)\n",
-                      name[a], z, h, g, wg, 100 * (g / wg - 1), 100 * eg / wg, w, dw, 100 * (w / dw - 1),
-                      100 * ew / dw, ww, 100 * (dw / ww - 1), w / g, ww / wg);
+        print_message(
+            "%s sky (Z %g, H %g): ground E %.5g (law %.5g, %+.4f%%, bound %.3f%%); wall E %.5g "
+            "(dome "
+            "%.5g, %+.4f%%, bound %.3f%%; law %.5g, dome %+.3f%%); wall / ground %.4f (law %.4f)\n",
+            name[a], z, h, g, wg, 100 * (g / wg - 1), 100 * eg / wg, w, dw, 100 * (w / dw - 1),
+            100 * ew / dw, ww, 100 * (dw / ww - 1), w / g, ww / wg);
         CHECK_NEAR(g, wg, eg, "the ground under a %s sky", name[a]);
         CHECK_NEAR(w, dw, ew, "the wall under a %s sky against the dome", name[a]);
         CHECK_NEAR(dw, ww, ww * 0.005, "the dome's wall under a %s sky against the limit", name[a]);
-        CHECK_NEAR(dome_on(&t, z, h, up), wg, wg * 1e-12, "the dome's ground under a %s sky", name[a]);
+        CHECK_NEAR(dome_on(&t, z, h, up), wg, wg * 1e-12, "the dome's ground under a %s sky",
+                   name[a]);
     }
-    CHECK_LT(ratio[0] + 0.2, ratio[1], "the wall's share of the ground's light: uniform sky below horizon-only");
+    CHECK_LT(ratio[0] + 0.2, ratio[1],
+             "the wall's share of the ground's light: uniform sky below horizon-only");
     CHECK_LT(ratio[2] + 0.1, ratio[0], "the wall's share: zenith-only below uniform");
 }
 
@@ -1153,13 +1233,15 @@ static void test_sky_twin(void **state)
     CHECK_INT_EQ(res_fixed.n, res_float.n, "elements");
     for (e = 0; e < res_fixed.n; e++)
         for (c = 0; c < 3; c++) {
-            double a = res_fixed.b[e][c], b = res_float.b[e][c], allowed = 0.005 * b + pix[c] / res_float.area[e];
+            double a = res_fixed.b[e][c], b = res_float.b[e][c],
+                   allowed = 0.005 * b + pix[c] / res_float.area[e];
             sx += a * res_fixed.area[e];
             sf += b * res_float.area[e];
             worst = fmax(worst, fabs(a - b) / allowed);
             CHECK_NEAR(a, b, allowed, "element %d channel %d against the twin", e, c);
         }
-    print_message("sky twin: elements at most %.3f of their bound, total %+.6f%%\n", worst, 100 * (sx / sf - 1));
+    print_message("sky twin: elements at most %.3f of their bound, total %+.6f%%\n", worst,
+                  100 * (sx / sf - 1));
     CHECK_NEAR(sx, sf, sf * 5e-4, "the total power against the twin");
 }
 
@@ -1216,10 +1298,13 @@ static void test_rows_lights(void **state)
     p[6] = (tpoly){{{-8, 0, -8}, {-8, 6, -8}, {8, 6, -8}, {8, 0, -8}}, 4};
     /* the lights' shots alone */
     CHECK_INT_EQ(scene_light_fixed(&sc, &fresh), 2, "the lights' shots through rad_shoot");
-    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_SOLVE, &rows), 2, "the lights' shots through rad_rows_shoot");
+    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_SOLVE, &rows), 2,
+                 "the lights' shots through rad_rows_shoot");
     d = rel_diff(&rows, &fresh, &same);
-    CHECK_INT_EQ(same, 1, "the lights' direct light from rad_rows_shoot against rad_shoot's bits (max %.2g%%)",
-                 100 * d);
+    CHECK_INT_EQ(
+        same, 1,
+        "the lights' direct light from rad_rows_shoot against rad_shoot's bits (max %.2g%%)",
+        100 * d);
     /* whole solves */
     sc.shots = 2000;
     sc.tol = 1e-4;
@@ -1228,28 +1313,36 @@ static void test_rows_lights(void **state)
     CHECK_INT_LE(shots, 1999, "rad_shoot converged before its limit");
     CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_SOLVE, &rows), 20, "rad_rows_shoot's shots to 1e-4");
     d = rel_diff(&rows, &fresh, &same);
-    print_message("lights with stored rows: %d elements, rows against hemi-cubes within %.4f%% (bound 0.2%%)\n",
+    print_message("lights with stored rows: %d elements, rows against hemi-cubes within %.4f%% "
+                  "(bound 0.2%%)\n",
                   rows.n, 100 * d);
-    CHECK_LE(d, 0.002, "the solve from stored rows with a sun and a point light against hemi-cubes");
+    CHECK_LE(d, 0.002,
+             "the solve from stored rows with a sun and a point light against hemi-cubes");
     CHECK_INT_EQ((int)rows.saturations, 0, "saturations of the rows solve");
     /* relit */
     CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_RELIT, &other), 20, "the relit solve's shots");
     d = rel_diff(&other, &rows, &same);
-    CHECK_INT_EQ(same, 1, "relit from half intensity against the solve at full: the same bits (max %.2g%%)",
+    CHECK_INT_EQ(same, 1,
+                 "relit from half intensity against the solve at full: the same bits (max %.2g%%)",
                  100 * d);
     /* groups */
-    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_MIX, &other), RAD_OK, "the groups' solves and their mix");
+    CHECK_INT_EQ(scene_rows_fixed(&sc, ROWS_MIX, &other), RAD_OK,
+                 "the groups' solves and their mix");
     d = rel_diff(&other, &rows, &same);
-    print_message("light groups: sun and point light solved alone and mixed, within %.4f%% of both at once "
-                  "(bound 0.2%%)\n",
-                  100 * d);
-    CHECK_LE(d, 0.002, "the mix of the sun's and the point light's groups against both solved at once");
+    print_message(
+        "light groups: sun and point light solved alone and mixed, within %.4f%% of both at once "
+        "(bound 0.2%%)\n",
+        100 * d);
+    CHECK_LE(d, 0.002,
+             "the mix of the sun's and the point light's groups against both solved at once");
     /* Gauss-Seidel */
     CHECK_INT_GE(scene_rows_fixed(&sc, ROWS_GS, &other), 2, "Gauss-Seidel's sweeps");
     d = rel_diff(&other, &rows, &same);
-    print_message("Gauss-Seidel with a sun and a point light: within %.4f%% of the rows solve (bound 0.5%%)\n",
+    print_message("Gauss-Seidel with a sun and a point light: within %.4f%% of the rows solve "
+                  "(bound 0.5%%)\n",
                   100 * d);
-    CHECK_LE(d, 0.005, "Gauss-Seidel with lights against progressive refinement from the same rows");
+    CHECK_LE(d, 0.005,
+             "Gauss-Seidel with lights against progressive refinement from the same rows");
     /* the twin */
     CHECK_INT_GE(scene_rows_float(&sc, ROWS_SOLVE, &other), 20, "the twin's rows solve");
     CHECK_INT_EQ(other.n, rows.n, "the twin's elements");
@@ -1259,12 +1352,15 @@ static void test_rows_lights(void **state)
     for (e = 0; e < rows.n; e++)
         for (c = 0; c < 3; c++) {
             double a = rows.b[e][c], b = other.b[e][c];
-            double pix = 2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) / other.area[e];
+            double pix =
+                2 * rho * (l[0].i[c] * px * px + l[1].i[c] * 4.0 / (128.0 * 128.0)) / other.area[e];
             double allowed = 0.005 * b + pix;
             if (fabs(a - b) / allowed > worst) worst = fabs(a - b) / allowed;
-            CHECK_NEAR(a, b, allowed, "element %d channel %d of the rows solve against the twin", e, c);
+            CHECK_NEAR(a, b, allowed, "element %d channel %d of the rows solve against the twin", e,
+                       c);
         }
-    print_message("lights with stored rows, the twin: elements at most %.3f of their bound\n", worst);
+    print_message("lights with stored rows, the twin: elements at most %.3f of their bound\n",
+                  worst);
 }
 
 /* Unshot fraction 1 before the lights shoot; bad lights refused with the scene unchanged. */
@@ -1304,7 +1400,8 @@ static void test_api(void **state)
     l.type = RAD_LIGHT_SPOT;
     l.cos_outer = RAD_REAL(0.9);
     l.cos_inner = RAD_REAL(0.8);
-    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE, "a spot's inner cone wider than its outer");
+    CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_RANGE,
+                 "a spot's inner cone wider than its outer");
     l.type = RAD_LIGHT_SKY; /* up 0 stands for +y; dirs 0, 3..768; horizon in range */
     l.direction.y = 0;
     l.dirs = 2;
@@ -1328,12 +1425,15 @@ static void test_api(void **state)
     CHECK_INT_EQ(rad_add_light(&w.s, &l), 1, "a second");
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_FULL, "a third in an array of two");
     {
-        rad_vec3_t v[4] = {{RAD_REAL(-4), 0, RAD_REAL(-4)}, {RAD_REAL(-4), 0, RAD_REAL(4)},
-                           {RAD_REAL(4), 0, RAD_REAL(4)}, {RAD_REAL(4), 0, RAD_REAL(-4)}};
+        rad_vec3_t v[4] = {{RAD_REAL(-4), 0, RAD_REAL(-4)},
+                           {RAD_REAL(-4), 0, RAD_REAL(4)},
+                           {RAD_REAL(4), 0, RAD_REAL(4)},
+                           {RAD_REAL(4), 0, RAD_REAL(-4)}};
         rad_rgb_t rho = {RAD_REAL(0.5), RAD_REAL(0.5), RAD_REAL(0.5)};
         CHECK_INT_EQ(rad_add_polygon(&w.s, v, 4, &rho, NULL), 0, "the ground");
     }
-    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction before the lights shoot");
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0,
+               "unshot fraction before the lights shoot");
     {
         static world_t w2;
         memset(&w2, 0, sizeof w2);
@@ -1341,7 +1441,8 @@ static void test_api(void **state)
         l.type = RAD_LIGHT_SKY;
         l.intensity.r = l.horizon.r = RAD_REAL(1);
         CHECK_INT_EQ(world_init(&w2, &c, 1), RAD_OK, "init for a sky");
-        CHECK_INT_EQ(rad_add_light(&w2.s, &l), 0, "a sky with up 0 (+y) and the default directions");
+        CHECK_INT_EQ(rad_add_light(&w2.s, &l), 0,
+                     "a sky with up 0 (+y) and the default directions");
         CHECK_INT_EQ(rad_set_light(&w2.s, 0, &l), RAD_OK, "a sky set again");
     }
     l = arr[1];
@@ -1355,24 +1456,31 @@ static void test_api(void **state)
     CHECK_INT_EQ(arr[0].type, RAD_LIGHT_POINT, "the light after refused sets");
     l.type = RAD_LIGHT_POINT;
     CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the first light's shot");
-    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "unshot fraction with a light still to shoot");
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0,
+               "unshot fraction with a light still to shoot");
     CHECK_INT_EQ(rad_add_light(&w.s, &l), RAD_ERR_STATE, "a light while solving");
-    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_ERR_STATE, "setting a light while another is still to shoot");
+    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_ERR_STATE,
+                 "setting a light while another is still to shoot");
     CHECK_INT_EQ(rad_shoot(&w.s, 1, 0), 1, "the second light's shot");
-    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_OK, "setting a light once all have shot (for the restart)");
+    CHECK_INT_EQ(rad_set_light(&w.s, 1, &l), RAD_OK,
+                 "setting a light once all have shot (for the restart)");
     CHECK_LT(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, "unshot fraction after the lights");
     CHECK_INT_EQ(rad_restart(&w.s), RAD_OK, "restart");
-    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0, "lights shoot again after a restart");
+    CHECK_NEAR(RAD_TO_DOUBLE(rad_unshot_fraction(&w.s)), 1.0, 0,
+               "lights shoot again after a restart");
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sun_plane), cmocka_unit_test(test_box_shadow), cmocka_unit_test(test_point_plane),
-        cmocka_unit_test(test_spot_cone), cmocka_unit_test(test_back_faces), cmocka_unit_test(test_back_to_back),  cmocka_unit_test(test_twin),
-        cmocka_unit_test(test_sun_radius), cmocka_unit_test(test_bands), cmocka_unit_test(test_api),
-        cmocka_unit_test(test_sky_open), cmocka_unit_test(test_small_elements), cmocka_unit_test(test_sky_box), cmocka_unit_test(test_sky_gradient),
-        cmocka_unit_test(test_sky_twin), cmocka_unit_test(test_rows_lights),
+        cmocka_unit_test(test_sun_plane),   cmocka_unit_test(test_box_shadow),
+        cmocka_unit_test(test_point_plane), cmocka_unit_test(test_spot_cone),
+        cmocka_unit_test(test_back_faces),  cmocka_unit_test(test_back_to_back),
+        cmocka_unit_test(test_twin),        cmocka_unit_test(test_sun_radius),
+        cmocka_unit_test(test_bands),       cmocka_unit_test(test_api),
+        cmocka_unit_test(test_sky_open),    cmocka_unit_test(test_small_elements),
+        cmocka_unit_test(test_sky_box),     cmocka_unit_test(test_sky_gradient),
+        cmocka_unit_test(test_sky_twin),    cmocka_unit_test(test_rows_lights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -99,8 +99,8 @@ static void test_mulu64_32(void **st)
         uint64_t x = rnd() >> (rnd() % 64u);
         uint32_t m = (uint32_t)(rnd() >> (rnd() % 32u + 32u)), a = (uint32_t)rnd();
         if (i < 4) x = i & 1 ? ~(uint64_t)0 : 0, m = i & 2 ? 0xFFFFFFFFu : 1u, a = 0xFFFFFFFFu;
-        CHECK_INT_EQ(rad__mulu64_32(x, m), x * m, "rad__mulu64_32(%llu, %lu)", (unsigned long long)x,
-                     (unsigned long)m);
+        CHECK_INT_EQ(rad__mulu64_32(x, m), x * m, "rad__mulu64_32(%llu, %lu)",
+                     (unsigned long long)x, (unsigned long)m);
         CHECK_INT_EQ(rad__mulu32(a, m), (uint64_t)a * m, "rad__mulu32(%lu, %lu)", (unsigned long)a,
                      (unsigned long)m);
     }
@@ -142,7 +142,8 @@ static void test_rec16(void **st)
  * rad__div_round_inv is rad__div_round with either sign. */
 static void test_udiv_inv(void **st)
 {
-    static const uint32_t ds[] = {1u, 2u, 3u, 0x7FFFFFFFu, 0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
+    static const uint32_t ds[] = {1u,          2u,          3u,          0x7FFFFFFFu,
+                                  0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
     size_t i;
     (void)st;
     for (i = 0; i < 400000; i++) {
@@ -163,8 +164,8 @@ static void test_udiv_inv(void **st)
         num = rnd() & 1 ? -(int64_t)n : (int64_t)n;
         den = rnd() & 1 ? -(int64_t)d : (int64_t)d;
         iv = rad__udiv_inv_init(den);
-        CHECK_INT_EQ(rad__div_round_inv(num, &iv), rad__div_round(num, den), "rad__div_round_inv(%lld, %lld)",
-                     (long long)num, (long long)den);
+        CHECK_INT_EQ(rad__div_round_inv(num, &iv), rad__div_round(num, den),
+                     "rad__div_round_inv(%lld, %lld)", (long long)num, (long long)den);
     }
 }
 
@@ -175,12 +176,13 @@ static void test_udiv_inv(void **st)
  * saturation). */
 static void test_energy_to_rad(void **st)
 {
-    static const uint64_t qs[] = {0u, 1u, 0x7FFFFFFEu, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu, 0x100000000u};
+    static const uint64_t qs[] = {0u,          1u,          0x7FFFFFFEu, 0x7FFFFFFFu,
+                                  0x80000000u, 0xFFFFFFFFu, 0x100000000u};
     size_t i;
     (void)st;
     for (i = 0; i < 400000; i++) {
         int32_t area = (int32_t)((rnd() >> (rnd() % 32u + 32u)) & 0x7FFFFFFFu); /* < 2^31 */
-        uint64_t u = rnd() >> (rnd() % 47u + 17u);                          /* < 2^47 */
+        uint64_t u = rnd() >> (rnd() % 47u + 17u);                              /* < 2^47 */
         uint64_t q, n;
         uint32_t sat = 0, want_sat;
         rad__area_div_t ad;
@@ -196,7 +198,8 @@ static void test_energy_to_rad(void **st)
         want = q > 0x7FFFFFFFu ? INT32_MAX : (int32_t)q;
         want_sat = q > 0x7FFFFFFFu;
         got = rad__energy_to_rad((rad_energy_t)u, &ad, &sat);
-        CHECK_INT_EQ(got, want, "rad__energy_to_rad(%llu, area %ld)", (unsigned long long)u, (long)area);
+        CHECK_INT_EQ(got, want, "rad__energy_to_rad(%llu, area %ld)", (unsigned long long)u,
+                     (long)area);
         CHECK_INT_EQ(sat, want_sat, "saturations of rad__energy_to_rad(%llu, area %ld)",
                      (unsigned long long)u, (long)area);
     }
@@ -251,22 +254,25 @@ static void test_sdiv64(void **st)
 static int64_t dot_native(rad_vec3_t a, rad_vec3_t u)
 {
     int64_t s = (int64_t)a.x * u.x + (int64_t)a.y * u.y + (int64_t)a.z * u.z;
-    return (s + 32768 + (INT64_C(1) << 62)) / 65536 - (INT64_C(1) << 46); /* floor: a positive numerator */
+    return (s + 32768 + (INT64_C(1) << 62)) / 65536 -
+           (INT64_C(1) << 46); /* floor: a positive numerator */
 }
 
 static void test_dot_unit(void **st)
 {
-    static const int32_t ea[] = {0, 1, -1, 0xFFF, 0x1000, -0x1000, 0x7FFF, -0x8000,
-                                 0xFFFFFF, -0xFFFFFF, 1 << 24, -(1 << 24), 0x123456};
-    static const int32_t eu[] = {0, 1, -1, 65535, 65536, -65536, 65537, -65537, 0x1FFFF, -0x1FFFF, 46341};
+    static const int32_t ea[] = {0,       1,        -1,        0xFFF,   0x1000,     -0x1000, 0x7FFF,
+                                 -0x8000, 0xFFFFFF, -0xFFFFFF, 1 << 24, -(1 << 24), 0x123456};
+    static const int32_t eu[] = {0,     1,      -1,      65535,    65536, -65536,
+                                 65537, -65537, 0x1FFFF, -0x1FFFF, 46341};
     size_t i, j, na = sizeof ea / sizeof ea[0], nu = sizeof eu / sizeof eu[0];
     (void)st;
     for (i = 0; i < na * na * na; i++)
         for (j = 0; j < nu; j++) {
             rad_vec3_t a = {ea[i % na], ea[i / na % na], ea[i / na / na]};
             rad_vec3_t u = {eu[j], eu[(j + 3) % nu], eu[(j + 7) % nu]};
-            CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u), "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)",
-                         (long)a.x, (long)a.y, (long)a.z, (long)u.x, (long)u.y, (long)u.z);
+            CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u),
+                         "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)", (long)a.x, (long)a.y, (long)a.z,
+                         (long)u.x, (long)u.y, (long)u.z);
         }
     for (i = 0; i < 200000; i++) {
         rad_vec3_t a, u;
@@ -276,18 +282,19 @@ static void test_dot_unit(void **st)
         u.x = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
         u.y = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
         u.z = (int32_t)(rnd() % (2u << 17)) - 0x1FFFF;
-        CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u), "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)",
-                     (long)a.x, (long)a.y, (long)a.z, (long)u.x, (long)u.y, (long)u.z);
+        CHECK_INT_EQ(rad__dot_unit(a, u), dot_native(a, u),
+                     "rad__dot_unit(%ld %ld %ld, %ld %ld %ld)", (long)a.x, (long)a.y, (long)a.z,
+                     (long)u.x, (long)u.y, (long)u.z);
     }
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mul32),     cmocka_unit_test(test_mul16),
-        cmocka_unit_test(test_mulu64_32), cmocka_unit_test(test_udiv64_32),
-        cmocka_unit_test(test_udiv_inv), cmocka_unit_test(test_div_round),
-        cmocka_unit_test(test_sdiv64),    cmocka_unit_test(test_dot_unit),
+        cmocka_unit_test(test_mul32),         cmocka_unit_test(test_mul16),
+        cmocka_unit_test(test_mulu64_32),     cmocka_unit_test(test_udiv64_32),
+        cmocka_unit_test(test_udiv_inv),      cmocka_unit_test(test_div_round),
+        cmocka_unit_test(test_sdiv64),        cmocka_unit_test(test_dot_unit),
         cmocka_unit_test(test_energy_to_rad), cmocka_unit_test(test_rec16),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

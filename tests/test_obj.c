@@ -27,8 +27,7 @@ TMPDIR_GROUP("obj")
 
 static void near_at(double a, double b, double eps, const char *expr, const char *file, int line)
 {
-    if (fabs(a - b) <= eps)
-        return;
+    if (fabs(a - b) <= eps) return;
     print_error("%s = %.17g, expected %.17g (+-%g)\n", expr, a, b, eps);
     _fail(file, line);
 }
@@ -95,24 +94,24 @@ static void assert_face_at(const obj_scene *sc, int f, int count, const int *wan
             _fail(file, line);
         }
 }
-#define assert_face(sc, f, ...)                                                                \
-    do {                                                                                       \
-        static const int want_[] = { __VA_ARGS__ };                                            \
-        assert_face_at((sc), (f), (int)(sizeof want_ / sizeof want_[0]), want_, __FILE__,     \
-                       __LINE__);                                                              \
+#define assert_face(sc, f, ...)                                                           \
+    do {                                                                                  \
+        static const int want_[] = {__VA_ARGS__};                                         \
+        assert_face_at((sc), (f), (int)(sizeof want_ / sizeof want_[0]), want_, __FILE__, \
+                       __LINE__);                                                         \
     } while (0)
 
 /* ---- geometry helpers for the triangulation checks ----------------------------- */
 
 static obj_vec3 sub(obj_vec3 a, obj_vec3 b)
 {
-    obj_vec3 r = { a.x - b.x, a.y - b.y, a.z - b.z };
+    obj_vec3 r = {a.x - b.x, a.y - b.y, a.z - b.z};
     return r;
 }
 
 static obj_vec3 cross(obj_vec3 a, obj_vec3 b)
 {
-    obj_vec3 r = { a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x };
+    obj_vec3 r = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
     return r;
 }
 
@@ -147,8 +146,7 @@ static int inside(const obj_scene *sc, const obj_face *f, obj_vec3 p, obj_vec3 n
     for (i = 0; i < f->count; i++) {
         flat(sc->verts[ix[i]], n, &ax, &ay);
         flat(sc->verts[ix[(i + 1) % f->count]], n, &bx, &by);
-        if ((ay > py) != (by > py) && px < ax + (py - ay) * (bx - ax) / (by - ay))
-            in = !in;
+        if ((ay > py) != (by > py) && px < ax + (py - ay) * (bx - ax) / (by - ay)) in = !in;
     }
     return in;
 }
@@ -171,8 +169,8 @@ static void check_triangulation(const obj_scene *sc, int face)
             for (j = 0; j < f->count && face_indices(sc, face)[j] != tri[k]; j++)
                 ;
             CHECK_INT_LT(j, f->count,
-                         "face %d, triangle %d: corner %d's vertex %d among the face's",
-                         face, t, k, tri[k]);
+                         "face %d, triangle %d: corner %d's vertex %d among the face's", face, t, k,
+                         tri[k]);
         }
         a = sc->verts[tri[0]];
         b = sc->verts[tri[1]];
@@ -184,8 +182,8 @@ static void check_triangulation(const obj_scene *sc, int face)
         centroid.y = (a.y + b.y + c.y) / 3;
         centroid.z = (a.z + b.z + c.z) / 3;
         CHECK_THAT(inside(sc, f, centroid, n),
-                   "face %d, triangle %d: centroid %g %g %g inside the face",
-                   face, t, centroid.x, centroid.y, centroid.z);
+                   "face %d, triangle %d: centroid %g %g %g inside the face", face, t, centroid.x,
+                   centroid.y, centroid.z);
     }
     assert_near(total, obj_face_area(sc, f), 1e-9);
     free(out);
@@ -343,7 +341,7 @@ static void test_number_forms(void **state)
     assert_int_equal(parse("v .5 -.5 +.25\n"
                            "v 1e-3 2E+2 -3e2\n"
                            "v 5. -0 1e30\n"
-                           "v\t1\t2\t3\t1.0\n"       /* w ignored */
+                           "v\t1\t2\t3\t1.0\n"         /* w ignored */
                            "v 1 2 3 0.5 0.25 0.125\n", /* vertex colours ignored */
                            &sc),
                      0);
@@ -390,7 +388,7 @@ static void test_polygons(void **state)
 static void test_concave_tilted(void **state)
 {
     static char text[16384];
-    const obj_vec3 o = { 100, -50, 20 }, u = { 0.6, 0.8, 0 }, v = { -0.48, 0.36, 0.8 };
+    const obj_vec3 o = {100, -50, 20}, u = {0.6, 0.8, 0}, v = {-0.48, 0.36, 0.8};
     obj_scene sc;
     int i, teeth = 12;
     (void)state;
@@ -403,12 +401,11 @@ static void test_concave_tilted(void **state)
     }
     add(text, sizeof text, "f 1 2 3 4 5 6 7 8 9 10\nf 10 9 8 7 6 5 4 3 2 1\n");
     for (i = 0; i < teeth; i++) { /* comb: teeth of height 3 along a spine of height 1 */
-        add(text, sizeof text, "v %d 0 %d\nv %d 0 %d\nv %d 0 %d\nv %d 0 %d\n", 2 * i, 1,
-            2 * i, 4, 2 * i + 1, 4, 2 * i + 1, 1);
+        add(text, sizeof text, "v %d 0 %d\nv %d 0 %d\nv %d 0 %d\nv %d 0 %d\n", 2 * i, 1, 2 * i, 4,
+            2 * i + 1, 4, 2 * i + 1, 1);
     }
     add(text, sizeof text, "v %d 0 1\nv %d 0 0\nv 0 0 0\nf", 2 * teeth, 2 * teeth);
-    for (i = 0; i < 4 * teeth + 3; i++)
-        add(text, sizeof text, " %d", 11 + i);
+    for (i = 0; i < 4 * teeth + 3; i++) add(text, sizeof text, " %d", 11 + i);
     add(text, sizeof text, "\n");
     assert_int_equal(parse(text, &sc), 0);
     assert_int_equal(sc.nfaces, 3);
@@ -550,9 +547,8 @@ static void test_missing_mtl(void **state)
     obj_free(&sc);
     /* from memory without a base directory, mtllib cannot be followed */
     memset(&seen, 0, sizeof seen);
-    assert_int_equal(obj_parse("mtllib a.mtl\n", 13, "mem.obj", NULL, &sc, collect, &seen, err,
-                               sizeof err),
-                     0);
+    assert_int_equal(
+        obj_parse("mtllib a.mtl\n", 13, "mem.obj", NULL, &sc, collect, &seen, err, sizeof err), 0);
     assert_int_equal(seen.n, 1);
     assert_string_equal(seen.msg[0], "mem.obj:1: mtllib 'a.mtl' ignored: no directory to look in");
     obj_free(&sc);
@@ -645,8 +641,7 @@ static void test_binary(void **state)
                                "ELF\x01\x02\n\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR\n";
     static const char comment[] = "# a comment \x00 with a NUL\n";
     (void)state;
-    expect_error_at(junk, sizeof junk - 1, "mem.obj:6: binary data (NUL byte)", __FILE__,
-                    __LINE__);
+    expect_error_at(junk, sizeof junk - 1, "mem.obj:6: binary data (NUL byte)", __FILE__, __LINE__);
     expect_error_at(comment, sizeof comment - 1, "mem.obj:1: binary data (NUL byte)", __FILE__,
                     __LINE__);
     expect_error_at("v 1 2 3\0", 8, "mem.obj:1: binary data (NUL byte)", __FILE__, __LINE__);
@@ -662,8 +657,7 @@ static void test_long_lines(void **state)
     assert_non_null(text);
     /* a 1 MB vertex: three coordinates and a lot of ignored extras */
     strcpy(text, "v 1 2 3");
-    for (i = 7; i + 2 <= mb; i += 2)
-        memcpy(text + i, " 4", 2);
+    for (i = 7; i + 2 <= mb; i += 2) memcpy(text + i, " 4", 2);
     strcpy(text + i, "\n");
     assert_int_equal(parse(text, &sc), 0);
     assert_int_equal(sc.nverts, 1);
@@ -671,8 +665,7 @@ static void test_long_lines(void **state)
     obj_free(&sc);
     /* a 1 MB face after three vertices, a 1 MB comment */
     strcpy(text, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf");
-    for (i = strlen(text); i + 2 <= mb; i += 2)
-        memcpy(text + i, " 1", 2);
+    for (i = strlen(text); i + 2 <= mb; i += 2) memcpy(text + i, " 1", 2);
     strcpy(text + i, "\n#");
     assert_int_equal(parse(text, &sc), 0);
     assert_int_equal(sc.nfaces, 1);
@@ -731,7 +724,8 @@ static const char *outside_scene(const char *map, const char *mtllib)
     mkdir(tmp_path("scene"), 0700);
     put(tmp_path("x.png"), "not read");
     put(tmp_path("out.mtl"), "newmtl m\nKd 0.1 0.2 0.3\n");
-    snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n", mtllib);
+    snprintf(text, sizeof text, "mtllib %s\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n",
+             mtllib);
     put(tmp_path("scene/s.obj"), text);
     snprintf(text, sizeof text, "newmtl m\nKd 0 0 0\nmap_Kd %s\n", map);
     put(tmp_path("scene/s.mtl"), text);
@@ -755,12 +749,15 @@ static void expect_refused_map(const char *map, const char *shown, const char *w
     char want[1200], *root = fio_resolve(tmpdir);
     assert_non_null(root);
     load_outside(outside_scene(map, "s.mtl"), 0, &sc);
-    snprintf(want, sizeof want, "%s:3: map_Kd: %s is outside the scene's folder %s/scene; using Kd 0.5 0.5 0.5; "
-             "--allow-outside-paths reads it", tmp_path("scene/s.mtl"), shown, root);
+    snprintf(want, sizeof want,
+             "%s:3: map_Kd: %s is outside the scene's folder %s/scene; using Kd 0.5 0.5 0.5; "
+             "--allow-outside-paths reads it",
+             tmp_path("scene/s.mtl"), shown, root);
     CHECK_THAT(sc.nmaterials == 1 && sc.materials[0].map_kd.path == NULL,
                "%s: map_Kd kept as %s (want none)", where, sc.materials[0].map_kd.path);
     assert_int_equal(seen.n, 1);
-    CHECK_THAT(!strcmp(seen.msg[0], want), "%s: warning\n  %s\nwant\n  %s", where, seen.msg[0], want);
+    CHECK_THAT(!strcmp(seen.msg[0], want), "%s: warning\n  %s\nwant\n  %s", where, seen.msg[0],
+               want);
     assert_near(sc.materials[0].kd[0], OBJ_FALLBACK_KD, 0);
     obj_free(&sc);
     free(root);
@@ -806,14 +803,18 @@ static void test_mtllib_outside_folder(void **state)
     (void)state;
     assert_non_null(root);
     load_outside(outside_scene("in.png", "../out.mtl"), 0, &sc);
-    snprintf(want, sizeof want, "%s:1: mtllib: %s/../out.mtl is outside the scene's folder %s/scene; library not "
-             "read; --allow-outside-paths reads it", tmp_path("scene/s.obj"), tmp_path("scene"), root);
-    CHECK_THAT(seen.n >= 1 && !strcmp(seen.msg[0], want), "warning\n  %s\nwant\n  %s", seen.msg[0], want);
+    snprintf(want, sizeof want,
+             "%s:1: mtllib: %s/../out.mtl is outside the scene's folder %s/scene; library not "
+             "read; --allow-outside-paths reads it",
+             tmp_path("scene/s.obj"), tmp_path("scene"), root);
+    CHECK_THAT(seen.n >= 1 && !strcmp(seen.msg[0], want), "warning\n  %s\nwant\n  %s", seen.msg[0],
+               want);
     CHECK_THAT(!sc.materials[0].defined, "material m is not defined from the library outside");
     obj_free(&sc);
     load_outside(outside_scene("in.png", "../out.mtl"), 1, &sc);
     assert_int_equal(seen.n, 0);
-    CHECK_THAT(sc.materials[0].defined && sc.materials[0].kd[2] == 0.3, "m read from ../out.mtl with the option");
+    CHECK_THAT(sc.materials[0].defined && sc.materials[0].kd[2] == 0.3,
+               "m read from ../out.mtl with the option");
     obj_free(&sc);
     free(root);
 }
@@ -831,15 +832,20 @@ static void test_memory_budget(void **state)
     obj_scene sc;
     (void)state;
     n += (size_t)sprintf(text, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
-    for (i = 0; i < 100; i++)
-        n += (size_t)sprintf(text + n, "f 1 2 3\n");
+    for (i = 0; i < 100; i++) n += (size_t)sprintf(text + n, "f 1 2 3\n");
     assert_int_equal(n, 824);
     assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2000", 1), 0);
-    expect_error_at(text, n, "mem.obj:22: loading the scene up to this line needs more than the memory budget of "
-                    "0.002 MB (19 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    expect_error_at(
+        text, n,
+        "mem.obj:22: loading the scene up to this line needs more than the memory budget of "
+        "0.002 MB (19 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene",
+        __FILE__, __LINE__);
     assert_int_equal(setenv("RAD_MEMORY_BUDGET", "2060", 1), 0); /* one face more: line 23 */
-    expect_error_at(text, n, "mem.obj:23: loading the scene up to this line needs more than the memory budget of "
-                    "0.00206 MB (20 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene", __FILE__, __LINE__);
+    expect_error_at(
+        text, n,
+        "mem.obj:23: loading the scene up to this line needs more than the memory budget of "
+        "0.00206 MB (20 faces so far; RAD_MEMORY_BUDGET): simplify or split the scene",
+        __FILE__, __LINE__);
     assert_int_equal(setenv("RAD_MEMORY_BUDGET", "6896", 1), 0); /* 896 + 6000: all of it fits */
     assert_int_equal(obj_parse(text, n, "mem.obj", NULL, &sc, NULL, NULL, err, sizeof err), 0);
     assert_int_equal(sc.nfaces, 100);

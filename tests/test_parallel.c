@@ -49,10 +49,12 @@ static sc_poly *cornell(int *n)
             P##_get_stats(s, &b);                                                         \
             assert_int_equal(P##_checksum(s), want);                                      \
             /* Parts split the cube's rows: each pixel is drawn by one part, but a      \
-             * polygon crossing a cut is set up once in each part it touches. */         \
+             * polygon crossing a cut is set up once in each part it touches. */ \
             assert_int_equal(b.raster_pixels, a.raster_pixels);                           \
-            CHECK_INT_GE(b.raster_calls, a.raster_calls, "polygons set up on %d threads "    \
-                         "against 1", threads);                                           \
+            CHECK_INT_GE(b.raster_calls, a.raster_calls,                                  \
+                         "polygons set up on %d threads "                                 \
+                         "against 1",                                                     \
+                         threads);                                                        \
             if (threads == 1) assert_int_equal(b.raster_calls, a.raster_calls);           \
             P##_destroy(s);                                                               \
         }                                                                                 \
@@ -96,8 +98,10 @@ static void split_shots(sc_solver *h, unsigned nparts, int shots)
         uint32_t p, st0 = s->stats.shots;
         int got = 0;
         assert_int_equal(rad_shot_begin(s, 0, &p), 1);
-        for (k = 0; k < nparts; k++) CHECK_INT_GE(rad_shot_part(s, p, k, nparts, bufs[k], bytes), 0, "part %u", k);
-        assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, 0), RAD_ERR_STATE); /* not aimed */
+        for (k = 0; k < nparts; k++)
+            CHECK_INT_GE(rad_shot_part(s, p, k, nparts, bufs[k], bytes), 0, "part %u", k);
+        assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, 0),
+                         RAD_ERR_STATE); /* not aimed */
         assert_int_equal(rad_shot_aim(s, p, bufs, nparts), 1);
         assert_int_equal(rad_shot_aim(s, p, bufs, nparts), RAD_ERR_STATE); /* aimed twice */
         assert_int_equal(rad_shot_receive_part(s, p, bufs, nparts, nparts), RAD_ERR_ARG);
@@ -123,7 +127,8 @@ static void unshot_same(const rad_scene_t *a, const rad_scene_t *b)
     uint32_t p, c;
     assert_int_equal(a->n_patches, b->n_patches);
     for (p = 0; p < a->n_patches; p++)
-        for (c = 0; c < 3; c++) assert_int_equal(a->pools.patches[p].unshot[c], b->pools.patches[p].unshot[c]);
+        for (c = 0; c < 3; c++)
+            assert_int_equal(a->pools.patches[p].unshot[c], b->pools.patches[p].unshot[c]);
 }
 
 static void test_split_receive(void **st)
@@ -160,41 +165,42 @@ static void test_split_receive(void **st)
 /* Batches of K = 4 on 1, 2 and 3 threads: every element the same bits, in the build P
  * (sc: fixed, scf: the float twin): a cube depends on its patch alone and the shots
  * are applied in the order picked. K = 1 on 1 and 2 threads: the serial solve's bits. */
-#define BATCH_BITS(P)                                                                     \
-    static void batch_bits_##P(const sc_poly *p, int n)                                   \
-    {                                                                                     \
-        int threads;                                                                      \
-        sc_opts o = {.max_element = 0.04, .res = 64};                                     \
-        char err[256];                                                                    \
-        P##_solver *ref = P##_create(p, n, &o, NULL, NULL, err, sizeof err), *s;          \
-        uint64_t serial, four = 0;                                                        \
-        sc_stats a, b;                                                                    \
-        assert_non_null(ref);                                                             \
-        assert_int_equal(P##_solve(ref, 300, 0, NULL, NULL), 300);                        \
-        serial = P##_checksum(ref);                                                       \
-        P##_get_stats(ref, &a);                                                           \
-        for (threads = 1; threads <= 2; threads++) {                                      \
-            assert_non_null(s = P##_create(p, n, &o, NULL, NULL, err, sizeof err));       \
-            assert_int_equal(P##_solve_batch(s, threads, 1, 300, 0, NULL, NULL), 300);    \
-            P##_get_stats(s, &b);                                                         \
-            assert_int_equal(P##_checksum(s), serial);                                    \
-            assert_int_equal(b.raster_pixels, a.raster_pixels);                           \
-            P##_destroy(s);                                                               \
-        }                                                                                 \
-        for (threads = 1; threads <= 3; threads++) {                                      \
-            assert_non_null(s = P##_create(p, n, &o, NULL, NULL, err, sizeof err));       \
-            assert_int_equal(P##_solve_batch(s, threads, 4, 300, 0, NULL, NULL), 300);    \
-            P##_get_stats(s, &b);                                                         \
-            assert_int_equal(b.shots, 300);                                               \
-            if (threads == 1) four = P##_checksum(s);                                     \
-            CHECK_INT_EQ(P##_checksum(s) == four, 1, "K = 4 on %d threads: checksum "     \
-                         "%016llx, on 1: %016llx", threads,                               \
-                         (unsigned long long)P##_checksum(s), (unsigned long long)four);  \
-            P##_destroy(s);                                                               \
-        }                                                                                 \
-        /* the batches shoot in another order than one patch at a time */                \
-        CHECK_INT_EQ(four != serial, 1, "K = 4's checksum differs from the serial one");  \
-        P##_destroy(ref);                                                                 \
+#define BATCH_BITS(P)                                                                             \
+    static void batch_bits_##P(const sc_poly *p, int n)                                           \
+    {                                                                                             \
+        int threads;                                                                              \
+        sc_opts o = {.max_element = 0.04, .res = 64};                                             \
+        char err[256];                                                                            \
+        P##_solver *ref = P##_create(p, n, &o, NULL, NULL, err, sizeof err), *s;                  \
+        uint64_t serial, four = 0;                                                                \
+        sc_stats a, b;                                                                            \
+        assert_non_null(ref);                                                                     \
+        assert_int_equal(P##_solve(ref, 300, 0, NULL, NULL), 300);                                \
+        serial = P##_checksum(ref);                                                               \
+        P##_get_stats(ref, &a);                                                                   \
+        for (threads = 1; threads <= 2; threads++) {                                              \
+            assert_non_null(s = P##_create(p, n, &o, NULL, NULL, err, sizeof err));               \
+            assert_int_equal(P##_solve_batch(s, threads, 1, 300, 0, NULL, NULL), 300);            \
+            P##_get_stats(s, &b);                                                                 \
+            assert_int_equal(P##_checksum(s), serial);                                            \
+            assert_int_equal(b.raster_pixels, a.raster_pixels);                                   \
+            P##_destroy(s);                                                                       \
+        }                                                                                         \
+        for (threads = 1; threads <= 3; threads++) {                                              \
+            assert_non_null(s = P##_create(p, n, &o, NULL, NULL, err, sizeof err));               \
+            assert_int_equal(P##_solve_batch(s, threads, 4, 300, 0, NULL, NULL), 300);            \
+            P##_get_stats(s, &b);                                                                 \
+            assert_int_equal(b.shots, 300);                                                       \
+            if (threads == 1) four = P##_checksum(s);                                             \
+            CHECK_INT_EQ(P##_checksum(s) == four, 1,                                              \
+                         "K = 4 on %d threads: checksum "                                         \
+                         "%016llx, on 1: %016llx",                                                \
+                         threads, (unsigned long long)P##_checksum(s), (unsigned long long)four); \
+            P##_destroy(s);                                                                       \
+        }                                                                                         \
+        /* the batches shoot in another order than one patch at a time */                         \
+        CHECK_INT_EQ(four != serial, 1, "K = 4's checksum differs from the serial one");          \
+        P##_destroy(ref);                                                                         \
     }
 BATCH_BITS(sc)
 BATCH_BITS(scf)
@@ -226,7 +232,8 @@ static double twin_worst(const sc_poly *p, int n, int batch)
     assert_non_null(x);
     assert_non_null(f);
     CHECK_INT_GT(sc_solve_batch(x, 2, batch, 100000, 0.001, NULL, NULL), 0, "fixed, K = %d", batch);
-    CHECK_INT_GT(scf_solve_batch(f, 2, batch, 100000, 0.001, NULL, NULL), 0, "float, K = %d", batch);
+    CHECK_INT_GT(scf_solve_batch(f, 2, batch, 100000, 0.001, NULL, NULL), 0, "float, K = %d",
+                 batch);
     sc_get_stats(x, &st);
     for (e = 0; e < st.elements; e++) {
         double a[3];
@@ -253,10 +260,12 @@ static void test_batch_twin(void **st)
     (void)st;
     batch = twin_worst(p, n, 4);
     serial = twin_worst(p, n, 1);
-    print_message("fixed against float: worst channel %.4f%% in batches of 4, %.4f%% one at a time\n",
-                  100 * batch, 100 * serial);
+    print_message(
+        "fixed against float: worst channel %.4f%% in batches of 4, %.4f%% one at a time\n",
+        100 * batch, 100 * serial);
     CHECK_LE(batch, 0.015, "fixed against float in batches of 4, worst channel");
-    CHECK_LE(batch, 1.25 * serial + 1e-4, "batches of 4 against one at a time, twins' worst difference");
+    CHECK_LE(batch, 1.25 * serial + 1e-4,
+             "batches of 4 against one at a time, twins' worst difference");
     free(p);
 }
 
@@ -281,7 +290,8 @@ static void test_batch_converges(void **st)
         sc_get_stats(s, &b);
         CHECK_LE(b.unshot, 0.001 + 1.0 / 65536, "K = %d: unshot fraction at the end", ks[k]);
         if (k == 0) one = shots;
-        print_message("K = %2d: %d shots to 0.001 (%.3f of K = 1's)\n", ks[k], shots, shots / (double)one);
+        print_message("K = %2d: %d shots to 0.001 (%.3f of K = 1's)\n", ks[k], shots,
+                      shots / (double)one);
         CHECK_LE(shots, 1.2 * one, "K = %d: shots to 0.001 against 1.2 x K = 1's %d", ks[k], one);
         sc_destroy(s);
     }
@@ -316,8 +326,10 @@ static void test_batch_misuse(void **st)
     assert_int_equal(rad_batch_end(s, bufs, 4), RAD_ERR_STATE); /* nothing rendered */
     assert_int_equal(rad_batch_render(s, pt[0], 4, bufs[0], bytes), RAD_ERR_STATE); /* past K */
     assert_int_equal(rad_batch_render(s, pt[0], 0, bufs[0], bytes - 1), RAD_ERR_ARG);
-    assert_int_equal(rad_shot_part(s, pt[0], 0, 1, bufs[0], bytes), RAD_ERR_STATE); /* a batch, not a shot */
-    for (k = 0; k < 4; k++) CHECK_INT_GE(rad_batch_render(s, pt[k], k, bufs[k], bytes), 0, "cube %u", k);
+    assert_int_equal(rad_shot_part(s, pt[0], 0, 1, bufs[0], bytes),
+                     RAD_ERR_STATE); /* a batch, not a shot */
+    for (k = 0; k < 4; k++)
+        CHECK_INT_GE(rad_batch_render(s, pt[k], k, bufs[k], bytes), 0, "cube %u", k);
     for (k = 0; k < 4; k++) swap[k] = bufs[k ^ 1u];
     assert_int_equal(rad_batch_end(s, swap, 4), RAD_ERR_STATE); /* out of order */
     assert_int_equal(rad_batch_end(s, bufs, 3), RAD_ERR_STATE); /* not all */
@@ -328,7 +340,8 @@ static void test_batch_misuse(void **st)
     assert_int_equal(s->stats.shots, shots);
     assert_int_equal(rad_batch_aim(s, bufs, 4), 4);
     assert_int_equal(rad_batch_aim(s, bufs, 4), RAD_ERR_STATE); /* aimed twice */
-    assert_int_equal(rad_batch_receive_part(s, bufs, 4, 0, 5), RAD_ERR_ARG); /* more parts than cubes */
+    assert_int_equal(rad_batch_receive_part(s, bufs, 4, 0, 5),
+                     RAD_ERR_ARG); /* more parts than cubes */
     assert_int_equal(rad_batch_receive_part(s, bufs, 4, 2, 2), RAD_ERR_ARG);
     assert_int_equal(rad_batch_receive_part(s, bufs, 4, 1, 2), 4);
     assert_int_equal(rad_batch_receive_part(s, bufs, 4, 1, 2), RAD_ERR_STATE); /* twice */
@@ -355,7 +368,8 @@ static void test_batch_misuse(void **st)
     }
     /* a shot voids a batch begun */
     assert_int_equal(rad_batch_begin(s, 0, 2, pt), 2);
-    for (k = 0; k < 2; k++) CHECK_INT_GE(rad_batch_render(s, pt[k], k, bufs[k], bytes), 0, "cube %u", k);
+    for (k = 0; k < 2; k++)
+        CHECK_INT_GE(rad_batch_render(s, pt[k], k, bufs[k], bytes), 0, "cube %u", k);
     assert_int_equal(rad_shoot(s, 1, 0), 1);
     assert_int_equal(rad_batch_end(s, bufs, 2), RAD_ERR_STATE);
     sc_destroy(ref);
@@ -367,12 +381,9 @@ static void test_batch_misuse(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bit_exact),
-        cmocka_unit_test(test_split_receive),
-        cmocka_unit_test(test_batch_bits),
-        cmocka_unit_test(test_batch_twin),
-        cmocka_unit_test(test_batch_converges),
-        cmocka_unit_test(test_batch_misuse),
+        cmocka_unit_test(test_bit_exact),       cmocka_unit_test(test_split_receive),
+        cmocka_unit_test(test_batch_bits),      cmocka_unit_test(test_batch_twin),
+        cmocka_unit_test(test_batch_converges), cmocka_unit_test(test_batch_misuse),
     };
     return cmocka_run_group_tests_name("parallel", tests, NULL, NULL);
 }

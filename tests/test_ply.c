@@ -36,18 +36,18 @@ TMPDIR_GROUP("ply")
 
 typedef struct {
     int binary, nv, nf;
-    double exposure;     /* from the header's comment */
-    float (*v)[9];       /* x y z nx ny nz r g b (ASCII: x y z, 0 0 0, r g b in 0..255) */
-    int (*face)[4];      /* face[f][3] = -1 for a triangle */
+    double exposure; /* from the header's comment */
+    float (*v)[9];   /* x y z nx ny nz r g b (ASCII: x y z, 0 0 0, r g b in 0..255) */
+    int (*face)[4];  /* face[f][3] = -1 for a triangle */
 } ply_file;
 
 static const char *const binary_props[] = {
-    "property float x", "property float y", "property float z", "property float nx",
-    "property float ny", "property float nz", "property float red", "property float green",
-    "property float blue",
+    "property float x",   "property float y",     "property float z",
+    "property float nx",  "property float ny",    "property float nz",
+    "property float red", "property float green", "property float blue",
 };
 static const char *const ascii_props[] = {
-    "property float x", "property float y", "property float z",
+    "property float x",   "property float y",     "property float z",
     "property uchar red", "property uchar green", "property uchar blue",
 };
 
@@ -64,7 +64,8 @@ static void header_line(const char **p, const char *end, char line[256])
 
 static int32_t le32(const unsigned char *b)
 {
-    return (int32_t)((uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24);
+    return (int32_t)((uint32_t)b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
+                     (uint32_t)b[3] << 24);
 }
 
 static void read_header(const char **p, const char *end, ply_file *f)
@@ -78,9 +79,16 @@ static void read_header(const char **p, const char *end, ply_file *f)
     if (!f->binary) assert_string_equal(line, "format ascii 1.0");
     header_line(p, end, line);
     f->exposure = -1;
-    if (f->binary) assert_int_equal(sscanf(line, "comment rad radiosity, linear float vertex colours in the "
-                                           "scene's units (the images' exposure %lf)", &f->exposure), 1);
-    else assert_int_equal(sscanf(line, "comment rad radiosity, sRGB vertex colours at exposure %lf", &f->exposure), 1);
+    if (f->binary)
+        assert_int_equal(sscanf(line,
+                                "comment rad radiosity, linear float vertex colours in the "
+                                "scene's units (the images' exposure %lf)",
+                                &f->exposure),
+                         1);
+    else
+        assert_int_equal(sscanf(line, "comment rad radiosity, sRGB vertex colours at exposure %lf",
+                                &f->exposure),
+                         1);
     header_line(p, end, line);
     assert_int_equal(sscanf(line, "element vertex %d", &f->nv), 1);
     nprops = f->binary ? 9 : 6;
@@ -112,7 +120,8 @@ static void read_binary(const unsigned char *b, const unsigned char *end, ply_fi
         int n;
         assert_true(b < end);
         n = *b++;
-        CHECK_THAT(n == 3 || n == 4, "PLY face %d has %d corners: elements are triangles or quads", i, n);
+        CHECK_THAT(n == 3 || n == 4, "PLY face %d has %d corners: elements are triangles or quads",
+                   i, n);
         CHECK_INT_GE(end - b, 4 * n, "bytes for PLY face %d", i);
         for (k = 0; k < 4; k++) f->face[i][k] = k < n ? le32(b + 4 * k) : -1;
         b += 4 * n;
@@ -126,7 +135,8 @@ static void read_ascii(const char *p, ply_file *f)
     for (v = 0; v < f->nv; v++) {
         double x[3];
         unsigned c[3];
-        if (sscanf(p, "%lf %lf %lf %u %u %u\n%n", &x[0], &x[1], &x[2], &c[0], &c[1], &c[2], &used) != 6)
+        if (sscanf(p, "%lf %lf %lf %u %u %u\n%n", &x[0], &x[1], &x[2], &c[0], &c[1], &c[2],
+                   &used) != 6)
             fail_msg("bad PLY vertex line %d", v);
         for (k = 0; k < 3; k++) {
             CHECK_INT_LE(c[k], 255, "PLY vertex %d: colour channel %d", v, k);
@@ -139,7 +149,8 @@ static void read_ascii(const char *p, ply_file *f)
     for (i = 0; i < f->nf; i++) {
         int n;
         assert_int_equal(sscanf(p, "%d%n", &n, &used), 1);
-        CHECK_THAT(n == 3 || n == 4, "PLY face %d has %d corners: elements are triangles or quads", i, n);
+        CHECK_THAT(n == 3 || n == 4, "PLY face %d has %d corners: elements are triangles or quads",
+                   i, n);
         p += used;
         for (k = 0; k < 4; k++) {
             f->face[i][k] = -1;
@@ -165,14 +176,17 @@ static void read_ply(const char *path, ply_file *f)
     f->v = malloc(((size_t)f->nv + 1) * sizeof *f->v);
     f->face = malloc(((size_t)f->nf + 1) * sizeof *f->face);
     assert_true(f->v && f->face);
-    if (f->binary) read_binary((const unsigned char *)p, (const unsigned char *)data + size, f);
-    else read_ascii(p, f);
+    if (f->binary)
+        read_binary((const unsigned char *)p, (const unsigned char *)data + size, f);
+    else
+        read_ascii(p, f);
     free(data);
     used = calloc((size_t)f->nv + 1, 1);
     assert_non_null(used);
     for (i = 0; i < f->nf; i++)
         for (k = 0; k < 4 && f->face[i][k] >= 0; k++) {
-            CHECK_INT_LT(f->face[i][k], f->nv, "PLY face %d corner %d's vertex against the vertices", i, k);
+            CHECK_INT_LT(f->face[i][k], f->nv,
+                         "PLY face %d corner %d's vertex against the vertices", i, k);
             used[f->face[i][k]] = 1;
         }
     for (i = 0; i < f->nv; i++) CHECK_INT_EQ(used[i], 1, "PLY vertex %d used by a face", i);
@@ -221,7 +235,7 @@ typedef struct {
 static void solve_file(const char *path, double max_element, solved *z)
 {
     char err[600];
-    sc_opts o = { .max_element = max_element, .res = 32 };
+    sc_opts o = {.max_element = max_element, .res = 32};
     assert_int_equal(obj_load(path, &z->sc, NULL, NULL, err, sizeof err), 0);
     z->polys = polys_from_obj(&z->sc, &z->npolys, NULL, NULL);
     assert_non_null(z->polys);
@@ -275,8 +289,10 @@ static double check_face(const ply_file *f, const solved *z, int e, double *norm
         sc_vertex_pos(z->s, cv[k], p);
         for (a = 0; a < 3; a++) {
             double c = z->rgb[3 * cv[k] + a];
-            CHECK_EQ(w[a], f32_of(p[a]), "face %d corner %d coordinate %d: the vertex's, as a float", e, k, a);
-            CHECK_EQ(w[6 + a], f32_of(c), "face %d corner %d colour %d: the solution's, as a float", e, k, a);
+            CHECK_EQ(w[a], f32_of(p[a]),
+                     "face %d corner %d coordinate %d: the vertex's, as a float", e, k, a);
+            CHECK_EQ(w[6 + a], f32_of(c), "face %d corner %d colour %d: the solution's, as a float",
+                     e, k, a);
             if (c > 0) worst = fmax(worst, fabs(w[6 + a] - c) / c);
             *normal_err = fmax(*normal_err, fabs(w[3 + a] - en[a]));
             len += (double)w[3 + a] * w[3 + a];
@@ -293,7 +309,7 @@ static int check_binary(const solved *z, const char *name, double normal_tol)
 {
     ply_file f;
     char err[600];
-    float (*keys)[9];
+    float(*keys)[9];
     double worst = 0, nerr = 0;
     int e, v, a, nw, expect;
     nw = sc_export_ply(z->s, z->rgb, tmp_path(name), PLY_BINARY_LINEAR, 2.5, err, sizeof err);
@@ -307,7 +323,8 @@ static int check_binary(const solved *z, const char *name, double normal_tol)
     CHECK_INT_EQ(distinct(f.v, f.nv), f.nv, "distinct vertices in the welded PLY");
     keys = malloc(((size_t)z->st.vertices + 1) * sizeof *keys);
     assert_non_null(keys);
-    for (v = 0; v < z->st.vertices; v++) { /* the nine floats of each core vertex, from the file's faces */
+    for (v = 0; v < z->st.vertices;
+         v++) { /* the nine floats of each core vertex, from the file's faces */
         double p[3];
         sc_vertex_pos(z->s, v, p);
         for (a = 0; a < 3; a++) {
@@ -320,9 +337,11 @@ static int check_binary(const solved *z, const char *name, double normal_tol)
         for (k = 0; k < n; k++) memcpy(&keys[cv[k]][3], &f.v[f.face[e][k]][3], 3 * sizeof(float));
     }
     expect = distinct(keys, z->st.vertices);
-    print_message("%s: %d core vertices, %d distinct (position, normal, colour), %d written; colours "
-                  "within %.3g of the solution's (float: 2^-24 = %.3g), normals within %.3g of the "
-                  "elements'\n", name, z->st.vertices, expect, f.nv, worst, ldexp(1, -24), nerr);
+    print_message(
+        "%s: %d core vertices, %d distinct (position, normal, colour), %d written; colours "
+        "within %.3g of the solution's (float: 2^-24 = %.3g), normals within %.3g of the "
+        "elements'\n",
+        name, z->st.vertices, expect, f.nv, worst, ldexp(1, -24), nerr);
     CHECK_INT_EQ(f.nv, expect, "welded vertices against the distinct ones counted by sorting");
     CHECK_LE(worst, ldexp(1, -24), "colour against the solution's: one rounding to float");
     CHECK_LE(nerr, normal_tol, "normal against the element's own (Newell, double)");
@@ -349,8 +368,9 @@ static void test_cornell(void **state)
        quite flat), and its elements, on the bilinear lattice between its edges, tilt
        from that plane by up to about twice that over the side: 1/32 rad. */
     check_binary(&z, "cornell.ply", 1.0 / 32);
-    CHECK_INT_EQ(sc_export_ply(z.s, z.rgb, tmp_path("cornell_8.ply"), PLY_ASCII_SRGB, 3.5, err, sizeof err),
-                 z.st.vertices, "ASCII PLY vertices: every core vertex (%s)", err);
+    CHECK_INT_EQ(
+        sc_export_ply(z.s, z.rgb, tmp_path("cornell_8.ply"), PLY_ASCII_SRGB, 3.5, err, sizeof err),
+        z.st.vertices, "ASCII PLY vertices: every core vertex (%s)", err);
     read_ply(tmp_path("cornell_8.ply"), &f);
     assert_int_equal(f.binary, 0);
     CHECK_INT_EQ(f.nv, z.st.vertices, "ASCII PLY vertices");
@@ -366,8 +386,10 @@ static void test_cornell(void **state)
         for (a = 0; a < 3; a++) {
             /* %.7g: 7 significant digits, half a unit of the 7th off at most (5e-7
                relative), read back into a float here (6e-8 more) */
-            CHECK_NEAR(f.v[v][a], p[a], 5.6e-7 * fabs(p[a]) + 1e-30, "ASCII vertex %d coordinate %d", v, a);
-            CHECK_INT_EQ(f.v[v][6 + a], c[a], "ASCII vertex %d colour %d: the tone map at exposure 3.5", v, a);
+            CHECK_NEAR(f.v[v][a], p[a], 5.6e-7 * fabs(p[a]) + 1e-30,
+                       "ASCII vertex %d coordinate %d", v, a);
+            CHECK_INT_EQ(f.v[v][6 + a], c[a],
+                         "ASCII vertex %d colour %d: the tone map at exposure 3.5", v, a);
         }
     }
     ply_free(&f);
@@ -393,7 +415,8 @@ static void test_weld(void **state)
           "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
           "f 1 2 3 4\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n"
           "v -0.4 0.99 -0.4\nv 0.4 0.99 -0.4\nv 0.4 0.99 0.4\nv -0.4 0.99 0.4\n"
-          "usemtl lamp\nf 9 10 11\nf 9 11 12\n", f);
+          "usemtl lamp\nf 9 10 11\nf 9 11 12\n",
+          f);
     assert_int_equal(fclose(f), 0);
     solve_file(tmp_path("lamp.obj"), 0.25, &z);
     /* axis-aligned faces: the normals are exact (3 x 2^-16 allows the Q16.16 normal) */
@@ -408,13 +431,19 @@ static void test_weld(void **state)
    already there stays as it was. */
 static void test_values_and_errors(void **state)
 {
-    static const double pos[4 * 3] = { 0, 0, 0, -0.0, 0, 0, 1, 0, 0, 0, 1, 0 };
-    static const double nrm[4 * 3] = { 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1 };
-    double rgb[4 * 3] = { 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 1e300, -1e300 };
-    static const int face[2 * 4] = { 0, 2, 3, -1, 1, 2, 3, -1 };
-    ply_mesh m = { .nv = 4, .nf = 2, .pos = pos, .rgb = rgb, .normal = nrm, .face = face,
-                   .comment = "rad radiosity, linear float vertex colours in the scene's units (the images' "
-                              "exposure 1)" };
+    static const double pos[4 * 3] = {0, 0, 0, -0.0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const double nrm[4 * 3] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    double rgb[4 * 3] = {1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 1e300, -1e300};
+    static const int face[2 * 4] = {0, 2, 3, -1, 1, 2, 3, -1};
+    ply_mesh m = {
+        .nv = 4,
+        .nf = 2,
+        .pos = pos,
+        .rgb = rgb,
+        .normal = nrm,
+        .face = face,
+        .comment = "rad radiosity, linear float vertex colours in the scene's units (the images' "
+                   "exposure 1)"};
     ply_file f;
     char err[600], *data;
     size_t size;
@@ -430,16 +459,19 @@ static void test_values_and_errors(void **state)
     CHECK_EQ(f.v[2][8], -FLT_MAX, "-1e300 written as minus the largest float");
     ply_free(&f);
 
-    CHECK_INT_EQ(ply_write(tmp_path("no/such/folder/v.ply"), &m, PLY_BINARY_LINEAR, 1, err, sizeof err), -1,
-                 "a folder that does not exist");
+    CHECK_INT_EQ(
+        ply_write(tmp_path("no/such/folder/v.ply"), &m, PLY_BINARY_LINEAR, 1, err, sizeof err), -1,
+        "a folder that does not exist");
     print_message("%s\n", err);
     CHECK_CONTAINS(err, "no/such/folder", "the message names the file");
     CHECK_THAT(strchr(err, '\n') == NULL, "one line: %s", err);
-    assert_int_equal(fio_read_all(tmp_path("v.ply"), FIO_LIMIT_OBJ, &data, &size, err, sizeof err), 0);
+    assert_int_equal(fio_read_all(tmp_path("v.ply"), FIO_LIMIT_OBJ, &data, &size, err, sizeof err),
+                     0);
     free(data);
     CHECK_INT_EQ(ply_write(tmp_path("v.ply/x"), &m, PLY_ASCII_SRGB, 1, err, sizeof err), -1,
                  "a path through a file");
-    assert_int_equal(fio_read_all(tmp_path("v.ply"), FIO_LIMIT_OBJ, &data, &size, err, sizeof err), 0);
+    assert_int_equal(fio_read_all(tmp_path("v.ply"), FIO_LIMIT_OBJ, &data, &size, err, sizeof err),
+                     0);
     CHECK_INT_GT(size, 0, "v.ply still there");
     free(data);
 }
@@ -472,26 +504,33 @@ static double stat_of(const char *path, const char *fmt)
    line says so; --ply-linear alone is a usage error. */
 static void test_cli(void **state)
 {
-    static const char *const bins[2] = { "build/rad_cli", "build/rad_cli_float" };
+    static const char *const bins[2] = {"build/rad_cli", "build/rad_cli_float"};
     char cmd[1024];
     ply_file f;
     int b;
     (void)state;
     for (b = 0; b < 2; b++) {
-        snprintf(cmd, sizeof cmd, "%s " CORNELL " --max-element 0.1 --res 32 --width 16 --height 16 --stats "
-                 "--quiet -o '%s' --export-ply '%s' --ply-linear", bins[b], tmp_path("c.png"), tmp_path("c.ply"));
+        snprintf(cmd, sizeof cmd,
+                 "%s " CORNELL " --max-element 0.1 --res 32 --width 16 --height 16 --stats "
+                 "--quiet -o '%s' --export-ply '%s' --ply-linear",
+                 bins[b], tmp_path("c.png"), tmp_path("c.ply"));
         CHECK_INT_EQ(run(cmd, tmp_path("stats.txt")), 0, "%s", cmd);
         read_ply(tmp_path("c.ply"), &f);
         assert_int_equal(f.binary, 1);
-        CHECK_EQ(f.nf, stat_of(tmp_path("stats.txt"), "patches %*d elements %lf"), "%s: PLY faces against "
-                 "--stats' elements", bins[b]);
-        CHECK_EQ(f.exposure, stat_of(tmp_path("stats.txt"), "exposure %lf"), "%s: the header's exposure", bins[b]);
+        CHECK_EQ(f.nf, stat_of(tmp_path("stats.txt"), "patches %*d elements %lf"),
+                 "%s: PLY faces against "
+                 "--stats' elements",
+                 bins[b]);
+        CHECK_EQ(f.exposure, stat_of(tmp_path("stats.txt"), "exposure %lf"),
+                 "%s: the header's exposure", bins[b]);
         CHECK_INT_EQ(distinct(f.v, f.nv), f.nv, "%s: distinct vertices", bins[b]);
         ply_free(&f);
         assimp_reads(tmp_path("c.ply"));
     }
-    snprintf(cmd, sizeof cmd, "build/rad_cli " CORNELL " --max-element 0.1 --res 32 --width 16 --height 16 --stats "
-             "--quiet -o '%s' --export-ply '%s'", tmp_path("c.png"), tmp_path("c8.ply"));
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli " CORNELL " --max-element 0.1 --res 32 --width 16 --height 16 --stats "
+             "--quiet -o '%s' --export-ply '%s'",
+             tmp_path("c.png"), tmp_path("c8.ply"));
     CHECK_INT_EQ(run(cmd, tmp_path("stats.txt")), 0, "%s", cmd);
     read_ply(tmp_path("c8.ply"), &f);
     {
@@ -500,14 +539,17 @@ static void test_cli(void **state)
         size_t size;
         /* the header's %g keeps 6 significant digits */
         CHECK_NEAR(f.exposure, e, 5e-6 * e, "the ASCII header's exposure against --stats'");
-        assert_int_equal(fio_read_all(tmp_path("stats.txt"), FIO_LIMIT_TEXT, &data, &size, err, sizeof err), 0);
-        CHECK_CONTAINS(data, "; also --export-ply's sRGB colours)", "--stats names the PLY's exposure");
+        assert_int_equal(
+            fio_read_all(tmp_path("stats.txt"), FIO_LIMIT_TEXT, &data, &size, err, sizeof err), 0);
+        CHECK_CONTAINS(data, "; also --export-ply's sRGB colours)",
+                       "--stats names the PLY's exposure");
         free(data);
     }
     ply_free(&f);
     assimp_reads(tmp_path("c8.ply"));
     snprintf(cmd, sizeof cmd, "build/rad_cli " CORNELL " --ply-linear");
-    CHECK_INT_EQ(run(cmd, tmp_path("usage.txt")), 2, "--ply-linear without --export-ply: a usage error");
+    CHECK_INT_EQ(run(cmd, tmp_path("usage.txt")), 2,
+                 "--ply-linear without --export-ply: a usage error");
 }
 
 int main(void)

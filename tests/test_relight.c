@@ -46,19 +46,19 @@
 
 extern char **environ;
 
-#define FIXED "build/rad_cli"
-#define FLOAT "build/rad_cli_float"
+#define FIXED   "build/rad_cli"
+#define FLOAT   "build/rad_cli_float"
 #define CORNELL "examples/cornell_box.obj"
 #define GALLERY "examples/gallery.obj"
-#define DATA "tests/data/relight/"
-#define COARSE "--max-element", "0.1", "--res", "32"   /* the 0.56 m Cornell box */
-#define GCOARSE "--max-element", "0.3", "--res", "32"  /* the 6 m gallery */
+#define DATA    "tests/data/relight/"
+#define COARSE  "--max-element", "0.1", "--res", "32" /* the 0.56 m Cornell box */
+#define GCOARSE "--max-element", "0.3", "--res", "32" /* the 6 m gallery */
 
 /* Relit or mixed from rows against a fresh solve: the code's 0.05% and what two solves
  * to a tolerance of 1e-4 differ by (the printed figures show the margin). */
 #define REL_BOUND 0.002
 /* Gauss-Seidel against shooting, the same equations solved two ways: 0.5% per element. */
-#define GS_BOUND 0.005
+#define GS_BOUND  0.005
 
 /* ---- temporary directory ---------------------------------------------------------- */
 
@@ -72,8 +72,14 @@ static unsigned char *slurp(const char *path, size_t *len)
     if (!f) return NULL;
     if (fseek(f, 0, SEEK_END) == 0 && (n = ftell(f)) >= 0 && fseek(f, 0, SEEK_SET) == 0) {
         buf = malloc((size_t)n + 1);
-        if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) { free(buf); buf = NULL; }
-        if (buf) { buf[n] = 0; *len = (size_t)n; }
+        if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
+            free(buf);
+            buf = NULL;
+        }
+        if (buf) {
+            buf[n] = 0;
+            *len = (size_t)n;
+        }
     }
     fclose(f);
     return buf;
@@ -134,7 +140,8 @@ static void relight(sc_solver *h, const scene_t *s, int m, const double *rho, co
     polys_material_match mt;
     mt.sc = &s->sc;
     mt.material = m;
-    if (sc_set_surfaces(h, polys_match_material, &mt, rho, emit, err, sizeof err) <= 0) fail_msg("set_surfaces: %s", err);
+    if (sc_set_surfaces(h, polys_match_material, &mt, rho, emit, err, sizeof err) <= 0)
+        fail_msg("set_surfaces: %s", err);
 }
 
 static sc_solver *make(const scene_t *s, double max_element, int res)
@@ -325,27 +332,36 @@ static void test_corrupt_files(void **state)
     c = malloc(n);
     assert_non_null(c);
 
-    memcpy(c, d, n); c[n / 2] ^= 0x10; spit(bad, c, n);          /* a flipped bit mid-file */
+    memcpy(c, d, n);
+    c[n / 2] ^= 0x10;
+    spit(bad, c, n); /* a flipped bit mid-file */
     expect_load_error(a, bad, "checksum mismatch");
-    memcpy(c, d, n); c[n - 3] ^= 1; spit(bad, c, n);              /* in the checksum itself */
+    memcpy(c, d, n);
+    c[n - 3] ^= 1;
+    spit(bad, c, n); /* in the checksum itself */
     expect_load_error(a, bad, "checksum mismatch");
-    spit(bad, d, n - 1000);                                       /* truncated */
+    spit(bad, d, n - 1000); /* truncated */
     expect_load_error(a, bad, "truncated");
-    spit(bad, d, 20);                                             /* inside the header */
+    spit(bad, d, 20); /* inside the header */
     expect_load_error(a, bad, "truncated");
-    spit(bad, d, 0);                                              /* empty */
+    spit(bad, d, 0); /* empty */
     expect_load_error(a, bad, "truncated");
-    spit(bad, d, n - 8);                                          /* no checksum */
+    spit(bad, d, n - 8); /* no checksum */
     expect_load_error(a, bad, "truncated");
-    memcpy(c, d, n); c[0] = 'X'; spit(bad, c, n);                 /* another kind of file */
+    memcpy(c, d, n);
+    c[0] = 'X';
+    spit(bad, c, n); /* another kind of file */
     expect_load_error(a, bad, "bad magic");
     expect_load_error(a, CORNELL, "bad magic");
-    memcpy(c, d, n); c[6] = 9; spit(bad, c, n);                   /* a future version */
+    memcpy(c, d, n);
+    c[6] = 9;
+    spit(bad, c, n); /* a future version */
     expect_load_error(a, bad, "unsupported format version 9");
-    {   /* bytes past the end */
+    { /* bytes past the end */
         unsigned char *e = malloc(n + 4);
         assert_non_null(e);
-        memcpy(e, d, n); memset(e + n, 0, 4);
+        memcpy(e, d, n);
+        memset(e + n, 0, 4);
         spit(bad, e, n + 4);
         expect_load_error(a, bad, "checksum mismatch");
         free(e);
@@ -354,14 +370,21 @@ static void test_corrupt_files(void **state)
      * hemi-cube gives. */
     memcpy(c, d, n);
     {
-        uint32_t patches = (uint32_t)c[12] | (uint32_t)c[13] << 8 | (uint32_t)c[14] << 16 | (uint32_t)c[15] << 24;
+        uint32_t patches =
+            (uint32_t)c[12] | (uint32_t)c[13] << 8 | (uint32_t)c[14] << 16 | (uint32_t)c[15] << 24;
         size_t ids = 40 + 4 * ((size_t)patches + 1);
-        c[ids] = 0xFF; c[ids + 1] = 0xFF; c[ids + 2] = 0xFF; c[ids + 3] = 0x7F;
-        reseal(c, n); spit(bad, c, n);
+        c[ids] = 0xFF;
+        c[ids + 1] = 0xFF;
+        c[ids + 2] = 0xFF;
+        c[ids + 3] = 0x7F;
+        reseal(c, n);
+        spit(bad, c, n);
         expect_load_error(a, bad, "corrupt entry");
         memcpy(c, d, n);
-        c[n - 10] = 0xFF; c[n - 9] = 0xFF; /* the last code */
-        reseal(c, n); spit(bad, c, n);
+        c[n - 10] = 0xFF;
+        c[n - 9] = 0xFF; /* the last code */
+        reseal(c, n);
+        spit(bad, c, n);
         expect_load_error(a, bad, "corrupt form factor code");
     }
     expect_load_error(a, tmp_path("missing.ff"), "cannot open");
@@ -399,7 +422,8 @@ static void test_relight_cornell(void **state)
     t_rows = host_now() - t0;
     sc_get_rows_stats(h, &rs);
     ne = n_elements(h);
-    print_message("Cornell box (default mesh, res 64): %d rows, %lu entries, %zu bytes (%.0f per patch), %.3f s\n",
+    print_message("Cornell box (default mesh, res 64): %d rows, %lu entries, %zu bytes (%.0f per "
+                  "patch), %.3f s\n",
                   rs.rows, rs.entries, rs.bytes, (double)rs.bytes / rs.rows, t_rows);
     CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-4, NULL, NULL), 0, "shots from the rows");
 
@@ -423,9 +447,11 @@ static void test_relight_cornell(void **state)
     b = values(f);
     d = max_rel(a, b, ne, &rms);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%%, rms %.4f%% per element; "
-                  "relight %.3f s vs fresh solve %.3f s\n", 100 * d, 100 * rms, t_relight, t_fresh);
-    CHECK_LE(d, REL_BOUND,
-             "relit from rows against a fresh hemi-cube solve: max relative difference per element");
+                  "relight %.3f s vs fresh solve %.3f s\n",
+                  100 * d, 100 * rms, t_relight, t_fresh);
+    CHECK_LE(
+        d, REL_BOUND,
+        "relit from rows against a fresh hemi-cube solve: max relative difference per element");
 
     /* Against a fresh solve from fresh rows: the same bits (relighting is exact). */
     r = make(&fresh, 0, 64);
@@ -434,9 +460,14 @@ static void test_relight_cornell(void **state)
     c = values(r);
     assert_int_equal(sc_checksum(r), sc_checksum(h));
     assert_memory_equal(a, c, (size_t)ne * 3 * sizeof *a);
-    free(a); free(b); free(c);
-    sc_destroy(h); sc_destroy(f); sc_destroy(r);
-    scene_free(&cb); scene_free(&fresh);
+    free(a);
+    free(b);
+    free(c);
+    sc_destroy(h);
+    sc_destroy(f);
+    sc_destroy(r);
+    scene_free(&cb);
+    scene_free(&fresh);
 }
 
 static void gs_vs_shoot(const char *path, const char *name, double max_element)
@@ -461,19 +492,22 @@ static void gs_vs_shoot(const char *path, const char *name, double max_element)
     assert_int_equal(raster_calls(h), calls);
     sc_get_rows_stats(h, &rs);
     d = max_rel(b, a, ne, &rms);
-    print_message("%s: Gauss-Seidel (%d sweeps, %d patches, matrix %zu bytes) vs shooting: max %.4f%%, rms %.4f%% "
-                  "per element\n", name, sweeps, rs.rows, rs.matrix_bytes, 100 * d, 100 * rms);
+    print_message("%s: Gauss-Seidel (%d sweeps, %d patches, matrix %zu bytes) vs shooting: max "
+                  "%.4f%%, rms %.4f%% "
+                  "per element\n",
+                  name, sweeps, rs.rows, rs.matrix_bytes, 100 * d, 100 * rms);
     CHECK_INT_GT(sweeps, 1, "%s: Gauss-Seidel sweeps", name);
     CHECK_INT_LT(sweeps, 1000, "%s: Gauss-Seidel sweeps", name);
-    CHECK_LE(d, GS_BOUND,
-             "%s: Gauss-Seidel against shooting, max relative difference per element", name);
+    CHECK_LE(d, GS_BOUND, "%s: Gauss-Seidel against shooting, max relative difference per element",
+             name);
     /* Solving again after Gauss-Seidel (which leaves nothing unshot) starts afresh. */
     sc_restart(h);
     CHECK_INT_GT(sc_rows_solve(h, 1000000, 1e-5, NULL, NULL), 0, "shots from the rows");
     free(b);
     b = values(h);
     assert_memory_equal(a, b, (size_t)ne * 3 * sizeof *a);
-    free(a); free(b);
+    free(a);
+    free(b);
     sc_destroy(h);
     scene_free(&s);
 }
@@ -526,11 +560,14 @@ static void test_mix_groups_glue(void **state)
     CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
     b = values(f);
     d = max_rel(a, b, ne, &rms);
-    print_message("gallery: mix of 2 light groups vs both lights in one hemi-cube solve: max %.4f%%, rms %.4f%%\n",
+    print_message("gallery: mix of 2 light groups vs both lights in one hemi-cube solve: max "
+                  "%.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND,
-             "gallery, two groups mixed against both lights solved at once: max relative difference");
-    free(a); free(b);
+    CHECK_LE(
+        d, REL_BOUND,
+        "gallery, two groups mixed against both lights solved at once: max relative difference");
+    free(a);
+    free(b);
     sc_destroy(f);
 
     /* Other intensities: the same as emissions scaled so. */
@@ -548,14 +585,17 @@ static void test_mix_groups_glue(void **state)
     CHECK_INT_GT(sc_solve(f, 1000000, 1e-4, NULL, NULL), 0, "shots of the hemi-cube solve");
     b = values(f);
     d = max_rel(a, b, ne, &rms);
-    print_message("gallery: mix at intensities (0.5,1,1.75), (2,0.25,1) vs those emissions solved: max %.4f%%, rms %.4f%%\n",
+    print_message("gallery: mix at intensities (0.5,1,1.75), (2,0.25,1) vs those emissions solved: "
+                  "max %.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "gallery, groups mixed at other intensities against those emissions "
+    CHECK_LE(d, REL_BOUND,
+             "gallery, groups mixed at other intensities against those emissions "
              "solved: max relative difference");
     /* Errors: a negative intensity; solving after a mix starts from the emission. */
     k[0][1] = -1;
     assert_int_equal(sc_mix(h, g, (const double(*)[3])k, 2, err, sizeof err), -1);
-    free(a); free(b);
+    free(a);
+    free(b);
     sc_solution_free(g[0]);
     sc_solution_free(g[1]);
     sc_destroy(f);
@@ -621,8 +661,10 @@ static void run_args(run_t *r, const char *bin, const char *const *args)
     argv[n] = NULL;
     assert_int_equal(posix_spawn_file_actions_init(&fa), 0);
     assert_int_equal(posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0), 0);
-    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 1, outp, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
-    assert_int_equal(posix_spawn_file_actions_addopen(&fa, 2, errp, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
+    assert_int_equal(
+        posix_spawn_file_actions_addopen(&fa, 1, outp, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
+    assert_int_equal(
+        posix_spawn_file_actions_addopen(&fa, 2, errp, O_WRONLY | O_CREAT | O_TRUNC, 0600), 0);
     rc = posix_spawn(&pid, bin, &fa, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) fail_msg("posix_spawn %s: %s", bin, strerror(rc));
@@ -655,17 +697,20 @@ static void run_free(run_t *r)
 static void expect_status_at(const run_t *r, int status, const char *file, int line)
 {
     if (r->status == status) return;
-    print_error("exit status %d, expected %d\nstdout: %s\nstderr: %s\n", r->status, status, r->out, r->err);
+    print_error("exit status %d, expected %d\nstdout: %s\nstderr: %s\n", r->status, status, r->out,
+                r->err);
     _fail(file, line);
 }
 #define expect_status(r, s) expect_status_at((r), (s), __FILE__, __LINE__)
 
 /* Exit 1 (or 2) with one line on stderr that contains WHAT. */
-static void expect_error_at(const run_t *r, int status, const char *what, const char *file, int line)
+static void expect_error_at(const run_t *r, int status, const char *what, const char *file,
+                            int line)
 {
     const char *nl = strchr(r->err, '\n');
     expect_status_at(r, status, file, line);
-    if (!strstr(r->err, what) || strncmp(r->err, "rad_cli", 7) != 0 || (status == 1 && (!nl || nl[1] != '\0'))) {
+    if (!strstr(r->err, what) || strncmp(r->err, "rad_cli", 7) != 0 ||
+        (status == 1 && (!nl || nl[1] != '\0'))) {
         print_error("stderr should be one line naming '%s':\n%s\n", what, r->err);
         _fail(file, line);
     }
@@ -713,13 +758,16 @@ static void test_cli_save_load(void **state)
 {
     run_t r;
     const char *ff = tmp_path("cli.ff"), *a = tmp_path("saved.png"), *b = tmp_path("loaded.png"),
-               *c = tmp_path("computed.png"), *p = tmp_path("plain.png"), *ff2 = tmp_path("cli_float.ff");
+               *c = tmp_path("computed.png"), *p = tmp_path("plain.png"),
+               *ff2 = tmp_path("cli_float.ff");
     (void)state;
     if (!need(FIXED)) skip();
-    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--save-ff", ff, "-o", a, CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--save-ff", ff, "-o", a,
+        CORNELL);
     expect_status(&r, 0);
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--stats", "--width", "96", "--height", "96", COARSE, "--load-ff", ff, "-o", b, CORNELL);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "96", "--height", "96", COARSE, "--load-ff", ff,
+        "-o", b, CORNELL);
     expect_status(&r, 0);
     /* No hemi-cube at all: the counters of the whole run are zero. */
     CHECK_CONTAINS(r.out, "hemi-cube: resolution 32, 0 polygons, 0 pixels", "rad_cli's stdout");
@@ -727,7 +775,8 @@ static void test_cli_save_load(void **state)
     CHECK_CONTAINS(r.out, "loaded from", "rad_cli's stdout");
     run_free(&r);
     /* Rows computed in memory only (a light group of the one light): the same image. */
-    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--light-group", "lamp=light", "-o", c, CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "--light-group",
+        "lamp=light", "-o", c, CORNELL);
     expect_status(&r, 0);
     run_free(&r);
     CHECK_THAT(same_image(a, b), "%s and %s: the same pixels", a, b);
@@ -736,7 +785,8 @@ static void test_cli_save_load(void **state)
     RUN(&r, FIXED, "--quiet", "--width", "96", "--height", "96", COARSE, "-o", p, CORNELL);
     expect_status(&r, 0);
     run_free(&r);
-    print_message("rad_cli: rows vs hemi-cube image: max %d/255 per channel\n", max_pixel_diff(a, p));
+    print_message("rad_cli: rows vs hemi-cube image: max %d/255 per channel\n",
+                  max_pixel_diff(a, p));
     CHECK_INT_LE(max_pixel_diff(a, p), 2,
                  "rows against hemi-cube image: max difference per channel (/255)");
 
@@ -744,10 +794,12 @@ static void test_cli_save_load(void **state)
     RUN(&r, FIXED, "--quiet", GCOARSE, "--load-ff", ff, "-o", tmp_path("x.png"), GALLERY);
     expect_error(&r, 1, "scene mismatch");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--max-element", "0.09", "--res", "32", "--load-ff", ff, "-o", tmp_path("x.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--max-element", "0.09", "--res", "32", "--load-ff", ff, "-o",
+        tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "scene mismatch");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--max-element", "0.1", "--res", "64", "--load-ff", ff, "-o", tmp_path("x.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--max-element", "0.1", "--res", "64", "--load-ff", ff, "-o",
+        tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "resolution 32, this run uses 64");
     run_free(&r);
     if (need(FLOAT)) {
@@ -756,14 +808,16 @@ static void test_cli_save_load(void **state)
         CHECK_CONTAINS(r.err, "made by the fixed build, this is the float build",
                        "rad_cli's stderr");
         run_free(&r);
-        RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--save-ff", ff2, "-o", tmp_path("f1.png"), CORNELL);
+        RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--save-ff", ff2, "-o",
+            tmp_path("f1.png"), CORNELL);
         expect_status(&r, 0);
         run_free(&r);
-        RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--load-ff", ff2, "-o", tmp_path("f2.png"), CORNELL);
+        RUN(&r, FLOAT, "--quiet", "--width", "64", "--height", "64", COARSE, "--load-ff", ff2, "-o",
+            tmp_path("f2.png"), CORNELL);
         expect_status(&r, 0);
         run_free(&r);
-        CHECK_THAT(same_image(tmp_path("f1.png"), tmp_path("f2.png")),
-                   "%s and %s: the same pixels", tmp_path("f1.png"), tmp_path("f2.png"));
+        CHECK_THAT(same_image(tmp_path("f1.png"), tmp_path("f2.png")), "%s and %s: the same pixels",
+                   tmp_path("f1.png"), tmp_path("f2.png"));
     }
 }
 
@@ -775,7 +829,8 @@ static void test_cli_corrupt(void **state)
     size_t n;
     (void)state;
     if (!need(FIXED)) skip();
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--save-ff", ff, "-o", tmp_path("c.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--save-ff", ff, "-o",
+        tmp_path("c.png"), CORNELL);
     expect_status(&r, 0);
     run_free(&r);
     d = slurp(ff, &n);
@@ -813,8 +868,12 @@ static double *read_csv(const char *path, int *n)
         p = strchr(line, '\n');
         if (!p) break;
         *p = '\0';
-        for (c = p, f = 0; c > line && f < 3; c--) if (c[-1] == ',') f++;
-        if (k == cap) { v = realloc(v, (size_t)(cap = cap ? 2 * cap : 1024) * 3 * sizeof *v); assert_non_null(v); }
+        for (c = p, f = 0; c > line && f < 3; c--)
+            if (c[-1] == ',') f++;
+        if (k == cap) {
+            v = realloc(v, (size_t)(cap = cap ? 2 * cap : 1024) * 3 * sizeof *v);
+            assert_non_null(v);
+        }
         assert_int_equal(sscanf(c + 1, "%lf,%lf,%lf", &v[3 * k], &v[3 * k + 1], &v[3 * k + 2]), 3);
         k++;
     }
@@ -834,12 +893,13 @@ static void test_cli_groups(void **state)
     (void)state;
     if (!need(FIXED)) skip();
     /* Mixed groups at intensity 1 against both lights in one solve from the same rows. */
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--res", "64", "--tol", "0.0001", "--save-ff",
-        tmp_path("g.ff"), "--dump-radiosity", sum, "-o", tmp_path("sum.png"), GALLERY);
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", "--res", "64", "--tol", "0.0001",
+        "--save-ff", tmp_path("g.ff"), "--dump-radiosity", sum, "-o", tmp_path("sum.png"), GALLERY);
     expect_status(&r, 0);
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", "--res", "64", "--tol", "0.0001", "--load-ff",
-        tmp_path("g.ff"), "--light-group", "warm=amber", "--dump-radiosity", mix, "-o", tmp_path("mix.png"), GALLERY);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", "--res", "64", "--tol",
+        "0.0001", "--load-ff", tmp_path("g.ff"), "--light-group", "warm=amber", "--dump-radiosity",
+        mix, "-o", tmp_path("mix.png"), GALLERY);
     expect_status(&r, 0);
     CHECK_CONTAINS(r.out, "light groups 2: warm (1,1,1) other (1,1,1)", "rad_cli's stdout");
     CHECK_CONTAINS(r.out, "hemi-cube: resolution 64, 0 polygons", "rad_cli's stdout");
@@ -848,15 +908,18 @@ static void test_cli_groups(void **state)
     b = read_csv(sum, &nb);
     assert_int_equal(na, nb);
     d = max_rel(a, b, na, &rms);
-    print_message("rad_cli gallery: --light-group mix vs one solve, from the same rows: max %.4f%%, rms %.4f%%\n",
+    print_message("rad_cli gallery: --light-group mix vs one solve, from the same rows: max "
+                  "%.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "rad_cli gallery, --light-group mix against one solve: max relative "
+    CHECK_LE(d, REL_BOUND,
+             "rad_cli gallery, --light-group mix against one solve: max relative "
              "difference");
-    free(a); free(b);
+    free(a);
+    free(b);
 
     /* --each-group: one file per group, named after it; the base name is not written. */
-    RUN(&r, FIXED, "--quiet", "--width", "48", "--height", "48", GCOARSE, "--light-group", "warm=amber",
-        "--light-group", "cool=panel", "--each-group", "-o", out, GALLERY);
+    RUN(&r, FIXED, "--quiet", "--width", "48", "--height", "48", GCOARSE, "--light-group",
+        "warm=amber", "--light-group", "cool=panel", "--each-group", "-o", out, GALLERY);
     expect_status(&r, 0);
     run_free(&r);
     dir = opendir(tmpdir);
@@ -864,10 +927,10 @@ static void test_cli_groups(void **state)
     while ((de = readdir(dir)) != NULL) files += strncmp(de->d_name, "eg.", 3) == 0;
     closedir(dir);
     assert_int_equal(files, 2);
-    CHECK_INT_EQ(access(tmp_path("eg.warm.png"), R_OK), 0,
-                 "access(%s): the file was written", tmp_path("eg.warm.png"));
-    CHECK_INT_EQ(access(tmp_path("eg.cool.png"), R_OK), 0,
-                 "access(%s): the file was written", tmp_path("eg.cool.png"));
+    CHECK_INT_EQ(access(tmp_path("eg.warm.png"), R_OK), 0, "access(%s): the file was written",
+                 tmp_path("eg.warm.png"));
+    CHECK_INT_EQ(access(tmp_path("eg.cool.png"), R_OK), 0, "access(%s): the file was written",
+                 tmp_path("eg.cool.png"));
     CHECK_THAT(!same_image(tmp_path("eg.warm.png"), tmp_path("eg.cool.png")), "%s and %s differ",
                tmp_path("eg.warm.png"), tmp_path("eg.cool.png"));
 
@@ -875,23 +938,26 @@ static void test_cli_groups(void **state)
     RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber,brass", "-o", out, GALLERY);
     expect_error(&r, 1, "no material or light named 'brass'");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber", "--light-group", "warm=panel", "-o", out, GALLERY);
+    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "warm=amber", "--light-group", "warm=panel",
+        "-o", out, GALLERY);
     expect_error(&r, 2, "a group name given twice");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "a=amber", "--light-group", "b=amber", "-o", out, GALLERY);
+    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "a=amber", "--light-group", "b=amber", "-o",
+        out, GALLERY);
     expect_error(&r, 1, "already in group 'a'");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", GCOARSE, "--each-group", "-o", out, GALLERY);
     expect_error(&r, 2, "--each-group needs at least one --light-group");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", GCOARSE, "--save-ff", tmp_path("a.ff"), "--load-ff", tmp_path("b.ff"), "-o", out, GALLERY);
+    RUN(&r, FIXED, "--quiet", GCOARSE, "--save-ff", tmp_path("a.ff"), "--load-ff", tmp_path("b.ff"),
+        "-o", out, GALLERY);
     expect_error(&r, 2, "exclude each other");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", GCOARSE, "--group-intensity", "warm=1,1,1", "-o", out, GALLERY);
     expect_error(&r, 2, "no --light-group of that name");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "all=amber,panel", "--group-intensity", "other=1,1,1", "-o", out,
-        GALLERY);
+    RUN(&r, FIXED, "--quiet", GCOARSE, "--light-group", "all=amber,panel", "--group-intensity",
+        "other=1,1,1", "-o", out, GALLERY);
     expect_error(&r, 1, "no group 'other'");
     run_free(&r);
     RUN(&r, FIXED, "--quiet", GCOARSE, "--solver", "jacobi", "-o", out, GALLERY);
@@ -907,24 +973,28 @@ static void test_cli_gauss_seidel(void **state)
     int na, nb;
     (void)state;
     if (!need(FIXED)) skip();
-    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--solver", "gauss-seidel", "--tol",
-        "0.00001", "--dump-radiosity", gs, "-o", tmp_path("gs.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "16", "--height", "16", COARSE, "--solver",
+        "gauss-seidel", "--tol", "0.00001", "--dump-radiosity", gs, "-o", tmp_path("gs.png"),
+        CORNELL);
     expect_status(&r, 0);
     CHECK_CONTAINS(r.out, "gauss-seidel sweeps", "rad_cli's stdout");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.00001", "--dump-radiosity", sh, "-o",
-        tmp_path("sh.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.00001",
+        "--dump-radiosity", sh, "-o", tmp_path("sh.png"), CORNELL);
     expect_status(&r, 0);
     run_free(&r);
     a = read_csv(gs, &na);
     b = read_csv(sh, &nb);
     assert_int_equal(na, nb);
     d = max_rel(a, b, na, &rms);
-    print_message("rad_cli Cornell (coarse): --solver gauss-seidel vs hemi-cube shooting: max %.4f%%, rms %.4f%%\n",
+    print_message("rad_cli Cornell (coarse): --solver gauss-seidel vs hemi-cube shooting: max "
+                  "%.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, GS_BOUND,
-             "rad_cli Cornell box: --solver gauss-seidel against shooting, max relative difference");
-    free(a); free(b);
+    CHECK_LE(
+        d, GS_BOUND,
+        "rad_cli Cornell box: --solver gauss-seidel against shooting, max relative difference");
+    free(a);
+    free(b);
 }
 
 /* The solve of ARGS (a NULL-terminated list after the common ones) dumped to CSV PATH:
@@ -934,8 +1004,12 @@ static double *cli_csv(const char *path, int *n, const char *const *args)
     const char *all[32];
     run_t r;
     int k = 0, j;
-    const char *common[] = {"--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.0001",
-                            "--sun", "0.3,-0.6,-1,4,4,3.5", "--point", "-0.2,0.35,-0.3,0.02,0.02,0.015"};
+    const char *common[] = {"--quiet", "--width",
+                            "16",      "--height",
+                            "16",      COARSE,
+                            "--tol",   "0.0001",
+                            "--sun",   "0.3,-0.6,-1,4,4,3.5",
+                            "--point", "-0.2,0.35,-0.3,0.02,0.02,0.015"};
     for (j = 0; j < (int)(sizeof common / sizeof common[0]); j++) all[k++] = common[j];
     for (j = 0; args[j]; j++) all[k++] = args[j];
     all[k++] = "--dump-radiosity";
@@ -977,23 +1051,43 @@ static void test_cli_lights(void **state)
     CHECK_THAT(memcmp(saved, loaded, (size_t)n1 * 3 * sizeof *saved) == 0,
                "rad_cli with lights: --save-ff and --load-ff give the same radiosities");
     d = max_rel(saved, plain, n1, &rms);
-    print_message("rad_cli Cornell with a sun and a point light: rows vs hemi-cubes max %.4f%%, rms %.4f%%\n",
-                  100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "rad_cli with lights: the solve from rows against hemi-cubes, max relative difference");
-    mix = CLI_CSV(tmp_path("l_mix.csv"), &n4, "--load-ff", ff, "--light-group", "day=sun1", "--light-group",
-                  "bulb=point1");
+    print_message(
+        "rad_cli Cornell with a sun and a point light: rows vs hemi-cubes max %.4f%%, rms %.4f%%\n",
+        100 * d, 100 * rms);
+    CHECK_LE(
+        d, REL_BOUND,
+        "rad_cli with lights: the solve from rows against hemi-cubes, max relative difference");
+    mix = CLI_CSV(tmp_path("l_mix.csv"), &n4, "--load-ff", ff, "--light-group", "day=sun1",
+                  "--light-group", "bulb=point1");
     assert_int_equal(n4, n1);
     d = max_rel(mix, saved, n1, &rms);
-    print_message("rad_cli Cornell: the sun's, the point light's and the lamp's groups mixed vs one solve: max "
+    print_message("rad_cli Cornell: the sun's, the point light's and the lamp's groups mixed vs "
+                  "one solve: max "
                   "%.4f%%, rms %.4f%%\n",
                   100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "rad_cli with lights: --light-group mix against one solve, max relative difference");
-    off = CLI_CSV(tmp_path("l_off.csv"), &n5, "--load-ff", ff, "--light-group", "day=sun1", "--group-intensity",
-                  "day=0,0,0");
+    CHECK_LE(d, REL_BOUND,
+             "rad_cli with lights: --light-group mix against one solve, max relative difference");
+    off = CLI_CSV(tmp_path("l_off.csv"), &n5, "--load-ff", ff, "--light-group", "day=sun1",
+                  "--group-intensity", "day=0,0,0");
     {
-        const char *args[] = {"--quiet", "--width", "16", "--height", "16", COARSE, "--tol", "0.0001", "--point",
-                              "-0.2,0.35,-0.3,0.02,0.02,0.015", "--load-ff", ff, "--dump-radiosity",
-                              tmp_path("l_nosun.csv"), "-o", tmp_path("l_nosun.png"), CORNELL, NULL};
+        const char *args[] = {"--quiet",
+                              "--width",
+                              "16",
+                              "--height",
+                              "16",
+                              COARSE,
+                              "--tol",
+                              "0.0001",
+                              "--point",
+                              "-0.2,0.35,-0.3,0.02,0.02,0.015",
+                              "--load-ff",
+                              ff,
+                              "--dump-radiosity",
+                              tmp_path("l_nosun.csv"),
+                              "-o",
+                              tmp_path("l_nosun.png"),
+                              CORNELL,
+                              NULL};
         run_args(&r, FIXED, args);
         expect_status(&r, 0);
         run_free(&r);
@@ -1001,22 +1095,35 @@ static void test_cli_lights(void **state)
     }
     assert_int_equal(n5, n6);
     d = max_rel(off, nosun, n5, &rms);
-    print_message("rad_cli Cornell: the sun's group at 0 vs no sun: max %.4f%%, rms %.4f%%\n", 100 * d, 100 * rms);
-    CHECK_LE(d, REL_BOUND, "rad_cli with lights: a group at 0 against the scene without it, max relative difference");
-    gs = CLI_CSV(tmp_path("l_gs.csv"), &n7, "--load-ff", ff, "--solver", "gauss-seidel", "--tol", "0.00001");
+    print_message("rad_cli Cornell: the sun's group at 0 vs no sun: max %.4f%%, rms %.4f%%\n",
+                  100 * d, 100 * rms);
+    CHECK_LE(
+        d, REL_BOUND,
+        "rad_cli with lights: a group at 0 against the scene without it, max relative difference");
+    gs = CLI_CSV(tmp_path("l_gs.csv"), &n7, "--load-ff", ff, "--solver", "gauss-seidel", "--tol",
+                 "0.00001");
     assert_int_equal(n7, n1);
     d = max_rel(gs, saved, n1, &rms);
-    print_message("rad_cli Cornell with lights: gauss-seidel vs shooting from rows: max %.4f%%, rms %.4f%%\n",
-                  100 * d, 100 * rms);
-    CHECK_LE(d, GS_BOUND, "rad_cli with lights: --solver gauss-seidel against shooting, max relative difference");
-    free(saved); free(loaded); free(plain); free(mix); free(off); free(nosun); free(gs);
+    print_message(
+        "rad_cli Cornell with lights: gauss-seidel vs shooting from rows: max %.4f%%, rms %.4f%%\n",
+        100 * d, 100 * rms);
+    CHECK_LE(
+        d, GS_BOUND,
+        "rad_cli with lights: --solver gauss-seidel against shooting, max relative difference");
+    free(saved);
+    free(loaded);
+    free(plain);
+    free(mix);
+    free(off);
+    free(nosun);
+    free(gs);
     /* errors */
-    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun1", "--light-group", "b=sun1",
-        "-o", tmp_path("x.png"), CORNELL);
+    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun1",
+        "--light-group", "b=sun1", "-o", tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "light 'sun1' is already in group 'a'");
     run_free(&r);
-    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun2", "-o", tmp_path("x.png"),
-        CORNELL);
+    RUN(&r, FIXED, "--quiet", COARSE, "--sun", "0,-1,0,1,1,1", "--light-group", "a=sun2", "-o",
+        tmp_path("x.png"), CORNELL);
     expect_error(&r, 1, "no material or light named 'sun2'");
     run_free(&r);
 }
@@ -1028,21 +1135,22 @@ static void test_cli_animate(void **state)
     int i;
     (void)state;
     if (!need(FIXED)) skip();
-    RUN(&r, FIXED, "--quiet", "--stats", "--width", "48", "--height", "48", GCOARSE, "--light-group", "warm=amber",
-        "--animate", DATA "frames.txt", "-o", tmp_path("fr.png"), GALLERY);
+    RUN(&r, FIXED, "--quiet", "--stats", "--width", "48", "--height", "48", GCOARSE,
+        "--light-group", "warm=amber", "--animate", DATA "frames.txt", "-o", tmp_path("fr.png"),
+        GALLERY);
     expect_status(&r, 0);
     /* One visibility computation for every frame. */
     CHECK_CONTAINS(r.out, "0 polygons rendered during the solve", "rad_cli's stdout");
     run_free(&r);
     for (i = 0; i < 5; i++) {
         snprintf(name, sizeof name, "fr_%04d.png", i);
-        CHECK_INT_EQ(access(tmp_path(name), R_OK), 0,
-                     "access(%s): the file was written", tmp_path(name));
+        CHECK_INT_EQ(access(tmp_path(name), R_OK), 0, "access(%s): the file was written",
+                     tmp_path(name));
     }
-    CHECK_INT_NE(access(tmp_path("fr_0005.png"), R_OK), 0,
-                 "access(%s): no such file is written", tmp_path("fr_0005.png"));
-    CHECK_INT_NE(access(tmp_path("fr.png"), R_OK), 0,
-                 "access(%s): no such file is written", tmp_path("fr.png"));
+    CHECK_INT_NE(access(tmp_path("fr_0005.png"), R_OK), 0, "access(%s): no such file is written",
+                 tmp_path("fr_0005.png"));
+    CHECK_INT_NE(access(tmp_path("fr.png"), R_OK), 0, "access(%s): no such file is written",
+                 tmp_path("fr.png"));
     /* Frames 0 and 4 are the same camera and intensities; 1 and 2 change the lights,
      * 3 the camera. */
     CHECK_THAT(same_image(tmp_path("fr_0000.png"), tmp_path("fr_0004.png")),
@@ -1062,7 +1170,8 @@ static void test_cli_animate(void **state)
         assert_non_null(fp);
         fputs("0 2 6 0 1.2 0\n0 2 6 0 1.2 0 45 other=0.25,0.25,0.25\n", fp);
         assert_int_equal(fclose(fp), 0);
-        RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", GCOARSE, "--animate", f, "-o", tmp_path("o.ppm"), GALLERY);
+        RUN(&r, FIXED, "--quiet", "--width", "32", "--height", "32", GCOARSE, "--animate", f, "-o",
+            tmp_path("o.ppm"), GALLERY);
         expect_status(&r, 0);
         run_free(&r);
         CHECK_THAT(!same_image(tmp_path("o_0000.ppm"), tmp_path("o_0001.ppm")), "%s and %s differ",
@@ -1082,8 +1191,8 @@ static void test_cli_animate(void **state)
         expect_error(&r, 1, "frames2.txt:1: no light group named 'warm'");
         run_free(&r);
     }
-    RUN(&r, FIXED, "--quiet", GCOARSE, "--animate", DATA "frames.txt", "--camera", "0,2,6,0,1,0", "-o", tmp_path("o.png"),
-        GALLERY);
+    RUN(&r, FIXED, "--quiet", GCOARSE, "--animate", DATA "frames.txt", "--camera", "0,2,6,0,1,0",
+        "-o", tmp_path("o.png"), GALLERY);
     expect_error(&r, 2, "--animate takes its cameras from its file");
     run_free(&r);
 }

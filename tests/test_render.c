@@ -26,15 +26,24 @@ static uint32_t zb[W * H];
 
 static void setup(rad_scene_t *s)
 {
-    rad_pools_t p = {.surfaces = sf, .max_surfaces = 8, .patches = pt, .max_patches = 512,
-                     .elements = el, .max_elements = 512, .vertices = vx, .max_vertices = 1024,
-                     .work = work, .work_bytes = sizeof work};
+    rad_pools_t p = {.surfaces = sf,
+                     .max_surfaces = 8,
+                     .patches = pt,
+                     .max_patches = 512,
+                     .elements = el,
+                     .max_elements = 512,
+                     .vertices = vx,
+                     .max_vertices = 1024,
+                     .work = work,
+                     .work_bytes = sizeof work};
     rad_config_t c = {.max_patch = RAD_REAL(2.0), .max_element = RAD_REAL(1.0), .res = 16};
     assert_int_equal(rad_init(s, &p, &c), RAD_OK);
 }
 
-static const rad_camera_t cam = {.eye = {0, 0, RAD_REAL(10)}, .target = {0, 0, 0},
-                                 .up = {0, RAD_REAL(1), 0}, .tan_half_fov = RAD_REAL(0.5)};
+static const rad_camera_t cam = {.eye = {0, 0, RAD_REAL(10)},
+                                 .target = {0, 0, 0},
+                                 .up = {0, RAD_REAL(1), 0},
+                                 .tan_half_fov = RAD_REAL(0.5)};
 
 static double px(int x, int y, int ch)
 {
@@ -64,8 +73,8 @@ static void test_gouraud_orientation(void **st)
      * 3 / 5 of the half height, the same in pixels horizontally. */
     for (y = 0; y < H; y++)
         for (x = 0; x < W; x++) {
-            double sx = (x + 0.5 - W / 2.0) / (H / 2.0) * 5.0;  /* scene x at this pixel */
-            double sy = (H / 2.0 - y - 0.5) / (H / 2.0) * 5.0;  /* row 0 is the top */
+            double sx = (x + 0.5 - W / 2.0) / (H / 2.0) * 5.0; /* scene x at this pixel */
+            double sy = (H / 2.0 - y - 0.5) / (H / 2.0) * 5.0; /* row 0 is the top */
             if (fabs(sx) < 2.9 && fabs(sy) < 2.9) {
                 /* Linear colours interpolate exactly up to the Q16.15 attribute format
                  * and the 1/16-pixel snapping of vertices (1/16 px = 0.006 units). */

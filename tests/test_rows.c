@@ -15,10 +15,10 @@
 #include "core_values.h"
 #include "rad/rad.h"
 
-#define NS 32
-#define NP 512
-#define NE 2048
-#define NV 4096
+#define NS   32
+#define NP   512
+#define NE   2048
+#define NV   4096
 #define NENT (NP * NE / 2)
 
 typedef struct {
@@ -40,21 +40,28 @@ static world_t *room(const rad_rgb_t *l1, const rad_rgb_t *l2, const rad_rgb_t *
     rad_config_t c = {.max_patch = RAD_REAL(16), .max_element = RAD_REAL(8), .res = 64};
     const rad_rgb_t white = C(0.7, 0.7, 0.7), green = C(0.15, 0.5, 0.1);
     rad_vec3_t f[9][4] = {
-        {V(-32, -32, -32), V(-32, -32, 32), V(32, -32, 32), V(32, -32, -32)},   /* floor */
-        {V(-32, 32, -32), V(32, 32, -32), V(32, 32, 32), V(-32, 32, 32)},       /* ceiling */
-        {V(-32, -32, -32), V(-32, 32, -32), V(-32, 32, 32), V(-32, -32, 32)},   /* left */
-        {V(32, -32, -32), V(32, -32, 32), V(32, 32, 32), V(32, 32, -32)},       /* right */
-        {V(-32, -32, -32), V(32, -32, -32), V(32, 32, -32), V(-32, 32, -32)},   /* back */
-        {V(-32, -32, 32), V(-32, 32, 32), V(32, 32, 32), V(32, -32, 32)},       /* front */
-        {V(-8, 0, -8), V(-8, 0, 8), V(8, 0, 8), V(8, 0, -8)},       /* a plate, facing up */
+        {V(-32, -32, -32), V(-32, -32, 32), V(32, -32, 32), V(32, -32, -32)}, /* floor */
+        {V(-32, 32, -32), V(32, 32, -32), V(32, 32, 32), V(-32, 32, 32)},     /* ceiling */
+        {V(-32, -32, -32), V(-32, 32, -32), V(-32, 32, 32), V(-32, -32, 32)}, /* left */
+        {V(32, -32, -32), V(32, -32, 32), V(32, 32, 32), V(32, 32, -32)},     /* right */
+        {V(-32, -32, -32), V(32, -32, -32), V(32, 32, -32), V(-32, 32, -32)}, /* back */
+        {V(-32, -32, 32), V(-32, 32, 32), V(32, 32, 32), V(32, -32, 32)},     /* front */
+        {V(-8, 0, -8), V(-8, 0, 8), V(8, 0, 8), V(8, 0, -8)}, /* a plate, facing up */
         {V(-20, 31.6, -20), V(-12, 31.6, -20), V(-12, 31.6, -12), V(-20, 31.6, -12)}, /* light 1 */
-        {V(12, 31.6, 12), V(20, 31.6, 12), V(20, 31.6, 20), V(12, 31.6, 20)},   /* light 2 */
+        {V(12, 31.6, 12), V(20, 31.6, 12), V(20, 31.6, 20), V(12, 31.6, 20)},         /* light 2 */
     };
     int i;
     assert_non_null(w);
-    p.surfaces = w->sf; p.max_surfaces = NS; p.patches = w->pt; p.max_patches = NP;
-    p.elements = w->el; p.max_elements = NE; p.vertices = w->vx; p.max_vertices = NV;
-    p.work = w->work; p.work_bytes = sizeof w->work;
+    p.surfaces = w->sf;
+    p.max_surfaces = NS;
+    p.patches = w->pt;
+    p.max_patches = NP;
+    p.elements = w->el;
+    p.max_elements = NE;
+    p.vertices = w->vx;
+    p.max_vertices = NV;
+    p.work = w->work;
+    p.work_bytes = sizeof w->work;
     assert_int_equal(rad_init(&w->s, &p, &c), RAD_OK);
     for (i = 0; i < 9; i++) {
         const rad_rgb_t *refl = i == 2 ? left : i == 3 ? &green : &white;
@@ -75,8 +82,11 @@ static rows_t *rows_for(world_t *w)
 {
     rows_t *r = calloc(1, sizeof *r);
     assert_non_null(r);
-    r->r.start = r->start; r->r.ids = r->ids; r->r.ffs = r->ffs;
-    r->r.max_rows = NP; r->r.max_entries = NENT;
+    r->r.start = r->start;
+    r->r.ids = r->ids;
+    r->r.ffs = r->ffs;
+    r->r.max_rows = NP;
+    r->r.max_entries = NENT;
     assert_int_equal(rad_rows_compute(&w->s, &r->r, NP), (int)w->s.n_patches);
     assert_int_equal(rad_rows_compute(&w->s, &r->r, NP), 0); /* all there */
     return r;
@@ -123,14 +133,18 @@ static void test_code(void **st)
     (void)st;
     /* Exact below 2^11; within 2^-11 relative (half an 11-bit step) above. */
     for (q = 0; q < 4096; q++)
-        if (q < 2048) CHECK_INT_EQ(rad_ff_from_code((uint16_t)q), q, "code %u (exact below 2^11)",
-                                   (unsigned)q);
+        if (q < 2048)
+            CHECK_INT_EQ(rad_ff_from_code((uint16_t)q), q, "code %u (exact below 2^11)",
+                         (unsigned)q);
     for (q = 1; q < (1u << 30); q = q * 3 / 2 + 7) {
         uint16_t c = 0;
         uint32_t e = 0, m;
         while ((q >> e) >= 2048u) e++;
         m = e ? (q + (1u << (e - 1))) >> e : q;
-        if (m == 2048u) { m = 1024u; e++; }
+        if (m == 2048u) {
+            m = 1024u;
+            e++;
+        }
         c = (uint16_t)(e << 11 | m);
         CHECK_NEAR((double)rad_ff_from_code(c), q, q / 2048.0 + 0.5,
                    "form factor %u (Q2.30) through its code: within 2^-11 relative", (unsigned)q);
@@ -156,7 +170,9 @@ static void test_rows_match_hemicube(void **st)
         }
         for (i = 0; i < w->s.n_elements; i++) assert_int_equal(ff[i], 0); /* nothing left out */
     }
-    free(ff); free(r); free(w);
+    free(ff);
+    free(r);
+    free(w);
 }
 
 static void test_rows_full_and_chunks(void **st)
@@ -166,10 +182,13 @@ static void test_rows_full_and_chunks(void **st)
     rows_t *a = rows_for(w), *b = calloc(1, sizeof *b);
     int n;
     (void)st;
-    b->r.start = b->start; b->r.ids = b->ids; b->r.ffs = b->ffs;
-    b->r.max_rows = NP; b->r.max_entries = a->start[3] + 1; /* room for three rows and a bit */
+    b->r.start = b->start;
+    b->r.ids = b->ids;
+    b->r.ffs = b->ffs;
+    b->r.max_rows = NP;
+    b->r.max_entries = a->start[3] + 1; /* room for three rows and a bit */
     assert_int_equal(rad_rows_compute(&w->s, &b->r, 2), 2);
-    assert_int_equal(rad_rows_compute(&w->s, &b->r, 5), 1);   /* the fourth does not fit */
+    assert_int_equal(rad_rows_compute(&w->s, &b->r, 5), 1); /* the fourth does not fit */
     assert_int_equal(rad_rows_compute(&w->s, &b->r, 5), RAD_ERR_FULL);
     assert_int_equal(b->r.n_rows, 3);
     /* In chunks, the same rows as all at once. */
@@ -180,12 +199,15 @@ static void test_rows_full_and_chunks(void **st)
     b->r.max_rows = 3;
     n = rad_rows_compute(&w->s, &b->r, 1);
     assert_int_equal(n, RAD_ERR_ARG);
-    free(a); free(b); free(w);
+    free(a);
+    free(b);
+    free(w);
 }
 
 static void test_relight_without_rendering(void **st)
 {
-    rad_rgb_t l = C(160, 160, 160), blue = C(32, 64, 192), red = C(0.6, 0.1, 0.1), yellow = C(0.7, 0.6, 0.1);
+    rad_rgb_t l = C(160, 160, 160), blue = C(32, 64, 192), red = C(0.6, 0.1, 0.1),
+              yellow = C(0.7, 0.6, 0.1);
     world_t *w = room(&l, &l, &red), *fresh = room(&blue, &l, &yellow);
     rows_t *r = rows_for(w);
     uint32_t calls;
@@ -204,9 +226,12 @@ static void test_relight_without_rendering(void **st)
     d = max_rel(w, fresh);
     print_message("relit from rows vs fresh hemi-cube solve: max %.4f%% per element\n", 100 * d);
     /* The code's 2^-11 per form factor, plus the last 0.02% unshot in each. */
-    CHECK_LE(d, 0.002, "relit from rows against a fresh hemi-cube solve: max relative difference "
-                       "per element above 1%% of the brightest");
-    free(r); free(w); free(fresh);
+    CHECK_LE(d, 0.002,
+             "relit from rows against a fresh hemi-cube solve: max relative difference "
+             "per element above 1%% of the brightest");
+    free(r);
+    free(w);
+    free(fresh);
 }
 
 static void test_gauss_seidel_vs_shooting(void **st)
@@ -222,22 +247,29 @@ static void test_gauss_seidel_vs_shooting(void **st)
     (void)st;
     CHECK_INT_GT(rad_rows_shoot(&a->s, &ra->r, 100000, RAD_REAL(0.0001)), 0, "shots from the rows");
     bake_ambient(a);
-    assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n - 1, 100, RAD_REAL(0.0001)), RAD_ERR_ARG);
+    assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n - 1, 100, RAD_REAL(0.0001)),
+                     RAD_ERR_ARG);
     it = rad_rows_gauss_seidel(&b->s, &rb->r, m, n, 100, RAD_REAL(0.0001));
     CHECK_INT_GT(it, 1, "Gauss-Seidel sweeps to a change of 0.01%%");
     CHECK_INT_LT(it, 100, "Gauss-Seidel sweeps to a change of 0.01%%");
     assert_int_equal(b->s.stats.raster_calls, calls);
     d = max_rel(b, a);
-    print_message("Gauss-Seidel (%d sweeps) vs progressive refinement: max %.4f%% per element\n", it, 100 * d);
+    print_message("Gauss-Seidel (%d sweeps) vs progressive refinement: max %.4f%% per element\n",
+                  it, 100 * d);
     /* The same equations solved two ways, each to 0.0001: docs/cli.md's bound for
      * Gauss-Seidel against shooting, 0.5% per element. */
-    CHECK_LE(d, 0.005, "Gauss-Seidel against progressive refinement: max relative difference "
-                       "per element above 1%% of the brightest");
+    CHECK_LE(d, 0.005,
+             "Gauss-Seidel against progressive refinement: max relative difference "
+             "per element above 1%% of the brightest");
     CHECK_INT_EQ(rad_unshot_fraction(&b->s), 0, "unshot fraction after Gauss-Seidel");
     /* The largest tolerance: value * tol saturates, and the test against it must not
      * overflow (found by fuzz_core under UBSan); nothing moves by more, so one sweep. */
     assert_int_equal(rad_rows_gauss_seidel(&b->s, &rb->r, m, n, 100, INT32_MAX), 1);
-    free(m); free(ra); free(rb); free(a); free(b);
+    free(m);
+    free(ra);
+    free(rb);
+    free(a);
+    free(b);
 }
 
 static void test_light_groups(void **st)
@@ -245,7 +277,8 @@ static void test_light_groups(void **st)
     rad_rgb_t l1 = C(160, 128, 96), l2 = C(48, 80, 192), off = C(0, 0, 0), red = C(0.6, 0.1, 0.1);
     world_t *w = room(&l1, &off, &red), *sum = room(&l1, &l2, &red);
     rows_t *r = rows_for(w);
-    rad_rgb_t *g1 = calloc(NE, sizeof *g1), *g2 = calloc(NE, sizeof *g2), *mix = calloc(NE, sizeof *mix);
+    rad_rgb_t *g1 = calloc(NE, sizeof *g1), *g2 = calloc(NE, sizeof *g2),
+              *mix = calloc(NE, sizeof *mix);
     const rad_rgb_t *groups[2];
     rad_rgb_t k[2];
     uint32_t e;
@@ -261,8 +294,10 @@ static void test_light_groups(void **st)
     rad_rows_shoot(&w->s, &r->r, 100000, RAD_REAL(0.0001));
     bake_ambient(w);
     for (e = 0; e < w->s.n_elements; e++) g2[e] = w->el[e].radiosity;
-    groups[0] = g1; groups[1] = g2;
-    k[0] = C(1, 1, 1); k[1] = C(1, 1, 1);
+    groups[0] = g1;
+    groups[1] = g2;
+    k[0] = C(1, 1, 1);
+    k[1] = C(1, 1, 1);
     assert_int_equal(rad_mix(&w->s, groups, k, 2, mix), RAD_OK);
     for (e = 0; e < w->s.n_elements; e++) w->el[e].radiosity = mix[e];
     rad_shoot(&sum->s, 100000, RAD_REAL(0.0001));
@@ -271,8 +306,9 @@ static void test_light_groups(void **st)
     print_message("mix of two groups vs both lights solved at once: max %.4f%%\n", 100 * d);
     /* The code's 2^-11 per form factor, and rounding: each solve adds one rounding of
      * half an LSB per shot to every element it reaches. */
-    CHECK_LE(d, 0.002, "a mix of two groups against both lights solved at once: max relative "
-                       "difference per element above 1%% of the brightest");
+    CHECK_LE(d, 0.002,
+             "a mix of two groups against both lights solved at once: max relative "
+             "difference per element above 1%% of the brightest");
     /* Dimming: half of group 2 is half of its contribution, exactly up to rounding. */
     k[1] = C(0.5, 0.5, 0.5);
     rad_mix(&w->s, groups, k, 2, mix);
@@ -282,7 +318,12 @@ static void test_light_groups(void **st)
                    "element %u: blue of group 1 + half group 2, within 2 LSB", (unsigned)e);
     }
     assert_int_equal(rad_mix(&w->s, NULL, k, 2, mix), RAD_ERR_ARG);
-    free(g1); free(g2); free(mix); free(r); free(w); free(sum);
+    free(g1);
+    free(g2);
+    free(mix);
+    free(r);
+    free(w);
+    free(sum);
 }
 
 int main(void)

@@ -23,10 +23,10 @@
 
 #include "rad/rad.h"
 
-#define NS 16
-#define NP 512
-#define NE 2048
-#define NV 3072
+#define NS  16
+#define NP  512
+#define NE  2048
+#define NV  3072
 #define RES 64
 #define IMG 48
 
@@ -39,10 +39,10 @@ typedef struct {
     int res;               /* in: hemi-cube resolution (0: RES) */
     uint32_t n, shots, saturations, small;
     int length_shift, power_shift;
-    double rgb[3 * NE];   /* element radiosity with the ambient term */
-    double ambient[3];    /* rad_ambient */
-    double plain_err;     /* max |caller-unit output - scaled / 2^p|, in Q16.16 LSB */
-    double image[3 * IMG * IMG]; /* rad_render of rad_shade_vertices, caller's camera */
+    double rgb[3 * NE];              /* element radiosity with the ambient term */
+    double ambient[3];               /* rad_ambient */
+    double plain_err;                /* max |caller-unit output - scaled / 2^p|, in Q16.16 LSB */
+    double image[3 * IMG * IMG];     /* rad_render of rad_shade_vertices, caller's camera */
     double area[NE], centre[3 * NE]; /* rad_element_geometry: caller's units */
 } room_t;
 
@@ -354,8 +354,8 @@ static void test_any_units(void **st)
                "radiosity within %.4f%% of the metre room's (bound 0.5%%), area / L^2 within "
                "%.2g (bound 2e-4), centre / L within %.2g (bound 1e-4); element 0: area %g, "
                "centre (%g, %g, %g)\n",
-               L[k], unit[k], x->length_shift, x->power_shift, shift[k], x->n, n, 100 * w, wa,
-               wc, x->area[0], x->centre[0], x->centre[1], x->centre[2]);
+               L[k], unit[k], x->length_shift, x->power_shift, shift[k], x->n, n, 100 * w, wa, wc,
+               x->area[0], x->centre[0], x->centre[1], x->centre[2]);
         assert_int_equal(x->length_shift, shift[k]);
         assert_int_equal(x->saturations, 0);
         CHECK_LE(w, 0.005, "radiosity of the room in %s against metres", unit[k]);
@@ -387,7 +387,9 @@ static void test_twin_metre_room(void **st)
     for (k = 0; k < 3; k++) {
         room_t *x = calloc(1, sizeof *x), *f = calloc(1, sizeof *f), *y = calloc(1, sizeof *y);
         uint32_t n, i, same = 0;
-        assert_non_null(x); assert_non_null(f); assert_non_null(y);
+        assert_non_null(x);
+        assert_non_null(f);
+        assert_non_null(y);
         x->size = f->size = 1.0;
         x->emission = f->emission = 1.0;
         y->size = 8.0;
@@ -495,8 +497,8 @@ static void test_shifts_chosen(void **st)
             room_t *x = solve(sizes[i], emissions[j]);
             printf("L %2.0f, light %6.2f: shifts %d, %d (want %d, %d), small elements %u, "
                    "caller-unit reads within %.3f LSB of the scaled ones (bound 0.5)\n",
-                   sizes[i], emissions[j], x->length_shift, x->power_shift, length[i],
-                   power[j], x->small, x->plain_err);
+                   sizes[i], emissions[j], x->length_shift, x->power_shift, length[i], power[j],
+                   x->small, x->plain_err);
             assert_int_equal(x->length_shift, length[i]);
             assert_int_equal(x->power_shift, power[j]);
             assert_int_equal(x->small, 0);
@@ -623,8 +625,8 @@ static void test_rows_rescale(void **st)
         assert_true(light >= 0);
         rows.n_rows = 0;
         assert_int_equal(rad_rows_compute(&s, &rows, ROWS), (int)s.n_patches);
-        assert_true(rad_rows_gauss_seidel(&s, &rows, matrix, RAD_GS_ENTRIES(NP), 200,
-                                          RAD_REAL(1e-4)) > 0);
+        assert_true(
+            rad_rows_gauss_seidel(&s, &rows, matrix, RAD_GS_ENTRIES(NP), 200, RAD_REAL(1e-4)) > 0);
         if (k) {
             assert_int_equal(s.power_shift, 14);
             assert_int_equal(rad_set_surface(&s, (uint32_t)light, 0, &hot), RAD_OK);
@@ -749,10 +751,13 @@ static void test_core_scale_untouched(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_twin_every_scale),  cmocka_unit_test(test_fixed_every_scale),
+        cmocka_unit_test(test_twin_every_scale),
+        cmocka_unit_test(test_fixed_every_scale),
         cmocka_unit_test(test_shifts_chosen),
-        cmocka_unit_test(test_power_of_two_exact), cmocka_unit_test(test_restart_rescales),
-        cmocka_unit_test(test_rows_rescale), cmocka_unit_test(test_add_after_restart),
+        cmocka_unit_test(test_power_of_two_exact),
+        cmocka_unit_test(test_restart_rescales),
+        cmocka_unit_test(test_rows_rescale),
+        cmocka_unit_test(test_add_after_restart),
         cmocka_unit_test(test_small_elements),
         cmocka_unit_test(test_core_scale_untouched),
         cmocka_unit_test(test_twin_metre_room),

@@ -100,12 +100,13 @@ static void compare(world_t *w, const char *name, int shots)
         assert_true(rc >= 0);
         if (rc == 0) break;
         want = full_scan(&w->s); /* after the begin: the frozen scale, the back-off's halvings */
-        CHECK_INT_EQ(p, want, "%s, shot %d: the core's shooter against the full scan's", name, i + 1);
+        CHECK_INT_EQ(p, want, "%s, shot %d: the core's shooter against the full scan's", name,
+                     i + 1);
         same++;
         assert_int_equal(rad_shoot(&w->s, 1, 0), 1);
     }
-    print_message("%s: %d shots, each shooter the full scan's (%u patches, %u back-offs)\n", name, same,
-                  (unsigned)w->s.n_patches, (unsigned)w->s.stats.backoffs);
+    print_message("%s: %d shots, each shooter the full scan's (%u patches, %u back-offs)\n", name,
+                  same, (unsigned)w->s.n_patches, (unsigned)w->s.stats.backoffs);
     CHECK_INT_GE(same, 50, "%s: shots compared", name);
 }
 
@@ -124,7 +125,8 @@ static void test_closed_box(void **st)
  * must follow. */
 static void test_open_bright_box(void **st)
 {
-    const rad_rgb_t rho[3] = {C(0.998, 0.998, 0.998), C(0.998, 0.998, 0.998), C(0.998, 0.998, 0.998)};
+    const rad_rgb_t rho[3] = {C(0.998, 0.998, 0.998), C(0.998, 0.998, 0.998),
+                              C(0.998, 0.998, 0.998)};
     world_t *w = world(12, 6);
     (void)st;
     box(w, 1, rho);
@@ -143,7 +145,8 @@ static void test_element_reflectance(void **st)
     assert_int_equal(rad_use_element_reflectance(&w->s, w->rho), RAD_OK);
     box(w, 0, rho);
     for (e = 0; e < w->s.n_elements; e++) {
-        rad_rgb_t r = C(0.1 + 0.8 * (double)(e % 7) / 6, 0.3 + 0.1 * (double)(e % 3), 0.9 - 0.1 * (double)(e % 5));
+        rad_rgb_t r = C(0.1 + 0.8 * (double)(e % 7) / 6, 0.3 + 0.1 * (double)(e % 3),
+                        0.9 - 0.1 * (double)(e % 5));
         assert_int_equal(rad_set_element_reflectance(&w->s, e, &r), RAD_OK);
     }
     compare(w, "element reflectances", 400);

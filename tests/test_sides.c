@@ -33,7 +33,7 @@
 TMPDIR_GROUP("sides")
 
 #define GATHER_RES 64
-#define RHO 0.5
+#define RHO        0.5
 
 /* Floor 4 x 4 at y = 0 facing up; panel 1 x 1 at y = 1 facing up; lamp 0.5 x 0.5 at
  * y = 2 facing down (emission 10). The lamp's edge at x = 0.25 and the panel's at 0.5
@@ -70,7 +70,8 @@ static void panel_scene(scene_t *t)
     write_file(tmp_path("panel.obj"), panel_obj);
     write_file(tmp_path("panel.mtl"), panel_mtl);
     memset(t, 0, sizeof *t);
-    if (obj_load(tmp_path("panel.obj"), &t->sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
+    if (obj_load(tmp_path("panel.obj"), &t->sc, NULL, NULL, err, sizeof err) < 0)
+        fail_msg("%s", err);
     t->p = polys_from_obj(&t->sc, &t->n, NULL, NULL);
     assert_non_null(t->p);
     memset(&o, 0, sizeof o);
@@ -87,7 +88,10 @@ static void scene_free(scene_t *t)
     obj_free(&t->sc);
 }
 
-static int under_panel(const double *p) { return fabs(p[0]) <= 0.5 && fabs(p[2]) <= 0.5; }
+static int under_panel(const double *p)
+{
+    return fabs(p[0]) <= 0.5 && fabs(p[2]) <= 0.5;
+}
 
 static int gather_cb(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
@@ -106,7 +110,8 @@ static void check_solve_dark(scene_t *t)
         sc_element_centroid(t->s, e, c);
         if (sc_element_tag(t->s, e) != 0 || !under_panel(c)) continue;
         sc_element_rgb(t->s, e, 0, rgb);
-        CHECK_EQ(rgb[1], 0.0, "the solve's floor element %d at (%.3f, %.3f) under the panel", e, c[0], c[2]);
+        CHECK_EQ(rgb[1], 0.0, "the solve's floor element %d at (%.3f, %.3f) under the panel", e,
+                 c[0], c[2]);
         n++;
     }
     CHECK_INT_GE(n, 16, "floor elements under the panel");
@@ -146,7 +151,8 @@ static void test_lightmap_backs(void **state)
             if (!lm_texel_point(&a, x, y, p) || a.poly[at] != 0) continue;
             peak = fmax(peak, a.rgb[3 * at + 1]);
             if (!under_panel(p)) continue;
-            CHECK_EQ(a.rgb[3 * at + 1], 0.0, "floor texel %d,%d at (%.3f, %.3f) under the panel", x, y, p[0], p[2]);
+            CHECK_EQ(a.rgb[3 * at + 1], 0.0, "floor texel %d,%d at (%.3f, %.3f) under the panel", x,
+                     y, p[0], p[2]);
             worst_under = fmax(worst_under, a.rgb[3 * at + 1]);
             under++;
         }
@@ -164,13 +170,16 @@ static void test_lightmap_backs(void **state)
         sc_element_rgb(t.s, e, 0, rgb);
         lm_uv(&a, 0, c, xy);
         lm_lookup(&a, xy, lm);
-        CHECK_LE(fabs(lm[1] - rgb[1] / RHO), 0.05 * peak, "element %d at (%.3f, %.3f): lightmap %.5f, solve %.5f", e,
-                 c[0], c[2], lm[1], rgb[1] / RHO);
+        CHECK_LE(fabs(lm[1] - rgb[1] / RHO), 0.05 * peak,
+                 "element %d at (%.3f, %.3f): lightmap %.5f, solve %.5f", e, c[0], c[2], lm[1],
+                 rgb[1] / RHO);
         worst = fmax(worst, fabs(lm[1] - rgb[1] / RHO) / peak);
         compared++;
     }
-    printf("lightmap under a one-sided panel: %d floor texels under it, largest E %.3g (solve 0, bound 0); "
-           "elsewhere %d elements against the texel at their centre, worst %.2f%% of the floor's brightest E %.4f "
+    printf("lightmap under a one-sided panel: %d floor texels under it, largest E %.3g (solve 0, "
+           "bound 0); "
+           "elsewhere %d elements against the texel at their centre, worst %.2f%% of the floor's "
+           "brightest E %.4f "
            "(bound 5%%)\n",
            under, worst_under, compared, 100.0 * worst, peak);
     lm_free(&a);
@@ -203,19 +212,23 @@ static void test_fgather_backs(void **state)
         double p[3];
         sc_vertex_pos(t.s, v, p);
         if (!ok[v] || fabs(p[1]) > 1e-9 || !under_panel(p)) continue;
-        CHECK_EQ(ve[3 * v + 1], 0.0, "gathered floor vertex %d at (%.3f, %.3f) under the panel", v, p[0], p[2]);
+        CHECK_EQ(ve[3 * v + 1], 0.0, "gathered floor vertex %d at (%.3f, %.3f) under the panel", v,
+                 p[0], p[2]);
         worst = fmax(worst, ve[3 * v + 1]);
         n++;
     }
     CHECK_INT_GE(n, 16, "floor vertices under the panel");
     /* The view's middle 3 x 3 pixels show the floor within 0.2 of the origin (a 10
      * degree view from 3 away, 9.5 degrees above the floor: 0.06 a pixel along z). */
-    CHECK_INT_EQ(sc_fgather_render(f, &cam, W, H, rgb, NULL, err, sizeof err), 0, "sc_fgather_render (%s)", err);
+    CHECK_INT_EQ(sc_fgather_render(f, &cam, W, H, rgb, NULL, err, sizeof err), 0,
+                 "sc_fgather_render (%s)", err);
     centre = 0.0;
     for (y = H / 2 - 1; y <= H / 2 + 1; y++)
         for (x = W / 2 - 1; x <= W / 2 + 1; x++) centre = fmax(centre, rgb[3 * (y * W + x) + 1]);
-    CHECK_EQ(centre, 0.0, "the brightest of the view's middle 3 x 3 pixels (the floor under the panel)");
-    printf("final gather under a one-sided panel: %d floor vertices, largest E %.3g; the view's middle pixels %.3g "
+    CHECK_EQ(centre, 0.0,
+             "the brightest of the view's middle 3 x 3 pixels (the floor under the panel)");
+    printf("final gather under a one-sided panel: %d floor vertices, largest E %.3g; the view's "
+           "middle pixels %.3g "
            "(solve 0, bound 0)\n",
            n, worst, centre);
     sc_fgather_free(f);
@@ -273,7 +286,8 @@ static void test_float_twin_backs(void **state)
         double p[3];
         scf_vertex_pos(s, v, p);
         if (!ok[v] || fabs(p[1]) > 1e-9 || !under_panel(p)) continue;
-        CHECK_EQ(ve[3 * v + 1], 0.0, "the float twin's floor vertex %d at (%.3f, %.3f)", v, p[0], p[2]);
+        CHECK_EQ(ve[3 * v + 1], 0.0, "the float twin's floor vertex %d at (%.3f, %.3f)", v, p[0],
+                 p[2]);
         n++;
     }
     CHECK_INT_GE(n, 16, "the float twin's floor vertices under the panel");
@@ -310,17 +324,20 @@ static char *read_text(const char *path)
  * room. BOX_WRONG winds the ceiling, the four walls and the lamp outwards (against
  * their vn; the floor agrees), BOX_RIGHT winds every face into the room, each written
  * as BOX_WRONG's reversed. 5 walls and the lamp: 5.04 of 6.04 units of area, 83.4%. */
-#define BOX_HEAD                                                                              \
-    "mtllib box.mtl\n"                                                                        \
-    "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"                    \
-    "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"                          \
-    "vn 0 1 0\nvn 0 -1 0\nvn 1 0 0\nvn -1 0 0\nvn 0 0 1\nvn 0 0 -1\nusemtl grey\nf 1//1 4//1 3//1 2//1\n"
-static const char box_wrong[] = BOX_HEAD "f 8//2 7//2 6//2 5//2\nf 4//3 8//3 5//3 1//3\nf 6//4 7//4 3//4 2//4\n"
-                                         "f 5//5 6//5 2//5 1//5\nf 3//6 7//6 8//6 4//6\n"
-                                         "usemtl lamp\nf 12//2 11//2 10//2 9//2\n";
-static const char box_right[] = BOX_HEAD "f 5//2 6//2 7//2 8//2\nf 1//3 5//3 8//3 4//3\nf 2//4 3//4 7//4 6//4\n"
-                                         "f 1//5 2//5 6//5 5//5\nf 4//6 8//6 7//6 3//6\n"
-                                         "usemtl lamp\nf 9//2 10//2 11//2 12//2\n";
+#define BOX_HEAD                                                                               \
+    "mtllib box.mtl\n"                                                                         \
+    "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nv 0 1 0\nv 1 1 0\nv 1 1 1\nv 0 1 1\n"                 \
+    "v 0.4 0.99 0.4\nv 0.6 0.99 0.4\nv 0.6 0.99 0.6\nv 0.4 0.99 0.6\n"                         \
+    "vn 0 1 0\nvn 0 -1 0\nvn 1 0 0\nvn -1 0 0\nvn 0 0 1\nvn 0 0 -1\nusemtl grey\nf 1//1 4//1 " \
+    "3//1 2//1\n"
+static const char box_wrong[] =
+    BOX_HEAD "f 8//2 7//2 6//2 5//2\nf 4//3 8//3 5//3 1//3\nf 6//4 7//4 3//4 2//4\n"
+             "f 5//5 6//5 2//5 1//5\nf 3//6 7//6 8//6 4//6\n"
+             "usemtl lamp\nf 12//2 11//2 10//2 9//2\n";
+static const char box_right[] =
+    BOX_HEAD "f 5//2 6//2 7//2 8//2\nf 1//3 5//3 8//3 4//3\nf 2//4 3//4 7//4 6//4\n"
+             "f 1//5 2//5 6//5 5//5\nf 4//6 8//6 7//6 3//6\n"
+             "usemtl lamp\nf 9//2 10//2 11//2 12//2\n";
 static const char box_mtl[] = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n";
 
 /* The box wound against its vn lights as the box wound right, to the bit (each turned
@@ -337,13 +354,16 @@ static void test_winding_by_normals(void **state)
     write_file(tmp_path("wrong.obj"), box_wrong);
     write_file(tmp_path("right.obj"), box_right);
     snprintf(args, sizeof args, "--dump-radiosity %s", tmp_path("right.csv"));
-    CHECK_INT_EQ(cli("right.obj", args, &err), 0, "exit status on the box wound right (%s)", err ? err : "");
+    CHECK_INT_EQ(cli("right.obj", args, &err), 0, "exit status on the box wound right (%s)",
+                 err ? err : "");
     CHECK_LACKS(err, "wound against", "no faces turned in the box wound right");
     free(err);
     snprintf(args, sizeof args, "--dump-radiosity %s", tmp_path("wrong.csv"));
-    CHECK_INT_EQ(cli("wrong.obj", args, &err), 0, "exit status on the box wound against its vn (%s)", err ? err : "");
-    CHECK_CONTAINS(err, "6 faces (83.4% of the area) were wound against their vn normals and were flipped",
-                   "the warning");
+    CHECK_INT_EQ(cli("wrong.obj", args, &err), 0,
+                 "exit status on the box wound against its vn (%s)", err ? err : "");
+    CHECK_CONTAINS(
+        err, "6 faces (83.4% of the area) were wound against their vn normals and were flipped",
+        "the warning");
     free(err);
     wrong = read_text(tmp_path("wrong.csv"));
     right = read_text(tmp_path("right.csv"));
@@ -356,8 +376,10 @@ static void test_winding_by_normals(void **state)
     }
     /* all but the ceiling above the lamp, in its shadow (the lamp is 0.01 below it) */
     CHECK_INT_GE(lit, rows - rows / 20, "elements lit in the box wound right, of %d", rows);
-    CHECK_INT_EQ(strcmp(wrong, right), 0, "the box wound against its vn gives the right one's --dump-radiosity");
-    printf("winding against vn: 6 faces turned (83.4%% of the area); %d elements (%d lit) the same as the box wound "
+    CHECK_INT_EQ(strcmp(wrong, right), 0,
+                 "the box wound against its vn gives the right one's --dump-radiosity");
+    printf("winding against vn: 6 faces turned (83.4%% of the area); %d elements (%d lit) the same "
+           "as the box wound "
            "right\n",
            rows, lit);
     free(wrong);
@@ -370,11 +392,12 @@ static void test_winding_by_normals(void **state)
  * each other: their mean E within 1% (the scene is its own mirror image through the
  * panel's plane, but for the cube's turns and rounding: measured equal to 5 digits). Before,
  * the panel had no bottom: the blue light passed its back. */
-static const char panel2_obj[] = "mtllib panel2.mtl\n"
-                                 "v -0.5 0 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 0 -0.5\n"
-                                 "v -0.25 1 -0.25\nv 0.25 1 -0.25\nv 0.25 1 0.25\nv -0.25 1 0.25\n"
-                                 "v -0.25 -1 -0.25\nv -0.25 -1 0.25\nv 0.25 -1 0.25\nv 0.25 -1 -0.25\n"
-                                 "usemtl grey\nf 1 2 3 4\nusemtl red\nf 5 6 7 8\nusemtl blue\nf 9 10 11 12\n";
+static const char panel2_obj[] =
+    "mtllib panel2.mtl\n"
+    "v -0.5 0 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 0 -0.5\n"
+    "v -0.25 1 -0.25\nv 0.25 1 -0.25\nv 0.25 1 0.25\nv -0.25 1 0.25\n"
+    "v -0.25 -1 -0.25\nv -0.25 -1 0.25\nv 0.25 -1 0.25\nv 0.25 -1 -0.25\n"
+    "usemtl grey\nf 1 2 3 4\nusemtl red\nf 5 6 7 8\nusemtl blue\nf 9 10 11 12\n";
 static const char panel2_mtl[] = "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl red\nKd 0 0 0\nKe 10 0 0\n"
                                  "newmtl blue\nKd 0 0 0\nKe 0 0 10\n";
 
@@ -395,8 +418,10 @@ static void test_two_sided(void **state)
     write_file(tmp_path("panel2.obj"), panel2_obj);
     write_file(tmp_path("panel2.mtl"), panel2_mtl);
     /* rad_cli's elements (without the ambient term, which mixes every lamp's colour) */
-    snprintf(args, sizeof args, "--two-sided --no-ambient --dump-radiosity %s", tmp_path("two.csv"));
-    CHECK_INT_EQ(cli("panel2.obj", args, &cerr), 0, "exit status with --two-sided (%s)", cerr ? cerr : "");
+    snprintf(args, sizeof args, "--two-sided --no-ambient --dump-radiosity %s",
+             tmp_path("two.csv"));
+    CHECK_INT_EQ(cli("panel2.obj", args, &cerr), 0, "exit status with --two-sided (%s)",
+                 cerr ? cerr : "");
     free(cerr);
     csv = read_text(tmp_path("two.csv"));
     for (line = strchr(csv, '\n'); line && line[1]; line = strchr(line + 1, '\n')) {
@@ -415,7 +440,8 @@ static void test_two_sided(void **state)
     }
     free(csv);
     CHECK_INT_GT(lit[0], 0, "rad_cli --two-sided: panel elements lit red alone");
-    CHECK_INT_EQ(lit[1], lit[0], "rad_cli --two-sided: panel elements lit blue alone, as many as red");
+    CHECK_INT_EQ(lit[1], lit[0],
+                 "rad_cli --two-sided: panel elements lit blue alone, as many as red");
     /* the lightmap of both sides */
     if (obj_load(tmp_path("panel2.obj"), &sc, NULL, NULL, err, sizeof err) < 0) fail_msg("%s", err);
     CHECK_INT_EQ(polys_two_sided(&sc), 0, "polys_two_sided");
@@ -436,19 +462,22 @@ static void test_two_sided(void **state)
             size_t at = (size_t)y * a.size + x;
             double q[3];
             int side, k;
-            if (!lm_texel_point(&a, x, y, q) || (p[a.poly[at]].tag != 0 && p[a.poly[at]].tag != 3)) continue;
+            if (!lm_texel_point(&a, x, y, q) || (p[a.poly[at]].tag != 0 && p[a.poly[at]].tag != 3))
+                continue;
             side = p[a.poly[at]].tag == 3;
-            CHECK_EQ(a.rgb[3 * at + (side ? 0 : 2)], 0.0, "texel %d,%d of the panel's %s: the other lamp's channel",
-                     x, y, side ? "bottom" : "top");
+            CHECK_EQ(a.rgb[3 * at + (side ? 0 : 2)], 0.0,
+                     "texel %d,%d of the panel's %s: the other lamp's channel", x, y,
+                     side ? "bottom" : "top");
             for (k = 0; k < 3; k++) sum[side][k] += a.rgb[3 * at + k];
             cnt[side]++;
         }
     CHECK_INT_GT(cnt[0], 100, "texels of the panel's top");
     CHECK_INT_EQ(cnt[1], cnt[0], "texels of the panel's bottom, as many as the top's");
     rel = fabs(sum[0][0] - sum[1][2]) / sum[0][0];
-    CHECK_LE(rel, 0.01, "the top's mean red %.5f against the bottom's mean blue %.5f", sum[0][0] / cnt[0],
-             sum[1][2] / cnt[1]);
-    printf("--two-sided panel: %d elements lit on each side; lightmap %d texels a side, mean red on top %.5f, "
+    CHECK_LE(rel, 0.01, "the top's mean red %.5f against the bottom's mean blue %.5f",
+             sum[0][0] / cnt[0], sum[1][2] / cnt[1]);
+    printf("--two-sided panel: %d elements lit on each side; lightmap %d texels a side, mean red "
+           "on top %.5f, "
            "blue below %.5f (%.3f%% apart, bound 1%%)\n",
            lit[0], cnt[0], sum[0][0] / cnt[0], sum[1][2] / cnt[1], 100.0 * rel);
     lm_free(&a);
@@ -461,12 +490,9 @@ static void test_two_sided(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_lightmap_backs),
-        cmocka_unit_test(test_fgather_backs),
-        cmocka_unit_test(test_probe_backs),
-        cmocka_unit_test(test_float_twin_backs),
-        cmocka_unit_test(test_winding_by_normals),
-        cmocka_unit_test(test_two_sided),
+        cmocka_unit_test(test_lightmap_backs),     cmocka_unit_test(test_fgather_backs),
+        cmocka_unit_test(test_probe_backs),        cmocka_unit_test(test_float_twin_backs),
+        cmocka_unit_test(test_winding_by_normals), cmocka_unit_test(test_two_sided),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

@@ -21,8 +21,8 @@
 #include "host/sky_map.h"
 
 #define PI 3.14159265358979323846
-#define W 64
-#define H 32
+#define W  64
+#define H  32
 
 /* A W x H map: radiance L (grey) where LIT(x, y), else black. */
 static float *map(double l, int (*lit)(int x, int y))
@@ -36,9 +36,18 @@ static float *map(double l, int (*lit)(int x, int y))
     return m;
 }
 
-static int all(int x, int y) { return (void)x, (void)y, 1; }
-static int cap(int x, int y) { return (void)x, y < H / 4; }               /* zenith angle < pi / 4 */
-static int east(int x, int y) { return y < H / 2 && x >= W / 4 && x < 3 * W / 4; } /* +X half */
+static int all(int x, int y)
+{
+    return (void)x, (void)y, 1;
+}
+static int cap(int x, int y)
+{
+    return (void)x, y < H / 4;
+} /* zenith angle < pi / 4 */
+static int east(int x, int y)
+{
+    return y < H / 2 && x >= W / 4 && x < 3 * W / 4;
+} /* +X half */
 
 /* What the suns give a plane of normal N, channel C. */
 static double on_plane(const sky_sun *s, int n, const double nrm[3], int c)
@@ -69,23 +78,26 @@ static void test_uniform(void **state)
         int n = sky_map_suns(m, W, H, 1.0, dirs[k], suns);
         double worst = 0;
         CHECK_INT_EQ(n, 3 * mb * mb, "suns of a uniform map at %d directions", dirs[k]);
-        CHECK_NEAR(on_plane(suns, n, up, 0), 2 * PI, 2 * PI * 1e-12, "a floor under a uniform map at %d directions",
-                   dirs[k]);
+        CHECK_NEAR(on_plane(suns, n, up, 0), 2 * PI, 2 * PI * 1e-12,
+                   "a floor under a uniform map at %d directions", dirs[k]);
         for (i = 0, s = 0; i < mb; i++) {
             const int cells = 3 * (2 * i + 1);
             const double r1 = (double)i / mb, r2 = (double)(i + 1) / mb;
             const double c1 = sqrt(1 - r1 * r1), c2 = sqrt(1 - r2 * r2);
             const double vert = (r2 * r2 - r1 * r1) / 2;
-            const double hor = ((asin(r2) - r2 * c2) - (asin(r1) - r1 * c1)) / 2 * sin(PI / cells) / (PI / cells);
+            const double hor =
+                ((asin(r2) - r2 * c2) - (asin(r1) - r1 * c1)) / 2 * sin(PI / cells) / (PI / cells);
             for (j = 0; j < cells; j++, s++) {
                 const double psi = 2 * PI * (j + 0.5) / cells, len = sqrt(vert * vert + hor * hor);
                 for (a = 0; a < 3; a++) {
-                    double want = -(vert * up[a] + hor * (cos(psi) * f0[a] + sin(psi) * f1[a])) / len;
+                    double want =
+                        -(vert * up[a] + hor * (cos(psi) * f0[a] + sin(psi) * f1[a])) / len;
                     worst = fmax(worst, fabs(suns[s].dir[a] - want));
                 }
             }
         }
-        CHECK_LE(worst, 1e-12, "the suns' directions against the core's cells at %d directions", dirs[k]);
+        CHECK_LE(worst, 1e-12, "the suns' directions against the core's cells at %d directions",
+                 dirs[k]);
     }
     free(m);
 }

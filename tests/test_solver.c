@@ -33,14 +33,22 @@ static void check_closed_box(int twin, double max_patch, double max_elem, double
     void *s = twin ? (void *)scf_create(p, n, &o, NULL, NULL, err, sizeof err)
                    : (void *)sc_create(p, n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
-    if (twin) { scf_solve(s, 100000, 1e-4, NULL, NULL); scf_get_stats(s, &stt); }
-    else { sc_solve(s, 100000, 1e-4, NULL, NULL); sc_get_stats(s, &stt); }
+    if (twin) {
+        scf_solve(s, 100000, 1e-4, NULL, NULL);
+        scf_get_stats(s, &stt);
+    } else {
+        sc_solve(s, 100000, 1e-4, NULL, NULL);
+        sc_get_stats(s, &stt);
+    }
     CHECK_LE(stt.unshot, 1e-4 + 1.0 / 65536, "%s: unshot fraction after solving to 1e-4 (Q16.16)",
              twin ? "float" : "fixed");
     for (e = 0; e < stt.elements; e++) {
         double rgb[3], a = twin ? scf_element_area(s, e) : sc_element_area(s, e);
         /* The ambient term stands in for the last 0.01% of unshot power. */
-        if (twin) scf_element_rgb(s, e, 1, rgb); else sc_element_rgb(s, e, 1, rgb);
+        if (twin)
+            scf_element_rgb(s, e, 1, rgb);
+        else
+            sc_element_rgb(s, e, 1, rgb);
         for (c = 0; c < 3; c++) {
             double want = 1 / (1 - rho[c]), dev = fabs(rgb[c] / want - 1);
             mean[c] += rgb[c] * a;
@@ -50,11 +58,14 @@ static void check_closed_box(int twin, double max_patch, double max_elem, double
     }
     for (c = 0; c < 3; c++) {
         double want = 1 / (1 - rho[c]);
-        if (fabs(mean[c] / area / want - 1) > worst_mean) worst_mean = fabs(mean[c] / area / want - 1);
+        if (fabs(mean[c] / area / want - 1) > worst_mean)
+            worst_mean = fabs(mean[c] / area / want - 1);
     }
-    print_message("%s, patch %.3g element %.3g: mean within %.4f%% (bound 0.5%%), worst element %.2f%% "
-                  "(bound %.0f%%)\n", twin ? "float" : "fixed", max_patch, max_elem, 100 * worst_mean,
-                  100 * worst, 100 * per_elem_bound);
+    print_message(
+        "%s, patch %.3g element %.3g: mean within %.4f%% (bound 0.5%%), worst element %.2f%% "
+        "(bound %.0f%%)\n",
+        twin ? "float" : "fixed", max_patch, max_elem, 100 * worst_mean, 100 * worst,
+        100 * per_elem_bound);
     for (c = 0; c < 3; c++) {
         double want = 1 / (1 - rho[c]);
         /* Energy balance: power is only moved, never made or lost, so the area-weighted
@@ -65,7 +76,10 @@ static void check_closed_box(int twin, double max_patch, double max_elem, double
     }
     CHECK_LE(worst, per_elem_bound, "%s: the worst element's relative error against E / (1 - rho)",
              twin ? "float" : "fixed");
-    if (twin) scf_destroy(s); else sc_destroy(s);
+    if (twin)
+        scf_destroy(s);
+    else
+        sc_destroy(s);
 }
 
 static void test_closed_box(void **st)
@@ -104,7 +118,8 @@ static void test_ambient_partial(void **st)
             mean += rgb[0] * a;
             area += a;
         }
-        print_message("after %2d shots: mean displayed radiosity %.5f (closed form 2)\n", shots, mean / area);
+        print_message("after %2d shots: mean displayed radiosity %.5f (closed form 2)\n", shots,
+                      mean / area);
         /* The ambient estimate is exact for uniform reflectance: any partial solution
          * displays the right mean brightness (the 1988 paper's point). */
         CHECK_NEAR(mean / area, prev, 0.005 * 2, "after %d shots: mean displayed radiosity", shots);
@@ -143,7 +158,7 @@ static int cornell(sc_poly *p)
     for (i = 0; i < n; i++) set_mat(&p[i], 0.73, 0.71, 0.68, 0, 0, 0);
     set_mat(&p[2], 0.63, 0.065, 0.05, 0, 0, 0); /* -x: red */
     set_mat(&p[3], 0.14, 0.45, 0.091, 0, 0, 0); /* +x: green */
-    n = 5;                                       /* open at +z, as the original */
+    n = 5;                                      /* open at +z, as the original */
     n += box(p + n, -0.6, 0, -0.6, -0.05, 1.2, -0.05, 0);
     n += box(p + n, 0.1, 0, 0.05, 0.65, 0.6, 0.6, 0);
     for (i = 5; i < n; i++) set_mat(&p[i], 0.73, 0.71, 0.68, 0, 0, 0);
@@ -177,13 +192,15 @@ static void test_twin_cornell(void **st)
     scf_get_stats(fl, &b);
     assert_int_equal(a.elements, b.elements);
     compared = ref_twin_diff(fx, fl, &worst, &rms);
-    print_message("fixed vs float: %d elements, %d channels above 1%% of max compared: max %.4f%%, rms %.4f%%\n",
+    print_message("fixed vs float: %d elements, %d channels above 1%% of max compared: max %.4f%%, "
+                  "rms %.4f%%\n",
                   a.elements, compared, 100 * worst, 100 * rms);
     /* The twins run one algorithm: what differs is rounding, and a last-bit vertex
      * moving a pixel centre across an edge. Bound: 1% per element above 1% of the
      * maximum. */
-    CHECK_LE(worst, 0.01, "fixed against float: max relative difference per element above 1%% "
-                          "of the maximum");
+    CHECK_LE(worst, 0.01,
+             "fixed against float: max relative difference per element above 1%% "
+             "of the maximum");
     CHECK_INT_GT(compared, a.elements / 4, "channels compared (most of the lit room)");
     sc_destroy(fx);
     scf_destroy(fl);
@@ -210,9 +227,10 @@ static void test_overshoot(void **st)
     shots[1] = sc_solve(over, 100000, 0.01, NULL, NULL);
     ref_solution_diff(plain, ref, &worst[0], &rms[0]);
     ref_solution_diff(over, ref, &worst[1], &rms[1]);
-    print_message("to an unshot fraction of 0.01: plain %d shots (max %.3f%%, rms %.3f%% from converged), "
-                  "overshooting %d shots (max %.3f%%, rms %.3f%%)\n",
-                  shots[0], 100 * worst[0], 100 * rms[0], shots[1], 100 * worst[1], 100 * rms[1]);
+    print_message(
+        "to an unshot fraction of 0.01: plain %d shots (max %.3f%%, rms %.3f%% from converged), "
+        "overshooting %d shots (max %.3f%%, rms %.3f%%)\n",
+        shots[0], 100 * worst[0], 100 * rms[0], shots[1], 100 * worst[1], 100 * rms[1]);
     /* Overshooting needs fewer shots for partial solutions about as far from the
      * converged one: the power it shoots early is power plain shooting shoots later.
      * Bounds, with room over what the test prints: 0.8 of the shots, 1.25 times plain's
@@ -224,10 +242,11 @@ static void test_overshoot(void **st)
      * last 1e-4 of unshot power, which the ambient term covers on average. */
     sc_solve(over, 100000, 1e-4, NULL, NULL);
     ref_solution_diff(over, ref, &worst[1], &rms[1]);
-    print_message("converged to 1e-4: overshooting against plain max %.4f%%, rms %.4f%%\n", 100 * worst[1],
-                  100 * rms[1]);
-    CHECK_LE(worst[1], 0.001, "converged: overshooting against plain, max relative difference per "
-                              "element");
+    print_message("converged to 1e-4: overshooting against plain max %.4f%%, rms %.4f%%\n",
+                  100 * worst[1], 100 * rms[1]);
+    CHECK_LE(worst[1], 0.001,
+             "converged: overshooting against plain, max relative difference per "
+             "element");
     for (k = 0; k < 2; k++) {
         sc_stats stt;
         sc_get_stats(k ? over : plain, &stt);
@@ -273,8 +292,10 @@ static void test_overshoot_bright_box(void **st)
         mean[k] = sum / area;
         sc_destroy(s);
     }
-    print_message("closed box, rho 0.9, to 0.01: plain %d shots, overshooting %d; mean displayed %.4f and %.4f "
-                  "(energy balance %.4f)\n", shots[0], shots[1], mean[0], mean[1], 1.0 / 6 / (1 - 0.9));
+    print_message("closed box, rho 0.9, to 0.01: plain %d shots, overshooting %d; mean displayed "
+                  "%.4f and %.4f "
+                  "(energy balance %.4f)\n",
+                  shots[0], shots[1], mean[0], mean[1], 1.0 / 6 / (1 - 0.9));
     /* Bound: a quarter of plain's shots. */
     CHECK_INT_LE(4 * shots[1], shots[0], "4 x overshooting's shots against plain's");
     /* The ambient term covers the 1% left unshot exactly for uniform reflectance: the
@@ -288,12 +309,9 @@ static void test_overshoot_bright_box(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_closed_box),
-        cmocka_unit_test(test_ambient_partial),
-        cmocka_unit_test(test_unshot_decreases),
-        cmocka_unit_test(test_twin_cornell),
-        cmocka_unit_test(test_overshoot),
-        cmocka_unit_test(test_overshoot_bright_box),
+        cmocka_unit_test(test_closed_box),       cmocka_unit_test(test_ambient_partial),
+        cmocka_unit_test(test_unshot_decreases), cmocka_unit_test(test_twin_cornell),
+        cmocka_unit_test(test_overshoot),        cmocka_unit_test(test_overshoot_bright_box),
     };
     return cmocka_run_group_tests_name("solver", tests, NULL, NULL);
 }

@@ -32,8 +32,7 @@ TMPDIR_GROUP("texture")
 
 static void near_at(double a, double b, double eps, const char *expr, const char *file, int line)
 {
-    if (fabs(a - b) <= eps)
-        return;
+    if (fabs(a - b) <= eps) return;
     print_error("%s = %.17g, expected %.17g (+-%g)\n", expr, a, b, eps);
     _fail(file, line);
 }
@@ -82,8 +81,7 @@ static void asymmetric(unsigned char *rgb)
 }
 
 /* An image of W x H whose texel bytes are given, written as PNG to NAME; loaded back. */
-static void make_texture(const char *name, const unsigned char *rgb, int w, int h,
-                         tex_image *t)
+static void make_texture(const char *name, const unsigned char *rgb, int w, int h, tex_image *t)
 {
     char err[512];
     assert_int_equal(img_write(tmp_path(name), rgb, w, h, err, sizeof err), 0);
@@ -156,8 +154,7 @@ static void test_srgb_decode(void **state)
     double worst = 0, lin[3];
     int i;
     (void)state;
-    for (i = 0; i < 256; i++)
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = (unsigned char)i;
+    for (i = 0; i < 256; i++) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = (unsigned char)i;
     make_texture("ramp.png", rgb, 256, 1, &t);
     for (i = 0; i < 256; i++) {
         double want = srgb_reference(i / 255.0);
@@ -193,35 +190,29 @@ static void test_sample_bilinear(void **state)
         for (x = 0; x < AW; x++) {
             tex_sample(&t, (x + 0.5) / AW, 1 - (y + 0.5) / AH, s);
             tex_texel(&t, x, y, a);
-            for (k = 0; k < 3; k++)
-                assert_near(s[k], a[k], 1e-12);
+            for (k = 0; k < 3; k++) assert_near(s[k], a[k], 1e-12);
         }
     tex_sample(&t, 2.0 / AW, 1 - 0.5 / AH, s); /* between columns 1 and 2 of row 0 */
     tex_texel(&t, 1, 0, a);
     tex_texel(&t, 2, 0, b);
-    for (k = 0; k < 3; k++)
-        assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
+    for (k = 0; k < 3; k++) assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
     tex_sample(&t, 0, 1 - 1.5 / AH, s); /* u = 0: half column 4, half column 0 (row 1) */
     tex_texel(&t, AW - 1, 1, a);
     tex_texel(&t, 0, 1, b);
-    for (k = 0; k < 3; k++)
-        assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
+    for (k = 0; k < 3; k++) assert_near(s[k], 0.5 * (a[k] + b[k]), 1e-12);
     tex_sample(&t, 3 + 0.5 / AW, -2 + 1 - 0.5 / AH, a); /* wrapped whole periods away */
     tex_texel(&t, 0, 0, b);
-    for (k = 0; k < 3; k++)
-        assert_near(a[k], b[k], 1e-12);
+    for (k = 0; k < 3; k++) assert_near(a[k], b[k], 1e-12);
     t.clamp = 1; /* clamped: u = 0 is column 0 alone */
     tex_sample(&t, -5, 1 - 1.5 / AH, s);
     tex_texel(&t, 0, 1, b);
-    for (k = 0; k < 3; k++)
-        assert_near(s[k], b[k], 1e-12);
+    for (k = 0; k < 3; k++) assert_near(s[k], b[k], 1e-12);
     t.clamp = 0;
-    t.scale[0] = 2; /* -s 2: u = 0.25 reads u = 0.5 */
-    t.offset[1] = 0.5; /* -o 0 0.5 */
+    t.scale[0] = 2;                              /* -s 2: u = 0.25 reads u = 0.5 */
+    t.offset[1] = 0.5;                           /* -o 0 0.5 */
     tex_sample(&t, 0.25, 1 - 0.5 / AH - 0.5, s); /* reads (0.5, 1 - 0.5 / AH): texel (2, 0) */
     tex_texel(&t, 2, 0, b);
-    for (k = 0; k < 3; k++)
-        assert_near(s[k], b[k], 1e-12);
+    for (k = 0; k < 3; k++) assert_near(s[k], b[k], 1e-12);
     tex_free(&t);
 }
 
@@ -237,8 +228,8 @@ static double piece_integral(double u0, double u1, double f0, double f1)
 
 static void test_triangle_mean(void **state)
 {
-    static const unsigned char bytes[8] = { 0, 255, 40, 200, 90, 10, 160, 120 };
-    const obj_vec2 tri[3] = { { 0, 0 }, { 1, 0 }, { 0, 1 } }, tri2[3] = { { 1, 1 }, { 0, 1 }, { 1, 0 } };
+    static const unsigned char bytes[8] = {0, 255, 40, 200, 90, 10, 160, 120};
+    const obj_vec2 tri[3] = {{0, 0}, {1, 0}, {0, 1}}, tri2[3] = {{1, 1}, {0, 1}, {1, 0}};
     unsigned char rgb[8 * 3];
     double f[8], want = 0, got[3], got2[3], texel_mean = 0, err1, err2;
     tex_image t;
@@ -252,8 +243,7 @@ static void test_triangle_mean(void **state)
     make_texture("row.png", rgb, 8, 1, &t);
     /* Pieces: [0, 1/16] from the wrap (f7 to f0 across the seam), then centre to centre. */
     want += piece_integral(0, 1.0 / 16, 0.5 * (f[7] + f[0]), f[0]);
-    for (i = 0; i < 7; i++)
-        want += piece_integral((i + 0.5) / 8, (i + 1.5) / 8, f[i], f[i + 1]);
+    for (i = 0; i < 7; i++) want += piece_integral((i + 0.5) / 8, (i + 1.5) / 8, f[i], f[i + 1]);
     want += piece_integral(15.0 / 16, 1, f[7], 0.5 * (f[7] + f[0]));
     tex_triangle_mean(&t, tri, got);
     err1 = fabs(got[0] - want);
@@ -278,9 +268,9 @@ static void test_triangle_mean(void **state)
 static void test_uniform_mean(void **state)
 {
     unsigned char rgb[16 * 8 * 3];
-    const obj_vec2 feet[3][3] = { { { 0, 0 }, { 1, 0 }, { 0, 1 } },
-                                   { { -3.2, 7.1 }, { 40.5, 7.3 }, { 12, -19 } },
-                                   { { 0.1, 0.1 }, { 0.1000001, 0.1 }, { 0.1, 0.1000001 } } };
+    const obj_vec2 feet[3][3] = {{{0, 0}, {1, 0}, {0, 1}},
+                                 {{-3.2, 7.1}, {40.5, 7.3}, {12, -19}},
+                                 {{0.1, 0.1}, {0.1000001, 0.1}, {0.1, 0.1000001}}};
     double want[3], got[3];
     tex_image t;
     int i, k;
@@ -302,8 +292,8 @@ static void test_uniform_mean(void **state)
 
 static void test_reflectance_rule(void **state)
 {
-    const double black[3] = { 0, 0, 0 }, kd[3] = { 0.5, 1, 0.2 }, white[3] = { 1, 1, 1 };
-    const double texel[3] = { 0.8, 0.4, 0.6 };
+    const double black[3] = {0, 0, 0}, kd[3] = {0.5, 1, 0.2}, white[3] = {1, 1, 1};
+    const double texel[3] = {0.8, 0.4, 0.6};
     double rho[3];
     (void)state;
     tex_reflectance(black, texel, rho); /* Kd 0: the texture alone */
@@ -390,7 +380,7 @@ static void write_text(const char *name, const char *text)
 static void test_obj_uv_groups(void **state)
 {
     obj_scene sc;
-    warnings w = { 0 };
+    warnings w = {0};
     char err[512];
     const char *text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                        "vt 0 0\nvt 1 0\nvt 1 1 0.5\nvt 0.25\n"
@@ -402,9 +392,8 @@ static void test_obj_uv_groups(void **state)
                        "o desk\ng top legs\nf 1 2 3 4\n"
                        "f 1/1 2/9 3/3\n";
     (void)state;
-    assert_int_equal(obj_parse(text, strlen(text), "uv.obj", NULL, &sc, collect, &w, err,
-                               sizeof err),
-                     0);
+    assert_int_equal(
+        obj_parse(text, strlen(text), "uv.obj", NULL, &sc, collect, &w, err, sizeof err), 0);
     assert_int_equal(sc.nuvs, 4);
     assert_near(sc.uvs[2].v, 1, 0);
     assert_near(sc.uvs[3].u, 0.25, 0);
@@ -447,7 +436,7 @@ static void test_obj_uv_groups(void **state)
 static void test_mtl_map_kd(void **state)
 {
     obj_scene sc;
-    warnings w = { 0 };
+    warnings w = {0};
     char err[512], want[400];
     unsigned char rgb[AW * AH * 3];
     tex_image maps[4];
@@ -468,8 +457,7 @@ static void test_mtl_map_kd(void **state)
     assert_int_equal(obj_load(tmp_path("scene.obj"), &sc, collect, &w, err, sizeof err), 0);
     assert_int_equal(sc.nmaterials, 4);
     /* parse-time warnings: -s without values, -clamp maybe */
-    for (i = 0; i < w.n && i < 4; i++)
-        print_message("%s\n", w.msg[i]);
+    for (i = 0; i < w.n && i < 4; i++) print_message("%s\n", w.msg[i]);
     assert_int_equal(w.n, 2);
     snprintf(want, sizeof want, "%s:9: map_Kd -s needs 1 value: statement ignored",
              tmp_path("mats/m.mtl"));
@@ -502,7 +490,8 @@ static void test_mtl_map_kd(void **state)
     assert_near(maps[0].scale[1], 3, 0);
     assert_null(maps[1].rgb);
     assert_int_equal(w.n, 1);
-    snprintf(want, sizeof want, "%s:6: map_Kd: %s: cannot open: No such file or directory; using Kd 0.5 0.5 0.5",
+    snprintf(want, sizeof want,
+             "%s:6: map_Kd: %s: cannot open: No such file or directory; using Kd 0.5 0.5 0.5",
              tmp_path("mats/m.mtl"), tmp_path("mats/tex/missing.png"));
     assert_string_equal(w.msg[0], want);
     assert_near(sc.materials[1].kd[1], OBJ_FALLBACK_KD, 0);
@@ -516,7 +505,7 @@ static void test_mtl_map_kd(void **state)
    coordinates 0 0, 1 0, 1 1, 0 1 at its corners, written as NAME with mtllib MTL. */
 static void write_room(const char *name, const char *mtl)
 {
-    static const char *const mats[3] = { "walls", "block", "lamp" };
+    static const char *const mats[3] = {"walls", "block", "lamp"};
     sc_poly p[13];
     char text[8192];
     size_t used;
@@ -526,12 +515,14 @@ static void write_room(const char *name, const char *mtl)
     used = (size_t)snprintf(text, sizeof text, "mtllib %s\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n", mtl);
     for (i = 0; i < n; i++) {
         used += (size_t)snprintf(text + used, sizeof text - used, "usemtl %s\n",
-                                 mats[i < 6 ? 0 : i < 12 ? 1 : 2]);
+                                 mats[i < 6    ? 0
+                                      : i < 12 ? 1
+                                               : 2]);
         for (k = 0; k < 4; k++)
             used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %.17g\n",
                                      p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
-        used += (size_t)snprintf(text + used, sizeof text - used,
-                                 "f %d/1 %d/2 %d/3 %d/4\n", v + 1, v + 2, v + 3, v + 4);
+        used += (size_t)snprintf(text + used, sizeof text - used, "f %d/1 %d/2 %d/3 %d/4\n", v + 1,
+                                 v + 2, v + 3, v + 4);
         v += 4;
     }
     assert_true(used < sizeof text);
@@ -558,8 +549,7 @@ static void load_textured(const char *name, textured *t)
 static void free_textured(textured *t)
 {
     int i;
-    for (i = 0; i < t->sc.nmaterials; i++)
-        tex_free(&t->maps[i]);
+    for (i = 0; i < t->sc.nmaterials; i++) tex_free(&t->maps[i]);
     free(t->p);
     obj_free(&t->sc);
 }
@@ -626,7 +616,7 @@ static double solution_difference(const textured *a, const textured *b, int use_
 static void test_uniform_texture_solution(void **state)
 {
     unsigned char walls[4 * 4 * 3], block[2 * 2 * 3];
-    double lw[3], lb[3], kd_block[3] = { 0.5, 0.8, 1.0 }, rho[3];
+    double lw[3], lb[3], kd_block[3] = {0.5, 0.8, 1.0}, rho[3];
     char mtl[1024];
     textured a, b;
     int i, k;
@@ -650,8 +640,10 @@ static void test_uniform_texture_solution(void **state)
         lw[k] = srgb_reference(walls[k] / 255.0);
         lb[k] = srgb_reference(block[k] / 255.0) * kd_block[k];
     }
-    snprintf(mtl, sizeof mtl, "newmtl walls\nKd %.17g %.17g %.17g\nnewmtl block\nKd %.17g %.17g "
-             "%.17g\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n", lw[0], lw[1], lw[2], lb[0], lb[1], lb[2]);
+    snprintf(mtl, sizeof mtl,
+             "newmtl walls\nKd %.17g %.17g %.17g\nnewmtl block\nKd %.17g %.17g "
+             "%.17g\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n",
+             lw[0], lw[1], lw[2], lb[0], lb[1], lb[2]);
     write_text("kd.mtl", mtl);
     write_room("room_tex.obj", "tex.mtl");
     write_room("room_kd.obj", "kd.mtl");
@@ -679,7 +671,7 @@ static void test_uniform_texture_solution(void **state)
    a face of the material without texture coordinates keeps Kd. */
 static void test_face_reflectance(void **state)
 {
-    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    static const unsigned char bw[2 * 3] = {0, 0, 0, 255, 255, 255};
     textured t;
     int i;
     (void)state;
@@ -694,7 +686,8 @@ static void test_face_reflectance(void **state)
     load_textured("bw.obj", &t);
     assert_int_equal(t.n, 4);
     for (i = 0; i < 3; i++)
-        print_message("face %d: rho %.9f %.9f %.9f\n", i, t.p[i].rho[0], t.p[i].rho[1], t.p[i].rho[2]);
+        print_message("face %d: rho %.9f %.9f %.9f\n", i, t.p[i].rho[0], t.p[i].rho[1],
+                      t.p[i].rho[2]);
     /* Bound: the midpoint rule at 4 a texel (test_triangle_mean); here the two halves'
        samples mirror each other about u = 0.5, and 0.5 comes out to 1e-9. */
     assert_near(t.p[0].rho[0], 0.5, 2e-4);
@@ -739,15 +732,18 @@ static void write_split_room(const char *name)
     p[n++] = quad(-0.3, 0.98, -0.3, 0.3, 0.98, -0.3, 0.3, 0.98, 0.3, -0.3, 0.98, 0.3);
     write_text("split.mtl", "newmtl split\nKd 0 0 0\nmap_Kd split.png\n"
                             "newmtl white\nKd 0.7 0.7 0.7\nnewmtl lamp\nKd 0 0 0\nKe 10 10 10\n");
-    used = (size_t)snprintf(text, sizeof text, "mtllib split.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n");
+    used =
+        (size_t)snprintf(text, sizeof text, "mtllib split.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n");
     for (i = 0; i < n; i++) {
         used += (size_t)snprintf(text + used, sizeof text - used, "usemtl %s\n",
-                                 i == 0 ? "split" : i < 6 ? "white" : "lamp");
+                                 i == 0  ? "split"
+                                 : i < 6 ? "white"
+                                         : "lamp");
         for (k = 0; k < 4; k++)
             used += (size_t)snprintf(text + used, sizeof text - used, "v %.17g %.17g %.17g\n",
                                      p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
-        used += (size_t)snprintf(text + used, sizeof text - used, i == 0 ? "f -4/1 -3/2 -2/3 -1/4\n"
-                                                                         : "f -4 -3 -2 -1\n");
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 i == 0 ? "f -4/1 -3/2 -2/3 -1/4\n" : "f -4 -3 -2 -1\n");
     }
     assert_true(used < sizeof text);
     write_text(name, text);
@@ -780,13 +776,12 @@ static double face_green_over_red(sc_solver *s, int f)
 static void test_element_reflectance(void **state)
 {
     unsigned char map[64 * 4 * 3];
-    const unsigned char red[3] = { 230, 60, 50 }, white[3] = { 235, 235, 235 };
+    const unsigned char red[3] = {230, 60, 50}, white[3] = {235, 235, 235};
     double lr[3], lw[3], worst = 0, ratio[2][2];
     char err[512];
     int i, k, e, pass, set = 0;
     (void)state;
-    for (i = 0; i < 64 * 4; i++)
-        memcpy(&map[3 * i], i % 64 < 32 ? red : white, 3);
+    for (i = 0; i < 64 * 4; i++) memcpy(&map[3 * i], i % 64 < 32 ? red : white, 3);
     for (k = 0; k < 3; k++) {
         lr[k] = tex_srgb_decode(red[k] / 255.0);
         lw[k] = tex_srgb_decode(white[k] / 255.0);
@@ -808,8 +803,7 @@ static void test_element_reflectance(void **state)
         sc_get_stats(x.s, &st);
         for (e = 0; pass == 1 && e < st.elements; e++) {
             double c[3], rho[3];
-            if (sc_element_tag(x.s, e) != 0)
-                continue;
+            if (sc_element_tag(x.s, e) != 0) continue;
             sc_element_centroid(x.s, e, c);
             sc_element_rho(x.s, e, rho);
             for (k = 0; k < 3; k++) {
@@ -822,18 +816,23 @@ static void test_element_reflectance(void **state)
         sc_destroy(x.s);
         free_textured(&x.t);
     }
-    print_message("per-element reflectance: floor elements off their half's colour by %.3f of the bound "
-                  "(|white - red| / 64 + 2^-16); wall green/red beside red %.4f, beside white %.4f (one mean "
-                  "a face: %.4f, %.4f)\n", worst, ratio[1][0], ratio[1][1], ratio[0][0], ratio[0][1]);
-    CHECK_LE(worst, 1.0, "floor element reflectance off its half's colour, over |white - red| / 64 + 2^-16");
+    print_message(
+        "per-element reflectance: floor elements off their half's colour by %.3f of the bound "
+        "(|white - red| / 64 + 2^-16); wall green/red beside red %.4f, beside white %.4f (one mean "
+        "a face: %.4f, %.4f)\n",
+        worst, ratio[1][0], ratio[1][1], ratio[0][0], ratio[0][1]);
+    CHECK_LE(worst, 1.0,
+             "floor element reflectance off its half's colour, over |white - red| / 64 + 2^-16");
     /* symmetric: the two walls' shots differ by the order they come in only */
-    CHECK_LE(fabs(ratio[0][0] / ratio[0][1] - 1), 0.005, "one mean a face: the walls' green/red disagree");
-    CHECK_LE(ratio[1][0], 0.97 * ratio[1][1], "the wall beside the red half: green/red against the white side's");
+    CHECK_LE(fabs(ratio[0][0] / ratio[0][1] - 1), 0.005,
+             "one mean a face: the walls' green/red disagree");
+    CHECK_LE(ratio[1][0], 0.97 * ratio[1][1],
+             "the wall beside the red half: green/red against the white side's");
 }
 
 #define RW 96
 #define RH 96
-static const sc_camera room_view = { { 0, 0, 0.9 }, { 0, 0, -1 }, { 0, 1, 0 }, 60 };
+static const sc_camera room_view = {{0, 0, 0.9}, {0, 0, -1}, {0, 1, 0}, 60};
 
 /* The room of test_uniform_texture_solution (its files) seen with texture detail
    against the same colours in Kd seen plainly: per pixel, rho(texel) / rho(surface) is
@@ -849,15 +848,12 @@ static void test_render_uniform(void **state)
     (void)state;
     solve_textured("room_tex.obj", &x);
     solve_textured("room_kd.obj", &y);
-    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
-                                        sizeof err),
-                     0);
+    assert_int_equal(
+        sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err, sizeof err), 0);
     assert_int_equal(sc_render(y.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
+    for (i = 0; i < RW * RH * 3; i++) peak = fmax(peak, b[i]);
     for (i = 0; i < RW * RH * 3; i++)
-        peak = fmax(peak, b[i]);
-    for (i = 0; i < RW * RH * 3; i++)
-        if (b[i] > 0.01 * peak)
-            worst = fmax(worst, fabs(a[i] / b[i] - 1));
+        if (b[i] > 0.01 * peak) worst = fmax(worst, fabs(a[i] / b[i] - 1));
     print_message("uniform texture rendered with detail against Kd: worst pixel %.3g\n", worst);
     assert_true(worst <= 1.0 / 131072 / (0.5 * srgb_reference(60 / 255.0)) + 1e-6);
     free_solved(&x);
@@ -869,7 +865,7 @@ static void test_render_uniform(void **state)
    swaps them); without detail both are the wall's mean. */
 static void test_render_detail(void **state)
 {
-    static const unsigned char bw[2 * 3] = { 0, 0, 0, 255, 255, 255 };
+    static const unsigned char bw[2 * 3] = {0, 0, 0, 255, 255, 255};
     static float a[RW * RH * 3], b[RW * RH * 3];
     solved x;
     char err[512];
@@ -902,9 +898,8 @@ static void test_render_detail(void **state)
         }
     }
     solve_textured("bw2.obj", &x);
-    assert_int_equal(sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err,
-                                        sizeof err),
-                     0);
+    assert_int_equal(
+        sc_render_textured(x.s, &x.t.sc, x.t.maps, &room_view, 1, RW, RH, a, err, sizeof err), 0);
     assert_int_equal(sc_render(x.s, &room_view, 1, RW, RH, b, err, sizeof err), 0);
     print_message("back wall: u = 0.25 %.4f, u = 0.75 %.4f (plain %.4f, %.4f)\n",
                   a[3 * (row * RW + dark)], a[3 * (row * RW + bright)], b[3 * (row * RW + dark)],
@@ -926,9 +921,11 @@ static void bricks(unsigned char *rgb)
     int x, y, k;
     for (y = 0; y < 64; y++)
         for (x = 0; x < 64; x++) {
-            int row = y / 8, col = (x + (row % 2) * 8) / 16, mortar = y % 8 == 0 || (x + (row % 2) * 8) % 16 == 0;
+            int row = y / 8, col = (x + (row % 2) * 8) / 16,
+                mortar = y % 8 == 0 || (x + (row % 2) * 8) % 16 == 0;
             for (k = 0; k < 3; k++)
-                rgb[3 * (64 * y + x) + k] = (unsigned char)(mortar ? 250 : 30 + (37 * row + 53 * col + 71 * k) % 160);
+                rgb[3 * (64 * y + x) + k] =
+                    (unsigned char)(mortar ? 250 : 30 + (37 * row + 53 * col + 71 * k) % 160);
         }
 }
 
@@ -940,8 +937,8 @@ static void bricks(unsigned char *rgb)
    edges is its colour. */
 static void test_large_footprint_mean(void **state)
 {
-    static const obj_vec2 lo[3] = { { 0, 0 }, { 2, 0 }, { 2, 2 } }, hi[3] = { { 0, 0 }, { 2, 2 }, { 0, 2 } };
-    static const obj_vec2 far[3] = { { -1, -1 }, { 3, -1 }, { 3, 3 } };
+    static const obj_vec2 lo[3] = {{0, 0}, {2, 0}, {2, 2}}, hi[3] = {{0, 0}, {2, 2}, {0, 2}};
+    static const obj_vec2 far[3] = {{-1, -1}, {3, -1}, {3, 3}};
     unsigned char rgb[64 * 64 * 3];
     tex_image t;
     double want[3], a[3], b[3], worst = 0;
@@ -957,12 +954,12 @@ static void test_large_footprint_mean(void **state)
         }
         tex_triangle_mean(&t, lo, a);
         tex_triangle_mean(&t, hi, b);
-        for (k = 0; k < 3; k++)
-            worst = fmax(worst, fabs(0.5 * (a[k] + b[k]) - want[k]) / want[k]);
+        for (k = 0; k < 3; k++) worst = fmax(worst, fabs(0.5 * (a[k] + b[k]) - want[k]) / want[k]);
         print_message("bricks, %s: halves %.6f and %.6f, their mean against the image's %.6f\n",
                       pass ? "-s 3 -o 0.25" : "2 x 2 periods", a[0], b[0], want[0]);
     }
-    CHECK_LE(worst, 1e-9, "two halves of whole periods against the image's mean, relative (rounding only: "
+    CHECK_LE(worst, 1e-9,
+             "two halves of whole periods against the image's mean, relative (rounding only: "
              "some 10^4 lines of sums below 10^3)");
     tex_free(&t);
     memset(rgb, 0, sizeof rgb);
@@ -975,8 +972,7 @@ static void test_large_footprint_mean(void **state)
     t.clamp = 1;
     tex_triangle_mean(&t, far, a);
     tex_texel(&t, 0, 0, want);
-    for (k = 0; k < 3; k++)
-        assert_near(a[k], want[k], 1e-12);
+    for (k = 0; k < 3; k++) assert_near(a[k], want[k], 1e-12);
     tex_free(&t);
 }
 
@@ -984,8 +980,7 @@ static void test_large_footprint_mean(void **state)
 static double tent_integral(double a, double b)
 {
     double lo = fmax(a, -1), hi = fmin(b, 1), s = 0;
-    if (!(hi > lo))
-        return 0;
+    if (!(hi > lo)) return 0;
     if (lo < 0) /* the rising side: 1 + t */
         s += (fmin(hi, 0) - lo) * (1 + 0.5 * (fmin(hi, 0) + lo));
     if (hi > 0) /* the falling side: 1 - t */
@@ -1000,13 +995,13 @@ static double tent_integral(double a, double b)
    of shared edges changes no bit. */
 static void test_rect_mean(void **state)
 {
-    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
-    const obj_vec2 rect[4] = { { 0.13, 0.21 }, { 0.71, 0.21 }, { 0.71, 0.93 }, { 0.13, 0.93 } };
-    const obj_vec2 periods[4] = { { -1, 0 }, { 1, 0 }, { 1, 3 }, { -1, 3 } };
+    static const double pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const obj_vec2 rect[4] = {{0.13, 0.21}, {0.71, 0.21}, {0.71, 0.93}, {0.13, 0.93}};
+    const obj_vec2 periods[4] = {{-1, 0}, {1, 0}, {1, 3}, {-1, 3}};
     unsigned char rgb[64 * 64 * 3];
     tex_image t;
     tex_memo *memo = malloc(sizeof *memo);
-    double got[3], again[3], want[3] = { 0, 0, 0 }, mean[3], x0, x1, y0, y1, worst = 0;
+    double got[3], again[3], want[3] = {0, 0, 0}, mean[3], x0, x1, y0, y1, worst = 0;
     int i, j, k;
     (void)state;
     assert_non_null(memo);
@@ -1021,57 +1016,56 @@ static void test_rect_mean(void **state)
         for (i = (int)floor(x0) - 1; i <= (int)floor(x1) + 2; i++) {
             double w = tent_integral(x0 - i, x1 - i) * tent_integral(y0 - j, y1 - j), c[3];
             tex_texel(&t, (i % 64 + 64) % 64, (j % 64 + 64) % 64, c);
-            for (k = 0; k < 3; k++)
-                want[k] += w * c[k] / ((x1 - x0) * (y1 - y0));
+            for (k = 0; k < 3; k++) want[k] += w * c[k] / ((x1 - x0) * (y1 - y0));
         }
     tex_polygon_mean(&t, pos, rect, 4, NULL, got);
     tex_polygon_mean(&t, pos, rect, 4, memo, again);
     tex_polygon_mean(&t, pos, rect, 4, memo, again); /* from the memo */
-    for (k = 0; k < 3; k++)
-        worst = fmax(worst, fabs(got[k] - want[k]));
-    print_message("rectangle footprint: %.9f against the texels' tent sum %.9f (worst channel %.2g)\n", got[0],
-                  want[0], worst);
+    for (k = 0; k < 3; k++) worst = fmax(worst, fabs(got[k] - want[k]));
+    print_message(
+        "rectangle footprint: %.9f against the texels' tent sum %.9f (worst channel %.2g)\n",
+        got[0], want[0], worst);
     CHECK_LE(worst, 1e-12, "rectangle footprint's mean against the separable tent sum");
     assert_memory_equal(got, again, sizeof got);
     tex_image_mean(&t, mean);
     tex_polygon_mean(&t, pos, periods, 4, memo, got);
     for (k = 0; k < 3; k++)
-        CHECK_NEAR(got[k], mean[k], 1e-12, "2 x 3 whole periods against the image's mean, channel %d", k);
+        CHECK_NEAR(got[k], mean[k], 1e-12,
+                   "2 x 3 whole periods against the image's mean, channel %d", k);
     tex_free(&t);
     free(memo);
 }
 
 /* Writes a W x H PNG of COLOR_TYPE and DEPTH from ROWS (packed, big-endian 16-bit). */
-static void write_png(const char *name, int w, int h, int color_type, int depth, const unsigned char *rows,
-                      size_t stride)
+static void write_png(const char *name, int w, int h, int color_type, int depth,
+                      const unsigned char *rows, size_t stride)
 {
     FILE *f = fopen(tmp_path(name), "wb");
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
     png_infop info = png_create_info_struct(png);
     int y;
     assert_true(f && png && info);
-    if (setjmp(png_jmpbuf(png)))
-        fail_msg("libpng could not write %s", name);
+    if (setjmp(png_jmpbuf(png))) fail_msg("libpng could not write %s", name);
     png_init_io(png, f);
     png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, color_type, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    for (y = 0; y < h; y++)
-        png_write_row(png, (png_const_bytep)(rows + (size_t)y * stride));
+    for (y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(rows + (size_t)y * stride));
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     assert_int_equal(fclose(f), 0);
 }
 
-static void expect_texel(const tex_image *t, int x, int y, const unsigned char want[3], const char *what)
+static void expect_texel(const tex_image *t, int x, int y, const unsigned char want[3],
+                         const char *what)
 {
     double c[3];
     int k;
     tex_texel(t, x, y, c);
     for (k = 0; k < 3; k++)
         if (fabs(c[k] - tex_srgb_decode(want[k] / 255.0)) > 1e-15)
-            fail_msg("%s texel (%d, %d) channel %d: %.17g, want byte %u (%.17g)", what, x, y, k, c[k], want[k],
-                     tex_srgb_decode(want[k] / 255.0));
+            fail_msg("%s texel (%d, %d) channel %d: %.17g, want byte %u (%.17g)", what, x, y, k,
+                     c[k], want[k], tex_srgb_decode(want[k] / 255.0));
 }
 
 /* 16-bit RGB keeps each sample's high byte, grey + alpha its grey (alpha dropped); a
@@ -1080,36 +1074,34 @@ static void expect_texel(const tex_image *t, int x, int y, const unsigned char w
    values inside the texels' range. */
 static void test_unusual_maps(void **state)
 {
-    static const unsigned char rgb16[2 * 6] = { 0x12, 0x34, 0xab, 0xcd, 0x00, 0xff, 0xff, 0x01, 0x80, 0x00, 0x7f, 0xff };
-    static const unsigned char ga[2 * 2] = { 0x40, 0x00, 0xc8, 0xff };
-    static const unsigned char want16[2][3] = { { 0x12, 0xab, 0x00 }, { 0xff, 0x80, 0x7f } };
-    static const unsigned char wantga[2][3] = { { 0x40, 0x40, 0x40 }, { 0xc8, 0xc8, 0xc8 } };
-    static const obj_vec2 wide[3] = { { 0, 0 }, { 50, 0 }, { 0, 50 } }, huge[3] = { { 0, 0 }, { 1e29, 0 }, { 0, 1e29 } };
-    static const obj_vec2 tall[3] = { { 0, 0 }, { 1, 0 }, { 0, 3000 } };
-    unsigned char one[3] = { 10, 200, 90 }, rgb[64 * 64 * 3];
+    static const unsigned char rgb16[2 * 6] = {0x12, 0x34, 0xab, 0xcd, 0x00, 0xff,
+                                               0xff, 0x01, 0x80, 0x00, 0x7f, 0xff};
+    static const unsigned char ga[2 * 2] = {0x40, 0x00, 0xc8, 0xff};
+    static const unsigned char want16[2][3] = {{0x12, 0xab, 0x00}, {0xff, 0x80, 0x7f}};
+    static const unsigned char wantga[2][3] = {{0x40, 0x40, 0x40}, {0xc8, 0xc8, 0xc8}};
+    static const obj_vec2 wide[3] = {{0, 0}, {50, 0}, {0, 50}},
+                          huge[3] = {{0, 0}, {1e29, 0}, {0, 1e29}};
+    static const obj_vec2 tall[3] = {{0, 0}, {1, 0}, {0, 3000}};
+    unsigned char one[3] = {10, 200, 90}, rgb[64 * 64 * 3];
     tex_image t;
     char err[512];
-    double c[3], lo[3] = { 1, 1, 1 }, hi[3] = { 0, 0, 0 };
+    double c[3], lo[3] = {1, 1, 1}, hi[3] = {0, 0, 0};
     int x, y, k, i;
     (void)state;
     write_png("rgb16.png", 2, 1, PNG_COLOR_TYPE_RGB, 16, rgb16, sizeof rgb16);
     assert_int_equal(tex_load(tmp_path("rgb16.png"), &t, err, sizeof err), 0);
-    for (x = 0; x < 2; x++)
-        expect_texel(&t, x, 0, want16[x], "16-bit RGB");
+    for (x = 0; x < 2; x++) expect_texel(&t, x, 0, want16[x], "16-bit RGB");
     tex_free(&t);
     write_png("ga.png", 1, 2, PNG_COLOR_TYPE_GRAY_ALPHA, 8, ga, 2);
     assert_int_equal(tex_load(tmp_path("ga.png"), &t, err, sizeof err), 0);
-    for (y = 0; y < 2; y++)
-        expect_texel(&t, 0, y, wantga[y], "grey + alpha");
+    for (y = 0; y < 2; y++) expect_texel(&t, 0, y, wantga[y], "grey + alpha");
     tex_free(&t);
 
     make_texture("one.png", one, 1, 1, &t);
     tex_sample(&t, 0.3, -7.9, c);
-    for (k = 0; k < 3; k++)
-        assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-15);
+    for (k = 0; k < 3; k++) assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-15);
     tex_triangle_mean(&t, wide, c);
-    for (k = 0; k < 3; k++)
-        assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-12);
+    for (k = 0; k < 3; k++) assert_near(c[k], tex_srgb_decode(one[k] / 255.0), 1e-12);
     tex_free(&t);
 
     bricks(rgb);
@@ -1126,8 +1118,8 @@ static void test_unusual_maps(void **state)
         tex_triangle_mean(&t, i ? tall : huge, c);
         for (k = 0; k < 3; k++)
             if (!(c[k] >= lo[k] && c[k] <= hi[k]))
-                fail_msg("%s footprint: channel %d = %g, outside the texels' %g .. %g", i ? "tall" : "far", k, c[k],
-                         lo[k], hi[k]);
+                fail_msg("%s footprint: channel %d = %g, outside the texels' %g .. %g",
+                         i ? "tall" : "far", k, c[k], lo[k], hi[k]);
     }
     tex_free(&t);
 }
@@ -1169,7 +1161,7 @@ static void expect_mean_in_range(const double c[3], const char *what, int i)
    and >= 0"). */
 static void test_tiled_floor(void **state)
 {
-    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    static const double pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     tex_image t;
     double worst = 0, worst_far = 0;
     int i, j, k, tri, n = 0;
@@ -1181,8 +1173,8 @@ static void test_tiled_floor(void **state)
                 double u0 = -2.6 + 6.2 * i / 24, u1 = -2.6 + 6.2 * (i + 1) / 24;
                 double v0 = -2.6 + 6.2 * j / 24, v1 = -2.6 + 6.2 * (j + 1) / 24, a[3], b[3], c[3];
                 double su = floor(u0), sv = floor(v0);
-                obj_vec2 uv[4] = { { u0, v0 }, { u1, v0 }, { u1, v1 }, { u0, v1 } }, one[4], far[4];
-                const obj_vec2 *feet[3] = { uv, one, far };
+                obj_vec2 uv[4] = {{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}}, one[4], far[4];
+                const obj_vec2 *feet[3] = {uv, one, far};
                 int nc = tri ? 3 : 4, f;
                 if (tri == 2) { /* the other half of the cell */
                     uv[1] = uv[2];
@@ -1204,8 +1196,9 @@ static void test_tiled_floor(void **state)
                 }
                 n++;
             }
-    print_message("tiled floor, %d elements: off the 0..1 layout by %.3g at most, 10^6 periods off by %.3g\n",
-                  n, worst, worst_far);
+    print_message(
+        "tiled floor, %d elements: off the 0..1 layout by %.3g at most, 10^6 periods off by %.3g\n",
+        n, worst, worst_far);
     CHECK_LE(worst, 1e-12, "tiled element against its 0..1 footprint");
     CHECK_LE(worst_far, 1e-7, "element 10^6 periods off against its 0..1 footprint");
     tex_free(&t);
@@ -1219,7 +1212,7 @@ static void test_tiled_floor(void **state)
    to rounding, never below. Today the lines divided rounding by rounding (-0.58, 4.4). */
 static void test_degenerate_footprints(void **state)
 {
-    static const double pos[4][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+    static const double pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     tex_image t;
     double c[3], s[3], worst_tall = 0;
     int i, k;
@@ -1227,9 +1220,9 @@ static void test_degenerate_footprints(void **state)
     half_black(&t);
     for (i = 0; i < 400; i++) {
         double u = -3 + 0.0173 * i, v = 2 - 0.031 * i, len = i % 2 ? 300.0 / 64 : 0.05;
-        obj_vec2 two[4] = { { u, v }, { u, v }, { u + 0.01 * i / 400, v + len }, { u, v + len } };
-        obj_vec2 line3[3] = { { u, v }, { u + 0.1, v + len }, { u + 0.2, v + 2 * len } };
-        obj_vec2 point[3] = { { u, v }, { u, v }, { u, v } };
+        obj_vec2 two[4] = {{u, v}, {u, v}, {u + 0.01 * i / 400, v + len}, {u, v + len}};
+        obj_vec2 line3[3] = {{u, v}, {u + 0.1, v + len}, {u + 0.2, v + 2 * len}};
+        obj_vec2 point[3] = {{u, v}, {u, v}, {u, v}};
         tex_triangle_mean(&t, two, c);
         expect_mean_in_range(c, "two equal vt", i);
         tex_polygon_mean(&t, pos, two, 4, NULL, c);
@@ -1243,12 +1236,11 @@ static void test_degenerate_footprints(void **state)
     }
     for (i = 0; i < 200; i++) { /* black columns: x 0 .. 31 wrap to the seam at u = 0 */
         double x = 1.5 + 0.13 * i, h = 17 + 20 * i, v = -1 + 0.37 * i;
-        obj_vec2 tall[3] = { { x / 64, v }, { (x + 0.01) / 64, v }, { (x + 0.01) / 64, v + h / 64 } };
-        obj_vec2 seam[3] = { { -0.5 / 64, v }, { 0.5 / 64, v }, { 0.5 / 64, v + h / 64 } };
+        obj_vec2 tall[3] = {{x / 64, v}, {(x + 0.01) / 64, v}, {(x + 0.01) / 64, v + h / 64}};
+        obj_vec2 seam[3] = {{-0.5 / 64, v}, {0.5 / 64, v}, {0.5 / 64, v + h / 64}};
         tex_triangle_mean(&t, tall, c);
         expect_mean_in_range(c, "tall black triangle", i);
-        for (k = 0; k < 3; k++)
-            worst_tall = fmax(worst_tall, c[k]);
+        for (k = 0; k < 3; k++) worst_tall = fmax(worst_tall, c[k]);
         tex_triangle_mean(&t, seam, c);
         expect_mean_in_range(c, "tall triangle on the seam", i);
     }
@@ -1273,19 +1265,20 @@ static void test_tiled_room(void **state)
     (void)state;
     half_black(&t);
     tex_free(&t);
-    write_text("tiled.mtl", "newmtl floor\nKd 0 0 0\nmap_Kd half_black.png\nnewmtl wall\nKd 0.6 0.6 0.6\n"
-                            "newmtl light\nKd 0 0 0\nKe 5 5 5\n");
-    write_text("tiled.obj", "mtllib tiled.mtl\nv 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 0 3 0\nv 4 3 0\n"
-                            "v 4 3 4\nv 0 3 4\nv 1.5 2.99 1.5\nv 2.5 2.99 1.5\nv 2.5 2.99 2.5\nv 1.5 2.99 2.5\n"
-                            "vt -2.6 -2.6\nvt 3.6 -2.6\nvt 3.6 3.6\nvt -2.6 3.6\nusemtl floor\n"
-                            "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nusemtl wall\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\n"
-                            "f 3 4 8 7\nf 4 1 5 8\nusemtl light\nf 9 10 11 12\n");
+    write_text("tiled.mtl",
+               "newmtl floor\nKd 0 0 0\nmap_Kd half_black.png\nnewmtl wall\nKd 0.6 0.6 0.6\n"
+               "newmtl light\nKd 0 0 0\nKe 5 5 5\n");
+    write_text("tiled.obj",
+               "mtllib tiled.mtl\nv 0 0 0\nv 4 0 0\nv 4 0 4\nv 0 0 4\nv 0 3 0\nv 4 3 0\n"
+               "v 4 3 4\nv 0 3 4\nv 1.5 2.99 1.5\nv 2.5 2.99 1.5\nv 2.5 2.99 2.5\nv 1.5 2.99 2.5\n"
+               "vt -2.6 -2.6\nvt 3.6 -2.6\nvt 3.6 3.6\nvt -2.6 3.6\nusemtl floor\n"
+               "f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nusemtl wall\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\n"
+               "f 3 4 8 7\nf 4 1 5 8\nusemtl light\nf 9 10 11 12\n");
     load_textured("tiled.obj", &x);
     s = sc_create(x.p, x.n, &o, NULL, NULL, err, sizeof err);
     assert_non_null(s);
     set = sc_texture_elements(s, &x.sc, x.maps, err, sizeof err);
-    if (set < 0)
-        fail_msg("sc_texture_elements: %s", err);
+    if (set < 0) fail_msg("sc_texture_elements: %s", err);
     sc_get_stats(s, &st);
     print_message("tiled room: %d floor elements given their footprint's reflectance\n", set);
     CHECK_INT_GT(set, 100, "floor elements with their own reflectance");
@@ -1293,8 +1286,7 @@ static void test_tiled_room(void **state)
         double rho[3];
         sc_element_rho(s, e, rho);
         expect_mean_in_range(rho, "element reflectance", e);
-        for (k = 0; k < 3; k++)
-            CHECK_LE(rho[k], TEX_RHO_MAX, "element %d reflectance", e);
+        for (k = 0; k < 3; k++) CHECK_LE(rho[k], TEX_RHO_MAX, "element %d reflectance", e);
     }
     sc_destroy(s);
     free_textured(&x);
@@ -1316,8 +1308,7 @@ static void expect_accepted(const char *name, const unsigned char *d, size_t n)
     char err[512];
     int x, y;
     write_bytes(tmp_path(name), d, n);
-    if (tex_load(tmp_path(name), &t, err, sizeof err))
-        fail_msg("%s refused: %s", name, err);
+    if (tex_load(tmp_path(name), &t, err, sizeof err)) fail_msg("%s refused: %s", name, err);
     assert_int_equal(t.w, 4);
     assert_int_equal(t.h, 3);
     for (y = 0; y < 3; y++)
@@ -1351,7 +1342,8 @@ static void test_formats(void **state)
     tex_image t;
     char err[512];
     (void)state;
-    expect_refused_bytes("deep.pgm", pgm16, sizeof pgm16 - 1, "not a PNG, JPEG, BMP or TGA image (format: PNM)");
+    expect_refused_bytes("deep.pgm", pgm16, sizeof pgm16 - 1,
+                         "not a PNG, JPEG, BMP or TGA image (format: PNM)");
     expect_refused_bytes("cut.hdr", hdr, sizeof hdr - 1, "(format: Radiance HDR)");
     expect_refused_bytes("a.gif", gif, sizeof gif - 1, "(format: GIF)");
     expect_refused_bytes("a.psd", psd, sizeof psd - 1, "(format: PSD)");
@@ -1367,8 +1359,10 @@ static void test_formats(void **state)
             p[0] = c[2], p[1] = c[1], p[2] = c[0];
         }
     expect_accepted("ok.bmp", bmp, 54 + 36);
-    expect_refused_bytes("header_only.bmp", bmp, 54, "truncated: its header implies 90 bytes, the file holds 54");
-    expect_refused_bytes("cut.bmp", bmp, 80, "truncated: its header implies 90 bytes, the file holds 80");
+    expect_refused_bytes("header_only.bmp", bmp, 54,
+                         "truncated: its header implies 90 bytes, the file holds 54");
+    expect_refused_bytes("cut.bmp", bmp, 80,
+                         "truncated: its header implies 90 bytes, the file holds 80");
 
     /* TGA type 2: 24 bits, bottom-up (descriptor 0), BGR */
     memset(tga, 0, sizeof tga);
@@ -1389,7 +1383,8 @@ static void test_formats(void **state)
     }
     expect_accepted("ok.tga", tga, sizeof tga);
     expect_accepted("ok_rle.tga", rle, nr);
-    expect_refused_bytes("header_only.tga", tga, 18, "truncated: its header implies 54 bytes, the file holds 18");
+    expect_refused_bytes("header_only.tga", tga, 18,
+                         "truncated: its header implies 54 bytes, the file holds 18");
     expect_refused_bytes("cut.tga", tga, 40, "truncated");
     expect_refused_bytes("cut_rle.tga", rle, nr - 5, "truncated");
     tga[1] = 1; /* a colour map type without a map: not a TGA this strict reading takes */
@@ -1397,23 +1392,23 @@ static void test_formats(void **state)
 
     /* JPEG: 8 x 8 grey, baseline, one DC category-7 code of 80 (quantiser 1: grey 138) */
     {
-        static const unsigned char head[] = { 0xff, 0xd8, 0xff, 0xdb, 0x00, 0x43, 0x00 };
+        static const unsigned char head[] = {0xff, 0xd8, 0xff, 0xdb, 0x00, 0x43, 0x00};
         static const unsigned char tail[] = {
-            0xff, 0xc0, 0x00, 0x0b, 0x08, 0x00, 0x08, 0x00, 0x08, 0x01, 0x01, 0x11, 0x00,
-            0xff, 0xc4, 0x00, 0x14, 0x00, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x07,
-            0xff, 0xc4, 0x00, 0x14, 0x10, 0x01, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x00,
-            0xff, 0xda, 0x00, 0x08, 0x01, 0x01, 0x00, 0x00, 0x3f, 0x00, 0x50, 0x7f, 0xff, 0xd9 };
+            0xff, 0xc0, 0x00, 0x0b, 0x08, 0x00, 0x08, 0x00, 0x08, 0x01, 0x01, 0x11,
+            0x00, 0xff, 0xc4, 0x00, 0x14, 0x00, 0x01, 0,    0,    0,    0,    0,
+            0,    0,    0,    0,    0,    0,    0,    0,    0,    0,    0x07, 0xff,
+            0xc4, 0x00, 0x14, 0x10, 0x01, 0,    0,    0,    0,    0,    0,    0,
+            0,    0,    0,    0,    0,    0,    0,    0,    0x00, 0xff, 0xda, 0x00,
+            0x08, 0x01, 0x01, 0x00, 0x00, 0x3f, 0x00, 0x50, 0x7f, 0xff, 0xd9};
         memcpy(jpg, head, sizeof head);
         memset(jpg + sizeof head, 1, 64);
         memcpy(jpg + sizeof head + 64, tail, sizeof tail);
         nj = sizeof head + 64 + sizeof tail;
     }
     write_bytes(tmp_path("grey.jpg"), jpg, nj);
-    if (tex_load(tmp_path("grey.jpg"), &t, err, sizeof err))
-        fail_msg("grey.jpg refused: %s", err);
+    if (tex_load(tmp_path("grey.jpg"), &t, err, sizeof err)) fail_msg("grey.jpg refused: %s", err);
     assert_int_equal(t.w, 8);
-    for (k = 0; k < 3; k++)
-        CHECK_INT_EQ(t.rgb[k], 138, "JPEG grey texel, channel %d", k);
+    for (k = 0; k < 3; k++) CHECK_INT_EQ(t.rgb[k], 138, "JPEG grey texel, channel %d", k);
     tex_free(&t);
     expect_refused_bytes("cut.jpg", jpg, nj - 4, "truncated: no end-of-image marker");
 }
@@ -1432,8 +1427,7 @@ static void load_maps(const char *name, obj_scene *sc, tex_image *maps, int nmax
 static void free_maps(obj_scene *sc, tex_image *maps)
 {
     int i;
-    for (i = 0; i < sc->nmaterials; i++)
-        tex_free(&maps[i]);
+    for (i = 0; i < sc->nmaterials; i++) tex_free(&maps[i]);
     obj_free(sc);
 }
 
@@ -1446,13 +1440,13 @@ static void free_maps(obj_scene *sc, tex_image *maps)
    their pixels are missing), the fourth is over the budget. */
 static void test_map_identity_and_budget(void **state)
 {
-    static const char *const names[4] = { "a.png", "./a.png", "sub/../a.png", "link.png" };
+    static const char *const names[4] = {"a.png", "./a.png", "sub/../a.png", "link.png"};
     unsigned char rgb[AW * AH * 3], *png;
     char text[1024];
     size_t used = 0, n;
     obj_scene sc;
     tex_image maps[4];
-    warnings w = { 0 };
+    warnings w = {0};
     int i;
     (void)state;
     asymmetric(rgb);
@@ -1461,7 +1455,8 @@ static void test_map_identity_and_budget(void **state)
     assert_int_equal(img_write(tmp_path("ids/a.png"), rgb, AW, AH, NULL, 0), 0);
     assert_int_equal(symlink("a.png", tmp_path("ids/link.png")), 0);
     for (i = 0; i < 4; i++)
-        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl m%d\nKd 0 0 0\nmap_Kd %s\n", i, names[i]);
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "newmtl m%d\nKd 0 0 0\nmap_Kd %s\n", i, names[i]);
     write_text("ids/m.mtl", text);
     write_text("ids/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
                             "usemtl m0\nf 1/1 2/1 3/1\nusemtl m1\nf 1/1 2/1 3/1\n"
@@ -1479,7 +1474,8 @@ static void test_map_identity_and_budget(void **state)
     put_be32(png + 16, 4);
     put_be32(png + 20, 1u << 24);
     write_bytes(tmp_path("ids/tall.png"), png, n);
-    expect_refused(tmp_path("ids/tall.png"), "declares 4 x 16777216 texels, beyond the limits of 16384 a side");
+    expect_refused(tmp_path("ids/tall.png"),
+                   "declares 4 x 16777216 texels, beyond the limits of 16384 a side");
     put_be32(png + 16, 16384);
     put_be32(png + 20, 4096);
     used = 0;
@@ -1488,7 +1484,8 @@ static void test_map_identity_and_budget(void **state)
         snprintf(name, sizeof name, "ids/big%d.png", i);
         png[30] = (unsigned char)i; /* distinct files (the IHDR's CRC, which stb ignores) */
         write_bytes(tmp_path(name), png, n);
-        used += (size_t)snprintf(text + used, sizeof text - used, "newmtl b%d\nKd 0.1 0.2 0.3\nmap_Kd big%d.png\n", i, i);
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "newmtl b%d\nKd 0.1 0.2 0.3\nmap_Kd big%d.png\n", i, i);
     }
     free(png);
     write_text("ids/big.mtl", text);
@@ -1497,16 +1494,16 @@ static void test_map_identity_and_budget(void **state)
                               "usemtl b2\nf 1/1 2/1 3/1\nusemtl b3\nf 1/1 2/1 3/1\n");
     memset(&w, 0, sizeof w);
     load_maps("ids/big.obj", &sc, maps, 4, &w);
-    for (i = 0; i < w.n && i < 4; i++)
-        print_message("%s\n", w.msg[i]);
+    for (i = 0; i < w.n && i < 4; i++) print_message("%s\n", w.msg[i]);
     CHECK_INT_EQ(w.n, 4, "warnings for four maps that cannot be used");
     for (i = 0; i < 3; i++)
         CHECK_CONTAINS(w.msg[i], "cannot decode", "map %d, within the budget", i);
-    CHECK_CONTAINS(w.msg[3], "16384 x 4096 texels need 288 MiB, over what is left of the scene's texture budget",
-                   "the fourth map");
+    CHECK_CONTAINS(
+        w.msg[3],
+        "16384 x 4096 texels need 288 MiB, over what is left of the scene's texture budget",
+        "the fourth map");
     CHECK_CONTAINS(w.msg[3], "; using Kd 0.1 0.2 0.3", "the fourth map's fallback");
-    for (i = 0; i < 4; i++)
-        assert_null(maps[i].rgb);
+    for (i = 0; i < 4; i++) assert_null(maps[i].rgb);
     free_maps(&sc, maps);
 }
 
@@ -1519,21 +1516,23 @@ static void test_map_case(void **state)
     char want[1024];
     obj_scene sc;
     tex_image maps[2];
-    warnings w = { 0 };
+    warnings w = {0};
     int n;
     (void)state;
     asymmetric(rgb);
     assert_int_equal(mkdir(tmp_path("case"), 0700), 0);
     assert_int_equal(mkdir(tmp_path("case/tex"), 0700), 0);
     assert_int_equal(img_write(tmp_path("case/tex/wood.png"), rgb, AW, AH, NULL, 0), 0);
-    write_text("case/m.mtl", "newmtl wood\nKd 0 0 0\nmap_Kd tex/Wood.PNG\nnewmtl none\nKd 0 0 0\nmap_Kd tex/Oak.png\n");
+    write_text(
+        "case/m.mtl",
+        "newmtl wood\nKd 0 0 0\nmap_Kd tex/Wood.PNG\nnewmtl none\nKd 0 0 0\nmap_Kd tex/Oak.png\n");
     write_text("case/s.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
                              "usemtl wood\nf 1/1 2/1 3/1\nusemtl none\nf 1/1 2/1 3/1\n");
     load_maps("case/s.obj", &sc, maps, 2, &w);
-    for (n = 0; n < w.n && n < 4; n++)
-        print_message("%s\n", w.msg[n]);
+    for (n = 0; n < w.n && n < 4; n++) print_message("%s\n", w.msg[n]);
     CHECK_INT_EQ(w.n, 2, "warnings: the case match and the missing oak");
-    snprintf(want, sizeof want, "%s:3: map_Kd: %s: no such file; using %s (the name differs in case)",
+    snprintf(want, sizeof want,
+             "%s:3: map_Kd: %s: no such file; using %s (the name differs in case)",
              tmp_path("case/m.mtl"), tmp_path("case/tex/Wood.PNG"), tmp_path("case/tex/wood.png"));
     assert_string_equal(w.msg[0], want);
     CHECK_CONTAINS(w.msg[1], "Oak.png: cannot open", "the name that matches nothing");
@@ -1547,17 +1546,28 @@ static void test_map_case(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_decode_asymmetric), cmocka_unit_test(test_srgb_decode),
-        cmocka_unit_test(test_sample_bilinear),   cmocka_unit_test(test_triangle_mean),
-        cmocka_unit_test(test_uniform_mean),      cmocka_unit_test(test_reflectance_rule),
-        cmocka_unit_test(test_hostile_images),    cmocka_unit_test(test_obj_uv_groups),
-        cmocka_unit_test(test_mtl_map_kd),        cmocka_unit_test(test_uniform_texture_solution),
-        cmocka_unit_test(test_face_reflectance),  cmocka_unit_test(test_render_uniform),
-        cmocka_unit_test(test_render_detail),     cmocka_unit_test(test_large_footprint_mean),
-        cmocka_unit_test(test_unusual_maps),      cmocka_unit_test(test_element_reflectance),
-        cmocka_unit_test(test_rect_mean),         cmocka_unit_test(test_tiled_floor),
-        cmocka_unit_test(test_degenerate_footprints), cmocka_unit_test(test_tiled_room),
-        cmocka_unit_test(test_formats),           cmocka_unit_test(test_map_identity_and_budget),
+        cmocka_unit_test(test_decode_asymmetric),
+        cmocka_unit_test(test_srgb_decode),
+        cmocka_unit_test(test_sample_bilinear),
+        cmocka_unit_test(test_triangle_mean),
+        cmocka_unit_test(test_uniform_mean),
+        cmocka_unit_test(test_reflectance_rule),
+        cmocka_unit_test(test_hostile_images),
+        cmocka_unit_test(test_obj_uv_groups),
+        cmocka_unit_test(test_mtl_map_kd),
+        cmocka_unit_test(test_uniform_texture_solution),
+        cmocka_unit_test(test_face_reflectance),
+        cmocka_unit_test(test_render_uniform),
+        cmocka_unit_test(test_render_detail),
+        cmocka_unit_test(test_large_footprint_mean),
+        cmocka_unit_test(test_unusual_maps),
+        cmocka_unit_test(test_element_reflectance),
+        cmocka_unit_test(test_rect_mean),
+        cmocka_unit_test(test_tiled_floor),
+        cmocka_unit_test(test_degenerate_footprints),
+        cmocka_unit_test(test_tiled_room),
+        cmocka_unit_test(test_formats),
+        cmocka_unit_test(test_map_identity_and_budget),
         cmocka_unit_test(test_map_case),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

@@ -27,15 +27,15 @@
 
 #define PI 3.14159265358979323846
 
-#define ROOM_X  5.0
-#define ROOM_Y  2.5
-#define ROOM_Z  5.0
-#define CX      2.5 /* the chair's middle */
-#define CZ      2.5
-#define SCALE   (32.0 / 2.5) /* the glue's scale: half the largest span to 32 units */
-#define CELL    0.0016       /* the fine chair's triangles: cells of 1.6 mm, halved */
-#define TILE    0.01         /* floor tiles under the chair */
-#define TILES_R 10           /* tiles each way from the middle: 20 cm x 20 cm */
+#define ROOM_X    5.0
+#define ROOM_Y    2.5
+#define ROOM_Z    5.0
+#define CX        2.5 /* the chair's middle */
+#define CZ        2.5
+#define SCALE     (32.0 / 2.5) /* the glue's scale: half the largest span to 32 units */
+#define CELL      0.0016       /* the fine chair's triangles: cells of 1.6 mm, halved */
+#define TILE      0.01         /* floor tiles under the chair */
+#define TILES_R   10           /* tiles each way from the middle: 20 cm x 20 cm */
 #define TAG_CHAIR 1000
 
 typedef struct {
@@ -130,7 +130,8 @@ static void point(const piece *q, double u, double v, double *p)
 
 static double dist(const double *a, const double *b)
 {
-    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
 }
 
 /* The piece's extent along u and v (the longest line of each), for the cell counts. */
@@ -160,7 +161,8 @@ static void set_poly(sc_poly *p, int n, double (*v)[3], const double *rho, int t
 }
 
 /* Piece Q as NU x NV cells: two triangles each (TRIS), else one quad each. */
-static void emit_piece(polys_t *o, const piece *q, int nu, int nv, int tris, const double *rho, int tag)
+static void emit_piece(polys_t *o, const piece *q, int nu, int nv, int tris, const double *rho,
+                       int tag)
 {
     int i, j;
     for (j = 0; j < nv; j++)
@@ -172,7 +174,8 @@ static void emit_piece(polys_t *o, const piece *q, int nu, int nv, int tris, con
             point(q, (double)i / nu, (double)(j + 1) / nv, c[3]);
             if (tris) {
                 double t[3][3];
-                memcpy(t[0], c[0], sizeof t[0]), memcpy(t[1], c[1], sizeof t[0]), memcpy(t[2], c[2], sizeof t[0]);
+                memcpy(t[0], c[0], sizeof t[0]), memcpy(t[1], c[1], sizeof t[0]),
+                    memcpy(t[2], c[2], sizeof t[0]);
                 set_poly(next(o), 3, t, rho, tag);
                 memcpy(t[1], c[2], sizeof t[0]), memcpy(t[2], c[3], sizeof t[0]);
                 set_poly(next(o), 3, t, rho, tag);
@@ -182,8 +185,8 @@ static void emit_piece(polys_t *o, const piece *q, int nu, int nv, int tris, con
         }
 }
 
-static piece rect(double ox, double oy, double oz, double ax, double ay, double az, double bx, double by,
-                  double bz)
+static piece rect(double ox, double oy, double oz, double ax, double ay, double az, double bx,
+                  double by, double bz)
 {
     piece q;
     memset(&q, 0, sizeof q);
@@ -283,7 +286,8 @@ static void add_room(polys_t *o)
 {
     static const double wall[3] = {0.6, 0.6, 0.6}, flr[3] = {0.5, 0.5, 0.5}, dark[3] = {0, 0, 0};
     sc_poly b[6];
-    double t0x = CX - TILES_R * TILE, t0z = CZ - TILES_R * TILE, t1x = CX + TILES_R * TILE, t1z = CZ + TILES_R * TILE;
+    double t0x = CX - TILES_R * TILE, t0z = CZ - TILES_R * TILE, t1x = CX + TILES_R * TILE,
+           t1z = CZ + TILES_R * TILE;
     piece f[4], lamp;
     int i, j;
     box(b, 0, 0, 0, ROOM_X, ROOM_Y, ROOM_Z, 1);
@@ -332,27 +336,29 @@ static double largest_chair_face(const polys_t *o)
         const sc_poly *p = &o->p[i];
         double a[3], b[3], c[3];
         int k;
-        for (k = 0; k < 3; k++) a[k] = p->v[1][k] - p->v[0][k], b[k] = p->v[p->n - 1][k] - p->v[0][k];
-        c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
-        m = fmax(m, (p->n == 3 ? 0.5 : 1.0) * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * SCALE * SCALE);
+        for (k = 0; k < 3; k++)
+            a[k] = p->v[1][k] - p->v[0][k], b[k] = p->v[p->n - 1][k] - p->v[0][k];
+        c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2],
+        c[2] = a[0] * b[1] - a[1] * b[0];
+        m = fmax(m, (p->n == 3 ? 0.5 : 1.0) * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) *
+                        SCALE * SCALE);
     }
     return m;
 }
-
 
 #define PIECES 32 /* room for chair_pieces' count */
 
 /* What the tests measure of one solved scene (fixed build unless noted). */
 typedef struct {
-    double foot;     /* the floor's mean radiosity within FOOT of the chair's middle */
-    double centre;   /* the same within 1.5 cm: under the seat, lit only by its underside */
-    double gather;   /* light arriving at the floor under the seat (9 gathers, res 128) */
+    double foot;          /* the floor's mean radiosity within FOOT of the chair's middle */
+    double centre;        /* the same within 1.5 cm: under the seat, lit only by its underside */
+    double gather;        /* light arriving at the floor under the seat (9 gathers, res 128) */
     double piece[PIECES]; /* the chair's pieces' radiosity (-1: no such piece) */
-    double image;    /* the mean of a 21 x 21 pixel block of the seat's top seen from above */
+    double image;         /* the mean of a 21 x 21 pixel block of the seat's top seen from above */
     double image_min;
     double export_min; /* the least colour sc_element_rgb and sc_shade give a chair face */
     int shots;
-    double seconds;  /* CPU time of the solve */
+    double seconds; /* CPU time of the solve */
     sc_stats st;
 } result_t;
 
@@ -427,7 +433,8 @@ static double chair_vertices_min(sc_solver *s)
     assert_int_equal(sc_shade(s, 1, rgb), 0);
     for (e = 0; e < st.elements; e++)
         if (sc_element_tag(s, e) >= TAG_CHAIR)
-            for (k = sc_element_vertices(s, e, v) - 1; k >= 0; k--) least = fmin(least, rgb[3 * v[k] + 1]);
+            for (k = sc_element_vertices(s, e, v) - 1; k >= 0; k--)
+                least = fmin(least, rgb[3 * v[k] + 1]);
     free(rgb);
     return least;
 }
@@ -469,7 +476,6 @@ static void solve_scene(const polys_t *o, result_t *r)
     sc_destroy(s);
 }
 
-
 /* The fine chair against the large one (and the room without a chair), as the issue
  * asks: the floor under it within 5%, so the tiny faces cast the chair's shadow and
  * pass on the light they reflect. */
@@ -482,34 +488,41 @@ static void compare_chairs(int round, double k)
     add_room(&fine), add_room(&large), add_room(&none);
     add_chair(&fine, round, 1);
     add_chair(&large, round, 0);
-    print_message("%s chair: %d faces of at most %.3g units^2 (the core's own limit %.3g), against %d large\n",
-                  round ? "curved" : "boxy", fine.chair, largest_chair_face(&fine), 1.0 / 4096, large.chair);
-    CHECK_LT(largest_chair_face(&fine), 1.0 / 4096, "every face of the fine chair below the core's 1/4096");
+    print_message("%s chair: %d faces of at most %.3g units^2 (the core's own limit %.3g), against "
+                  "%d large\n",
+                  round ? "curved" : "boxy", fine.chair, largest_chair_face(&fine), 1.0 / 4096,
+                  large.chair);
+    CHECK_LT(largest_chair_face(&fine), 1.0 / 4096,
+             "every face of the fine chair below the core's 1/4096");
     CHECK_GE(fine.chair, 10000, "the fine chair's faces");
     solve_scene(&fine, &a);
     solve_scene(&large, &b);
     solve_scene(&none, &c);
-    print_message("  shots: fine %d (%.2f s CPU), large %d (%.2f s), none %d (%.2f s); patches %d / %d\n", a.shots,
-                  a.seconds, b.shots, b.seconds, c.shots, c.seconds, a.st.patches, b.st.patches);
-    print_message("  floor within %.1f cm: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n", 100 * FOOT, a.foot,
-                  b.foot, a.foot / b.foot, c.foot);
-    print_message("  floor within 1.5 cm: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n", a.centre, b.centre,
-                  a.centre / b.centre, c.centre);
-    print_message("  gathered under the seat: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n", a.gather, b.gather,
-                  a.gather / b.gather, c.gather);
-    print_message("  seat in the image: fine %.4g (least %.4g) large %.4g (ratio %.4f)\n", a.image, a.image_min,
-                  b.image, a.image / b.image);
+    print_message(
+        "  shots: fine %d (%.2f s CPU), large %d (%.2f s), none %d (%.2f s); patches %d / %d\n",
+        a.shots, a.seconds, b.shots, b.seconds, c.shots, c.seconds, a.st.patches, b.st.patches);
+    print_message("  floor within %.1f cm: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n",
+                  100 * FOOT, a.foot, b.foot, a.foot / b.foot, c.foot);
+    print_message("  floor within 1.5 cm: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n",
+                  a.centre, b.centre, a.centre / b.centre, c.centre);
+    print_message("  gathered under the seat: fine %.4g large %.4g (ratio %.4f), no chair %.4g\n",
+                  a.gather, b.gather, a.gather / b.gather, c.gather);
+    print_message("  seat in the image: fine %.4g (least %.4g) large %.4g (ratio %.4f)\n", a.image,
+                  a.image_min, b.image, a.image / b.image);
     for (d = 0; d < PIECES && a.piece[d] >= 0; d++)
-        print_message("  chair piece %d: fine %.4g large %.4g (ratio %.4f)\n", d, a.piece[d], b.piece[d],
-                      a.piece[d] / b.piece[d]);
+        print_message("  chair piece %d: fine %.4g large %.4g (ratio %.4f)\n", d, a.piece[d],
+                      b.piece[d], a.piece[d] / b.piece[d]);
     /* Counted: every fine face is a surface of its own, below the core's own limit. */
     CHECK_INT_EQ(a.st.surfaces, fine.n, "surfaces of the fine scene: one a face");
     CHECK_INT_EQ(a.st.tiny, fine.chair, "faces below 1/4096 (RAD_SMALL_FACES)");
     CHECK_INT_EQ(a.st.skipped, 0, "faces skipped");
     /* The chair matters: without it the floor under it is twice as bright. */
-    CHECK_GT(c.foot / b.foot, 1.5, "the floor without the chair over the floor under the large chair");
-    CHECK_NEAR(a.foot / b.foot, 1.0, 0.05, "the floor within %.1f cm, fine chair over large", 100 * FOOT);
-    CHECK_NEAR(a.gather / b.gather, 1.0, 0.05, "light gathered under the seat, fine chair over large");
+    CHECK_GT(c.foot / b.foot, 1.5,
+             "the floor without the chair over the floor under the large chair");
+    CHECK_NEAR(a.foot / b.foot, 1.0, 0.05, "the floor within %.1f cm, fine chair over large",
+               100 * FOOT);
+    CHECK_NEAR(a.gather / b.gather, 1.0, 0.05,
+               "light gathered under the seat, fine chair over large");
     /* The chair's own pieces are printed, not bounded: a group of faces (a connected
      * piece of a cell and a direction) shows one radiosity, its mean, where the large
      * chair has one per face; measured 0.67 to 1.42 piece by piece. */
@@ -563,13 +576,16 @@ static void test_every_face_counted(void **st)
     s = sc_create(o.p, o.n, &opt, count_warning, &w, err, sizeof err);
     assert_non_null(s);
     sc_get_stats(s, &a);
-    print_message("%d faces: %d surfaces (%d below 1/4096), %d skipped (%d emitting), %d warnings, the first (tag "
-                  "%d): %s\n", o.n, a.surfaces, a.tiny, a.skipped, a.skipped_emitters, w.n, w.tag, w.msg);
+    print_message("%d faces: %d surfaces (%d below 1/4096), %d skipped (%d emitting), %d warnings, "
+                  "the first (tag "
+                  "%d): %s\n",
+                  o.n, a.surfaces, a.tiny, a.skipped, a.skipped_emitters, w.n, w.tag, w.msg);
     CHECK_INT_EQ(a.surfaces + a.skipped, o.n, "faces in the core plus faces skipped");
     CHECK_INT_EQ(a.skipped, 2, "faces skipped");
     CHECK_INT_EQ(w.n, a.skipped, "warnings, one a skipped face");
     CHECK_INT_EQ(a.skipped_emitters, 1, "emitting faces skipped");
-    CHECK_THAT(w.tag == 4242 || w.tag == 4343, "the first warning names tag %d, one of the two faces", w.tag);
+    CHECK_THAT(w.tag == 4242 || w.tag == 4343,
+               "the first warning names tag %d, one of the two faces", w.tag);
     CHECK_INT_EQ(a.tiny, o.chair, "faces below 1/4096 in the core");
     sc_destroy(s);
     free(o.p);

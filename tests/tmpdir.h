@@ -50,20 +50,23 @@ static inline int tmpdir_make(const char *prog)
     return -1;
 }
 
-static inline void tmpdir_remove(void) { remove_tree(tmpdir); }
+static inline void tmpdir_remove(void)
+{
+    remove_tree(tmpdir);
+}
 
 /* The CMocka group setup and teardown of a test program named PROG. */
-#define TMPDIR_GROUP(prog)                                                                 \
-    static int group_setup(void **state)                                                   \
-    {                                                                                      \
-        (void)state;                                                                       \
-        return tmpdir_make(prog);                                                          \
-    }                                                                                      \
-    static int group_teardown(void **state)                                                \
-    {                                                                                      \
-        (void)state;                                                                       \
-        tmpdir_remove();                                                                   \
-        return 0;                                                                          \
+#define TMPDIR_GROUP(prog)                  \
+    static int group_setup(void **state)    \
+    {                                       \
+        (void)state;                        \
+        return tmpdir_make(prog);           \
+    }                                       \
+    static int group_teardown(void **state) \
+    {                                       \
+        (void)state;                        \
+        tmpdir_remove();                    \
+        return 0;                           \
     }
 
 #endif

@@ -29,11 +29,19 @@ static world_t *world(double max_patch, double max_element)
 {
     world_t *w = calloc(1, sizeof *w);
     rad_pools_t p;
-    rad_config_t c = {.max_patch = RAD_REAL(max_patch), .max_element = RAD_REAL(max_element), .res = 64};
+    rad_config_t c = {
+        .max_patch = RAD_REAL(max_patch), .max_element = RAD_REAL(max_element), .res = 64};
     assert_non_null(w);
-    p.surfaces = w->sf; p.max_surfaces = NS; p.patches = w->pt; p.max_patches = NP;
-    p.elements = w->el; p.max_elements = NE; p.vertices = w->vx; p.max_vertices = NV;
-    p.work = w->work; p.work_bytes = sizeof w->work;
+    p.surfaces = w->sf;
+    p.max_surfaces = NS;
+    p.patches = w->pt;
+    p.max_patches = NP;
+    p.elements = w->el;
+    p.max_elements = NE;
+    p.vertices = w->vx;
+    p.max_vertices = NV;
+    p.work = w->work;
+    p.work_bytes = sizeof w->work;
     assert_int_equal(rad_init(&w->s, &p, &c), RAD_OK);
     return w;
 }

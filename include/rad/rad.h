@@ -132,11 +132,12 @@ typedef struct {
 #define RAD_ERR_RANGE      (-3) /* coordinate, reflectance or emission out of range */
 #define RAD_ERR_DEGENERATE (-4) /* zero or tiny area, collinear or repeated vertices */
 #define RAD_ERR_NONPLANAR  (-5) /* a quad that is not planar or not convex */
-#define RAD_ERR_STATE      (-6) /* call out of order (e.g. adding after shooting), or a
+#define RAD_ERR_STATE \
+    (-6)                   /* call out of order (e.g. adding after shooting), or a
                                    * scene rad_init has not set up (rad_scene_t.self) */
-#define RAD_ERR_WORK       (-7) /* work buffer too small for this configuration */
-#define RAD_ERR_ALIGN      (-8) /* a pool not aligned for its type (rad_pools_t) */
-#define RAD_ERR_ABI        (-9) /* caller compiled with another rad.h layout (rad_init) */
+#define RAD_ERR_WORK  (-7) /* work buffer too small for this configuration */
+#define RAD_ERR_ALIGN (-8) /* a pool not aligned for its type (rad_pools_t) */
+#define RAD_ERR_ABI   (-9) /* caller compiled with another rad.h layout (rad_init) */
 
 /* ---- pools --------------------------------------------------------------------- */
 /* A polygon as given (3 or 4 vertices), meshed into a grid of patches and elements. */
@@ -285,7 +286,7 @@ typedef struct {
     rad_pools_t pools;
     rad_rgb_t *element_rho; /* rad_use_element_reflectance's array, or NULL */
     uint32_t n_surfaces, n_patches, n_elements, n_vertices;
-    uint16_t solving;     /* set by the first shot: geometry is frozen */
+    uint16_t solving; /* set by the first shot: geometry is frozen */
     /* the shot between rad_shot_begin and rad_shot_end: its serial number, which part
      * buffers record, and its patch (RAD_INDEX_NONE: no shot begun) */
     uint16_t shot_serial;
@@ -398,8 +399,7 @@ int rad_add_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_r
  * RAD_ERR_STATE (after shooting started, no patch yet, or the last patch emits),
  * RAD_ERR_RANGE, RAD_ERR_DEGENERATE, RAD_ERR_NONPLANAR or RAD_ERR_FULL as
  * rad_add_polygon. */
-int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n,
-                     const rad_rgb_t *reflectance);
+int rad_join_polygon(rad_scene_t *s, const rad_vec3_t *v, unsigned n, const rad_rgb_t *reflectance);
 
 /* Changes the reflectance and emission of surface SURF (either may be NULL to keep it);
  * a reflectance is also set on each of its elements' own entries, if they have them
@@ -509,9 +509,8 @@ int rad_shot_receive_part(rad_scene_t *s, uint32_t patch, void *const *bufs, uns
  * shooting nothing, unless BUFS are the N = rad_batch_begin's count buffers, BUFS[K]
  * rendered for this batch as shooter K of its patch. A batch ends with rad_batch_end
  * and is void once the scene is shot, restarted or solved otherwise. */
-#define RAD_BATCH_MAX 32
-#define RAD_BATCH_BYTES(res, elements) \
-    (RAD_PART_BYTES(res) + (size_t)(elements) * sizeof(rad_ff_t))
+#define RAD_BATCH_MAX                  32
+#define RAD_BATCH_BYTES(res, elements) (RAD_PART_BYTES(res) + (size_t)(elements) * sizeof(rad_ff_t))
 int rad_batch_begin(rad_scene_t *s, rad_real_t tol, unsigned k, uint32_t *patches);
 int rad_batch_render(const rad_scene_t *s, uint32_t patch, unsigned k, void *buf, size_t bytes);
 int rad_batch_end(rad_scene_t *s, void *const *bufs, unsigned n);
@@ -741,7 +740,7 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  * depths go to the lower surface index either way). Only stats.raster_calls and
  * raster_pixels differ. RAD_CULL_BYTES(surfaces): the hierarchy's buffer, 4-aligned;
  * RAD_GATHER_CULL_BYTES(res, surfaces): a gatherer's work for it, any alignment. */
-#define RAD_CULL_BYTES(surfaces) (16u + (size_t)(surfaces)*60u)
+#define RAD_CULL_BYTES(surfaces)             (16u + (size_t)(surfaces)*60u)
 #define RAD_GATHER_CULL_BYTES(res, surfaces) /* the same for every res (16 x 16 tiles) */ \
     (((size_t)(surfaces) + 31u) / 32u * 4u + 5u * 256u + 3u)
 
@@ -809,8 +808,8 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
 #define RAD_LIGHT_SPOT  3 /* intensity I inside a cone, 0 outside */
 #define RAD_LIGHT_SKY   4 /* radiance from every direction above the horizon */
 struct rad_light_s {
-    uint16_t type; /* RAD_LIGHT_* */
-    uint16_t res;  /* 0: default (point, spot: the scene's res; sun, sky: pixels of
+    uint16_t type;        /* RAD_LIGHT_* */
+    uint16_t res;         /* 0: default (point, spot: the scene's res; sun, sky: pixels of
                     * at most 1/16 the side (square root of the area) of the smallest
                     * 1% of the elements, to a power of two in area, each of a light's
                     * N rasters (a sun's disc: 16; a sky's directions; dirs below)

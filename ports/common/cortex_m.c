@@ -28,11 +28,11 @@ int main(void);
 extern uint32_t __data_load[], __data_start[], __data_end[], __bss_start[], __bss_end[];
 extern uint32_t __stack_top[];
 
-#define REG(a) (*(volatile uint32_t *)(a))
-#define SYST_CSR REG(0xE000E010u)
-#define SYST_RVR REG(0xE000E014u)
-#define SYST_CVR REG(0xE000E018u)
-#define SCB_ICSR REG(0xE000ED04u)
+#define REG(a)         (*(volatile uint32_t *)(a))
+#define SYST_CSR       REG(0xE000E010u)
+#define SYST_RVR       REG(0xE000E014u)
+#define SYST_CVR       REG(0xE000E018u)
+#define SCB_ICSR       REG(0xE000ED04u)
 #define ICSR_PENDSTSET (1u << 26)
 #ifndef PORT_SYST_PERIOD
 #define PORT_SYST_PERIOD (1u << 24) /* ticks per wrap (tests use short periods) */
@@ -85,16 +85,52 @@ __attribute__((section(".vectors"), used)) static const vector_table_t vectors =
     __stack_top,
     {
         port_reset,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, /* NMI..Usage */
-        0, 0, 0, 0,
-        fault_handler, fault_handler, 0, fault_handler,                          /* SVC..PendSV */
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler, /* NMI..Usage */
+        0,
+        0,
+        0,
+        0,
+        fault_handler,
+        fault_handler,
+        0,
+        fault_handler, /* SVC..PendSV */
         systick_handler,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, fault_handler,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, fault_handler,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, fault_handler,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, fault_handler,
-        fault_handler, fault_handler, fault_handler, fault_handler, fault_handler, fault_handler,
-        fault_handler, fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
+        fault_handler,
     },
 };
 
@@ -140,5 +176,8 @@ int port_instructions(uint64_t *n)
 }
 
 #define PORT_STR_(x) #x
-#define PORT_STR(x) PORT_STR_(x)
-const char *port_target(void) { return PORT_STR(PORT_TARGET_NAME); }
+#define PORT_STR(x)  PORT_STR_(x)
+const char *port_target(void)
+{
+    return PORT_STR(PORT_TARGET_NAME);
+}

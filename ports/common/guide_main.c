@@ -30,7 +30,7 @@ int main(void)
     port_instructions(&t0);
     rc = rad_firmware_solve(400);
     port_instructions(&t1);
-    put("result", rc < 0 ? (uint64_t)-(int64_t)rc : (uint64_t)rc, rc < 0);
+    put("result", rc < 0 ? (uint64_t) - (int64_t)rc : (uint64_t)rc, rc < 0);
     put("instructions", t1 - t0, 0);
     if (port_stack_used(&n) == 1) put("stack", n, 0);
     if (port_static_bytes(&n) == 1) put("static", n, 0);

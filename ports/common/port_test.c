@@ -30,21 +30,21 @@
 
 /* ---- profile ------------------------------------------------------------------- */
 
-#define PORT_PROFILE_small 1
+#define PORT_PROFILE_small  1
 #define PORT_PROFILE_medium 2
-#define PORT_PROFILE_sun 3
-#define PORT_PROFILE_1 1
-#define PORT_PROFILE_2 2
-#define PORT_PROFILE_3 3
+#define PORT_PROFILE_sun    3
+#define PORT_PROFILE_1      1
+#define PORT_PROFILE_2      2
+#define PORT_PROFILE_3      3
 #ifndef PORT_PROFILE
 #define PORT_PROFILE small
 #endif
 #define PORT_CAT_(a, b) a##b
-#define PORT_CAT(a, b) PORT_CAT_(a, b)
-#define PROFILE PORT_CAT(PORT_PROFILE_, PORT_PROFILE)
+#define PORT_CAT(a, b)  PORT_CAT_(a, b)
+#define PROFILE         PORT_CAT(PORT_PROFILE_, PORT_PROFILE)
 
 /* Q16.16 from a ratio of integers, folded at compile time (no floating point). */
-#define Q16(num, den) ((int32_t)(((int64_t)(num) * 65536 + (den) / 2) / (den)))
+#define Q16(num, den) ((int32_t)(((int64_t)(num)*65536 + (den) / 2) / (den)))
 
 /* The scene is the same in both profiles; the mesh and the hemi-cube differ:
  *   small:  walls 4 x 4 elements (2 x 2 patches), block faces 2 x 2 (tall sides 2 x 4),
@@ -55,37 +55,37 @@
  * fails with RAD_ERR_FULL ("pool full") if the core's meshing changes. */
 #if PROFILE == 1
 #define PROFILE_NAME "small"
-#define MAX_ELEMENT Q16(16, 1)
-#define MAX_PATCH Q16(32, 1)
-#define RES 16
-#define MAX_SHOTS 400
-#define TOL Q16(1, 50)     /* stop at 2% of the emitted power unshot */
-#define N_SURFACES 16
-#define N_PATCHES 35
-#define N_ELEMENTS 137
-#define N_VERTICES 243
+#define MAX_ELEMENT  Q16(16, 1)
+#define MAX_PATCH    Q16(32, 1)
+#define RES          16
+#define MAX_SHOTS    400
+#define TOL          Q16(1, 50) /* stop at 2% of the emitted power unshot */
+#define N_SURFACES   16
+#define N_PATCHES    35
+#define N_ELEMENTS   137
+#define N_VERTICES   243
 #elif PROFILE == 2
 #define PROFILE_NAME "medium"
-#define MAX_ELEMENT Q16(13, 2) /* 6.5 units: 10 x 10 elements per wall */
-#define MAX_PATCH Q16(32, 1)
-#define RES 32
-#define MAX_SHOTS 600
-#define TOL Q16(1, 50)
-#define N_SURFACES 16
-#define N_PATCHES 40
-#define N_ELEMENTS 632
-#define N_VERTICES 825
+#define MAX_ELEMENT  Q16(13, 2) /* 6.5 units: 10 x 10 elements per wall */
+#define MAX_PATCH    Q16(32, 1)
+#define RES          32
+#define MAX_SHOTS    600
+#define TOL          Q16(1, 50)
+#define N_SURFACES   16
+#define N_PATCHES    40
+#define N_ELEMENTS   632
+#define N_VERTICES   825
 #elif PROFILE == 3
 #define PROFILE_NAME "sun"
-#define MAX_ELEMENT Q16(16, 1)
-#define MAX_PATCH Q16(32, 1)
-#define RES 16
-#define MAX_SHOTS 400
-#define TOL Q16(1, 50)
-#define N_SURFACES 14
-#define N_PATCHES 30
-#define N_ELEMENTS 120
-#define N_VERTICES 214
+#define MAX_ELEMENT  Q16(16, 1)
+#define MAX_PATCH    Q16(32, 1)
+#define RES          16
+#define MAX_SHOTS    400
+#define TOL          Q16(1, 50)
+#define N_SURFACES   14
+#define N_PATCHES    30
+#define N_ELEMENTS   120
+#define N_VERTICES   214
 #else
 #error "PORT_PROFILE must be small, medium, sun, 1, 2 or 3"
 #endif
@@ -97,7 +97,7 @@
 #undef N_PATCHES
 #undef N_ELEMENTS
 #undef N_VERTICES
-#define N_PATCHES 8000
+#define N_PATCHES  8000
 #define N_ELEMENTS 8000
 #define N_VERTICES 8000
 #endif
@@ -208,11 +208,11 @@ typedef struct {
 
 /* Vertices counter-clockwise seen from the lit side (the normal points into the room). */
 static const quad_t walls[] = {
-    {{{-W, -W, -W}, {-W, -W, W}, {W, -W, W}, {W, -W, -W}}, WHITE},  /* floor, +y */
-    {{{-W, W, -W}, {W, W, -W}, {W, W, W}, {-W, W, W}}, WHITE},      /* ceiling, -y */
-    {{{-W, -W, -W}, {W, -W, -W}, {W, W, -W}, {-W, W, -W}}, WHITE},  /* back, +z */
-    {{{-W, -W, -W}, {-W, W, -W}, {-W, W, W}, {-W, -W, W}}, RED},    /* left, +x */
-    {{{W, -W, -W}, {W, -W, W}, {W, W, W}, {W, W, -W}}, GREEN},      /* right, -x */
+    {{{-W, -W, -W}, {-W, -W, W}, {W, -W, W}, {W, -W, -W}}, WHITE}, /* floor, +y */
+    {{{-W, W, -W}, {W, W, -W}, {W, W, W}, {-W, W, W}}, WHITE},     /* ceiling, -y */
+    {{{-W, -W, -W}, {W, -W, -W}, {W, W, -W}, {-W, W, -W}}, WHITE}, /* back, +z */
+    {{{-W, -W, -W}, {-W, W, -W}, {-W, W, W}, {-W, -W, W}}, RED},   /* left, +x */
+    {{{W, -W, -W}, {W, -W, W}, {W, W, W}, {W, W, -W}}, GREEN},     /* right, -x */
     /* the light: 16 x 12 units, one unit under the ceiling, facing down */
     {{{-128, 496, -96}, {128, 496, -96}, {128, 496, 96}, {-128, 496, 96}}, LIGHT},
 };
@@ -274,11 +274,16 @@ static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
     unsigned i, k;
     int rc;
 
-    pools.surfaces = surfaces; pools.max_surfaces = N_SURFACES;
-    pools.patches = patches; pools.max_patches = N_PATCHES;
-    pools.elements = elements; pools.max_elements = N_ELEMENTS;
-    pools.vertices = vertices; pools.max_vertices = N_VERTICES;
-    pools.work = work; pools.work_bytes = sizeof work;
+    pools.surfaces = surfaces;
+    pools.max_surfaces = N_SURFACES;
+    pools.patches = patches;
+    pools.max_patches = N_PATCHES;
+    pools.elements = elements;
+    pools.max_elements = N_ELEMENTS;
+    pools.vertices = vertices;
+    pools.max_vertices = N_VERTICES;
+    pools.work = work;
+    pools.work_bytes = sizeof work;
     cfg.max_element = rad_real_from_q16(MAX_ELEMENT);
     cfg.max_patch = rad_real_from_q16(MAX_PATCH);
     cfg.res = res;
@@ -329,7 +334,10 @@ static int build_scene(rad_scene_t *s, uint16_t res, uint16_t band_rows)
 static uint32_t bits32(rad_real_t r)
 {
 #if RAD_FLOAT
-    union { float f; uint32_t u; } c;
+    union {
+        float f;
+        uint32_t u;
+    } c;
     c.f = r;
     return c.u;
 #else
@@ -347,7 +355,9 @@ static uint64_t checksum(rad_scene_t *s)
         uint32_t w[3];
         unsigned c, k;
         rad_element_radiosity(s, e, 0, &b);
-        w[0] = bits32(b.r); w[1] = bits32(b.g); w[2] = bits32(b.b);
+        w[0] = bits32(b.r);
+        w[1] = bits32(b.g);
+        w[2] = bits32(b.b);
         for (c = 0; c < 3; c++)
             for (k = 0; k < 4; k++) {
                 h ^= (w[c] >> (8 * k)) & 0xFFu;
@@ -368,7 +378,10 @@ static int64_t unshot_q16(rad_scene_t *s)
 #endif
 }
 
-static int now(uint64_t *n) { return port_instructions(n); }
+static int now(uint64_t *n)
+{
+    return port_instructions(n);
+}
 
 #if PORT_BENCH
 #ifndef PORT_BENCH_FF
@@ -385,7 +398,10 @@ static uint32_t first_shooter(const rad_scene_t *s)
     for (p = 0; p < s->n_patches; p++) {
         const rad_patch_t *pt = &s->pools.patches[p];
         rad_energy_t u = pt->unshot[0] + pt->unshot[1] + pt->unshot[2];
-        if (u > most) { most = u; best = p; }
+        if (u > most) {
+            most = u;
+            best = p;
+        }
     }
     return best;
 }

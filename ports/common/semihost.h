@@ -6,9 +6,9 @@
 
 #include <stdint.h>
 
-#define SEMIHOST_SYS_WRITE0 0x04u        /* r1: NUL-terminated string */
+#define SEMIHOST_SYS_WRITE0        0x04u /* r1: NUL-terminated string */
 #define SEMIHOST_SYS_EXIT_EXTENDED 0x20u /* r1: {reason, status} */
-#define SEMIHOST_APPLICATION_EXIT 0x20026u
+#define SEMIHOST_APPLICATION_EXIT  0x20026u
 
 /* Performs semihosting operation OP with argument ARG; returns the host's answer. */
 uintptr_t semihost_call(uint32_t op, uintptr_t arg);

@@ -21,17 +21,16 @@ uintptr_t semihost_call(uint32_t op, uintptr_t arg)
 {
     register uintptr_t a0 __asm__("a0") = op;
     register uintptr_t a1 __asm__("a1") = arg;
-    __asm__ volatile(
-        ".option push\n"
-        ".option norvc\n"
-        ".balign 16\n"
-        "slli zero, zero, 0x1f\n"
-        "ebreak\n"
-        "srai zero, zero, 7\n"
-        ".option pop\n"
-        : "+r"(a0)
-        : "r"(a1)
-        : "memory");
+    __asm__ volatile(".option push\n"
+                     ".option norvc\n"
+                     ".balign 16\n"
+                     "slli zero, zero, 0x1f\n"
+                     "ebreak\n"
+                     "srai zero, zero, 7\n"
+                     ".option pop\n"
+                     : "+r"(a0)
+                     : "r"(a1)
+                     : "memory");
     return a0;
 }
 
@@ -64,4 +63,7 @@ int port_instructions(uint64_t *n)
     return 1;
 }
 
-const char *port_target(void) { return "rv32"; }
+const char *port_target(void)
+{
+    return "rv32";
+}

@@ -42,26 +42,26 @@
 
 #if RAD_FLOAT
 #define FUZZ_FN fuzz_core_float
-#define BUILD "float"
+#define BUILD   "float"
 #else
 #define FUZZ_FN fuzz_core_fixed
-#define BUILD "fixed"
+#define BUILD   "fixed"
 #endif
 
 int fuzz_core_fixed(const uint8_t *data, size_t size);
 int fuzz_core_float(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                        \
-    do {                                                                                \
-        if (!(c)) {                                                                     \
-            fprintf(stderr, "fuzz_core(" BUILD "): check failed: %s (%s:%d)\n", #c,     \
-                    __FILE__, __LINE__);                                                \
-            abort();                                                                    \
-        }                                                                               \
+#define CHECK(c)                                                                              \
+    do {                                                                                      \
+        if (!(c)) {                                                                           \
+            fprintf(stderr, "fuzz_core(" BUILD "): check failed: %s (%s:%d)\n", #c, __FILE__, \
+                    __LINE__);                                                                \
+            abort();                                                                          \
+        }                                                                                     \
     } while (0)
 
-#define MAX_OPS 48
+#define MAX_OPS  48
 #define MAX_VIEW 24
 
 /* ---- reading the input ----------------------------------------------------------- */
@@ -69,22 +69,61 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 typedef struct {
     const uint8_t *p;
     size_t n, pos;
-    rad_vec3_t hist[16];  /* earlier vertices, for coincident and shared corners */
+    rad_vec3_t hist[16]; /* earlier vertices, for coincident and shared corners */
     unsigned nhist;
     rad_real_t last;
-    int nonfinite;        /* the float core got a NaN or an infinity somewhere */
+    int nonfinite; /* the float core got a NaN or an infinity somewhere */
 } reader_t;
 
-static uint8_t u8(reader_t *r) { return r->pos < r->n ? r->p[r->pos++] : 0; }
-static uint16_t u16(reader_t *r) { uint16_t v = u8(r); return (uint16_t)(v | (uint16_t)u8(r) << 8); }
-static uint32_t u32(reader_t *r) { uint32_t v = u16(r); return v | (uint32_t)u16(r) << 16; }
+static uint8_t u8(reader_t *r)
+{
+    return r->pos < r->n ? r->p[r->pos++] : 0;
+}
+static uint16_t u16(reader_t *r)
+{
+    uint16_t v = u8(r);
+    return (uint16_t)(v | (uint16_t)u8(r) << 8);
+}
+static uint32_t u32(reader_t *r)
+{
+    uint32_t v = u16(r);
+    return v | (uint32_t)u16(r) << 16;
+}
 
 /* Boundary values in Q16.16; the float core also sees the special ones. */
 static const int32_t palette_q[] = {
-    0, 1, -1, 65536, -65536, 64 << 16, -(64 << 16), (64 << 16) + 1, -(64 << 16) - 1,
-    INT32_MAX, INT32_MIN, 16, 15, 65535, 256, 255, 128 << 16, 256 << 16, (256 << 16) + 1,
-    -(256 << 16) - 1, 1024 << 16, 4096 << 16, (4096 << 16) + 1, 16 << 16, 4096, 1 << 30,
-    32767 << 16, 3, 17, 0x7FFF0000, -(1 << 30), 2,
+    0,
+    1,
+    -1,
+    65536,
+    -65536,
+    64 << 16,
+    -(64 << 16),
+    (64 << 16) + 1,
+    -(64 << 16) - 1,
+    INT32_MAX,
+    INT32_MIN,
+    16,
+    15,
+    65535,
+    256,
+    255,
+    128 << 16,
+    256 << 16,
+    (256 << 16) + 1,
+    -(256 << 16) - 1,
+    1024 << 16,
+    4096 << 16,
+    (4096 << 16) + 1,
+    16 << 16,
+    4096,
+    1 << 30,
+    32767 << 16,
+    3,
+    17,
+    0x7FFF0000,
+    -(1 << 30),
+    2,
 };
 #define NPAL (sizeof palette_q / sizeof palette_q[0])
 
@@ -100,12 +139,22 @@ static rad_real_t from_q(int32_t q)
 #if RAD_FLOAT
 static float special(reader_t *r, unsigned k)
 {
-    static const float sp[] = {0.0f, -0.0f, 1e38f, -1e38f, FLT_MAX, FLT_MIN, 1e-45f, 0.99999994f,
-                               64.00001f, -64.00001f, 4096.0005f, 1e30f, 1e-30f, 3.4e38f, 0.5f, 1.0f};
+    static const float sp[] = {0.0f,   -0.0f,       1e38f,     -1e38f,     FLT_MAX,    FLT_MIN,
+                               1e-45f, 0.99999994f, 64.00001f, -64.00001f, 4096.0005f, 1e30f,
+                               1e-30f, 3.4e38f,     0.5f,      1.0f};
     unsigned i = k % 20u;
-    if (i == 16) { r->nonfinite = 1; return NAN; }
-    if (i == 17) { r->nonfinite = 1; return INFINITY; }
-    if (i == 18) { r->nonfinite = 1; return -INFINITY; }
+    if (i == 16) {
+        r->nonfinite = 1;
+        return NAN;
+    }
+    if (i == 17) {
+        r->nonfinite = 1;
+        return INFINITY;
+    }
+    if (i == 18) {
+        r->nonfinite = 1;
+        return -INFINITY;
+    }
     if (i == 19) {
         uint32_t b = u32(r);
         float f;
@@ -132,11 +181,10 @@ static rad_real_t real(reader_t *r)
     }
 #endif
     switch (sel & 7u) {
-    case 0: v = from_q((int32_t)u32(r)); break;                      /* raw bits */
-    case 1: v = from_q((int32_t)(int8_t)u8(r) * 16384); break;       /* quarter units, +-32 */
-    case 2: v = from_q(palette_q[u8(r) % NPAL]); break;              /* boundaries */
-    case 3: {                                                         /* a hair from the last */
-        int32_t d = (int8_t)u8(r);
+    case 0: v = from_q((int32_t)u32(r)); break;                /* raw bits */
+    case 1: v = from_q((int32_t)(int8_t)u8(r) * 16384); break; /* quarter units, +-32 */
+    case 2: v = from_q(palette_q[u8(r) % NPAL]); break;        /* boundaries */
+    case 3: { /* a hair from the last */ int32_t d = (int8_t)u8(r);
 #if RAD_FLOAT
         v = r->last + (float)d / 65536.0f;
 #else
@@ -144,9 +192,9 @@ static rad_real_t real(reader_t *r)
 #endif
         break;
     }
-    case 4: v = from_q((int32_t)(int16_t)u16(r) * 256); break;       /* +-128 units, 1/256 */
-    case 5: v = from_q((int32_t)(int16_t)u16(r)); break;             /* +-0.5 unit, tiny */
-    default: v = from_q((int32_t)(int8_t)u8(r) * 8192); break;       /* eighth units, +-16 */
+    case 4: v = from_q((int32_t)(int16_t)u16(r) * 256); break; /* +-128 units, 1/256 */
+    case 5: v = from_q((int32_t)(int16_t)u16(r)); break;       /* +-0.5 unit, tiny */
+    default: v = from_q((int32_t)(int8_t)u8(r) * 8192); break; /* eighth units, +-16 */
     }
     r->last = v;
     return v;
@@ -159,7 +207,9 @@ static rad_vec3_t vertex(reader_t *r)
     if ((k & 7u) == 7u && r->nhist) {
         v = r->hist[(k >> 3) % (r->nhist < 16u ? r->nhist : 16u)]; /* a shared corner */
     } else {
-        v.x = real(r); v.y = real(r); v.z = real(r);
+        v.x = real(r);
+        v.y = real(r);
+        v.z = real(r);
     }
     r->hist[r->nhist++ % 16u] = v;
     if (r->nhist >= 32u) r->nhist = 16u;
@@ -169,7 +219,9 @@ static rad_vec3_t vertex(reader_t *r)
 static rad_rgb_t colour(reader_t *r)
 {
     rad_rgb_t c;
-    c.r = real(r); c.g = real(r); c.b = real(r);
+    c.r = real(r);
+    c.g = real(r);
+    c.b = real(r);
     return c;
 }
 
@@ -208,7 +260,10 @@ static void snap_same(const snap_t *sn, const rad_scene_t *s)
 
 static void snap_free(snap_t *sn)
 {
-    free(sn->surf); free(sn->patch); free(sn->elem); free(sn->vert);
+    free(sn->surf);
+    free(sn->patch);
+    free(sn->elem);
+    free(sn->vert);
 }
 
 static int is_err(int rc)
@@ -247,7 +302,8 @@ static void check_mesh(const rad_scene_t *s, int finite)
         CHECK(pt->surface < s->n_surfaces);
         sf = &p->surfaces[pt->surface];
         CHECK(pt->first_element >= sf->first_element && pt->n_elements > 0 &&
-              (uint32_t)pt->first_element + pt->n_elements <= (uint32_t)sf->first_element + sf->n_elements);
+              (uint32_t)pt->first_element + pt->n_elements <=
+                  (uint32_t)sf->first_element + sf->n_elements);
         CHECK(nonneg(pt->area));
     }
     for (i = 0; i < s->n_elements; i++) {
@@ -259,18 +315,22 @@ static void check_mesh(const rad_scene_t *s, int finite)
         CHECK(i >= sf->first_element && i < (uint32_t)sf->first_element + sf->n_elements);
         CHECK(p->patches[el->patch].surface == el->surface);
         for (k = 0; k < nv; k++)
-            CHECK(el->v[k] >= sf->first_vertex && el->v[k] < (uint32_t)sf->first_vertex + sf->n_vertices);
+            CHECK(el->v[k] >= sf->first_vertex &&
+                  el->v[k] < (uint32_t)sf->first_vertex + sf->n_vertices);
         CHECK(nonneg(el->area) && el->area != 0);
         if (s->cfg.flags & RAD_NO_OVERSHOOT)
             CHECK(nonneg(el->radiosity.r) && nonneg(el->radiosity.g) && nonneg(el->radiosity.b));
 #if RAD_FLOAT
-        if (finite) CHECK(isfinite(el->radiosity.r) && isfinite(el->radiosity.g) && isfinite(el->radiosity.b));
+        if (finite)
+            CHECK(isfinite(el->radiosity.r) && isfinite(el->radiosity.g) &&
+                  isfinite(el->radiosity.b));
 #endif
     }
     for (i = 0; i < s->n_vertices; i++) {
         const rad_real_t lim = from_q(64 << 16);
         const rad_vec3_t *v = &p->vertices[i];
-        CHECK(v->x >= -lim && v->x <= lim && v->y >= -lim && v->y <= lim && v->z >= -lim && v->z <= lim);
+        CHECK(v->x >= -lim && v->x <= lim && v->y >= -lim && v->y <= lim && v->z >= -lim &&
+              v->z <= lim);
     }
     (void)finite;
 }
@@ -282,7 +342,7 @@ static void check_unshot(const rad_scene_t *s)
 #if RAD_FLOAT
     CHECK(!(f < 0.0f) && !(plain && f > 1.001f));
 #else
-    CHECK(f >= 0 && !(plain && f > 65536 + 66));  /* at most 1, give or take rounding */
+    CHECK(f >= 0 && !(plain && f > 65536 + 66)); /* at most 1, give or take rounding */
 #endif
 }
 
@@ -292,15 +352,19 @@ typedef struct {
     rad_scene_t s;
     rad_pools_t pools;
     unsigned char *work_block;
-    void *blocks[4];      /* the pools as allocated (setup may hide one from rad_init) */
-    rad_rows_t rows;      /* stored form factors, once an op asks for them */
+    void *blocks[4]; /* the pools as allocated (setup may hide one from rad_init) */
+    rad_rows_t rows; /* stored form factors, once an op asks for them */
 } ctx_t;
 
-static void *alloc_exact(size_t n) { return malloc(n ? n : 1); }
+static void *alloc_exact(size_t n)
+{
+    return malloc(n ? n : 1);
+}
 
 static int setup(reader_t *r, ctx_t *c)
 {
-    static const uint16_t resv[] = {8, 10, 16, 32, 12, 64, 20, 0, 6, 7, 9, 1026, 2048, 65534, 1024, 2};
+    static const uint16_t resv[] = {8, 10, 16, 32,   12,   64,    20,   0,
+                                    6, 7,  9,  1026, 2048, 65534, 1024, 2};
     rad_config_t cfg = {.res = 0}; /* every field not set below is 0, its default */
     uint8_t f = u8(r);
     uint16_t res;
@@ -328,13 +392,15 @@ static int setup(reader_t *r, ctx_t *c)
     c->pools.elements = alloc_exact(c->pools.max_elements * sizeof(rad_element_t));
     c->pools.vertices = alloc_exact(c->pools.max_vertices * sizeof(rad_vec3_t));
     CHECK(c->pools.surfaces && c->pools.patches && c->pools.elements && c->pools.vertices);
-    c->blocks[0] = c->pools.surfaces; c->blocks[1] = c->pools.patches;
-    c->blocks[2] = c->pools.elements; c->blocks[3] = c->pools.vertices;
+    c->blocks[0] = c->pools.surfaces;
+    c->blocks[1] = c->pools.patches;
+    c->blocks[2] = c->pools.elements;
+    c->blocks[3] = c->pools.vertices;
     /* The work buffer: all faces, some rows, or a little short; at any alignment. */
     {
         uint16_t rr = res ? res : 64;
         uint32_t nacc = c->pools.max_elements > c->pools.max_vertices ? c->pools.max_elements
-                                                                       : c->pools.max_vertices;
+                                                                      : c->pools.max_vertices;
         uint8_t w = u8(r);
         if (rr > 2048) rr = 2048;
         switch (w & 3u) {
@@ -366,7 +432,8 @@ static int setup(reader_t *r, ctx_t *c)
         CHECK(memcmp(&before, &c->s, sizeof before) == 0);
         return -1;
     }
-    CHECK(c->s.n_surfaces == 0 && c->s.n_elements == 0 && c->s.cfg.res >= 8 && c->s.cfg.res <= RAD_MAX_RES);
+    CHECK(c->s.n_surfaces == 0 && c->s.n_elements == 0 && c->s.cfg.res >= 8 &&
+          c->s.cfg.res <= RAD_MAX_RES);
     return 0;
 }
 
@@ -458,8 +525,11 @@ static void op_ambient(reader_t *r, ctx_t *c)
 {
     rad_rgb_t out;
     int rc = rad_ambient(&c->s, (u8(r) & 1) ? NULL : &out);
-    if (rc < 0) CHECK(rc == RAD_ERR_ARG);
-    else CHECK(rc == RAD_OK && (!(c->s.cfg.flags & RAD_NO_OVERSHOOT) || (nonneg(out.r) && nonneg(out.g) && nonneg(out.b))));
+    if (rc < 0)
+        CHECK(rc == RAD_ERR_ARG);
+    else
+        CHECK(rc == RAD_OK && (!(c->s.cfg.flags & RAD_NO_OVERSHOOT) ||
+                               (nonneg(out.r) && nonneg(out.g) && nonneg(out.b))));
 }
 
 static void op_shade(reader_t *r, ctx_t *c)
@@ -469,8 +539,10 @@ static void op_shade(reader_t *r, ctx_t *c)
     rad_rgb_t *out;
     snap_t sn;
     int rc;
-    if (f & 1) n = n ? n - 1u : 0u;      /* one short */
-    else if (f & 2) n += u8(r) % 5u;     /* room to spare */
+    if (f & 1)
+        n = n ? n - 1u : 0u; /* one short */
+    else if (f & 2)
+        n += u8(r) % 5u; /* room to spare */
     out = alloc_exact(n * sizeof *out);
     CHECK(out != NULL);
     snap_take(&sn, &c->s);
@@ -500,13 +572,23 @@ static void op_render(reader_t *r, ctx_t *c)
     int rc, sized;
     if (f & 1) w = bad[u8(r) % 4u];
     if (f & 2) h = bad[u8(r) % 4u];
-    if ((f & 0x30) == 0x30) { w = RAD_MAX_RASTER; h = 1u + u8(r) % 2u; }  /* widest aspect */
+    if ((f & 0x30) == 0x30) {
+        w = RAD_MAX_RASTER;
+        h = 1u + u8(r) % 2u;
+    } /* widest aspect */
     sized = w >= 1 && h >= 1 && w <= RAD_MAX_RASTER && h <= RAD_MAX_RASTER;
     npix = sized ? (size_t)w * h : 1u;
     cam.eye = vertex(r);
     cam.target = vertex(r);
-    if (f & 4) { cam.up.x = real(r); cam.up.y = real(r); cam.up.z = real(r); }
-    else { cam.up.x = 0; cam.up.y = from_q(65536); cam.up.z = 0; }
+    if (f & 4) {
+        cam.up.x = real(r);
+        cam.up.y = real(r);
+        cam.up.z = real(r);
+    } else {
+        cam.up.x = 0;
+        cam.up.y = from_q(65536);
+        cam.up.z = 0;
+    }
     cam.tan_half_fov = (f & 8) ? real(r) : from_q(27146); /* tan 22.5 degrees */
     /* Vertex colours: zeros, or the solution's (what rad_render documents). */
     vrgb = alloc_exact(nv * sizeof *vrgb);
@@ -529,7 +611,9 @@ static void op_render(reader_t *r, ctx_t *c)
         snap_same(&sn, &c->s); /* rendering changes nothing in the scene */
     }
     snap_free(&sn);
-    free(vrgb); free(fb); free(z);
+    free(vrgb);
+    free(fb);
+    free(z);
 }
 
 static void op_form_factors(reader_t *r, ctx_t *c)
@@ -539,14 +623,20 @@ static void op_form_factors(reader_t *r, ctx_t *c)
     rad_ff_t *out = alloc_exact(ne * sizeof *out);
     int rc;
     CHECK(out != NULL);
-    if (c->s.cfg.res > 64) { free(out); return; }
+    if (c->s.cfg.res > 64) {
+        free(out);
+        return;
+    }
     rc = rad_form_factors(&c->s, p, (f & 2) ? NULL : out);
     if (rc < 0) {
         CHECK(rc == RAD_ERR_ARG);
     } else {
 #if RAD_FLOAT
         double sum = 0;
-        for (e = 0; e < ne; e++) { CHECK(!(out[e] < 0)); sum += out[e]; }
+        for (e = 0; e < ne; e++) {
+            CHECK(!(out[e] < 0));
+            sum += out[e];
+        }
         CHECK(sum <= 1.001);
 #else
         uint64_t sum = 0;
@@ -596,8 +686,11 @@ static void op_parallel(reader_t *r, ctx_t *c)
         snap_same(&sn, &c->s); /* parts only read the scene */
         snap_free(&sn);
         /* short or misaligned: RAD_ERR_ARG; another patch than the one begun: _STATE */
-        if (rc < 0) { CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE); ok = 0; }
-        else CHECK(!short_buf && !(f & 8) && patch == c->s.shot_patch);
+        if (rc < 0) {
+            CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE);
+            ok = 0;
+        } else
+            CHECK(!short_buf && !(f & 8) && patch == c->s.shot_patch);
     }
     if (ok) {
         unsigned n = (f & 0x10) ? 1u + u8(r) % nparts : nparts;
@@ -617,7 +710,9 @@ static void op_parallel(reader_t *r, ctx_t *c)
 
 static void rows_free(rad_rows_t *rows)
 {
-    free(rows->start); free(rows->ids); free(rows->ffs);
+    free(rows->start);
+    free(rows->ids);
+    free(rows->ffs);
     memset(rows, 0, sizeof *rows);
 }
 
@@ -631,7 +726,7 @@ static void op_rows(reader_t *r, ctx_t *c)
     if (c->s.cfg.res > 64) return;
     if (!rows->start || (f & 3) == 3) {
         rows_free(rows);
-        rows->max_rows = c->s.n_patches + (uint32_t)(int8_t)(u8(r) % 3u) - 1u;  /* -1, 0, +1 */
+        rows->max_rows = c->s.n_patches + (uint32_t)(int8_t)(u8(r) % 3u) - 1u; /* -1, 0, +1 */
         if (rows->max_rows == 0xFFFFFFFFu) rows->max_rows = 0;
         rows->max_entries = u16(r) % 6000u;
         rows->start = alloc_exact(((size_t)rows->max_rows + 1u) * sizeof *rows->start);
@@ -641,7 +736,8 @@ static void op_rows(reader_t *r, ctx_t *c)
         rows->n_rows = 0;
     }
     switch ((f >> 2) & 3u) {
-    case 0: case 1: {
+    case 0:
+    case 1: {
         uint32_t before = rows->n_rows, ns = c->s.n_surfaces, ne = c->s.n_elements;
         rc = rad_rows_compute(&c->s, rows, u8(r) % 8u);
         if (rc < 0) {
@@ -655,15 +751,20 @@ static void op_rows(reader_t *r, ctx_t *c)
         for (i = 0; i < rows->n_rows; i++) {
             uint32_t k;
             CHECK(rows->start[i] <= rows->start[i + 1] && rows->start[i + 1] <= rows->max_entries);
-            for (k = rows->start[i]; k < rows->start[i + 1]; k++) CHECK(rows->ids[k] < c->s.n_elements);
+            for (k = rows->start[i]; k < rows->start[i + 1]; k++)
+                CHECK(rows->ids[k] < c->s.n_elements);
         }
         break;
     }
     case 2: {
         uint32_t shots = u8(r) % 4u;
         rc = rad_rows_shoot(&c->s, rows, shots, real(r));
-        if (rc < 0) CHECK(rc == RAD_ERR_STATE || rc == RAD_ERR_ARG);
-        else { CHECK((uint32_t)rc <= shots); check_unshot(&c->s); }
+        if (rc < 0)
+            CHECK(rc == RAD_ERR_STATE || rc == RAD_ERR_ARG);
+        else {
+            CHECK((uint32_t)rc <= shots);
+            check_unshot(&c->s);
+        }
         break;
     }
     default: {
@@ -673,8 +774,10 @@ static void op_rows(reader_t *r, ctx_t *c)
         uint32_t iters = u8(r) % 6u;
         CHECK(m != NULL);
         rc = rad_rows_gauss_seidel(&c->s, rows, m, entries, iters, real(r));
-        if (rc < 0) CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE);
-        else CHECK((uint32_t)rc <= iters);
+        if (rc < 0)
+            CHECK(rc == RAD_ERR_ARG || rc == RAD_ERR_STATE);
+        else
+            CHECK((uint32_t)rc <= iters);
         free(m);
         break;
     }
@@ -738,10 +841,15 @@ int FUZZ_FN(const uint8_t *data, size_t size)
         for (ops = 0; ops < MAX_OPS && r.pos < r.n; ops++) {
             uint8_t op = u8(&r);
             switch (op % 17u) {
-            case 0: case 1: case 2: op_add(&r, &c); break;
+            case 0:
+            case 1:
+            case 2: op_add(&r, &c); break;
             case 3: op_set_surface(&r, &c); break;
-            case 4: CHECK(rad_restart(&c.s) == RAD_OK && c.s.stats.shots == 0 && !c.s.solving); break;
-            case 5: case 6: op_shoot(&r, &c); break;
+            case 4:
+                CHECK(rad_restart(&c.s) == RAD_OK && c.s.stats.shots == 0 && !c.s.solving);
+                break;
+            case 5:
+            case 6: op_shoot(&r, &c); break;
             case 7: check_unshot(&c.s); break;
             case 8: op_ambient(&r, &c); break;
             case 9: op_element(&r, &c); break;
@@ -765,7 +873,10 @@ int FUZZ_FN(const uint8_t *data, size_t size)
         int e = (int)(int32_t)(r.pos < r.n ? u32(&r) : 0x80000000u);
         CHECK(rad_strerror(e) != NULL && rad_strerror(e)[0] != '\0');
     }
-    free(c.blocks[0]); free(c.blocks[1]); free(c.blocks[2]); free(c.blocks[3]);
+    free(c.blocks[0]);
+    free(c.blocks[1]);
+    free(c.blocks[2]);
+    free(c.blocks[3]);
     free(c.work_block);
     rows_free(&c.rows);
     return 0;

@@ -31,12 +31,12 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                        \
-    do {                                                                                \
-        if (!(c)) {                                                                     \
+#define CHECK(c)                                                                               \
+    do {                                                                                       \
+        if (!(c)) {                                                                            \
             fprintf(stderr, "fuzz_image: check failed: %s (%s:%d)\n", #c, __FILE__, __LINE__); \
-            abort();                                                                    \
-        }                                                                               \
+            abort();                                                                           \
+        }                                                                                      \
     } while (0)
 
 #define MAX_PIXEL_BYTES (1u << 16)
@@ -100,7 +100,8 @@ static void fuzz_write(uint8_t flags, int32_t w, int32_t h, const char *name, co
                        size_t npix)
 {
     char path[400], errbuf[256], *err = errbuf;
-    size_t errlen = (flags & 8) ? 0 : ((flags >> 4) == 15 ? sizeof errbuf : (size_t)(flags >> 4) + 1u);
+    size_t errlen =
+        (flags & 8) ? 0 : ((flags >> 4) == 15 ? sizeof errbuf : (size_t)(flags >> 4) + 1u);
     unsigned kind = flags & 3u;
     const unsigned char old[4] = {'o', 'l', 'd', '\n'};
     unsigned char *buf = NULL;
@@ -126,7 +127,10 @@ static void fuzz_write(uint8_t flags, int32_t w, int32_t h, const char *name, co
     }
     if ((flags & 4) && kind == 0) {
         FILE *f = fopen(path, "wb");
-        if (f) { fwrite(old, 1, sizeof old, f); fclose(f); }
+        if (f) {
+            fwrite(old, 1, sizeof old, f);
+            fclose(f);
+        }
     }
     existed = access(path, F_OK) == 0;
     before = count_entries();
@@ -182,7 +186,8 @@ static void fuzz_tonemap(const uint8_t *p, size_t n, double exposure)
     /* monotone: sorting inputs (at a finite positive exposure) sorts outputs */
     if (isfinite(exposure) && exposure > 0)
         for (i = 0; i + 1 < npix * 3; i++)
-            if (lin[i] == lin[i] && lin[i + 1] == lin[i + 1] && lin[i] <= lin[i + 1]) CHECK(out[i] <= out[i + 1]);
+            if (lin[i] == lin[i] && lin[i + 1] == lin[i + 1] && lin[i] <= lin[i + 1])
+                CHECK(out[i] <= out[i + 1]);
     e = tonemap_auto_exposure(lin, npix);
     CHECK(isfinite(e) && e > 0);
     (void)srgb_encode(exposure);

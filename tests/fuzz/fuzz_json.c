@@ -23,12 +23,12 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                                \
-    do {                                                                                        \
-        if (!(c)) {                                                                             \
+#define CHECK(c)                                                                              \
+    do {                                                                                      \
+        if (!(c)) {                                                                           \
             fprintf(stderr, "fuzz_json: check failed: %s (%s:%d)\n", #c, __FILE__, __LINE__); \
-            abort();                                                                            \
-        }                                                                                       \
+            abort();                                                                          \
+        }                                                                                     \
     } while (0)
 
 #define NAME "lights.json"
@@ -68,8 +68,8 @@ static int utf8_ok(const unsigned char *s, size_t len)
             if ((s[i + k] & 0xC0) != 0x80) return 0;
             cp = (cp << 6) | (s[i + k] & 0x3F);
         }
-        if ((n == 2 && cp < 0x80) || (n == 3 && cp < 0x800) || (n == 4 && cp < 0x10000) || cp > 0x10FFFF ||
-            (cp >= 0xD800 && cp <= 0xDFFF))
+        if ((n == 2 && cp < 0x80) || (n == 3 && cp < 0x800) || (n == 4 && cp < 0x10000) ||
+            cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
             return 0;
         i += n;
     }
@@ -124,7 +124,8 @@ static void walk(const json_value *v, size_t size, int depth, buf_t *b)
             const json_value *x = &v->items[i];
             if (i) put(b, ",", 1);
             if (v->type == JSON_OBJECT) {
-                CHECK(x->key && x->key_at < size && utf8_ok((const unsigned char *)x->key, strlen(x->key)));
+                CHECK(x->key && x->key_at < size &&
+                      utf8_ok((const unsigned char *)x->key, strlen(x->key)));
                 for (j = 0; j < i && v->n <= 64; j++) CHECK(strcmp(v->items[j].key, x->key) != 0);
                 CHECK(json_member(v, x->key) != NULL);
                 put_string(b, x->key);
@@ -143,7 +144,8 @@ static void same(const json_value *a, const json_value *b)
     size_t i;
     CHECK(a->type == b->type);
     if (a->type == JSON_NUMBER) CHECK(a->number == b->number);
-    if (a->type == JSON_STRING) CHECK(a->len == b->len && memcmp(a->string, b->string, a->len) == 0);
+    if (a->type == JSON_STRING)
+        CHECK(a->len == b->len && memcmp(a->string, b->string, a->len) == 0);
     if (a->type != JSON_ARRAY && a->type != JSON_OBJECT) return;
     CHECK(a->n == b->n);
     for (i = 0; i < a->n; i++) {

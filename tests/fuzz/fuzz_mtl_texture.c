@@ -32,13 +32,13 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                        \
-    do {                                                                                \
-        if (!(c)) {                                                                     \
+#define CHECK(c)                                                                          \
+    do {                                                                                  \
+        if (!(c)) {                                                                       \
             fprintf(stderr, "fuzz_mtl_texture: check failed: %s (%s:%d)\n", #c, __FILE__, \
-                    __LINE__);                                                          \
-            abort();                                                                    \
-        }                                                                               \
+                    __LINE__);                                                            \
+            abort();                                                                      \
+        }                                                                                 \
     } while (0)
 
 static char dir[64];
@@ -58,8 +58,7 @@ static const void *find(const void *hay, size_t n, const char *needle)
     size_t k = strlen(needle), i;
     const char *h = hay;
     for (i = 0; k <= n && i <= n - k; i++)
-        if (memcmp(h + i, needle, k) == 0)
-            return h + i;
+        if (memcmp(h + i, needle, k) == 0) return h + i;
     return NULL;
 }
 
@@ -70,8 +69,7 @@ static void put_file(const char *name, const void *bytes, size_t n)
     snprintf(path, sizeof path, "%s/%s", dir, name);
     f = fopen(path, "wb");
     CHECK(f != NULL);
-    if (n)
-        CHECK(fwrite(bytes, 1, n, f) == n);
+    if (n) CHECK(fwrite(bytes, 1, n, f) == n);
     CHECK(fclose(f) == 0);
 }
 
@@ -84,12 +82,11 @@ static void check_in_unit(const double *v)
 
 static void check_map(const obj_material *m, const tex_image *t)
 {
-    static const obj_vec2 tri[3] = { { 0, 0 }, { 1, 0 }, { 0, 1 } };
+    static const obj_vec2 tri[3] = {{0, 0}, {1, 0}, {0, 1}};
     double v[3];
     if (!t->rgb) {
         CHECK(t->w == 0 && t->h == 0);
-        if (m->map_kd.line)
-            CHECK(m->kd[0] != 0 || m->kd[1] != 0 || m->kd[2] != 0);
+        if (m->map_kd.line) CHECK(m->kd[0] != 0 || m->kd[1] != 0 || m->kd[2] != 0);
         return;
     }
     CHECK(m->map_kd.path != NULL);
@@ -115,8 +112,7 @@ static void check_export(const obj_scene *sc, const tex_image *maps, long *warni
     long len;
     int i;
     CHECK(tex != NULL);
-    for (i = 0; i < sc->nmaterials; i++)
-        tex[i] = maps[i].rgb ? sc->materials[i].map_kd.path : NULL;
+    for (i = 0; i < sc->nmaterials; i++) tex[i] = maps[i].rgb ? sc->materials[i].map_kd.path : NULL;
     memset(&in, 0, sizeof in);
     in.sc = sc;
     in.texture = tex;
@@ -142,12 +138,12 @@ static void check_decode(const uint8_t *tex, size_t n, int loaded_ok)
     char err[256];
     int rc = tex_decode(tex, n, "t.png", &t, err, sizeof err);
     CHECK(rc == 0 || rc == -1);
-    if (loaded_ok >= 0)
-        CHECK((rc == 0) == (loaded_ok == 1));
+    if (loaded_ok >= 0) CHECK((rc == 0) == (loaded_ok == 1));
     if (rc)
         CHECK(t.rgb == NULL && strchr(err, '\n') == NULL && err[0]);
     else /* only PNG, JPEG, BMP and TGA (byte 1, its colour map type, 0 or 1) reach stb */
-        CHECK((n >= 8 && !memcmp(tex, "\x89PNG", 4)) || (n >= 3 && tex[0] == 0xff && tex[1] == 0xd8) ||
+        CHECK((n >= 8 && !memcmp(tex, "\x89PNG", 4)) ||
+              (n >= 3 && tex[0] == 0xff && tex[1] == 0xd8) ||
               (n >= 2 && tex[0] == 'B' && tex[1] == 'M') || (n >= 18 && tex[1] <= 1));
     tex_free(&t);
 }
@@ -193,8 +189,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         char want[128];
         check_map(m, &maps[i]);
         snprintf(want, sizeof want, "%s/t.png", dir);
-        if (m->map_kd.path && !strcmp(m->map_kd.path, want))
-            direct = maps[i].rgb != NULL;
+        if (m->map_kd.path && !strcmp(m->map_kd.path, want)) direct = maps[i].rgb != NULL;
     }
     for (i = 0; i < sc.nmaterials; i++) /* after every use: maps may borrow earlier ones */
         tex_free(&maps[i]);

@@ -25,12 +25,12 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                        \
-    do {                                                                                \
-        if (!(c)) {                                                                     \
+#define CHECK(c)                                                                             \
+    do {                                                                                     \
+        if (!(c)) {                                                                          \
             fprintf(stderr, "fuzz_obj: check failed: %s (%s:%d)\n", #c, __FILE__, __LINE__); \
-            abort();                                                                    \
-        }                                                                               \
+            abort();                                                                         \
+        }                                                                                    \
     } while (0)
 
 static char dir[64];
@@ -58,12 +58,12 @@ static void check_scene(const obj_scene *sc, long warnings)
     CHECK(sc->nverts >= 0 && sc->nindices >= 0 && sc->nfaces >= 0 && sc->nmaterials >= 0);
     CHECK(sc->nwarnings == warnings);
     for (i = 0; i < sc->nverts; i++)
-        CHECK(fabs(sc->verts[i].x) <= 1e30 && fabs(sc->verts[i].y) <= 1e30 && fabs(sc->verts[i].z) <= 1e30);
+        CHECK(fabs(sc->verts[i].x) <= 1e30 && fabs(sc->verts[i].y) <= 1e30 &&
+              fabs(sc->verts[i].z) <= 1e30);
     for (i = 0; i < sc->nmaterials; i++) {
         CHECK(sc->materials[i].name != NULL);
         CHECK(obj_find_material(sc, sc->materials[i].name) == i);
-        for (k = 0; k < 3; k++)
-            CHECK(sc->materials[i].kd[k] >= 0 && sc->materials[i].ke[k] >= 0);
+        for (k = 0; k < 3; k++) CHECK(sc->materials[i].kd[k] >= 0 && sc->materials[i].ke[k] >= 0);
         faces += sc->materials[i].nfaces;
     }
     CHECK(faces == sc->nfaces);
@@ -122,7 +122,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         CHECK(fclose(f) == 0);
     }
     memset(err, 'x', sizeof err);
-    rc = obj_parse((const char *)data, objlen, "fuzz.obj", dir, &sc, on_warning, &warnings, err, sizeof err);
+    rc = obj_parse((const char *)data, objlen, "fuzz.obj", dir, &sc, on_warning, &warnings, err,
+                   sizeof err);
     CHECK(memchr(err, '\0', sizeof err) != NULL);
     if (rc == 0) {
         CHECK(err[0] == '\0');

@@ -23,12 +23,12 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
-#define CHECK(c)                                                                                 \
-    do {                                                                                         \
-        if (!(c)) {                                                                              \
+#define CHECK(c)                                                                               \
+    do {                                                                                       \
+        if (!(c)) {                                                                            \
             fprintf(stderr, "fuzz_views: check failed: %s (%s:%d)\n", #c, __FILE__, __LINE__); \
-            abort();                                                                             \
-        }                                                                                        \
+            abort();                                                                           \
+        }                                                                                      \
     } while (0)
 
 #define NAME "views.txt"
@@ -50,7 +50,8 @@ static void check_camera(const sc_camera *c)
     CHECK(c->fov_deg >= 8.0 && c->fov_deg <= 170.0);
 }
 
-static int on_view(void *vctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen)
+static int on_view(void *vctx, const sc_camera *cam, const char *out, int line, char *why,
+                   size_t whylen)
 {
     ctx_t *c = vctx;
     check_camera(cam);
@@ -83,8 +84,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         c.hi = text + size - 1;
         c.n = 0;
         n = cli_views_parse(text, size - 1, NAME, on_view, &c, err, sizeof err);
-        if (n < 0) check_error(err);
-        else CHECK(n == c.n);
+        if (n < 0)
+            check_error(err);
+        else
+            CHECK(n == c.n);
     } else {
         group_t groups[2];
         frame_t *fr = NULL;

@@ -37,14 +37,19 @@ static void quad(int w, rad_vec3_t *v)
 
 int main(void)
 {
-    const rad_config_t cfg = {.max_patch = RAD_REAL_RATIO(8, 1),
-                              .max_element = RAD_REAL_RATIO(4, 1),
-                              .res = 32};
+    const rad_config_t cfg = {
+        .max_patch = RAD_REAL_RATIO(8, 1), .max_element = RAD_REAL_RATIO(4, 1), .res = 32};
     const rad_rgb_t grey = {RAD_REAL_RATIO(1, 2), RAD_REAL_RATIO(1, 2), RAD_REAL_RATIO(1, 2)};
     const rad_rgb_t glow = {RAD_REAL_RATIO(1, 1), RAD_REAL_RATIO(1, 1), RAD_REAL_RATIO(1, 1)};
-    rad_pools_t pools = {.surfaces = surfaces, .max_surfaces = 8, .patches = patches,
-                         .max_patches = 256, .elements = elements, .max_elements = 1024,
-                         .vertices = vertices, .max_vertices = 1024, .work = work,
+    rad_pools_t pools = {.surfaces = surfaces,
+                         .max_surfaces = 8,
+                         .patches = patches,
+                         .max_patches = 256,
+                         .elements = elements,
+                         .max_elements = 1024,
+                         .vertices = vertices,
+                         .max_vertices = 1024,
+                         .work = work,
                          .work_bytes = sizeof work};
     rad_plan_t plan = {0};
     rad_scene_t s;
@@ -64,9 +69,8 @@ int main(void)
             return 1;
         }
     }
-    printf("planned %lu %lu %lu %lu\n", (unsigned long)plan.surfaces,
-           (unsigned long)plan.patches, (unsigned long)plan.elements,
-           (unsigned long)plan.vertices);
+    printf("planned %lu %lu %lu %lu\n", (unsigned long)plan.surfaces, (unsigned long)plan.patches,
+           (unsigned long)plan.elements, (unsigned long)plan.vertices);
     rc = rad_init(&s, &pools, &cfg);
     if (rc < 0) {
         printf("rad_init: %s\n", rad_strerror(rc));

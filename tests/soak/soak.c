@@ -40,7 +40,10 @@ static double uniform(void) /* [0, 1), xorshift64* */
     return (double)((rng * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
 }
 
-static double between(double a, double b) { return a + (b - a) * uniform(); }
+static double between(double a, double b)
+{
+    return a + (b - a) * uniform();
+}
 
 /* Half the faces a reflectance of 1 - 10^-u, u up to 4 (0.9999): the bright cases.
  * At least 0.05: the balance divides radiosity by reflectance, which would turn the
@@ -78,15 +81,17 @@ static void make_scene(scene_t *sc)
         set_mat(&sc->p[i], r, r * between(0.5, 1.0), r * between(0.5, 1.0), 0, 0, 0);
     }
     if (lamp) { /* a square under the ceiling, facing down */
-        double cx = 0.5 * (lo[0] + hi[0]), cz = 0.5 * (lo[2] + hi[2]), h = hi[1] - 0.01 * (hi[1] - lo[1]);
+        double cx = 0.5 * (lo[0] + hi[0]), cz = 0.5 * (lo[2] + hi[2]),
+               h = hi[1] - 0.01 * (hi[1] - lo[1]);
         double w = between(0.05, 0.3) * (hi[0] - lo[0]);
-        sc->p[sc->n] = quad(cx - w, h, cz - w, cx + w, h, cz - w, cx + w, h, cz + w, cx - w, h, cz + w);
+        sc->p[sc->n] =
+            quad(cx - w, h, cz - w, cx + w, h, cz - w, cx + w, h, cz + w, cx - w, h, cz + w);
         set_mat(&sc->p[sc->n], 0.5, 0.5, 0.5, between(1, 20), between(1, 20), between(1, 20));
         sc->n++;
     } else {
         int f = (int)(uniform() * sc->n);
-        set_mat(&sc->p[f], sc->p[f].rho[0], sc->p[f].rho[1], sc->p[f].rho[2], between(0.1, 10), between(0.1, 10),
-                between(0.1, 10));
+        set_mat(&sc->p[f], sc->p[f].rho[0], sc->p[f].rho[1], sc->p[f].rho[2], between(0.1, 10),
+                between(0.1, 10), between(0.1, 10));
     }
     /* Blocks just above the floor, one in each half of the room along x: apart, since
      * the balance below takes a patch's hemi-cube for all of it, and a patch reaching
@@ -147,7 +152,8 @@ static int finite_image(void *s, int twin, const scene_t *sc, char *err, size_t 
     memcpy(cam.target, sc->cam + 3, sizeof cam.target);
     cam.up[1] = 1;
     cam.fov_deg = 60;
-    rc = twin ? scf_render(s, &cam, 1, W, H, img, err, errlen) : sc_render(s, &cam, 1, W, H, img, err, errlen);
+    rc = twin ? scf_render(s, &cam, 1, W, H, img, err, errlen)
+              : sc_render(s, &cam, 1, W, H, img, err, errlen);
     if (rc < 0) return 1; /* a camera the renderer refuses (eye on the target): no image */
     for (i = 0; i < W * H * 3; i++)
         if (!isfinite(img[i]) || img[i] < 0) {
@@ -173,9 +179,16 @@ static int run(uint64_t seed, tally_t *t, char *err, size_t errlen)
     make_scene(&sc);
     s = sc.twin ? (void *)scf_create(sc.p, sc.n, &sc.o, NULL, NULL, err, errlen)
                 : (void *)sc_create(sc.p, sc.n, &sc.o, NULL, NULL, err, errlen);
-    if (!s) { t->refused++; return 0; } /* refused with a message: allowed */
-    shots = sc.twin ? scf_solve(s, SHOT_CAP, sc.tol, NULL, NULL) : sc_solve(s, SHOT_CAP, sc.tol, NULL, NULL);
-    if (sc.twin) scf_get_stats(s, &st); else sc_get_stats(s, &st);
+    if (!s) {
+        t->refused++;
+        return 0;
+    } /* refused with a message: allowed */
+    shots = sc.twin ? scf_solve(s, SHOT_CAP, sc.tol, NULL, NULL)
+                    : sc_solve(s, SHOT_CAP, sc.tol, NULL, NULL);
+    if (sc.twin)
+        scf_get_stats(s, &st);
+    else
+        sc_get_stats(s, &st);
     t->runs++;
     t->twin += sc.twin;
     t->plain += sc.o.no_overshoot;
@@ -188,22 +201,27 @@ static int run(uint64_t seed, tally_t *t, char *err, size_t errlen)
                (unsigned long long)seed, shots, st.unshot, sc.tol, st.backoffs, st.saturations,
                sc.twin ? ", float" : "", sc.o.no_overshoot ? ", plain" : "");
     /* The fixed build compares in Q16.16: the tolerance rounds by up to 2^-17. */
-    if (!st.solved || (st.converged ? st.unshot > sc.tol + 1.0 / 65536 : st.unshot < sc.tol - 1.0 / 65536) ||
+    if (!st.solved ||
+        (st.converged ? st.unshot > sc.tol + 1.0 / 65536 : st.unshot < sc.tol - 1.0 / 65536) ||
         (shots < SHOT_CAP && !st.converged)) {
-        snprintf(err, errlen, "%d shots, unshot %g, tol %g: converged says %d", shots, st.unshot, sc.tol,
-                 st.converged);
+        snprintf(err, errlen, "%d shots, unshot %g, tol %g: converged says %d", shots, st.unshot,
+                 sc.tol, st.converged);
     } else if (!sc.twin && st.saturations == 0 && clamped_element(s, &st)) {
         snprintf(err, errlen, "an element at the clamp, saturations 0");
     } else if (!sc.twin && st.converged && st.saturations == 0) {
         double absorbed = 0, escaped = 0, off = balance(s, sc.p, &absorbed, &escaped);
         if (off > t->worst_balance) t->worst_balance = off;
         if (off < 0 || off > 0.02)
-            snprintf(err, errlen, "converged (%d shots, unshot %g) but the energy balance is off by %g", shots,
+            snprintf(err, errlen,
+                     "converged (%d shots, unshot %g) but the energy balance is off by %g", shots,
                      st.unshot, off);
     }
     if (!err[0] && !finite_image(s, sc.twin, &sc, err, errlen)) { /* err written */
     }
-    if (sc.twin) scf_destroy(s); else sc_destroy(s);
+    if (sc.twin)
+        scf_destroy(s);
+    else
+        sc_destroy(s);
     return err[0] != 0;
 }
 
@@ -217,15 +235,19 @@ int main(int argc, char **argv)
     for (k = 0; k < n; k++) {
         char err[512] = "";
         if (run(base + (uint64_t)k, &t, err, sizeof err)) {
-            fprintf(stderr, "soak: seed %llu (rerun: soak %llu 1): %s\n", (unsigned long long)(base + (uint64_t)k),
+            fprintf(stderr, "soak: seed %llu (rerun: soak %llu 1): %s\n",
+                    (unsigned long long)(base + (uint64_t)k),
                     (unsigned long long)(base + (uint64_t)k), err);
             return 1;
         }
     }
-    printf("soak: %ld scenes from seed %llu in %.1f s: %d solved (%d float, %d plain), %d refused at create; "
-           "%d converged, %d at the %d-shot cap (reported), %d backed off, %d saturated (reported); worst "
+    printf("soak: %ld scenes from seed %llu in %.1f s: %d solved (%d float, %d plain), %d refused "
+           "at create; "
+           "%d converged, %d at the %d-shot cap (reported), %d backed off, %d saturated "
+           "(reported); worst "
            "balance %.4f%%\n",
-           n, (unsigned long long)base, (double)(clock() - t0) / CLOCKS_PER_SEC, t.runs, t.twin, t.plain, t.refused,
-           t.converged, t.capped, SHOT_CAP, t.backoffs, t.saturated, 100 * t.worst_balance);
+           n, (unsigned long long)base, (double)(clock() - t0) / CLOCKS_PER_SEC, t.runs, t.twin,
+           t.plain, t.refused, t.converged, t.capped, SHOT_CAP, t.backoffs, t.saturated,
+           100 * t.worst_balance);
     return 0;
 }

@@ -23,7 +23,7 @@ typedef struct {
     double *erg;           /* per element: sc_shade_elements' radiosity (3 each) */
     const double *ve;      /* per core vertex: the light arriving, gathered (NULL: none) */
     const unsigned char *vok;
-    double tol;            /* distance within which a corner is an element's vertex */
+    double tol; /* distance within which a corner is an element's vertex */
 } faces_index;
 
 /* Elements bucketed by face (a counting sort on their tags). */
@@ -45,16 +45,13 @@ static int index_faces(sc_solver *s, const obj_scene *sc, const sc_poly *polys, 
         free(fill);
         return -1;
     }
-    for (e = 0; e < st.elements; e++)
-        fx->start[sc_element_tag(s, e) + 1]++;
-    for (f = 0; f < sc->nfaces; f++)
-        fx->start[f + 1] += fx->start[f];
+    for (e = 0; e < st.elements; e++) fx->start[sc_element_tag(s, e) + 1]++;
+    for (f = 0; f < sc->nfaces; f++) fx->start[f + 1] += fx->start[f];
     for (e = 0; e < st.elements; e++) {
         int t = sc_element_tag(s, e);
         fx->elements[fx->start[t] + fill[t]++] = e;
     }
-    for (f = 0; f < n; f++)
-        fx->emit[polys[f].tag] = polys[f].emit;
+    for (f = 0; f < n; f++) fx->emit[polys[f].tag] = polys[f].emit;
     free(fill);
     return 0;
 }
@@ -63,18 +60,17 @@ static int index_faces(sc_solver *s, const obj_scene *sc, const sc_poly *polys, 
    core holds coordinates to 2^-16 of 64 units across (2.4e-7 of the extent). */
 static double match_tolerance(const obj_scene *sc)
 {
-    double lo[3] = { HUGE_VAL, HUGE_VAL, HUGE_VAL }, hi[3] = { -HUGE_VAL, -HUGE_VAL, -HUGE_VAL };
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     double ext = 0;
     int i, k;
     for (i = 0; i < sc->nverts; i++) {
-        const double c[3] = { sc->verts[i].x, sc->verts[i].y, sc->verts[i].z };
+        const double c[3] = {sc->verts[i].x, sc->verts[i].y, sc->verts[i].z};
         for (k = 0; k < 3; k++) {
             lo[k] = fmin(lo[k], c[k]);
             hi[k] = fmax(hi[k], c[k]);
         }
     }
-    for (k = 0; k < 3 && sc->nverts; k++)
-        ext = fmax(ext, hi[k] - lo[k]);
+    for (k = 0; k < 3 && sc->nverts; k++) ext = fmax(ext, hi[k] - lo[k]);
     return 1e-5 * ext;
 }
 
@@ -86,8 +82,7 @@ static double vertex_distance(sc_solver *s, int e, const double p[3], int *near)
     for (k = 0; k < n; k++) {
         double q[3], d = 0;
         sc_vertex_pos(s, v[k], q);
-        for (a = 0; a < 3; a++)
-            d += (q[a] - p[a]) * (q[a] - p[a]);
+        for (a = 0; a < 3; a++) d += (q[a] - p[a]) * (q[a] - p[a]);
         if (d < best) {
             best = d;
             *near = v[k];
@@ -98,8 +93,8 @@ static double vertex_distance(sc_solver *s, int e, const double p[3], int *near)
 
 /* The light arriving at element E of a face emitting EMIT (NULL: none), or, gathered,
    at its vertex nearest P. */
-static void arriving(sc_solver *s, const faces_index *fx, int e, const double *emit, const double p[3],
-                     double out[3])
+static void arriving(sc_solver *s, const faces_index *fx, int e, const double *emit,
+                     const double p[3], double out[3])
 {
     double rho[3];
     int k, lamp = emits(emit), near = 0;
@@ -109,8 +104,7 @@ static void arriving(sc_solver *s, const faces_index *fx, int e, const double *e
     }
     memcpy(out, &fx->erg[3 * (size_t)e], 3 * sizeof *out);
     sc_element_rho(s, e, rho); /* the element's own, where it has one */
-    for (k = 0; k < 3 && !lamp; k++)
-        out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
+    for (k = 0; k < 3 && !lamp; k++) out[k] = rho[k] > 0 ? out[k] / rho[k] : 0;
 }
 
 /* The vertices of one face's elements sorted by x, for the corners to look up: a corner
@@ -160,12 +154,12 @@ static void face_vertices(sc_solver *s, const faces_index *fx, int f, face_searc
 /* Corner C of face F: the area-weighted mean of the light arriving at the face's
    elements with a vertex within fx->tol of it, summed in the face's element order, or
    the nearest element's when none has. */
-static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, face_search *fs, int f, int c,
-                   double *rgb, double *weight)
+static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, face_search *fs, int f,
+                   int c, double *rgb, double *weight)
 {
     const obj_vec3 *v = &sc->verts[sc->indices[c]];
-    const double p[3] = { v->x, v->y, v->z };
-    double sum[3] = { 0, 0, 0 }, area = 0, best = HUGE_VAL, h[3];
+    const double p[3] = {v->x, v->y, v->z};
+    double sum[3] = {0, 0, 0}, area = 0, best = HUGE_VAL, h[3];
     int i, j, k, lo = 0, hi = fs->n, nhit = 0, nearest = -1;
     while (lo < hi) { /* the first vertex at x >= p.x - tol */
         int mid = lo + (hi - lo) / 2;
@@ -177,8 +171,7 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, fac
     for (j = lo; j < fs->n && fs->v[j].p[0] <= p[0] + fx->tol; j++) {
         double d = 0;
         int *m = &fs->mark[fs->v[j].slot - fx->start[f]];
-        for (k = 0; k < 3; k++)
-            d += (fs->v[j].p[k] - p[k]) * (fs->v[j].p[k] - p[k]);
+        for (k = 0; k < 3; k++) d += (fs->v[j].p[k] - p[k]) * (fs->v[j].p[k] - p[k]);
         if (d <= fx->tol * fx->tol && *m != c + 1) {
             *m = c + 1;
             fs->hit[nhit++] = fs->v[j].slot;
@@ -189,8 +182,7 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, fac
         int e = fx->elements[fs->hit[i]];
         double a = sc_element_area(s, e);
         arriving(s, fx, e, fx->emit[f], p, h);
-        for (k = 0; k < 3; k++)
-            sum[k] += a * h[k];
+        for (k = 0; k < 3; k++) sum[k] += a * h[k];
         area += a;
     }
     for (i = fx->start[f]; !(area > 0) && i < fx->start[f + 1]; i++) { /* none: the nearest */
@@ -204,11 +196,9 @@ static void corner(sc_solver *s, const obj_scene *sc, const faces_index *fx, fac
     if (!(area > 0) && nearest >= 0) {
         arriving(s, fx, nearest, fx->emit[f], p, sum);
         area = sc_element_area(s, nearest);
-        for (k = 0; k < 3; k++)
-            sum[k] *= area;
+        for (k = 0; k < 3; k++) sum[k] *= area;
     }
-    for (k = 0; k < 3; k++)
-        rgb[3 * c + k] = area > 0 ? sum[k] / area : 0;
+    for (k = 0; k < 3; k++) rgb[3 * c + k] = area > 0 ? sum[k] / area : 0;
     weight[c] = area > 0 ? area : 0;
 }
 
@@ -218,8 +208,8 @@ int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int
     return sc_corner_light_fg(s, NULL, sc, polys, n, rgb, weight, NULL, NULL);
 }
 
-int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
-                       double *rgb, double *weight, sc_fraction_fn progress, void *pctx)
+int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys,
+                       int n, double *rgb, double *weight, sc_fraction_fn progress, void *pctx)
 {
     faces_index fx;
     face_search fs;
@@ -256,20 +246,17 @@ int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const 
 static double colour_scale(const obj_scene *sc, const sc_poly *polys, int n, const double *rgb)
 {
     unsigned char *lamp = calloc((size_t)sc->nfaces + 1, 1);
-    double top[2] = { 1, 1 }; /* [0]: faces that do not emit, [1]: every face */
+    double top[2] = {1, 1}; /* [0]: faces that do not emit, [1]: every face */
     int f, i, k, lit = 0;
-    if (!lamp)
-        return 1; /* no memory: COLOR_0 clamped at 1 instead */
-    for (i = 0; i < n; i++)
-        lamp[polys[i].tag] |= emits(polys[i].emit);
+    if (!lamp) return 1; /* no memory: COLOR_0 clamped at 1 instead */
+    for (i = 0; i < n; i++) lamp[polys[i].tag] |= emits(polys[i].emit);
     for (f = 0; f < sc->nfaces; f++) {
         lit |= !lamp[f];
         for (i = sc->faces[f].first; i < sc->faces[f].first + sc->faces[f].count; i++)
             for (k = 0; k < 3; k++) {
                 double v = rgb[3 * (size_t)i + k];
                 top[1] = v > top[1] ? v : top[1];
-                if (!lamp[f])
-                    top[0] = v > top[0] ? v : top[0];
+                if (!lamp[f]) top[0] = v > top[0] ? v : top[0];
             }
     }
     free(lamp);
@@ -279,32 +266,30 @@ static double colour_scale(const obj_scene *sc, const sc_poly *polys, int n, con
 /* Material M's baseColorFactor (see sc_export_gltf). */
 static void base_colour(const obj_material *m, int textured, double c[3])
 {
-    static const double one[3] = { 1, 1, 1 };
+    static const double one[3] = {1, 1, 1};
     int k, lamp = emits(m->ke);
     if (lamp || textured)
         tex_reflectance(m->kd, one, c);
     else
         tex_reflectance(one, m->kd, c);
-    for (k = 0; k < 3 && lamp; k++)
-        c[k] = 1;
+    for (k = 0; k < 3 && lamp; k++) c[k] = 1;
 }
 
 /* The lightmap's part of IN from atlas LM: TEXCOORD_1 per corner into UV (2 per corner),
    the PNG into *PNG, the lightmap shown by every material that does not emit (USE)
    with its reflectance as the emissive factor (FACTOR, 3 a material): Kd, or with a
    texture the mean of its texels' (tex_reflectance). 0, or -1 with err. */
-static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, const tex_image *maps, double *uv,
-                          unsigned char *use, double *factor, unsigned char **png, gltf_input *in, char *err,
-                          size_t errlen)
+static int lightmap_input(const lm_atlas *lm, const obj_scene *sc, const tex_image *maps,
+                          double *uv, unsigned char *use, double *factor, unsigned char **png,
+                          gltf_input *in, char *err, size_t errlen)
 {
-    static const double one[3] = { 1, 1, 1 };
+    static const double one[3] = {1, 1, 1};
     int m;
     if (!uv || !use || !factor || lm_corner_uvs(lm, sc, uv) != 0) {
         snprintf(err, errlen, "out of memory for the lightmap's UVs");
         return -1;
     }
-    if (lm_png(lm, png, &in->lightmap_png_size, &in->lightmap_scale, err, errlen) != 0)
-        return -1;
+    if (lm_png(lm, png, &in->lightmap_png_size, &in->lightmap_scale, err, errlen) != 0) return -1;
     for (m = 0; m < sc->nmaterials; m++) {
         double mean[3];
         use[m] = !emits(sc->materials[m].ke);
@@ -326,7 +311,8 @@ int sc_export_gltf(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int 
                    const tex_image *maps, sc_fgather *fg, const char *path, gltf_warn_fn warn,
                    void *ctx, char *err, size_t errlen)
 {
-    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, NULL, path, warn, ctx, NULL, NULL, err, errlen);
+    return sc_export_gltf_lightmap(s, sc, polys, n, maps, fg, NULL, NULL, path, warn, ctx, NULL,
+                                   NULL, err, errlen);
 }
 
 int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int n,
@@ -344,7 +330,8 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
     const char **tex = calloc(mats, sizeof *tex);
     gltf_input in;
     int m, rc = -1;
-    if (rgb && weight && base && tex && sc_corner_light_fg(s, fg, sc, polys, n, rgb, weight, progress, pctx) == 0) {
+    if (rgb && weight && base && tex &&
+        sc_corner_light_fg(s, fg, sc, polys, n, rgb, weight, progress, pctx) == 0) {
         for (m = 0; m < sc->nmaterials; m++) {
             int textured = maps && maps[m].rgb;
             const obj_material *mt = &sc->materials[m];
@@ -356,8 +343,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
         in.corner_rgb = rgb;
         in.corner_weight = weight;
         in.color_scale = colour_scale(sc, polys, n, rgb);
-        if (color_scale)
-            *color_scale = in.color_scale;
+        if (color_scale) *color_scale = in.color_scale;
         in.base_color = base;
         in.texture = tex;
         in.texture_image = maps;
@@ -366,8 +352,7 @@ int sc_export_gltf_lightmap(sc_solver *s, const obj_scene *sc, const sc_poly *po
         if (lm && lightmap_input(lm, sc, maps, uv, use, factor, &png, &in, why, sizeof why) != 0) {
             snprintf(err, errlen, "%s: %s", path, why);
         } else {
-            if (progress)
-                progress(pctx, 1.0);
+            if (progress) progress(pctx, 1.0);
             rc = gltf_write(path, &in, err, errlen);
         }
     } else if (err && errlen) {

@@ -26,8 +26,8 @@ int sc_corner_light(sc_solver *s, const obj_scene *sc, const sc_poly *polys, int
 /* The same, the light arriving at each element's vertex gathered by FG (NULL: the
  * element's own, as sc_corner_light) on the faces that do not emit; PROGRESS (NULL:
  * none) gets the fraction of the faces done every SC_EXPORT_EVERY faces. 0 or -1. */
-int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys, int n,
-                       double *rgb, double *weight, sc_fraction_fn progress, void *pctx);
+int sc_corner_light_fg(sc_solver *s, sc_fgather *fg, const obj_scene *sc, const sc_poly *polys,
+                       int n, double *rgb, double *weight, sc_fraction_fn progress, void *pctx);
 
 #define SC_EXPORT_EVERY 1024
 

@@ -14,7 +14,7 @@
 
 #define COS_PLANE 0.9999995 /* cos(10^-3 rad): normals of one plane */
 #define PLANE_TOL 1e-6      /* of the extent: a neighbour's centroid off the plane */
-#define RING 1              /* texels of dilation around a chart's texels */
+#define RING      1         /* texels of dilation around a chart's texels */
 
 /* ---- charts: polygons joined across shared edges in one plane ---- */
 
@@ -84,7 +84,8 @@ static void shared_pairs(const edge_t *e, int ne, const geom_poly *g, double tol
         for (j = i; j < end; j++)
             for (k = j + 1; k < end; k++) {
                 int p = e[j].poly, q = e[k].poly;
-                if (mode == 0 && same_plane(g, p, q, tol)) parent[find(parent, p)] = find(parent, q);
+                if (mode == 0 && same_plane(g, p, q, tol))
+                    parent[find(parent, p)] = find(parent, q);
                 if (mode == 1 && find(parent, p) == find(parent, q)) {
                     interior[4 * p + e[j].k] = 1;
                     interior[4 * q + e[k].k] = 1;
@@ -137,12 +138,12 @@ static int join_partial_edges(const sc_poly *p, int n, const geom_poly *g, doubl
         }
     qsort(c, (size_t)m, sizeof *c, corner_cmp);
     for (i = 0; i < m; i = end) {
-        for (end = i + 1; end < m && !cmp3(c[end].p, c[i].p); end++) {
-        }
+        for (end = i + 1; end < m && !cmp3(c[end].p, c[i].p); end++) {}
         for (j = i; j < end; j++)
             for (k = j + 1; k < end; k++) {
                 int a = c[j].poly, b = c[k].poly;
-                if (find(parent, a) != find(parent, b) && same_plane(g, a, b, tol) && same_way(&c[j], &c[k]))
+                if (find(parent, a) != find(parent, b) && same_plane(g, a, b, tol) &&
+                    same_way(&c[j], &c[k]))
                     parent[find(parent, a)] = find(parent, b);
             }
     }
@@ -220,11 +221,12 @@ static int bucket(const int *key, const int *val, int n, int m, int **first, int
     return 0;
 }
 
-static int make_groups(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne, double cos_crease,
-                       int *parent, groups_t *gr)
+static int make_groups(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne,
+                       double cos_crease, int *parent, groups_t *gr)
 {
     int n = a->npolys, i = 0, j, k, m = 0, rc = -1;
-    int *root = malloc((size_t)(n + 1) * sizeof *root), *from = malloc((size_t)(2 * ne + 1) * sizeof *from);
+    int *root = malloc((size_t)(n + 1) * sizeof *root),
+        *from = malloc((size_t)(2 * ne + 1) * sizeof *from);
     int *to = malloc((size_t)(2 * ne + 1) * sizeof *to);
     memset(gr, 0, sizeof *gr);
     gr->area = calloc((size_t)n + 1, sizeof *gr->area);
@@ -271,15 +273,17 @@ static int project_fan(const sc_poly *p, const double *u, const double *v, doubl
 }
 
 /* Group R's triangles on the plane: added to S (ADD), or 1 when one overlaps S's (0). */
-static int group_on_plane(const lm_atlas *a, const groups_t *gr, int r, const double *u, const double *v, tset *s,
-                          int add)
+static int group_on_plane(const lm_atlas *a, const groups_t *gr, int r, const double *u,
+                          const double *v, tset *s, int add)
 {
     double t[2][3][2];
     int i, k, m;
     for (i = gr->first[r]; i < gr->first[r + 1]; i++) {
         m = project_fan(&a->polys[gr->polys[i]], u, v, t);
         for (k = 0; k < m; k++)
-            if (add ? tset_add(s, (const double(*)[2])t[k]) != 0 : tset_hits(s, (const double(*)[2])t[k])) return 1;
+            if (add ? tset_add(s, (const double(*)[2])t[k]) != 0
+                    : tset_hits(s, (const double(*)[2])t[k]))
+                return 1;
     }
     return 0;
 }
@@ -288,8 +292,9 @@ static int group_on_plane(const lm_atlas *a, const groups_t *gr, int r, const do
  * group joining when every polygon of it lies within the crease of the seed's normal
  * and its projection on the seed's plane overlaps none of the chart's. Each member's
  * CN (by polygon) is the seed's normal, the chart's plane. 0 or -1 out of memory. */
-static int grow_chart(const lm_atlas *a, const geom_poly *g, const groups_t *gr, int seed, double cos_crease,
-                      int *parent, int *queue, int *seen, unsigned char *joined, tset *s, double (*cn)[3])
+static int grow_chart(const lm_atlas *a, const geom_poly *g, const groups_t *gr, int seed,
+                      double cos_crease, int *parent, int *queue, int *seen, unsigned char *joined,
+                      tset *s, double (*cn)[3])
 {
     double u[3], v[3];
     const double *n = g[seed].n;
@@ -320,12 +325,13 @@ static int grow_chart(const lm_atlas *a, const geom_poly *g, const groups_t *gr,
 
 /* Joins coplanar charts (the roots of PARENT) into smooth ones, seeds largest first;
  * every polygon's chart normal into CN. 0 or -1 out of memory. */
-static int merge_smooth(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne, double cos_crease,
-                        int *parent, double (*cn)[3])
+static int merge_smooth(const lm_atlas *a, const geom_poly *g, const edge_t *e, int ne,
+                        double cos_crease, int *parent, double (*cn)[3])
 {
     groups_t gr;
     int n = a->npolys, i, rc = make_groups(a, g, e, ne, cos_crease, parent, &gr);
-    int *queue = malloc((size_t)(n + 1) * sizeof *queue), *seen = malloc((size_t)(n + 1) * sizeof *seen);
+    int *queue = malloc((size_t)(n + 1) * sizeof *queue),
+        *seen = malloc((size_t)(n + 1) * sizeof *seen);
     unsigned char *joined = calloc((size_t)n + 1, 1);
     double cell = 0.0;
     tset *s;
@@ -335,7 +341,8 @@ static int merge_smooth(const lm_atlas *a, const geom_poly *g, const edge_t *e, 
     for (i = 0; rc == 0 && i < n; i++) seen[i] = -1;
     for (i = 0; rc == 0 && i < gr.nroots; i++) {
         int r = gr.order[i];
-        if (!joined[r]) rc = grow_chart(a, g, &gr, r, cos_crease, parent, queue, seen, joined, s, cn);
+        if (!joined[r])
+            rc = grow_chart(a, g, &gr, r, cos_crease, parent, queue, seen, joined, s, cn);
     }
     groups_free(&gr);
     free(queue);
@@ -480,14 +487,17 @@ static int pack(lm_atlas *a, const extent_t *x, rect_t *r, double t)
 
 /* The texel size: given, or the smallest that packs (doubling from the area's bound,
  * then halving the interval 20 times). 0, or -1 with err. */
-static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given, char *err, size_t errlen)
+static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given, char *err,
+                        size_t errlen)
 {
     double area = 0.0, lo, hi;
     int i;
     if (given > 0.0) {
         a->texel = given;
         if (pack(a, x, r, given) == 0) return 0;
-        snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts at a texel of %g (use a larger size or texel)",
+        snprintf(err, errlen,
+                 "an atlas of %dx%d texels cannot fit %d charts at a texel of %g (use a larger "
+                 "size or texel)",
                  a->size, a->size, a->ncharts, given);
         return -1;
     }
@@ -497,16 +507,21 @@ static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given,
     for (hi = lo, i = 0; pack(a, x, r, hi) != 0; i++, hi *= 2.0) {
         lo = hi;
         if (i == 64) {
-            snprintf(err, errlen, "an atlas of %dx%d texels cannot fit %d charts (each needs at least %dx%d texels with "
-                     "--lightmap-pad %d)", a->size, a->size, a->ncharts, 2 * (a->padding + RING) + 1,
+            snprintf(err, errlen,
+                     "an atlas of %dx%d texels cannot fit %d charts (each needs at least %dx%d "
+                     "texels with "
+                     "--lightmap-pad %d)",
+                     a->size, a->size, a->ncharts, 2 * (a->padding + RING) + 1,
                      2 * (a->padding + RING) + 1, a->padding);
             return -1;
         }
     }
     for (i = 0; i < 20; i++) {
         double mid = 0.5 * (lo + hi);
-        if (pack(a, x, r, mid) == 0) hi = mid;
-        else lo = mid;
+        if (pack(a, x, r, mid) == 0)
+            hi = mid;
+        else
+            lo = mid;
     }
     a->texel = hi;
     return pack(a, x, r, hi);
@@ -515,7 +530,7 @@ static int choose_texel(lm_atlas *a, const extent_t *x, rect_t *r, double given,
 /* ---- texel samples ---- */
 
 typedef struct {
-    double p[3][2];    /* a triangle in the rectangle's texel coordinates */
+    double p[3][2];     /* a triangle in the rectangle's texel coordinates */
     unsigned char b[3]; /* edge k (p[k] to p[k + 1]) is on the chart's boundary */
 } tri_t;
 
@@ -531,7 +546,8 @@ static void tri_sample(const tri_t *t, const double c[2], double m, double q[2],
 /* Samples the texels of chart C within a texel of triangle T (those it touches, and
  * their ring), keeping each texel's nearest sample; BEST (the rectangle's texels)
  * holds the distances so far. */
-static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *tri, int poly, double m, float *best)
+static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *tri, int poly, double m,
+                       float *best)
 {
     /* A copy: GCC 12's -Wstringop-overflow under -fsanitize=undefined (make check's soak
      * build) took T's corners for a region of 16 bytes when read through the pointer. */
@@ -549,7 +565,8 @@ static void raster_tri(lm_atlas *a, const lm_chart *c, const tri_t *tri, int pol
         for (i = (int)lo[0]; i <= (int)hi[0]; i++) {
             double ctr[2] = {i + 0.5, j + 0.5}, q[2], d;
             size_t at;
-            if (i < 0 || j < 0 || i >= c->w || j >= c->h || !geom_tri2_touches_box(t->p, i - RING, j - RING, 1 + 2 * RING))
+            if (i < 0 || j < 0 || i >= c->w || j >= c->h ||
+                !geom_tri2_touches_box(t->p, i - RING, j - RING, 1 + 2 * RING))
                 continue;
             tri_sample(t, ctr, m, q, &d);
             if (d >= best[j * c->w + i]) continue;
@@ -598,7 +615,8 @@ static int raster_chart(lm_atlas *a, const lm_chart *c, const unsigned char *int
  * point moved along the chart's normal onto the polygon's plane (a chart joined across
  * folds is a height field over its plane: n_poly . n_chart >= the crease's cosine > 0),
  * lifted off it by LIFT along the polygon's normal. */
-static void surface_point(const lm_atlas *a, const lm_chart *c, int poly, const double *st, double lift, double *p)
+static void surface_point(const lm_atlas *a, const lm_chart *c, int poly, const double *st,
+                          double lift, double *p)
 {
     const double *pl = &a->planes[4 * (size_t)poly];
     double h;
@@ -610,14 +628,22 @@ static void surface_point(const lm_atlas *a, const lm_chart *c, int poly, const 
 
 /* World point of position ST on frame C's plane (a file UV triangle's frame), lifted off
  * it by LIFT along its normal. */
-static void rect_point(const lm_atlas *a, const lm_chart *c, const double *st, double lift, double *p)
+static void rect_point(const lm_atlas *a, const lm_chart *c, const double *st, double lift,
+                       double *p)
 {
     int k;
-    for (k = 0; k < 3; k++) p[k] = c->o[k] + a->texel * (st[0] * c->u[k] + st[1] * c->v[k]) + lift * c->n[k];
+    for (k = 0; k < 3; k++)
+        p[k] = c->o[k] + a->texel * (st[0] * c->u[k] + st[1] * c->v[k]) + lift * c->n[k];
 }
 
-static double lift_of(const lm_atlas *a) { return ldexp(a->extent, -12); }
-static double margin_of(const lm_atlas *a) { return fmax(a->texel / 8.0, ldexp(a->extent, -12)); }
+static double lift_of(const lm_atlas *a)
+{
+    return ldexp(a->extent, -12);
+}
+static double margin_of(const lm_atlas *a)
+{
+    return fmax(a->texel / 8.0, ldexp(a->extent, -12));
+}
 
 /* A sample whose rays along the plane meet a back face first is inside geometry: it
  * moves past the nearest such face by the margin. 1 when the rays met no face at all. */
@@ -643,7 +669,8 @@ static int place_samples(lm_atlas *a, const unsigned char *interior)
     for (i = 0; i < a->ncharts; i++) {
         lm_chart *c = &a->charts[i];
         for (y = 0; y < c->h; y++)
-            for (x = 0; x < c->w; x++) a->owner[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = i;
+            for (x = 0; x < c->w; x++)
+                a->owner[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = i;
         if (raster_chart(a, c, interior, m) != 0) return -1;
         for (y = 0; y < c->h; y++)
             for (x = 0; x < c->w; x++) {
@@ -651,7 +678,8 @@ static int place_samples(lm_atlas *a, const unsigned char *interior)
                 float *st = &a->sample[2 * at];
                 /* free: no face within the rays' reach, and the sample at the centre (the
                  * float of x + 0.5 is exact) */
-                if (!isnan(st[0]) && push_out(a, c, a->poly[at], st) && st[0] == x + 0.5f && st[1] == y + 0.5f)
+                if (!isnan(st[0]) && push_out(a, c, a->poly[at], st) && st[0] == x + 0.5f &&
+                    st[1] == y + 0.5f)
                     a->state[at] = LM_FREE;
             }
     }
@@ -673,7 +701,8 @@ static int alloc_atlas(lm_atlas *a, const geom_poly *g, int n)
     a->state = calloc(t, 1);
     a->block = calloc(t, 1);
     a->planes = malloc(4 * ((size_t)n + 1) * sizeof *a->planes);
-    if (!a->planes || !a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb || !a->poly || !a->state || !a->block)
+    if (!a->planes || !a->poly_chart || !a->chart_polys || !a->owner || !a->sample || !a->rgb ||
+        !a->poly || !a->state || !a->block)
         return -1;
     for (k = 0; k < n; k++) {
         memcpy(&a->planes[4 * (size_t)k], g[k].n, sizeof g[k].n);
@@ -728,9 +757,10 @@ static int layout(lm_atlas *a, const unsigned char *interior, double texel, char
         rc = choose_texel(a, x, r, texel, err, errlen);
         for (i = 0; rc == 0 && i < a->ncharts; i++)
             for (k = 0; k < 3; k++)
-                a->charts[i].o[k] = (x[i].smin - (a->padding + RING) * a->texel) * a->charts[i].u[k] +
-                                    (x[i].tmin - (a->padding + RING) * a->texel) * a->charts[i].v[k] +
-                                    x[i].d * a->charts[i].n[k];
+                a->charts[i].o[k] =
+                    (x[i].smin - (a->padding + RING) * a->texel) * a->charts[i].u[k] +
+                    (x[i].tmin - (a->padding + RING) * a->texel) * a->charts[i].v[k] +
+                    x[i].d * a->charts[i].n[k];
     }
     free(x);
     free(r);
@@ -746,7 +776,8 @@ static double cos_crease(const lm_opts *o)
 
 /* The atlas emptied and O's size, tolerance, crease and padding checked and kept, for
  * N POLYS. 0, or -1 with err. */
-static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err, size_t errlen)
+static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *err,
+                 size_t errlen)
 {
     memset(a, 0, sizeof *a);
     if (o->size < 1 || o->size > LM_MAX_SIZE) {
@@ -758,20 +789,26 @@ static int setup(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, cha
         return -1;
     }
     if (!(o->crease <= LM_MAX_CREASE)) {
-        snprintf(err, errlen, "a chart crease of %g degrees is outside 0..%d (negative: coplanar charts only)", o->crease,
-                 LM_MAX_CREASE);
+        snprintf(err, errlen,
+                 "a chart crease of %g degrees is outside 0..%d (negative: coplanar charts only)",
+                 o->crease, LM_MAX_CREASE);
         return -1;
     }
     if (n < 1 || !(o->texel >= 0.0) || !isfinite(o->texel)) {
-        snprintf(err, errlen, n < 1 ? "no polygons to bake" : "a texel size must be a positive number");
+        snprintf(err, errlen,
+                 n < 1 ? "no polygons to bake" : "a texel size must be a positive number");
         return -1;
     }
     a->size = o->size;
     a->tol = o->tol;
-    a->padding = o->padding < 0 ? 0 : o->padding ? o->padding : o->size / 128 < 1 ? 1 : o->size / 128;
+    a->padding = o->padding < 0      ? 0
+                 : o->padding        ? o->padding
+                 : o->size / 128 < 1 ? 1
+                                     : o->size / 128;
     if (!o->padding && a->padding > LM_PADDING) a->padding = LM_PADDING;
     if (a->padding > LM_MAX_PADDING) {
-        snprintf(err, errlen, "a lightmap padding of %d is outside 0..%d", o->padding, LM_MAX_PADDING);
+        snprintf(err, errlen, "a lightmap padding of %d is outside 0..%d", o->padding,
+                 LM_MAX_PADDING);
         return -1;
     }
     a->npolys = n;
@@ -790,11 +827,14 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
     if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
         snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
         rc = -2;
-    } else if (g && interior && alloc_atlas(a, g, n) == 0 && make_charts(a, g, cos_crease(o), interior) == 0 &&
+    } else if (g && interior && alloc_atlas(a, g, n) == 0 &&
+               make_charts(a, g, cos_crease(o), interior) == 0 &&
                (a->grid = geom_grid_new(polys, g, n)) != NULL) {
         rc = 0;
     }
-    if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
+    if (rc == -1)
+        snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size,
+                 n);
     if (rc == 0) rc = layout(a, interior, o->texel, err, errlen);
     if (rc == 0 && place_samples(a, interior) != 0) {
         snprintf(err, errlen, "out of memory for a %dx%d lightmap", o->size, o->size);
@@ -808,7 +848,8 @@ int lm_build(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o, char *e
 
 /* ---- the file's UVs (lm_build_file) ---- */
 
-#define UV_FLAT 1e-12 /* a UV triangle whose doubled area is below this of its sides'
+#define UV_FLAT \
+    1e-12 /* a UV triangle whose doubled area is below this of its sides'
                        * squares has none: its affine map would divide by about 0 */
 
 static double cross2d(const double *o, const double *x, const double *y)
@@ -825,8 +866,8 @@ static double uv_det(const lm_atlas *a, int i, int k)
     double det, scale;
     if (k + 2 >= a->polys[i].n) return 0.0;
     det = cross2d(uv, x, y);
-    scale = (x[0] - uv[0]) * (x[0] - uv[0]) + (x[1] - uv[1]) * (x[1] - uv[1]) + (y[0] - uv[0]) * (y[0] - uv[0]) +
-            (y[1] - uv[1]) * (y[1] - uv[1]);
+    scale = (x[0] - uv[0]) * (x[0] - uv[0]) + (x[1] - uv[1]) * (x[1] - uv[1]) +
+            (y[0] - uv[0]) * (y[0] - uv[0]) + (y[1] - uv[1]) * (y[1] - uv[1]);
     return isfinite(det) && fabs(det) > UV_FLAT * scale ? det : 0.0;
 }
 
@@ -873,7 +914,8 @@ static const lm_chart *file_tri(const lm_atlas *a, int p, const double *st)
  * of o + T (x u + y v) = P. */
 static void frame_inverse(const lm_atlas *a, const lm_chart *f, const double *p, double *xy)
 {
-    double r[3], uu = geom_dot(f->u, f->u), uv = geom_dot(f->u, f->v), vv = geom_dot(f->v, f->v), bu, bv;
+    double r[3], uu = geom_dot(f->u, f->u), uv = geom_dot(f->u, f->v), vv = geom_dot(f->v, f->v),
+                 bu, bv;
     double det = uu * vv - uv * uv;
     geom_sub(p, f->o, r);
     bu = geom_dot(r, f->u) / a->texel;
@@ -927,8 +969,7 @@ static int file_joins(lm_atlas *a, const geom_poly *g, int *parent, unsigned cha
     if (!e) return -1;
     for (i = 0; i < a->npolys; i++) parent[i] = i;
     for (i = 0; i < ne; i = end) {
-        for (end = i + 1; end < ne && !cmp3(e[end].a, e[i].a) && !cmp3(e[end].b, e[i].b); end++) {
-        }
+        for (end = i + 1; end < ne && !cmp3(e[end].a, e[i].a) && !cmp3(e[end].b, e[i].b); end++) {}
         for (j = i; j < end; j++)
             for (k = j + 1; k < end; k++)
                 if (same_uv_edge(a, &e[j], &e[k])) {
@@ -951,7 +992,8 @@ static int file_push_out(lm_atlas *a, const lm_chart *f, float *st)
     rect_point(a, f, s, lift_of(a), p);
     geom_any_perp(f->n, e1);
     geom_cross(f->n, e1, e2);
-    best = geom_back_ray(a->grid, a->polys, p, e1, e2, 0.75 * a->texel * sqrt(sqrt(geom_dot(uxv, uxv))), dir, &met);
+    best = geom_back_ray(a->grid, a->polys, p, e1, e2,
+                         0.75 * a->texel * sqrt(sqrt(geom_dot(uxv, uxv))), dir, &met);
     if (!(best < HUGE_VAL)) return !(met < HUGE_VAL);
     best = (best + margin_of(a)) / a->texel; /* the move T (ds u + dt v) = best dir */
     du = best * geom_dot(dir, f->u);
@@ -994,7 +1036,8 @@ static int file_samples(lm_atlas *a, const unsigned char *interior, const int *c
         s[0] = st[0];
         s[1] = st[1];
         a->owner[at] = comp[a->poly[at]];
-        if (file_push_out(a, file_tri(a, a->poly[at], s), st) && st[0] == (float)(at % (size_t)a->size) + 0.5f &&
+        if (file_push_out(a, file_tri(a, a->poly[at], s), st) &&
+            st[0] == (float)(at % (size_t)a->size) + 0.5f &&
             st[1] == (float)(at / (size_t)a->size) + 0.5f)
             a->state[at] = LM_FREE;
     }
@@ -1015,7 +1058,8 @@ static void file_gutter(lm_atlas *a)
             for (dy = -1; dy <= 1; dy++)
                 for (dx = -1; dx <= 1; dx++) {
                     int o;
-                    if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size) continue;
+                    if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size)
+                        continue;
                     o = a->owner[(size_t)(y + dy) * a->size + (size_t)(x + dx)];
                     if (o >= 0 && (best < 0 || o < best)) best = o;
                 }
@@ -1042,7 +1086,8 @@ static long file_overlaps(const lm_atlas *a)
     memset(first, 0xff, t * sizeof *first);
     for (i = 0; i < a->npolys; i++)
         for (k = 0; a->poly_chart[i] >= 0 && k < 2; k++) {
-            const double *uv = &a->file_uv[8 * (size_t)i], *p = uv + 2 * (k + 1), *q = uv + 2 * (k + 2);
+            const double *uv = &a->file_uv[8 * (size_t)i], *p = uv + 2 * (k + 1),
+                         *q = uv + 2 * (k + 2);
             double lo[2], hi[2], sign = uv_det(a, i, k) < 0.0 ? -1.0 : 1.0;
             int j;
             if (!a->frames[2 * (size_t)i + k].count) continue;
@@ -1054,10 +1099,13 @@ static long file_overlaps(const lm_atlas *a)
                 for (x = (int)lo[0]; x <= (int)hi[0]; x++) {
                     double c[2] = {x + 0.5, y + 0.5};
                     size_t at = (size_t)y * a->size + (size_t)x;
-                    if (!(sign * cross2d(uv, p, c) > 0 && sign * cross2d(p, q, c) > 0 && sign * cross2d(q, uv, c) > 0))
+                    if (!(sign * cross2d(uv, p, c) > 0 && sign * cross2d(p, q, c) > 0 &&
+                          sign * cross2d(q, uv, c) > 0))
                         continue;
-                    if (first[at] < 0) first[at] = i;
-                    else if (first[at] != i && !twice[at]++) n++;
+                    if (first[at] < 0)
+                        first[at] = i;
+                    else if (first[at] != i && !twice[at]++)
+                        n++;
                 }
         }
     free(first);
@@ -1102,8 +1150,10 @@ static void file_frames(lm_atlas *a, const double *uv, const geom_poly *g, lm_fi
     for (i = 0; a->texel > 0.0 && i < a->npolys; i++) {
         file_frame(a, i, 0, g[i].n);
         file_frame(a, i, 1, g[i].n);
-        a->poly_chart[i] = g[i].area > 0.0 && (a->frames[2 * (size_t)i].count || a->frames[2 * (size_t)i + 1].count)
-                               ? 0 : -1;
+        a->poly_chart[i] = g[i].area > 0.0 && (a->frames[2 * (size_t)i].count ||
+                                               a->frames[2 * (size_t)i + 1].count)
+                               ? 0
+                               : -1;
     }
 }
 
@@ -1151,18 +1201,21 @@ int lm_build_file(lm_atlas *a, const sc_poly *polys, int n, const double *uv, co
     if (g && !(a->extent > 0.0 && isfinite(a->extent))) {
         snprintf(err, errlen, "the polygons have no extent (or one that is not finite)");
         rc = -2;
-    } else if (g && interior && parent && comp && a->file_uv && a->frames && alloc_atlas(a, g, n) == 0 &&
-               (a->grid = geom_grid_new(polys, g, n)) != NULL) {
+    } else if (g && interior && parent && comp && a->file_uv && a->frames &&
+               alloc_atlas(a, g, n) == 0 && (a->grid = geom_grid_new(polys, g, n)) != NULL) {
         file_frames(a, uv, g, rep);
         rc = a->texel > 0.0 ? 0 : -3;
-        if (rc == -3) snprintf(err, errlen, "no polygon has a second UV set with area (the file's lightmap UVs)");
+        if (rc == -3)
+            snprintf(err, errlen,
+                     "no polygon has a second UV set with area (the file's lightmap UVs)");
     }
     if (rc == 0 && (file_joins(a, g, parent, interior) != 0 || file_charts(a, parent, comp) != 0 ||
-                    file_samples(a, interior, comp) != 0 ||
-                    (rep->overlap = file_overlaps(a)) < 0))
+                    file_samples(a, interior, comp) != 0 || (rep->overlap = file_overlaps(a)) < 0))
         rc = -1;
     if (rc == 0) file_gutter(a);
-    if (rc == -1) snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size, n);
+    if (rc == -1)
+        snprintf(err, errlen, "out of memory for a %dx%d lightmap of %d polygons", o->size, o->size,
+                 n);
     free(g);
     free(interior);
     free(parent);
@@ -1176,7 +1229,8 @@ double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n)
     double *uv = sc->uv2 ? malloc((8 * (size_t)n + 1) * sizeof *uv) : NULL;
     int i, k, c;
     for (i = 0; uv && i < n; i++) {
-        const obj_face *f = polys[i].tag >= 0 && polys[i].tag < sc->nfaces ? &sc->faces[polys[i].tag] : NULL;
+        const obj_face *f =
+            polys[i].tag >= 0 && polys[i].tag < sc->nfaces ? &sc->faces[polys[i].tag] : NULL;
         for (k = 0; k < 4; k++) {
             double *w = &uv[8 * (size_t)i + 2 * k];
             w[0] = w[1] = NAN;
@@ -1218,7 +1272,8 @@ static int fill_from(lm_atlas *a, const unsigned char *filled, size_t at)
     for (dy = -1; dy <= 1; dy++)
         for (dx = -1; dx <= 1; dx++) {
             size_t b = (size_t)(y + dy) * a->size + (size_t)(x + dx);
-            if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size || !filled[b]) continue;
+            if (x + dx < 0 || y + dy < 0 || x + dx >= a->size || y + dy >= a->size || !filled[b])
+                continue;
             if (a->owner[b] != a->owner[at]) continue;
             for (k = 0; k < 3; k++) sum[k] += a->rgb[3 * b + k];
             n++;
@@ -1267,7 +1322,9 @@ int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
 static long want(lm_atlas *a, const lm_chart *c, int x, int y)
 {
     size_t at = (size_t)(c->y + y) * a->size + (size_t)(c->x + x);
-    if (x >= c->w || y >= c->h || isnan(a->sample[2 * at]) || (a->state[at] & (LM_WANT | LM_GATHERED))) return 0;
+    if (x >= c->w || y >= c->h || isnan(a->sample[2 * at]) ||
+        (a->state[at] & (LM_WANT | LM_GATHERED)))
+        return 0;
     a->state[at] = (unsigned char)((a->state[at] & LM_FREE) | LM_WANT);
     return 1;
 }
@@ -1301,7 +1358,8 @@ static int smooth(const lm_atlas *a, const lm_chart *c, int x, int y, int b)
 static void interpolate(lm_atlas *a, const lm_chart *c, int x, int y, int b)
 {
     const float *e00 = &a->rgb[3 * ((size_t)(c->y + y) * a->size + (size_t)(c->x + x))];
-    const float *e10 = e00 + 3 * (size_t)b, *e01 = e00 + 3 * (size_t)b * a->size, *e11 = e01 + 3 * (size_t)b;
+    const float *e10 = e00 + 3 * (size_t)b, *e01 = e00 + 3 * (size_t)b * a->size,
+                *e11 = e01 + 3 * (size_t)b;
     int i, j, k;
     for (j = 0; j <= b; j++)
         for (i = 0; i <= b; i++) {
@@ -1309,8 +1367,8 @@ static void interpolate(lm_atlas *a, const lm_chart *c, int x, int y, int b)
             double u = (double)i / b, v = (double)j / b;
             if (a->state[at] & (LM_WANT | LM_GATHERED)) continue;
             for (k = 0; k < 3; k++)
-                a->rgb[3 * at + k] =
-                    (float)((1 - v) * ((1 - u) * e00[k] + u * e10[k]) + v * ((1 - u) * e01[k] + u * e11[k]));
+                a->rgb[3 * at + k] = (float)((1 - v) * ((1 - u) * e00[k] + u * e10[k]) +
+                                             v * ((1 - u) * e01[k] + u * e11[k]));
             a->state[at] |= LM_LERPED;
         }
 }
@@ -1337,7 +1395,8 @@ static long split_blocks(lm_atlas *a, int b)
                 for (j = 0; h > 1 && j < b; j += h)
                     for (i = 0; i < b; i += h)
                         if (x + i < c->w && y + j < c->h)
-                            a->block[(size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i)] = (unsigned char)h;
+                            a->block[(size_t)(c->y + y + j) * a->size + (size_t)(c->x + x + i)] =
+                                (unsigned char)h;
             }
     }
     return n;
@@ -1354,7 +1413,8 @@ long lm_plan(lm_atlas *a)
             for (y = 0; y < c->h; y += step)
                 for (x = 0; x < c->w; x += step) {
                     n += want(a, c, x, y);
-                    if (step > 1) a->block[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = LM_STEP;
+                    if (step > 1)
+                        a->block[(size_t)(c->y + y) * a->size + (size_t)(c->x + x)] = LM_STEP;
                 }
         }
         a->waiting = a->tol > 0.0 ? LM_STEP : 0;
@@ -1398,13 +1458,15 @@ int lm_uv(const lm_atlas *a, int poly, const double p[3], double xy[2])
 
 void lm_lookup(const lm_atlas *a, const double xy[2], double rgb[3])
 {
-    double fx = xy[0] - 0.5, fy = xy[1] - 0.5, x0 = floor(fx), y0 = floor(fy), wx = fx - x0, wy = fy - y0;
+    double fx = xy[0] - 0.5, fy = xy[1] - 0.5, x0 = floor(fx), y0 = floor(fy), wx = fx - x0,
+           wy = fy - y0;
     int k, dx, dy;
     memset(rgb, 0, 3 * sizeof *rgb);
     for (dy = 0; dy < 2; dy++)
         for (dx = 0; dx < 2; dx++) {
             double w = (dx ? wx : 1.0 - wx) * (dy ? wy : 1.0 - wy);
-            int x = (int)fmin(fmax(x0 + dx, 0.0), a->size - 1), y = (int)fmin(fmax(y0 + dy, 0.0), a->size - 1);
+            int x = (int)fmin(fmax(x0 + dx, 0.0), a->size - 1),
+                y = (int)fmin(fmax(y0 + dy, 0.0), a->size - 1);
             for (k = 0; k < 3; k++) rgb[k] += w * a->rgb[3 * ((size_t)y * a->size + (size_t)x) + k];
         }
 }
@@ -1447,7 +1509,8 @@ static int poly_has(const sc_poly *q, const double p[3])
     return 0;
 }
 
-static void corner_uv(const lm_atlas *a, const int *byface, int lo, int hi, const double p[3], double uv[2])
+static void corner_uv(const lm_atlas *a, const int *byface, int lo, int hi, const double p[3],
+                      double uv[2])
 {
     int i, poly = lo < hi ? byface[lo] : -1;
     double xy[2];
@@ -1465,7 +1528,8 @@ static void corner_uv(const lm_atlas *a, const int *byface, int lo, int hi, cons
 
 int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv)
 {
-    int *first = calloc((size_t)sc->nfaces + 2, sizeof *first), *byface = malloc(((size_t)a->npolys + 1) * sizeof *byface);
+    int *first = calloc((size_t)sc->nfaces + 2, sizeof *first),
+        *byface = malloc(((size_t)a->npolys + 1) * sizeof *byface);
     int *fill = calloc((size_t)sc->nfaces + 1, sizeof *fill), i, f, k;
     if (!first || !byface || !fill || a->file_uv) {
         free(first);
@@ -1495,7 +1559,8 @@ int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv)
     return 0;
 }
 
-int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err, size_t errlen)
+int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err,
+           size_t errlen)
 {
     size_t t = (size_t)a->size * a->size, i;
     unsigned char *px = malloc(3 * t);

@@ -77,13 +77,13 @@
 #include "formats/obj.h"
 #include "host/scene.h"
 
-#define LM_MAX_SIZE 8192
-#define LM_PADDING 4      /* the default gutter from 512 texels a side: mip levels 1, 2 */
-#define LM_MAX_PADDING 64 /* mip levels up to 6 */
-#define LM_STEP 4    /* texels between the first pass's gathers, within a chart */
-#define LM_TOL 0.05  /* the default tolerance of the adaptive bake (tests/test_bake.c) */
-#define LM_CREASE 25     /* degrees: the default crease of smooth charts (see above) */
-#define LM_MAX_CREASE 60 /* a texel then covers up to 1 / cos 60 = 2 times its area */
+#define LM_MAX_SIZE    8192
+#define LM_PADDING     4    /* the default gutter from 512 texels a side: mip levels 1, 2 */
+#define LM_MAX_PADDING 64   /* mip levels up to 6 */
+#define LM_STEP        4    /* texels between the first pass's gathers, within a chart */
+#define LM_TOL         0.05 /* the default tolerance of the adaptive bake (tests/test_bake.c) */
+#define LM_CREASE      25   /* degrees: the default crease of smooth charts (see above) */
+#define LM_MAX_CREASE  60   /* a texel then covers up to 1 / cos 60 = 2 times its area */
 
 /* The light arriving at world point P on a surface of unit normal N, into RGB.
  * Returns 0, or nonzero to stop the bake. */
@@ -113,21 +113,21 @@ typedef struct {
     double texel, extent;
     int npolys, ncharts;
     lm_chart *charts;
-    int *poly_chart;  /* per polygon: its chart, -1 for a degenerate polygon */
-    int *chart_polys; /* polygons by chart */
-    int *owner;       /* size^2: the chart whose rectangle holds the texel, -1: none */
-    float *sample;    /* size^2 * 2: a covered texel's sample (s, t) in its rectangle,
+    int *poly_chart;      /* per polygon: its chart, -1 for a degenerate polygon */
+    int *chart_polys;     /* polygons by chart */
+    int *owner;           /* size^2: the chart whose rectangle holds the texel, -1: none */
+    float *sample;        /* size^2 * 2: a covered texel's sample (s, t) in its rectangle,
                        * NaN when not covered */
-    float *rgb;       /* size^2 * 3: the baked light, row 0 at the top */
-    int *poly;        /* size^2: the polygon of a covered texel's sample */
+    float *rgb;           /* size^2 * 3: the baked light, row 0 at the top */
+    int *poly;            /* size^2: the polygon of a covered texel's sample */
     unsigned char *state; /* size^2: LM_FREE, and how the texel got its light */
     unsigned char *block; /* size^2: the size of the block waiting with its corner here, 0: none */
-    double *planes;   /* npolys * 4: each polygon's unit normal (a texel's gather's) and
+    double *planes;       /* npolys * 4: each polygon's unit normal (a texel's gather's) and
                        * offset d (n . x = d) */
     double tol;
     int pass, waiting; /* passes planned so far; the size of the blocks waiting */
     const sc_poly *polys;
-    void *grid;       /* the polygons by cell, for the sample's rays */
+    void *grid; /* the polygons by cell, for the sample's rays */
     /* lm_build_file only (NULL, 0: rad's charts) */
     double *file_uv;  /* 8 per polygon: its corners' places in texels (x right, y down) */
     lm_chart *frames; /* 2 per polygon, its fan triangles (corners 0 1 2, 0 2 3): world =
@@ -211,7 +211,8 @@ int lm_corner_uvs(const lm_atlas *a, const obj_scene *sc, double *uv);
 /* The atlas as 8-bit sRGB PNG bytes for embedding (*PNG, malloc'd, *N bytes), scaled so
  * that its largest channel is white: a texel's light is *SCALE times its sRGB-decoded
  * value, within half a code's step (no texel clips). 0, or -1 with err. */
-int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err, size_t errlen);
+int lm_png(const lm_atlas *a, unsigned char **png, size_t *n, double *scale, char *err,
+           size_t errlen);
 
 void lm_free(lm_atlas *a);
 

@@ -23,11 +23,13 @@ int pr_parse_grid(const char *text, int dims[3], char *err, size_t errlen)
     }
     for (k = 0; k < 3; k++)
         if (dims[k] < 1 || dims[k] > PR_MAX_GRID) {
-            snprintf(err, errlen, "probes: a grid of %d along an axis is outside 1..%d", dims[k], PR_MAX_GRID);
+            snprintf(err, errlen, "probes: a grid of %d along an axis is outside 1..%d", dims[k],
+                     PR_MAX_GRID);
             return -1;
         }
     if ((long)dims[0] * dims[1] * dims[2] > PR_MAX_PROBES) {
-        snprintf(err, errlen, "probes: a grid of %ld probes is above %d", (long)dims[0] * dims[1] * dims[2], PR_MAX_PROBES);
+        snprintf(err, errlen, "probes: a grid of %ld probes is above %d",
+                 (long)dims[0] * dims[1] * dims[2], PR_MAX_PROBES);
         return -1;
     }
     return 0;
@@ -50,7 +52,8 @@ double *pr_grid_points(const sc_poly *polys, int n, const int dims[3])
         for (y = 0; y < dims[1]; y++)
             for (x = 0; x < dims[0]; x++, m++) {
                 int c[3] = {x, y, z};
-                for (a = 0; a < 3; a++) pts[3 * m + a] = lo[a] + (c[a] + 0.5) * (hi[a] - lo[a]) / dims[a];
+                for (a = 0; a < 3; a++)
+                    pts[3 * m + a] = lo[a] + (c[a] + 0.5) * (hi[a] - lo[a]) / dims[a];
             }
     return pts;
 }
@@ -133,7 +136,8 @@ static void ray_dirs(double d[RAYS][3])
             }
 }
 
-static double back_fraction(const void *grid, const sc_poly *polys, const double *p, double d[RAYS][3])
+static double back_fraction(const void *grid, const sc_poly *polys, const double *p,
+                            double d[RAYS][3])
 {
     int j, backs = 0;
     for (j = 0; j < RAYS; j++) {
@@ -143,8 +147,8 @@ static double back_fraction(const void *grid, const sc_poly *polys, const double
     return (double)backs / RAYS;
 }
 
-int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gather_fn fn, void *ctx, pr_probe *out,
-            char *err, size_t errlen)
+int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gather_fn fn, void *ctx,
+            pr_probe *out, char *err, size_t errlen)
 {
     double extent, d[RAYS][3];
     geom_poly *g = geom_polys(polys, npolys, &extent);
@@ -161,7 +165,8 @@ int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gathe
         out[i].back = back_fraction(grid, polys, out[i].p, d);
         out[i].inside = out[i].back > 0.5;
         if (fn(ctx, out[i].p, out[i].sh) != 0) {
-            snprintf(err, errlen, "probe %d at (%g, %g, %g) cannot be gathered (outside the scene's frame?)", i,
+            snprintf(err, errlen,
+                     "probe %d at (%g, %g, %g) cannot be gathered (outside the scene's frame?)", i,
                      out[i].p[0], out[i].p[1], out[i].p[2]);
             rc = -1;
         }
@@ -173,14 +178,16 @@ int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gathe
 static void write_probe(FILE *fp, const pr_probe *p, int last)
 {
     int k;
-    fprintf(fp, "    {\"p\": [%.9g, %.9g, %.9g], \"inside\": %s, \"back\": %.4g, \"sh\": [", p->p[0], p->p[1], p->p[2],
-            p->inside ? "true" : "false", p->back);
+    fprintf(fp, "    {\"p\": [%.9g, %.9g, %.9g], \"inside\": %s, \"back\": %.4g, \"sh\": [",
+            p->p[0], p->p[1], p->p[2], p->inside ? "true" : "false", p->back);
     for (k = 0; k < 9; k++)
-        fprintf(fp, "[%.9g, %.9g, %.9g]%s", p->sh[k][0], p->sh[k][1], p->sh[k][2], k < 8 ? ", " : "");
+        fprintf(fp, "[%.9g, %.9g, %.9g]%s", p->sh[k][0], p->sh[k][1], p->sh[k][2],
+                k < 8 ? ", " : "");
     fprintf(fp, "]}%s\n", last ? "" : ",");
 }
 
-int pr_write_json(const char *path, const pr_probe *pr, int n, const int *dims, char *err, size_t errlen)
+int pr_write_json(const char *path, const pr_probe *pr, int n, const int *dims, char *err,
+                  size_t errlen)
 {
     fio_out *o = fio_out_open(path, err, errlen);
     FILE *fp;
@@ -188,10 +195,13 @@ int pr_write_json(const char *path, const pr_probe *pr, int n, const int *dims, 
     if (!o) return -1;
     fp = fio_out_stream(o);
     fprintf(fp, "{\n  \"format\": \"rad-probes-1\",\n");
-    fprintf(fp, "  \"sh_order\": [\"Y00\", \"Y1-1 (y)\", \"Y10 (z)\", \"Y11 (x)\", \"Y2-2 (xy)\", \"Y2-1 (yz)\", "
+    fprintf(fp, "  \"sh_order\": [\"Y00\", \"Y1-1 (y)\", \"Y10 (z)\", \"Y11 (x)\", \"Y2-2 (xy)\", "
+                "\"Y2-1 (yz)\", "
                 "\"Y20 (3z^2-1)\", \"Y21 (xz)\", \"Y22 (x^2-y^2)\"],\n");
-    if (dims) fprintf(fp, "  \"grid\": [%d, %d, %d],\n", dims[0], dims[1], dims[2]);
-    else fprintf(fp, "  \"grid\": null,\n");
+    if (dims)
+        fprintf(fp, "  \"grid\": [%d, %d, %d],\n", dims[0], dims[1], dims[2]);
+    else
+        fprintf(fp, "  \"grid\": null,\n");
     fprintf(fp, "  \"probes\": [\n");
     for (i = 0; i < n; i++) write_probe(fp, &pr[i], i == n - 1);
     fprintf(fp, "  ]\n}\n");

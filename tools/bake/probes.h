@@ -21,7 +21,7 @@
 
 #include "host/scene.h"
 
-#define PR_MAX_GRID 256        /* probes along one axis of a grid */
+#define PR_MAX_GRID   256 /* probes along one axis of a grid */
 #define PR_MAX_PROBES 1000000
 
 /* The nine SH coefficients (rad_gather_sh's order, 3 channels each) seen from P. */
@@ -44,12 +44,13 @@ double *pr_grid_points(const sc_poly *polys, int n, const int dims[3]);
 double *pr_read_points(const char *path, int *n, char *err, size_t errlen);
 /* Flags and gathers N probes at PTS into OUT. 0, or -1 with err (a gather failed: a
  * point outside the scene's frame, or FN stopped). */
-int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gather_fn fn, void *ctx, pr_probe *out,
-            char *err, size_t errlen);
+int pr_bake(const sc_poly *polys, int npolys, const double *pts, int n, pr_gather_fn fn, void *ctx,
+            pr_probe *out, char *err, size_t errlen);
 /* Writes the probes as JSON (DIMS: the grid's, or NULL for points read from a file):
  * {"format": "rad-probes-1", "sh_order": [...], "grid": [nx, ny, nz] or null,
  *  "probes": [{"p": [x, y, z], "inside": false, "back": f, "sh": [[r, g, b] x 9]}, ...]}
  * through file_io (atomic). 0, or -1 with err. */
-int pr_write_json(const char *path, const pr_probe *pr, int n, const int *dims, char *err, size_t errlen);
+int pr_write_json(const char *path, const pr_probe *pr, int n, const int *dims, char *err,
+                  size_t errlen);
 
 #endif

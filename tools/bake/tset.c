@@ -80,7 +80,10 @@ void tset_free(tset *s)
     free(s);
 }
 
-static uint64_t key_of(long cx, long cy) { return (uint64_t)(uint32_t)cx << 32 | (uint32_t)cy; }
+static uint64_t key_of(long cx, long cy)
+{
+    return (uint64_t)(uint32_t)cx << 32 | (uint32_t)cy;
+}
 
 static unsigned slot_hash(uint64_t k)
 {
@@ -146,7 +149,8 @@ static int cells_of(const tset *s, const double t[3][2], long lo[2], long hi[2])
 }
 
 /* Whether A's and B's extents along unit axis (NX, NY) overlap by more than TOL. */
-static int axis_overlap(const double a[3][2], const double b[3][2], double nx, double ny, double tol)
+static int axis_overlap(const double a[3][2], const double b[3][2], double nx, double ny,
+                        double tol)
 {
     double amin = HUGE_VAL, amax = -HUGE_VAL, bmin = HUGE_VAL, bmax = -HUGE_VAL;
     int k;

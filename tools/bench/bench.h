@@ -25,8 +25,8 @@ typedef struct {
     const char *name;
     sc_poly *polys;
     int n;
-    double max_element;   /* 0: rad_cli's default */
-    double max_patch;     /* 0: the glue's default (1/8 of the extent) */
+    double max_element; /* 0: rad_cli's default */
+    double max_patch;   /* 0: the glue's default (1/8 of the extent) */
     int res;
     int runs;
     int big;              /* one of the two largest: not in the overshooting and parallel tables */
@@ -35,13 +35,13 @@ typedef struct {
 
 /* One solve's record. */
 typedef struct {
-    int elements, patches, shots[3];   /* shots to unshot 0.1, 0.01, 0.001 */
+    int elements, patches, shots[3]; /* shots to unshot 0.1, 0.01, 0.001 */
     int all_shots;
-    double t[3], total, mesh;           /* seconds to each, whole solve, meshing */
+    double t[3], total, mesh; /* seconds to each, whole solve, meshing */
     double pix_per_s;
     size_t bytes;
     int npts;
-    double *xs, *xt, *y;                /* convergence: shots, seconds, unshot */
+    double *xs, *xt, *y; /* convergence: shots, seconds, unshot */
 } brun;
 
 /* The median of V[0..N-1], which it sorts. */
@@ -56,7 +56,8 @@ int bench_poly_emits(const sc_poly *p);
 /* The polygons of the OBJ file PATH, its scene kept in KEEP (or freed: NULL). */
 sc_poly *bench_load_obj(const char *path, int *n, obj_scene *keep);
 /* A quad V (reflectance RHO, emission EM) appended to P[*N], tagged with its index. */
-void bench_add_quad(sc_poly *p, int *n, const double v[4][3], const double rho[3], const double em[3]);
+void bench_add_quad(sc_poly *p, int *n, const double v[4][3], const double rho[3],
+                    const double em[3]);
 /* Faces of the box [lo, hi], inward for a room or outward for furniture, skipping
  * face SKIP (2 * axis + high side; -1 for none), appended to P[*N]. */
 void bench_add_box(sc_poly *p, int *n, const double lo[3], const double hi[3], int inward, int skip,
@@ -94,15 +95,15 @@ typedef struct {
 extern const peer_row_t bench_peer_rows[PEER_CMDS];
 
 typedef struct {
-    char why[3072];                        /* empty when measured; else why not */
-    double t[PEER_CMDS], ratio[PEER_CMDS]; /* medians: each program; rad/rpkCpp per round */
+    char why[3072];                              /* empty when measured; else why not */
+    double t[PEER_CMDS], ratio[PEER_CMDS];       /* medians: each program; rad/rpkCpp per round */
     double cpu[PEER_CMDS], cpu_ratio[PEER_CMDS]; /* the same in processor time */
-    long kb[PEER_CMDS];                    /* peaks over the runs */
+    long kb[PEER_CMDS];                          /* peaks over the runs */
     /* per element against a res-512 solve to 1e-4 of the same mesh (bench_peer_accuracy):
      * rms and max relative error over elements above 10% and above 1% of the brightest */
     double rms[PEER_CMDS][2], max[PEER_CMDS][2];
     int elements[PEER_CMDS];
-    size_t bytes[PEER_CMDS];               /* pools and work buffer */
+    size_t bytes[PEER_CMDS]; /* pools and work buffer */
 } peer_t;
 
 /* Runs ARGV (output to /dev/null) and waits for it: wall and processor seconds, peak
@@ -118,8 +119,8 @@ sc_opts bench_row_opts(sc_opts o, const peer_row_t *row);
 sc_solver *bench_solved(const bscene *sc, const sc_opts *o, double tol);
 /* Per element, A against the reference REF of the same mesh: rms and largest relative
  * error over SC's non-emitting elements above FLOOR[k] of the brightest of them. */
-void bench_element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2], double *rms,
-                            double *mx);
+void bench_element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2],
+                            double *rms, double *mx);
 /* rad_cli (beside SELF) against rpkCpp on SCENE, whole processes in turn, into PR. */
 void bench_peer(const char *self, const char *scene, peer_t *pr);
 /* The accuracy column of PR: each rad_cli row solved in this process. */

@@ -40,7 +40,8 @@ static void box_face(sc_poly *p, int *n, const double lo[3], const double hi[3],
  * that no two line up: 27 to 31 polygons a room. Returns them (count in N), or NULL. */
 static sc_poly *gen_rooms(int side, int *n)
 {
-    static const double white[3] = {0.7, 0.7, 0.68}, wood[3] = {0.5, 0.35, 0.2}, lamp[3] = {12, 12, 11};
+    static const double white[3] = {0.7, 0.7, 0.68}, wood[3] = {0.5, 0.35, 0.2},
+                        lamp[3] = {12, 12, 11};
     sc_poly *p = calloc((size_t)side * side * 40, sizeof *p);
     int i, j, k, w, f;
     if (!p) return NULL;
@@ -49,11 +50,15 @@ static sc_poly *gen_rooms(int side, int *n)
         for (j = 0; j < side; j++) {
             double x0 = 5.0 * i + 0.1, z0 = 5.0 * j + 0.1, x1 = x0 + 4.8, z1 = z0 + 4.8;
             double lo[3] = {x0, 0, z0}, hi[3] = {x1, 3, z1};
-            for (f = 2; f < 6; f++) box_face(p, n, lo, hi, 1, f, white); /* floor, ceiling, walls along x */
-            for (w = 0; w < 2; w++) { /* the walls at x0 and x1, each with its doorway inside the grid */
+            for (f = 2; f < 6; f++)
+                box_face(p, n, lo, hi, 1, f, white); /* floor, ceiling, walls along x */
+            for (w = 0; w < 2;
+                 w++) { /* the walls at x0 and x1, each with its doorway inside the grid */
                 int door = w ? i < side - 1 : i > 0;
-                double dz = (i + w) % 2 ? 0.6 : 3.2; /* the doorway of the wall between i and i + 1 */
-                double seg[3][4] = {{z0, z0 + dz, 0, 3}, {z0 + dz + 1, z1, 0, 3}, {z0 + dz, z0 + dz + 1, 2, 3}};
+                double dz =
+                    (i + w) % 2 ? 0.6 : 3.2; /* the doorway of the wall between i and i + 1 */
+                double seg[3][4] = {
+                    {z0, z0 + dz, 0, 3}, {z0 + dz + 1, z1, 0, 3}, {z0 + dz, z0 + dz + 1, 2, 3}};
                 if (!door) seg[0][1] = z1;
                 for (k = 0; k < (door ? 3 : 1); k++) {
                     double a[3] = {x0, seg[k][2], seg[k][0]}, b[3] = {x1, seg[k][3], seg[k][1]};
@@ -68,7 +73,9 @@ static sc_poly *gen_rooms(int side, int *n)
                 bench_add_box(p, n, a, b, 0, 2, wood);
             }
             {
-                double v[4][3] = {{x0 + 2, 2.99, z0 + 2}, {x0 + 2.8, 2.99, z0 + 2}, {x0 + 2.8, 2.99, z0 + 2.8},
+                double v[4][3] = {{x0 + 2, 2.99, z0 + 2},
+                                  {x0 + 2.8, 2.99, z0 + 2},
+                                  {x0 + 2.8, 2.99, z0 + 2.8},
                                   {x0 + 2, 2.99, z0 + 2.8}};
                 bench_add_quad(p, n, (const double(*)[3])v, white, lamp);
             }
@@ -118,11 +125,15 @@ void bench_report_cull(report_t *rp)
     const int ns = (int)(sizeof sides / sizeof *sides);
     double us[2][8], first[2] = {0, 0};
     int k, surf0 = 0, surf = 0;
-    bench_out(rp, "\nCulled gathers (rad_cull_build, rad_gather_cull): a grid of rooms with doorways (27 to 31 "
-        "polygons a room), one shot, then gathers at res 32 on floors and walls of random rooms, drawing every surface "
-        "against drawing through the hierarchy (the same values, bit for bit), fixed build, one core:\n\n"
-        "| rooms | surfaces | elements | gatherer and hierarchy ms | us per gather, all drawn | us per gather, culled "
-        "| culled speed-up |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "\nCulled gathers (rad_cull_build, rad_gather_cull): a grid of rooms with "
+                  "doorways (27 to 31 "
+                  "polygons a room), one shot, then gathers at res 32 on floors and walls of "
+                  "random rooms, drawing every surface "
+                  "against drawing through the hierarchy (the same values, bit for bit), fixed "
+                  "build, one core:\n\n"
+                  "| rooms | surfaces | elements | gatherer and hierarchy ms | us per gather, all "
+                  "drawn | us per gather, culled "
+                  "| culled speed-up |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (k = 0; k < ns; k++) {
         int n, m[2], c;
         char err[256];
@@ -137,7 +148,8 @@ void bench_report_cull(report_t *rp)
         o.max_patch = 5;
         o.res = 32;
         fprintf(stderr, "rad_bench: culled gathers, %d rooms ...\n", sides[k] * sides[k]);
-        if (!(s = sc_create(p, n, &o, NULL, NULL, err, sizeof err)) || sc_solve(s, 1, 0, NULL, NULL) < 0) {
+        if (!(s = sc_create(p, n, &o, NULL, NULL, err, sizeof err)) ||
+            sc_solve(s, 1, 0, NULL, NULL) < 0) {
             fprintf(stderr, "rad_bench: rooms: %s\n", err);
             exit(1);
         }
@@ -153,15 +165,18 @@ void bench_report_cull(report_t *rp)
             if (k == 0) first[c] = us[c][k];
         if (k == 0) surf0 = st.surfaces;
         surf = st.surfaces;
-        bench_out(rp, "| %d | %d | %d | %.1f | %.0f | %.0f | %.2f |\n", sides[k] * sides[k], st.surfaces, st.elements,
-            build, us[0][k], us[1][k], us[0][k] / us[1][k]);
+        bench_out(rp, "| %d | %d | %d | %.1f | %.0f | %.0f | %.2f |\n", sides[k] * sides[k],
+                  st.surfaces, st.elements, build, us[0][k], us[1][k], us[0][k] / us[1][k]);
         sc_gatherer_free(g);
         sc_destroy(s);
         free(p);
     }
-    bench_out(rp, "\nFrom %d to %d surfaces (%.0f times as many) a gather drawing every surface grew %.1f times, a "
-        "culled one %.1f times.\n", surf0, surf, (double)surf / surf0, us[0][ns - 1] / first[0],
-        us[1][ns - 1] / first[1]);
+    bench_out(rp,
+              "\nFrom %d to %d surfaces (%.0f times as many) a gather drawing every surface grew "
+              "%.1f times, a "
+              "culled one %.1f times.\n",
+              surf0, surf, (double)surf / surf0, us[0][ns - 1] / first[0],
+              us[1][ns - 1] / first[1]);
 }
 
 /* ---- lightmap baking ---------------------------------------------------------- */
@@ -196,8 +211,8 @@ static void *lm_worker(void *arg)
  * threads at once (one per set), pass by pass (lm_plan) when PLAN; their gathers into
  * *N, the wall time returned, the processor time of the first thread a gather (its
  * gathers alone) into *CPU0. */
-static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt, int plan, long *n,
-                      double *cpu0)
+static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *first, int nt,
+                      int plan, long *n, double *cpu0)
 {
     lm_work w[2];
     pthread_t th;
@@ -235,7 +250,10 @@ static long lm_layout(const bscene *sc, double tol, lm_atlas *a)
     char err[512];
     long covered = 0;
     int x, y;
-    if (lm_build(a, sc->polys, sc->n, &lo, err, sizeof err) != 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    if (lm_build(a, sc->polys, sc->n, &lo, err, sizeof err) != 0) {
+        fprintf(stderr, "rad_bench: %s\n", err);
+        exit(1);
+    }
     for (y = 0; y < a->size; y++)
         for (x = 0; x < a->size; x++) {
             double p[3];
@@ -258,11 +276,17 @@ void bench_report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     long covered, n1, n2;
     double load = -1, cpu, cpu2, t1, t2;
     int i, one[1] = {0}, two[2] = {0, 1};
-    bench_out(rp, "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 x 512 texels, "
-        "solved as above (fixed build, to 0.001), a gather `sc_gather` with the ambient term. The whole bake at "
-        "the defaults (gather resolution %d, `--lightmap-tol` %g: the adaptive passes), once on one thread and "
-        "once on two (each pass's rows in two sets), wall time of the gathers' passes (the planning between them "
-        "included, not the solve nor the layout):\n\n", DEF_GATHER_RES, LM_TOL);
+    bench_out(rp,
+              "\nLightmap baking (tools/bake/lightmap.c, `--lightmap`): CornellBox-Original at 512 "
+              "x 512 texels, "
+              "solved as above (fixed build, to 0.001), a gather `sc_gather` with the ambient "
+              "term. The whole bake at "
+              "the defaults (gather resolution %d, `--lightmap-tol` %g: the adaptive passes), once "
+              "on one thread and "
+              "once on two (each pass's rows in two sets), wall time of the gathers' passes (the "
+              "planning between them "
+              "included, not the solve nor the layout):\n\n",
+              DEF_GATHER_RES, LM_TOL);
     if (!sc) {
         bench_out(rp, "skipped: %s not found.\n", shared);
         return;
@@ -277,17 +301,24 @@ void bench_report_lightmap(report_t *rp, const bscene *sc, const char *shared)
     lm_layout(sc, LM_TOL, &a);
     t2 = lm_rows(s, &a, DEF_GATHER_RES, 2, two, 2, 1, &n2, &cpu2);
     if (getloadavg(&load, 1) != 1) load = -1;
-    bench_out(rp, "| charts | texels covered | gathers | of the covered | us per gather | s, 1 thread | s, 2 threads | "
-        "speed-up | load average |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
-        "| %d | %ld | %ld | %.1f%% | %.1f | %.2f | %.2f | %.2f | %.2f |\n\n", a.ncharts, covered, n1,
-        100.0 * n1 / covered, 1e6 * cpu, t1, t2, t1 / t2, load);
+    bench_out(rp,
+              "| charts | texels covered | gathers | of the covered | us per gather | s, 1 thread "
+              "| s, 2 threads | "
+              "speed-up | load average |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+              "| ---: |\n"
+              "| %d | %ld | %ld | %.1f%% | %.1f | %.2f | %.2f | %.2f | %.2f |\n\n",
+              a.ncharts, covered, n1, 100.0 * n1 / covered, 1e6 * cpu, t1, t2, t1 / t2, load);
     lm_free(&a);
-    bench_out(rp, "Each gather resolution over every n-th row of the every-texel bake (`--lightmap-tol 0`: a sample of "
-        "the texels), once on one thread and once on two (the same rows in two sets); us per gather is the "
-        "processor time of one thread over its gathers, the every-texel bake's estimate that times the covered "
-        "texels:\n\n| gather res | rows | gathers | us per gather | texels/s, 1 thread | texels/s, 2 threads | "
-        "speed-up | every-texel bake s, 1 thread (estimate) | load average |\n"
-        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "Each gather resolution over every n-th row of the every-texel bake "
+                  "(`--lightmap-tol 0`: a sample of "
+                  "the texels), once on one thread and once on two (the same rows in two sets); us "
+                  "per gather is the "
+                  "processor time of one thread over its gathers, the every-texel bake's estimate "
+                  "that times the covered "
+                  "texels:\n\n| gather res | rows | gathers | us per gather | texels/s, 1 thread | "
+                  "texels/s, 2 threads | "
+                  "speed-up | every-texel bake s, 1 thread (estimate) | load average |\n"
+                  "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < 3; i++) {
         int sets[2] = {0, steps[i]};
         fprintf(stderr, "rad_bench: lightmap at gather resolution %d ...\n", res[i]);
@@ -300,16 +331,17 @@ void bench_report_lightmap(report_t *rp, const bscene *sc, const char *shared)
         t2 = lm_rows(s, &a, res[i], 2 * steps[i], sets, 2, 0, &n2, &cpu2);
         lm_free(&a);
         if (getloadavg(&load, 1) != 1) load = -1;
-        bench_out(rp, "| %d | 1 in %d | %ld | %.1f | %.0f | %.0f | %.2f | %.1f | %.2f |\n", res[i], steps[i], n1,
-            1e6 * cpu, n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * covered, load);
+        bench_out(rp, "| %d | 1 in %d | %ld | %.1f | %.0f | %.0f | %.2f | %.1f | %.2f |\n", res[i],
+                  steps[i], n1, 1e6 * cpu, n1 / t1, n2 / t2, (n2 / t2) / (n1 / t1), cpu * covered,
+                  load);
     }
     sc_destroy(s);
 }
 
 /* ---- rad_bench --gather-res: the lightmap's gather resolution against res 256 ------ */
 
-#define GR_SIZE 128 /* the atlas's texels a side */
-#define GR_EVERY 3  /* the texels compared: those with (x + y) % GR_EVERY == 0 */
+#define GR_SIZE  128 /* the atlas's texels a side */
+#define GR_EVERY 3   /* the texels compared: those with (x + y) % GR_EVERY == 0 */
 
 /* A room 6 x 3 x 4 with a cornice (0.2 x 0.2, 0.2 below the ceiling) and a shelf
  * (at 1.2, 0.15 deep) along its walls, a 1 x 1 lamp in the ceiling's middle. */
@@ -317,8 +349,8 @@ static sc_poly *gen_cornice_room(int *n)
 {
     static const double white[3] = {0.75, 0.74, 0.72}, lamp[3] = {12, 11, 9};
     sc_poly *p = calloc(64, sizeof *p);
-    double lo[3] = {-3, 0, -2}, hi[3] = {3, 3, 2}, v[4][3] = {{-0.5, 2.99, -0.5}, {0.5, 2.99, -0.5},
-                                                              {0.5, 2.99, 0.5}, {-0.5, 2.99, 0.5}};
+    double lo[3] = {-3, 0, -2}, hi[3] = {3, 3, 2},
+           v[4][3] = {{-0.5, 2.99, -0.5}, {0.5, 2.99, -0.5}, {0.5, 2.99, 0.5}, {-0.5, 2.99, 0.5}};
     int k;
     if (!p) return NULL;
     *n = 0;
@@ -381,7 +413,8 @@ static void gr_scene(report_t *rp, const char *name, const sc_poly *polys, int n
     long m = 0, i;
     int x, y, r;
     o.res = 128;
-    if (!(s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err)) || lm_build(&a, polys, n, &lo, err, sizeof err)) {
+    if (!(s = sc_create(polys, n, &o, NULL, NULL, err, sizeof err)) ||
+        lm_build(&a, polys, n, &lo, err, sizeof err)) {
         fprintf(stderr, "rad_bench: %s: %s\n", name, err);
         exit(1);
     }
@@ -400,13 +433,14 @@ static void gr_scene(report_t *rp, const char *name, const sc_poly *polys, int n
     for (r = 0; r < 4; r++) {
         double t = gr_gather(s, &a, res[r], e), ss = 0.0, mx = 0.0, load = -1;
         for (i = 0; i < m; i++) {
-            double d = fabs(e[3 * i] + e[3 * i + 1] + e[3 * i + 2] - ref[3 * i] - ref[3 * i + 1] - ref[3 * i + 2]);
+            double d = fabs(e[3 * i] + e[3 * i + 1] + e[3 * i + 2] - ref[3 * i] - ref[3 * i + 1] -
+                            ref[3 * i + 2]);
             ss += d * d;
             mx = fmax(mx, d);
         }
         if (getloadavg(&load, 1) != 1) load = -1;
         bench_out(rp, "| %s | %d | %ld | %.2f%% | %.1f%% | %.1f | %.1f | %.2f |\n", name, res[r], m,
-            100 * sqrt(ss / m) / mean, 100 * mx / mean, 1e6 * t, 1e6 * tref, load);
+                  100 * sqrt(ss / m) / mean, 100 * mx / mean, 1e6 * t, 1e6 * tref, load);
     }
     free(ref);
     free(e);
@@ -421,12 +455,18 @@ int bench_gather_res(int argc, char **argv)
     const char *shared = argc > 2 ? argv[2] : "../shared/scenes/CornellBox-Original.obj";
     sc_poly *p;
     int n;
-    bench_out(&rp, "Lightmap texels gathered at resolution 16 to 64 against 256 (`rad_bench --gather-res`): a %d x %d "
-        "atlas, every covered texel's sample with (x + y) %% %d == 0, the solve to 0.001 at res 128. rms and max of "
-        "the difference in a texel's channel sum, over the mean channel sum of the texels compared; processor "
+    bench_out(
+        &rp,
+        "Lightmap texels gathered at resolution 16 to 64 against 256 (`rad_bench --gather-res`): a "
+        "%d x %d "
+        "atlas, every covered texel's sample with (x + y) %% %d == 0, the solve to 0.001 at res "
+        "128. rms and max of "
+        "the difference in a texel's channel sum, over the mean channel sum of the texels "
+        "compared; processor "
         "microseconds a gather (at 256 in its own column).\n\n"
         "| scene | gather res | texels | rms | max | us per gather | us at 256 | load average |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n", GR_SIZE, GR_SIZE, GR_EVERY);
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+        GR_SIZE, GR_SIZE, GR_EVERY);
     if (!(p = gen_cornice_room(&n))) return 1;
     gr_scene(&rp, "room with cornices and shelves", p, n);
     free(p);
@@ -454,7 +494,8 @@ static int level_shot(void *ctx, int shots, double unshot)
     level_prog *p = ctx;
     double t = host_now();
     if (t - p->last >= 10.0) {
-        fprintf(stderr, "rad_bench: level: %d shots, unshot %.4f, %.0f s\n", shots, unshot, t - p->t0);
+        fprintf(stderr, "rad_bench: level: %d shots, unshot %.4f, %.0f s\n", shots, unshot,
+                t - p->t0);
         p->last = t;
     }
     return 0;
@@ -486,8 +527,8 @@ static int level_gather(void *ctx, const double p[3], const double n[3], double 
  * adaptive default, gather resolution DEF_GATHER_RES, one thread), cut short after STOP
  * seconds when STOP > 0. Times are this thread's processor seconds (the machine may
  * be shared) and wall seconds. */
-static void level_row(report_t *rp, const char *name, const sc_poly *polys, int n, const sc_light *lights, int nl,
-                      double stop)
+static void level_row(report_t *rp, const char *name, const sc_poly *polys, int n,
+                      const sc_light *lights, int nl, double stop)
 {
     sc_opts o = {0};
     sc_stats st;
@@ -539,11 +580,15 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     bake_wall = host_now() - b.t0;
     getrusage(RUSAGE_SELF, &ru);
     if (getloadavg(&load, 1) != 1) load = -1;
-    bench_out(rp, "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | %s%.1f (%.1f) | %.0f "
-        "| %.1f | %.2f |\n", name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall,
-        (st.pool_bytes + st.work_bytes) / 1048576.0, ru.ru_maxrss / 1024.0, a.ncharts, lay_cpu, covered, b.gathers,
-        done ? "" : "stopped: ", bake_cpu, bake_wall, 1e6 * bake_cpu / (b.gathers ? b.gathers : 1),
-        1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, load);
+    bench_out(rp,
+              "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | "
+              "%s%.1f (%.1f) | %.0f "
+              "| %.1f | %.2f |\n",
+              name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall,
+              (st.pool_bytes + st.work_bytes) / 1048576.0, ru.ru_maxrss / 1024.0, a.ncharts,
+              lay_cpu, covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
+              1e6 * bake_cpu / (b.gathers ? b.gathers : 1),
+              1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, load);
     sc_gatherer_free(b.g);
     lm_free(&a);
     sc_destroy(s);
@@ -564,22 +609,33 @@ int bench_level(int argc, char **argv)
     for (i = 2; i < argc; i++) {
         char *end;
         double v = strtod(argv[i], &end);
-        if (*end == '\0' && end != argv[i] && v >= 0) stop = v;
-        else scene = argv[i];
+        if (*end == '\0' && end != argv[i] && v >= 0)
+            stop = v;
+        else
+            scene = argv[i];
     }
     if (!(p = level_atrium(&n, lights))) return 1;
-    bench_out(&rp, "A level of Sponza's class (`rad_bench --level`): the generated two-storey atrium "
-        "(tools/bench/level.h) under a sun and a %d-direction sky, solved to an unshot fraction of 0.01 at rad_cli's "
-        "hemi-cube defaults (res %d, coarse shots), then baked into a %d x %d lightmap at the defaults (adaptive, "
-        "tolerance %g, gather resolution %d) on one thread. Times are processor seconds of the one thread (wall "
-        "seconds in brackets: the machine may be shared); memory is the core's pools and work buffer, and the "
-        "process's peak resident size; the every-texel estimate is the covered texels times the time per gather "
-        "(an upper bound of the adaptive bake).\n\n"
-        "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | charts | layout s | "
-        "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | load average |\n"
-        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-        "| ---: |\n",
-        lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES);
+    bench_out(&rp,
+              "A level of Sponza's class (`rad_bench --level`): the generated two-storey atrium "
+              "(tools/bench/level.h) under a sun and a %d-direction sky, solved to an unshot "
+              "fraction of 0.01 at rad_cli's "
+              "hemi-cube defaults (res %d, coarse shots), then baked into a %d x %d lightmap at "
+              "the defaults (adaptive, "
+              "tolerance %g, gather resolution %d) on one thread. Times are processor seconds of "
+              "the one thread (wall "
+              "seconds in brackets: the machine may be shared); memory is the core's pools and "
+              "work buffer, and the "
+              "process's peak resident size; the every-texel estimate is the covered texels times "
+              "the time per gather "
+              "(an upper bound of the adaptive bake).\n\n"
+              "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | "
+              "charts | layout s | "
+              "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | load "
+              "average |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+              "| ---: | ---: | ---: "
+              "| ---: |\n",
+              lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES);
     level_row(&rp, "generated atrium", p, n, lights, LEVEL_LIGHTS, stop);
     free(p);
     if ((p = bench_load_obj(scene, &n, &keep)) != NULL) {

@@ -36,13 +36,18 @@ int bench_run_child(char *const argv[], double *secs, double *cpu, long *kb)
     if (pid < 0) return -1;
     if (pid == 0) {
         int fd = open("/dev/null", O_WRONLY);
-        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        if (fd >= 0) {
+            dup2(fd, 1);
+            dup2(fd, 2);
+            close(fd);
+        }
         execv(argv[0], argv);
         _exit(127);
     }
     if (wait4(pid, &st, 0, &ru) != pid) return -1;
     *secs = host_now() - t0;
-    *cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    *cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec +
+           1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
     *kb = ru.ru_maxrss;
     return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0 : -1;
 }
@@ -57,8 +62,10 @@ int bench_is_file(const char *path)
 void bench_dir_of(const char *path, char *out, size_t n)
 {
     const char *sl = strrchr(path, '/');
-    if (!sl) snprintf(out, n, ".");
-    else snprintf(out, n, "%.*s", (int)(sl - path), path);
+    if (!sl)
+        snprintf(out, n, ".");
+    else
+        snprintf(out, n, "%.*s", (int)(sl - path), path);
 }
 
 /* rad_cli's defaults (host/defaults.h): the emitters' shots at res 192, the others at 96, 48
@@ -74,7 +81,8 @@ const peer_row_t bench_peer_rows[PEER_CMDS] = {
     {0.001, 0, 128, 0, 0, "--tol 0.001 --res 128 --coarse 0"},
     {0.001, 0.08, DEF_RES, DEF_COARSE, DEF_FLOOR, "--tol 0.001 --max-element 0.08"},
     {0.001, 0.08, 128, 0, 0, "--tol 0.001 --max-element 0.08 --res 128 --coarse 0"},
-    {0.001, 0.08, 256, 2, DEF_COARSE_FLOOR(256), "--tol 0.001 --max-element 0.08 --res 256 --coarse 2"}};
+    {0.001, 0.08, 256, 2, DEF_COARSE_FLOOR(256),
+     "--tol 0.001 --max-element 0.08 --res 256 --coarse 2"}};
 
 /* The peer's scene beside it: converted from the OBJ SCENE with the shared converter
  * (SCENE's folder/../peers/obj2mgf.py) when it is missing. */
@@ -83,13 +91,15 @@ static int peer_scene(const char *scene, const char *mgf, peer_t *pr)
     char dir[512], conv[1024];
     double t, cpu;
     long kb;
-    char *argv[] = {"/usr/bin/env", "python3", conv, "-o", (char *)mgf, "--channel", "rgb", (char *)scene, NULL};
+    char *argv[] = {"/usr/bin/env", "python3", conv,          "-o", (char *)mgf,
+                    "--channel",    "rgb",     (char *)scene, NULL};
     if (bench_is_file(mgf)) return 0;
     bench_dir_of(scene, dir, sizeof dir);
     snprintf(conv, sizeof conv, "%s/../peers/obj2mgf.py", dir);
     fprintf(stderr, "rad_bench: converting %s to %s ...\n", scene, mgf);
     if (!bench_is_file(conv) || bench_run_child(argv, &t, &cpu, &kb) < 0 || !bench_is_file(mgf)) {
-        snprintf(pr->why, sizeof pr->why, "the scene could not be converted to %s (with %s)", mgf, conv);
+        snprintf(pr->why, sizeof pr->why, "the scene could not be converted to %s (with %s)", mgf,
+                 conv);
         return -1;
     }
     return 0;
@@ -103,9 +113,18 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
     const char *root = getenv("RAD_PEER_RPK");
     char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
     char *cmd[PEER_CMDS][24], words[PEER_CMDS][128];
-    char *rpk_cmd[] = {rpk, "-force-onesided", "-radiance-method", "Galerkin", "-raytracing-method", "none",
-                       "-iterations", "30", mgf, NULL};
-    double t[PEER_CMDS][PEER_RUNS], c[PEER_CMDS][PEER_RUNS], r[PEER_CMDS][PEER_RUNS], rc[PEER_CMDS][PEER_RUNS];
+    char *rpk_cmd[] = {rpk,
+                       "-force-onesided",
+                       "-radiance-method",
+                       "Galerkin",
+                       "-raytracing-method",
+                       "none",
+                       "-iterations",
+                       "30",
+                       mgf,
+                       NULL};
+    double t[PEER_CMDS][PEER_RUNS], c[PEER_CMDS][PEER_RUNS], r[PEER_CMDS][PEER_RUNS],
+        rc[PEER_CMDS][PEER_RUNS];
     int i, k;
     memset(pr, 0, sizeof *pr);
     if (!root || !*root) root = "../peer-rpk";
@@ -115,11 +134,18 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
     snprintf(cli, sizeof cli, "%s/rad_cli", dir);
     snprintf(png, sizeof png, "%s/bench_peer.ppm", dir);
     if (!bench_is_file(rpk) || access(rpk, X_OK) != 0) {
-        snprintf(pr->why, sizeof pr->why, "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
+        snprintf(pr->why, sizeof pr->why,
+                 "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
         return;
     }
-    if (!bench_is_file(cli)) { snprintf(pr->why, sizeof pr->why, "no %s", cli); return; }
-    if (!bench_is_file(scene)) { snprintf(pr->why, sizeof pr->why, "no %s", scene); return; }
+    if (!bench_is_file(cli)) {
+        snprintf(pr->why, sizeof pr->why, "no %s", cli);
+        return;
+    }
+    if (!bench_is_file(scene)) {
+        snprintf(pr->why, sizeof pr->why, "no %s", scene);
+        return;
+    }
     if (peer_scene(scene, mgf, pr) < 0) return;
     for (k = 0; k < PEER_CMDS; k++) {
         char *w, *save = NULL;
@@ -130,7 +156,8 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
         }
         cmd[k][0] = cli;
         cmd[k][1] = (char *)scene;
-        snprintf(words[k], sizeof words[k], "%s --width 64 --height 64 -o", bench_peer_rows[k].flags);
+        snprintf(words[k], sizeof words[k], "%s --width 64 --height 64 -o",
+                 bench_peer_rows[k].flags);
         for (w = strtok_r(words[k], " ", &save); w; w = strtok_r(NULL, " ", &save)) cmd[k][j++] = w;
         cmd[k][j++] = png;
         cmd[k][j] = NULL;
@@ -140,7 +167,8 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
         for (k = 0; k < PEER_CMDS; k++) {
             long kb;
             if (bench_run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
-                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0], k != PEER_RPK ? scene : mgf);
+                snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0],
+                         k != PEER_RPK ? scene : mgf);
                 return;
             }
             if (kb > pr->kb[k]) pr->kb[k] = kb;
@@ -162,19 +190,21 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
 /* Per element, A against the reference REF of the same mesh: the relative error of
  * r + g + b (with the ambient term) over the elements of SC's non-emitting faces above
  * FLOOR[k] of the brightest of them, rms in RMS[k] and largest in MAX[k]. */
-void bench_element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2], double *rms,
-                            double *mx)
+void bench_element_accuracy(const bscene *sc, sc_solver *ref, sc_solver *a, const double floor[2],
+                            double *rms, double *mx)
 {
     sc_stats st;
     double *b, top = 0, s2[2] = {0, 0};
     int e, k, i, n[2] = {0, 0}, ntag = 0;
     char *emits;
-    for (i = 0; i < sc->n; i++) if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
+    for (i = 0; i < sc->n; i++)
+        if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
     sc_get_stats(ref, &st);
     b = malloc((size_t)st.elements * sizeof *b);
     emits = calloc((size_t)ntag + 1, 1);
     if (!b || !emits) exit(1);
-    for (i = 0; i < sc->n; i++) if (bench_poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
+    for (i = 0; i < sc->n; i++)
+        if (bench_poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
     for (e = 0; e < st.elements; e++) {
         double x[3];
         sc_element_rgb(ref, e, 1, x);
@@ -234,7 +264,8 @@ void bench_peer_accuracy(const char *scene, peer_t *pr)
         sc_solver *ref;
         o.max_element = edge[m];
         o.res = 512;
-        fprintf(stderr, "rad_bench: the res-512 reference (element edge %s) ...\n", m ? "0.08" : "default");
+        fprintf(stderr, "rad_bench: the res-512 reference (element edge %s) ...\n",
+                m ? "0.08" : "default");
         ref = bench_solved(&sc, &o, 1e-4);
         for (k = 0; k < PEER_CMDS; k++) {
             sc_opts v = bench_row_opts(o, &bench_peer_rows[k]);
@@ -255,28 +286,42 @@ void bench_peer_accuracy(const char *scene, peer_t *pr)
 
 void bench_report_peers(report_t *rp, const peer_t *p, const brun *fx)
 {
-    bench_out(rp, "\nAgainst a peer on CornellBox-Original: RenderPark's hierarchical Galerkin radiosity (rpkCpp, "
-        "`rpk -force-onesided -radiance-method Galerkin -raytracing-method none -iterations 30`, one core, about "
-        "4,000 elements) beside `rad_cli --tol 0.01` (and 0.001) `--width 64 --height 64` (fixed build, default "
+    bench_out(
+        rp,
+        "\nAgainst a peer on CornellBox-Original: RenderPark's hierarchical Galerkin radiosity "
+        "(rpkCpp, "
+        "`rpk -force-onesided -radiance-method Galerkin -raytracing-method none -iterations 30`, "
+        "one core, about "
+        "4,000 elements) beside `rad_cli --tol 0.01` (and 0.001) `--width 64 --height 64` (fixed "
+        "build, default "
         "mesh), whole processes in turn, %d rounds: medians of wall and processor (user + system) "
-        "time, the median of each round's ratio, and each program's peak resident memory over the rounds (wait4). ",
+        "time, the median of each round's ratio, and each program's peak resident memory over the "
+        "rounds (wait4). ",
         PEER_RUNS);
     if (p->why[0]) {
         bench_out(rp, "Not measured: %s.\n", p->why);
     } else {
         int k;
-        bench_out(rp, "The accuracy column: each rad row solved again in this process (the same bits), per element "
-            "against a solve of its mesh at res 512 to an unshot fraction of 1e-4, relative error of r + g + b "
-            "(with the ambient term) over the non-emitting elements above 10%% (and 1%%) of the brightest: rms / "
-            "max. rad_cli's defaults: the emitters' shots at res 192, the others at 96, 48, 24 as the unshot "
-            "fraction falls below 1, 1/8, 1/64 (`--res 192 --coarse 1 --coarse-res 24`); `--res 128 --coarse 0`: "
-            "every shot at 128, the defaults before; `--res 256 --coarse 2`: 256, then 128, 64, 32 below 2, 1/4, "
-            "1/32.\n\n"
-            "| program | elements | wall s | rad/rpkCpp | processor s | rad/rpkCpp | peak memory MB | pools + "
-            "work MB | accuracy >10%%: rms / max | >1%%: rms / max |\n"
-            "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        bench_out(rp, "The accuracy column: each rad row solved again in this process (the same "
+                      "bits), per element "
+                      "against a solve of its mesh at res 512 to an unshot fraction of 1e-4, "
+                      "relative error of r + g + b "
+                      "(with the ambient term) over the non-emitting elements above 10%% (and 1%%) "
+                      "of the brightest: rms / "
+                      "max. rad_cli's defaults: the emitters' shots at res 192, the others at 96, "
+                      "48, 24 as the unshot "
+                      "fraction falls below 1, 1/8, 1/64 (`--res 192 --coarse 1 --coarse-res 24`); "
+                      "`--res 128 --coarse 0`: "
+                      "every shot at 128, the defaults before; `--res 256 --coarse 2`: 256, then "
+                      "128, 64, 32 below 2, 1/4, "
+                      "1/32.\n\n"
+                      "| program | elements | wall s | rad/rpkCpp | processor s | rad/rpkCpp | "
+                      "peak memory MB | pools + "
+                      "work MB | accuracy >10%%: rms / max | >1%%: rms / max |\n"
+                      "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (k = 0; k < PEER_CMDS; k++) {
-            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""}, nm[160] = "rpkCpp Galerkin";
+            char a[32] = "", b[32] = "", n[32] = "", mb[32] = "", acc[2][48] = {"", ""},
+                 nm[160] = "rpkCpp Galerkin";
             int j;
             if (k != PEER_RPK) {
                 snprintf(nm, sizeof nm, "rad_cli %s", bench_peer_rows[k].flags);
@@ -287,13 +332,16 @@ void bench_report_peers(report_t *rp, const peer_t *p, const brun *fx)
                 snprintf(n, sizeof n, "%d", p->elements[k]);
                 snprintf(mb, sizeof mb, "%.2f", p->bytes[k] / 1048576.0);
                 for (j = 0; j < 2; j++)
-                    snprintf(acc[j], sizeof acc[j], "%.2f%% / %.2f%%", 100 * p->rms[k][j], 100 * p->max[k][j]);
+                    snprintf(acc[j], sizeof acc[j], "%.2f%% / %.2f%%", 100 * p->rms[k][j],
+                             100 * p->max[k][j]);
             }
-            bench_out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm, n, p->t[k], a, p->cpu[k],
-                b, p->kb[k] / 1024.0, mb, acc[0], acc[1]);
+            bench_out(rp, "| %s | %s | %.3f | %s | %.3f | %s | %.1f | %s | %s | %s |\n", nm, n,
+                      p->t[k], a, p->cpu[k], b, p->kb[k] / 1024.0, mb, acc[0], acc[1]);
         }
     }
-    bench_out(rp, "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot fraction of 0.01 "
-        "and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n", fx->elements, fx->t[1], fx->total,
-        fx->bytes / 1048576.0);
+    bench_out(rp,
+              "\nIn this process (res 128, element edge 0.08, %d elements): %.3f s to an unshot "
+              "fraction of 0.01 "
+              "and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
+              fx->elements, fx->t[1], fx->total, fx->bytes / 1048576.0);
 }

@@ -31,8 +31,8 @@ double bench_thread_cpu(void)
  * one thread, each part of each stage in turn, each call timed on the thread's
  * processor clock: into SERIAL the calls between the stages, into WORK every part's
  * time, into CRIT the longer part of each stage. */
-static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double *serial, double *work,
-                        double *crit)
+static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double *serial,
+                        double *work, double *crit)
 {
     sc_solver *h = bench_fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
@@ -56,8 +56,10 @@ static void split_times(const bscene *sc, const sc_opts *o, unsigned np, double 
             q[1] = 0;
             for (k = 0; k < np; k++) {
                 t = bench_thread_cpu();
-                if (stage) rad_shot_receive_part(s, p, bufs, np, k);
-                else rad_shot_part(s, p, k, np, bufs[k], bytes);
+                if (stage)
+                    rad_shot_receive_part(s, p, bufs, np, k);
+                else
+                    rad_shot_part(s, p, k, np, bufs[k], bytes);
                 q[k] = bench_thread_cpu() - t;
                 *work += q[k];
             }
@@ -97,8 +99,10 @@ static double parallel_bound(const bscene *sc, const sc_opts *o, double *split)
 static double timed_solve(sc_solver *h, int threads)
 {
     double t0 = host_now();
-    if (threads) sc_solve_parallel(h, threads, 1000000, 0.001, NULL, NULL);
-    else sc_solve(h, 1000000, 0.001, NULL, NULL);
+    if (threads)
+        sc_solve_parallel(h, threads, 1000000, 0.001, NULL, NULL);
+    else
+        sc_solve(h, 1000000, 0.001, NULL, NULL);
     return host_now() - t0;
 }
 
@@ -127,19 +131,31 @@ static void parallel_times(const bscene *sc, const sc_opts *o, double m[3])
 void bench_report_parallel(report_t *rp, const bscene *scenes, int ns, const brun *fx)
 {
     int i;
-    bench_out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over threads, then its "
-        "receiving by runs of whole patches' elements, each sum in the serial order: bit-exact with the serial solve, "
-        "checked by tests/test_parallel.c), fixed build, to 0.001, median of 3, with the machine's load average (1 "
-        "minute) when each row was measured: the workers spin, so other processes on the cores slow them more than one "
-        "thread. Serial is the solve without parts (sc_solve: what one thread runs); one part is the split "
-        "shot's path on one thread (its item buffer's half-row bounds and merge cost work of their own); the "
-        "speed-up is serial over two threads. The bound is what two free cores could give whatever the load: "
-        "the serial solve over the critical path of the solve in two parts (the calls between the stages plus "
-        "each stage's longer part), all timed on one thread's processor clock; split is the two parts' work over "
-        "the one part's (the surfaces set up on both parts' faces, each part's elements merged from both parts' "
-        "pixels). Each scene at res 128 and at rad_cli's defaults (res 192, coarse shots):\n\n| scene | settings "
-        "| elements | serial s | one part s | 2 threads s | speed-up | load average | split | bound |\n"
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "\nParallel solve (pthreads in tools/, each shot's hemi-cube rows split over "
+                  "threads, then its "
+                  "receiving by runs of whole patches' elements, each sum in the serial order: "
+                  "bit-exact with the serial solve, "
+                  "checked by tests/test_parallel.c), fixed build, to 0.001, median of 3, with the "
+                  "machine's load average (1 "
+                  "minute) when each row was measured: the workers spin, so other processes on the "
+                  "cores slow them more than one "
+                  "thread. Serial is the solve without parts (sc_solve: what one thread runs); one "
+                  "part is the split "
+                  "shot's path on one thread (its item buffer's half-row bounds and merge cost "
+                  "work of their own); the "
+                  "speed-up is serial over two threads. The bound is what two free cores could "
+                  "give whatever the load: "
+                  "the serial solve over the critical path of the solve in two parts (the calls "
+                  "between the stages plus "
+                  "each stage's longer part), all timed on one thread's processor clock; split is "
+                  "the two parts' work over "
+                  "the one part's (the surfaces set up on both parts' faces, each part's elements "
+                  "merged from both parts' "
+                  "pixels). Each scene at res 128 and at rad_cli's defaults (res 192, coarse "
+                  "shots):\n\n| scene | settings "
+                  "| elements | serial s | one part s | 2 threads s | speed-up | load average | "
+                  "split | bound |\n"
+                  "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         int k;
         if (scenes[i].big) continue; /* too long to repeat */
@@ -151,8 +167,8 @@ void bench_report_parallel(report_t *rp, const bscene *scenes, int ns, const bru
             if (getloadavg(&load, 1) != 1) load = -1;
             bound = parallel_bound(&scenes[i], &o, &split);
             bench_out(rp, "| %s | %s | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n",
-                k ? "" : scenes[i].name, k ? "rad_cli's (192, coarse)" : "res 128", fx[i].elements, m[0], m[1], m[2],
-                m[0] / m[2], load, split, bound);
+                      k ? "" : scenes[i].name, k ? "rad_cli's (192, coarse)" : "res 128",
+                      fx[i].elements, m[0], m[1], m[2], m[0] / m[2], load, split, bound);
         }
     }
 }
@@ -169,7 +185,8 @@ static const int batch_ks[] = {1, 2, 4, 8, 16, 32};
  * receipts, into CRIT the renders as two threads share them (each cube, in order, to
  * the one with less so far) and the longer part of the receipts: what two free cores
  * could do is (SERIAL + WORK) / (SERIAL + CRIT). */
-static void batch_split(const bscene *sc, const sc_opts *o, int k, double *serial, double *work, double *crit)
+static void batch_split(const bscene *sc, const sc_opts *o, int k, double *serial, double *work,
+                        double *crit)
 {
     sc_solver *h = bench_fixed_solver(sc, sc->polys, o);
     rad_scene_t *s = sc_core(h);
@@ -221,8 +238,10 @@ static double batch_solve(const bscene *sc, const sc_opts *o, int k, int threads
 {
     sc_solver *h = bench_fixed_solver(sc, sc->polys, o);
     double t0 = host_now();
-    if (k) sc_solve_batch(h, threads, k, 1000000, 0.001, NULL, NULL);
-    else sc_solve(h, 1000000, 0.001, NULL, NULL);
+    if (k)
+        sc_solve_batch(h, threads, k, 1000000, 0.001, NULL, NULL);
+    else
+        sc_solve(h, 1000000, 0.001, NULL, NULL);
     t0 = host_now() - t0;
     *out = h;
     return t0;
@@ -252,15 +271,24 @@ void bench_report_batch_k(report_t *rp, const bscene *sc)
     r.coarse = 0;
     fprintf(stderr, "rad_bench: batch shooting: the res-512 reference ...\n");
     ref = bench_solved(sc, &r, 1e-4);
-    bench_out(rp, "\nBatch shooting (rad_batch_begin; rad_cli --batch K): each batch shoots the K patches whose shots "
-        "move the most, their hemi-cubes rendered at once (on any threads: the same bits) and shot in order. "
-        "CornellBox-Original at rad_cli's defaults (res %d, coarse shots, its mesh), fixed build, to 0.001, one "
-        "run each: shots and seconds on one and on two threads (sc_solve_batch; K = 1 is the serial solve's "
-        "bits), and the error of r + g + b per element against a solve of the same mesh at res 512 to 1e-4 "
-        "(rms and largest over the elements above 10%% of the brightest non-emitting one). Load average (1 minute) "
-        "at the start: %.2f on %ld cores.\n\n| K | shots | shots / K=1 | s, 1 thread | s, 2 threads | 2 threads / 1 "
-        "| time / K=1 (2 threads) | rms | max |\n| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-        DEF_RES, load_now(), sysconf(_SC_NPROCESSORS_ONLN));
+    bench_out(rp,
+              "\nBatch shooting (rad_batch_begin; rad_cli --batch K): each batch shoots the K "
+              "patches whose shots "
+              "move the most, their hemi-cubes rendered at once (on any threads: the same bits) "
+              "and shot in order. "
+              "CornellBox-Original at rad_cli's defaults (res %d, coarse shots, its mesh), fixed "
+              "build, to 0.001, one "
+              "run each: shots and seconds on one and on two threads (sc_solve_batch; K = 1 is the "
+              "serial solve's "
+              "bits), and the error of r + g + b per element against a solve of the same mesh at "
+              "res 512 to 1e-4 "
+              "(rms and largest over the elements above 10%% of the brightest non-emitting one). "
+              "Load average (1 minute) "
+              "at the start: %.2f on %ld cores.\n\n| K | shots | shots / K=1 | s, 1 thread | s, 2 "
+              "threads | 2 threads / 1 "
+              "| time / K=1 (2 threads) | rms | max |\n| ---: | ---: | ---: | ---: | ---: | ---: | "
+              "---: | ---: | ---: |\n",
+              DEF_RES, load_now(), sysconf(_SC_NPROCESSORS_ONLN));
     for (i = 0; i < BATCH_KS; i++) {
         sc_solver *h2;
         double rms[2], mx[2];
@@ -285,8 +313,9 @@ void bench_report_batch_k(report_t *rp, const bscene *sc)
         shots = st.shots;
         if (i == 0) want[1] = (uint64_t)shots;
         bench_element_accuracy(sc, ref, h, floor, rms, mx);
-        bench_out(rp, "| %d | %d | %.2f | %.3f | %.3f | %.2f | %.2f | %.2f%% | %.2f%% |\n", batch_ks[i], shots,
-            shots / (double)want[1], t1[i], t2[i], t1[i] / t2[i], t2[i] / t2[0], 100 * rms[0], 100 * mx[0]);
+        bench_out(rp, "| %d | %d | %.2f | %.3f | %.3f | %.2f | %.2f | %.2f%% | %.2f%% |\n",
+                  batch_ks[i], shots, shots / (double)want[1], t1[i], t2[i], t1[i] / t2[i],
+                  t2[i] / t2[0], 100 * rms[0], 100 * mx[0]);
         sc_destroy(h);
         sc_destroy(h2);
     }
@@ -299,16 +328,25 @@ void bench_report_batch_k(report_t *rp, const bscene *sc)
 void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns)
 {
     int i, j, m;
-    bench_out(rp, "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to 0.001, one run each, "
-        "with the load average (1 minute) when the row was measured (the workers spin: other processes on the "
-        "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread is the same solve through "
-        "the batch calls. The bound is what two free cores could give whatever the load: the batch solve's "
-        "processor time on one thread over its critical path on two (rad_batch_begin and _end on one, the "
-        "cubes of each batch shared between two), timed on one thread's processor clock.\n\n| scene | settings | "
-        "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 threads | load average "
-        "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to "
+                  "0.001, one run each, "
+                  "with the load average (1 minute) when the row was measured (the workers spin: "
+                  "other processes on the "
+                  "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread "
+                  "is the same solve through "
+                  "the batch calls. The bound is what two free cores could give whatever the load: "
+                  "the batch solve's "
+                  "processor time on one thread over its critical path on two (rad_batch_begin and "
+                  "_end on one, the "
+                  "cubes of each batch shared between two), timed on one thread's processor "
+                  "clock.\n\n| scene | settings | "
+                  "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 "
+                  "threads | load average "
+                  "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+                  "| ---: |\n");
     for (i = 0; i < ns; i++) {
-        if (strncmp(scenes[i].name, "CornellBox-Original", 19) && strncmp(scenes[i].name, "generated hall", 14))
+        if (strncmp(scenes[i].name, "CornellBox-Original", 19) &&
+            strncmp(scenes[i].name, "generated hall", 14))
             continue;
         for (m = 0; m < 2; m++) {
             sc_opts o = m ? bench_row_opts(bench_scene_opts(&scenes[i]), &bench_peer_rows[1])
@@ -328,8 +366,12 @@ void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns)
                 t2 = batch_solve(&scenes[i], &o, k, 2, &h);
                 sc_destroy(h);
                 batch_split(&scenes[i], &o, k, &s, &w, &c);
-                bench_out(rp, "| %s | %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n",
-                    m || j ? "" : scenes[i].name, j ? "" : m ? "rad_cli's (192, coarse)" : "res 128",
+                bench_out(
+                    rp, "| %s | %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n",
+                    m || j ? "" : scenes[i].name,
+                    j   ? ""
+                    : m ? "rad_cli's (192, coarse)"
+                        : "res 128",
                     st.elements, k, serial, t1, t2, t1 / t2, serial / t2, load, (s + w) / (s + c));
             }
         }

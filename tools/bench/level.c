@@ -6,30 +6,30 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define TURN 6.283185307179586
-#define COURT 12.0   /* half the courtyard's side: the arcades' centre lines */
-#define OUTER 18.0   /* half the outer walls' side */
-#define STOREY 5.0   /* floor to floor */
-#define SLAB 0.3     /* the slab's and the roof's thickness */
-#define TILE 1.0     /* floor and wall tiles */
-#define COL_R 0.35   /* a column's radius: the arcade wall is 2 COL_R thick */
-#define COL_STEP 3.0 /* columns' spacing along the arcade */
-#define SPRING 3.5   /* the arches' spring above the storey's floor */
-#define FACETS 32    /* around a column and along an arch */
-#define RINGS 22     /* up a column's shaft */
-#define BLOCK 0.3    /* plinth and capital height; their half side is 0.45 */
+#define TURN     6.283185307179586
+#define COURT    12.0 /* half the courtyard's side: the arcades' centre lines */
+#define OUTER    18.0 /* half the outer walls' side */
+#define STOREY   5.0  /* floor to floor */
+#define SLAB     0.3  /* the slab's and the roof's thickness */
+#define TILE     1.0  /* floor and wall tiles */
+#define COL_R    0.35 /* a column's radius: the arcade wall is 2 COL_R thick */
+#define COL_STEP 3.0  /* columns' spacing along the arcade */
+#define SPRING   3.5  /* the arches' spring above the storey's floor */
+#define FACETS   32   /* around a column and along an arch */
+#define RINGS    22   /* up a column's shaft */
+#define BLOCK    0.3  /* plinth and capital height; their half side is 0.45 */
 
 typedef struct {
     sc_poly *p;
     int n, cap, oom;
 } lv_t;
 
-static const double stone[3] = {0.55, 0.52, 0.47}, plaster[3] = {0.7, 0.68, 0.62}, marble[3] = {0.72, 0.72, 0.7},
-                    roof[3] = {0.35, 0.25, 0.2};
+static const double stone[3] = {0.55, 0.52, 0.47}, plaster[3] = {0.7, 0.68, 0.62},
+                    marble[3] = {0.72, 0.72, 0.7}, roof[3] = {0.35, 0.25, 0.2};
 
 /* Quad A B C D (a planar, convex one) turned so that its lit side faces along WANT. */
-static void quad(lv_t *l, const double *a, const double *b, const double *c, const double *d, const double *want,
-                 const double *rho)
+static void quad(lv_t *l, const double *a, const double *b, const double *c, const double *d,
+                 const double *want, const double *rho)
 {
     const double *v[4] = {a, b, c, d};
     double e[3], f[3], n[3];
@@ -61,8 +61,8 @@ static void quad(lv_t *l, const double *a, const double *b, const double *c, con
 }
 
 /* The parallelogram O + [0, 1] U + [0, 1] V in tiles of about SIDE, facing WANT. */
-static void tiles(lv_t *l, const double *o, const double *u, const double *v, double side, const double *want,
-                  const double *rho)
+static void tiles(lv_t *l, const double *o, const double *u, const double *v, double side,
+                  const double *want, const double *rho)
 {
     int nu = (int)ceil(sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / side - 1e-9);
     int nv = (int)ceil(sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) / side - 1e-9), i, j, k;
@@ -77,9 +77,11 @@ static void tiles(lv_t *l, const double *o, const double *u, const double *v, do
 }
 
 /* The horizontal rectangle [X0, X1] x [Z0, Z1] at height Y, facing up (UP) or down. */
-static void flat(lv_t *l, double x0, double x1, double z0, double z1, double y, int up, double side, const double *rho)
+static void flat(lv_t *l, double x0, double x1, double z0, double z1, double y, int up, double side,
+                 const double *rho)
 {
-    double o[3] = {x0, y, z0}, u[3] = {x1 - x0, 0, 0}, v[3] = {0, 0, z1 - z0}, w[3] = {0, up ? 1 : -1, 0};
+    double o[3] = {x0, y, z0}, u[3] = {x1 - x0, 0, 0}, v[3] = {0, 0, z1 - z0},
+           w[3] = {0, up ? 1 : -1, 0};
     tiles(l, o, u, v, side, w, rho);
 }
 
@@ -109,8 +111,15 @@ static void block(lv_t *l, double x, double z, double h, double y0, double y1, i
 {
     int f;
     for (f = 0; f < 4; f++) {
-        double dx = f == 0 ? 1 : f == 2 ? -1 : 0, dz = f == 1 ? 1 : f == 3 ? -1 : 0, want[3] = {dx, 0, dz};
-        double a[3] = {x + h * dx - h * dz, y0, z + h * dz + h * dx}, b[3] = {x + h * dx + h * dz, y0, z + h * dz - h * dx};
+        double dx = f == 0   ? 1
+                    : f == 2 ? -1
+                             : 0,
+               dz = f == 1   ? 1
+                    : f == 3 ? -1
+                             : 0,
+               want[3] = {dx, 0, dz};
+        double a[3] = {x + h * dx - h * dz, y0, z + h * dz + h * dx},
+               b[3] = {x + h * dx + h * dz, y0, z + h * dz - h * dx};
         double c[3] = {b[0], y1, b[2]}, d[3] = {a[0], y1, a[2]};
         quad(l, a, b, c, d, want, marble);
     }
@@ -128,7 +137,8 @@ static void column(lv_t *l, double x, double z, double y0)
         for (j = 0; j < RINGS; j++) {
             double a0 = TURN * i / FACETS, a1 = TURN * (i + 1) / FACETS, m = 0.5 * (a0 + a1);
             double y1 = lo + (hi - lo) * j / RINGS, y2 = lo + (hi - lo) * (j + 1) / RINGS;
-            double a[3] = {x + COL_R * cos(a0), y1, z + COL_R * sin(a0)}, b[3] = {x + COL_R * cos(a1), y1, z + COL_R * sin(a1)};
+            double a[3] = {x + COL_R * cos(a0), y1, z + COL_R * sin(a0)},
+                   b[3] = {x + COL_R * cos(a1), y1, z + COL_R * sin(a1)};
             double c[3] = {b[0], y2, b[2]}, d[3] = {a[0], y2, a[2]}, want[3] = {cos(m), 0, sin(m)};
             quad(l, a, b, c, d, want, marble);
         }
@@ -139,11 +149,14 @@ static void column(lv_t *l, double x, double z, double y0)
  * faces. */
 static void arch(lv_t *l, int k, double s0, double s1, double y0, double top)
 {
-    double sa = s0 + COL_R, sb = s1 - COL_R, sc = 0.5 * (sa + sb), r = 0.5 * (sb - sa), ys = y0 + SPRING;
+    double sa = s0 + COL_R, sb = s1 - COL_R, sc = 0.5 * (sa + sb), r = 0.5 * (sb - sa),
+           ys = y0 + SPRING;
     int i, j, f;
     for (i = 0; i < FACETS; i++) {
-        double t0 = TURN / 2 * (1.0 - (double)i / FACETS), t1 = TURN / 2 * (1.0 - (double)(i + 1) / FACETS);
-        double s[2] = {sc + r * cos(t0), sc + r * cos(t1)}, y[2] = {ys + r * sin(t0), ys + r * sin(t1)};
+        double t0 = TURN / 2 * (1.0 - (double)i / FACETS),
+               t1 = TURN / 2 * (1.0 - (double)(i + 1) / FACETS);
+        double s[2] = {sc + r * cos(t0), sc + r * cos(t1)},
+               y[2] = {ys + r * sin(t0), ys + r * sin(t1)};
         double tm = 0.5 * (t0 + t1), c0[3], c1[3], want[3], p[4][3];
         side_point(k, sc, ys, 0, c0);
         side_point(k, sc + cos(tm), ys + sin(tm), 0, c1);
@@ -169,7 +182,8 @@ static void arch(lv_t *l, int k, double s0, double s1, double y0, double top)
         }
     }
     for (f = 0; f < 4; f++) { /* over the columns' halves, each face */
-        double w = f & 1 ? COL_R : -COL_R, e0 = f < 2 ? s0 : sb, e1 = f < 2 ? sa : s1, o[3], n[3], p[4][3];
+        double w = f & 1 ? COL_R : -COL_R, e0 = f < 2 ? s0 : sb, e1 = f < 2 ? sa : s1, o[3], n[3],
+               p[4][3];
         side_point(k, e0, ys, w, p[0]);
         side_point(k, e1, ys, w, p[1]);
         side_point(k, e1, top, w, p[2]);
@@ -223,8 +237,8 @@ static void cornice(lv_t *l, int k, double top)
 
 /* The parallelogram from side K's points A (its corner) to B along U and to C along V,
  * in tiles of SIDE facing WANT. */
-static void side_tiles(lv_t *l, const double *a, const double *b, const double *c, double side, const double *want,
-                       const double *rho)
+static void side_tiles(lv_t *l, const double *a, const double *b, const double *c, double side,
+                       const double *want, const double *rho)
 {
     double u[3], v[3];
     int i;

@@ -47,9 +47,14 @@ static int on_shot(void *ctx, int shots, double unshot)
     shots += p->base;
     /* The fixed build reports Q16.16 fractions: 0.001 is 66 / 65536 there. */
     for (k = 0; k < 3; k++)
-        if (r->shots[k] == 0 && unshot <= lim[k] + 1.0 / 65536) { r->shots[k] = shots; r->t[k] = t; }
+        if (r->shots[k] == 0 && unshot <= lim[k] + 1.0 / 65536) {
+            r->shots[k] = shots;
+            r->t[k] = t;
+        }
     if (r->npts < MAXPTS) {
-        r->xs[r->npts] = shots; r->xt[r->npts] = t; r->y[r->npts] = unshot;
+        r->xs[r->npts] = shots;
+        r->xt[r->npts] = t;
+        r->y[r->npts] = unshot;
         r->npts++;
     }
     return 0;
@@ -67,18 +72,36 @@ static void *fx_create(const sc_poly *p, int n, const sc_opts *o, char *e, size_
 {
     return sc_create(p, n, o, NULL, NULL, e, l);
 }
-static int fx_solve(void *s, int m, double t, sc_progress_fn f, void *c) { return sc_solve(s, m, t, f, c); }
-static void fx_stats(void *s, sc_stats *st) { sc_get_stats(s, st); }
-static void fx_destroy(void *s) { sc_destroy(s); }
+static int fx_solve(void *s, int m, double t, sc_progress_fn f, void *c)
+{
+    return sc_solve(s, m, t, f, c);
+}
+static void fx_stats(void *s, sc_stats *st)
+{
+    sc_get_stats(s, st);
+}
+static void fx_destroy(void *s)
+{
+    sc_destroy(s);
+}
 static void *fl_create(const sc_poly *p, int n, const sc_opts *o, char *e, size_t l)
 {
     return scf_create(p, n, o, NULL, NULL, e, l);
 }
-static int fl_solve(void *s, int m, double t, sc_progress_fn f, void *c) { return scf_solve(s, m, t, f, c); }
-static void fl_stats(void *s, sc_stats *st) { scf_get_stats(s, st); }
-static void fl_destroy(void *s) { scf_destroy(s); }
+static int fl_solve(void *s, int m, double t, sc_progress_fn f, void *c)
+{
+    return scf_solve(s, m, t, f, c);
+}
+static void fl_stats(void *s, sc_stats *st)
+{
+    scf_get_stats(s, st);
+}
+static void fl_destroy(void *s)
+{
+    scf_destroy(s);
+}
 static const build_t builds[2] = {{fx_create, fx_solve, fx_stats, fx_destroy},
-                                   {fl_create, fl_solve, fl_stats, fl_destroy}};
+                                  {fl_create, fl_solve, fl_stats, fl_destroy}};
 
 static void run_alloc(brun *r)
 {
@@ -86,10 +109,18 @@ static void run_alloc(brun *r)
     r->xs = malloc(MAXPTS * sizeof *r->xs);
     r->xt = malloc(MAXPTS * sizeof *r->xt);
     r->y = malloc(MAXPTS * sizeof *r->y);
-    if (!r->xs || !r->xt || !r->y) { fprintf(stderr, "rad_bench: out of memory\n"); exit(1); }
+    if (!r->xs || !r->xt || !r->y) {
+        fprintf(stderr, "rad_bench: out of memory\n");
+        exit(1);
+    }
 }
 
-static void run_free(brun *r) { free(r->xs); free(r->xt); free(r->y); }
+static void run_free(brun *r)
+{
+    free(r->xs);
+    free(r->xt);
+    free(r->y);
+}
 
 static int cmp_d(const void *a, const void *b)
 {
@@ -119,7 +150,10 @@ sc_solver *bench_fixed_solver(const bscene *sc, const sc_poly *polys, const sc_o
 {
     char err[256];
     sc_solver *s = sc_create(polys, sc->n, o, NULL, NULL, err, sizeof err);
-    if (!s) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
+    if (!s) {
+        fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err);
+        exit(1);
+    }
     return s;
 }
 
@@ -139,7 +173,8 @@ static void run_stats(brun *r, const sc_stats *st)
  * seconds by more than the two builds differ (whole runs in turn could put either
  * ahead). Each keeps its median run (by total time) in OUT, with its times to each
  * fraction the medians over the runs; the others are freed. */
-static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs, brun *out)
+static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts *o, int runs,
+                        brun *out)
 {
     brun r[2][5];
     double tot[2][5], ti[3][5];
@@ -153,7 +188,10 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
             double t0 = host_now();
             run_alloc(&r[k][i]);
             s[k] = b[k]->create(sc->polys, sc->n, &o[k], err, sizeof err);
-            if (!s[k]) { fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err); exit(1); }
+            if (!s[k]) {
+                fprintf(stderr, "rad_bench: %s: %s\n", sc->name, err);
+                exit(1);
+            }
             r[k][i].mesh = host_now() - t0;
             pg[k].r = &r[k][i];
             pg[k].spent = 0;
@@ -184,8 +222,10 @@ static void interleaved(const bscene *sc, const build_t *const *b, const sc_opts
         int best = 0;
         for (j = 0; j < 3; j++)
             for (i = 0; i < runs; i++) ti[j][i] = r[k][i].t[j];
-        for (i = 0; i < runs; i++) if (r[k][i].total == m) best = i;
-        for (i = 0; i < runs; i++) if (i != best) run_free(&r[k][i]);
+        for (i = 0; i < runs; i++)
+            if (r[k][i].total == m) best = i;
+        for (i = 0; i < runs; i++)
+            if (i != best) run_free(&r[k][i]);
         out[k] = r[k][best];
         for (j = 0; j < 3; j++) out[k].t[j] = bench_median(ti[j], runs);
     }
@@ -231,7 +271,10 @@ static void twin_accuracy(const bscene *sc, double *mx, double *rms)
     char err[256];
     sc_solver *a = bench_fixed_solver(sc, sc->polys, &o);
     scf_solver *b = scf_create(sc->polys, sc->n, &o, NULL, NULL, err, sizeof err);
-    if (!b) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    if (!b) {
+        fprintf(stderr, "rad_bench: %s\n", err);
+        exit(1);
+    }
     sc_solve(a, 1000000, 0.001, NULL, NULL);
     scf_solve(b, 1000000, 0.001, NULL, NULL);
     ref_twin_diff(a, b, mx, rms);
@@ -241,7 +284,10 @@ static void twin_accuracy(const bscene *sc, double *mx, double *rms)
 
 /* ---- patch size: shots against accuracy ------------------------------------------- */
 
-int bench_poly_emits(const sc_poly *p) { return p->emit[0] + p->emit[1] + p->emit[2] > 0; }
+int bench_poly_emits(const sc_poly *p)
+{
+    return p->emit[0] + p->emit[1] + p->emit[2] > 0;
+}
 
 /* Area-weighted mean radiosity (r + g + b, with the ambient term) of every OBJ face
  * (polygon tag < NTAG) into M. */
@@ -273,7 +319,8 @@ static void face_diff(const bscene *sc, sc_solver *a, sc_solver *b, double *wors
     int ntag = 0, i, t, n = 0;
     double *ma, *mb, top = 0, s2 = 0;
     char *emits;
-    for (i = 0; i < sc->n; i++) if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
+    for (i = 0; i < sc->n; i++)
+        if (sc->polys[i].tag + 1 > ntag) ntag = sc->polys[i].tag + 1;
     ma = malloc((size_t)ntag * sizeof *ma);
     mb = malloc((size_t)ntag * sizeof *mb);
     emits = calloc((size_t)ntag, 1);
@@ -282,7 +329,8 @@ static void face_diff(const bscene *sc, sc_solver *a, sc_solver *b, double *wors
         if (bench_poly_emits(&sc->polys[i])) emits[sc->polys[i].tag] = 1;
     face_means(a, ntag, ma);
     face_means(b, ntag, mb);
-    for (t = 0; t < ntag; t++) if (!emits[t] && ma[t] > top) top = ma[t];
+    for (t = 0; t < ntag; t++)
+        if (!emits[t] && ma[t] > top) top = ma[t];
     *worst = 0;
     for (t = 0; t < ntag; t++) {
         double d;
@@ -293,7 +341,9 @@ static void face_diff(const bscene *sc, sc_solver *a, sc_solver *b, double *wors
         n++;
     }
     *rms = n ? sqrt(s2 / n) : 0;
-    free(ma); free(mb); free(emits);
+    free(ma);
+    free(mb);
+    free(emits);
 }
 
 typedef struct {
@@ -362,10 +412,15 @@ static void relight_bench(const bscene *sc, relight_t *r)
     double t0;
     int i;
     t0 = host_now();
-    if (sc_rows_compute(s, NULL, NULL, err, sizeof err) < 0) { fprintf(stderr, "rad_bench: %s\n", err); exit(1); }
+    if (sc_rows_compute(s, NULL, NULL, err, sizeof err) < 0) {
+        fprintf(stderr, "rad_bench: %s\n", err);
+        exit(1);
+    }
     r->t_rows = host_now() - t0;
     sc_get_rows_stats(s, &rs);
-    r->rows = rs.rows; r->entries = rs.entries; r->bytes = rs.bytes;
+    r->rows = rs.rows;
+    r->entries = rs.entries;
+    r->bytes = rs.bytes;
     t0 = host_now();
     sc_rows_solve(s, 1000000, 0.001, NULL, NULL);
     r->t_rows_shoot = host_now() - t0;
@@ -380,7 +435,8 @@ static void relight_bench(const bscene *sc, relight_t *r)
     r->relight_shots = sc_rows_solve(s, 1000000, 0.001, NULL, NULL);
     r->t_relight = host_now() - t0;
     sc_get_stats(s, &st);
-    r->patches = st.patches; r->elements = st.elements;
+    r->patches = st.patches;
+    r->elements = st.elements;
     /* The same new light from scratch: meshing and a hemi-cube per shot. */
     q = malloc((size_t)sc->n * sizeof *q);
     if (!q) exit(1);
@@ -406,12 +462,15 @@ sc_poly *bench_load_obj(const char *path, int *n, obj_scene *keep)
     sc_poly *p;
     if (obj_load(path, &sc, NULL, NULL, err, sizeof err) < 0) return NULL;
     p = polys_from_obj(&sc, n, NULL, NULL);
-    if (keep) *keep = sc;
-    else obj_free(&sc);
+    if (keep)
+        *keep = sc;
+    else
+        obj_free(&sc);
     return p;
 }
 
-void bench_add_quad(sc_poly *p, int *n, const double v[4][3], const double rho[3], const double em[3])
+void bench_add_quad(sc_poly *p, int *n, const double v[4][3], const double rho[3],
+                    const double em[3])
 {
     sc_poly *q = &p[(*n)++];
     memset(q, 0, sizeof *q);
@@ -460,13 +519,17 @@ static sc_poly *gen_hall(int *n)
     for (i = 0; i < 4; i++)
         for (j = 0; j < 3; j++) {
             double a[3] = {-6.5 + 3.6 * i, 0, -4.5 + 3.5 * j}, b[3];
-            b[0] = a[0] + (j == 1 ? 0.8 : 1.6); b[1] = j == 1 ? 1.9 : 0.75; b[2] = a[2] + (j == 1 ? 0.6 : 1.0);
+            b[0] = a[0] + (j == 1 ? 0.8 : 1.6);
+            b[1] = j == 1 ? 1.9 : 0.75;
+            b[2] = a[2] + (j == 1 ? 0.6 : 1.0);
             bench_add_box(p, n, a, b, 0, 2, j == 1 ? blue : wood); /* no bottom */
         }
     for (i = 0; i < 3; i++)
         for (j = 0; j < 2; j++) {
-            double v[4][3] = {{-5.5 + 5 * i, 2.99, -3.5 + 6 * j}, {-4.5 + 5 * i, 2.99, -3.5 + 6 * j},
-                              {-4.5 + 5 * i, 2.99, -2.5 + 6 * j}, {-5.5 + 5 * i, 2.99, -2.5 + 6 * j}};
+            double v[4][3] = {{-5.5 + 5 * i, 2.99, -3.5 + 6 * j},
+                              {-4.5 + 5 * i, 2.99, -3.5 + 6 * j},
+                              {-4.5 + 5 * i, 2.99, -2.5 + 6 * j},
+                              {-5.5 + 5 * i, 2.99, -2.5 + 6 * j}};
             bench_add_quad(p, n, (const double(*)[3])v, white, lamp);
         }
     return p;
@@ -530,26 +593,42 @@ static int load_scenes(const char *shared, bscene *scenes)
     static obj_scene box;
     int ns = 0, k, ncb, n;
     sc_poly *cb = bench_load_obj("examples/cornell_box.obj", &ncb, &box), *p;
-    if (!cb) { fprintf(stderr, "rad_bench: run from the repository root (examples/cornell_box.obj)\n"); return 0; }
+    if (!cb) {
+        fprintf(stderr, "rad_bench: run from the repository root (examples/cornell_box.obj)\n");
+        return 0;
+    }
     for (k = 0; k < 3; k++) {
-        scenes[ns].name = nm[k]; scenes[ns].polys = cb; scenes[ns].n = ncb; scenes[ns].obj = &box;
-        scenes[ns].max_element = me[k]; scenes[ns].res = 128; scenes[ns].runs = 3;
+        scenes[ns].name = nm[k];
+        scenes[ns].polys = cb;
+        scenes[ns].n = ncb;
+        scenes[ns].obj = &box;
+        scenes[ns].max_element = me[k];
+        scenes[ns].res = 128;
+        scenes[ns].runs = 3;
         scenes[ns].big = k == 2;
         ns++;
     }
     p = bench_load_obj(shared, &n, NULL);
     if (p) {
         /* Element edge 0.08 (of about 2 across): over the 4,000 elements of the peers. */
-        scenes[ns].name = "CornellBox-Original (shared)"; scenes[ns].polys = p; scenes[ns].n = n;
-        scenes[ns].max_element = 0.08; scenes[ns].res = 128; scenes[ns].runs = 5;
+        scenes[ns].name = "CornellBox-Original (shared)";
+        scenes[ns].polys = p;
+        scenes[ns].n = n;
+        scenes[ns].max_element = 0.08;
+        scenes[ns].res = 128;
+        scenes[ns].runs = 5;
         ns++;
     } else {
         fprintf(stderr, "rad_bench: %s not found: the peer comparison is skipped\n", shared);
     }
     p = gen_hall(&n);
     if (!p) return 0;
-    scenes[ns].name = "generated hall (12 pieces of furniture, 6 lights)"; scenes[ns].polys = p;
-    scenes[ns].n = n; scenes[ns].max_element = 0.175; scenes[ns].res = 128; scenes[ns].runs = 3;
+    scenes[ns].name = "generated hall (12 pieces of furniture, 6 lights)";
+    scenes[ns].polys = p;
+    scenes[ns].n = n;
+    scenes[ns].max_element = 0.175;
+    scenes[ns].res = 128;
+    scenes[ns].runs = 3;
     scenes[ns].big = 1;
     return ns + 1;
 }
@@ -557,41 +636,53 @@ static int load_scenes(const char *shared, bscene *scenes)
 static void report_speed(report_t *rp, const bscene *scenes, int ns, const brun *fx, const brun *fl)
 {
     int i, k;
-    bench_out(rp, "Solve to an unshot fraction of 0.001 at hemi-cube resolution 128, one core; times are medians of "
-        "3 runs (5 for CornellBox-Original) in one process, the two builds solved side by side, one shot of each "
-        "in turn, so that both see the same machine. fixed/float is the ratio of the two builds' times: below 1 "
-        "the fixed build is faster.\n\n");
-    bench_out(rp, "| scene | elements | patches | build | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms "
-        "per shot | Mpixel/s | memory KB |\n| --- | ---: | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "Solve to an unshot fraction of 0.001 at hemi-cube resolution 128, one core; "
+                  "times are medians of "
+                  "3 runs (5 for CornellBox-Original) in one process, the two builds solved side "
+                  "by side, one shot of each "
+                  "in turn, so that both see the same machine. fixed/float is the ratio of the two "
+                  "builds' times: below 1 "
+                  "the fixed build is faster.\n\n");
+    bench_out(rp, "| scene | elements | patches | build | shots to 0.1 / 0.01 / 0.001 | s to 0.01 "
+                  "| s to 0.001 | ms "
+                  "per shot | Mpixel/s | memory KB |\n| --- | ---: | ---: | --- | --- | ---: | "
+                  "---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         for (k = 0; k < 2; k++) {
             const brun *r = k ? &fl[i] : &fx[i];
             char sh[64];
             fmt_shots(sh, sizeof sh, r);
-            bench_out(rp, "| %s | %d | %d | %s | %s | %.3f | %.3f | %.3f | %.1f | %zu |\n", k ? "" : scenes[i].name,
-                r->elements, r->patches, k ? "float" : "fixed", sh, r->t[1], r->total,
-                1000 * r->total / (r->all_shots ? r->all_shots : 1), r->pix_per_s / 1e6, r->bytes / 1024);
+            bench_out(rp, "| %s | %d | %d | %s | %s | %.3f | %.3f | %.3f | %.1f | %zu |\n",
+                      k ? "" : scenes[i].name, r->elements, r->patches, k ? "float" : "fixed", sh,
+                      r->t[1], r->total, 1000 * r->total / (r->all_shots ? r->all_shots : 1),
+                      r->pix_per_s / 1e6, r->bytes / 1024);
         }
         bench_out(rp, "| | | | fixed/float | | %.2f | %.2f | | | |\n", fx[i].t[1] / fl[i].t[1],
-            fx[i].total / fl[i].total);
+                  fx[i].total / fl[i].total);
     }
 }
 
-static void report_twin(report_t *rp, const bscene *scenes, int ns, const double *amax, const double *arms)
+static void report_twin(report_t *rp, const bscene *scenes, int ns, const double *amax,
+                        const double *arms)
 {
     int i;
-    bench_out(rp, "\nFixed against the float twin, per element (with the ambient term), over elements above 1%% of the "
-        "brightest:\n\n| scene | max relative difference | rms |\n| --- | ---: | ---: |\n");
-    for (i = 0; i < ns; i++) bench_out(rp, "| %s | %.3f%% | %.3f%% |\n", scenes[i].name, 100 * amax[i], 100 * arms[i]);
+    bench_out(rp,
+              "\nFixed against the float twin, per element (with the ambient term), over elements "
+              "above 1%% of the "
+              "brightest:\n\n| scene | max relative difference | rms |\n| --- | ---: | ---: |\n");
+    for (i = 0; i < ns; i++)
+        bench_out(rp, "| %s | %.3f%% | %.3f%% |\n", scenes[i].name, 100 * amax[i], 100 * arms[i]);
 }
 
 static void report_hemicube(report_t *rp)
 {
     static const int res[4] = {32, 64, 128, 256};
     int k;
-    bench_out(rp, "\nHemi-cube form factors against Lambert's contour formula (7 unoccluded receivers: parallel, "
-        "offset, perpendicular, tilted, large, grazing, triangle), fixed build:\n\n| resolution | mean error | max "
-        "error |\n| ---: | ---: | ---: |\n");
+    bench_out(rp, "\nHemi-cube form factors against Lambert's contour formula (7 unoccluded "
+                  "receivers: parallel, "
+                  "offset, perpendicular, tilted, large, grazing, triangle), fixed build:\n\n| "
+                  "resolution | mean error | max "
+                  "error |\n| ---: | ---: | ---: |\n");
     for (k = 0; k < 4; k++) {
         double sum = 0, mx = 0;
         int r;
@@ -620,13 +711,19 @@ static void report_patches(report_t *rp, const bscene *sc)
         sc_destroy(b);
     }
     sc_destroy(ref);
-    bench_out(rp, "\nPatch size on CornellBox-Original (element edge 0.08, res 128, fixed build): shooters larger than "
-        "the elements they group (Cohen et al. 1986) cut the shots, at a price in accuracy: a patch shoots "
-        "from its centre, so surfaces close to a large patch (the blocks on the floor) get the light of one "
-        "point. Solved to 0.001 and compared with every element shooting for itself (first row); the meshes "
-        "differ, so the comparison is of each non-emitting OBJ face's mean radiosity:\n\n| patch edge | "
-        "patches | elements | shots to 0.01 | s to 0.01 | max face difference | rms face difference |\n"
-        "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "\nPatch size on CornellBox-Original (element edge 0.08, res 128, fixed build): "
+                  "shooters larger than "
+                  "the elements they group (Cohen et al. 1986) cut the shots, at a price in "
+                  "accuracy: a patch shoots "
+                  "from its centre, so surfaces close to a large patch (the blocks on the floor) "
+                  "get the light of one "
+                  "point. Solved to 0.001 and compared with every element shooting for itself "
+                  "(first row); the meshes "
+                  "differ, so the comparison is of each non-emitting OBJ face's mean "
+                  "radiosity:\n\n| patch edge | "
+                  "patches | elements | shots to 0.01 | s to 0.01 | max face difference | rms face "
+                  "difference |\n"
+                  "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (k = 0; k < 5; k++) {
         char w[32] = "reference", r[32] = "reference", e[32] = "default (1/8 of the extent)";
         if (k) {
@@ -634,8 +731,8 @@ static void report_patches(report_t *rp, const bscene *sc)
             snprintf(r, sizeof r, "%.2f%%", 100 * t[k].rms);
         }
         if (t[k].max_patch > 0) snprintf(e, sizeof e, "%.2f", t[k].max_patch);
-        bench_out(rp, "| %s | %d | %d | %d | %.3f | %s | %s |\n", e, t[k].patches, t[k].elements, t[k].shots,
-            t[k].secs, w, r);
+        bench_out(rp, "| %s | %d | %d | %d | %.3f | %s | %s |\n", e, t[k].patches, t[k].elements,
+                  t[k].shots, t[k].secs, w, r);
     }
 }
 
@@ -643,10 +740,16 @@ static void report_patches(report_t *rp, const bscene *sc)
 static void report_overshoot(report_t *rp, const bscene *scenes, int ns)
 {
     int i, k;
-    bench_out(rp, "\nOvershooting (the default; Feda & Purgathofer 1992) against plain progressive refinement (Cohen "
-        "et al. 1988, `--no-overshoot`), fixed build, res 128, median of 3 runs, the two shot by shot; the last two "
-        "columns are the solution at 0.01 (with the ambient term) against one converged to 1e-5, per element above 1%% "
-        "of the brightest:\n\n| scene | elements | shooting | shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | "
+    bench_out(
+        rp,
+        "\nOvershooting (the default; Feda & Purgathofer 1992) against plain progressive "
+        "refinement (Cohen "
+        "et al. 1988, `--no-overshoot`), fixed build, res 128, median of 3 runs, the two shot by "
+        "shot; the last two "
+        "columns are the solution at 0.01 (with the ambient term) against one converged to 1e-5, "
+        "per element above 1%% "
+        "of the brightest:\n\n| scene | elements | shooting | shots to 0.1 / 0.01 / 0.001 | s to "
+        "0.01 | s to 0.001 | "
         "max difference at 0.01 | rms |\n| --- | ---: | --- | --- | ---: | ---: | ---: | ---: |\n");
     for (i = 0; i < ns; i++) {
         shootcmp_t c;
@@ -656,9 +759,9 @@ static void report_overshoot(report_t *rp, const bscene *scenes, int ns)
         for (k = 0; k < 2; k++) {
             char sh[64];
             fmt_shots(sh, sizeof sh, &c.run[k]);
-            bench_out(rp, "| %s | %d | %s | %s | %.3f | %.3f | %.2f%% | %.2f%% |\n", k ? "" : scenes[i].name,
-                c.run[k].elements, k ? "overshooting" : "plain", sh, c.run[k].t[1], c.run[k].total,
-                100 * c.worst[k], 100 * c.rms[k]);
+            bench_out(rp, "| %s | %d | %s | %s | %.3f | %.3f | %.2f%% | %.2f%% |\n",
+                      k ? "" : scenes[i].name, c.run[k].elements, k ? "overshooting" : "plain", sh,
+                      c.run[k].t[1], c.run[k].total, 100 * c.worst[k], 100 * c.rms[k]);
             run_free(&c.run[k]);
         }
     }
@@ -670,14 +773,20 @@ static void report_relight(report_t *rp, const bscene *sc)
     relight_t rl;
     fprintf(stderr, "rad_bench: stored form factors ...\n");
     relight_bench(sc, &rl);
-    bench_out(rp, "\nStored form factors on %s (%d elements, %d patches, res 128, fixed build): every patch's row "
-        "rendered once in %.3f s, %lu entries in %zu bytes (%.1f KB per patch). From the rows, no hemi-cube: "
-        "progressive shooting to 0.001 %.3f s; the 1985 full-matrix Gauss-Seidel solve %d sweeps to 0.001 in "
-        "%.3f s (matrix %zu KB). A new light colour, re-solved from the rows in %.3f s (%d shots) against "
-        "%.3f s (%d shots) for a fresh mesh and hemi-cube solve: %.0f times faster.\n",
-        sc->name, rl.elements, rl.patches, rl.t_rows, rl.entries, rl.bytes, rl.bytes / 1024.0 / rl.rows,
-        rl.t_rows_shoot, rl.sweeps, rl.t_gs, rl.matrix_bytes / 1024, rl.t_relight, rl.relight_shots, rl.t_fresh,
-        rl.fresh_shots, rl.t_fresh / rl.t_relight);
+    bench_out(rp,
+              "\nStored form factors on %s (%d elements, %d patches, res 128, fixed build): every "
+              "patch's row "
+              "rendered once in %.3f s, %lu entries in %zu bytes (%.1f KB per patch). From the "
+              "rows, no hemi-cube: "
+              "progressive shooting to 0.001 %.3f s; the 1985 full-matrix Gauss-Seidel solve %d "
+              "sweeps to 0.001 in "
+              "%.3f s (matrix %zu KB). A new light colour, re-solved from the rows in %.3f s (%d "
+              "shots) against "
+              "%.3f s (%d shots) for a fresh mesh and hemi-cube solve: %.0f times faster.\n",
+              sc->name, rl.elements, rl.patches, rl.t_rows, rl.entries, rl.bytes,
+              rl.bytes / 1024.0 / rl.rows, rl.t_rows_shoot, rl.sweeps, rl.t_gs,
+              rl.matrix_bytes / 1024, rl.t_relight, rl.relight_shots, rl.t_fresh, rl.fresh_shots,
+              rl.t_fresh / rl.t_relight);
 }
 
 /* The generated hall meshed to over 100,000 elements, solved once (fixed build). */
@@ -696,14 +805,19 @@ static void report_large(report_t *rp)
     fprintf(stderr, "rad_bench: %s ...\n", sc.name);
     solo(&sc, &r);
     if (r.elements < 100000)
-        fprintf(stderr, "rad_bench: warning: the fine hall has %d elements, fewer than 100,000\n", r.elements);
+        fprintf(stderr, "rad_bench: warning: the fine hall has %d elements, fewer than 100,000\n",
+                r.elements);
     fmt_shots(sh, sizeof sh, &r);
-    bench_out(rp, "\nA large scene: the generated hall meshed finer, solved once (fixed build, res 128, one core); "
-        "memory is the core's pools and work buffer, all it uses:\n\n| scene | elements | patches | meshing s | "
-        "shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot | memory MB |\n"
-        "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |\n");
-    bench_out(rp, "| %s | %d | %d | %.3f | %s | %.2f | %.2f | %.3f | %.2f |\n", sc.name, r.elements, r.patches, r.mesh,
-        sh, r.t[1], r.total, 1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
+    bench_out(rp,
+              "\nA large scene: the generated hall meshed finer, solved once (fixed build, res "
+              "128, one core); "
+              "memory is the core's pools and work buffer, all it uses:\n\n| scene | elements | "
+              "patches | meshing s | "
+              "shots to 0.1 / 0.01 / 0.001 | s to 0.01 | s to 0.001 | ms per shot | memory MB |\n"
+              "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: | ---: |\n");
+    bench_out(rp, "| %s | %d | %d | %.3f | %s | %.2f | %.2f | %.3f | %.2f |\n", sc.name, r.elements,
+              r.patches, r.mesh, sh, r.t[1], r.total,
+              1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
     run_free(&r);
     free(sc.polys);
 }
@@ -739,22 +853,29 @@ static void report_hall_coarse(report_t *rp, const bscene *sc)
         sc_destroy(a);
     }
     sc_destroy(ref);
-    bench_out(rp, "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one core: every shot "
-        "at res 128 (`--res 128 --coarse 0`) against rad_cli's defaults and against `--res 256 --coarse 2`, each "
-        "pair solved side by side to 0.001 in this process, one shot of each in turn, median of %d (time / res "
-        "128 is that pair's ratio); accuracy per element against a res-512 solve to 1e-4 of the same mesh, as in "
-        "the peer table:\n\n"
-        "| settings | shots | s to 0.001 | time / res 128 | pools + work MB | accuracy >10%%: rms / max | "
-        ">1%%: rms / max |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
-        run[0][0].elements, run[0][0].patches, sc->runs);
+    bench_out(rp,
+              "\nCoarse shots on the generated hall (%d elements, %d patches), fixed build, one "
+              "core: every shot "
+              "at res 128 (`--res 128 --coarse 0`) against rad_cli's defaults and against `--res "
+              "256 --coarse 2`, each "
+              "pair solved side by side to 0.001 in this process, one shot of each in turn, median "
+              "of %d (time / res "
+              "128 is that pair's ratio); accuracy per element against a res-512 solve to 1e-4 of "
+              "the same mesh, as in "
+              "the peer table:\n\n"
+              "| settings | shots | s to 0.001 | time / res 128 | pools + work MB | accuracy "
+              ">10%%: rms / max | "
+              ">1%%: rms / max |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n",
+              run[0][0].elements, run[0][0].patches, sc->runs);
     for (k = 0; k < 3; k++) {
         const brun *r = k ? &run[k - 1][1] : &run[0][0];
         bench_out(rp, "| %s | %d | %.3f | %.2f | %.2f | %.2f%% / %.2f%% | %.2f%% / %.2f%% |\n",
-            k == 0   ? "`--res 128 --coarse 0`"
-            : k == 1 ? "rad_cli's defaults (res 192, coarse 1)"
-                     : "`--res 256 --coarse 2`",
-            r->all_shots, r->total, k ? r->total / run[k - 1][0].total : 1.0, r->bytes / 1048576.0, 100 * rms[k][0],
-            100 * mx[k][0], 100 * rms[k][1], 100 * mx[k][1]);
+                  k == 0   ? "`--res 128 --coarse 0`"
+                  : k == 1 ? "rad_cli's defaults (res 192, coarse 1)"
+                           : "`--res 256 --coarse 2`",
+                  r->all_shots, r->total, k ? r->total / run[k - 1][0].total : 1.0,
+                  r->bytes / 1048576.0, 100 * rms[k][0], 100 * mx[k][0], 100 * rms[k][1],
+                  100 * mx[k][1]);
     }
     for (k = 0; k < 4; k++) run_free(&run[k / 2][k % 2]);
 }
@@ -773,7 +894,9 @@ static void write_docs(const report_t *rp)
     int ok;
     if (!r || ferror(r) || n == sizeof buf - 1) {
         fprintf(stderr, "rad_bench: %s: %s; the report is on standard output only\n", path,
-                !r ? strerror(errno) : n == sizeof buf - 1 ? "larger than 1 MiB" : "read error");
+                !r                    ? strerror(errno)
+                : n == sizeof buf - 1 ? "larger than 1 MiB"
+                                      : "read error");
         if (r) fclose(r);
         return;
     }
@@ -805,24 +928,32 @@ static void write_docs(const report_t *rp)
 /* The convergence plots, against shots and against seconds. */
 static void draw_plots(const bscene *scenes, int ns, const brun *fx)
 {
-    static const unsigned char col[6][3] = {{200, 30, 30}, {30, 120, 200}, {30, 160, 60}, {150, 60, 170},
-                                             {220, 140, 0}, {90, 90, 90}};
+    static const unsigned char col[6][3] = {{200, 30, 30},  {30, 120, 200}, {30, 160, 60},
+                                            {150, 60, 170}, {220, 140, 0},  {90, 90, 90}};
     plot_series ser[8];
     plot_opts po;
     char err[256];
     int i;
     for (i = 0; i < ns; i++) {
         ser[i].label = scenes[i].name;
-        ser[i].x = fx[i].xs; ser[i].y = fx[i].y; ser[i].n = fx[i].npts;
+        ser[i].x = fx[i].xs;
+        ser[i].y = fx[i].y;
+        ser[i].n = fx[i].npts;
         memcpy(ser[i].rgb, col[i % 6], 3);
     }
     memset(&po, 0, sizeof po);
     po.title = "Progressive refinement, fixed build, res 128";
-    po.xlabel = "shots"; po.ylabel = "unshot fraction"; po.log_y = 1; po.width = 800; po.height = 500;
-    if (plot_write("docs/convergence_shots.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
+    po.xlabel = "shots";
+    po.ylabel = "unshot fraction";
+    po.log_y = 1;
+    po.width = 800;
+    po.height = 500;
+    if (plot_write("docs/convergence_shots.png", ser, ns, &po, err, sizeof err) < 0)
+        fprintf(stderr, "%s\n", err);
     for (i = 0; i < ns; i++) ser[i].x = fx[i].xt;
     po.xlabel = "seconds";
-    if (plot_write("docs/convergence_time.png", ser, ns, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
+    if (plot_write("docs/convergence_time.png", ser, ns, &po, err, sizeof err) < 0)
+        fprintf(stderr, "%s\n", err);
 }
 
 /* Index of the scene named NAME, or -1. */
@@ -865,7 +996,9 @@ int main(int argc, char **argv)
         twin_accuracy(&scenes[i], &amax[i], &arms[i]);
     }
     if (fx[ns - 1].elements < 20000)
-        fprintf(stderr, "rad_bench: warning: the generated scene has %d elements, fewer than the 20,000 asked for\n",
+        fprintf(stderr,
+                "rad_bench: warning: the generated scene has %d elements, fewer than the 20,000 "
+                "asked for\n",
                 fx[ns - 1].elements);
     orig = scene_named(scenes, ns, "CornellBox-Original (shared)");
     report_speed(&rp, scenes, ns, fx, fl);

@@ -132,17 +132,25 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     long gathers = 0, total = covered_texels(a);
     int rc;
     if (!o->quiet)
-        fprintf(stderr, PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
-                a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "", total, total, res);
+        fprintf(stderr,
+                PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
+                a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "",
+                total, total, res);
     rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
     if (rc == 0) rc = lm_dilate(a);
-    if (rc < 0) snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)", o->lightmap);
-    else rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
-    if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
+    if (rc < 0)
+        snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)",
+                 o->lightmap);
+    else
+        rc = lm_write(a, o->lightmap, o->exposure, err, sizeof err);
+    if (rc < 0)
+        fprintf(stderr, PROG ": %s\n", err);
     else if (o->stats)
-        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d (%d passes, tolerance %g) on %d "
-               "threads, %.2f s\n", a->size, a->size, a->file_uv ? a->file_charts : a->ncharts, a->texel, gathers, res, a->pass - 1, a->tol,
-               o->threads > 1 ? o->threads : 1, host_now() - t0);
+        printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d (%d passes, "
+               "tolerance %g) on %d "
+               "threads, %.2f s\n",
+               a->size, a->size, a->file_uv ? a->file_charts : a->ncharts, a->texel, gathers, res,
+               a->pass - 1, a->tol, o->threads > 1 ? o->threads : 1, host_now() - t0);
     return rc;
 }
 
@@ -151,8 +159,8 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
 static double atlas_bytes(int n)
 {
     const lm_atlas *a = NULL; /* for the sizes of its entries only */
-    size_t per = sizeof *a->owner + 2 * sizeof *a->sample + 3 * sizeof *a->rgb + sizeof *a->poly + sizeof *a->state +
-                 sizeof *a->block + sizeof(size_t);
+    size_t per = sizeof *a->owner + 2 * sizeof *a->sample + 3 * sizeof *a->rgb + sizeof *a->poly +
+                 sizeof *a->state + sizeof *a->block + sizeof(size_t);
     return (double)n * n * (double)per;
 }
 
@@ -162,9 +170,13 @@ static int lightmap_memory(const opts_t *o, int n)
 {
     double bytes = atlas_bytes(n), budget = fio_memory_budget();
     if (bytes > budget) {
-        fprintf(stderr, PROG ": %s: --lightmap-size %d needs about %.1f MB for its %d x %d texels, over the memory "
-                        "budget of %.1f MB (%s): lower --lightmap-size\n", o->lightmap, n, bytes / 1e6, n, n,
-                budget / 1e6, getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET" : "half the physical memory");
+        fprintf(
+            stderr,
+            PROG
+            ": %s: --lightmap-size %d needs about %.1f MB for its %d x %d texels, over the memory "
+            "budget of %.1f MB (%s): lower --lightmap-size\n",
+            o->lightmap, n, bytes / 1e6, n, n, budget / 1e6,
+            getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET" : "half the physical memory");
         return -1;
     }
     if (!o->quiet)
@@ -184,7 +196,8 @@ static int bake_probes(run_t *r, const struct bake_state *b, gather_ctx *c)
     c->total = b->npts;
     c->unit = "probes";
     if (pr && pr_bake(b->polys, b->n, b->pts, b->npts, pr_gather, c, pr, err, sizeof err) == 0)
-        rc = pr_write_json(o->probes_out, pr, b->npts, o->probes ? o->probe_dims : NULL, err, sizeof err);
+        rc = pr_write_json(o->probes_out, pr, b->npts, o->probes ? o->probe_dims : NULL, err,
+                           sizeof err);
     progress_end(&pg);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", *err ? err : "out of memory for the probes");
     free(pr);
@@ -237,15 +250,19 @@ static int read_probes(run_t *r, struct bake_state *b)
             }
     for (i = 0; i < b->npts; i++) {
         const double *p = &b->pts[3 * i];
-        if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) {
+        if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] ||
+            p[2] > hi[2]) {
             if (!out++) first = i;
         }
     }
     if (out && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s:%d: %d of %d probes lie outside the scene's bounding box (%g %g %g to %g "
-                        "%g %g), the first here, %g %g %g: they see the scene from outside\n",
-                o->probe_file, probe_line(o->probe_file, first), out, b->npts, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
-                b->pts[3 * first], b->pts[3 * first + 1], b->pts[3 * first + 2]);
+        fprintf(stderr,
+                PROG ": warning: %s:%d: %d of %d probes lie outside the scene's bounding box (%g "
+                     "%g %g to %g "
+                     "%g %g), the first here, %g %g %g: they see the scene from outside\n",
+                o->probe_file, probe_line(o->probe_file, first), out, b->npts, lo[0], lo[1], lo[2],
+                hi[0], hi[1], hi[2], b->pts[3 * first], b->pts[3 * first + 1],
+                b->pts[3 * first + 2]);
     return 0;
 }
 
@@ -254,16 +271,26 @@ static void file_uv_warnings(const opts_t *o, const lm_file_report *rep)
 {
     if (o->quiet) return;
     if (rep->outside)
-        fprintf(stderr, PROG ": warning: %s: %ld polygon corners have lightmap UVs outside [0, 1]: their texels past "
-                        "the atlas's edge are lost\n", o->scene, rep->outside);
+        fprintf(stderr,
+                PROG ": warning: %s: %ld polygon corners have lightmap UVs outside [0, 1]: their "
+                     "texels past "
+                     "the atlas's edge are lost\n",
+                o->scene, rep->outside);
     if (rep->overlap)
-        fprintf(stderr, PROG ": warning: %s: %ld lightmap texels lie inside the UV triangles of two polygons "
-                        "(overlapping charts): each holds the nearer one's light\n", o->scene, rep->overlap);
+        fprintf(stderr,
+                PROG
+                ": warning: %s: %ld lightmap texels lie inside the UV triangles of two polygons "
+                "(overlapping charts): each holds the nearer one's light\n",
+                o->scene, rep->overlap);
     if (rep->zero_area)
-        fprintf(stderr, PROG ": warning: %s: %ld triangles have lightmap UVs of no area: they get no texels\n",
+        fprintf(stderr,
+                PROG
+                ": warning: %s: %ld triangles have lightmap UVs of no area: they get no texels\n",
                 o->scene, rep->zero_area);
     if (rep->missing)
-        fprintf(stderr, PROG ": warning: %s: %ld polygons have no second UV set: they get no lightmap texels\n",
+        fprintf(stderr,
+                PROG
+                ": warning: %s: %ld polygons have no second UV set: they get no lightmap texels\n",
                 o->scene, rep->missing);
 }
 
@@ -278,10 +305,11 @@ static int build_atlas(run_t *r, struct bake_state *b, const lm_opts *lo)
     int rc;
     if (o->lightmap_uv == LIGHTMAP_UV_FILE && (!r->sc.uv2 || o->two_sided)) {
         fprintf(stderr, PROG ": %s: --lightmap-uv file: %s\n", o->scene,
-                o->two_sided ? "--two-sided would put both sides of a face on the file's texels (use "
-                               "--lightmap-uv rad)"
-                             : "the scene has no second UV set (glTF TEXCOORD_1, an FBX's or COLLADA "
-                               "file's second channel)");
+                o->two_sided
+                    ? "--two-sided would put both sides of a face on the file's texels (use "
+                      "--lightmap-uv rad)"
+                    : "the scene has no second UV set (glTF TEXCOORD_1, an FBX's or COLLADA "
+                      "file's second channel)");
         return -1;
     }
     if (o->lightmap_uv == LIGHTMAP_UV_RAD || !r->sc.uv2 || o->two_sided)
@@ -311,7 +339,10 @@ int cli_bake_prepare(run_t *r)
 static int prepare(run_t *r)
 {
     const opts_t *o = r->o;
-    lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0, o->lightmap_pad < 0 ? 0 : o->lightmap_pad ? o->lightmap_pad : -1,
+    lm_opts lo = {o->lightmap_size ? o->lightmap_size : DEF_LIGHTMAP_SIZE, 0.0,
+                  o->lightmap_pad < 0 ? 0
+                  : o->lightmap_pad   ? o->lightmap_pad
+                                      : -1,
                   o->lightmap_tol, 0.0};
     struct bake_state *b;
     if (!o->lightmap && !o->probes && !o->probe_file) return 0;

@@ -18,7 +18,7 @@
  * mean over a sample. The check only tells most of the light lost (a room wound
  * inside out lands nothing) from little, so a few cubes do: 64 cost a tenth of the
  * whole solve of CornellBox-Original at rad_cli's defaults (its lamp is 30 patches). */
-#define BALANCE_CUBES 8
+#define BALANCE_CUBES  8
 #define BALANCE_PIXELS (BALANCE_CUBES * 128 * 128)
 
 /* The emitted power of patch P in caller units of emission (times core area: the
@@ -38,8 +38,10 @@ static double patch_power(const run_t *r, int p)
 double cli_emitted_share_landing(run_t *r)
 {
     int p, n = sc_patch_count(r->s);
-    uint32_t emitting = 0, stride, cubes = BALANCE_PIXELS / ((uint32_t)r->so.res * (uint32_t)r->so.res), k = 0;
-    double landed = 0, total = 0, *ff = malloc((size_t)(r->st.elements ? r->st.elements : 1) * sizeof *ff);
+    uint32_t emitting = 0, stride,
+             cubes = BALANCE_PIXELS / ((uint32_t)r->so.res * (uint32_t)r->so.res), k = 0;
+    double landed = 0, total = 0,
+           *ff = malloc((size_t)(r->st.elements ? r->st.elements : 1) * sizeof *ff);
     if (!ff) return -1;
     for (p = 0; p < n; p++) emitting += patch_power(r, p) > 0;
     if (cubes < 1) cubes = 1;

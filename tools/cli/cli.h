@@ -34,10 +34,10 @@
 #include "host/scene.h"
 
 /* Exit statuses (docs/cli.md's and --help's list). */
-#define CLI_EXIT_OK 0       /* success */
-#define CLI_EXIT_ERROR 1    /* runtime or input error: one line on stderr */
-#define CLI_EXIT_USAGE 2    /* usage error */
-#define CLI_EXIT_WARNED 3   /* outputs written, but not converged or saturated */
+#define CLI_EXIT_OK     0 /* success */
+#define CLI_EXIT_ERROR  1 /* runtime or input error: one line on stderr */
+#define CLI_EXIT_USAGE  2 /* usage error */
+#define CLI_EXIT_WARNED 3 /* outputs written, but not converged or saturated */
 
 #define MAX_VIEWS 4096
 
@@ -49,58 +49,58 @@
  * full intensity, and no infinity reaches the auto exposure. */
 #define CLI_EMIT_LIMIT 1e30
 #define MAX_GROUP_NAME 64
-#define OTHER_GROUP "other"
+#define OTHER_GROUP    "other"
 
 typedef struct {
     int has_cam;
     sc_camera cam;
     const char *out;
-    int line;                       /* its line in the --views file; 0: -o */
+    int line; /* its line in the --views file; 0: -o */
 } view_t;
 
 /* A light group: emitting materials solved together, mixed with an intensity. */
 typedef struct {
     char name[MAX_GROUP_NAME];
-    const char *mats;               /* "MAT1,MAT2,..." as given */
-    double k[3];                    /* --group-intensity (1,1,1) */
+    const char *mats; /* "MAT1,MAT2,..." as given */
+    double k[3];      /* --group-intensity (1,1,1) */
 } group_t;
 
 typedef struct {
     sc_camera cam;
-    double (*k)[3];                 /* intensity of every group in this frame */
+    double (*k)[3]; /* intensity of every group in this frame */
 } frame_t;
 
 typedef struct {
     const char *scene;
     view_t views[MAX_VIEWS];
-    int nviews, pending_cam;        /* pending_cam: a --camera still waiting for its -o */
+    int nviews, pending_cam; /* pending_cam: a --camera still waiting for its -o */
     sc_camera pending;
     int width, height, res, max_shots, threads, quiet, stats, list, no_ambient, no_overshoot;
-    int batch;                      /* --batch: shots whose hemi-cubes render at once */
+    int batch; /* --batch: shots whose hemi-cubes render at once */
     double tol, exposure, max_patch, max_element;
-    double coarse;                  /* --coarse (0: never; -1: not given), --coarse-res (0: not given) */
+    double coarse; /* --coarse (0: never; -1: not given), --coarse-res (0: not given) */
     int coarse_res;
     const char *ply, *csv, *views_file;
-    const char *gltf;               /* --export-gltf */
-    int no_textures;                /* --no-textures: map_Kd ignored (Kd alone) */
-    int allow_outside;              /* --allow-outside-paths: inputs outside the scene's
+    const char *gltf;   /* --export-gltf */
+    int no_textures;    /* --no-textures: map_Kd ignored (Kd alone) */
+    int allow_outside;  /* --allow-outside-paths: inputs outside the scene's
                                        folder, --views outputs outside the current one */
-    int two_sided;                  /* --two-sided: every face doubled, back to back */
-    int no_file_lights;             /* --no-file-lights: the scene file's lights left out */
-    int ply_linear;                 /* --ply-linear: --export-ply binary, float, welded */
+    int two_sided;      /* --two-sided: every face doubled, back to back */
+    int no_file_lights; /* --no-file-lights: the scene file's lights left out */
+    int ply_linear;     /* --ply-linear: --export-ply binary, float, welded */
     char **emit;
     int nemit;
-    sc_light *lights;               /* --sun, --point, --spot, --sky, --sky-hdr's suns and
+    sc_light *lights; /* --sun, --point, --spot, --sky, --sky-hdr's suns and
                                        --lights files' lights, in the command line's order */
     int nlights, max_lights;
-    const char **light_files;       /* --lights and --sky-hdr files (cli_check_collisions) */
+    const char **light_files; /* --lights and --sky-hdr files (cli_check_collisions) */
     int nlight_files;
     /* stored form factors and relighting */
     const char *save_ff, *load_ff, *animate;
     int gauss_seidel, each_group, ncams;
-    group_t *groups;                /* --light-group, then "other" once the scene is known */
+    group_t *groups; /* --light-group, then "other" once the scene is known */
     int ngroups, nuser_groups;
-    char **gint;                    /* --group-intensity as given */
+    char **gint; /* --group-intensity as given */
     int ngint;
     frame_t *frames;
     int nframes;
@@ -108,12 +108,13 @@ typedef struct {
     char *default_out;              /* scene name + .png, when no -o */
     /* bake.c: lightmap and probes */
     const char *lightmap, *probe_file, *probes_out;
-    char *probes_default;           /* scene name + .probes.json, when no --probes-out */
+    char *probes_default; /* scene name + .probes.json, when no --probes-out */
     int lightmap_size, gather_res, probe_dims[3], probes;
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
     int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
     int lightmap_uv;     /* --lightmap-uv: LIGHTMAP_UV_AUTO, _FILE or _RAD */
-    const char *lightmap_opt; /* the last --lightmap-size, -pad, -tol or -uv given (they need --lightmap) */
+    const char *
+        lightmap_opt; /* the last --lightmap-size, -pad, -tol or -uv given (they need --lightmap) */
 } opts_t;
 
 enum { LIGHTMAP_UV_AUTO, LIGHTMAP_UV_FILE, LIGHTMAP_UV_RAD };
@@ -123,15 +124,15 @@ void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);
 typedef struct {
     float *img;
     unsigned char *rgb8;
-    double exposure; /* 0 until the first view fixes it */
-    const obj_scene *sc;    /* with MAPS: views drawn with the textures' detail */
+    double exposure;     /* 0 until the first view fixes it */
+    const obj_scene *sc; /* with MAPS: views drawn with the textures' detail */
     const tex_image *maps;
-    sc_fgather *fg;         /* --gather: views and vertex exports by gathering, else NULL */
-    long gathers;           /* the views' gathers */
+    sc_fgather *fg; /* --gather: views and vertex exports by gathering, else NULL */
+    long gathers;   /* the views' gathers */
     double t_render, t_write;
-    double t_csv, t_gltf;   /* --dump-radiosity's and --export-gltf's writes (--stats) */
+    double t_csv, t_gltf;         /* --dump-radiosity's and --export-gltf's writes (--stats) */
     unsigned long export_ambient; /* the ambient terms they had the core compute */
-    double gltf_scale;      /* the light one unit of the .glb's COLOR_0 stands for */
+    double gltf_scale;            /* the light one unit of the .glb's COLOR_0 stands for */
 } out_t;
 
 /* One run's state, from step to step (rad_cli.c's main). */
@@ -142,25 +143,27 @@ typedef struct {
     sc_solver *s;
     sc_opts so;
     sc_stats st;
-    tex_image *maps;                /* per material (map_Kd), NULL with --no-textures */
-    sc_poly *polys;                 /* what the solver was made from (--export-gltf) */
+    tex_image *maps; /* per material (map_Kd), NULL with --no-textures */
+    sc_poly *polys;  /* what the solver was made from (--export-gltf) */
     int npolys;
-    sc_solution **sol;              /* groups: each group's solution, for mixing */
-    double (*ks)[3];                /* groups: the run's intensities */
-    int *group_of;                  /* material -> group, or -1 */
-    int *light_group_of;            /* light (of lights) -> group, or -1 */
+    sc_solution **sol;   /* groups: each group's solution, for mixing */
+    double (*ks)[3];     /* groups: the run's intensities */
+    int *group_of;       /* material -> group, or -1 */
+    int *light_group_of; /* light (of lights) -> group, or -1 */
     int rows_mode, groups_mode, ambient;
-    int work;                       /* shots (or Gauss-Seidel sweeps) of the solve */
-    int unconverged;                /* solves that stopped at the limit above --tol */
+    int work;        /* shots (or Gauss-Seidel sweeps) of the solve */
+    int unconverged; /* solves that stopped at the limit above --tol */
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
-    double t_vertices, t_ply, t_lightmap, t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
-    double t_layout; /* --stats: cli_bake_prepare (the lightmap's charts, packing and samples; the probes' points),
+    double t_vertices, t_ply, t_lightmap,
+        t_probes; /* --stats: the outputs' stages (CSV, glTF: out_t's) */
+    double
+        t_layout; /* --stats: cli_bake_prepare (the lightmap's charts, packing and samples; the probes' points),
                       * between the meshing and the solve */
-    double landing;                 /* share of the emitted light reaching front faces, or -1 */
+    double landing; /* share of the emitted light reaching front faces, or -1 */
     out_t ot;
-    struct bake_state *bake;        /* bake.c: the polygons and the lightmap's atlas */
-    sc_light *lights;               /* --sun, --point, --spot, then the scene file's lights */
+    struct bake_state *bake; /* bake.c: the polygons and the lightmap's atlas */
+    sc_light *lights;        /* --sun, --point, --spot, then the scene file's lights */
     int nlights;
 } run_t;
 
@@ -180,13 +183,13 @@ void cli_free_opts(opts_t *o);
  * options' order (lights.c's table): sun DX,DY,DZ,R,G,B,ANGLE; point X,Y,Z,R,G,B; spot
  * X,Y,Z,DX,DY,DZ,R,G,B,ANGLE,SOFTNESS; sky R,G,B,HR,HG,HB,N; sky-hdr -,N,SCALE (the
  * file aside). An optional value left out is NAN (its default). */
-#define CLI_LIGHT_SUN 0
-#define CLI_LIGHT_POINT 1
-#define CLI_LIGHT_SPOT 2
-#define CLI_LIGHT_SKY 3
-#define CLI_LIGHT_SKY_HDR 4
+#define CLI_LIGHT_SUN        0
+#define CLI_LIGHT_POINT      1
+#define CLI_LIGHT_SPOT       2
+#define CLI_LIGHT_SKY        3
+#define CLI_LIGHT_SKY_HDR    4
 #define CLI_LIGHT_MAX_VALUES 11
-#define CLI_MAX_LIGHTS 65535 /* the core's count (rad_use_lights) */
+#define CLI_MAX_LIGHTS       65535 /* the core's count (rad_use_lights) */
 /* The count of KIND's values. */
 int cli_light_values(int kind);
 /* The first field of KIND whose values V break its rule (lights.c), or -1. */
@@ -213,16 +216,18 @@ int cli_set_camera(sc_camera *c, const double *v, int k);
 group_t *cli_find_group(group_t *g, int n, const char *name, size_t len);
 /* Called for each view line: the camera, the output name (a string inside TEXT) and
  * the line. Nonzero stops the parse: cli_views_parse fails with "NAME:LINE: " + WHY. */
-typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen);
+typedef int (*view_fn)(void *ctx, const sc_camera *cam, const char *out, int line, char *why,
+                       size_t whylen);
 /* --views: TEXT (LEN bytes, NUL after them, modified in place: output names point into
  * it) one view a line "EX EY EZ LX LY LZ [FOV] OUTPUT", '#' lines are comments to their
  * end. Returns the views, or -1 with "NAME:LINE: what" in err. */
-int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen);
+int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err,
+                    size_t errlen);
 /* --animate: TEXT as above, a frame a line "EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...]",
  * intensities starting from the groups' own. *FRAMES is malloc'd (cli_frames_free). Returns
  * the frames (at least one), or -1 with err and nothing to free. */
-int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
-                 char *err, size_t errlen);
+int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups,
+                     frame_t **frames, char *err, size_t errlen);
 void cli_frames_free(frame_t *frames, int n);
 
 /* ---- outputs.c ---- */
@@ -242,13 +247,15 @@ void cli_check_outputs(const opts_t *o);
 void cli_check_group_outputs(const opts_t *o);
 /* Renders CAM and writes PATH (NULL: only render, to fix the exposure). One exposure
  * for every output, from the first view rendered (or --exposure), so views match. */
-int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot);
+int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path,
+                    int ambient, out_t *ot);
 /* Renders every view and frame once, small, before the solve: a camera the core refuses
  * (too far, too narrow for the image's shape) fails now, not after it. 0 or -1. */
 int cli_check_cameras(sc_solver *s, const opts_t *o);
 /* --dump-radiosity: a row per element, the radiosities from sc_shade_elements (the
  * ambient term computed once); its time added to OT's t_csv. 0 or -1 (said). */
-int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot);
+int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient,
+                  const sc_stats *st, out_t *ot);
 /* --export-gltf: the .glb of the input's meshes (sc_export_gltf_lightmap, with the
  * lightmap LM or NULL); WARN gets the writer's warnings; its time added to t_gltf.
  * 0 or -1 (said). */
@@ -258,8 +265,8 @@ void cli_print_export_stats(const opts_t *o, const out_t *ot);
 /* --export-ply: the meshed scene, its vertex colours from sc_vertex_colours (gathered
  * with FG when --gather is given), 8-bit sRGB at EXPOSURE, or with LINEAR (--ply-linear)
  * binary float radiosity, welded vertices and normals (tools/formats/ply.h). 0 or -1. */
-int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
-              const sc_stats *st);
+int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear,
+                  double exposure, const sc_stats *st);
 
 /* ---- balance.c ---- */
 /* The power-weighted share of the emitters' light that their hemi-cubes land on front

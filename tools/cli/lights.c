@@ -23,9 +23,9 @@
 enum { ANY, NONNEG, NONZERO, RANGE, RANGE_OPEN, WHOLE, POSITIVE, FILENAME };
 
 typedef struct {
-    const char *key;  /* its name in a --lights file */
-    int count;        /* its numbers (1 or 3; FILENAME: 1, a string) */
-    int optional;     /* left out: NAN in the values (light_make's default) */
+    const char *key; /* its name in a --lights file */
+    int count;       /* its numbers (1 or 3; FILENAME: 1, a string) */
+    int optional;    /* left out: NAN in the values (light_make's default) */
     int check;
     double lo, hi;    /* RANGE: [lo, hi]; RANGE_OPEN: (lo, hi]; WHOLE: an integer in [lo, hi] */
     const char *says; /* what it wants, for messages */
@@ -38,27 +38,37 @@ typedef struct {
 } kind_t;
 
 static const kind_t kinds[] = {
-    [CLI_LIGHT_SUN] = {"sun", 3,
-                       {{"direction", 3, 0, NONZERO, 0, 0, "the way the light travels, not zero"},
-                        {"irradiance", 3, 0, NONNEG, 0, 0, "the irradiance on a plane facing it, each >= 0"},
-                        {"angle", 1, 1, RANGE, 0, 14, "the sun's angular radius in degrees, 0..14"}}},
-    [CLI_LIGHT_POINT] = {"point", 2,
+    [CLI_LIGHT_SUN] =
+        {"sun",
+         3,
+         {{"direction", 3, 0, NONZERO, 0, 0, "the way the light travels, not zero"},
+          {"irradiance", 3, 0, NONNEG, 0, 0, "the irradiance on a plane facing it, each >= 0"},
+          {"angle", 1, 1, RANGE, 0, 14, "the sun's angular radius in degrees, 0..14"}}},
+    [CLI_LIGHT_POINT] = {"point",
+                         2,
                          {{"position", 3, 0, ANY, 0, 0, "a point"},
-                          {"intensity", 3, 0, NONNEG, 0, 0, "the intensity per steradian, each >= 0"}}},
-    [CLI_LIGHT_SPOT] = {"spot", 5,
-                        {{"position", 3, 0, ANY, 0, 0, "a point"},
-                         {"direction", 3, 0, NONZERO, 0, 0, "the way it points, not zero"},
-                         {"intensity", 3, 0, NONNEG, 0, 0, "the intensity per steradian, each >= 0"},
-                         {"angle", 1, 0, RANGE_OPEN, 0, 180, "the cone's half angle in degrees, in (0, 180]"},
-                         {"softness", 1, 1, RANGE, 0, 1, "the share of the angle that fades, 0..1"}}},
-    [CLI_LIGHT_SKY] = {"sky", 3,
+                          {"intensity", 3, 0, NONNEG, 0, 0,
+                           "the intensity per steradian, each >= 0"}}},
+    [CLI_LIGHT_SPOT] =
+        {"spot",
+         5,
+         {{"position", 3, 0, ANY, 0, 0, "a point"},
+          {"direction", 3, 0, NONZERO, 0, 0, "the way it points, not zero"},
+          {"intensity", 3, 0, NONNEG, 0, 0, "the intensity per steradian, each >= 0"},
+          {"angle", 1, 0, RANGE_OPEN, 0, 180, "the cone's half angle in degrees, in (0, 180]"},
+          {"softness", 1, 1, RANGE, 0, 1, "the share of the angle that fades, 0..1"}}},
+    [CLI_LIGHT_SKY] = {"sky",
+                       3,
                        {{"radiance", 3, 0, NONNEG, 0, 0, "the zenith's radiance, each >= 0"},
                         {"horizon", 3, 1, NONNEG, 0, 0, "the horizon's radiance, each >= 0"},
-                        {"directions", 1, 1, WHOLE, 3, SKY_MAP_MAX_DIRS, "a whole number of directions, 3..768"}}},
-    [CLI_LIGHT_SKY_HDR] = {"sky-hdr", 3,
-                           {{"file", 1, 0, FILENAME, 0, 0, "a Radiance .hdr file's name"},
-                            {"directions", 1, 1, WHOLE, 3, SKY_MAP_MAX_DIRS, "a whole number of directions, 3..768"},
-                            {"scale", 1, 1, POSITIVE, 0, 0, "a factor on the map's radiance, > 0"}}},
+                        {"directions", 1, 1, WHOLE, 3, SKY_MAP_MAX_DIRS,
+                         "a whole number of directions, 3..768"}}},
+    [CLI_LIGHT_SKY_HDR] =
+        {"sky-hdr",
+         3,
+         {{"file", 1, 0, FILENAME, 0, 0, "a Radiance .hdr file's name"},
+          {"directions", 1, 1, WHOLE, 3, SKY_MAP_MAX_DIRS, "a whole number of directions, 3..768"},
+          {"scale", 1, 1, POSITIVE, 0, 0, "a factor on the map's radiance, > 0"}}},
 };
 #define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
 
@@ -78,11 +88,21 @@ static int value_ok(const field_t *f, const double *v)
         if (!isfinite(v[a])) return 0;
         if (v[a] != 0) zero = 0;
         switch (f->check) {
-        case NONNEG: if (!(v[a] >= 0)) return 0; break;
-        case RANGE: if (!(v[a] >= f->lo && v[a] <= f->hi)) return 0; break;
-        case RANGE_OPEN: if (!(v[a] > f->lo && v[a] <= f->hi)) return 0; break;
-        case WHOLE: if (!(v[a] >= f->lo && v[a] <= f->hi && v[a] == floor(v[a]))) return 0; break;
-        case POSITIVE: if (!(v[a] > 0)) return 0; break;
+        case NONNEG:
+            if (!(v[a] >= 0)) return 0;
+            break;
+        case RANGE:
+            if (!(v[a] >= f->lo && v[a] <= f->hi)) return 0;
+            break;
+        case RANGE_OPEN:
+            if (!(v[a] > f->lo && v[a] <= f->hi)) return 0;
+            break;
+        case WHOLE:
+            if (!(v[a] >= f->lo && v[a] <= f->hi && v[a] == floor(v[a]))) return 0;
+            break;
+        case POSITIVE:
+            if (!(v[a] > 0)) return 0;
+            break;
         default: break;
         }
     }
@@ -104,7 +124,8 @@ sc_light *cli_new_light(opts_t *o)
     if (o->nlights == o->max_lights) {
         int cap = o->max_lights ? 2 * o->max_lights : 16;
         sc_light *l;
-        if (o->nlights >= CLI_MAX_LIGHTS) cli_die_usage("more lights than rad_cli takes (65535 in all)", NULL);
+        if (o->nlights >= CLI_MAX_LIGHTS)
+            cli_die_usage("more lights than rad_cli takes (65535 in all)", NULL);
         l = realloc(o->lights, (size_t)cap * sizeof *l);
         if (!l) {
             fprintf(stderr, PROG ": out of memory\n");
@@ -205,15 +226,19 @@ typedef struct {
 } reader_t;
 
 /* Member M (of entry I) as field F's values into V. 0 after an error. */
-static int member_values(const reader_t *rd, int i, const field_t *f, const json_value *m, double *v)
+static int member_values(const reader_t *rd, int i, const field_t *f, const json_value *m,
+                         double *v)
 {
     int a;
     if (f->check == FILENAME) {
         size_t c = 0;
         while (m->type == JSON_STRING && c < m->len && (unsigned char)m->string[c] >= 0x20) c++;
         if (m->type == JSON_STRING && m->len > 0 && c == m->len) return 1;
-        json_error(rd->doc, m->at, rd->err, rd->errlen, "lights[%d].%s: wants %s, found %s", i, f->key, f->says,
-                   m->type != JSON_STRING ? json_type_name(m->type) : m->len ? "a control character in it" : "an empty string");
+        json_error(rd->doc, m->at, rd->err, rd->errlen, "lights[%d].%s: wants %s, found %s", i,
+                   f->key, f->says,
+                   m->type != JSON_STRING ? json_type_name(m->type)
+                   : m->len               ? "a control character in it"
+                                          : "an empty string");
         return 0;
     }
     if (f->count == 1 && m->type == JSON_NUMBER) {
@@ -223,14 +248,16 @@ static int member_values(const reader_t *rd, int i, const field_t *f, const json
     if (f->count == 3 && m->type == JSON_ARRAY && m->n == 3) {
         for (a = 0; a < 3 && m->items[a].type == JSON_NUMBER; a++) v[a] = m->items[a].number;
         if (a == 3) return 1;
-        json_error(rd->doc, m->items[a].at, rd->err, rd->errlen, "lights[%d].%s[%d]: wants a number, found %s", i,
-                   f->key, a, json_type_name(m->items[a].type));
+        json_error(rd->doc, m->items[a].at, rd->err, rd->errlen,
+                   "lights[%d].%s[%d]: wants a number, found %s", i, f->key, a,
+                   json_type_name(m->items[a].type));
     } else if (f->count == 3 && m->type == JSON_ARRAY) {
-        json_error(rd->doc, m->at, rd->err, rd->errlen, "lights[%d].%s: wants an array of 3 numbers, found %zu items",
-                   i, f->key, m->n);
+        json_error(rd->doc, m->at, rd->err, rd->errlen,
+                   "lights[%d].%s: wants an array of 3 numbers, found %zu items", i, f->key, m->n);
     } else {
-        json_error(rd->doc, m->at, rd->err, rd->errlen, "lights[%d].%s: wants %s, found %s", i, f->key,
-                   f->count == 1 ? "a number" : "an array of 3 numbers", json_type_name(m->type));
+        json_error(rd->doc, m->at, rd->err, rd->errlen, "lights[%d].%s: wants %s, found %s", i,
+                   f->key, f->count == 1 ? "a number" : "an array of 3 numbers",
+                   json_type_name(m->type));
     }
     return 0;
 }
@@ -256,25 +283,31 @@ static int read_entry(opts_t *o, const reader_t *rd, const char *path, int i, co
     int kind, f, off, bad;
     char names[160], name[72];
     if (e->type != JSON_OBJECT) {
-        json_error(rd->doc, e->at, rd->err, rd->errlen, "lights[%d]: wants an object, found %s", i, json_type_name(e->type));
+        json_error(rd->doc, e->at, rd->err, rd->errlen, "lights[%d]: wants an object, found %s", i,
+                   json_type_name(e->type));
         return 0;
     }
-    for (kind = 0; t && t->type == JSON_STRING && kind < NKINDS && strcmp(t->string, kinds[kind].type); kind++) continue;
+    for (kind = 0;
+         t && t->type == JSON_STRING && kind < NKINDS && strcmp(t->string, kinds[kind].type);
+         kind++)
+        continue;
     if (!t || t->type != JSON_STRING || kind == NKINDS) {
         json_error(rd->doc, t ? t->at : e->at, rd->err, rd->errlen,
-                   "lights[%d].type: wants \"sun\", \"point\", \"spot\", \"sky\" or \"sky-hdr\"%s", i,
-                   t ? "" : " (missing)");
+                   "lights[%d].type: wants \"sun\", \"point\", \"spot\", \"sky\" or \"sky-hdr\"%s",
+                   i, t ? "" : " (missing)");
         return 0;
     }
     k = &kinds[kind];
     for (m = 0; m < e->n; m++) {
         const json_value *x = &e->items[m];
         if (x == t) continue;
-        for (f = 0, off = 0; f < k->nfields && strcmp(x->key, k->f[f].key); f++) off += k->f[f].count;
+        for (f = 0, off = 0; f < k->nfields && strcmp(x->key, k->f[f].key); f++)
+            off += k->f[f].count;
         if (f == k->nfields) {
             field_names(k, names, sizeof names);
-            json_error(rd->doc, x->key_at, rd->err, rd->errlen, "lights[%d]: a %s has no \"%s\" (it takes %s)", i,
-                       k->type, json_quote(x->key, name, sizeof name), names);
+            json_error(rd->doc, x->key_at, rd->err, rd->errlen,
+                       "lights[%d]: a %s has no \"%s\" (it takes %s)", i, k->type,
+                       json_quote(x->key, name, sizeof name), names);
             return 0;
         }
         if (!member_values(rd, i, &k->f[f], x, v + off)) return 0;
@@ -284,16 +317,16 @@ static int read_entry(opts_t *o, const reader_t *rd, const char *path, int i, co
     for (f = 0, off = 0; f < k->nfields; off += k->f[f].count, f++) {
         if (where[f]) continue;
         if (!k->f[f].optional) {
-            json_error(rd->doc, e->at, rd->err, rd->errlen, "lights[%d]: a %s wants \"%s\" (%s)", i, k->type,
-                       k->f[f].key, k->f[f].says);
+            json_error(rd->doc, e->at, rd->err, rd->errlen, "lights[%d]: a %s wants \"%s\" (%s)", i,
+                       k->type, k->f[f].key, k->f[f].says);
             return 0;
         }
         for (m = 0; m < (size_t)k->f[f].count; m++) v[off + (int)m] = NAN;
     }
     bad = cli_light_check(kind, v);
     if (bad >= 0) {
-        json_error(rd->doc, where[bad]->at, rd->err, rd->errlen, "lights[%d].%s: wants %s", i, k->f[bad].key,
-                   k->f[bad].says);
+        json_error(rd->doc, where[bad]->at, rd->err, rd->errlen, "lights[%d].%s: wants %s", i,
+                   k->f[bad].key, k->f[bad].says);
         return 0;
     }
     if (kind != CLI_LIGHT_SKY_HDR) {
@@ -302,10 +335,12 @@ static int read_entry(opts_t *o, const reader_t *rd, const char *path, int i, co
     }
     {
         char *map = beside(path, file->string), why[1024];
-        int rc = map ? cli_add_sky_map(o, map, isnan(v[1]) ? 0 : (int)v[1], isnan(v[2]) ? 1.0 : v[2], why, sizeof why)
+        int rc = map ? cli_add_sky_map(o, map, isnan(v[1]) ? 0 : (int)v[1],
+                                       isnan(v[2]) ? 1.0 : v[2], why, sizeof why)
                      : -1;
         if (rc < 0)
-            json_error(rd->doc, file->at, rd->err, rd->errlen, "lights[%d].file: %s", i, map ? why : "out of memory");
+            json_error(rd->doc, file->at, rd->err, rd->errlen, "lights[%d].file: %s", i,
+                       map ? why : "out of memory");
         free(map);
         return rc == 0;
     }
@@ -336,13 +371,15 @@ int cli_read_lights(opts_t *o, const char *path, char *err, size_t errlen)
     } else if (doc.root.n != (list ? 1u : 0u) || !list) {
         for (i = 0; i < doc.root.n && !strcmp(doc.root.items[i].key, "lights"); i++) continue;
         if (i < doc.root.n)
-            json_error(&doc, doc.root.items[i].key_at, err, errlen, "an unknown name \"%s\" (the file holds \"lights\")",
+            json_error(&doc, doc.root.items[i].key_at, err, errlen,
+                       "an unknown name \"%s\" (the file holds \"lights\")",
                        json_quote(doc.root.items[i].key, names, sizeof names));
         else
             json_error(&doc, doc.root.at, err, errlen, "\"lights\" is missing");
         ok = 0;
     } else if (list->type != JSON_ARRAY) {
-        json_error(&doc, list->at, err, errlen, "lights: wants an array of lights, found %s", json_type_name(list->type));
+        json_error(&doc, list->at, err, errlen, "lights: wants an array of lights, found %s",
+                   json_type_name(list->type));
         ok = 0;
     }
     for (i = 0; ok && i < list->n; i++) ok = read_entry(o, &rd, path, (int)i, &list->items[i]);

@@ -131,7 +131,8 @@ static int gcd(int a, int b)
 
 /* CAM at the shape of the run's images (their sides divided by their gcd, or at full
  * size when that is still large: the core's checks depend on the aspect). */
-static int try_camera(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *name, float *buf)
+static int try_camera(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *name,
+                      float *buf)
 {
     char err[1024];
     int g = gcd(o->width, o->height), w = o->width / g, h = o->height / g;
@@ -151,7 +152,8 @@ int cli_check_cameras(sc_solver *s, const opts_t *o)
     float *buf = malloc((size_t)o->width * o->height * 3 * sizeof *buf);
     int i, rc = buf ? 0 : -1;
     if (!buf) fprintf(stderr, PROG ": out of memory\n");
-    for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++) rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
+    for (i = 0; rc == 0 && !o->animate && i < o->nviews; i++)
+        rc = try_camera(s, o, &o->views[i].cam, o->views[i].out, buf);
     for (i = 0; rc == 0 && o->animate && i < o->nframes; i++) {
         char *path = cli_frame_name(o, i);
         rc = try_camera(s, o, &o->frames[i].cam, path, buf);
@@ -161,7 +163,8 @@ int cli_check_cameras(sc_solver *s, const opts_t *o)
     return rc;
 }
 
-int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path, int ambient, out_t *ot)
+int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const char *path,
+                    int ambient, out_t *ot)
 {
     char err[1024];
     double t1 = host_now();
@@ -171,12 +174,16 @@ int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const c
         progress_t pg;
         progress_begin(&pg, "gathering the view", o->quiet);
         sc_fgather_progress(ot->fg, progress_fraction, &pg);
-        rc = sc_fgather_render(ot->fg, cam, o->width, o->height, ot->img, &ot->gathers, err, sizeof err);
+        rc = sc_fgather_render(ot->fg, cam, o->width, o->height, ot->img, &ot->gathers, err,
+                               sizeof err);
         sc_fgather_progress(ot->fg, NULL, NULL);
         progress_end(&pg);
-        if (rc == 0 && ot->maps) rc = sc_texture_detail(s, ot->sc, ot->maps, cam, o->width, o->height, ot->img, err, sizeof err);
+        if (rc == 0 && ot->maps)
+            rc = sc_texture_detail(s, ot->sc, ot->maps, cam, o->width, o->height, ot->img, err,
+                                   sizeof err);
     } else if (ot->maps) {
-        rc = sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
+        rc = sc_render_textured(s, ot->sc, ot->maps, cam, ambient, o->width, o->height, ot->img,
+                                err, sizeof err);
     } else {
         rc = sc_render(s, cam, ambient, o->width, o->height, ot->img, err, sizeof err);
     }
@@ -184,7 +191,8 @@ int cli_render_view(sc_solver *s, const opts_t *o, const sc_camera *cam, const c
         fprintf(stderr, PROG ": %s: %s\n", path ? path : o->views[0].out, err);
         return -1;
     }
-    if (ot->exposure <= 0) ot->exposure = o->exposure > 0 ? o->exposure : tonemap_auto_exposure(ot->img, npix);
+    if (ot->exposure <= 0)
+        ot->exposure = o->exposure > 0 ? o->exposure : tonemap_auto_exposure(ot->img, npix);
     tonemap(ot->img, npix, ot->exposure, ot->rgb8);
     ot->t_render += host_now() - t1;
     t1 = host_now();
@@ -206,7 +214,8 @@ static unsigned long ambient_terms(sc_solver *s)
 }
 
 /* The rows, the radiosities from sc_shade_elements (RGB, 3 an element). */
-static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, const double *rgb, const sc_stats *st)
+static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, const double *rgb,
+                     const sc_stats *st)
 {
     int e;
     fprintf(f, "element,surface,material,area,cx,cy,cz,r,g,b\n");
@@ -217,8 +226,8 @@ static void csv_rows(FILE *f, sc_solver *s, const obj_scene *sc, const double *r
         sc_element_centroid(s, e, c);
         fprintf(f, "%d,%d,\"", e, tag);
         for (q = name; *q; q++) fprintf(f, *q == '"' ? "\"\"" : "%c", *q);
-        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1], c[2], rgb[3 * e],
-                rgb[3 * e + 1], rgb[3 * e + 2]);
+        fprintf(f, "\",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", sc_element_area(s, e), c[0], c[1],
+                c[2], rgb[3 * e], rgb[3 * e + 1], rgb[3 * e + 2]);
     }
 }
 
@@ -245,7 +254,8 @@ static int out_commit(fio_out *fo)
     return 0;
 }
 
-int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient, const sc_stats *st, out_t *ot)
+int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambient,
+                  const sc_stats *st, out_t *ot)
 {
     double t = host_now();
     unsigned long before = ambient_terms(s);
@@ -253,7 +263,8 @@ int cli_write_csv(const char *path, sc_solver *s, const obj_scene *sc, int ambie
     FILE *f;
     double *rgb = malloc(((size_t)st->elements + 1) * 3 * sizeof *rgb);
     int rc = -1;
-    if (!rgb || sc_shade_elements(s, ambient, rgb) != 0) fprintf(stderr, PROG ": %s: out of memory\n", path);
+    if (!rgb || sc_shade_elements(s, ambient, rgb) != 0)
+        fprintf(stderr, PROG ": %s: out of memory\n", path);
     else if ((f = out_open(path, &fo)) != NULL) {
         csv_rows(f, s, sc, rgb, st);
         rc = out_commit(fo);
@@ -271,8 +282,9 @@ int cli_write_gltf(run_t *r, const lm_atlas *lm, gltf_warn_fn warn)
     unsigned long before = ambient_terms(r->s);
     int rc;
     progress_begin(&pg, "writing glTF", r->o->quiet);
-    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm, &r->ot.gltf_scale,
-                                 r->o->gltf, warn, (void *)r->o, progress_fraction, &pg, err, sizeof err);
+    rc = sc_export_gltf_lightmap(r->s, &r->sc, r->polys, r->npolys, r->ot.maps, r->ot.fg, lm,
+                                 &r->ot.gltf_scale, r->o->gltf, warn, (void *)r->o,
+                                 progress_fraction, &pg, err, sizeof err);
     if (rc < 0) fprintf(stderr, PROG ": %s\n", err);
     r->ot.t_gltf += progress_end(&pg);
     r->ot.export_ambient += ambient_terms(r->s) - before;
@@ -289,15 +301,16 @@ void cli_print_export_stats(const opts_t *o, const out_t *ot)
 
 /* The vertex colours are sc_vertex_colours': each core vertex's radiosity (Gouraud), or
  * gathered with FG. */
-int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear, double exposure,
-              const sc_stats *st)
+int cli_write_ply(const char *path, sc_solver *s, sc_fgather *fg, int ambient, int linear,
+                  double exposure, const sc_stats *st)
 {
     char err[1024];
     int rc = -1;
     double *rgb = malloc((size_t)(st->vertices ? st->vertices : 1) * 3 * sizeof *rgb);
-    if (!rgb || sc_vertex_colours(s, fg, ambient, rgb) < 0) fprintf(stderr, PROG ": out of memory\n");
-    else if ((rc = sc_export_ply(s, rgb, path, linear ? PLY_BINARY_LINEAR : PLY_ASCII_SRGB, exposure, err,
-                                 sizeof err)) < 0)
+    if (!rgb || sc_vertex_colours(s, fg, ambient, rgb) < 0)
+        fprintf(stderr, PROG ": out of memory\n");
+    else if ((rc = sc_export_ply(s, rgb, path, linear ? PLY_BINARY_LINEAR : PLY_ASCII_SRGB,
+                                 exposure, err, sizeof err)) < 0)
         fprintf(stderr, PROG ": %s\n", err);
     free(rgb);
     return rc < 0 ? -1 : 0;

@@ -20,7 +20,7 @@ typedef struct {
                        replaced); FILE_OLD: a regular file (dev, ino); FILE_NEW: none yet (real) */
     dev_t dev;
     ino_t ino;
-    char *real;     /* fio_resolve(path) of a file not yet written */
+    char *real; /* fio_resolve(path) of a file not yet written */
 } named_t;
 
 enum { FILE_NONE, FILE_OLD, FILE_NEW };
@@ -88,13 +88,15 @@ static void inputs(const opts_t *o, const obj_scene *sc, list_t *in)
     for (i = 0; i < sc->nlibs; i++) add(in, sc->libs[i], NULL, "the scene's material library");
     for (i = 0; i < sc->nmaterials; i++)
         if (sc->materials[i].map_kd.path)
-            add(in, sc->materials[i].map_kd.path, NULL, "the texture of material '%.60s' (%.60s:%d)",
-                sc->materials[i].name, sc->materials[i].map_kd.mtl, sc->materials[i].map_kd.line);
+            add(in, sc->materials[i].map_kd.path, NULL,
+                "the texture of material '%.60s' (%.60s:%d)", sc->materials[i].name,
+                sc->materials[i].map_kd.mtl, sc->materials[i].map_kd.line);
     add(in, o->views_file, NULL, "the --views file");
     add(in, o->animate, NULL, "the --animate file");
     add(in, o->probe_file, NULL, "the --probe-file");
     add(in, o->load_ff, NULL, "the --load-ff file");
-    for (i = 0; i < o->nlight_files; i++) add(in, o->light_files[i], NULL, "a --lights or --sky-hdr file");
+    for (i = 0; i < o->nlight_files; i++)
+        add(in, o->light_files[i], NULL, "a --lights or --sky-hdr file");
 }
 
 static void outputs(const opts_t *o, list_t *out)
@@ -102,15 +104,19 @@ static void outputs(const opts_t *o, list_t *out)
     int i, g;
     for (i = 0; !o->animate && !o->each_group && i < o->nviews; i++) {
         const view_t *v = &o->views[i];
-        if (v->line) add(out, v->out, NULL, "the image of %.100s:%d (--views)", o->views_file, v->line);
-        else if (v->out == o->default_out) add(out, v->out, NULL, "the default image (the scene's name + .png; -o sets it)");
-        else add(out, v->out, NULL, "the image of -o");
+        if (v->line)
+            add(out, v->out, NULL, "the image of %.100s:%d (--views)", o->views_file, v->line);
+        else if (v->out == o->default_out)
+            add(out, v->out, NULL, "the default image (the scene's name + .png; -o sets it)");
+        else
+            add(out, v->out, NULL, "the image of -o");
     }
-    for (i = 0; o->animate && i < o->nframes; i++) add(out, NULL, cli_frame_name(o, i), "frame %d of --animate (-o's name + _%04d)", i, i);
+    for (i = 0; o->animate && i < o->nframes; i++)
+        add(out, NULL, cli_frame_name(o, i), "frame %d of --animate (-o's name + _%04d)", i, i);
     for (g = 0; o->each_group && g < o->ngroups; g++)
         for (i = 0; i < o->nviews; i++)
-            add(out, NULL, cli_insert_name(o->views[i].out, ".", o->groups[g].name), "the image of group %s (--each-group)",
-                o->groups[g].name);
+            add(out, NULL, cli_insert_name(o->views[i].out, ".", o->groups[g].name),
+                "the image of group %s (--each-group)", o->groups[g].name);
     add(out, o->ply, NULL, "--export-ply");
     add(out, o->csv, NULL, "--dump-radiosity");
     add(out, o->gltf, NULL, "--export-gltf");
@@ -133,14 +139,16 @@ int cli_check_collisions(const opts_t *o, const obj_scene *sc)
         const named_t *a = &out.v[i];
         for (j = 0; rc == 0 && j < in.n; j++)
             if (same(a, &in.v[j])) {
-                fprintf(stderr, PROG ": %s: %s would write over %s %s (the same file): give it another name\n", a->path,
-                        a->what, in.v[j].what, in.v[j].path);
+                fprintf(stderr,
+                        PROG
+                        ": %s: %s would write over %s %s (the same file): give it another name\n",
+                        a->path, a->what, in.v[j].what, in.v[j].path);
                 rc = -1;
             }
         for (j = 0; rc == 0 && j < i; j++)
             if (same(a, &out.v[j])) {
-                fprintf(stderr, PROG ": %s: %s and %s write the same file: give one another name\n", a->path,
-                        out.v[j].what, a->what);
+                fprintf(stderr, PROG ": %s: %s and %s write the same file: give one another name\n",
+                        a->path, out.v[j].what, a->what);
                 rc = -1;
             }
     }

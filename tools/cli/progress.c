@@ -11,7 +11,7 @@
 
 #define TTY_EVERY 0.1  /* s between a terminal's redraws */
 #define LOG_EVERY 10.0 /* s at most between a log's lines */
-#define BAR 30
+#define BAR       30
 
 void progress_begin(progress_t *p, const char *what, int quiet)
 {
@@ -41,10 +41,12 @@ void progress_update(progress_t *p, double frac, const char *detail)
     if (!detail) detail = "";
     if (p->tty) {
         int bar = (int)(BAR * frac);
-        fprintf(stderr, "\r%s [%.*s%*s] %3.0f%%  %s%s%.1f s%s ", p->what, bar, "##############################",
-                BAR - bar, "", 100 * frac, detail, *detail ? "  " : "", run, eta);
+        fprintf(stderr, "\r%s [%.*s%*s] %3.0f%%  %s%s%.1f s%s ", p->what, bar,
+                "##############################", BAR - bar, "", 100 * frac, detail,
+                *detail ? "  " : "", run, eta);
     } else {
-        fprintf(stderr, PROG ": %s %.0f%%  %s%s%.1f s%s\n", p->what, 100 * frac, detail, *detail ? "  " : "", run, eta);
+        fprintf(stderr, PROG ": %s %.0f%%  %s%s%.1f s%s\n", p->what, 100 * frac, detail,
+                *detail ? "  " : "", run, eta);
     }
     p->last = t;
     p->tenth = tenth;

@@ -38,8 +38,8 @@ static void poly_warning(void *ctx, int line, const char *msg)
 static void glue_warning(void *ctx, int tag, const char *msg)
 {
     const run_t *r = ctx;
-    fprintf(stderr, PROG ": warning: %s:%d: %s\n", r->o->scene, tag >= 0 && tag < r->sc.nfaces ? r->sc.faces[tag].line : 0,
-            msg);
+    fprintf(stderr, PROG ": warning: %s:%d: %s\n", r->o->scene,
+            tag >= 0 && tag < r->sc.nfaces ? r->sc.faces[tag].line : 0, msg);
 }
 
 static int apply_emit(const opts_t *o, obj_scene *sc)
@@ -57,7 +57,9 @@ static int apply_emit(const opts_t *o, obj_scene *sc)
         cli_parse_list(eq + 1, v, 3, 0);
         m = obj_find_material(sc, name);
         if (m < 0) {
-            fprintf(stderr, PROG ": %s: --emit: no material named '%s' (--list-materials shows them)\n", o->scene, name);
+            fprintf(stderr,
+                    PROG ": %s: --emit: no material named '%s' (--list-materials shows them)\n",
+                    o->scene, name);
             return -1;
         }
         memcpy(sc->materials[m].ke, v, sizeof v);
@@ -72,9 +74,12 @@ static int check_emissions(const opts_t *o, const obj_scene *sc)
     for (m = 0; m < sc->nmaterials; m++)
         for (c = 0; c < 3 && sc->materials[m].nfaces > 0; c++)
             if (sc->materials[m].ke[c] > CLI_EMIT_LIMIT) {
-                fprintf(stderr, PROG ": %s: material '%s': emission %g is above the limit of %g (the image would "
-                                "overflow); scale every emission down: radiosity is linear in it\n",
-                        o->scene, sc->materials[m].name, sc->materials[m].ke[c], CLI_EMIT_LIMIT);
+                fprintf(
+                    stderr,
+                    PROG
+                    ": %s: material '%s': emission %g is above the limit of %g (the image would "
+                    "overflow); scale every emission down: radiosity is linear in it\n",
+                    o->scene, sc->materials[m].name, sc->materials[m].ke[c], CLI_EMIT_LIMIT);
                 return -1;
             }
     return 0;
@@ -131,8 +136,8 @@ static int group_light(run_t *r, int g, int l, int *lof, const char *name)
 {
     const opts_t *o = r->o;
     if (lof[l] >= 0 && lof[l] != g) {
-        fprintf(stderr, PROG ": %s: --light-group %s: light '%s' is already in group '%s'\n", o->scene,
-                o->groups[g].name, name, o->groups[lof[l]].name);
+        fprintf(stderr, PROG ": %s: --light-group %s: light '%s' is already in group '%s'\n",
+                o->scene, o->groups[g].name, name, o->groups[lof[l]].name);
         return -1;
     }
     lof[l] = g;
@@ -157,8 +162,8 @@ static int group_materials(run_t *r, int g, int *of, int *lof)
         m = obj_find_material(sc, name);
         l = find_light(r, name);
         if (m >= 0 && l >= 0) {
-            fprintf(stderr, PROG ": %s: --light-group %s: '%s' names both a material and a light\n", o->scene,
-                    o->groups[g].name, name);
+            fprintf(stderr, PROG ": %s: --light-group %s: '%s' names both a material and a light\n",
+                    o->scene, o->groups[g].name, name);
             return -1;
         }
         if (l >= 0) {
@@ -168,20 +173,25 @@ static int group_materials(run_t *r, int g, int *of, int *lof)
             continue;
         }
         if (m < 0) {
-            fprintf(stderr, PROG ": %s: --light-group %s: no material or light named '%s' (--list-materials shows "
-                            "the materials; lights are sun1, sky1, point1, spot1, ... in the order given, or a "
-                            "scene file light's name)\n",
-                    o->scene, o->groups[g].name, name);
+            fprintf(
+                stderr,
+                PROG
+                ": %s: --light-group %s: no material or light named '%s' (--list-materials shows "
+                "the materials; lights are sun1, sky1, point1, spot1, ... in the order given, or a "
+                "scene file light's name)\n",
+                o->scene, o->groups[g].name, name);
             return -1;
         }
         if (of[m] >= 0 && of[m] != g) {
-            fprintf(stderr, PROG ": %s: --light-group %s: material '%s' is already in group '%s'\n", o->scene,
-                    o->groups[g].name, name, o->groups[of[m]].name);
+            fprintf(stderr, PROG ": %s: --light-group %s: material '%s' is already in group '%s'\n",
+                    o->scene, o->groups[g].name, name, o->groups[of[m]].name);
             return -1;
         }
         of[m] = g;
         if (!emits(&sc->materials[m]) && !o->quiet)
-            fprintf(stderr, PROG ": warning: %s: --light-group %s: material '%s' emits no light (Ke 0 0 0; --emit sets it)\n",
+            fprintf(stderr,
+                    PROG ": warning: %s: --light-group %s: material '%s' emits no light (Ke 0 0 0; "
+                         "--emit sets it)\n",
                     o->scene, o->groups[g].name, name);
         p += len;
         if (*p == ',') p++;
@@ -196,11 +206,15 @@ static int other_intensity(run_t *r, int other)
     int i;
     for (i = 0; i < o->ngint; i++) {
         const char *eq = strrchr(o->gint[i], '=');
-        if ((size_t)(eq - o->gint[i]) != strlen(OTHER_GROUP) || strncmp(o->gint[i], OTHER_GROUP, strlen(OTHER_GROUP)) != 0)
+        if ((size_t)(eq - o->gint[i]) != strlen(OTHER_GROUP) ||
+            strncmp(o->gint[i], OTHER_GROUP, strlen(OTHER_GROUP)) != 0)
             continue;
         if (!other) {
-            fprintf(stderr, PROG ": %s: --group-intensity other: every emitting material is in a --light-group, "
-                            "so there is no group 'other'\n", o->scene);
+            fprintf(stderr,
+                    PROG
+                    ": %s: --group-intensity other: every emitting material is in a --light-group, "
+                    "so there is no group 'other'\n",
+                    o->scene);
             return -1;
         }
         cli_parse_list(eq + 1, o->groups[other - 1].k, 3, 0);
@@ -259,7 +273,8 @@ static int read_text(const char *path, char **text, size_t *len)
 
 /* A view of the --views file: its output under the current folder unless
  * --allow-outside-paths (a file from elsewhere must not write ~/.bashrc). */
-static int add_file_view(void *ctx, const sc_camera *cam, const char *out, int line, char *why, size_t whylen)
+static int add_file_view(void *ctx, const sc_camera *cam, const char *out, int line, char *why,
+                         size_t whylen)
 {
     opts_t *o = ctx;
     if (o->nviews >= MAX_VIEWS) {
@@ -267,7 +282,8 @@ static int add_file_view(void *ctx, const sc_camera *cam, const char *out, int l
         return 1;
     }
     if (!o->allow_outside && fio_within(".", out) == 0) {
-        snprintf(why, whylen, "%.300s is outside the current folder; --allow-outside-paths writes it", out);
+        snprintf(why, whylen,
+                 "%.300s is outside the current folder; --allow-outside-paths writes it", out);
         return 1;
     }
     cli_add_view(o, cam, out);
@@ -293,7 +309,8 @@ static int read_frames(opts_t *o)
     size_t len;
     int n;
     if (read_text(o->animate, &o->frames_text, &len) < 0) return -1;
-    n = cli_frames_parse(o->frames_text, len, o->animate, o->groups, o->ngroups, &o->frames, err, sizeof err);
+    n = cli_frames_parse(o->frames_text, len, o->animate, o->groups, o->ngroups, &o->frames, err,
+                         sizeof err);
     if (n < 0) {
         fprintf(stderr, PROG ": %s\n", err);
         return -1;
@@ -332,8 +349,9 @@ static int gather_lights(run_t *r)
     for (i = 0; i < nfile; i++) {
         const obj_light *l = &r->sc.lights[i];
         sc_light *d = &r->lights[r->nlights++];
-        d->type = l->type == OBJ_LIGHT_SUN ? RAD_LIGHT_SUN : l->type == OBJ_LIGHT_POINT ? RAD_LIGHT_POINT
-                                                                                       : RAD_LIGHT_SPOT;
+        d->type = l->type == OBJ_LIGHT_SUN     ? RAD_LIGHT_SUN
+                  : l->type == OBJ_LIGHT_POINT ? RAD_LIGHT_POINT
+                                               : RAD_LIGHT_SPOT;
         memcpy(d->pos, l->pos, sizeof d->pos);
         memcpy(d->dir, l->dir, sizeof d->dir);
         memcpy(d->rgb, l->rgb, sizeof d->rgb);
@@ -358,8 +376,11 @@ static int orient_faces(run_t *r)
     }
     n = polys_orient_by_normals(&r->sc, &area);
     if (n > 0 && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s: %d faces (%.1f%% of the area) were wound against their vn normals and were "
-                        "flipped (a face is lit on one side; --two-sided lights both)\n", o->scene, n, 100.0 * area);
+        fprintf(stderr,
+                PROG ": warning: %s: %d faces (%.1f%% of the area) were wound against their vn "
+                     "normals and were "
+                     "flipped (a face is lit on one side; --two-sided lights both)\n",
+                o->scene, n, 100.0 * area);
     return 0;
 }
 
@@ -394,9 +415,12 @@ static int load_step(run_t *r)
     for (i = 0; i < r->sc.nmaterials; i++)
         if (emits(&r->sc.materials[i])) emitters++;
     if (!emitters && !r->nlights && !o->quiet)
-        fprintf(stderr, PROG ": warning: %s: no material emits light (Ke), so the image is black; set one with "
-                        "--emit NAME=R,G,B (--list-materials shows them), or add --sun, --point or --spot\n",
-                o->scene);
+        fprintf(
+            stderr,
+            PROG
+            ": warning: %s: no material emits light (Ke), so the image is black; set one with "
+            "--emit NAME=R,G,B (--list-materials shows them), or add --sun, --point or --spot\n",
+            o->scene);
     if (r->groups_mode && resolve_groups(r) < 0) return -1;
     if (o->animate && read_frames(o) < 0) return -1;
     return 0;
@@ -470,9 +494,12 @@ static int check_face_count(const run_t *r)
     limit = sc_element_limit(&so);
     for (f = 0; f < r->sc.nfaces; f++)
         if (obj_face_area(&r->sc, &r->sc.faces[f]) > 0 && ++n > limit) {
-            fprintf(stderr, PROG ": %s:%d: face %ld with an area: more than the %ld elements the solver holds (each "
-                            "face is at least one element): simplify or split the scene\n", r->o->scene,
-                    r->sc.faces[f].line, n, limit);
+            fprintf(
+                stderr,
+                PROG
+                ": %s:%d: face %ld with an area: more than the %ld elements the solver holds (each "
+                "face is at least one element): simplify or split the scene\n",
+                r->o->scene, r->sc.faces[f].line, n, limit);
             return -1;
         }
     return 0;
@@ -534,7 +561,9 @@ static int render_frames(run_t *r)
         if (rc == 0) rc = cli_render_view(r->s, o, &o->frames[i].cam, path, r->ambient, &r->ot);
         free(path);
     }
-    if (rc == 0) rc = cli_mix_groups(r, r->sol, (const double(*)[3])r->ks, o->ngroups); /* for the CSV and PLY */
+    if (rc == 0)
+        rc = cli_mix_groups(r, r->sol, (const double(*)[3])r->ks,
+                            o->ngroups); /* for the CSV and PLY */
     return rc;
 }
 
@@ -544,7 +573,7 @@ static int render_each_group(run_t *r)
     const opts_t *o = r->o;
     int g, i, rc = cli_render_view(r->s, o, &o->views[0].cam, NULL, r->ambient, &r->ot);
     for (g = 0; rc == 0 && g < o->ngroups; g++) {
-        rc = cli_mix_groups(r, &r->sol[g], (const double(*)[3])&r->ks[g], 1);
+        rc = cli_mix_groups(r, &r->sol[g], (const double(*)[3]) & r->ks[g], 1);
         for (i = 0; rc == 0 && i < o->nviews; i++) {
             char *path = cli_insert_name(o->views[i].out, ".", o->groups[g].name);
             rc = cli_render_view(r->s, o, &o->views[i].cam, path, r->ambient, &r->ot);
@@ -580,20 +609,27 @@ static int output_step(run_t *r)
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }
-    if (o->gather_res && !(r->ot.fg = sc_fgather_new(r->s, r->polys, r->npolys, o->gather_res, o->threads, r->ambient))) {
+    if (o->gather_res && !(r->ot.fg = sc_fgather_new(r->s, r->polys, r->npolys, o->gather_res,
+                                                     o->threads, r->ambient))) {
         fprintf(stderr, PROG ": out of memory for the final gather\n");
         return -1;
     }
-    if (o->animate) rc = render_frames(r);
-    else if (o->each_group) rc = render_each_group(r);
+    if (o->animate)
+        rc = render_frames(r);
+    else if (o->each_group)
+        rc = render_each_group(r);
     else
-        for (i = 0; rc == 0 && i < o->nviews; i++) rc = cli_render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
+        for (i = 0; rc == 0 && i < o->nviews; i++)
+            rc = cli_render_view(r->s, o, &o->views[i].cam, o->views[i].out, r->ambient, &r->ot);
     if (rc == 0 && r->ot.fg && (o->ply || o->gltf)) rc = gather_vertices(r);
     if (rc == 0 && o->csv) rc = cli_write_csv(o->csv, r->s, &r->sc, r->ambient, &r->st, &r->ot);
     t = host_now();
-    if (rc == 0 && o->ply) rc = cli_write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure, &r->st);
+    if (rc == 0 && o->ply)
+        rc = cli_write_ply(o->ply, r->s, r->ot.fg, r->ambient, o->ply_linear, r->ot.exposure,
+                           &r->st);
     r->t_ply = host_now() - t;
-    if (rc == 0 && o->gltf && !o->lightmap) rc = cli_write_gltf(r, NULL, obj_warning); /* else after the bake */
+    if (rc == 0 && o->gltf && !o->lightmap)
+        rc = cli_write_gltf(r, NULL, obj_warning); /* else after the bake */
     return rc < 0 ? -1 : 0;
 }
 
@@ -606,19 +642,22 @@ static void print_rows_stats(const run_t *r)
     sc_rows_stats rst;
     int g;
     sc_get_rows_stats(r->s, &rst);
-    printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n", rst.rows,
-           o->load_ff ? "loaded from " : "computed", o->load_ff ? o->load_ff : "", rst.entries, rst.bytes,
-           rst.rows ? (double)rst.bytes / rst.rows : 0.0, o->save_ff ? "saved" : "not saved");
+    printf("form factor rows: %d %s%s, %lu entries, %zu bytes (%.0f bytes per patch), %s\n",
+           rst.rows, o->load_ff ? "loaded from " : "computed", o->load_ff ? o->load_ff : "",
+           rst.entries, rst.bytes, rst.rows ? (double)rst.bytes / rst.rows : 0.0,
+           o->save_ff ? "saved" : "not saved");
     printf("solve from rows: %s, %lu polygons rendered during the solve (%s)\n",
            o->gauss_seidel ? "gauss-seidel" : "shoot", st->raster_calls - r->raster_before_solve,
            r->nlights ? "the lights' direct shots: no hemi-cube" : "no hemi-cube");
     if (r->groups_mode) {
         printf("light groups %d:", o->ngroups);
         for (g = 0; g < o->ngroups; g++)
-            printf(" %s (%g,%g,%g)", o->groups[g].name, o->groups[g].k[0], o->groups[g].k[1], o->groups[g].k[2]);
+            printf(" %s (%g,%g,%g)", o->groups[g].name, o->groups[g].k[0], o->groups[g].k[1],
+                   o->groups[g].k[2]);
         printf("\n");
     }
-    if (o->gauss_seidel && rst.matrix_bytes) printf("gauss-seidel matrix %zu bytes\n", rst.matrix_bytes);
+    if (o->gauss_seidel && rst.matrix_bytes)
+        printf("gauss-seidel matrix %zu bytes\n", rst.matrix_bytes);
 }
 
 /* Every stage's time on one line: those of the outputs asked for after the views'. */
@@ -628,8 +667,8 @@ static void print_times(const run_t *r)
     printf("time: load %.3fs  mesh %.3fs", r->t_load - r->t0, r->t_mesh - r->t_load);
     if (r->rows_mode) printf("  rows %.3fs", r->t_rows);
     if (o->lightmap || o->probes || o->probe_file) printf("  layout %.3fs", r->t_layout);
-    printf("  solve %.3fs  render %.3fs  write %.3fs", r->t_solve - r->t_mesh - r->t_layout - r->t_rows,
-           r->ot.t_render, r->ot.t_write);
+    printf("  solve %.3fs  render %.3fs  write %.3fs",
+           r->t_solve - r->t_mesh - r->t_layout - r->t_rows, r->ot.t_render, r->ot.t_write);
     if (r->ot.fg && (o->ply || o->gltf)) printf("  vertex gathers %.3fs", r->t_vertices);
     if (o->csv) printf("  csv %.3fs", r->ot.t_csv);
     if (o->ply) printf("  ply %.3fs", r->t_ply);
@@ -643,23 +682,30 @@ static void print_stats(const run_t *r)
 {
     const opts_t *o = r->o;
     const sc_stats *st = &r->st;
-    printf("surfaces %d (split quads %d, skipped %d, reflectances clamped %d)\n", st->surfaces, st->split, st->skipped,
-           st->clamped);
+    printf("surfaces %d (split quads %d, skipped %d, reflectances clamped %d)\n", st->surfaces,
+           st->split, st->skipped, st->clamped);
     printf("patches %d  elements %d  vertices %d\n", st->patches, st->elements, st->vertices);
-    if (r->rows_mode && o->gauss_seidel) printf("shots 0  gauss-seidel sweeps %d  saturations %lu\n", r->work, st->saturations);
-    else printf("shots %d  unshot fraction %.6f  saturations %lu\n", r->rows_mode ? r->work : st->shots, st->unshot,
-                st->saturations);
-    printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls, st->raster_pixels);
+    if (r->rows_mode && o->gauss_seidel)
+        printf("shots 0  gauss-seidel sweeps %d  saturations %lu\n", r->work, st->saturations);
+    else
+        printf("shots %d  unshot fraction %.6f  saturations %lu\n",
+               r->rows_mode ? r->work : st->shots, st->unshot, st->saturations);
+    printf("hemi-cube: resolution %d, %lu polygons, %llu pixels\n", r->so.res, st->raster_calls,
+           st->raster_pixels);
     printf("overshoot back-offs %lu\n", st->backoffs);
-    if (r->ot.fg) printf("final gather: resolution %d, %ld pixel gathers\n", o->gather_res, r->ot.gathers);
-    printf("coarse shots %lu (below an unshot fraction of %g, down to res %d)\n", st->coarse_shots, r->so.coarse,
-           r->so.coarse_res);
+    if (r->ot.fg)
+        printf("final gather: resolution %d, %ld pixel gathers\n", o->gather_res, r->ot.gathers);
+    printf("coarse shots %lu (below an unshot fraction of %g, down to res %d)\n", st->coarse_shots,
+           r->so.coarse, r->so.coarse_res);
     if (r->rows_mode) print_rows_stats(r);
-    printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements, r->sc.nwarnings);
-    printf("exposure %.9g (%s%s)\n", r->ot.exposure, o->exposure > 0 ? "--exposure" : "automatic, from the first view",
+    printf("unknown statements skipped %ld, warnings %ld\n", r->sc.unknown_statements,
+           r->sc.nwarnings);
+    printf("exposure %.9g (%s%s)\n", r->ot.exposure,
+           o->exposure > 0 ? "--exposure" : "automatic, from the first view",
            o->ply && !o->ply_linear ? "; also --export-ply's sRGB colours" : "");
     if (r->landing >= 0)
-        printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back faces)\n",
+        printf("emitted light reaching front faces %.1f%% (the rest leaves the scene or meets back "
+               "faces)\n",
                100 * r->landing);
     print_times(r);
     cli_print_export_stats(o, &r->ot);
@@ -676,9 +722,14 @@ static void balance_step(run_t *r)
 {
     r->landing = cli_emitted_share_landing(r);
     if (r->landing >= 0 && r->landing < LANDING_WARN && !r->o->quiet)
-        fprintf(stderr, PROG ": warning: %s: only %.0f%% of the emitted light reaches a face from its front: the rest "
-                        "leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
-                        "counter-clockwise seen from their lit side)\n", r->o->scene, 100 * r->landing);
+        fprintf(
+            stderr,
+            PROG
+            ": warning: %s: only %.0f%% of the emitted light reaches a face from its front: the "
+            "rest "
+            "leaves the scene or meets faces seen from behind (radiosity is one-sided: wind faces "
+            "counter-clockwise seen from their lit side)\n",
+            r->o->scene, 100 * r->landing);
 }
 
 /* CLI_EXIT_WARNED with one line each when the solve stopped short or saturated. */
@@ -687,18 +738,28 @@ static int verdict(const run_t *r)
     const opts_t *o = r->o;
     int rc = CLI_EXIT_OK;
     if (r->unconverged && o->gauss_seidel) {
-        fprintf(stderr, PROG ": %s: not converged: Gauss-Seidel stopped at its sweep limit above --tol %g; the "
-                        "outputs show that partial solution (raise --tol)\n", o->scene, o->tol);
+        fprintf(stderr,
+                PROG
+                ": %s: not converged: Gauss-Seidel stopped at its sweep limit above --tol %g; the "
+                "outputs show that partial solution (raise --tol)\n",
+                o->scene, o->tol);
         rc = CLI_EXIT_WARNED;
     } else if (r->unconverged) {
-        fprintf(stderr, PROG ": %s: not converged: the unshot fraction is %g, above --tol %g, at --max-shots %d%s; "
-                        "the outputs show that partial solution (raise --max-shots or --tol)\n", o->scene,
-                r->st.unshot, o->tol, o->max_shots, r->groups_mode ? " (in a light group)" : "");
+        fprintf(
+            stderr,
+            PROG
+            ": %s: not converged: the unshot fraction is %g, above --tol %g, at --max-shots %d%s; "
+            "the outputs show that partial solution (raise --max-shots or --tol)\n",
+            o->scene, r->st.unshot, o->tol, o->max_shots,
+            r->groups_mode ? " (in a light group)" : "");
         rc = CLI_EXIT_WARNED;
     }
     if (r->st.saturations) {
-        fprintf(stderr, PROG ": %s: %lu values saturated at the core's range, so some radiosities are clipped "
-                        "(reflectances near 1 keep more light than it holds: lower them)\n", o->scene, r->st.saturations);
+        fprintf(stderr,
+                PROG
+                ": %s: %lu values saturated at the core's range, so some radiosities are clipped "
+                "(reflectances near 1 keep more light than it holds: lower them)\n",
+                o->scene, r->st.saturations);
         rc = CLI_EXIT_WARNED;
     }
     return rc;
@@ -740,7 +801,8 @@ static int views_step(opts_t *o)
         }
         cli_add_view(o, NULL, o->default_out);
     }
-    if ((o->probes || o->probe_file) && !o->probes_out && !(o->probes_out = o->probes_default = cli_probes_output(o->scene))) {
+    if ((o->probes || o->probe_file) && !o->probes_out &&
+        !(o->probes_out = o->probes_default = cli_probes_output(o->scene))) {
         fprintf(stderr, PROG ": out of memory\n");
         return -1;
     }

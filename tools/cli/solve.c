@@ -69,8 +69,10 @@ static void solve_shoot(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     int shots = -1;
-    if (o->batch >= 2) shots = sc_solve_batch(r->s, o->threads, o->batch, o->max_shots, o->tol, progress, pg);
-    else if (o->threads >= 2) shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, progress, pg);
+    if (o->batch >= 2)
+        shots = sc_solve_batch(r->s, o->threads, o->batch, o->max_shots, o->tol, progress, pg);
+    else if (o->threads >= 2)
+        shots = sc_solve_parallel(r->s, o->threads, o->max_shots, o->tol, progress, pg);
     if (shots < 0) shots = sc_solve(r->s, o->max_shots, o->tol, progress, pg);
     r->work = shots;
     check_converged(r, shots);
@@ -98,7 +100,8 @@ static int rows_step(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     char err[1024];
-    int rc = o->gauss_seidel && sc_gauss_seidel_check(r->s, err, sizeof err) < 0 ? -1 /* before any row */
+    int rc = o->gauss_seidel && sc_gauss_seidel_check(r->s, err, sizeof err) < 0
+                 ? -1 /* before any row */
              : o->load_ff ? sc_rows_load(r->s, o->load_ff, err, sizeof err)
                           : sc_rows_compute(r->s, rows_progress, pg, err, sizeof err);
     progress_end(&pg->p);
@@ -133,7 +136,8 @@ static int light_group(run_t *r, int g)
     for (m = 0; m < r->nlights; m++) {
         const sc_light *l = &r->lights[m];
         int lit = r->light_group_of[m] == g;
-        if (sc_set_light(r->s, m, lit ? l->rgb : dark, lit ? l->horizon : dark, err, sizeof err) < 0) {
+        if (sc_set_light(r->s, m, lit ? l->rgb : dark, lit ? l->horizon : dark, err, sizeof err) <
+            0) {
             fprintf(stderr, PROG ": %s: %s\n", r->o->scene, err);
             return -1;
         }
@@ -143,7 +147,8 @@ static int light_group(run_t *r, int g)
         if (r->group_of[m] < 0) continue;
         mm.sc = sc;
         mm.material = m;
-        if (sc_set_surfaces(r->s, polys_match_material, &mm, NULL, r->group_of[m] == g ? sc->materials[m].ke : dark, err,
+        if (sc_set_surfaces(r->s, polys_match_material, &mm, NULL,
+                            r->group_of[m] == g ? sc->materials[m].ke : dark, err,
                             sizeof err) < 0) {
             fprintf(stderr, PROG ": %s: %s: %s\n", r->o->scene, sc->materials[m].name, err);
             return -1;
@@ -191,8 +196,10 @@ int cli_solve_step(run_t *r)
         r->raster_before_solve = r->st.raster_calls;
         r->t_rows = host_now() - t0;
         progress_start(&pg, r->o, "solving");
-        if (!r->groups_mode) rc = (r->work = solve_rows(r, &pg)) < 0 ? -1 : 0;
-        else rc = solve_groups(r, &pg);
+        if (!r->groups_mode)
+            rc = (r->work = solve_rows(r, &pg)) < 0 ? -1 : 0;
+        else
+            rc = solve_groups(r, &pg);
     }
     progress_end(&pg.p);
     r->t_solve = host_now();

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SPACE " \t\r\v\f"
+#define SPACE         " \t\r\v\f"
 #define MAX_INTENSITY 32768.0 /* --group-intensity's bound: [0, 32768) */
 
 int cli_parse_list(const char *s, double *v, int n, int opt_last)
@@ -121,7 +121,8 @@ static int view_line(char *line, sc_camera *c, const char **out)
     return cli_set_camera(c, v, nt - 1);
 }
 
-int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err, size_t errlen)
+int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void *ctx, char *err,
+                    size_t errlen)
 {
     char *p = text, *line;
     int ln = 0, n = 0;
@@ -150,22 +151,25 @@ int cli_views_parse(char *text, size_t len, const char *name, view_fn add, void 
 }
 
 /* "GROUP=R,G,B" of a frame into its intensities K; 0 or -1 with err. */
-static int frame_intensity(const char *tok, const char *eq, group_t *groups, int ngroups, double (*k)[3],
-                           const char *where, char *err, size_t errlen)
+static int frame_intensity(const char *tok, const char *eq, group_t *groups, int ngroups,
+                           double (*k)[3], const char *where, char *err, size_t errlen)
 {
     group_t *gp = cli_find_group(groups, ngroups, tok, (size_t)(eq - tok));
     double v[3];
     if (!gp) {
         size_t used;
         int g;
-        used = (size_t)snprintf(err, errlen, "%s: no light group named '%.*s' (", where, (int)(eq - tok), tok);
+        used = (size_t)snprintf(err, errlen, "%s: no light group named '%.*s' (", where,
+                                (int)(eq - tok), tok);
         for (g = 0; g < ngroups && used < errlen; g++)
-            used += (size_t)snprintf(err + used, errlen - used, "%s%s", g ? ", " : "", groups[g].name);
-        if (used < errlen) snprintf(err + used, errlen - used, "%s)", ngroups ? "" : "the scene has no emitter");
+            used +=
+                (size_t)snprintf(err + used, errlen - used, "%s%s", g ? ", " : "", groups[g].name);
+        if (used < errlen)
+            snprintf(err + used, errlen - used, "%s)", ngroups ? "" : "the scene has no emitter");
         return -1;
     }
-    if (cli_parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) || v[0] >= MAX_INTENSITY ||
-        v[1] >= MAX_INTENSITY || v[2] >= MAX_INTENSITY) {
+    if (cli_parse_list(eq + 1, v, 3, 0) != 3 || !(v[0] >= 0 && v[1] >= 0 && v[2] >= 0) ||
+        v[0] >= MAX_INTENSITY || v[1] >= MAX_INTENSITY || v[2] >= MAX_INTENSITY) {
         snprintf(err, errlen, "%s: %s: intensity wants R,G,B in [0, 32768)", where, tok);
         return -1;
     }
@@ -174,8 +178,8 @@ static int frame_intensity(const char *tok, const char *eq, group_t *groups, int
 }
 
 /* One frame line into FR (its K allocated); 0, or -1 with err and nothing allocated. */
-static int frame_line(char *line, group_t *groups, int ngroups, frame_t *fr, const char *where, char *err,
-                      size_t errlen)
+static int frame_line(char *line, group_t *groups, int ngroups, frame_t *fr, const char *where,
+                      char *err, size_t errlen)
 {
     char *tok, *save = NULL;
     double v[7];
@@ -188,18 +192,24 @@ static int frame_line(char *line, group_t *groups, int ngroups, frame_t *fr, con
     for (g = 0; g < ngroups; g++) memcpy(fr->k[g], groups[g].k, sizeof fr->k[g]);
     for (tok = strtok_r(line, SPACE, &save); tok; tok = strtok_r(NULL, SPACE, &save)) {
         char *eq = strchr(tok, '=');
-        if (!eq && nv < 7 && parse_number(tok, &v[nv])) nv++;
+        if (!eq && nv < 7 && parse_number(tok, &v[nv]))
+            nv++;
         else if (eq && nv >= 6) {
             if (frame_intensity(tok, eq, groups, ngroups, fr->k, where, err, errlen) < 0) break;
         } else {
-            snprintf(err, errlen, "%s: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, "
-                                  "FOV 8..170", where);
+            snprintf(
+                err, errlen,
+                "%s: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, "
+                "FOV 8..170",
+                where);
             break;
         }
     }
     if (!tok && (nv < 6 || !cli_set_camera(&fr->cam, v, nv))) {
-        snprintf(err, errlen, "%s: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, "
-                              "FOV 8..170", where);
+        snprintf(err, errlen,
+                 "%s: expected EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...], eye and look-at apart, "
+                 "FOV 8..170",
+                 where);
         tok = line;
     }
     if (tok) {
@@ -216,8 +226,8 @@ void cli_frames_free(frame_t *frames, int n)
     free(frames);
 }
 
-int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups, frame_t **frames,
-                 char *err, size_t errlen)
+int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, int ngroups,
+                     frame_t **frames, char *err, size_t errlen)
 {
     char *p = text, *line;
     int ln = 0, n = 0, cap = 0;
@@ -244,7 +254,8 @@ int cli_frames_parse(char *text, size_t len, const char *name, group_t *groups, 
         n++;
     }
     if (n == 0) {
-        snprintf(err, errlen, "%s: no frames (one a line: EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...])", name);
+        snprintf(err, errlen,
+                 "%s: no frames (one a line: EX EY EZ LX LY LZ [FOV] [GROUP=R,G,B ...])", name);
         free(fr);
         return -1;
     }

@@ -185,11 +185,12 @@ static void mf_close(struct aiFileIO *io, struct aiFile *f)
 typedef struct {
     obj_scene *sc;
     const struct aiScene *ai;
-    int half_angles;  /* spot cones given as half angles (glTF), else full (assimp's rule) */
-    char *placed;     /* per assimp light: placed by its node */
-    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces, cap_uv2, cap_nodes;
+    int half_angles; /* spot cones given as half angles (glTF), else full (assimp's rule) */
+    char *placed;    /* per assimp light: placed by its node */
+    int cap_verts, cap_idx, cap_uvi, cap_ni, cap_uvs, cap_normals, cap_names, cap_faces, cap_uv2,
+        cap_nodes;
     long uv2_corners; /* corners given a second UV set */
-    int *mat_of; /* assimp material -> obj material */
+    int *mat_of;      /* assimp material -> obj material */
 } build;
 
 /* Grows *P (of *CAP elements of SIZE bytes) to hold NEED; 0, or -1 when NEED passes
@@ -222,9 +223,8 @@ typedef struct {
 
 static xform xf_mul(const xform *a, const struct aiMatrix4x4 *b)
 {
-    const double bm[3][4] = {{b->a1, b->a2, b->a3, b->a4},
-                             {b->b1, b->b2, b->b3, b->b4},
-                             {b->c1, b->c2, b->c3, b->c4}};
+    const double bm[3][4] = {
+        {b->a1, b->a2, b->a3, b->a4}, {b->b1, b->b2, b->b3, b->b4}, {b->c1, b->c2, b->c3, b->c4}};
     xform r;
     int i, j;
     for (i = 0; i < 3; i++)
@@ -352,8 +352,8 @@ static int add_light(build *b, unsigned i, const xform *t)
     b->placed[i] = 1;
     memset(o, 0, sizeof *o);
     o->type = l->mType == aiLightSource_DIRECTIONAL ? OBJ_LIGHT_SUN
-            : l->mType == aiLightSource_POINT       ? OBJ_LIGHT_POINT
-            : l->mType == aiLightSource_SPOT        ? OBJ_LIGHT_SPOT
+              : l->mType == aiLightSource_POINT     ? OBJ_LIGHT_POINT
+              : l->mType == aiLightSource_SPOT      ? OBJ_LIGHT_SPOT
                                                     : 0;
     if (!o->type) {
         b->sc->unknown_statements++;
@@ -395,7 +395,8 @@ static int add_node(build *b, const struct aiNode *node, const xform *t, int par
     double local[16];
     obj_node *n;
     local_matrix(node, local);
-    if (grow((void **)&sc->nodes, &b->cap_nodes, (long)sc->nnodes + 1, sizeof *sc->nodes)) return -1;
+    if (grow((void **)&sc->nodes, &b->cap_nodes, (long)sc->nnodes + 1, sizeof *sc->nodes))
+        return -1;
     n = &sc->nodes[sc->nnodes];
     n->name = dup_str(node->mName.data);
     if (!n->name) return -1;
@@ -476,10 +477,13 @@ static int embedded(const build *b, const struct aiString *tex)
     if (tex->data[0] == '*') {
         char *end;
         long n = strtol(tex->data + 1, &end, 10);
-        return *end == '\0' && end > tex->data + 1 && n >= 0 && n < (long)b->ai->mNumTextures ? (int)n : -2;
+        return *end == '\0' && end > tex->data + 1 && n >= 0 && n < (long)b->ai->mNumTextures
+                   ? (int)n
+                   : -2;
     }
     for (i = 0; i < b->ai->mNumTextures; i++)
-        if (b->ai->mTextures[i]->mFilename.length && !strcmp(b->ai->mTextures[i]->mFilename.data, tex->data))
+        if (b->ai->mTextures[i]->mFilename.length &&
+            !strcmp(b->ai->mTextures[i]->mFilename.data, tex->data))
             return (int)i;
     return -1;
 }
@@ -488,7 +492,8 @@ static int embedded(const build *b, const struct aiString *tex)
  * bytes copied, named "SCENE/texture K (embedded)" (a path under a file: never a file
  * that could be read instead). A texture of raw texels, not a file's bytes, is not read:
  * a warning, and the colour. 0, or -1 without memory. */
-static int embed_map(build *b, obj_material *om, const char *path, int k, obj_warn_fn warn, void *ctx)
+static int embed_map(build *b, obj_material *om, const char *path, int k, obj_warn_fn warn,
+                     void *ctx)
 {
     const struct aiTexture *t = k >= 0 ? b->ai->mTextures[k] : NULL;
     size_t n = strlen(path) + 40;
@@ -574,8 +579,7 @@ static int add_material(build *b, const io_state *st, const char *path, unsigned
 int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
                       void *ctx, char *err, size_t errlen)
 {
-    static const unsigned flags = aiProcess_ValidateDataStructure |
-                                  aiProcess_JoinIdenticalVertices;
+    static const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_JoinIdenticalVertices;
     io_state st;
     struct aiFileIO io = {mf_open, mf_close, NULL};
     struct aiPropertyStore *props;
@@ -666,8 +670,7 @@ nomem:
     free(b.mat_of);
     free(b.placed);
     obj_free(sc);
-    fio_err(err, errlen, path, "out of memory, or more than %d vertices or indices",
-            INT_MAX / 2);
+    fio_err(err, errlen, path, "out of memory, or more than %d vertices or indices", INT_MAX / 2);
     return -1;
 }
 

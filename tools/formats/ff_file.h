@@ -47,13 +47,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define FF_FILE_VERSION 1
+#define FF_FILE_VERSION    1
 #define FF_FILE_KIND_FIXED 1
 #define FF_FILE_KIND_FLOAT 2
 
 typedef struct {
-    unsigned kind;          /* FF_FILE_KIND_* */
-    unsigned res;           /* hemi-cube resolution */
+    unsigned kind; /* FF_FILE_KIND_* */
+    unsigned res;  /* hemi-cube resolution */
     uint32_t patches, elements, vertices, entries;
     uint64_t fingerprint;
 } ff_file_info;
@@ -61,7 +61,7 @@ typedef struct {
 /* A file read and checked, held in memory until ff_file_free. */
 typedef struct {
     ff_file_info info;
-    unsigned char *data;    /* the whole file */
+    unsigned char *data; /* the whole file */
     size_t size;
 } ff_file_t;
 
@@ -74,7 +74,7 @@ uint64_t ff_file_fnv_u32(uint64_t h, uint32_t v);
 /* Writes rows: START (patches + 1 offsets), IDS (entries ids, each ID_BYTES = 2 or 4
  * bytes wide in memory, host order), CODES (entries). Returns 0 or -1 with a message. */
 int ff_file_save(const char *path, const ff_file_info *info, const uint32_t *start, const void *ids,
-              unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen);
+                 unsigned id_bytes, const uint16_t *codes, char *err, size_t errlen);
 
 /* Reads and checks PATH (magic, version, size, checksum, structure). Returns 0, or -1
  * with a message (nothing to free). */
@@ -82,10 +82,12 @@ int ff_file_load(const char *path, ff_file_t *f, char *err, size_t errlen);
 
 /* 0 when F was made for the scene WANT describes (same build kind, resolution, counts
  * and fingerprint), else -1 with a message naming PATH and what differs. */
-int ff_file_match(const ff_file_t *f, const ff_file_info *want, const char *path, char *err, size_t errlen);
+int ff_file_match(const ff_file_t *f, const ff_file_info *want, const char *path, char *err,
+                  size_t errlen);
 
 /* Copies the rows out of F into caller arrays sized from f->info (as for ff_file_save). */
-void ff_file_rows(const ff_file_t *f, uint32_t *start, void *ids, unsigned id_bytes, uint16_t *codes);
+void ff_file_rows(const ff_file_t *f, uint32_t *start, void *ids, unsigned id_bytes,
+                  uint16_t *codes);
 
 void ff_file_free(ff_file_t *f);
 

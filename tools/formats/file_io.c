@@ -40,8 +40,7 @@ void fio_err(char *err, size_t errlen, const char *path, const char *fmt, ...)
 {
     char msg[512];
     va_list ap;
-    if (!err || !errlen)
-        return;
+    if (!err || !errlen) return;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
@@ -53,8 +52,7 @@ double fio_memory_budget(void)
     const char *env = getenv("RAD_MEMORY_BUDGET");
     long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
     double v = env ? strtod(env, NULL) : 0;
-    if (v > 0)
-        return v;
+    if (v > 0) return v;
     return pages > 0 && size > 0 ? 0.5 * (double)pages * (double)size : 1073741824.0;
 }
 
@@ -72,10 +70,12 @@ static void limit_text(char *out, size_t n, size_t limit)
 /* What a file that is not regular is, for messages. */
 static const char *kind_of(mode_t m)
 {
-    return S_ISDIR(m) ? "is a directory" : S_ISFIFO(m) ? "not a regular file (a FIFO or pipe)"
-         : S_ISCHR(m) ? "not a regular file (a character device or terminal)"
-         : S_ISBLK(m) ? "not a regular file (a block device)"
-         : S_ISSOCK(m) ? "not a regular file (a socket)" : "not a regular file";
+    return S_ISDIR(m)    ? "is a directory"
+           : S_ISFIFO(m) ? "not a regular file (a FIFO or pipe)"
+           : S_ISCHR(m)  ? "not a regular file (a character device or terminal)"
+           : S_ISBLK(m)  ? "not a regular file (a block device)"
+           : S_ISSOCK(m) ? "not a regular file (a socket)"
+                         : "not a regular file";
 }
 
 /* Opens PATH without blocking (a FIFO with no writer), refuses any kind but a regular
@@ -128,15 +128,11 @@ static long long read_fd(int fd, size_t limit, char **buf, size_t *cap)
     size_t len = 0;
     for (;;) {
         ssize_t got;
-        if (len == *cap && grow(buf, cap, limit) != 0)
-            return -1;
+        if (len == *cap && grow(buf, cap, limit) != 0) return -1;
         got = read(fd, *buf + len, *cap - len);
-        if (got < 0 && errno == EINTR)
-            continue;
-        if (got < 0)
-            return -1;
-        if (got == 0 || (len += (size_t)got) > limit)
-            return (long long)len;
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) return -1;
+        if (got == 0 || (len += (size_t)got) > limit) return (long long)len;
     }
 }
 
@@ -186,8 +182,7 @@ int fio_read_all(const char *path, size_t limit, char **data, size_t *size, char
     int fd, rc;
     *data = NULL;
     *size = 0;
-    if ((fd = open_in(path, &st, err, errlen)) < 0)
-        return -1;
+    if ((fd = open_in(path, &st, err, errlen)) < 0) return -1;
     rc = read_whole(fd, &st, path, limit, data, size, err, errlen);
     close(fd);
     return rc;
@@ -204,8 +199,10 @@ int fio_read_stdin(size_t limit, char **data, size_t *size, char *err, size_t er
     }
     if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) { /* a terminal, /dev/zero, ... */
         fio_err(err, errlen, "-", "standard input is %s: pipe or redirect a file into it",
-                isatty(0) ? "a terminal" : S_ISCHR(st.st_mode) ? "a device"
-                : S_ISDIR(st.st_mode) ? "a directory" : "not a file or pipe");
+                isatty(0)             ? "a terminal"
+                : S_ISCHR(st.st_mode) ? "a device"
+                : S_ISDIR(st.st_mode) ? "a directory"
+                                      : "not a file or pipe");
         return -1;
     }
     return read_whole(0, &st, "-", limit, data, size, err, errlen);
@@ -216,8 +213,7 @@ FILE *fio_open_read(const char *path, char *err, size_t errlen)
     struct stat st;
     FILE *fp;
     int fd = open_in(path, &st, err, errlen);
-    if (fd < 0)
-        return NULL;
+    if (fd < 0) return NULL;
     if (!(fp = fdopen(fd, "rb"))) {
         fio_err(err, errlen, path, "cannot read: %s", strerror(errno));
         close(fd);
@@ -232,23 +228,19 @@ char *fio_resolve(const char *path)
     const char *slash, *base;
     char *dir, *real, *out;
     size_t n;
-    if (!path || !*path)
-        return NULL;
-    if ((real = realpath(path, NULL)) != NULL)
-        return real;
+    if (!path || !*path) return NULL;
+    if ((real = realpath(path, NULL)) != NULL) return real;
     slash = strrchr(path, '/');
     base = slash ? slash + 1 : path;
     if (!*base || !strcmp(base, ".") || !strcmp(base, ".."))
         return NULL; /* a folder's name that does not resolve */
     n = slash ? (size_t)(slash - path) + (slash == path) : 1;
-    if (!(dir = malloc(n + 1)))
-        return NULL;
+    if (!(dir = malloc(n + 1))) return NULL;
     memcpy(dir, slash ? path : ".", n);
     dir[n] = '\0';
     real = realpath(dir, NULL);
     free(dir);
-    if (!real)
-        return NULL;
+    if (!real) return NULL;
     n = strlen(real);
     if ((out = malloc(n + strlen(base) + 2)) != NULL)
         sprintf(out, "%s%s%s", real, real[n - 1] == '/' ? "" : "/", base);
@@ -287,8 +279,7 @@ static char *replaced_name(const char *path, const struct stat *st, char *err, s
         free(target);
         return NULL;
     }
-    if (!target)
-        fio_err(err, errlen, path, "out of memory");
+    if (!target) fio_err(err, errlen, path, "out of memory");
     return target;
 }
 
@@ -358,8 +349,8 @@ static int check_target(const char *path, const char *target, char *err, size_t 
     struct stat st;
     char *dir;
     int rc = -1;
-    if (strlen(target) + sizeof TMP_SUFFIX > PATH_MAX
-        || base_len(target) + sizeof TMP_SUFFIX - 1 > NAME_MAX) {
+    if (strlen(target) + sizeof TMP_SUFFIX > PATH_MAX ||
+        base_len(target) + sizeof TMP_SUFFIX - 1 > NAME_MAX) {
         fio_err(err, errlen, path, "name too long for its temporary file (%s)", TMP_SUFFIX);
         return -1;
     }
@@ -383,20 +374,16 @@ static int check_target(const char *path, const char *target, char *err, size_t 
  * offset and flags (">>" appends; a rename would have replaced the file). */
 static int named_fd(const char *path)
 {
-    static const char *const dirs[] = { "/dev/fd/", "/proc/self/fd/" };
+    static const char *const dirs[] = {"/dev/fd/", "/proc/self/fd/"};
     const char *d = NULL;
     char *end;
     long n;
     size_t i;
-    if (!strcmp(path, "/dev/stdout"))
-        return 1;
-    if (!strcmp(path, "/dev/stderr"))
-        return 2;
+    if (!strcmp(path, "/dev/stdout")) return 1;
+    if (!strcmp(path, "/dev/stderr")) return 2;
     for (i = 0; i < 2 && !d; i++)
-        if (!strncmp(path, dirs[i], strlen(dirs[i])))
-            d = path + strlen(dirs[i]);
-    if (!d || *d < '0' || *d > '9')
-        return -1;
+        if (!strncmp(path, dirs[i], strlen(dirs[i]))) d = path + strlen(dirs[i]);
+    if (!d || *d < '0' || *d > '9') return -1;
     errno = 0;
     n = strtol(d, &end, 10);
     return *end || errno || n > INT_MAX ? -1 : (int)n;
@@ -422,13 +409,10 @@ int fio_check_out(const char *path, char *err, size_t errlen)
     char *target;
     mode_t mode;
     int rc;
-    if (path && named_fd(path) >= 0)
-        return fd_writable(path, named_fd(path), err, errlen);
-    if (plan_out(path, &target, &mode, err, errlen) != 0)
-        return -1;
+    if (path && named_fd(path) >= 0) return fd_writable(path, named_fd(path), err, errlen);
+    if (plan_out(path, &target, &mode, err, errlen) != 0) return -1;
     if (!target) {
-        if (access(path, W_OK) == 0)
-            return 0;
+        if (access(path, W_OK) == 0) return 0;
         fio_err(err, errlen, path, "cannot write: %s", strerror(errno));
         return -1;
     }
@@ -454,8 +438,8 @@ static int open_in_place(fio_out *o, char *err, size_t errlen)
                 errno == ENXIO && S_ISFIFO(o->mode) ? "a FIFO with no reader" : strerror(errno));
         return -1;
     }
-    if ((fl = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) < 0
-        || !(o->fp = fdopen(fd, "wb"))) {
+    if ((fl = fcntl(fd, F_GETFL)) < 0 || fcntl(fd, F_SETFL, fl & ~O_NONBLOCK) < 0 ||
+        !(o->fp = fdopen(fd, "wb"))) {
         fio_err(err, errlen, o->path, "cannot write: %s", strerror(errno));
         close(fd);
         return -1;
@@ -467,12 +451,10 @@ static int open_in_place(fio_out *o, char *err, size_t errlen)
 static int open_dup(fio_out *o, int fd, char *err, size_t errlen)
 {
     int d;
-    if (fd_writable(o->path, fd, err, errlen) != 0)
-        return -1;
+    if (fd_writable(o->path, fd, err, errlen) != 0) return -1;
     if ((d = dup(fd)) < 0 || !(o->fp = fdopen(d, "wb"))) {
         fio_err(err, errlen, o->path, "cannot write: %s", strerror(errno));
-        if (d >= 0)
-            close(d);
+        if (d >= 0) close(d);
         return -1;
     }
     return 0;
@@ -524,7 +506,10 @@ fio_out *fio_out_open(const char *path, char *err, size_t errlen)
     return o;
 }
 
-FILE *fio_out_stream(fio_out *o) { return o ? o->fp : NULL; }
+FILE *fio_out_stream(fio_out *o)
+{
+    return o ? o->fp : NULL;
+}
 
 /* The error of the stream's writes: a failed write leaves its data in the buffer, so a
  * second flush fails again and gives a fresh errno (errno itself may have been reused
@@ -533,8 +518,7 @@ static int stream_error(FILE *fp)
 {
     int e = errno;
     clearerr(fp);
-    if (fflush(fp) != 0)
-        e = errno;
+    if (fflush(fp) != 0) e = errno;
     return e ? e : EIO;
 }
 
@@ -548,8 +532,7 @@ static int finish_stream(fio_out *o)
         e = errno;
     else if (o->tmp && (fchmod(fd, o->mode) != 0 || fsync(fd) != 0))
         e = errno; /* the data is on disk before the rename makes it visible */
-    if (fclose(o->fp) != 0 && !e)
-        e = errno;
+    if (fclose(o->fp) != 0 && !e) e = errno;
     o->fp = NULL;
     return e;
 }
@@ -567,19 +550,15 @@ int fio_out_commit(fio_out *o, char *err, size_t errlen)
     else if (o->tmp && rename(o->tmp, o->target) != 0)
         fio_err(err, errlen, o->path, "cannot rename the temporary file into place: %s",
                 strerror(e = errno ? errno : EIO));
-    if (e && o->tmp)
-        unlink(o->tmp);
+    if (e && o->tmp) unlink(o->tmp);
     out_free(o);
     return e ? -1 : 0;
 }
 
 void fio_out_abort(fio_out *o)
 {
-    if (!o)
-        return;
-    if (o->fp)
-        fclose(o->fp);
-    if (o->tmp)
-        unlink(o->tmp);
+    if (!o) return;
+    if (o->fp) fclose(o->fp);
+    if (o->tmp) unlink(o->tmp);
     out_free(o);
 }

@@ -18,16 +18,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define GLB_MAGIC 0x46546C67u /* "glTF" */
-#define CHUNK_JSON 0x4E4F534Au
-#define CHUNK_BIN 0x004E4942u
-#define GL_FLOAT 5126
-#define GL_UNSIGNED_INT 5125
-#define GL_ARRAY_BUFFER 34962
+#define GLB_MAGIC               0x46546C67u /* "glTF" */
+#define CHUNK_JSON              0x4E4F534Au
+#define CHUNK_BIN               0x004E4942u
+#define GL_FLOAT                5126
+#define GL_UNSIGNED_INT         5125
+#define GL_ARRAY_BUFFER         34962
 #define GL_ELEMENT_ARRAY_BUFFER 34963
-#define GL_REPEAT 10497
-#define GL_CLAMP_TO_EDGE 33071
-#define GL_LINEAR 9729
+#define GL_REPEAT               10497
+#define GL_CLAMP_TO_EDGE        33071
+#define GL_LINEAR               9729
 
 /* ---- a growing byte buffer ----------------------------------------------------- */
 
@@ -44,8 +44,7 @@ static void put(buf *b, const void *data, size_t n)
     if (b->n + n > b->cap) {
         size_t cap = b->cap ? b->cap : 4096;
         unsigned char *q;
-        while (cap < b->n + n && cap < SIZE_MAX / 2)
-            cap *= 2;
+        while (cap < b->n + n && cap < SIZE_MAX / 2) cap *= 2;
         if (cap < b->n + n || !(q = realloc(b->p, cap))) {
             b->failed = 1;
             return;
@@ -80,8 +79,7 @@ static void putf(buf *b, const char *fmt, ...)
 
 static void pad4(buf *b, unsigned char with)
 {
-    while (b->n % 4)
-        put(b, &with, 1);
+    while (b->n % 4) put(b, &with, 1);
 }
 
 static void put_u32(buf *b, uint32_t v)
@@ -105,13 +103,15 @@ static void put_f32(buf *b, double v)
 /* Length of the UTF-8 sequence at s (1 to 4), or 0 if it is not one. */
 static int utf8_len(const unsigned char *s)
 {
-    int n = s[0] < 0x80 ? 1 : (s[0] & 0xE0) == 0xC0 ? 2 : (s[0] & 0xF0) == 0xE0 ? 3
-                                                    : (s[0] & 0xF8) == 0xF0 ? 4 : 0, i;
-    if (n == 2 && s[0] < 0xC2)
-        return 0; /* overlong */
+    int n = s[0] < 0x80             ? 1
+            : (s[0] & 0xE0) == 0xC0 ? 2
+            : (s[0] & 0xF0) == 0xE0 ? 3
+            : (s[0] & 0xF8) == 0xF0 ? 4
+                                    : 0,
+        i;
+    if (n == 2 && s[0] < 0xC2) return 0; /* overlong */
     for (i = 1; i < n; i++)
-        if ((s[i] & 0xC0) != 0x80)
-            return 0;
+        if ((s[i] & 0xC0) != 0x80) return 0;
     return n;
 }
 
@@ -149,7 +149,7 @@ typedef struct {
     float n[3];
     float uv1[2]; /* the lightmap's UV, 0 without one */
     int corner;   /* sc->indices position of this face corner */
-    int tri;    /* position in the primitive's index list */
+    int tri;      /* position in the primitive's index list */
 } corner_rec;
 
 static const obj_scene *g_sc; /* for the qsort comparisons (single-threaded) */
@@ -163,18 +163,15 @@ static int cmp_name(const void *a, const void *b)
 static int cmp_node_key(const void *a, const void *b)
 {
     const face_rec *x = a, *y = b;
-    if (x->node_o != y->node_o)
-        return (x->node_o > y->node_o) - (x->node_o < y->node_o);
-    if (x->node_g != y->node_g)
-        return (x->node_g > y->node_g) - (x->node_g < y->node_g);
+    if (x->node_o != y->node_o) return (x->node_o > y->node_o) - (x->node_o < y->node_o);
+    if (x->node_g != y->node_g) return (x->node_g > y->node_g) - (x->node_g < y->node_g);
     return (x->face > y->face) - (x->face < y->face);
 }
 
 static int cmp_primitive(const void *a, const void *b)
 {
     const face_rec *x = a, *y = b;
-    if (x->node != y->node)
-        return (x->node > y->node) - (x->node < y->node);
+    if (x->node != y->node) return (x->node > y->node) - (x->node < y->node);
     if (x->material != y->material)
         return (x->material > y->material) - (x->material < y->material);
     return (x->face > y->face) - (x->face < y->face);
@@ -184,14 +181,10 @@ static int cmp_corner(const void *a, const void *b)
 {
     const corner_rec *x = a, *y = b;
     int c = memcmp(x->n, y->n, sizeof x->n);
-    if (!c)
-        c = memcmp(x->uv1, y->uv1, sizeof x->uv1);
-    if (x->v != y->v)
-        return (x->v > y->v) - (x->v < y->v);
-    if (x->vt != y->vt)
-        return (x->vt > y->vt) - (x->vt < y->vt);
-    if (c)
-        return c;
+    if (!c) c = memcmp(x->uv1, y->uv1, sizeof x->uv1);
+    if (x->v != y->v) return (x->v > y->v) - (x->v < y->v);
+    if (x->vt != y->vt) return (x->vt > y->vt) - (x->vt < y->vt);
+    if (c) return c;
     return (x->corner > y->corner) - (x->corner < y->corner);
 }
 
@@ -211,8 +204,7 @@ static int *canonical_names(const obj_scene *sc)
         free(canon);
         return NULL;
     }
-    for (i = 0; i < sc->nnames; i++)
-        order[i] = i;
+    for (i = 0; i < sc->nnames; i++) order[i] = i;
     g_sc = sc;
     qsort(order, (size_t)sc->nnames, sizeof *order, cmp_name);
     for (i = 0; i < sc->nnames; i++)
@@ -228,8 +220,7 @@ static face_rec *sort_faces(const obj_scene *sc, const int *canon, int *nodes)
 {
     face_rec *r = malloc(((size_t)sc->nfaces + 1) * sizeof *r);
     int i, node = -1, prev;
-    if (!r)
-        return NULL;
+    if (!r) return NULL;
     for (i = 0; i < sc->nfaces; i++) {
         r[i].node_o = sc->faces[i].object >= 0 ? canon[sc->faces[i].object] : -1;
         r[i].node_g = sc->faces[i].group >= 0 ? canon[sc->faces[i].group] : -1;
@@ -277,8 +268,7 @@ static int corner_of(const obj_scene *sc, const obj_face *f, int vert)
 {
     int k;
     for (k = 0; k < f->count; k++)
-        if (sc->indices[f->first + k] == vert)
-            return k;
+        if (sc->indices[f->first + k] == vert) return k;
     return 0;
 }
 
@@ -289,8 +279,7 @@ static int face_triangles(const obj_scene *sc, const obj_face *f, int **tri, siz
     int nt = f->count - 2, t, k, *v;
     if ((size_t)nt * 3 > *cap) {
         int *q = realloc(*tri, (size_t)nt * 3 * sizeof *q);
-        if (!q)
-            return -1;
+        if (!q) return -1;
         *tri = q;
         *cap = (size_t)nt * 3;
     }
@@ -303,12 +292,10 @@ static int face_triangles(const obj_scene *sc, const obj_face *f, int **tri, siz
         return nt;
     }
     v = malloc((size_t)nt * 3 * sizeof *v);
-    if (!v)
-        return -1;
+    if (!v) return -1;
     nt = obj_triangulate(sc, f, v);
     for (t = 0; t < nt; t++)
-        for (k = 0; k < 3; k++)
-            (*tri)[3 * t + k] = corner_of(sc, f, v[3 * t + k]);
+        for (k = 0; k < 3; k++) (*tri)[3 * t + k] = corner_of(sc, f, v[3 * t + k]);
     free(v);
     return nt < 0 ? 0 : nt;
 }
@@ -324,8 +311,8 @@ typedef struct {
        frame), its linear part (normals: by its transpose), and 1 if it mirrors */
     double inv[3][4], lin[3][3];
     int framed, mirror; /* framed 0: the world's frame, written as they are */
-    int *image_of;   /* per material: image index, -1 */
-    int *texture_of; /* per material: texture index, when image_of >= 0 */
+    int *image_of;      /* per material: image index, -1 */
+    int *texture_of;    /* per material: texture index, when image_of >= 0 */
 } writer;
 
 /* A bufferView of the last LEN bytes of bin (already padded) and an accessor over it. */
@@ -339,11 +326,9 @@ static int add_accessor(writer *w, size_t offset, int target, int component, int
          w->naccessors ? "," : "", w->nviews++, component, count, type);
     if (min) {
         put_text(&w->accessors, ",\"min\":[");
-        for (k = 0; k < ncomp; k++)
-            putf(&w->accessors, "%s%.9g", k ? "," : "", min[k]);
+        for (k = 0; k < ncomp; k++) putf(&w->accessors, "%s%.9g", k ? "," : "", min[k]);
         put_text(&w->accessors, "],\"max\":[");
-        for (k = 0; k < ncomp; k++)
-            putf(&w->accessors, "%s%.9g", k ? "," : "", max[k]);
+        for (k = 0; k < ncomp; k++) putf(&w->accessors, "%s%.9g", k ? "," : "", max[k]);
         put_text(&w->accessors, "]");
     }
     put_text(&w->accessors, "}");
@@ -374,23 +359,20 @@ static void vertex_colour(const gltf_input *in, const corner_rec *c, int n, doub
     rgb[0] = rgb[1] = rgb[2] = 0;
     for (i = 0; i < n; i++) {
         double wt;
-        if (i > 0 && c[i].corner == c[i - 1].corner)
-            continue;
+        if (i > 0 && c[i].corner == c[i - 1].corner) continue;
         wt = in->corner_weight ? in->corner_weight[c[i].corner] : 1.0;
         wt = wt > 0 && isfinite(wt) ? wt : 0;
-        for (k = 0; k < 3; k++)
-            rgb[k] += wt * in->corner_rgb[3 * (size_t)c[i].corner + k];
+        for (k = 0; k < 3; k++) rgb[k] += wt * in->corner_rgb[3 * (size_t)c[i].corner + k];
         sum += wt;
     }
-    for (k = 0; k < 3; k++)
-        rgb[k] = sum > 0 ? rgb[k] / sum : 0;
+    for (k = 0; k < 3; k++) rgb[k] = sum > 0 ? rgb[k] / sum : 0;
 }
 
 /* The lightmap's UVs (each welded vertex's corners share one) as attribute NAME, with
    min and max. */
 static void write_uv1(writer *w, const prim_verts *pv, const char *name, buf *p)
 {
-    float lo[2] = { HUGE_VALF, HUGE_VALF }, hi[2] = { -HUGE_VALF, -HUGE_VALF };
+    float lo[2] = {HUGE_VALF, HUGE_VALF}, hi[2] = {-HUGE_VALF, -HUGE_VALF};
     size_t at = w->bin.n;
     int i, k, acc;
     for (i = 0; i < pv->nverts; i++)
@@ -412,11 +394,9 @@ static void local_normal(const writer *w, const float *n, double *o)
     int k;
     for (k = 0; k < 3; k++)
         o[k] = w->framed ? w->lin[0][k] * n[0] + w->lin[1][k] * n[1] + w->lin[2][k] * n[2] : n[k];
-    if (!w->framed)
-        return;
+    if (!w->framed) return;
     len = sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
-    for (k = 0; k < 3 && len > 0 && isfinite(len); k++)
-        o[k] /= len;
+    for (k = 0; k < 3 && len > 0 && isfinite(len); k++) o[k] /= len;
 }
 
 /* Writes the attribute arrays; appends their accessors to the primitive's JSON P. */
@@ -435,8 +415,11 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
         const obj_vec3 *v = &sc->verts[pv->c[pv->first[i]].v];
         float f[3];
         for (k = 0; k < 3; k++)
-            f[k] = !w->framed ? (float)(k == 0 ? v->x : k == 1 ? v->y : v->z)
-                              : (float)(w->inv[k][0] * v->x + w->inv[k][1] * v->y + w->inv[k][2] * v->z + w->inv[k][3]);
+            f[k] = !w->framed ? (float)(k == 0   ? v->x
+                                        : k == 1 ? v->y
+                                                 : v->z)
+                              : (float)(w->inv[k][0] * v->x + w->inv[k][1] * v->y +
+                                        w->inv[k][2] * v->z + w->inv[k][3]);
         for (k = 0; k < 3; k++) {
             put_f32(&w->bin, f[k]);
             lo[k] = f[k] < lo[k] ? f[k] : lo[k];
@@ -449,8 +432,7 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     for (i = 0; i < pv->nverts; i++) {
         double n[3];
         local_normal(w, pv->c[pv->first[i]].n, n);
-        for (k = 0; k < 3; k++)
-            put_f32(&w->bin, n[k]);
+        for (k = 0; k < 3; k++) put_f32(&w->bin, n[k]);
     }
     acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
     putf(p, ",\"NORMAL\":%d", acc);
@@ -467,10 +449,8 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
     }
     /* TEXCOORD_n must count from 0: without texture coordinates of its own, a primitive
        gets the lightmap's as TEXCOORD_0 too (no texture of its own reads them). */
-    if (w->in->corner_uv1 && !pv->textured)
-        write_uv1(w, pv, "TEXCOORD_0", p);
-    if (w->in->corner_uv1)
-        write_uv1(w, pv, "TEXCOORD_1", p);
+    if (w->in->corner_uv1 && !pv->textured) write_uv1(w, pv, "TEXCOORD_0", p);
+    if (w->in->corner_uv1) write_uv1(w, pv, "TEXCOORD_1", p);
     if (w->in->corner_rgb) {
         double scale = w->in->color_scale > 0 ? w->in->color_scale : 1;
         int light;
@@ -478,8 +458,7 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
         for (i = 0; i < pv->nverts; i++) {
             double rgb[3];
             vertex_colour(w->in, pv->c + pv->first[i], pv->first[i + 1] - pv->first[i], rgb);
-            for (k = 0; k < 3; k++)
-                put_f32(&w->bin, rgb[k]);
+            for (k = 0; k < 3; k++) put_f32(&w->bin, rgb[k]);
         }
         light = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
         at = w->bin.n;
@@ -487,7 +466,8 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
             double rgb[3];
             vertex_colour(w->in, pv->c + pv->first[i], pv->first[i + 1] - pv->first[i], rgb);
             for (k = 0; k < 3; k++) /* NaN fails both tests: 0 */
-                put_f32(&w->bin, rgb[k] / scale < 1 ? (rgb[k] / scale > 0 ? rgb[k] / scale : 0) : 1);
+                put_f32(&w->bin,
+                        rgb[k] / scale < 1 ? (rgb[k] / scale > 0 ? rgb[k] / scale : 0) : 1);
         }
         acc = add_accessor(w, at, GL_ARRAY_BUFFER, GL_FLOAT, pv->nverts, "VEC3", NULL, NULL, 0);
         putf(p, ",\"COLOR_0\":%d,\"_LIGHT\":%d", acc, light);
@@ -496,8 +476,8 @@ static void write_attributes(writer *w, const prim_verts *pv, buf *p)
 }
 
 /* Corners of the triangles of faces R[0..n-1] (one material), sorted by weld key. */
-static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n, int mirror, int *ncorners,
-                                  int *textured)
+static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n, int mirror,
+                                  int *ncorners, int *textured)
 {
     const obj_scene *sc = in->sc;
     corner_rec *c = NULL;
@@ -520,7 +500,8 @@ static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n
         }
         for (t = 0; t < 3 * nt; t++) {
             corner_rec *x = &c[count];
-            k = tri[mirror ? t - t % 3 + 2 - t % 3 : t]; /* a mirroring node's triangles as the file wound them */
+            k = tri[mirror ? t - t % 3 + 2 - t % 3
+                           : t]; /* a mirroring node's triangles as the file wound them */
             x->corner = f->first + k;
             x->v = sc->indices[x->corner];
             x->vt = sc->uv_indices[x->corner];
@@ -532,10 +513,8 @@ static corner_rec *gather_corners(const gltf_input *in, const face_rec *r, int n
         }
     }
     free(tri);
-    if (!c)
-        c = malloc(sizeof *c); /* no triangle: an empty list, not a failure */
-    if (c)
-        qsort(c, (size_t)count, sizeof *c, cmp_corner);
+    if (!c) c = malloc(sizeof *c); /* no triangle: an empty list, not a failure */
+    if (c) qsort(c, (size_t)count, sizeof *c, cmp_corner);
     *ncorners = count;
     return c;
 }
@@ -550,9 +529,8 @@ static int write_primitive(writer *w, const face_rec *r, int n, buf *prims, int 
     uint32_t *index;
     size_t at;
     int i, v, acc;
-    buf p = { 0 };
-    if (!(c = gather_corners(w->in, r, n, w->mirror, &pv.n, &pv.textured)))
-        return -1;
+    buf p = {0};
+    if (!(c = gather_corners(w->in, r, n, w->mirror, &pv.n, &pv.textured))) return -1;
     pv.c = c;
     pv.m = &sc->materials[r[0].material];
     pv.first = malloc(((size_t)pv.n + 1) * sizeof *pv.first);
@@ -564,8 +542,7 @@ static int write_primitive(writer *w, const face_rec *r, int n, buf *prims, int 
         return -1;
     }
     for (i = 0, v = -1; i < pv.n; i++) {
-        if (i == 0 || !same_vertex(&c[i], &c[i - 1]))
-            pv.first[++v] = i;
+        if (i == 0 || !same_vertex(&c[i], &c[i - 1])) pv.first[++v] = i;
         index[c[i].tri] = (uint32_t)v;
     }
     pv.nverts = v + 1;
@@ -574,10 +551,9 @@ static int write_primitive(writer *w, const face_rec *r, int n, buf *prims, int 
         put_text(&p, first_prim ? "{" : ",{");
         write_attributes(w, &pv, &p);
         at = w->bin.n;
-        for (i = 0; i < pv.n; i++)
-            put_u32(&w->bin, index[i]);
-        acc = add_accessor(w, at, GL_ELEMENT_ARRAY_BUFFER, GL_UNSIGNED_INT, pv.n, "SCALAR",
-                           NULL, NULL, 0);
+        for (i = 0; i < pv.n; i++) put_u32(&w->bin, index[i]);
+        acc = add_accessor(w, at, GL_ELEMENT_ARRAY_BUFFER, GL_UNSIGNED_INT, pv.n, "SCALAR", NULL,
+                           NULL, 0);
         putf(&p, ",\"indices\":%d,\"material\":%d,\"mode\":4}", acc, r[0].material);
         put(prims, p.p, p.n);
         prims->failed |= p.failed;
@@ -605,13 +581,12 @@ static const char *node_name(const obj_scene *sc, const face_rec *r, char *s, si
    (>= 0: written by write_hierarchy). Returns -1 when out of memory. */
 static int write_node(writer *w, const face_rec *r, int n, int node)
 {
-    buf prims = { 0 };
+    buf prims = {0};
     char name[600];
     int i = 0, written = 0;
     while (i < n) {
         int j = i, rc;
-        while (j < n && r[j].material == r[i].material)
-            j++;
+        while (j < n && r[j].material == r[i].material) j++;
         if ((rc = write_primitive(w, r + i, j - i, &prims, !written)) < 0) {
             free(prims.p);
             return -1;
@@ -643,10 +618,8 @@ static int write_node(writer *w, const face_rec *r, int n, int node)
 
 static const char *image_mime(const unsigned char *d, size_t n)
 {
-    if (n >= 8 && !memcmp(d, "\x89PNG\r\n\x1a\n", 8))
-        return "image/png";
-    if (n >= 3 && d[0] == 0xFF && d[1] == 0xD8 && d[2] == 0xFF)
-        return "image/jpeg";
+    if (n >= 8 && !memcmp(d, "\x89PNG\r\n\x1a\n", 8)) return "image/png";
+    if (n >= 3 && d[0] == 0xFF && d[1] == 0xD8 && d[2] == 0xFF) return "image/jpeg";
     return NULL;
 }
 
@@ -657,8 +630,8 @@ static int embed_bytes(writer *w, const void *data, size_t size)
     pad4(&w->bin, 0);
     at = w->bin.n;
     put(&w->bin, data, size);
-    putf(&w->views, "%s{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}",
-         w->nviews ? "," : "", (unsigned long)at, (unsigned long)size);
+    putf(&w->views, "%s{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}", w->nviews ? "," : "",
+         (unsigned long)at, (unsigned long)size);
     pad4(&w->bin, 0);
     return w->nviews++;
 }
@@ -673,7 +646,8 @@ static int embed_as_png(writer *w, int m, char *msg, size_t n)
     char err[600];
     int view;
     if (!t || !t->rgb) {
-        snprintf(msg, n, "%s: neither PNG nor JPEG and not decoded, left out of the glTF", w->in->texture[m]);
+        snprintf(msg, n, "%s: neither PNG nor JPEG and not decoded, left out of the glTF",
+                 w->in->texture[m]);
         return -1;
     }
     if (img_encode_png(t->rgb, t->w, t->h, &png, &size, err, sizeof err)) {
@@ -696,8 +670,7 @@ static int embed_image(writer *w, int m, const char **mime)
         if (t && t->rgb) {
             int view = embed_as_png(w, m, msg, sizeof msg);
             *mime = "image/png";
-            if (view >= 0)
-                return view;
+            if (view >= 0) return view;
         } else {
             snprintf(msg, sizeof msg, "%s: left out of the glTF", err);
         }
@@ -705,15 +678,13 @@ static int embed_image(writer *w, int m, const char **mime)
         int view = embed_as_png(w, m, msg, sizeof msg);
         free(data);
         *mime = "image/png";
-        if (view >= 0)
-            return view;
+        if (view >= 0) return view;
     } else {
         int view = embed_bytes(w, data, size);
         free(data);
         return view;
     }
-    if (w->in->warn)
-        w->in->warn(w->in->ctx, msg);
+    if (w->in->warn) w->in->warn(w->in->ctx, msg);
     return -1;
 }
 
@@ -722,8 +693,7 @@ static int embed_image(writer *w, int m, const char **mime)
 static int lightmap_texture(writer *w, int n, int nimg, buf *tex, buf *img, buf *smp)
 {
     int view;
-    if (!w->in->lightmap_png)
-        return -1;
+    if (!w->in->lightmap_png) return -1;
     view = embed_bytes(w, w->in->lightmap_png, w->in->lightmap_png_size);
     putf(img, "%s{\"name\":\"lightmap\",\"bufferView\":%d,\"mimeType\":\"image/png\"}",
          nimg ? "," : "", view);
@@ -761,13 +731,14 @@ static void put_factors(buf *j, const double *c)
 static void extras(const writer *w, buf *j, int m, int lm)
 {
     int lit = lm >= 0 && lit_by_lightmap(w->in, m);
-    if (!w->in->corner_rgb && !lit)
-        return;
+    if (!w->in->corner_rgb && !lit) return;
     put_text(j, ",\"extras\":{");
     if (w->in->corner_rgb)
-        putf(j, "\"colorScale\":%.9g%s", w->in->color_scale > 0 ? w->in->color_scale : 1.0, lit ? "," : "");
+        putf(j, "\"colorScale\":%.9g%s", w->in->color_scale > 0 ? w->in->color_scale : 1.0,
+             lit ? "," : "");
     if (lit)
-        putf(j, "\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}", lm, w->in->lightmap_scale);
+        putf(j, "\"lightmap\":{\"index\":%d,\"texCoord\":1,\"scale\":%.9g}", lm,
+             w->in->lightmap_scale);
     put_text(j, "}");
 }
 
@@ -776,15 +747,14 @@ static void extras(const writer *w, buf *j, int m, int lm)
 static void write_materials(writer *w, buf *j)
 {
     const obj_scene *sc = w->in->sc;
-    buf tex = { 0 }, img = { 0 }, smp = { 0 };
+    buf tex = {0}, img = {0}, smp = {0};
     int m, n = 0, nimg = 0, lm;
     for (m = 0; m < sc->nmaterials; m++) {
         const char *mime = NULL;
         int has = w->in->texture && w->in->texture[m], image = has ? image_before(w, m) : -1;
         int view = has && image < 0 ? embed_image(w, m, &mime) : -1;
         w->image_of[m] = -1;
-        if (image < 0 && view < 0)
-            continue;
+        if (image < 0 && view < 0) continue;
         if (image < 0) {
             putf(&img, "%s{\"bufferView\":%d,\"mimeType\":\"%s\"}", nimg ? "," : "", view, mime);
             image = nimg++;
@@ -799,7 +769,7 @@ static void write_materials(writer *w, buf *j)
     lm = lightmap_texture(w, n, nimg, &tex, &img, &smp);
     put_text(j, ",\"materials\":[");
     for (m = 0; m < sc->nmaterials; m++) {
-        static const double black[3] = { 0, 0, 0 };
+        static const double black[3] = {0, 0, 0};
         const double *c = w->in->base_color ? w->in->base_color + 3 * m : sc->materials[m].kd;
         int lit = lm >= 0 && lit_by_lightmap(w->in, m);
         put_text(j, m ? ",{\"name\":" : "{\"name\":");
@@ -807,13 +777,14 @@ static void write_materials(writer *w, buf *j)
         put_text(j, ",\"pbrMetallicRoughness\":{\"baseColorFactor\":[");
         put_factors(j, lit ? black : c);
         put_text(j, ",1]");
-        if (w->image_of[m] >= 0)
-            putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
+        if (w->image_of[m] >= 0) putf(j, ",\"baseColorTexture\":{\"index\":%d}", w->texture_of[m]);
         put_text(j, ",\"metallicFactor\":0,\"roughnessFactor\":1}");
         if (lit) { /* the light leaving: lightmap x emissiveStrength (its scale) x factor */
             putf(j, ",\"emissiveTexture\":{\"index\":%d,\"texCoord\":1},\"emissiveFactor\":[", lm);
             put_factors(j, w->in->lightmap_factor ? w->in->lightmap_factor + 3 * m : c);
-            putf(j, "],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%.9g}}",
+            putf(j,
+                 "],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":%.9g}"
+                 "}",
                  w->in->lightmap_scale);
         } else {
             put_text(j, ",\"extensions\":{\"KHR_materials_unlit\":{}}");
@@ -863,8 +834,7 @@ static void write_hierarchy(writer *w, buf *j)
         free(next);
         return;
     }
-    for (i = 0; i < sc->nnodes; i++)
-        first[i] = -1;
+    for (i = 0; i < sc->nnodes; i++) first[i] = -1;
     for (c = sc->nnodes - 1; c >= 0; c--) /* children in order, each list by its parent */
         if (sc->nodes[c].parent >= 0) {
             next[c] = first[sc->nodes[c].parent];
@@ -876,12 +846,10 @@ static void write_hierarchy(writer *w, buf *j)
         put_string(j, o->name);
         for (c = first[i]; c >= 0; c = next[c])
             putf(j, "%s%d%s", c == first[i] ? ",\"children\":[" : ",", c, next[c] < 0 ? "]" : "");
-        for (k = 0; k < 16 && o->local[k] == (k % 5 == 0); k++) {
-        }
+        for (k = 0; k < 16 && o->local[k] == (k % 5 == 0); k++) {}
         for (c = 0; k < 16 && c < 16; c++)
             putf(j, "%s%.17g%s", c ? "," : ",\"matrix\":[", o->local[c], c == 15 ? "]" : "");
-        if (w->mesh_of_node[i] >= 0)
-            putf(j, ",\"mesh\":%d", w->mesh_of_node[i]);
+        if (w->mesh_of_node[i] >= 0) putf(j, ",\"mesh\":%d", w->mesh_of_node[i]);
         put_text(j, "}");
     }
     free(first);
@@ -900,22 +868,20 @@ static void write_json(writer *w, buf *j)
     }
     put_text(j, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"rad\"}");
     if (lit || unlit)
-        putf(j, ",\"extensionsUsed\":[%s%s%s]", unlit ? "\"KHR_materials_unlit\"" : "", lit && unlit ? "," : "",
-             lit ? "\"KHR_materials_emissive_strength\"" : "");
+        putf(j, ",\"extensionsUsed\":[%s%s%s]", unlit ? "\"KHR_materials_unlit\"" : "",
+             lit && unlit ? "," : "", lit ? "\"KHR_materials_emissive_strength\"" : "");
     put_text(j, ",\"scene\":0,\"scenes\":[{");
     if (nh + w->nloose) {
         put_text(j, "\"nodes\":[");
         for (i = 0, n = 0; i < nh + w->nloose; i++)
-            if (i >= nh || sc->nodes[i].parent < 0)
-                putf(j, "%s%d", n++ ? "," : "", i);
+            if (i >= nh || sc->nodes[i].parent < 0) putf(j, "%s%d", n++ ? "," : "", i);
         put_text(j, "]");
     }
     put_text(j, "}]");
     if (nh + w->nloose) {
         put_text(j, ",\"nodes\":[");
         write_hierarchy(w, j);
-        if (nh && w->nloose)
-            put_text(j, ",");
+        if (nh && w->nloose) put_text(j, ",");
         put(j, w->nodes.p, w->nodes.n);
         put_text(j, "]");
     }
@@ -936,8 +902,7 @@ static void write_json(writer *w, buf *j)
         put_text(j, "]");
     }
     pad4(&w->bin, 0);
-    if (w->bin.n)
-        putf(j, ",\"buffers\":[{\"byteLength\":%lu}]", (unsigned long)w->bin.n);
+    if (w->bin.n) putf(j, ",\"buffers\":[{\"byteLength\":%lu}]", (unsigned long)w->bin.n);
     put_text(j, "}");
     pad4(j, ' ');
 }
@@ -950,8 +915,7 @@ static int *node_names(writer *w, int **node_of)
     const obj_scene *sc = w->in->sc;
     int *canon, i;
     *node_of = NULL;
-    if (!sc->nnodes)
-        return canonical_names(sc);
+    if (!sc->nnodes) return canonical_names(sc);
     canon = malloc(((size_t)sc->nnames + 1) * sizeof *canon);
     *node_of = malloc(((size_t)sc->nnames + 1) * sizeof **node_of);
     w->mesh_of_node = malloc((size_t)sc->nnodes * sizeof *w->mesh_of_node);
@@ -960,8 +924,7 @@ static int *node_names(writer *w, int **node_of)
         free(*node_of);
         return NULL;
     }
-    for (i = 0; i < sc->nnames; i++)
-        canon[i] = i, (*node_of)[i] = -1;
+    for (i = 0; i < sc->nnames; i++) canon[i] = i, (*node_of)[i] = -1;
     for (i = 0; i < sc->nnodes; i++) {
         w->mesh_of_node[i] = -1;
         if (sc->nodes[i].object >= 0 && sc->nodes[i].object < sc->nnames)
@@ -974,20 +937,21 @@ static int *node_names(writer *w, int **node_of)
 static void set_frame(writer *w, int node)
 {
     static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
-    const double (*m)[4] = node >= 0 ? (const double (*)[4])w->in->sc->nodes[node].world : id;
+    const double(*m)[4] = node >= 0 ? (const double(*)[4])w->in->sc->nodes[node].world : id;
     double det;
     int r, c;
     for (r = 0; r < 3; r++)
-        for (c = 0; c < 3; c++)
-            w->lin[r][c] = m[r][c];
-    det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+        for (c = 0; c < 3; c++) w->lin[r][c] = m[r][c];
+    det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+          m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     w->mirror = det < 0;
     w->framed = node >= 0;
     for (r = 0; r < 3; r++) { /* the inverse: cofactors over det, then the translation */
         for (c = 0; c < 3; c++) {
             int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
-            w->inv[r][c] = det != 0 ? (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det : id[r][c];
+            w->inv[r][c] =
+                det != 0 ? (m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]) / det : id[r][c];
         }
     }
     for (r = 0; r < 3; r++)
@@ -1001,8 +965,7 @@ static int gather(writer *w)
     face_rec *r = canon ? sort_faces(sc, canon, &nodes) : NULL;
     while (r && i < sc->nfaces && rc == 0) {
         int j = i, o = sc->faces[r[i].face].object, node = node_of && o >= 0 ? node_of[o] : -1;
-        while (j < sc->nfaces && r[j].node == r[i].node)
-            j++;
+        while (j < sc->nfaces && r[j].node == r[i].node) j++;
         set_frame(w, node);
         rc = write_node(w, r + i, j - i, node);
         i = j;
@@ -1015,7 +978,7 @@ static int gather(writer *w)
 
 static int write_glb(const char *path, writer *w, buf *json, char *err, size_t errlen)
 {
-    buf head = { 0 };
+    buf head = {0};
     fio_out *o;
     FILE *f;
     uint32_t total = 12 + 8 + (uint32_t)json->n + (w->bin.n ? 8 + (uint32_t)w->bin.n : 0);
@@ -1045,7 +1008,7 @@ static int write_glb(const char *path, writer *w, buf *json, char *err, size_t e
 int gltf_write(const char *path, const gltf_input *in, char *err, size_t errlen)
 {
     writer w;
-    buf json = { 0 };
+    buf json = {0};
     int rc = -1;
     memset(&w, 0, sizeof w);
     w.in = in;
@@ -1059,8 +1022,7 @@ int gltf_write(const char *path, const gltf_input *in, char *err, size_t errlen)
             snprintf(err, errlen, "%s: larger than a .glb can be (4 GiB)", path);
         else
             rc = write_glb(path, &w, &json, err, errlen);
-        if (json.failed || w.bin.failed)
-            snprintf(err, errlen, "%s: out of memory", path);
+        if (json.failed || w.bin.failed) snprintf(err, errlen, "%s: out of memory", path);
     } else if (err && errlen) {
         snprintf(err, errlen, "%s: out of memory", path);
     }

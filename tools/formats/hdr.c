@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define HDR_MINRUN 4     /* shorter runs of a byte are cheaper as literals */
-#define HDR_RLE_MIN 8    /* Radiance encodes rows of 8..32767 pixels; others flat */
-#define HDR_RLE_MAX 32767
+#define HDR_MINRUN   4 /* shorter runs of a byte are cheaper as literals */
+#define HDR_RLE_MIN  8 /* Radiance encodes rows of 8..32767 pixels; others flat */
+#define HDR_RLE_MAX  32767
 #define HDR_EXP_BIAS 128 /* exponent byte = e + 128, e in -127..127 */
 
 static int size_ok(int w, int h)
@@ -89,8 +89,10 @@ static int encode_row(const float *rgb, int w, int y, unsigned char *row, int *b
 static int write_row(FILE *fp, const unsigned char *row, unsigned char *chan, int w)
 {
     int k, x;
-    if (w < HDR_RLE_MIN || w > HDR_RLE_MAX) return fwrite(row, 4, (size_t)w, fp) == (size_t)w ? 0 : -1;
-    if (fputc(2, fp) == EOF || fputc(2, fp) == EOF || fputc(w >> 8, fp) == EOF || fputc(w & 255, fp) == EOF)
+    if (w < HDR_RLE_MIN || w > HDR_RLE_MAX)
+        return fwrite(row, 4, (size_t)w, fp) == (size_t)w ? 0 : -1;
+    if (fputc(2, fp) == EOF || fputc(2, fp) == EOF || fputc(w >> 8, fp) == EOF ||
+        fputc(w & 255, fp) == EOF)
         return -1;
     for (k = 0; k < 4; k++) {
         for (x = 0; x < w; x++) chan[x] = row[4 * x + k];
@@ -104,7 +106,8 @@ static int write_pixels(FILE *fp, const float *rgb, int w, int h, int *bx, int *
 {
     unsigned char *row = malloc((size_t)w * 5);
     int y, rc = row ? 0 : -1;
-    if (row && fprintf(fp, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", h, w) < 0) rc = -1;
+    if (row && fprintf(fp, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", h, w) < 0)
+        rc = -1;
     for (y = 0; rc == 0 && y < h; y++) {
         if (encode_row(rgb, w, y, row, bx) != 0) {
             *by = y;
@@ -126,7 +129,8 @@ int hdr_write(const char *path, const float *rgb, int w, int h, char *err, size_
         return -1;
     }
     if (!size_ok(w, h)) {
-        fio_err(err, errlen, path, "invalid image size %dx%d (each must be 1..%d)", w, h, IMG_MAX_DIM);
+        fio_err(err, errlen, path, "invalid image size %dx%d (each must be 1..%d)", w, h,
+                IMG_MAX_DIM);
         return -1;
     }
     if (!(o = fio_out_open(path, err, errlen))) return -1;
@@ -165,7 +169,8 @@ static int next_line(cursor *c, char *line, size_t n)
 static int read_header(cursor *c, int *w, int *h, const char **why)
 {
     char line[256], tail;
-    if (next_line(c, line, sizeof line) != 0 || (strcmp(line, "#?RADIANCE") && strcmp(line, "#?RGBE"))) {
+    if (next_line(c, line, sizeof line) != 0 ||
+        (strcmp(line, "#?RADIANCE") && strcmp(line, "#?RGBE"))) {
         *why = "not a Radiance HDR file (no #?RADIANCE line)";
         return -1;
     }
@@ -218,8 +223,8 @@ static int read_row(cursor *c, unsigned char *row, int w, const char **why)
 {
     int k, x;
     *why = "truncated or corrupt pixel data";
-    if (w >= HDR_RLE_MIN && w <= HDR_RLE_MAX && c->end - c->p >= 4 && c->p[0] == 2 && c->p[1] == 2 &&
-        !(c->p[2] & 0x80)) {
+    if (w >= HDR_RLE_MIN && w <= HDR_RLE_MAX && c->end - c->p >= 4 && c->p[0] == 2 &&
+        c->p[1] == 2 && !(c->p[2] & 0x80)) {
         if (((c->p[2] << 8) | c->p[3]) != w) return -1;
         c->p += 4;
         for (k = 0; k < 4; k++)
@@ -265,7 +270,8 @@ static int read_pixels(cursor *c, hdr_image *im, const char **why)
         return -1;
     }
     if ((double)im->w * im->h * 3 * sizeof *im->rgb > fio_memory_budget()) {
-        *why = "image too large for the memory budget (RAD_MEMORY_BUDGET, else half the physical memory)";
+        *why = "image too large for the memory budget (RAD_MEMORY_BUDGET, else half the physical "
+               "memory)";
         return -1;
     }
     row = malloc(4 * (size_t)im->w);

@@ -17,7 +17,10 @@ extern "C" {
 /* Largest accepted width or height, for writing and for reading. */
 #define IMG_MAX_DIM 32768
 
-typedef struct { int w, h; unsigned char *rgb; } img_t;   /* 8-bit RGB, row 0 at the top, w*h*3 bytes */
+typedef struct {
+    int w, h;
+    unsigned char *rgb;
+} img_t; /* 8-bit RGB, row 0 at the top, w*h*3 bytes */
 
 /* Writes rgb (w*h*3) to PATH as PNG (libpng) or binary PPM P6, chosen by extension
  * (.png/.ppm, case-insensitive; anything else is an error).
@@ -30,13 +33,13 @@ int img_write(const char *path, const unsigned char *rgb, int w, int h, char *er
 
 /* As img_write, in FORMAT ("png" or "ppm", any case) whatever PATH is called: for an
  * output with no extension, such as /dev/stdout. FORMAT NULL: by the extension. */
-int img_write_as(const char *path, const char *format, const unsigned char *rgb, int w, int h, char *err,
-                 size_t errlen);
+int img_write_as(const char *path, const char *format, const unsigned char *rgb, int w, int h,
+                 char *err, size_t errlen);
 
 /* RGB (w*h*3) encoded as PNG bytes in memory: *OUT (malloc'd, the caller frees) and *N.
  * Returns 0, or -1 with a message in err (*OUT NULL). */
-int img_encode_png(const unsigned char *rgb, int w, int h, unsigned char **out, size_t *n, char *err,
-                   size_t errlen);
+int img_encode_png(const unsigned char *rgb, int w, int h, unsigned char **out, size_t *n,
+                   char *err, size_t errlen);
 
 /* Reads a PNG (any colour type/bit depth: 16-bit is stripped to 8, palette and grey are
  * expanded, alpha and tRNS are dropped) or a binary P6 PPM (maxval 255, header comments

@@ -57,7 +57,8 @@ static void where(const char *text, size_t at, int *line, int *col)
     }
 }
 
-static void verror(const json_doc *doc, size_t at, char *err, size_t errlen, const char *fmt, va_list ap)
+static void verror(const json_doc *doc, size_t at, char *err, size_t errlen, const char *fmt,
+                   va_list ap)
 {
     int line, col, k;
     if (!err || errlen == 0) return;
@@ -102,9 +103,12 @@ static void at_text(const parser_t *ps, size_t at, char *buf, size_t len)
 /* What stands at the parser's place, for "expected X, found Y". */
 static void found(const parser_t *ps, char *buf, size_t len)
 {
-    if (ps->p >= ps->n) snprintf(buf, len, "the end of the file");
-    else if (ps->t[ps->p] >= 0x21 && ps->t[ps->p] < 0x7F) snprintf(buf, len, "'%c'", ps->t[ps->p]);
-    else snprintf(buf, len, "the byte 0x%02X", ps->t[ps->p]);
+    if (ps->p >= ps->n)
+        snprintf(buf, len, "the end of the file");
+    else if (ps->t[ps->p] >= 0x21 && ps->t[ps->p] < 0x7F)
+        snprintf(buf, len, "'%c'", ps->t[ps->p]);
+    else
+        snprintf(buf, len, "the byte 0x%02X", ps->t[ps->p]);
 }
 
 /* ---- memory ------------------------------------------------------------------------ */
@@ -152,7 +156,8 @@ static int pop_into(parser_t *ps, size_t base, json_value *v)
 
 static void skip_ws(parser_t *ps)
 {
-    while (ps->p < ps->n && (ps->t[ps->p] == ' ' || ps->t[ps->p] == '\t' || ps->t[ps->p] == '\n' || ps->t[ps->p] == '\r'))
+    while (ps->p < ps->n && (ps->t[ps->p] == ' ' || ps->t[ps->p] == '\t' || ps->t[ps->p] == '\n' ||
+                             ps->t[ps->p] == '\r'))
         ps->p++;
 }
 
@@ -163,10 +168,14 @@ static size_t utf8_len(const unsigned char *s, size_t avail)
     unsigned char lo = 0x80, hi = 0xBF;
     size_t len, i;
     if (s[0] < 0x80) return 1;
-    if (s[0] >= 0xC2 && s[0] <= 0xDF) len = 2;
-    else if (s[0] >= 0xE0 && s[0] <= 0xEF) len = 3;
-    else if (s[0] >= 0xF0 && s[0] <= 0xF4) len = 4;
-    else return 0;
+    if (s[0] >= 0xC2 && s[0] <= 0xDF)
+        len = 2;
+    else if (s[0] >= 0xE0 && s[0] <= 0xEF)
+        len = 3;
+    else if (s[0] >= 0xF0 && s[0] <= 0xF4)
+        len = 4;
+    else
+        return 0;
     if (s[0] == 0xE0) lo = 0xA0;
     if (s[0] == 0xED) hi = 0x9F;
     if (s[0] == 0xF0) lo = 0x90;
@@ -183,10 +192,14 @@ static int hex4(const unsigned char *s, unsigned long *v)
     *v = 0;
     for (i = 0; i < 4; i++) {
         unsigned d;
-        if (s[i] >= '0' && s[i] <= '9') d = (unsigned)(s[i] - '0');
-        else if (s[i] >= 'a' && s[i] <= 'f') d = (unsigned)(s[i] - 'a' + 10);
-        else if (s[i] >= 'A' && s[i] <= 'F') d = (unsigned)(s[i] - 'A' + 10);
-        else return 0;
+        if (s[i] >= '0' && s[i] <= '9')
+            d = (unsigned)(s[i] - '0');
+        else if (s[i] >= 'a' && s[i] <= 'f')
+            d = (unsigned)(s[i] - 'a' + 10);
+        else if (s[i] >= 'A' && s[i] <= 'F')
+            d = (unsigned)(s[i] - 'A' + 10);
+        else
+            return 0;
         *v = *v * 16u + d;
     }
     return 1;
@@ -226,9 +239,11 @@ static int unicode_escape(parser_t *ps, size_t esc, unsigned long *c)
     ps->p += 4;
     if (*c >= 0xDC00 && *c <= 0xDFFF) return fail(ps, esc, "a lone low surrogate \\u%04lX", *c);
     if (*c >= 0xD800 && *c <= 0xDBFF) {
-        if (ps->n - ps->p < 6 || ps->t[ps->p] != '\\' || ps->t[ps->p + 1] != 'u' || !hex4(ps->t + ps->p + 2, &lo) ||
-            lo < 0xDC00 || lo > 0xDFFF)
-            return fail(ps, esc, "a high surrogate \\u%04lX without a low one (\\uDC00..\\uDFFF) after it", *c);
+        if (ps->n - ps->p < 6 || ps->t[ps->p] != '\\' || ps->t[ps->p + 1] != 'u' ||
+            !hex4(ps->t + ps->p + 2, &lo) || lo < 0xDC00 || lo > 0xDFFF)
+            return fail(ps, esc,
+                        "a high surrogate \\u%04lX without a low one (\\uDC00..\\uDFFF) after it",
+                        *c);
         ps->p += 6;
         *c = 0x10000 + ((*c - 0xD800) << 10) + (lo - 0xDC00);
     }
@@ -246,13 +261,16 @@ static int string(parser_t *ps, const char **s, size_t *len)
     while (end < ps->n && ps->t[end] != '"') end += ps->t[end] == '\\' ? 2 : 1;
     if (end >= ps->n) {
         at_text(ps, open, at, sizeof at);
-        return fail(ps, ps->n, "unexpected end of the file: the string opened at %s is not closed", at);
+        return fail(ps, ps->n, "unexpected end of the file: the string opened at %s is not closed",
+                    at);
     }
     o = take(ps, end - open);
     if (!o) return 0;
     for (ps->p = open + 1; ps->p < end;) {
         const unsigned char c = ps->t[ps->p];
-        if (c < 0x20) return fail(ps, ps->p, "a control character (U+%04X) in a string: write it as an escape", c);
+        if (c < 0x20)
+            return fail(ps, ps->p,
+                        "a control character (U+%04X) in a string: write it as an escape", c);
         if (c == '\\') {
             const size_t esc = ps->p;
             static const char from[] = "\"\\/bfnrt", to[] = "\"\\/\b\f\n\r\t";
@@ -265,9 +283,12 @@ static int string(parser_t *ps, const char **s, size_t *len)
                 if (!unicode_escape(ps, esc, &cp)) return 0;
                 k += put_utf8(o + k, cp);
             } else if (ps->t[esc + 1] >= 0x21 && ps->t[esc + 1] < 0x7F) {
-                return fail(ps, esc, "an unknown escape \\%c (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX)", ps->t[esc + 1]);
+                return fail(ps, esc,
+                            "an unknown escape \\%c (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX)",
+                            ps->t[esc + 1]);
             } else {
-                return fail(ps, esc, "an unknown escape (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX)");
+                return fail(ps, esc,
+                            "an unknown escape (\\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX)");
             }
         } else {
             size_t u = utf8_len(ps->t + ps->p, end - ps->p);
@@ -313,7 +334,8 @@ static int number(parser_t *ps, json_value *v)
         if (ps->p < ps->n && (ps->t[ps->p] == '+' || ps->t[ps->p] == '-')) ps->p++;
         if (!digits(ps)) return fail(ps, p0, "a number wants a digit in its exponent");
     }
-    if (ps->p - p0 > JSON_MAX_NUMBER) return fail(ps, p0, "a number longer than %d characters", JSON_MAX_NUMBER);
+    if (ps->p - p0 > JSON_MAX_NUMBER)
+        return fail(ps, p0, "a number longer than %d characters", JSON_MAX_NUMBER);
     memcpy(buf, ps->t + p0, ps->p - p0);
     buf[ps->p - p0] = '\0';
     errno = 0;
@@ -340,7 +362,8 @@ static int literal(parser_t *ps, json_value *v)
         }
     }
     found(ps, what, sizeof what);
-    return fail(ps, ps->p, "expected a value (a number, a string, true, false, null, [ or {), found %s", what);
+    return fail(ps, ps->p,
+                "expected a value (a number, a string, true, false, null, [ or {), found %s", what);
 }
 
 static int value(parser_t *ps, json_value *v);
@@ -363,7 +386,9 @@ static int next_or_close(parser_t *ps, char close, const char *what, size_t open
     }
     at_text(ps, open, at, sizeof at);
     found(ps, seen, sizeof seen);
-    return fail(ps, ps->p, "expected ',' or '%c' in the %s opened at %s, found %s", close, what, at, seen) - 1;
+    return fail(ps, ps->p, "expected ',' or '%c' in the %s opened at %s, found %s", close, what, at,
+                seen) -
+           1;
 }
 
 /* Past a container's opening bracket: 0 when CLOSE follows at once (taken), else 1. */
@@ -413,7 +438,8 @@ static int unique_names(parser_t *ps, const json_value *v)
         if (strcmp(order[i - 1]->key, order[i]->key) == 0) {
             char at[32], name[72];
             at_text(ps, order[i - 1]->key_at, at, sizeof at);
-            ok = fail(ps, order[i]->key_at, "the name \"%s\" given twice in one object (first at %s)",
+            ok = fail(ps, order[i]->key_at,
+                      "the name \"%s\" given twice in one object (first at %s)",
                       json_quote(order[i]->key, name, sizeof name), at);
         }
     free(order);
@@ -438,8 +464,8 @@ static int object(parser_t *ps, json_value *v)
         skip_ws(ps);
         if (ps->p >= ps->n || ps->t[ps->p] != ':') {
             found(ps, seen, sizeof seen);
-            return fail(ps, ps->p, "expected ':' after the name \"%s\", found %s", json_quote(key, name, sizeof name),
-                        seen);
+            return fail(ps, ps->p, "expected ':' after the name \"%s\", found %s",
+                        json_quote(key, name, sizeof name), seen);
         }
         ps->p++;
         if (!value(ps, &m)) return 0;
@@ -467,19 +493,24 @@ static int value(parser_t *ps, json_value *v)
         ok = ps->t[ps->p] == '[' ? array(ps, v) : object(ps, v);
         ps->depth--;
         return ok;
-    case '"':
-        v->type = JSON_STRING;
-        return string(ps, &v->string, &v->len);
+    case '"': v->type = JSON_STRING; return string(ps, &v->string, &v->len);
     case '-':
-    case '0': case '1': case '2': case '3': case '4':
-    case '5': case '6': case '7': case '8': case '9':
-        return number(ps, v);
-    default:
-        return literal(ps, v);
+    case '0':
+    case '1':
+    case '2':
+    case '3':
+    case '4':
+    case '5':
+    case '6':
+    case '7':
+    case '8':
+    case '9': return number(ps, v);
+    default: return literal(ps, v);
     }
 }
 
-int json_parse(json_doc *doc, const char *name, const char *text, size_t size, char *err, size_t errlen)
+int json_parse(json_doc *doc, const char *name, const char *text, size_t size, char *err,
+               size_t errlen)
 {
     parser_t ps;
     memset(doc, 0, sizeof *doc);
@@ -494,7 +525,8 @@ int json_parse(json_doc *doc, const char *name, const char *text, size_t size, c
     ps.errlen = errlen;
     if (size >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) ps.p = 3; /* a byte order mark */
     skip_ws(&ps);
-    if (ps.p >= ps.n) fail(&ps, ps.p, "no JSON value: the file is empty");
+    if (ps.p >= ps.n)
+        fail(&ps, ps.p, "no JSON value: the file is empty");
     else if (value(&ps, &doc->root)) {
         skip_ws(&ps);
         if (ps.p < ps.n) {

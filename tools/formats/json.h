@@ -32,7 +32,15 @@ extern "C" {
 #define JSON_MAX_DEPTH  64  /* arrays and objects nested in each other */
 #define JSON_MAX_NUMBER 400 /* characters of one number */
 
-typedef enum { JSON_NULL, JSON_FALSE, JSON_TRUE, JSON_NUMBER, JSON_STRING, JSON_ARRAY, JSON_OBJECT } json_type;
+typedef enum {
+    JSON_NULL,
+    JSON_FALSE,
+    JSON_TRUE,
+    JSON_NUMBER,
+    JSON_STRING,
+    JSON_ARRAY,
+    JSON_OBJECT
+} json_type;
 
 typedef struct json_value json_value;
 struct json_value {
@@ -41,23 +49,24 @@ struct json_value {
     double number;      /* JSON_NUMBER */
     const char *string; /* JSON_STRING: decoded UTF-8, NUL-terminated, LEN bytes */
     size_t len;
-    size_t n;           /* JSON_ARRAY, JSON_OBJECT: the count of items or members */
-    json_value *items;  /* in the file's order */
-    const char *key;    /* a member of an object: its name (decoded, NUL-terminated) */
-    size_t key_at;      /* and the byte offset of the name's opening quote */
+    size_t n;          /* JSON_ARRAY, JSON_OBJECT: the count of items or members */
+    json_value *items; /* in the file's order */
+    const char *key;   /* a member of an object: its name (decoded, NUL-terminated) */
+    size_t key_at;     /* and the byte offset of the name's opening quote */
 };
 
 typedef struct {
     json_value root;
     const char *name, *text; /* the file's name (for errors) and text (the caller's) */
     size_t size;
-    void *blocks;            /* what the tree holds, freed by json_free */
+    void *blocks; /* what the tree holds, freed by json_free */
 } json_doc;
 
 /* Parses TEXT (SIZE bytes; a NUL inside is an error) named NAME into DOC, which refers
  * to NAME and TEXT until json_free. Returns 0, or -1 with "NAME:LINE:COL: what" in err
  * and nothing to free. */
-int json_parse(json_doc *doc, const char *name, const char *text, size_t size, char *err, size_t errlen);
+int json_parse(json_doc *doc, const char *name, const char *text, size_t size, char *err,
+               size_t errlen);
 
 /* Frees what json_parse allocated and zeroes DOC; NULL-safe. */
 void json_free(json_doc *doc);

@@ -14,7 +14,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#define MAX_VALUE 1e30   /* coordinates beyond this are broken geometry, not a scene */
+#define MAX_VALUE  1e30 /* coordinates beyond this are broken geometry, not a scene */
 #define DEFAULT_KD 0.8
 
 #if defined(__GNUC__)
@@ -30,13 +30,13 @@ typedef struct {
     void *ctx;
     char *err;
     size_t errlen;
-    const char *basedir;  /* for mtllib; NULL: mtllib is ignored with a warning */
-    int allow_outside;    /* obj_opts: files outside basedir are read */
-    char *root;           /* basedir resolved (fio_resolve), for messages; lazily */
-    const char *file;     /* file being parsed, for messages */
-    long line;            /* first physical line of the current statement */
-    int cur;              /* OBJ: material of the next faces; MTL: the one being defined */
-    int object, group;    /* OBJ: names index of the current o and g, -1 before any */
+    const char *basedir; /* for mtllib; NULL: mtllib is ignored with a warning */
+    int allow_outside;   /* obj_opts: files outside basedir are read */
+    char *root;          /* basedir resolved (fio_resolve), for messages; lazily */
+    const char *file;    /* file being parsed, for messages */
+    long line;           /* first physical line of the current statement */
+    int cur;             /* OBJ: material of the next faces; MTL: the one being defined */
+    int object, group;   /* OBJ: names index of the current o and g, -1 before any */
     size_t cap_verts, cap_indices, cap_faces, cap_mats, cap_uvs, cap_normals, cap_names;
     size_t cap_uv_indices, cap_normal_indices;
 } parser;
@@ -52,8 +52,7 @@ static void put_msg(char *out, size_t outlen, const char *fmt, ...) PRINTF_LIKE(
 static void put_msg(char *out, size_t outlen, const char *fmt, ...)
 {
     va_list ap;
-    if (!out || !outlen)
-        return;
+    if (!out || !outlen) return;
     va_start(ap, fmt);
     vsnprintf(out, outlen, fmt, ap);
     va_end(ap);
@@ -72,8 +71,7 @@ static int fail(parser *p, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    if (p->err && p->errlen)
-        located(p, p->err, p->errlen, fmt, ap);
+    if (p->err && p->errlen) located(p, p->err, p->errlen, fmt, ap);
     va_end(ap);
     return -1;
 }
@@ -84,8 +82,7 @@ static void warn(parser *p, const char *fmt, ...)
     char msg[1024];
     va_list ap;
     p->sc->nwarnings++;
-    if (!p->warn)
-        return;
+    if (!p->warn) return;
     va_start(ap, fmt);
     located(p, msg, sizeof msg, fmt, ap);
     va_end(ap);
@@ -104,10 +101,8 @@ static int line_int(const parser *p)
 static int outside(parser *p, const char *path)
 {
     const char *dir = p->basedir && *p->basedir ? p->basedir : ".";
-    if (p->allow_outside || fio_within(dir, path) != 0)
-        return 0;
-    if (!p->root)
-        p->root = fio_resolve(dir);
+    if (p->allow_outside || fio_within(dir, path) != 0) return 0;
+    if (!p->root) p->root = fio_resolve(dir);
     return 1;
 }
 
@@ -126,31 +121,26 @@ static void *reserve(void *p, size_t *cap, size_t need, size_t elem)
 {
     size_t n = *cap ? *cap : 16;
     void *q;
-    if (need <= *cap)
-        return p;
+    if (need <= *cap) return p;
     while (n < need) {
-        if (n > SIZE_MAX / 2 / elem)
-            return NULL;
+        if (n > SIZE_MAX / 2 / elem) return NULL;
         n *= 2;
     }
     q = realloc(p, n * elem);
-    if (q)
-        *cap = n;
+    if (q) *cap = n;
     return q;
 }
 
 /* ARR (N entries of ELEM bytes, room for *CAP) with room for one more: ARR itself or a
    reallocation; NULL after the error ("too many WHAT", out of memory), ARR still valid. */
-static void *room_for_one(parser *p, void *arr, size_t *cap, int n, size_t elem,
-                          const char *what)
+static void *room_for_one(parser *p, void *arr, size_t *cap, int n, size_t elem, const char *what)
 {
     void *q;
     if (n == INT_MAX) {
         fail(p, "too many %s", what);
         return NULL;
     }
-    if (!(q = reserve(arr, cap, (size_t)n + 1, elem)))
-        fail(p, "out of memory");
+    if (!(q = reserve(arr, cap, (size_t)n + 1, elem))) fail(p, "out of memory");
     return q;
 }
 
@@ -158,8 +148,7 @@ static void *room_for_one(parser *p, void *arr, size_t *cap, int n, size_t elem,
 static int push_vec3(parser *p, obj_vec3 **arr, int *n, size_t *cap, obj_vec3 v, const char *what)
 {
     obj_vec3 *q = room_for_one(p, *arr, cap, *n, sizeof *q, what);
-    if (!q)
-        return -1;
+    if (!q) return -1;
     *arr = q;
     q[(*n)++] = v;
     return 0;
@@ -168,10 +157,8 @@ static int push_vec3(parser *p, obj_vec3 **arr, int *n, size_t *cap, obj_vec3 v,
 static int push_uv(parser *p, obj_vec2 t)
 {
     obj_scene *sc = p->sc;
-    obj_vec2 *q = room_for_one(p, sc->uvs, &p->cap_uvs, sc->nuvs, sizeof *q,
-                               "texture coordinates");
-    if (!q)
-        return -1;
+    obj_vec2 *q = room_for_one(p, sc->uvs, &p->cap_uvs, sc->nuvs, sizeof *q, "texture coordinates");
+    if (!q) return -1;
     sc->uvs = q;
     sc->uvs[sc->nuvs++] = t;
     return 0;
@@ -184,8 +171,7 @@ static int push_index(parser *p, const int ix[3])
     obj_scene *sc = p->sc;
     size_t need = (size_t)sc->nindices + 1;
     int *q;
-    if (sc->nindices == INT_MAX)
-        return fail(p, "too many face vertices");
+    if (sc->nindices == INT_MAX) return fail(p, "too many face vertices");
     if ((q = reserve(sc->indices, &p->cap_indices, need, sizeof *q)) != NULL) {
         sc->indices = q;
         if ((q = reserve(sc->uv_indices, &p->cap_uv_indices, need, sizeof *q)) != NULL) {
@@ -194,8 +180,7 @@ static int push_index(parser *p, const int ix[3])
                 sc->normal_indices = q;
         }
     }
-    if (!q)
-        return fail(p, "out of memory");
+    if (!q) return fail(p, "out of memory");
     sc->indices[sc->nindices] = ix[0];
     sc->uv_indices[sc->nindices] = ix[1];
     sc->normal_indices[sc->nindices++] = ix[2];
@@ -206,11 +191,9 @@ static int push_face(parser *p, int first, int count)
 {
     obj_scene *sc = p->sc;
     obj_face *q;
-    if (sc->nfaces == INT_MAX)
-        return fail(p, "too many faces");
+    if (sc->nfaces == INT_MAX) return fail(p, "too many faces");
     q = reserve(sc->faces, &p->cap_faces, (size_t)sc->nfaces + 1, sizeof *q);
-    if (!q)
-        return fail(p, "out of memory");
+    if (!q) return fail(p, "out of memory");
     sc->faces = q;
     q += sc->nfaces++;
     q->material = p->cur;
@@ -226,8 +209,7 @@ static char *copy_string(const char *s)
 {
     size_t n = strlen(s) + 1;
     char *c = malloc(n);
-    if (c)
-        memcpy(c, s, n);
+    if (c) memcpy(c, s, n);
     return c;
 }
 
@@ -276,19 +258,14 @@ static int grow_names(obj_scene *sc)
 {
     size_t n = sc->mat_slots ? sc->mat_slots : 64, i;
     int *t;
-    if ((size_t)sc->nmaterials + 1 <= n / 2 && sc->mat_index)
-        return 0;
-    while ((size_t)sc->nmaterials + 1 > n / 2)
-        n *= 2;
-    if (!(t = malloc(n * sizeof *t)))
-        return -1;
-    for (i = 0; i < n; i++)
-        t[i] = -1;
+    if ((size_t)sc->nmaterials + 1 <= n / 2 && sc->mat_index) return 0;
+    while ((size_t)sc->nmaterials + 1 > n / 2) n *= 2;
+    if (!(t = malloc(n * sizeof *t))) return -1;
+    for (i = 0; i < n; i++) t[i] = -1;
     free(sc->mat_index);
     sc->mat_index = t;
     sc->mat_slots = n;
-    for (i = 0; i < (size_t)sc->nmaterials; i++)
-        t[name_slot(sc, sc->materials[i].name)] = (int)i;
+    for (i = 0; i < (size_t)sc->nmaterials; i++) t[name_slot(sc, sc->materials[i].name)] = (int)i;
     return 0;
 }
 
@@ -300,19 +277,14 @@ static int intern_material(parser *p, const char *name)
     size_t len = strlen(name);
     char *copy;
     int m = obj_find_material(sc, name);
-    if (m >= 0)
-        return m;
-    if (sc->nmaterials == INT_MAX)
-        return fail(p, "too many materials");
+    if (m >= 0) return m;
+    if (sc->nmaterials == INT_MAX) return fail(p, "too many materials");
     q = reserve(sc->materials, &p->cap_mats, (size_t)sc->nmaterials + 1, sizeof *q);
-    if (!q)
-        return fail(p, "out of memory");
+    if (!q) return fail(p, "out of memory");
     sc->materials = q; /* before grow_names, which reads the names */
-    if (grow_names(sc) != 0)
-        return fail(p, "out of memory");
+    if (grow_names(sc) != 0) return fail(p, "out of memory");
     copy = malloc(len + 1);
-    if (!copy)
-        return fail(p, "out of memory");
+    if (!copy) return fail(p, "out of memory");
     memcpy(copy, name, len + 1);
     q += sc->nmaterials;
     memset(q, 0, sizeof *q);
@@ -338,15 +310,11 @@ static int is_digit(int c)
 static char *next_token(char **s)
 {
     char *c = *s, *start;
-    while (is_space((unsigned char)*c))
-        c++;
-    if (!*c)
-        return NULL;
+    while (is_space((unsigned char)*c)) c++;
+    if (!*c) return NULL;
     start = c;
-    while (*c && !is_space((unsigned char)*c))
-        c++;
-    if (*c)
-        *c++ = '\0';
+    while (*c && !is_space((unsigned char)*c)) c++;
+    if (*c) *c++ = '\0';
     *s = c;
     return start;
 }
@@ -354,11 +322,9 @@ static char *next_token(char **s)
 static char *trim(char *s)
 {
     size_t n;
-    while (is_space((unsigned char)*s))
-        s++;
+    while (is_space((unsigned char)*s)) s++;
     n = strlen(s);
-    while (n > 0 && is_space((unsigned char)s[n - 1]))
-        n--;
+    while (n > 0 && is_space((unsigned char)s[n - 1])) n--;
     s[n] = '\0';
     return s;
 }
@@ -366,8 +332,7 @@ static char *trim(char *s)
 static int is_one_of(const char *kw, const char *const *list)
 {
     for (; *list; list++)
-        if (!strcmp(kw, *list))
-            return 1;
+        if (!strcmp(kw, *list)) return 1;
     return 0;
 }
 
@@ -375,23 +340,16 @@ static int is_one_of(const char *kw, const char *const *list)
 static int is_decimal(const char *s)
 {
     int digits = 0;
-    if (*s == '+' || *s == '-')
-        s++;
-    for (; is_digit((unsigned char)*s); s++)
-        digits++;
+    if (*s == '+' || *s == '-') s++;
+    for (; is_digit((unsigned char)*s); s++) digits++;
     if (*s == '.')
-        for (s++; is_digit((unsigned char)*s); s++)
-            digits++;
-    if (!digits)
-        return 0;
+        for (s++; is_digit((unsigned char)*s); s++) digits++;
+    if (!digits) return 0;
     if (*s == 'e' || *s == 'E') {
         s++;
-        if (*s == '+' || *s == '-')
-            s++;
-        if (!is_digit((unsigned char)*s))
-            return 0;
-        while (is_digit((unsigned char)*s))
-            s++;
+        if (*s == '+' || *s == '-') s++;
+        if (!is_digit((unsigned char)*s)) return 0;
+        while (is_digit((unsigned char)*s)) s++;
     }
     return *s == '\0';
 }
@@ -400,13 +358,10 @@ static int parse_number(parser *p, const char *tok, double *out)
 {
     char *end;
     double v;
-    if (!is_decimal(tok))
-        return fail(p, "bad number '%.40s'", tok);
+    if (!is_decimal(tok)) return fail(p, "bad number '%.40s'", tok);
     v = strtod(tok, &end);
-    if (*end != '\0')
-        return fail(p, "bad number '%.40s'", tok);
-    if (!(fabs(v) <= MAX_VALUE))
-        return fail(p, "number out of range '%.40s' (limit 1e30)", tok);
+    if (*end != '\0') return fail(p, "bad number '%.40s'", tok);
+    if (!(fabs(v) <= MAX_VALUE)) return fail(p, "number out of range '%.40s' (limit 1e30)", tok);
     *out = v;
     return 0;
 }
@@ -417,13 +372,10 @@ static int read_int(const char **s, long long *v)
     const char *c = *s;
     long long x = 0;
     int neg = 0;
-    if (*c == '+' || *c == '-')
-        neg = *c++ == '-';
-    if (!is_digit((unsigned char)*c))
-        return -1;
+    if (*c == '+' || *c == '-') neg = *c++ == '-';
+    if (!is_digit((unsigned char)*c)) return -1;
     for (; is_digit((unsigned char)*c); c++)
-        if (x <= INT_MAX)
-            x = x * 10 + (*c - '0');
+        if (x <= INT_MAX) x = x * 10 + (*c - '0');
     *v = neg ? -x : x;
     *s = c;
     return 0;
@@ -452,8 +404,7 @@ static int run_statement(parser *p, char *line, statement_fn fn)
 static size_t line_length(const char *s, size_t rem, size_t *eol)
 {
     size_t n = 0;
-    while (n < rem && s[n] != '\n' && s[n] != '\r')
-        n++;
+    while (n < rem && s[n] != '\n' && s[n] != '\r') n++;
     *eol = n == rem ? 0 : (s[n] == '\r' && n + 1 < rem && s[n + 1] == '\n') ? 2 : 1;
     return n;
 }
@@ -483,8 +434,7 @@ static int each_statement(parser *p, const char *text, size_t len, statement_fn 
             rc = fail(p, "binary data (NUL byte)");
             break;
         }
-        while (n > 0 && is_space((unsigned char)s[n - 1]))
-            n--;
+        while (n > 0 && is_space((unsigned char)s[n - 1])) n--;
         joining = n > 0 && s[n - 1] == '\\';
         n -= (size_t)joining;
         q = reserve(buf, &cap, used + n + 2, 1);
@@ -521,16 +471,13 @@ static double line_bytes(const char *s, size_t n, long *nf)
 {
     size_t i = 0, k;
     double b = 0;
-    while (i < n && is_space((unsigned char)s[i]))
-        i++;
+    while (i < n && is_space((unsigned char)s[i])) i++;
     for (k = i; k < n && !is_space((unsigned char)s[k]); k++)
         ;
-    if (k - i == 1 && s[i] == 'v')
-        return sizeof(obj_vec3);
+    if (k - i == 1 && s[i] == 'v') return sizeof(obj_vec3);
     if (k - i == 2 && s[i] == 'v')
         return s[i + 1] == 't' ? sizeof(obj_vec2) : s[i + 1] == 'n' ? sizeof(obj_vec3) : 0;
-    if (k - i != 1 || s[i] != 'f')
-        return 0;
+    if (k - i != 1 || s[i] != 'f') return 0;
     (*nf)++;
     b = sizeof(obj_face);
     for (i = k; i < n && s[i] != '#'; i++)
@@ -554,11 +501,13 @@ static int within_budget(parser *p, const char *text, size_t len)
         pos += n + eol;
         if (bytes > budget) {
             p->line = line;
-            return fail(p, "loading the scene up to this line needs more than the memory budget of "
-                           "%.4g MB (%ld faces so far; %s): simplify or split the scene",
+            return fail(p,
+                        "loading the scene up to this line needs more than the memory budget of "
+                        "%.4g MB (%ld faces so far; %s): simplify or split the scene",
                         budget / 1e6, nf,
-                        getenv("RAD_MEMORY_BUDGET") ? "RAD_MEMORY_BUDGET"
-                                                    : "half the physical memory; RAD_MEMORY_BUDGET sets it");
+                        getenv("RAD_MEMORY_BUDGET")
+                            ? "RAD_MEMORY_BUDGET"
+                            : "half the physical memory; RAD_MEMORY_BUDGET sets it");
         }
     }
     return 0;
@@ -571,13 +520,10 @@ static int parse_newmtl(parser *p, char *rest)
     const char *name = trim(rest);
     obj_material *m;
     int i;
-    if (!*name)
-        return fail(p, "newmtl without a material name");
-    if ((i = intern_material(p, name)) < 0)
-        return -1;
+    if (!*name) return fail(p, "newmtl without a material name");
+    if ((i = intern_material(p, name)) < 0) return -1;
     m = &p->sc->materials[i];
-    if (m->defined)
-        warn(p, "material '%.200s' defined again; the new definition wins", name);
+    if (m->defined) warn(p, "material '%.200s' defined again; the new definition wins", name);
     material_defaults(m);
     m->defined = 1;
     p->cur = i;
@@ -591,18 +537,13 @@ static int parse_colour(parser *p, const char *kw, char *rest, double *dst)
     char *tok;
     int n = 0;
     while ((tok = next_token(&rest)) != NULL) {
-        if (n == 3)
-            return fail(p, "%s takes 1 or 3 values, got more", kw);
-        if (parse_number(p, tok, &c[n]))
-            return -1;
-        if (c[n] < 0)
-            return fail(p, "negative %s value '%.40s'", kw, tok);
+        if (n == 3) return fail(p, "%s takes 1 or 3 values, got more", kw);
+        if (parse_number(p, tok, &c[n])) return -1;
+        if (c[n] < 0) return fail(p, "negative %s value '%.40s'", kw, tok);
         n++;
     }
-    if (n != 1 && n != 3)
-        return fail(p, "%s takes 1 or 3 values, got %d", kw, n);
-    if (n == 1)
-        c[1] = c[2] = c[0];
+    if (n != 1 && n != 3) return fail(p, "%s takes 1 or 3 values, got %d", kw, n);
+    if (n == 1) c[1] = c[2] = c[0];
     memcpy(dst, c, sizeof c);
     return 0;
 }
@@ -618,21 +559,19 @@ typedef struct {
 } map_option;
 
 static const map_option map_options[] = {
-    { "-blendu", MAP_ON_OFF, 1, 1 }, { "-blendv", MAP_ON_OFF, 1, 1 },
-    { "-bm", MAP_NUMBERS, 1, 1 },    { "-boost", MAP_NUMBERS, 1, 1 },
-    { "-cc", MAP_ON_OFF, 1, 1 },     { "-clamp", MAP_ON_OFF, 1, 1 },
-    { "-imfchan", MAP_WORD, 1, 1 },  { "-mm", MAP_NUMBERS, 2, 2 },
-    { "-o", MAP_NUMBERS, 1, 3 },     { "-s", MAP_NUMBERS, 1, 3 },
-    { "-t", MAP_NUMBERS, 1, 3 },     { "-texres", MAP_NUMBERS, 1, 1 },
-    { "-type", MAP_WORD, 1, 1 },     { NULL, 0, 0, 0 }
-};
+    {"-blendu", MAP_ON_OFF, 1, 1}, {"-blendv", MAP_ON_OFF, 1, 1},
+    {"-bm", MAP_NUMBERS, 1, 1},    {"-boost", MAP_NUMBERS, 1, 1},
+    {"-cc", MAP_ON_OFF, 1, 1},     {"-clamp", MAP_ON_OFF, 1, 1},
+    {"-imfchan", MAP_WORD, 1, 1},  {"-mm", MAP_NUMBERS, 2, 2},
+    {"-o", MAP_NUMBERS, 1, 3},     {"-s", MAP_NUMBERS, 1, 3},
+    {"-t", MAP_NUMBERS, 1, 3},     {"-texres", MAP_NUMBERS, 1, 1},
+    {"-type", MAP_WORD, 1, 1},     {NULL, 0, 0, 0}};
 
 static const map_option *find_map_option(const char *tok)
 {
     const map_option *o;
     for (o = map_options; o->name; o++)
-        if (!strcmp(tok, o->name))
-            return o;
+        if (!strcmp(tok, o->name)) return o;
     return NULL;
 }
 
@@ -656,10 +595,8 @@ static int map_value(const map_option *o, const char *tok, double *v)
 static char *peek_token(char *s, char tok[64])
 {
     size_t n = 0;
-    while (is_space((unsigned char)*s))
-        s++;
-    while (s[n] && !is_space((unsigned char)s[n]))
-        n++;
+    while (is_space((unsigned char)*s)) s++;
+    while (s[n] && !is_space((unsigned char)s[n])) n++;
     memcpy(tok, s, n < 64 ? n : 0);
     tok[n < 64 ? n : 0] = '\0';
     return s + n;
@@ -672,8 +609,7 @@ static int map_option_values(parser *p, const map_option *o, char **rest, double
     int n = 0;
     while (n < o->max) {
         char tok[64], *after = peek_token(*rest, tok);
-        if (!*tok || !map_value(o, tok, &v[n]))
-            break; /* the file name, or the next option */
+        if (!*tok || !map_value(o, tok, &v[n])) break; /* the file name, or the next option */
         *rest = after;
         n++;
     }
@@ -689,8 +625,7 @@ static int map_option_values(parser *p, const map_option *o, char **rest, double
 static void map_apply(obj_map *t, const map_option *o, const double *v, int n)
 {
     int offset = !strcmp(o->name, "-o");
-    if (!strcmp(o->name, "-clamp"))
-        t->clamp = v[0] > 0;
+    if (!strcmp(o->name, "-clamp")) t->clamp = v[0] > 0;
     if (offset || !strcmp(o->name, "-s")) {
         double *dst = offset ? t->offset : t->scale;
         dst[0] = v[0];
@@ -704,8 +639,7 @@ static char *map_path(const parser *p, char *name)
 {
     char *dir = dir_of(p->file), *path, *c;
     for (c = name; *c; c++)
-        if (*c == '\\')
-            *c = '/';
+        if (*c == '\\') *c = '/';
     path = dir ? join_path(dir, name) : NULL;
     free(dir);
     return path;
@@ -719,54 +653,45 @@ static int parse_map_kd(parser *p, char *rest)
     char tok[64], *after;
     map_defaults(t);
     t->line = line_int(p);
-    if (!(t->mtl = copy_string(p->file)))
-        return fail(p, "out of memory");
+    if (!(t->mtl = copy_string(p->file))) return fail(p, "out of memory");
     while ((after = peek_token(rest, tok)), tok[0] == '-') {
         const map_option *o = find_map_option(tok);
         double v[3];
         int n;
-        if (!o)
-            break; /* a file whose name starts with '-' */
+        if (!o) break; /* a file whose name starts with '-' */
         rest = after;
-        if ((n = map_option_values(p, o, &rest, v)) < 0)
-            return 0;
+        if ((n = map_option_values(p, o, &rest, v)) < 0) return 0;
         map_apply(t, o, v, n);
     }
     if (!*(rest = trim(rest))) {
         warn(p, "map_Kd without a file name: ignored");
         return 0;
     }
-    if (!(t->path = map_path(p, rest)))
-        return fail(p, "out of memory");
+    if (!(t->path = map_path(p, rest))) return fail(p, "out of memory");
     t->outside = outside(p, t->path); /* warned of by finish, once Kd is known */
     return 0;
 }
 
 /* Valid MTL that says nothing about diffuse reflection or emission. */
 static const char *const mtl_ignored[] = {
-    "Ka", "Ks", "Ns", "Ni", "d", "Tr", "Tf", "illum", "sharpness", "bump", "disp", "decal",
-    "refl", "norm", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor", NULL
-};
+    "Ka",    "Ks",   "Ns",   "Ni", "d",  "Tr", "Tf", "illum", "sharpness", "bump",   "disp",
+    "decal", "refl", "norm", "Pr", "Pm", "Ps", "Pc", "Pcr",   "aniso",     "anisor", NULL};
 
 static int mtl_statement(parser *p, const char *kw, char *rest)
 {
     int colour = !strcmp(kw, "Kd") ? 1 : !strcmp(kw, "Ke") ? 2 : 0;
-    if (!strcmp(kw, "newmtl"))
-        return parse_newmtl(p, rest);
+    if (!strcmp(kw, "newmtl")) return parse_newmtl(p, rest);
     if (colour) {
         obj_material *m;
-        if (p->cur < 0)
-            return fail(p, "%s before any newmtl", kw);
+        if (p->cur < 0) return fail(p, "%s before any newmtl", kw);
         m = &p->sc->materials[p->cur];
         return parse_colour(p, kw, rest, colour == 1 ? m->kd : m->ke);
     }
     if (!strcmp(kw, "map_Kd")) {
-        if (p->cur < 0)
-            return fail(p, "%s before any newmtl", kw);
+        if (p->cur < 0) return fail(p, "%s before any newmtl", kw);
         return parse_map_kd(p, rest);
     }
-    if (!strncmp(kw, "map_", 4) || is_one_of(kw, mtl_ignored))
-        return 0;
+    if (!strncmp(kw, "map_", 4) || is_one_of(kw, mtl_ignored)) return 0;
     p->sc->unknown_statements++;
     return 0;
 }
@@ -776,11 +701,9 @@ static char *join_path(const char *dir, const char *name)
     size_t dl = name[0] == '/' ? 0 : strlen(dir), nl = strlen(name);
     int sep = dl > 0 && dir[dl - 1] != '/';
     char *s = malloc(dl + (size_t)sep + nl + 1);
-    if (!s)
-        return NULL;
+    if (!s) return NULL;
     memcpy(s, dir, dl);
-    if (sep)
-        s[dl] = '/';
+    if (sep) s[dl] = '/';
     memcpy(s + dl + (size_t)sep, name, nl + 1);
     return s;
 }
@@ -792,8 +715,7 @@ static int read_mtl_text(parser *p, const char *name, const char *path, char **t
     char msg[600];
     const char *why = msg;
     size_t pl = strlen(path);
-    if (fio_read_all(path, FIO_LIMIT_MTL, text, len, msg, sizeof msg) == 0)
-        return 0;
+    if (fio_read_all(path, FIO_LIMIT_MTL, text, len, msg, sizeof msg) == 0) return 0;
     if (!strncmp(msg, path, pl) && !strncmp(msg + pl, ": ", 2))
         why = msg + pl + 2; /* fio's "PATH: " prefix: the warning names the library */
     if (!strncmp(why, "cannot open: ", 13))
@@ -808,11 +730,9 @@ static int keep_lib(parser *p, const char *path)
 {
     obj_scene *sc = p->sc;
     char **q = sc->nlibs < INT_MAX ? realloc(sc->libs, ((size_t)sc->nlibs + 1) * sizeof *q) : NULL;
-    if (!q)
-        return -1;
+    if (!q) return -1;
     sc->libs = q;
-    if (!(q[sc->nlibs] = copy_string(path)))
-        return -1;
+    if (!(q[sc->nlibs] = copy_string(path))) return -1;
     sc->nlibs++;
     return 0;
 }
@@ -825,8 +745,7 @@ static int load_mtl(parser *p, const char *name)
     int cur = p->cur, rc;
     char *text, *path = join_path(p->basedir, name);
     size_t len;
-    if (!path)
-        return fail(p, "out of memory");
+    if (!path) return fail(p, "out of memory");
     if (outside(p, path)) {
         warn_outside(p, "mtllib", path, "library not read");
         free(path);
@@ -840,8 +759,7 @@ static int load_mtl(parser *p, const char *name)
     p->cur = -1;
     rc = each_statement(p, text, len, mtl_statement);
     free(text);
-    if (rc == 0 && keep_lib(p, path) < 0)
-        rc = fail(p, "out of memory");
+    if (rc == 0 && keep_lib(p, path) < 0) rc = fail(p, "out of memory");
     free(path);
     p->file = file;
     p->line = line;
@@ -870,14 +788,11 @@ static int parse_numbers(parser *p, const char *kw, const char *need, char *rest
     int n = 0;
     while ((tok = next_token(&rest)) != NULL) {
         double x;
-        if (parse_number(p, tok, &x))
-            return -1;
-        if (n < max)
-            c[n] = x;
+        if (parse_number(p, tok, &x)) return -1;
+        if (n < max) c[n] = x;
         n++;
     }
-    if (n < min)
-        return fail(p, "%s needs %s, got %d", kw, need, n);
+    if (n < min) return fail(p, "%s needs %s, got %d", kw, need, n);
     return n < max ? n : max;
 }
 
@@ -888,13 +803,11 @@ static int parse_vec3(parser *p, int normal, char *rest)
     obj_scene *sc = p->sc;
     obj_vec3 v;
     double c[3];
-    if (parse_numbers(p, normal ? "vn" : "vertex", "3 coordinates", rest, c, 3, 3) < 0)
-        return -1;
+    if (parse_numbers(p, normal ? "vn" : "vertex", "3 coordinates", rest, c, 3, 3) < 0) return -1;
     v.x = c[0];
     v.y = c[1];
     v.z = c[2];
-    if (normal)
-        return push_vec3(p, &sc->normals, &sc->nnormals, &p->cap_normals, v, "normals");
+    if (normal) return push_vec3(p, &sc->normals, &sc->nnormals, &p->cap_normals, v, "normals");
     return push_vec3(p, &sc->verts, &sc->nverts, &p->cap_verts, v, "vertices");
 }
 
@@ -902,9 +815,8 @@ static int parse_vec3(parser *p, int normal, char *rest)
 static int parse_uv(parser *p, char *rest)
 {
     obj_vec2 t;
-    double c[2] = { 0, 0 };
-    if (parse_numbers(p, "vt", "at least 1 coordinate", rest, c, 1, 2) < 0)
-        return -1;
+    double c[2] = {0, 0};
+    if (parse_numbers(p, "vt", "at least 1 coordinate", rest, c, 1, 2) < 0) return -1;
     t.u = c[0];
     t.v = c[1];
     return push_uv(p, t);
@@ -915,8 +827,7 @@ static int parse_uv(parser *p, char *rest)
 static int resolve_index(parser *p, long long v, const char *text, int len, int n,
                          const char *const what[2], int *out)
 {
-    if (v == 0)
-        return fail(p, "%s index 0 (OBJ indices start at 1)", what[0]);
+    if (v == 0) return fail(p, "%s index 0 (OBJ indices start at 1)", what[0]);
     if (v > n || v < -(long long)n)
         return fail(p, "%s index %.*s out of range (%d %s defined so far)", what[0],
                     len > 40 ? 40 : len, text, n, what[1]);
@@ -927,15 +838,13 @@ static int resolve_index(parser *p, long long v, const char *text, int len, int 
 /* A vt or vn index that does not resolve is not an error (the positions are whole, and
    such files loaded before texture coordinates were read): the part is dropped with a
    warning, once per face (*WARNED). */
-static void resolve_part(parser *p, long long v, int n, const char *what, int *out,
-                         int *warned)
+static void resolve_part(parser *p, long long v, int n, const char *what, int *out, int *warned)
 {
     if (v != 0 && v <= n && v >= -(long long)n) {
         *out = (int)(v > 0 ? v - 1 : n + v);
         return;
     }
-    if (!*warned)
-        warn(p, "%s index %lld out of range (%d defined so far): ignored", what, v, n);
+    if (!*warned) warn(p, "%s index %lld out of range (%d defined so far): ignored", what, v, n);
     *warned = 1;
 }
 
@@ -943,11 +852,11 @@ static void resolve_part(parser *p, long long v, int n, const char *what, int *o
    into ix[0..2], -1 for a part not given. */
 static int parse_face_vertex(parser *p, const char *tok, int ix[3], int *warned)
 {
-    static const char *const what[3][2] = { { "vertex", "vertices" },
-                                            { "texture coordinate", "texture coordinates" },
-                                            { "normal", "normals" } };
+    static const char *const what[3][2] = {{"vertex", "vertices"},
+                                           {"texture coordinate", "texture coordinates"},
+                                           {"normal", "normals"}};
     const obj_scene *sc = p->sc;
-    const int n[3] = { sc->nverts, sc->nuvs, sc->nnormals };
+    const int n[3] = {sc->nverts, sc->nuvs, sc->nnormals};
     const char *c = tok;
     int k;
     ix[0] = ix[1] = ix[2] = -1;
@@ -955,21 +864,17 @@ static int parse_face_vertex(parser *p, const char *tok, int ix[3], int *warned)
         const char *start = c;
         long long v;
         if (k > 0) {
-            if (*c != '/')
-                break;
+            if (*c != '/') break;
             start = ++c;
-            if (k == 1 && *c == '/')
-                continue; /* v//vn */
+            if (k == 1 && *c == '/') continue; /* v//vn */
         }
-        if (read_int(&c, &v))
-            return fail(p, "bad face vertex '%.40s'", tok);
+        if (read_int(&c, &v)) return fail(p, "bad face vertex '%.40s'", tok);
         if (k > 0)
             resolve_part(p, v, n[k], what[k][0], &ix[k], warned);
         else if (resolve_index(p, v, start, (int)(c - start), n[k], what[k], &ix[k]))
             return -1;
     }
-    if (*c)
-        return fail(p, "bad face vertex '%.40s'", tok);
+    if (*c) return fail(p, "bad face vertex '%.40s'", tok);
     return 0;
 }
 
@@ -993,15 +898,12 @@ static int parse_face(parser *p, char *rest)
     int first = sc->nindices, count = 0, ix[3], warned = 0;
     char *tok;
     while ((tok = next_token(&rest)) != NULL) {
-        if (parse_face_vertex(p, tok, ix, &warned) || push_index(p, ix))
-            return -1;
+        if (parse_face_vertex(p, tok, ix, &warned) || push_index(p, ix)) return -1;
         count++;
     }
-    if (count < 3)
-        return fail(p, "face needs at least 3 vertices, got %d", count);
+    if (count < 3) return fail(p, "face needs at least 3 vertices, got %d", count);
     whole_parts(sc->uv_indices + first, sc->normal_indices + first, count);
-    if (p->cur < 0 && (p->cur = intern_material(p, OBJ_DEFAULT_MATERIAL)) < 0)
-        return -1;
+    if (p->cur < 0 && (p->cur = intern_material(p, OBJ_DEFAULT_MATERIAL)) < 0) return -1;
     return push_face(p, first, count);
 }
 
@@ -1009,12 +911,9 @@ static int parse_usemtl(parser *p, char *rest)
 {
     const char *name = trim(rest);
     int m;
-    if (!*name)
-        return fail(p, "usemtl without a material name");
-    if ((m = intern_material(p, name)) < 0)
-        return -1;
-    if (!p->sc->materials[m].use_line)
-        p->sc->materials[m].use_line = line_int(p);
+    if (!*name) return fail(p, "usemtl without a material name");
+    if ((m = intern_material(p, name)) < 0) return -1;
+    if (!p->sc->materials[m].use_line) p->sc->materials[m].use_line = line_int(p);
     p->cur = m;
     return 0;
 }
@@ -1023,17 +922,14 @@ static int parse_usemtl(parser *p, char *rest)
 static int parse_mtllib(parser *p, char *rest)
 {
     char *names = trim(rest), *tok;
-    if (!*names)
-        return fail(p, "mtllib without a file name");
+    if (!*names) return fail(p, "mtllib without a file name");
     if (!p->basedir) {
         warn(p, "mtllib '%.200s' ignored: no directory to look in", names);
         return 0;
     }
-    if (strpbrk(names, " \t\v\f\r") && mtl_exists(p, names))
-        return load_mtl(p, names);
+    if (strpbrk(names, " \t\v\f\r") && mtl_exists(p, names)) return load_mtl(p, names);
     while ((tok = next_token(&names)) != NULL)
-        if (load_mtl(p, tok))
-            return -1;
+        if (load_mtl(p, tok)) return -1;
     return 0;
 }
 
@@ -1050,41 +946,30 @@ static int parse_name(parser *p, char *rest, int *cur)
         *cur = -1;
         return 0;
     }
-    if (*cur >= 0 && !strcmp(sc->names[*cur], name))
-        return 0;
+    if (*cur >= 0 && !strcmp(sc->names[*cur], name)) return 0;
     if (!(q = room_for_one(p, sc->names, &p->cap_names, sc->nnames, sizeof *q,
                            "object and group names")))
         return -1;
     sc->names = q;
-    if (!(q[sc->nnames] = copy_string(name)))
-        return fail(p, "out of memory");
+    if (!(q[sc->nnames] = copy_string(name))) return fail(p, "out of memory");
     *cur = sc->nnames++;
     return 0;
 }
 
 /* Valid OBJ that does not matter for radiosity. */
-static const char *const obj_ignored[] = { "vp", "s", "l", "p", "mg", NULL };
+static const char *const obj_ignored[] = {"vp", "s", "l", "p", "mg", NULL};
 
 static int obj_statement(parser *p, const char *kw, char *rest)
 {
-    if (!strcmp(kw, "v"))
-        return parse_vec3(p, 0, rest);
-    if (!strcmp(kw, "vt"))
-        return parse_uv(p, rest);
-    if (!strcmp(kw, "vn"))
-        return parse_vec3(p, 1, rest);
-    if (!strcmp(kw, "o"))
-        return parse_name(p, rest, &p->object);
-    if (!strcmp(kw, "g"))
-        return parse_name(p, rest, &p->group);
-    if (!strcmp(kw, "f"))
-        return parse_face(p, rest);
-    if (!strcmp(kw, "usemtl"))
-        return parse_usemtl(p, rest);
-    if (!strcmp(kw, "mtllib"))
-        return parse_mtllib(p, rest);
-    if (!is_one_of(kw, obj_ignored))
-        p->sc->unknown_statements++;
+    if (!strcmp(kw, "v")) return parse_vec3(p, 0, rest);
+    if (!strcmp(kw, "vt")) return parse_uv(p, rest);
+    if (!strcmp(kw, "vn")) return parse_vec3(p, 1, rest);
+    if (!strcmp(kw, "o")) return parse_name(p, rest, &p->object);
+    if (!strcmp(kw, "g")) return parse_name(p, rest, &p->group);
+    if (!strcmp(kw, "f")) return parse_face(p, rest);
+    if (!strcmp(kw, "usemtl")) return parse_usemtl(p, rest);
+    if (!strcmp(kw, "mtllib")) return parse_mtllib(p, rest);
+    if (!is_one_of(kw, obj_ignored)) p->sc->unknown_statements++;
     return 0;
 }
 
@@ -1109,10 +994,8 @@ static void finish(parser *p)
     for (i = 0; i < sc->nmaterials; i++) {
         obj_material *m = &sc->materials[i];
         char doing[128];
-        if (m->map_kd.line && (!m->map_kd.path || m->map_kd.outside))
-            obj_map_fallback(m);
-        if (!m->map_kd.outside)
-            continue;
+        if (m->map_kd.line && (!m->map_kd.path || m->map_kd.outside)) obj_map_fallback(m);
+        if (!m->map_kd.outside) continue;
         p->file = m->map_kd.mtl;
         p->line = m->map_kd.line;
         snprintf(doing, sizeof doing, "using Kd %.3g %.3g %.3g", m->kd[0], m->kd[1], m->kd[2]);
@@ -1126,16 +1009,14 @@ static void finish(parser *p)
 int obj_map_fallback(obj_material *m)
 {
     int i;
-    if (m->kd[0] != 0 || m->kd[1] != 0 || m->kd[2] != 0)
-        return 0;
-    for (i = 0; i < 3; i++)
-        m->kd[i] = OBJ_FALLBACK_KD;
+    if (m->kd[0] != 0 || m->kd[1] != 0 || m->kd[2] != 0) return 0;
+    for (i = 0; i < 3; i++) m->kd[i] = OBJ_FALLBACK_KD;
     return 1;
 }
 
 static int parse_text(const char *text, size_t len, const char *name, const char *basedir,
-                      const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn, void *ctx, char *err,
-                      size_t errlen)
+                      const obj_opts *opts, obj_scene *sc, obj_warn_fn warn_fn, void *ctx,
+                      char *err, size_t errlen)
 {
     parser p;
     int rc = 0;
@@ -1212,24 +1093,19 @@ int obj_load_opts(const char *path, const obj_opts *opts, obj_scene *sc, obj_war
 void obj_free(obj_scene *sc)
 {
     int i;
-    if (!sc)
-        return;
+    if (!sc) return;
     for (i = 0; i < sc->nmaterials; i++) {
         free(sc->materials[i].name);
         free(sc->materials[i].map_kd.path);
         free(sc->materials[i].map_kd.mtl);
         free(sc->materials[i].map_kd.data);
     }
-    for (i = 0; i < sc->nnames; i++)
-        free(sc->names[i]);
-    for (i = 0; i < sc->nlights; i++)
-        free(sc->lights[i].name);
+    for (i = 0; i < sc->nnames; i++) free(sc->names[i]);
+    for (i = 0; i < sc->nlights; i++) free(sc->lights[i].name);
     free(sc->lights);
-    for (i = 0; i < sc->nnodes; i++)
-        free(sc->nodes[i].name);
+    for (i = 0; i < sc->nnodes; i++) free(sc->nodes[i].name);
     free(sc->nodes);
-    for (i = 0; i < sc->nlibs; i++)
-        free(sc->libs[i]);
+    for (i = 0; i < sc->nlibs; i++) free(sc->libs[i]);
     free(sc->libs);
     free(sc->names);
     free(sc->materials);
@@ -1248,11 +1124,9 @@ void obj_free(obj_scene *sc)
 int obj_find_material(const obj_scene *sc, const char *name)
 {
     int i;
-    if (sc->mat_index)
-        return sc->mat_index[name_slot(sc, name)];
+    if (sc->mat_index) return sc->mat_index[name_slot(sc, name)];
     for (i = 0; i < sc->nmaterials; i++) /* a scene made by hand, without the table */
-        if (!strcmp(sc->materials[i].name, name))
-            return i;
+        if (!strcmp(sc->materials[i].name, name)) return i;
     return -1;
 }
 
@@ -1295,7 +1169,7 @@ static obj_vec3 vscale(obj_vec3 a, double s)
 obj_vec3 obj_face_normal(const obj_scene *sc, const obj_face *f)
 {
     const int *ix = sc->indices + f->first;
-    obj_vec3 o = sc->verts[ix[0]], n = { 0, 0, 0 }, c;
+    obj_vec3 o = sc->verts[ix[0]], n = {0, 0, 0}, c;
     int i;
     for (i = 1; i + 1 < f->count; i++) {
         c = vcross(vsub(sc->verts[ix[i]], o), vsub(sc->verts[ix[i + 1]], o));
@@ -1330,8 +1204,7 @@ static int blocks_ear(const double *xy, const int *next, int a, int b, int c, do
 {
     int j;
     for (j = next[c]; j != a; j = next[j]) {
-        if (same_point(xy, j, a) || same_point(xy, j, b) || same_point(xy, j, c))
-            continue;
+        if (same_point(xy, j, a) || same_point(xy, j, b) || same_point(xy, j, c)) continue;
         if (turn(xy, a, b, j) >= -eps && turn(xy, b, c, j) >= -eps && turn(xy, c, a, j) >= -eps)
             return 1;
     }
@@ -1341,17 +1214,15 @@ static int blocks_ear(const double *xy, const int *next, int a, int b, int c, do
 /* Picks the vertex to clip: an ear if there is one; else a vertex with no area (collinear
    or a spike), whose removal changes nothing; else the most convex vertex, so that broken
    (self-intersecting) polygons still get count-2 triangles. */
-static int pick_ear(const double *xy, const int *next, const int *prev, int start,
-                    int remaining, double eps)
+static int pick_ear(const double *xy, const int *next, const int *prev, int start, int remaining,
+                    double eps)
 {
     int i = start, k, flat = -1, best = start;
     double best_turn = -HUGE_VAL;
     for (k = 0; k < remaining; k++, i = next[i]) {
         double t = turn(xy, prev[i], i, next[i]);
-        if (t > eps && !blocks_ear(xy, next, prev[i], i, next[i], eps))
-            return i;
-        if (flat < 0 && fabs(t) <= eps)
-            flat = i;
+        if (t > eps && !blocks_ear(xy, next, prev[i], i, next[i], eps)) return i;
+        if (flat < 0 && fabs(t) <= eps) flat = i;
         if (t > best_turn) {
             best_turn = t;
             best = i;
@@ -1364,7 +1235,7 @@ static int pick_ear(const double *xy, const int *next, const int *prev, int star
    the normal: the polygon then runs counter-clockwise. Returns the largest |coordinate|. */
 static double project(const obj_scene *sc, const int *ix, int n, obj_vec3 normal, double *xy)
 {
-    obj_vec3 z = vscale(normal, 1.0 / sqrt(vdot(normal, normal))), a = { 0, 0, 0 }, u, v;
+    obj_vec3 z = vscale(normal, 1.0 / sqrt(vdot(normal, normal))), a = {0, 0, 0}, u, v;
     double extent = 0;
     int i;
     if (fabs(z.x) < 0.6)
@@ -1389,13 +1260,10 @@ int obj_triangulate(const obj_scene *sc, const obj_face *f, int *out)
     int n = f->count, tris = 0, remaining, cur = 0, i, *next, *prev;
     obj_vec3 normal;
     double *xy, eps;
-    if (n > OBJ_MAX_FACE_VERTICES)
-        return OBJ_TOO_MANY_VERTICES;
-    if (n < 3)
-        return -1;
+    if (n > OBJ_MAX_FACE_VERTICES) return OBJ_TOO_MANY_VERTICES;
+    if (n < 3) return -1;
     normal = obj_face_normal(sc, f);
-    if (!(vdot(normal, normal) > 0))
-        return -1;
+    if (!(vdot(normal, normal) > 0)) return -1;
     xy = malloc((size_t)n * 2 * sizeof *xy);
     next = malloc((size_t)n * 2 * sizeof *next);
     if (!xy || !next) {

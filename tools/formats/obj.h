@@ -18,20 +18,24 @@
 extern "C" {
 #endif
 
-typedef struct { double x, y, z; } obj_vec3;
-typedef struct { double u, v; } obj_vec2;
+typedef struct {
+    double x, y, z;
+} obj_vec3;
+typedef struct {
+    double u, v;
+} obj_vec2;
 
 /* A map_Kd statement. Of its options, -o and -s (offset and scale of u and v) and
  * -clamp are kept; the others (-blendu, -blendv, -bm, -boost, -cc, -imfchan, -mm,
  * -t, -texres, -type) are read and skipped. */
 typedef struct {
-    char *path;         /* the file, joined to the MTL's folder; NULL: no texture */
-    char *mtl;          /* the MTL file and line of the statement, for messages */
+    char *path; /* the file, joined to the MTL's folder; NULL: no texture */
+    char *mtl;  /* the MTL file and line of the statement, for messages */
     int line;
-    double offset[2];   /* texture coordinates used: (u, v) * scale + offset */
+    double offset[2]; /* texture coordinates used: (u, v) * scale + offset */
     double scale[2];
-    int clamp;          /* 1: coordinates clamped to [0, 1]; 0: wrapped (repeat) */
-    int outside;        /* internal to obj.c: PATH leaves the scene's folder (then NULL by
+    int clamp;           /* 1: coordinates clamped to [0, 1]; 0: wrapped (repeat) */
+    int outside;         /* internal to obj.c: PATH leaves the scene's folder (then NULL by
                            the end of the load, with a warning) */
     unsigned char *data; /* the image's bytes when the scene file holds them (a glTF's or
                             FBX's embedded texture, assimp_scene.h): PATH then only names
@@ -51,12 +55,12 @@ typedef struct {
 } obj_material;
 
 typedef struct {
-    int material;   /* index into materials; every face has one (see default material) */
-    int first;      /* first entry in scene.indices */
-    int count;      /* number of vertices, >= 3 */
-    int line;       /* 1-based source line of the 'f' statement */
-    int object;     /* index into names of the current 'o', -1 before any */
-    int group;      /* index into names of the current 'g', -1 before any */
+    int material; /* index into materials; every face has one (see default material) */
+    int first;    /* first entry in scene.indices */
+    int count;    /* number of vertices, >= 3 */
+    int line;     /* 1-based source line of the 'f' statement */
+    int object;   /* index into names of the current 'o', -1 before any */
+    int group;    /* index into names of the current 'g', -1 before any */
 } obj_face;
 
 /* A light of the scene file that is not a surface (OBJ has none; glTF's
@@ -88,25 +92,36 @@ typedef struct {
 } obj_node;
 
 typedef struct {
-    obj_vec3 *verts; int nverts;
-    int *indices; int nindices;      /* 0-based indices into verts, already resolved */
-    int *uv_indices;                 /* nindices entries: into uvs, -1 where a face gave no vt */
-    int *normal_indices;             /* nindices entries: into normals, -1 where no vn */
-    obj_vec2 *uvs; int nuvs;         /* vt u v (a w is read and dropped) */
-    obj_vec2 *uv2;                   /* NULL, or nindices entries: each corner's second UV set
+    obj_vec3 *verts;
+    int nverts;
+    int *indices;
+    int nindices;        /* 0-based indices into verts, already resolved */
+    int *uv_indices;     /* nindices entries: into uvs, -1 where a face gave no vt */
+    int *normal_indices; /* nindices entries: into normals, -1 where no vn */
+    obj_vec2 *uvs;
+    int nuvs;      /* vt u v (a w is read and dropped) */
+    obj_vec2 *uv2; /* NULL, or nindices entries: each corner's second UV set
                                         (a lightmap's: glTF TEXCOORD_1, assimp's
                                         mTextureCoords[1]; v up as vt), NaN where its mesh
                                         has none. OBJ has none. */
-    obj_vec3 *normals; int nnormals; /* vn as given (not normalised) */
-    char **names; int nnames;        /* o and g names: an entry per statement that changes one */
-    obj_face *faces; int nfaces;
-    obj_material *materials; int nmaterials;
-    char **libs; int nlibs;          /* the material libraries read, as opened (joined paths) */
-    obj_light *lights; int nlights;  /* the file's lights (none from an OBJ) */
-    obj_node *nodes; int nnodes;     /* the file's hierarchy (none from an OBJ) */
-    long unknown_statements;         /* statements skipped because unknown (counted for --stats) */
+    obj_vec3 *normals;
+    int nnormals; /* vn as given (not normalised) */
+    char **names;
+    int nnames; /* o and g names: an entry per statement that changes one */
+    obj_face *faces;
+    int nfaces;
+    obj_material *materials;
+    int nmaterials;
+    char **libs;
+    int nlibs; /* the material libraries read, as opened (joined paths) */
+    obj_light *lights;
+    int nlights; /* the file's lights (none from an OBJ) */
+    obj_node *nodes;
+    int nnodes;              /* the file's hierarchy (none from an OBJ) */
+    long unknown_statements; /* statements skipped because unknown (counted for --stats) */
     long nwarnings;
-    int *mat_index; size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
+    int *mat_index;
+    size_t mat_slots; /* material names hashed (FNV-1a, open addressing):
                                          slot -> index or -1; NULL in a scene made by hand */
 } obj_scene;
 

@@ -27,14 +27,15 @@ static int face_corners(const ply_mesh *m, int f)
 
 static void header(FILE *f, const ply_mesh *m, int format, int nv)
 {
-    static const char *const attr[] = { "x", "y", "z", "nx", "ny", "nz", "red", "green", "blue" };
+    static const char *const attr[] = {"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"};
     int k;
     fprintf(f, "ply\nformat %s 1.0\n", format == PLY_ASCII_SRGB ? "ascii" : "binary_little_endian");
     if (m->comment) fprintf(f, "comment %s\n", m->comment);
     fprintf(f, "element vertex %d\n", nv);
     for (k = 0; k < KEY; k++) {
         if (format == PLY_ASCII_SRGB && k >= 3 && k < 6) continue; /* no normals */
-        fprintf(f, "property %s %s\n", format == PLY_ASCII_SRGB && k >= 6 ? "uchar" : "float", attr[k]);
+        fprintf(f, "property %s %s\n", format == PLY_ASCII_SRGB && k >= 6 ? "uchar" : "float",
+                attr[k]);
     }
     fprintf(f, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", m->nf);
 }
@@ -62,7 +63,7 @@ static void ascii_body(FILE *f, const ply_mesh *m, double exposure)
  * its largest, -0 as +0 (so that equal values weld whatever their sign of zero). */
 static void vertex_key(const ply_mesh *m, int v, float key[KEY])
 {
-    const double *src[3] = { &m->pos[3 * v], &m->normal[3 * v], &m->rgb[3 * v] };
+    const double *src[3] = {&m->pos[3 * v], &m->normal[3 * v], &m->rgb[3 * v]};
     int k;
     for (k = 0; k < KEY; k++) {
         double d = src[k / 3][k % 3];
@@ -148,8 +149,10 @@ int ply_write(const char *path, const ply_mesh *m, int format, double exposure, 
     o = fio_out_open(path, err, errlen);
     if (o) {
         header(fio_out_stream(o), m, format, nw);
-        if (keys) binary_body(fio_out_stream(o), m, keys, nw, id);
-        else ascii_body(fio_out_stream(o), m, exposure);
+        if (keys)
+            binary_body(fio_out_stream(o), m, keys, nw, id);
+        else
+            ascii_body(fio_out_stream(o), m, exposure);
     }
     free(keys);
     free(id);

@@ -25,7 +25,7 @@
 extern "C" {
 #endif
 
-#define PLY_ASCII_SRGB 0
+#define PLY_ASCII_SRGB    0
 #define PLY_BINARY_LINEAR 1
 
 typedef struct {

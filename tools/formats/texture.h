@@ -36,27 +36,27 @@ extern "C" {
 
 /* Largest image decoded: 2^26 texels (8192 x 8192), 192 MiB as 8-bit RGB; stb_image
  * needs about as much again while it decodes. */
-#define TEX_MAX_PIXELS (1L << 26)
+#define TEX_MAX_PIXELS   (1L << 26)
 /* Longest side decoded: 16384 texels (a 4 x 2^24 PNG of 423 KB took 1 GB, its row sums
  * mostly: 48 bytes a row however narrow). */
-#define TEX_MAX_SIDE 16384
+#define TEX_MAX_SIDE     16384
 /* What one scene's maps may take together: each distinct file's bytes while it decodes
  * plus its decoded texels (3 bytes) and row sums (1.5 bytes a texel + 48 a row),
  * 1 GiB: three maps of 8192 x 8192. A map past what is left is refused unread. */
-#define TEX_BUDGET (1024.0 * 1024 * 1024)
+#define TEX_BUDGET       (1024.0 * 1024 * 1024)
 /* Largest reflectance a texel gives: the core's largest below 1 (Q16.16). */
-#define TEX_RHO_MAX (65535.0 / 65536.0)
+#define TEX_RHO_MAX      (65535.0 / 65536.0)
 /* A triangle's mean is taken over at most TEX_MEAN_MAX_DIV^2 samples (see
  * tex_triangle_mean). */
 #define TEX_MEAN_MAX_DIV 64
-#define TEX_ROW_BLOCK 16
+#define TEX_ROW_BLOCK    16
 
 typedef struct {
     int w, h;
-    unsigned char *rgb; /* w * h * 3 bytes of sRGB, row 0 at the top; NULL: no image */
-    int clamp;          /* 1: coordinates clamped to the edge texels; 0: wrapped */
+    unsigned char *rgb;         /* w * h * 3 bytes of sRGB, row 0 at the top; NULL: no image */
+    int clamp;                  /* 1: coordinates clamped to the edge texels; 0: wrapped */
     double offset[2], scale[2]; /* (u, v) used = (u, v) * scale + offset (map -o, -s) */
-    int borrowed;       /* 1: rgb belongs to another map (the same file): not freed here */
+    int borrowed;               /* 1: rgb belongs to another map (the same file): not freed here */
     /* The sums of each row's linear texels at every TEX_ROW_BLOCK-th texel: (y nb + b) 3 + k
        holds channel k of row y's texels x < b TEX_ROW_BLOCK, nb = w / TEX_ROW_BLOCK + 1
        (1.5 bytes a texel beside rgb's three); NULL if memory ran out (means then sample).
@@ -74,8 +74,8 @@ typedef void (*tex_warn_fn)(void *ctx, const char *msg); /* "MTL:LINE: text" */
  * be. A BMP or TGA must hold the bytes its header implies (RLE TGA: every packet,
  * walked), a JPEG its segments up to the end-of-image marker; else "truncated: ...".
  * NAME is used in messages. Returns 0, or -1 with err and *out empty. */
-int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out,
-               char *err, size_t errlen);
+int tex_decode(const unsigned char *data, size_t size, const char *name, tex_image *out, char *err,
+               size_t errlen);
 /* Reads PATH (file_io, at most FIO_LIMIT_IMAGE bytes) and decodes it as above. */
 int tex_load(const char *path, tex_image *out, char *err, size_t errlen);
 /* Frees the pixels (unless borrowed) and empties *t. NULL-safe and idempotent. */

@@ -11,9 +11,9 @@
 #ifndef RAD_TOOLS_DEFAULTS_H
 #define RAD_TOOLS_DEFAULTS_H
 
-#define DEF_RES      192
-#define DEF_COARSE   1.0
-#define DEF_ROWS_RES 128
+#define DEF_RES               192
+#define DEF_COARSE            1.0
+#define DEF_ROWS_RES          128
 #define DEF_COARSE_FLOOR(res) ((res) / 16 * 2 >= 24 ? (res) / 16 * 2 : (res) < 24 ? (res) : 24)
 
 /* The gather resolution of --lightmap's texels and the probes without --gather, chosen
@@ -21,7 +21,7 @@
  * the lowest of 16, 32, 48, 64 within 2% rms on a room with cornices and on
  * CornellBox-Original (32: 1.9% and 4.4%, its worst texels 9% and 24% off: the
  * streaks under cornices), at about twice the time of a gather at 32. */
-#define DEF_GATHER_RES 64
+#define DEF_GATHER_RES    64
 /* The lightmap atlas' side in texels, and the image's width and height. */
 #define DEF_LIGHTMAP_SIZE 512
 #define DEF_IMAGE_SIZE    512

@@ -209,7 +209,8 @@ static void scene_extent(sc_fgather *f)
     f->lift = f->margin = ldexp(f->extent, -12);
 }
 
-sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, int threads, int ambient)
+sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, int threads,
+                           int ambient)
 {
     const rad_scene_t *core = sc_core(s);
     sc_fgather *f = calloc(1, sizeof *f);
@@ -233,7 +234,8 @@ sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, i
     scene_extent(f);
     if (ok && polys && n > 0) {
         f->polys = polys;
-        ok = (g = geom_polys(polys, n, &ext)) != NULL && (f->grid = geom_grid_new(polys, g, n)) != NULL;
+        ok = (g = geom_polys(polys, n, &ext)) != NULL &&
+             (f->grid = geom_grid_new(polys, g, n)) != NULL;
     }
     free(g);
     if (!ok) {
@@ -281,9 +283,10 @@ static void surface_point(const sc_fgather *f, int si, const double *x, double *
     to_plane(sf, x, q);
     m[0] = q[0];
     m[1] = q[1];
-    geom_tri2_inset((const double(*)[3][2])f->edge + sf->first, (const unsigned char(*)[3])f->flag + sf->first,
-                    sf->count, f->margin, m);
-    for (k = 0; k < 3; k++) p[k] = x[k] + (m[0] - q[0]) * sf->u[k] + (m[1] - q[1]) * sf->v[k] + f->lift * sf->n[k];
+    geom_tri2_inset((const double(*)[3][2])f->edge + sf->first,
+                    (const unsigned char(*)[3])f->flag + sf->first, sf->count, f->margin, m);
+    for (k = 0; k < 3; k++)
+        p[k] = x[k] + (m[0] - q[0]) * sf->u[k] + (m[1] - q[1]) * sf->v[k] + f->lift * sf->n[k];
 }
 
 /* Vertex V of surface SI: its point, out of geometry, gathered into E. 0 or -1. */
@@ -419,8 +422,14 @@ static int pixel_gather(rjob_t *j, sc_gatherer *g, int x, int y, long *count)
     return j->state[i] = PX_GATHERED;
 }
 
-static int grid_x(const rjob_t *j, int gx) { return gx * FG_GRID < j->w - 1 ? gx * FG_GRID : j->w - 1; }
-static int grid_y(const rjob_t *j, int gy) { return gy * FG_GRID < j->h - 1 ? gy * FG_GRID : j->h - 1; }
+static int grid_x(const rjob_t *j, int gx)
+{
+    return gx * FG_GRID < j->w - 1 ? gx * FG_GRID : j->w - 1;
+}
+static int grid_y(const rjob_t *j, int gy)
+{
+    return gy * FG_GRID < j->h - 1 ? gy * FG_GRID : j->h - 1;
+}
 
 static int same_plane(const sc_fgather *f, int a, int b)
 {
@@ -461,12 +470,16 @@ static int smooth(const rjob_t *j, int x0, int y0, int x1, int y1)
 static void bilinear(rjob_t *j, int x0, int y0, int x1, int y1, int x, int y)
 {
     size_t i = (size_t)y * j->w + x;
-    double a = x1 > x0 ? (double)(x - x0) / (x1 - x0) : 0.0, b = y1 > y0 ? (double)(y - y0) / (y1 - y0) : 0.0;
-    const double *e00 = &j->e[3 * ((size_t)y0 * j->w + x0)], *e10 = &j->e[3 * ((size_t)y0 * j->w + x1)];
-    const double *e01 = &j->e[3 * ((size_t)y1 * j->w + x0)], *e11 = &j->e[3 * ((size_t)y1 * j->w + x1)];
+    double a = x1 > x0 ? (double)(x - x0) / (x1 - x0) : 0.0,
+           b = y1 > y0 ? (double)(y - y0) / (y1 - y0) : 0.0;
+    const double *e00 = &j->e[3 * ((size_t)y0 * j->w + x0)],
+                 *e10 = &j->e[3 * ((size_t)y0 * j->w + x1)];
+    const double *e01 = &j->e[3 * ((size_t)y1 * j->w + x0)],
+                 *e11 = &j->e[3 * ((size_t)y1 * j->w + x1)];
     int k;
     for (k = 0; k < 3; k++)
-        j->e[3 * i + k] = (1 - b) * ((1 - a) * e00[k] + a * e10[k]) + b * ((1 - a) * e01[k] + a * e11[k]);
+        j->e[3 * i + k] =
+            (1 - b) * ((1 - a) * e00[k] + a * e10[k]) + b * ((1 - a) * e01[k] + a * e11[k]);
     j->state[i] = PX_BILINEAR;
 }
 
@@ -474,7 +487,8 @@ static void bilinear(rjob_t *j, int x0, int y0, int x1, int y1, int x, int y)
  * cell's (or its own at the image's edge), so each pixel has one writer. */
 static void cell(rjob_t *j, sc_gatherer *g, int gx, int gy, long *count)
 {
-    int x0 = grid_x(j, gx), x1 = grid_x(j, gx + 1), y0 = grid_y(j, gy), y1 = grid_y(j, gy + 1), x, y;
+    int x0 = grid_x(j, gx), x1 = grid_x(j, gx + 1), y0 = grid_y(j, gy), y1 = grid_y(j, gy + 1), x,
+        y;
     int xe = gx + 2 >= j->nx ? x1 + 1 : x1, ye = gy + 2 >= j->ny ? y1 + 1 : y1, flat;
     if (j->nx == 1) xe = x0 + 1;
     if (j->ny == 1) ye = y0 + 1;
@@ -482,8 +496,10 @@ static void cell(rjob_t *j, sc_gatherer *g, int gx, int gy, long *count)
     for (y = y0; y < ye; y++)
         for (x = x0; x < xe; x++) {
             if (j->state[(size_t)y * j->w + x] != PX_NONE) continue;
-            if (flat) bilinear(j, x0, y0, x1, y1, x, y);
-            else pixel_gather(j, g, x, y, count);
+            if (flat)
+                bilinear(j, x0, y0, x1, y1, x, y);
+            else
+                pixel_gather(j, g, x, y, count);
         }
 }
 
@@ -515,11 +531,13 @@ static void compose(const rjob_t *j, float *rgb)
     int k;
     for (i = 0; i < n; i++)
         if (j->state[i] == PX_GATHERED || j->state[i] == PX_BILINEAR)
-            for (k = 0; k < 3; k++) rgb[3 * i + k] = (float)(j->f->sf[j->surf[i]].rho[k] * j->e[3 * i + k]);
+            for (k = 0; k < 3; k++)
+                rgb[3 * i + k] = (float)(j->f->sf[j->surf[i]].rho[k] * j->e[3 * i + k]);
     for (i = 0; i < n; i++) {
         int x = (int)(i % (size_t)j->w), y = (int)(i / (size_t)j->w);
         size_t a, b;
-        if (j->surf[i] >= 0 || (rgb[3 * i] == 0 && rgb[3 * i + 1] == 0 && rgb[3 * i + 2] == 0)) continue;
+        if (j->surf[i] >= 0 || (rgb[3 * i] == 0 && rgb[3 * i + 1] == 0 && rgb[3 * i + 2] == 0))
+            continue;
         if (x > 0 && x + 1 < j->w && j->surf[i - 1] >= 0 && j->surf[i + 1] >= 0) {
             a = i - 1;
             b = i + 1;
@@ -532,8 +550,8 @@ static void compose(const rjob_t *j, float *rgb)
     }
 }
 
-int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers, char *err,
-                      size_t errlen)
+int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers,
+                      char *err, size_t errlen)
 {
     size_t n = (size_t)w * h;
     rjob_t j;
@@ -555,9 +573,12 @@ int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *
                pixel_points(&j, cam, err, errlen) == 0) {
         rc = sc_gather_split(f->s, f->res, f->threads > 64 ? 64 : f->threads, render_rows, &j);
         j.phase = 1;
-        if (rc == 0) rc = sc_gather_split(f->s, f->res, f->threads > 64 ? 64 : f->threads, render_rows, &j);
-        if (rc < 0) snprintf(err, errlen, "out of memory for gathers of resolution %d", f->res);
-        else compose(&j, rgb);
+        if (rc == 0)
+            rc = sc_gather_split(f->s, f->res, f->threads > 64 ? 64 : f->threads, render_rows, &j);
+        if (rc < 0)
+            snprintf(err, errlen, "out of memory for gathers of resolution %d", f->res);
+        else
+            compose(&j, rgb);
         for (t = 0; gathers && t < 64; t++) *gathers += j.gathers[t];
     }
     free(surf);

@@ -23,7 +23,7 @@
 
 #include "host/scene.h"
 
-#define FG_GRID 4 /* an image's first gathers: every FG_GRID-th pixel in x and y */
+#define FG_GRID  4 /* an image's first gathers: every FG_GRID-th pixel in x and y */
 /* A grid cell is interpolated when its corners agree this well: a gather's own aliasing
  * under a small lamp is about 10% at res 64 (the Cornell box's lamp covers some 45 of
  * the top face's pixels, a row of them more or less), so a tighter bound gathers
@@ -43,7 +43,8 @@ typedef struct sc_fgather sc_fgather;
  * the ambient term if AMBIENT; POLYS (N, kept by pointer), what S was made from, give
  * the rays that push vertices out of geometry (NULL: none). NULL when out of memory or
  * RES is not even in 8..1024. */
-sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, int threads, int ambient);
+sc_fgather *sc_fgather_new(sc_solver *s, const sc_poly *polys, int n, int res, int threads,
+                           int ambient);
 void sc_fgather_free(sc_fgather *f);
 
 /* Progress of the gathers that follow: FN(CTX, fraction done, 0..1) from the calling
@@ -68,8 +69,8 @@ int sc_vertex_colours(sc_solver *s, sc_fgather *f, int ambient, double *rgb);
  * pixel, or, where the cell shows one plane and its four corners agree within FG_AGREE
  * of their brightest channel, bilinear from the corners. Adds the gathers done to
  * *GATHERS (NULL: not counted). 0 or -1 with err. */
-int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers, char *err,
-                      size_t errlen);
+int sc_fgather_render(sc_fgather *f, const sc_camera *cam, int w, int h, float *rgb, long *gathers,
+                      char *err, size_t errlen);
 
 #define RAD_TWIN_FGATHER /* the float twin's names of the above (generated): */
 #include "host/scene_float.h"

@@ -80,7 +80,8 @@ static void seg_closest(const double *a, const double *b, const double *c, doubl
 
 void geom_tri2_closest(const double t[3][2], const double c[2], double q[2])
 {
-    double s0 = cross2(t[0], t[1], c), s1 = cross2(t[1], t[2], c), s2 = cross2(t[2], t[0], c), best = HUGE_VAL;
+    double s0 = cross2(t[0], t[1], c), s1 = cross2(t[1], t[2], c), s2 = cross2(t[2], t[0], c),
+           best = HUGE_VAL;
     int k;
     if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
         q[0] = c[0];
@@ -104,12 +105,14 @@ int geom_tri2_touches_box(const double t[3][2], double x0, double y0, double sid
     const double eps = 1e-9, lo[2] = {x0, y0};
     int k, a;
     for (a = 0; a < 2; a++) {
-        double mn = fmin(t[0][a], fmin(t[1][a], t[2][a])), mx = fmax(t[0][a], fmax(t[1][a], t[2][a]));
+        double mn = fmin(t[0][a], fmin(t[1][a], t[2][a])),
+               mx = fmax(t[0][a], fmax(t[1][a], t[2][a]));
         if (mx <= lo[a] + eps || mn >= lo[a] + side - eps) return 0;
     }
     for (k = 0; k < 3; k++) {
         const double *p = t[k], *q = t[(k + 1) % 3];
-        double nx = p[1] - q[1], ny = q[0] - p[0], mn = HUGE_VAL, mx = -HUGE_VAL, c, r, l = hypot(nx, ny);
+        double nx = p[1] - q[1], ny = q[0] - p[0], mn = HUGE_VAL, mx = -HUGE_VAL, c, r,
+               l = hypot(nx, ny);
         if (!(l > 0.0)) continue;
         nx /= l;
         ny /= l;
@@ -125,7 +128,8 @@ int geom_tri2_touches_box(const double t[3][2], double x0, double y0, double sid
     return 1;
 }
 
-void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m, double q[2])
+void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m,
+                     double q[2])
 {
     int k, i, pass;
     for (pass = 0; pass < 2; pass++)
@@ -197,8 +201,10 @@ static void grid_pass(grid_t *gr, const sc_poly *p, int fill, int *at)
             for (y = lo[1]; y <= hi[1]; y++)
                 for (x = lo[0]; x <= hi[0]; x++) {
                     int k = (z * gr->g + y) * gr->g + x;
-                    if (fill) gr->ids[at[k]++] = i;
-                    else gr->start[k + 1]++;
+                    if (fill)
+                        gr->ids[at[k]++] = i;
+                    else
+                        gr->start[k + 1]++;
                 }
     }
 }
@@ -223,7 +229,8 @@ void *geom_grid_new(const sc_poly *p, const geom_poly *g, int n)
     }
     for (a = 0; a < 3; a++) gr->eps = fmax(gr->eps, hi[a] - gr->lo[a]);
     if (!(gr->eps > 0.0) || !isfinite(gr->eps)) gr->eps = 1.0; /* no extent: one cell holds all */
-    for (a = 0; a < 3; a++) gr->cell[a] = fmax(hi[a] - gr->lo[a], gr->eps * 1e-6) / gr->g * (1.0 + 1e-9);
+    for (a = 0; a < 3; a++)
+        gr->cell[a] = fmax(hi[a] - gr->lo[a], gr->eps * 1e-6) / gr->g * (1.0 + 1e-9);
     gr->eps *= 1e-12;
     gr->planes = malloc(((size_t)n + 1) * sizeof *gr->planes);
     gr->start = calloc((size_t)cells + 1, sizeof *gr->start);
@@ -255,7 +262,8 @@ void geom_grid_free(void *grid)
 }
 
 /* Distance along the ray to polygon I within LEN, HUGE_VAL if it is not met. */
-static double ray_poly(const grid_t *gr, const sc_poly *p, int i, const double *o, const double *dir, double len)
+static double ray_poly(const grid_t *gr, const sc_poly *p, int i, const double *o,
+                       const double *dir, double len)
 {
     const geom_poly *g = &gr->planes[i];
     double den = geom_dot(g->n, dir), t, h[3];
@@ -274,8 +282,8 @@ static double ray_poly(const grid_t *gr, const sc_poly *p, int i, const double *
     return t;
 }
 
-static void nearest(const grid_t *gr, const sc_poly *p, int i, const double *o, const double *dir, double len,
-                    double *best, int *back)
+static void nearest(const grid_t *gr, const sc_poly *p, int i, const double *o, const double *dir,
+                    double len, double *best, int *back)
 {
     double t = ray_poly(gr, p, i, o, dir, len);
     if (t < *best) {
@@ -284,8 +292,8 @@ static void nearest(const grid_t *gr, const sc_poly *p, int i, const double *o, 
     }
 }
 
-double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const double *dir, double len,
-                     int *back)
+double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const double *dir,
+                     double len, int *back)
 {
     const grid_t *gr = grid;
     double best = HUGE_VAL, mn[3], mx[3];
@@ -293,7 +301,10 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
     long cells = 1;
     *back = 0;
     for (a = 0; a < 3; a++) {
-        double e = o[a] + (isfinite(len) ? len * dir[a] : (dir[a] > 0 ? HUGE_VAL : dir[a] < 0 ? -HUGE_VAL : 0.0));
+        double e = o[a] + (isfinite(len) ? len * dir[a]
+                                         : (dir[a] > 0   ? HUGE_VAL
+                                            : dir[a] < 0 ? -HUGE_VAL
+                                                         : 0.0));
         mn[a] = fmin(o[a], e);
         mx[a] = fmax(o[a], e);
     }
@@ -307,13 +318,14 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
         for (y = lo[1]; y <= hi[1]; y++)
             for (x = lo[0]; x <= hi[0]; x++) {
                 int k = (z * gr->g + y) * gr->g + x, j;
-                for (j = gr->start[k]; j < gr->start[k + 1]; j++) nearest(gr, p, gr->ids[j], o, dir, len, &best, back);
+                for (j = gr->start[k]; j < gr->start[k + 1]; j++)
+                    nearest(gr, p, gr->ids[j], o, dir, len, &best, back);
             }
     return best;
 }
 
-double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
-                     double len, double dir[3], double *met)
+double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u,
+                     const double *v, double len, double dir[3], double *met)
 {
     double best = HUGE_VAL, dirs[4][3];
     int k, j, found = -1;

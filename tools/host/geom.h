@@ -13,7 +13,10 @@ typedef struct {
     double area; /* 0 for a degenerate polygon */
 } geom_poly;
 
-static inline double geom_dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static inline double geom_dot(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static inline void geom_sub(const double *a, const double *b, double *o)
 {
@@ -48,21 +51,22 @@ int geom_tri2_touches_box(const double t[3][2], double x0, double y0, double sid
 /* Moves Q M in from the lines of the edges of the N triangles T flagged in B (edge k
  * from vertex k to k + 1; the third vertex lies on the inner side), in two passes so
  * that both edges of a corner are met: a sample kept off a boundary. */
-void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m, double q[2]);
+void geom_tri2_inset(const double (*t)[3][2], const unsigned char (*b)[3], int n, double m,
+                     double q[2]);
 
 /* A uniform grid of the polygons' boxes; NULL when out of memory. */
 void *geom_grid_new(const sc_poly *p, const geom_poly *g, int n);
 void geom_grid_free(void *grid);
 /* The nearest polygon that the ray from P along unit DIR meets within LEN (HUGE_VAL: any
  * distance): its distance, HUGE_VAL if none; *BACK 1 when it is met from behind. */
-double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const double *dir, double len,
-                     int *back);
+double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const double *dir,
+                     double len, int *back);
 /* Of the four rays from P along +-U and +-V (unit, in a plane P lies just above) within
  * LEN, the one that meets a back face nearest: its distance, its direction into DIR;
  * HUGE_VAL if none does. A sample whose ray meets a back face first lies inside
  * geometry (a box on the floor, a thick wall through it): move it out past that face.
  * MET (unless NULL): the nearest face of any side the four meet, HUGE_VAL if none. */
-double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u, const double *v,
-                     double len, double dir[3], double *met);
+double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u,
+                     const double *v, double len, double dir[3], double *met);
 
 #endif

@@ -27,7 +27,6 @@
 
 #include "rad/rad.h"
 
-
 #define MAX_THREADS 64
 
 /* What the workers share: the stage to run (STAGE counts them, odd to render, even
@@ -47,8 +46,14 @@ typedef struct {
     uint64_t claim, finished;
 } crew_t;
 
-static int load(const int *p) { return __atomic_load_n(p, __ATOMIC_ACQUIRE); }
-static void store(int *p, int v) { __atomic_store_n(p, v, __ATOMIC_RELEASE); }
+static int load(const int *p)
+{
+    return __atomic_load_n(p, __ATOMIC_ACQUIRE);
+}
+static void store(int *p, int v)
+{
+    __atomic_store_n(p, v, __ATOMIC_RELEASE);
+}
 
 /* Part PART's share of stage STAGE. */
 static void run_stage(crew_t *c, int stage, unsigned part)
@@ -71,7 +76,8 @@ static void claim_parts(crew_t *c, int stage)
     uint64_t t = __atomic_load_n(&c->claim, __ATOMIC_ACQUIRE);
     for (;;) {
         if ((t & ~0xFFFFFFFFull) != tag || (uint32_t)t >= c->nparts) return;
-        if (__atomic_compare_exchange_n(&c->claim, &t, t + 1, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+        if (__atomic_compare_exchange_n(&c->claim, &t, t + 1, 0, __ATOMIC_ACQ_REL,
+                                        __ATOMIC_ACQUIRE)) {
             run_stage(c, stage, (unsigned)(uint32_t)t);
             __atomic_fetch_add(&c->finished, 1, __ATOMIC_RELEASE);
             t = __atomic_load_n(&c->claim, __ATOMIC_ACQUIRE);
@@ -115,7 +121,8 @@ static int crew_start(crew_t *c, sc_solver *h, int batch, int threads, int nbufs
     c->patch = 0;
     c->batch = batch;
     c->nparts = (unsigned)nbufs;
-    c->bytes = batch ? RAD_BATCH_BYTES(c->s->cfg.res, c->s->pools.max_elements) : RAD_PART_BYTES(c->s->cfg.res);
+    c->bytes = batch ? RAD_BATCH_BYTES(c->s->cfg.res, c->s->pools.max_elements)
+                     : RAD_PART_BYTES(c->s->cfg.res);
     c->stage = 0;
     c->claim = c->finished = 0;
     for (k = 0; k < nbufs; k++) {
@@ -132,7 +139,8 @@ static void crew_end(crew_t *c, int ok, int threads, int nbufs, pthread_t *tid, 
     int k;
     if (ok) {
         store(&c->stage, -1);
-        for (k = 1; k < threads; k++) if (started[k]) pthread_join(tid[k], NULL);
+        for (k = 1; k < threads; k++)
+            if (started[k]) pthread_join(tid[k], NULL);
     }
     for (k = 0; k < nbufs; k++) free(c->bufs[k]);
 }
@@ -143,7 +151,8 @@ static int clamp_threads(int threads)
     return threads < 1 ? 1 : threads > MAX_THREADS ? MAX_THREADS : threads;
 }
 
-int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx)
+int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_progress_fn progress,
+                      void *ctx)
 {
     rad_scene_t *s = sc_core(h);
     crew_t c;
@@ -168,8 +177,8 @@ int sc_solve_parallel(sc_solver *h, int threads, int max_shots, double tol, sc_p
     return ok ? shots : -1;
 }
 
-int sc_solve_batch(sc_solver *h, int threads, int batch, int max_shots, double tol, sc_progress_fn progress,
-                   void *ctx)
+int sc_solve_batch(sc_solver *h, int threads, int batch, int max_shots, double tol,
+                   sc_progress_fn progress, void *ctx)
 {
     rad_scene_t *s = sc_core(h);
     crew_t c;

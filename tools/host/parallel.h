@@ -11,15 +11,16 @@
 /* As sc_solve with THREADS threads (1: serial through the same split). Returns the
  * shots done, or -1 when the core cannot split (its work buffer bands the hemi-cube)
  * or threads cannot start. */
-int sc_solve_parallel(sc_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress, void *ctx);
+int sc_solve_parallel(sc_solver *s, int threads, int max_shots, double tol, sc_progress_fn progress,
+                      void *ctx);
 
 /* As sc_solve, in batches of BATCH shots (1..RAD_BATCH_MAX; rad_batch_begin) whose
  * hemi-cubes render on THREADS threads, a whole cube each: the same bits for any
  * THREADS, and for BATCH 1 the serial solve's. Returns the shots done, or -1 when the
  * core bands the hemi-cube, BATCH is out of range, buffers cannot be had or the core
  * refuses a batch. */
-int sc_solve_batch(sc_solver *s, int threads, int batch, int max_shots, double tol, sc_progress_fn progress,
-                   void *ctx);
+int sc_solve_batch(sc_solver *s, int threads, int batch, int max_shots, double tol,
+                   sc_progress_fn progress, void *ctx);
 
 #define RAD_TWIN_PARALLEL /* the float twin's names of the above (generated): */
 #include "host/scene_float.h"

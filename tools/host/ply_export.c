@@ -21,7 +21,8 @@ static void vertex_normals(sc_solver *s, double *normal)
     uint32_t i, v;
     for (i = 0; i < core->n_surfaces; i++) {
         const rad_surface_t *sf = &core->pools.surfaces[i];
-        double n[3] = { RAD_TO_DOUBLE(sf->normal.x), RAD_TO_DOUBLE(sf->normal.y), RAD_TO_DOUBLE(sf->normal.z) };
+        double n[3] = {RAD_TO_DOUBLE(sf->normal.x), RAD_TO_DOUBLE(sf->normal.y),
+                       RAD_TO_DOUBLE(sf->normal.z)};
         double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
         for (v = sf->first_vertex; v < sf->first_vertex + sf->n_vertices; v++) {
             normal[3 * v] = len > 0 ? n[0] / len : 0;
@@ -57,10 +58,13 @@ int sc_export_ply(sc_solver *s, const double *rgb, const char *path, int format,
         vertex_normals(s, normal);
         element_faces(s, st.elements, face);
         if (format == PLY_ASCII_SRGB)
-            snprintf(comment, sizeof comment, "rad radiosity, sRGB vertex colours at exposure %g", exposure);
+            snprintf(comment, sizeof comment, "rad radiosity, sRGB vertex colours at exposure %g",
+                     exposure);
         else
-            snprintf(comment, sizeof comment, "rad radiosity, linear float vertex colours in the scene's "
-                     "units (the images' exposure %.9g)", exposure);
+            snprintf(comment, sizeof comment,
+                     "rad radiosity, linear float vertex colours in the scene's "
+                     "units (the images' exposure %.9g)",
+                     exposure);
         m.nv = st.vertices;
         m.nf = st.elements;
         m.pos = pos;

@@ -8,15 +8,14 @@
 #include <string.h>
 
 #define STR_(x) #x
-#define STR(x) STR_(x) /* a macro's value as a string */
+#define STR(x)  STR_(x) /* a macro's value as a string */
 
 /* The texture coordinates of vertex VERT in face FC (its first corner of that vertex). */
 static const obj_vec2 *corner_uv(const obj_scene *sc, const obj_face *fc, int vert)
 {
     int k;
     for (k = 0; k < fc->count; k++)
-        if (sc->indices[fc->first + k] == vert)
-            return &sc->uvs[sc->uv_indices[fc->first + k]];
+        if (sc->indices[fc->first + k] == vert) return &sc->uvs[sc->uv_indices[fc->first + k]];
     return &sc->uvs[sc->uv_indices[fc->first]];
 }
 
@@ -28,8 +27,7 @@ static void textured_rho(const obj_scene *sc, const obj_face *fc, const int *ver
     double mean[3];
     obj_vec2 uv[4];
     int k;
-    for (k = 0; k < p->n; k++)
-        uv[k] = *corner_uv(sc, fc, verts[k]);
+    for (k = 0; k < p->n; k++) uv[k] = *corner_uv(sc, fc, verts[k]);
     tex_polygon_mean(t, (const double(*)[3])p->v, uv, p->n, NULL, mean);
     tex_reflectance(kd, mean, p->rho);
 }
@@ -50,8 +48,7 @@ typedef struct {
 } textures;
 
 /* Fills polygon P from the N vertices VERTS of face F. */
-static void make_poly(const obj_scene *sc, int f, const int *verts, int n, textures *tx,
-                      sc_poly *p)
+static void make_poly(const obj_scene *sc, int f, const int *verts, int n, textures *tx, sc_poly *p)
 {
     const obj_face *fc = &sc->faces[f];
     const obj_material *m = &sc->materials[fc->material];
@@ -64,8 +61,7 @@ static void make_poly(const obj_scene *sc, int f, const int *verts, int n, textu
         p->v[k][2] = v->z;
     }
     poly_material(p, m, f);
-    if (!tx->maps || !tx->maps[fc->material].rgb)
-        return;
+    if (!tx->maps || !tx->maps[fc->material].rgb) return;
     if (sc->uv_indices[fc->first] >= 0) {
         textured_rho(sc, fc, verts, &tx->maps[fc->material], m->kd, p);
         return;
@@ -82,8 +78,8 @@ sc_poly *polys_from_obj(const obj_scene *sc, int *n, polys_warn_fn warn, void *c
     return polys_from_obj_tex(sc, NULL, n, warn, ctx);
 }
 
-sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n,
-                          polys_warn_fn warn, void *ctx)
+sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n, polys_warn_fn warn,
+                            void *ctx)
 {
     int f, cap = 0, cnt = 0, *tri = NULL, tcap = 0;
     textures tx;
@@ -106,20 +102,25 @@ sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n,
         }
         if (3 * (fc->count - 2) > tcap) {
             int *nt2 = realloc(tri, (size_t)(3 * (fc->count - 2)) * sizeof *tri);
-            if (!nt2) { free(tri); free(p); free(tx.whole); return NULL; }
+            if (!nt2) {
+                free(tri);
+                free(p);
+                free(tx.whole);
+                return NULL;
+            }
             tri = nt2;
             tcap = 3 * (fc->count - 2);
         }
         nt = obj_triangulate(sc, fc, tri);
         if (nt < 0) {
             if (warn)
-                warn(ctx, fc->line, nt == OBJ_TOO_MANY_VERTICES
-                                        ? "skipped a face of more than " STR(OBJ_MAX_FACE_VERTICES) " vertices (split it)"
-                                        : "skipped a degenerate polygon");
+                warn(ctx, fc->line,
+                     nt == OBJ_TOO_MANY_VERTICES ? "skipped a face of more than " STR(
+                                                       OBJ_MAX_FACE_VERTICES) " vertices (split it)"
+                                                 : "skipped a degenerate polygon");
             continue;
         }
-        for (t = 0; t < nt; t++)
-            make_poly(sc, f, tri + 3 * t, 3, &tx, &p[cnt++]);
+        for (t = 0; t < nt; t++) make_poly(sc, f, tri + 3 * t, 3, &tx, &p[cnt++]);
     }
     free(tri);
     free(tx.whole);
@@ -190,7 +191,8 @@ int polys_orient_by_normals(obj_scene *sc, double *area)
 int polys_two_sided(obj_scene *sc)
 {
     int nf = sc->nfaces, ni = sc->nindices, nn = sc->nnormals, f, k;
-    int has_uv = sc->uv_indices != NULL, has_n = sc->normal_indices != NULL; /* NULL: none (a scene by hand) */
+    int has_uv = sc->uv_indices != NULL,
+        has_n = sc->normal_indices != NULL; /* NULL: none (a scene by hand) */
     obj_face *faces;
     int *ix, *uv, *nx;
     obj_vec3 *normals;

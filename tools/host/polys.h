@@ -25,8 +25,8 @@ sc_poly *polys_from_obj(const obj_scene *sc, int *n, polys_warn_fn warn, void *c
  * instead of 278, as many more hemi-cubes to shoot); sc_texture_elements
  * (host/tex_render.h) then gives each element of a textured face the mean over its own
  * footprint. */
-sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n,
-                          polys_warn_fn warn, void *ctx);
+sc_poly *polys_from_obj_tex(const obj_scene *sc, const tex_image *maps, int *n, polys_warn_fn warn,
+                            void *ctx);
 
 /* Faces wound against their vertex normals turned round. A face is one-sided: it
  * receives and shows light on the side its winding faces (counter-clockwise). A face

@@ -18,7 +18,7 @@
 typedef struct {
     sc_warn_fn warn;
     void *ctx;
-    int seen, emitted;          /* warnings met in this attempt, already reported */
+    int seen, emitted; /* warnings met in this attempt, already reported */
 } warner_t;
 
 static void warnf(warner_t *w, int tag, const char *msg, int code)
@@ -31,14 +31,15 @@ static void warnf(warner_t *w, int tag, const char *msg, int code)
 }
 
 /* A skipped polygon, warned about; one that emits says that its light is lost. */
-static void skip_poly(struct sc_solver *h, const sc_poly *q, warner_t *w, const char *what, int code)
+static void skip_poly(struct sc_solver *h, const sc_poly *q, warner_t *w, const char *what,
+                      int code)
 {
     char msg[192];
     h->skipped++;
     if (q->emit[0] > 0 || q->emit[1] > 0 || q->emit[2] > 0) {
         h->skipped_emitters++;
-        snprintf(msg, sizeof msg, "skipped %s that emits light (%g %g %g): its light is lost", what, q->emit[0],
-                 q->emit[1], q->emit[2]);
+        snprintf(msg, sizeof msg, "skipped %s that emits light (%g %g %g): its light is lost", what,
+                 q->emit[0], q->emit[1], q->emit[2]);
         warnf(w, q->tag, msg, code);
         return;
     }
@@ -48,9 +49,16 @@ static void skip_poly(struct sc_solver *h, const sc_poly *q, warner_t *w, const 
 
 static void free_pools(struct sc_solver *h)
 {
-    free(h->pools.surfaces); free(h->pools.patches); free(h->pools.elements);
-    free(h->pools.vertices); free(h->pools.work); free(h->tags); free(h->emit);
-    free(h->tiny); free(h->area); free(h->erho);
+    free(h->pools.surfaces);
+    free(h->pools.patches);
+    free(h->pools.elements);
+    free(h->pools.vertices);
+    free(h->pools.work);
+    free(h->tags);
+    free(h->emit);
+    free(h->tiny);
+    free(h->area);
+    free(h->erho);
     h->erho = NULL;
     memset(&h->pools, 0, sizeof h->pools);
     h->tags = NULL;
@@ -81,8 +89,8 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     h->emit = calloc(3u * (size_t)p->max_surfaces, sizeof *h->emit);
     h->tiny = calloc(p->max_surfaces, sizeof *h->tiny);
     h->area = calloc(p->max_surfaces, sizeof *h->area);
-    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags && h->emit && h->tiny &&
-           h->area;
+    return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags &&
+           h->emit && h->tiny && h->area;
 }
 
 rad_real_t sc__emit_ch(struct sc_solver *h, double e)
@@ -95,7 +103,10 @@ rad_real_t sc__emit_ch(struct sc_solver *h, double e)
 
 rad_real_t sc__rho_ch(struct sc_solver *h, double r)
 {
-    if (r >= 1.0) { h->clamped++; r = RHO_MAX; }
+    if (r >= 1.0) {
+        h->clamped++;
+        r = RHO_MAX;
+    }
     return RAD_REAL(r);
 }
 
@@ -117,7 +128,8 @@ static double poly_area(const rad_vec3_t *v, int n, double *nrm)
     double c[3] = {0, 0, 0};
     int k;
     for (k = 1; k + 1 < n; k++) {
-        double a[3] = {RAD_TO_DOUBLE(v[k].x) - RAD_TO_DOUBLE(v[0].x), RAD_TO_DOUBLE(v[k].y) - RAD_TO_DOUBLE(v[0].y),
+        double a[3] = {RAD_TO_DOUBLE(v[k].x) - RAD_TO_DOUBLE(v[0].x),
+                       RAD_TO_DOUBLE(v[k].y) - RAD_TO_DOUBLE(v[0].y),
                        RAD_TO_DOUBLE(v[k].z) - RAD_TO_DOUBLE(v[0].z)};
         double b[3] = {RAD_TO_DOUBLE(v[k + 1].x) - RAD_TO_DOUBLE(v[0].x),
                        RAD_TO_DOUBLE(v[k + 1].y) - RAD_TO_DOUBLE(v[0].y),
@@ -143,7 +155,8 @@ static uint64_t group_key(const double *c, const double *n, double cell)
     for (a = 1; a < 3; a++)
         if (fabs(n[a]) > fabs(n[major])) major = a;
     face = 2 * major + (n[major] < 0);
-    if (!(fabs(n[major]) > 0)) return key << 8; /* no normal (a zero-area face): any bin,
+    if (!(fabs(n[major]) > 0))
+        return key << 8; /* no normal (a zero-area face): any bin,
                                                    the core refuses it when it is joined */
     for (a = 0; a < 3; a++) {
         int bin;
@@ -155,7 +168,8 @@ static uint64_t group_key(const double *c, const double *n, double cell)
 }
 
 /* Surface SURF, made of polygon Q's corners V (N of them), is kept. */
-static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const rad_vec3_t *v, int n)
+static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const rad_vec3_t *v,
+                         int n)
 {
     h->tags[surf] = q->tag;
     memcpy(&h->emit[3 * surf], q->emit, sizeof q->emit);
@@ -180,20 +194,32 @@ static int add_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
     rad_rgb_t rho, em;
     int rc;
     poly_core(h, q, v);
-    rho.r = sc__rho_ch(h, q->rho[0]); rho.g = sc__rho_ch(h, q->rho[1]); rho.b = sc__rho_ch(h, q->rho[2]);
-    em.r = sc__emit_ch(h, q->emit[0]); em.g = sc__emit_ch(h, q->emit[1]); em.b = sc__emit_ch(h, q->emit[2]);
+    rho.r = sc__rho_ch(h, q->rho[0]);
+    rho.g = sc__rho_ch(h, q->rho[1]);
+    rho.b = sc__rho_ch(h, q->rho[2]);
+    em.r = sc__emit_ch(h, q->emit[0]);
+    em.g = sc__emit_ch(h, q->emit[1]);
+    em.b = sc__emit_ch(h, q->emit[2]);
     rc = rad_add_polygon(&h->s, v, (unsigned)q->n, &rho, &em);
-    if (rc >= 0) { keep_surface(h, rc, q, v, q->n); return RAD_OK; }
+    if (rc >= 0) {
+        keep_surface(h, rc, q, v, q->n);
+        return RAD_OK;
+    }
     if (q->n == 4 && (rc == RAD_ERR_NONPLANAR || rc == RAD_ERR_DEGENERATE)) {
         rad_vec3_t t[3];
         int k;
         h->split++;
         for (k = 0; k < 2; k++) {
-            t[0] = v[0]; t[1] = v[1 + k]; t[2] = v[2 + k];
+            t[0] = v[0];
+            t[1] = v[1 + k];
+            t[2] = v[2 + k];
             rc = rad_add_polygon(&h->s, t, 3, &rho, &em);
-            if (rc >= 0) keep_surface(h, rc, q, t, 3);
-            else if (rc == RAD_ERR_DEGENERATE) skip_poly(h, q, w, "a degenerate triangle of a split quad", rc);
-            else return rc;
+            if (rc >= 0)
+                keep_surface(h, rc, q, t, 3);
+            else if (rc == RAD_ERR_DEGENERATE)
+                skip_poly(h, q, w, "a degenerate triangle of a split quad", rc);
+            else
+                return rc;
         }
         return RAD_OK;
     }
@@ -222,7 +248,9 @@ static int join_poly(struct sc_solver *h, const sc_poly *q, warner_t *w)
     rho.r = RAD_REAL(q->rho[0] >= 1.0 ? RHO_MAX : q->rho[0]);
     rho.g = RAD_REAL(q->rho[1] >= 1.0 ? RHO_MAX : q->rho[1]);
     rho.b = RAD_REAL(q->rho[2] >= 1.0 ? RHO_MAX : q->rho[2]);
-    rc = h->s.pools.patches[p].n_elements < GROUP_MAX ? rad_join_polygon(&h->s, v, (unsigned)q->n, &rho) : RAD_ERR_ARG;
+    rc = h->s.pools.patches[p].n_elements < GROUP_MAX
+             ? rad_join_polygon(&h->s, v, (unsigned)q->n, &rho)
+             : RAD_ERR_ARG;
     if (rc == RAD_ERR_FULL) return rc;
     if (rc < 0) return add_poly(h, q, w);
     for (c = 0; c < 3; c++) h->clamped += q->rho[c] >= 1.0;
@@ -300,7 +328,10 @@ static int touching_parts(const sc_poly *polys, int n, const order_item *it, int
         if (c[i].key == c[i - 1].key && !memcmp(c[i].p, c[i - 1].p, sizeof c[i].p) &&
             !memcmp(polys[c[i].poly].rho, polys[c[i - 1].poly].rho, sizeof polys[0].rho)) {
             int x = find_part(part, c[i].poly), y = find_part(part, c[i - 1].poly);
-            if (x < y) part[y] = x; else part[x] = y;
+            if (x < y)
+                part[y] = x;
+            else
+                part[x] = y;
         }
     free(c);
     for (k = 0; k < n; k++) part[k] = find_part(part, k);
@@ -311,11 +342,16 @@ static int touching_parts(const sc_poly *polys, int n, const order_item *it, int
  * tiny ones by group (group_key, of the element size CELL, reflectance and connected
  * piece), so that each group's faces follow one another. SAME[k]: polygon ORDER[k] may join the group
  * of the one before it. Returns ORDER (malloc'd; NULL: out of memory). */
-static int *poly_order(const struct sc_solver *h, const sc_poly *polys, int n, double cell, unsigned char *same)
+static int *poly_order(const struct sc_solver *h, const sc_poly *polys, int n, double cell,
+                       unsigned char *same)
 {
     order_item *it = malloc((size_t)n * sizeof *it);
     int *order = malloc((size_t)n * sizeof *order), k, a;
-    if (!it || !order) { free(it); free(order); return NULL; }
+    if (!it || !order) {
+        free(it);
+        free(order);
+        return NULL;
+    }
     /* ORDER's memory holds the pieces until the sort */
     for (k = 0; k < n; k++) {
         rad_vec3_t v[4];
@@ -332,14 +368,19 @@ static int *poly_order(const struct sc_solver *h, const sc_poly *polys, int n, d
         }
         if (it[k].tiny) it[k].key = group_key(c, nrm, cell);
     }
-    if (touching_parts(polys, n, it, order) < 0) { free(it); free(order); return NULL; }
+    if (touching_parts(polys, n, it, order) < 0) {
+        free(it);
+        free(order);
+        return NULL;
+    }
     for (k = 0; k < n; k++) it[k].part = order[k];
     qsort(it, (size_t)n, sizeof *it, cmp_order);
     for (k = 0; k < n; k++) {
         const sc_poly *q = &polys[it[k].i], *r = k ? &polys[it[k - 1].i] : NULL;
         order[k] = it[k].i;
-        same[k] = r && it[k].tiny && it[k - 1].tiny && it[k].key == it[k - 1].key && it[k].part == it[k - 1].part &&
-                  !memcmp(q->rho, r->rho, sizeof q->rho) && !(q->emit[0] > 0 || q->emit[1] > 0 || q->emit[2] > 0);
+        same[k] = r && it[k].tiny && it[k - 1].tiny && it[k].key == it[k - 1].key &&
+                  it[k].part == it[k - 1].part && !memcmp(q->rho, r->rho, sizeof q->rho) &&
+                  !(q->emit[0] > 0 || q->emit[1] > 0 || q->emit[2] > 0);
     }
     free(it);
     return order;
@@ -352,14 +393,16 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
     int i, k, a;
     for (i = 0; i < n; i++) {
         if (polys[i].n != 3 && polys[i].n != 4) {
-            snprintf(err, errlen, "polygon %d has %d vertices (the core takes 3 or 4)", i, polys[i].n);
+            snprintf(err, errlen, "polygon %d has %d vertices (the core takes 3 or 4)", i,
+                     polys[i].n);
             return -1;
         }
         for (k = 0; k < polys[i].n; k++)
             for (a = 0; a < 3; a++) {
                 double c = polys[i].v[k][a];
                 if (!isfinite(c) || fabs(c) > 1e30) {
-                    snprintf(err, errlen, "polygon %d has a coordinate that is not a finite number", i);
+                    snprintf(err, errlen, "polygon %d has a coordinate that is not a finite number",
+                             i);
                     return -1;
                 }
                 if (c < lo[a]) lo[a] = c;
@@ -368,7 +411,8 @@ static int frame_scene(struct sc_solver *h, const sc_poly *polys, int n, char *e
         for (a = 0; a < 3; a++) {
             double e = polys[i].emit[a], r = polys[i].rho[a];
             if (!isfinite(e) || e < 0 || !isfinite(r) || r < 0) {
-                snprintf(err, errlen, "polygon %d has a negative or non-finite reflectance or emission", i);
+                snprintf(err, errlen,
+                         "polygon %d has a negative or non-finite reflectance or emission", i);
                 return -1;
             }
             if (e > emax) emax = e;
@@ -461,16 +505,18 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
         const sc_light *l = &o->lights[i];
         double d = 0;
         for (a = 0; a < 3; a++) {
-            if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) || !isfinite(l->dir[a]) ||
-                !(l->horizon[a] >= 0) || !isfinite(l->horizon[a])) {
+            if (!isfinite(l->rgb[a]) || l->rgb[a] < 0 || !isfinite(l->pos[a]) ||
+                !isfinite(l->dir[a]) || !(l->horizon[a] >= 0) || !isfinite(l->horizon[a])) {
                 snprintf(err, errlen, "light %d: a negative or non-finite value", i + 1);
                 return -1;
             }
             d += l->dir[a] * l->dir[a];
             if ((l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) &&
                 fabs((l->pos[a] - h->off[a]) * h->scale) > RAD_COORD_LIMIT) {
-                snprintf(err, errlen, "light %d: its position lies beyond the core's range, twice the scene's "
-                         "extent from its centre: move it nearer", i + 1);
+                snprintf(err, errlen,
+                         "light %d: its position lies beyond the core's range, twice the scene's "
+                         "extent from its centre: move it nearer",
+                         i + 1);
                 return -1;
             }
         }
@@ -557,7 +603,10 @@ static int outlier(const sc_poly *polys, int n, char *err, size_t errlen)
         for (k = 0; k < polys[i].n; k++) {
             const double *v = polys[i].v[k];
             double d = fmax(fabs(v[0] - mid[0]), fmax(fabs(v[1] - mid[1]), fabs(v[2] - mid[2])));
-            if (d > dmax) { dmax = d; far = i; }
+            if (d > dmax) {
+                dmax = d;
+                far = i;
+            }
             c[nv++] = d;
         }
     qsort(c, nv, sizeof *c, cmp_double);
@@ -568,21 +617,25 @@ static int outlier(const sc_poly *polys, int n, char *err, size_t errlen)
         const sc_poly *q = &polys[far];
         int v = 0;
         for (k = 1; k < q->n; k++)
-            if (fmax(fabs(q->v[k][0] - mid[0]), fmax(fabs(q->v[k][1] - mid[1]), fabs(q->v[k][2] - mid[2]))) >
-                fmax(fabs(q->v[v][0] - mid[0]), fmax(fabs(q->v[v][1] - mid[1]), fabs(q->v[v][2] - mid[2]))))
+            if (fmax(fabs(q->v[k][0] - mid[0]),
+                     fmax(fabs(q->v[k][1] - mid[1]), fabs(q->v[k][2] - mid[2]))) >
+                fmax(fabs(q->v[v][0] - mid[0]),
+                     fmax(fabs(q->v[v][1] - mid[1]), fabs(q->v[v][2] - mid[2]))))
                 v = k;
         snprintf(err, errlen,
-                 "the scene spans %.3g units: polygon %d (tag %d) has a vertex at (%.3g, %.3g, %.3g), %.2g times "
-                 "farther from the middle than the rest (90%% of the vertices lie within %.3g of it), so every "
+                 "the scene spans %.3g units: polygon %d (tag %d) has a vertex at (%.3g, %.3g, "
+                 "%.3g), %.2g times "
+                 "farther from the middle than the rest (90%% of the vertices lie within %.3g of "
+                 "it), so every "
                  "other polygon falls below the core's precision (1/65536 of the span)",
-                 2.0 * dmax, (int)far, q->tag, q->v[v][0], q->v[v][1], q->v[v][2], d90 > 0 ? dmax / d90 : HUGE_VAL,
-                 d90);
+                 2.0 * dmax, (int)far, q->tag, q->v[v][0], q->v[v][1], q->v[v][2],
+                 d90 > 0 ? dmax / d90 : HUGE_VAL, d90);
     }
     return ok;
 }
 
 sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
-                       char *err, size_t errlen)
+                     char *err, size_t errlen)
 {
     static const sc_opts defaults = {0};
     struct sc_solver *h = calloc(1, sizeof *h);
@@ -592,8 +645,15 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     int *order = NULL;
     unsigned char *same = NULL;
     if (!o) o = &defaults;
-    if (!h) { snprintf(err, errlen, "out of memory"); return NULL; }
-    if (n <= 0) { snprintf(err, errlen, "the scene has no polygons"); free(h); return NULL; }
+    if (!h) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    if (n <= 0) {
+        snprintf(err, errlen, "the scene has no polygons");
+        free(h);
+        return NULL;
+    }
     if (frame_scene(h, polys, n, err, errlen) < 0 || frame_lights(h, o, err, errlen) < 0) {
         free(h->lights);
         free(h->src);
@@ -605,7 +665,9 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         double me = o->max_element > 0 ? o->max_element * h->scale : 2.0 * CORE_HALF_EXTENT / 24.0;
         double mp = o->max_patch > 0 ? o->max_patch * h->scale : 4.0 * me;
         if (me < 1.0 / 16.0 || me > 128.0 || mp < me || mp > 256.0) {
-            snprintf(err, errlen, "element size %g / patch size %g out of range for this scene (element >= %g, patch >= element)",
+            snprintf(err, errlen,
+                     "element size %g / patch size %g out of range for this scene (element >= %g, "
+                     "patch >= element)",
                      me / h->scale, mp / h->scale, 1.0 / 16.0 / h->scale);
             free(h->lights);
             free(h->src);
@@ -632,24 +694,34 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         }
     }
     limit = sc_element_limit(o);
-    w.warn = warn; w.ctx = ctx; w.emitted = 0;
+    w.warn = warn;
+    w.ctx = ctx;
+    w.emitted = 0;
     for (;;) {
         int i, added, rc = RAD_OK;
         if (cap > limit) cap = limit;
-        if (!alloc_pools(h, cap, n, &cfg)) { snprintf(err, errlen, "out of memory for %ld elements", cap); break; }
+        if (!alloc_pools(h, cap, n, &cfg)) {
+            snprintf(err, errlen, "out of memory for %ld elements", cap);
+            break;
+        }
         rc = rad_init(&h->s, &h->pools, &cfg);
         if (rc == RAD_OK) rc = add_lights(h);
-        if (rc < 0) { snprintf(err, errlen, "cannot set up the solver: %s", rad_strerror(rc)); break; }
+        if (rc < 0) {
+            snprintf(err, errlen, "cannot set up the solver: %s", rad_strerror(rc));
+            break;
+        }
         h->skipped = h->split = h->clamped = h->skipped_emitters = h->n_tiny = 0;
         w.seen = 0;
         for (i = 0, added = 0; i < n && rc == RAD_OK; i++) {
             uint32_t before = h->s.n_surfaces;
-            rc = same[i] && added ? join_poly(h, &polys[order[i]], &w) : add_poly(h, &polys[order[i]], &w);
+            rc = same[i] && added ? join_poly(h, &polys[order[i]], &w)
+                                  : add_poly(h, &polys[order[i]], &w);
             added = h->s.n_surfaces > before;
         }
         if (rc == RAD_OK) {
             if (h->s.n_elements == 0) {
-                if (!outlier(polys, n, err, errlen)) snprintf(err, errlen, "no polygon could be meshed");
+                if (!outlier(polys, n, err, errlen))
+                    snprintf(err, errlen, "no polygon could be meshed");
                 break;
             }
             free(order);
@@ -657,12 +729,14 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             return h;
         }
         if (rc != RAD_ERR_FULL) {
-            snprintf(err, errlen, "polygon %d (tag %d): %s", order[i - 1], polys[order[i - 1]].tag, rad_strerror(rc));
+            snprintf(err, errlen, "polygon %d (tag %d): %s", order[i - 1], polys[order[i - 1]].tag,
+                     rad_strerror(rc));
             break;
         }
         free_pools(h);
         if (cap >= limit) {
-            snprintf(err, errlen, "the scene needs more than %ld elements: raise the element size", limit);
+            snprintf(err, errlen, "the scene needs more than %ld elements: raise the element size",
+                     limit);
             break;
         }
         cap *= 2;
@@ -676,14 +750,18 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
 long sc_element_limit(const sc_opts *o)
 {
     long limit = o->max_elements > 0 ? o->max_elements : 4000000L;
-    return limit > (long)RAD_INDEX_NONE - 1 ? (long)RAD_INDEX_NONE - 1 : limit; /* 65534 with 16-bit indices */
+    return limit > (long)RAD_INDEX_NONE - 1 ? (long)RAD_INDEX_NONE - 1
+                                            : limit; /* 65534 with 16-bit indices */
 }
 
 void sc_destroy(sc_solver *h)
 {
     if (!h) return;
     free_pools(h);
-    free(h->rows.start); free(h->rows.ids); free(h->rows.ffs); free(h->gs);
+    free(h->rows.start);
+    free(h->rows.ids);
+    free(h->rows.ffs);
+    free(h->gs);
     free(h->lights);
     free(h->cull);
     free(h->src);
@@ -735,15 +813,17 @@ void sc_get_stats(sc_solver *h, sc_stats *st)
     st->raster_pixels = h->s.stats.raster_pixels;
     st->solved = h->solve_kind != 0;
     st->tol = h->tol;
-    st->converged = h->solve_kind == 2 || (h->solve_kind == 1 && rad_unshot_fraction(&h->s) <= RAD_REAL(h->tol));
+    st->converged = h->solve_kind == 2 ||
+                    (h->solve_kind == 1 && rad_unshot_fraction(&h->s) <= RAD_REAL(h->tol));
     st->backoffs = h->s.stats.backoffs;
     st->coarse_shots = h->s.stats.coarse_shots;
     st->skipped_emitters = h->skipped_emitters;
     st->tiny = h->n_tiny;
     st->pool_bytes = h->s.n_surfaces * sizeof *p->surfaces + h->s.n_patches * sizeof *p->patches +
                      h->s.n_elements * sizeof *p->elements + h->s.n_vertices * sizeof *p->vertices;
-    st->work_bytes = RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
-                                    h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
+    st->work_bytes =
+        RAD_WORK_BYTES(h->s.cfg.res, h->s.pass_pixels,
+                       h->s.n_elements > h->s.n_vertices ? h->s.n_elements : h->s.n_vertices);
 }
 
 void sc__rgb_out(const struct sc_solver *h, const rad_rgb_t *c, double *o)
@@ -763,14 +843,16 @@ int sc__shade_flags(struct sc_solver *h, int ambient)
 void sc_element_rgb(sc_solver *h, int e, int ambient, double rgb[3])
 {
     rad_rgb_t c = {0, 0, 0};
-    rad_element_radiosity(&h->s, (uint32_t)e, sc__shade_flags(h, ambient), &c); /* a group's face: the group's */
+    rad_element_radiosity(&h->s, (uint32_t)e, sc__shade_flags(h, ambient),
+                          &c); /* a group's face: the group's */
     sc__rgb_out(h, &c, rgb);
 }
 
 double sc_element_area(sc_solver *h, int e)
 {
     uint32_t surf = h->pools.elements[e].surface;
-    if (h->tiny[surf] && h->pools.surfaces[surf].n_elements == 1) /* a group's receiver holds the group's */
+    if (h->tiny[surf] &&
+        h->pools.surfaces[surf].n_elements == 1) /* a group's receiver holds the group's */
         return h->area[surf] / (h->scale * h->scale);
     return RAD_TO_DOUBLE(h->pools.elements[e].area) / (h->scale * h->scale);
 }
@@ -817,9 +899,11 @@ int sc_set_element_rho(sc_solver *h, int e, const double rho[3], char *err, size
             return -1;
         }
     if (!h->erho) {
-        h->erho = malloc(RAD_ELEMENT_RHO_ENTRIES(h->pools.max_elements, h->pools.max_patches) * sizeof *h->erho);
+        h->erho = malloc(RAD_ELEMENT_RHO_ENTRIES(h->pools.max_elements, h->pools.max_patches) *
+                         sizeof *h->erho);
         if (!h->erho) {
-            snprintf(err, errlen, "out of memory for %u element reflectances", (unsigned)h->pools.max_elements);
+            snprintf(err, errlen, "out of memory for %u element reflectances",
+                     (unsigned)h->pools.max_elements);
             return -1;
         }
         if ((rc = rad_use_element_reflectance(&h->s, h->erho)) < 0) {
@@ -848,7 +932,10 @@ void sc_element_rho(sc_solver *h, int e, double rho[3])
     rho[2] = RAD_TO_DOUBLE(r->b);
 }
 
-int sc__fits_core(double x) { return x > -32767.0 && x < 32767.0; }
+int sc__fits_core(double x)
+{
+    return x > -32767.0 && x < 32767.0;
+}
 
 static rad_rgb_t *shade_core(struct sc_solver *h, int ambient)
 {
@@ -885,23 +972,31 @@ static int render_core(struct sc_solver *h, const sc_camera *cam, const rad_rgb_
 {
     rad_camera_t c;
     double t = tan(cam->fov_deg * 0.5 * 3.14159265358979323846 / 180.0);
-    int a, rc = RAD_ERR_ARG, ok = sc__fits_core(t) && sc__fits_core(cam->up[0]) && sc__fits_core(cam->up[1]) && sc__fits_core(cam->up[2]);
+    int a, rc = RAD_ERR_ARG,
+           ok = sc__fits_core(t) && sc__fits_core(cam->up[0]) && sc__fits_core(cam->up[1]) &&
+                sc__fits_core(cam->up[2]);
     /* Values past Q16.16 cannot even be converted: the core's refusal, without it. */
     for (a = 0; a < 3; a++)
-        ok = ok && sc__fits_core((cam->eye[a] - h->off[a]) * h->scale) && sc__fits_core((cam->target[a] - h->off[a]) * h->scale);
+        ok = ok && sc__fits_core((cam->eye[a] - h->off[a]) * h->scale) &&
+             sc__fits_core((cam->target[a] - h->off[a]) * h->scale);
     if (ok) {
         sc__to_core(h, cam->eye, &c.eye);
         sc__to_core(h, cam->target, &c.target);
-        c.up.x = RAD_REAL(cam->up[0]); c.up.y = RAD_REAL(cam->up[1]); c.up.z = RAD_REAL(cam->up[2]);
+        c.up.x = RAD_REAL(cam->up[0]);
+        c.up.y = RAD_REAL(cam->up[1]);
+        c.up.z = RAD_REAL(cam->up[2]);
         c.tan_half_fov = RAD_REAL(t);
         rc = rad_render(&h->s, v, &c, fb, z, (unsigned)w, (unsigned)hgt);
     }
-    if (rc < 0) snprintf(err, errlen, "cannot render this view: %s (camera too far, degenerate, or image too large)", rad_strerror(rc));
+    if (rc < 0)
+        snprintf(err, errlen,
+                 "cannot render this view: %s (camera too far, degenerate, or image too large)",
+                 rad_strerror(rc));
     return rc;
 }
 
 int sc_render(sc_solver *h, const sc_camera *cam, int ambient, int w, int hgt, float *rgb,
-               char *err, size_t errlen)
+              char *err, size_t errlen)
 {
     rad_rgb_t *v = shade_core(h, ambient), *fb = malloc((size_t)w * hgt * sizeof *fb);
     uint32_t *z = malloc((size_t)w * hgt * sizeof *z);
@@ -912,35 +1007,46 @@ int sc_render(sc_solver *h, const sc_camera *cam, int ambient, int w, int hgt, f
         for (i = 0; rc >= 0 && i < (size_t)w * hgt; i++) {
             double o[3];
             sc__rgb_out(h, &fb[i], o);
-            rgb[3 * i] = (float)o[0]; rgb[3 * i + 1] = (float)o[1]; rgb[3 * i + 2] = (float)o[2];
+            rgb[3 * i] = (float)o[0];
+            rgb[3 * i + 1] = (float)o[1];
+            rgb[3 * i + 2] = (float)o[2];
         }
     } else {
         snprintf(err, errlen, "out of memory for a %dx%d image", w, hgt);
     }
-    free(v); free(fb); free(z);
+    free(v);
+    free(fb);
+    free(z);
     return rc < 0 ? -1 : 0;
 }
 
 int sc_render_values(sc_solver *h, const sc_camera *cam, const double *values, int w, int hgt,
                      double *out, unsigned char *solid, char *err, size_t errlen)
 {
-    rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v), *fb = malloc((size_t)w * hgt * sizeof *fb);
+    rad_rgb_t *v = malloc((h->s.n_vertices ? h->s.n_vertices : 1) * sizeof *v),
+              *fb = malloc((size_t)w * hgt * sizeof *fb);
     uint32_t *z = malloc((size_t)w * hgt * sizeof *z), i;
     int rc = -1;
     if (v && fb && z) {
         size_t p;
         for (i = 0; i < h->s.n_vertices; i++) {
-            v[i].r = RAD_REAL(values[3 * i]); v[i].g = RAD_REAL(values[3 * i + 1]); v[i].b = RAD_REAL(values[3 * i + 2]);
+            v[i].r = RAD_REAL(values[3 * i]);
+            v[i].g = RAD_REAL(values[3 * i + 1]);
+            v[i].b = RAD_REAL(values[3 * i + 2]);
         }
         rc = render_core(h, cam, v, w, hgt, fb, z, err, errlen);
         for (p = 0; rc >= 0 && p < (size_t)w * hgt; p++) {
-            out[3 * p] = RAD_TO_DOUBLE(fb[p].r); out[3 * p + 1] = RAD_TO_DOUBLE(fb[p].g); out[3 * p + 2] = RAD_TO_DOUBLE(fb[p].b);
+            out[3 * p] = RAD_TO_DOUBLE(fb[p].r);
+            out[3 * p + 1] = RAD_TO_DOUBLE(fb[p].g);
+            out[3 * p + 2] = RAD_TO_DOUBLE(fb[p].b);
             solid[p] = z[p] > 1; /* 0: nothing drawn; 1: a crack filled from its neighbours */
         }
     } else {
         snprintf(err, errlen, "out of memory for a %dx%d image", w, hgt);
     }
-    free(v); free(fb); free(z);
+    free(v);
+    free(fb);
+    free(z);
     return rc < 0 ? -1 : 0;
 }
 
@@ -964,14 +1070,23 @@ uint64_t sc_checksum(sc_solver *h)
         unsigned char b[sizeof *c];
         size_t k;
         memcpy(b, c, sizeof b);
-        for (k = 0; k < sizeof b; k++) { x ^= b[k]; x *= 1099511628211ull; }
+        for (k = 0; k < sizeof b; k++) {
+            x ^= b[k];
+            x *= 1099511628211ull;
+        }
     }
     return x;
 }
 
-void *sc_core(sc_solver *h) { return &h->s; }
+void *sc_core(sc_solver *h)
+{
+    return &h->s;
+}
 
-int sc_patch_count(sc_solver *h) { return (int)h->s.n_patches; }
+int sc_patch_count(sc_solver *h)
+{
+    return (int)h->s.n_patches;
+}
 
 int sc_patch(sc_solver *h, int p, int *first_element, double *area)
 {

@@ -16,10 +16,10 @@
 
 typedef struct {
     double v[4][3];
-    int n;            /* 3 or 4 */
-    double rho[3];    /* reflectance, [0, 1) (values >= 1 are clamped and counted) */
-    double emit[3];   /* emission, >= 0 */
-    int tag;          /* caller's id (material, source line): passed back in warnings */
+    int n;          /* 3 or 4 */
+    double rho[3];  /* reflectance, [0, 1) (values >= 1 are clamped and counted) */
+    double emit[3]; /* emission, >= 0 */
+    int tag;        /* caller's id (material, source line): passed back in warnings */
 } sc_poly;
 
 /* A light that is not a surface (rad_add_light), in the caller's units: TYPE 1 sun, 2
@@ -34,44 +34,44 @@ typedef struct {
     int type;
     double pos[3], dir[3], rgb[3];
     double cos_outer, cos_inner;
-    double radius;                  /* a sun's angular radius as its tangent, 0..1/4 */
+    double radius; /* a sun's angular radius as its tangent, 0..1/4 */
     double horizon[3];
     int dirs;
     int dome;
 } sc_light;
 
 typedef struct {
-    double max_patch, max_element;  /* in the caller's units; 0: 1/8 and 1/32 of the extent */
-    int res;                        /* hemi-cube resolution; 0: 64 */
-    int band_rows;                  /* 0: all faces at once */
-    long max_elements;              /* refuse scenes needing more; 0: 4,000,000 */
-    int no_overshoot;               /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
-    double coarse;                  /* rad_config_t.coarse: unshot fraction below which
+    double max_patch, max_element; /* in the caller's units; 0: 1/8 and 1/32 of the extent */
+    int res;                       /* hemi-cube resolution; 0: 64 */
+    int band_rows;                 /* 0: all faces at once */
+    long max_elements;             /* refuse scenes needing more; 0: 4,000,000 */
+    int no_overshoot;              /* 1: shoot plainly (RAD_NO_OVERSHOOT) */
+    double coarse;                 /* rad_config_t.coarse: unshot fraction below which
                                        shots coarsen; 0: never */
-    int coarse_res;                 /* rad_config_t.coarse_res: their floor; 0: res / 4 */
-    const sc_light *lights;         /* lights shot first (sc_set_light changes them) */
+    int coarse_res;                /* rad_config_t.coarse_res: their floor; 0: res / 4 */
+    const sc_light *lights;        /* lights shot first (sc_set_light changes them) */
     int nlights;
 } sc_opts;
 
 typedef struct {
     int surfaces, patches, elements, vertices, skipped, split, clamped;
     int shots;
-    double unshot;                  /* unshot fraction */
+    double unshot; /* unshot fraction */
     unsigned long saturations;
     unsigned long raster_calls;
     unsigned long long raster_pixels;
-    size_t pool_bytes, work_bytes;  /* memory handed to the core */
+    size_t pool_bytes, work_bytes; /* memory handed to the core */
     /* How the last solve ended, for "not converged" and "saturated" reports: */
-    int solved;                     /* 1 after a solve (shooting or Gauss-Seidel) */
-    int converged;                  /* it reached its tolerance (unshot <= tol; Gauss-Seidel:
+    int solved;                  /* 1 after a solve (shooting or Gauss-Seidel) */
+    int converged;               /* it reached its tolerance (unshot <= tol; Gauss-Seidel:
                                        stopped before its sweep limit) */
-    double tol;                     /* that tolerance */
-    unsigned long backoffs;         /* overshoot halvings (rad_stats_t.backoffs) */
-    unsigned long coarse_shots;     /* shots below res (rad_stats_t.coarse_shots) */
-    int skipped_emitters;           /* emitting polygons skipped (each warned) */
-    int tiny;                       /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
+    double tol;                  /* that tolerance */
+    unsigned long backoffs;      /* overshoot halvings (rad_stats_t.backoffs) */
+    unsigned long coarse_shots;  /* shots below res (rad_stats_t.coarse_shots) */
+    int skipped_emitters;        /* emitting polygons skipped (each warned) */
+    int tiny;                    /* surfaces below the core's 1/4096 (RAD_SMALL_FACES),
                                        shown from the light around them */
-    unsigned long ambient_terms;    /* shading calls (sc_element_rgb, sc_shade,
+    unsigned long ambient_terms; /* shading calls (sc_element_rgb, sc_shade,
                                        sc_shade_elements, sc_render, sc_keep) that had the
                                        core compute the ambient term, a pass over the
                                        patches each: an export makes one */
@@ -79,7 +79,7 @@ typedef struct {
 
 typedef struct {
     double eye[3], target[3], up[3];
-    double fov_deg;                 /* vertical field of view */
+    double fov_deg; /* vertical field of view */
 } sc_camera;
 
 typedef void (*sc_warn_fn)(void *ctx, int tag, const char *msg);
@@ -88,11 +88,11 @@ typedef int (*sc_rows_progress_fn)(void *ctx, int rows, int total); /* nonzero: 
 typedef int (*sc_tag_match_fn)(void *ctx, int tag);                 /* nonzero: this tag */
 
 typedef struct {
-    int rows;                       /* patches with a stored row (0: none) */
-    unsigned long entries;          /* non-zero form factors stored */
-    size_t bytes;                   /* memory of the rows in use: starts, ids, codes */
-    size_t matrix_bytes;            /* Gauss-Seidel matrix, once allocated */
-    unsigned long raster_calls;     /* hemi-cube polygons rendered to compute them */
+    int rows;                   /* patches with a stored row (0: none) */
+    unsigned long entries;      /* non-zero form factors stored */
+    size_t bytes;               /* memory of the rows in use: starts, ids, codes */
+    size_t matrix_bytes;        /* Gauss-Seidel matrix, once allocated */
+    unsigned long raster_calls; /* hemi-cube polygons rendered to compute them */
 } sc_rows_stats;
 
 typedef struct sc_solver sc_solver;
@@ -101,8 +101,8 @@ typedef struct sc_solution sc_solution;
  * what the core's indices count (65534 with RAD_INDEX_BITS 16). */
 long sc_element_limit(const sc_opts *o);
 /* Builds the scene; NULL with a message in err on failure. */
-sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn,
-                       void *ctx, char *err, size_t errlen);
+sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn warn, void *ctx,
+                     char *err, size_t errlen);
 void sc_destroy(sc_solver *s);
 /* Shoots until the unshot fraction <= tol or max_shots; returns shots done. */
 int sc_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
@@ -132,8 +132,8 @@ int sc_shade_elements(sc_solver *s, int ambient, double *rgb);
 /* Gouraud vertex colours (caller units), n >= stats.vertices entries of 3. */
 int sc_shade(sc_solver *s, int ambient, double *rgb);
 /* Renders w x h linear RGB (caller units, row 0 at top); 0 or -1 with err. */
-int sc_render(sc_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb,
-               char *err, size_t errlen);
+int sc_render(sc_solver *s, const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
+              size_t errlen);
 /* Renders per-vertex VALUES (3 a core vertex, 0..65535, taken as they are: not in
  * caller units) through CAM as sc_render does, into OUT (w x h x 3); SOLID[pixel] is 1
  * where a surface was drawn (not a crack filled from its neighbours). For attributes
@@ -161,7 +161,8 @@ void sc_set_memory_limit(sc_solver *s, double bytes);
  * min(elements, 3 res^2) entries of 6 bytes (a hemi-cube has 3 res^2 pixels, each
  * seeing one element), exceeds the memory limit. Progress may stop it (-1). Returns
  * 0 or -1 with err. */
-int sc_rows_compute(sc_solver *s, sc_rows_progress_fn progress, void *ctx, char *err, size_t errlen);
+int sc_rows_compute(sc_solver *s, sc_rows_progress_fn progress, void *ctx, char *err,
+                    size_t errlen);
 /* Writes the rows to PATH (tools/formats/ff_file.h, atomic) / reads them from PATH, checking
  * that the file was made by this build for this very mesh (fingerprint) at this
  * resolution. No hemi-cube is rendered. 0 or -1 with "PATH: what" in err. */
@@ -184,7 +185,7 @@ int sc_gauss_seidel_check(sc_solver *s, char *err, size_t errlen);
  * clamped as at create. Returns the surfaces changed, or -1 with err (negative or
  * non-finite values). */
 int sc_set_surfaces(sc_solver *s, sc_tag_match_fn match, void *ctx, const double *rho,
-                     const double *emit, char *err, size_t errlen);
+                    const double *emit, char *err, size_t errlen);
 /* Resets the solution to the emission alone (the rows stay). As at create, the
  * brightest emission or light now set goes to the core at 256, so a dim relit scene
  * (one light group alone) keeps the core's precision; results map back to caller units. */
@@ -192,7 +193,8 @@ void sc_restart(sc_solver *s);
 /* Light I's (0-based, as sc_opts.lights) intensity RGB and a sky's horizon HORIZON
  * (caller units; NULL keeps it; all 0: dark, not rendered), then sc_restart. 0, or -1
  * with err (no such light, a negative or non-finite value). */
-int sc_set_light(sc_solver *s, int i, const double *rgb, const double *horizon, char *err, size_t errlen);
+int sc_set_light(sc_solver *s, int i, const double *rgb, const double *horizon, char *err,
+                 size_t errlen);
 /* A solution kept aside: every element's radiosity, with the ambient term baked in
  * if AMBIENT (radiosity is linear in emission, so is the ambient term). */
 sc_solution *sc_keep(sc_solver *s, int ambient);
@@ -202,8 +204,8 @@ void sc_solution_free(sc_solution *k);
  * has its own scale). Until the next solve or restart, element_rgb, shade and
  * render show this mix and ignore their ambient flag (the kept solutions carry
  * their own); solving again starts from the emission. 0 or -1 with err. */
-int sc_mix(sc_solver *s, sc_solution *const *groups, const double (*intensity)[3], int n,
-            char *err, size_t errlen);
+int sc_mix(sc_solver *s, sc_solution *const *groups, const double (*intensity)[3], int n, char *err,
+           size_t errlen);
 
 /* ---- gathering: the light arriving at any point (rad_gather, rad_gather_sh) ---- */
 typedef struct sc_gatherer sc_gatherer;
@@ -224,7 +226,8 @@ int sc_gatherer_cull(sc_gatherer *g, int on);
 int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
 /* sc_gather from a point on core surface SURFACE (-1: none), which is not drawn: a
  * quad planar only within the core's tolerance is not seen edge-on from just above. */
-int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int ambient, double rgb[3]);
+int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int ambient,
+                 double rgb[3]);
 /* The radiosity seen from P in every direction, projected on the nine real SH of bands
  * 0..2 (rad_gather_sh's order and scale), caller units. 0 or -1 as sc_gather. */
 int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]);

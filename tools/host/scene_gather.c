@@ -9,7 +9,6 @@
 #include <pthread.h>
 #include <stdlib.h>
 
-
 struct sc_gatherer {
     struct sc_solver *h;
     rad_gather_t g;
@@ -45,7 +44,9 @@ static const void *solver_cull(struct sc_solver *h)
             free(b);
         }
     }
-    c = h->cull && h->cull_surfaces == h->s.n_surfaces && h->cull_shift == h->s.length_shift ? h->cull : NULL;
+    c = h->cull && h->cull_surfaces == h->s.n_surfaces && h->cull_shift == h->s.length_shift
+            ? h->cull
+            : NULL;
     pthread_mutex_unlock(&cull_lock);
     return c;
 }
@@ -78,7 +79,8 @@ sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
     bytes = sphere ? RAD_GATHER_SH_BYTES(res) : RAD_GATHER_BYTES(res);
     q->h = h;
     q->work = malloc(bytes);
-    if (!q->work || rad_gather_init(&q->g, (unsigned)res, sphere ? RAD_GATHER_SH : 0u, q->work, bytes) < 0) {
+    if (!q->work ||
+        rad_gather_init(&q->g, (unsigned)res, sphere ? RAD_GATHER_SH : 0u, q->work, bytes) < 0) {
         sc_gatherer_free(q);
         return NULL;
     }
@@ -113,15 +115,19 @@ int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient,
     return sc_gather_on(q, p, n, -1, ambient, rgb);
 }
 
-int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient, double rgb[3])
+int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient,
+                 double rgb[3])
 {
     rad_vec3_t c, nc;
     rad_rgb_t out;
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     int flags = gather_frame(q, p, ambient, &c);
     if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
-    nc.x = RAD_REAL(n[0] / len); nc.y = RAD_REAL(n[1] / len); nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface, flags, &out) < 0)
+    nc.x = RAD_REAL(n[0] / len);
+    nc.y = RAD_REAL(n[1] / len);
+    nc.z = RAD_REAL(n[2] / len);
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface,
+                   flags, &out) < 0)
         return -1;
     sc__rgb_out(q->h, &out, rgb);
     return 0;
@@ -137,4 +143,7 @@ int sc_gather_sh(sc_gatherer *q, const double p[3], int ambient, double sh[9][3]
     return 0;
 }
 
-unsigned long sc_gatherer_saturations(sc_gatherer *q) { return q->g.stats.saturations; }
+unsigned long sc_gatherer_saturations(sc_gatherer *q)
+{
+    return q->g.stats.saturations;
+}

@@ -9,42 +9,42 @@
 #include "host/scene.h"
 #include "rad/rad.h"
 
-#define CORE_HALF_EXTENT 32.0   /* scene scaled into +-32: half the core's range */
-#define CORE_EMIT_PEAK 256.0    /* brightest emission channel, well inside 4096 */
-#define RHO_MAX (65535.0 / 65536.0)
+#define CORE_HALF_EXTENT 32.0  /* scene scaled into +-32: half the core's range */
+#define CORE_EMIT_PEAK   256.0 /* brightest emission channel, well inside 4096 */
+#define RHO_MAX          (65535.0 / 65536.0)
 
 struct sc_solver {
     rad_scene_t s;
     rad_pools_t pools;
-    int *tags;                  /* per surface */
-    double *emit;               /* per surface: emission in caller units (3 each) */
+    int *tags;    /* per surface */
+    double *emit; /* per surface: emission in caller units (3 each) */
     double scale, off[3], escale;
-    double escale0;             /* escale of the scene as built */
-    double epeak;               /* the brightest emission escale maps to the core's peak */
+    double escale0; /* escale of the scene as built */
+    double epeak;   /* the brightest emission escale maps to the core's peak */
     int skipped, split, clamped;
     /* stored form factors */
-    rad_rows_t rows;            /* n_rows == n_patches once computed or loaded */
+    rad_rows_t rows; /* n_rows == n_patches once computed or loaded */
     int has_rows;
-    unsigned long rows_raster;  /* hemi-cube polygons rendered for the rows */
-    rad_ff_t *gs;               /* Gauss-Seidel matrix, RAD_GS_ENTRIES(patches) */
+    unsigned long rows_raster; /* hemi-cube polygons rendered for the rows */
+    rad_ff_t *gs;              /* Gauss-Seidel matrix, RAD_GS_ENTRIES(patches) */
     size_t gs_entries;
-    int mixed;                  /* elements hold a mix with the ambient term baked in */
-    int skipped_emitters;       /* emitting polygons the core could not mesh */
-    int solve_kind;             /* 0: none yet, 1: shooting to tol, 2 / 3: Gauss-Seidel
+    int mixed;            /* elements hold a mix with the ambient term baked in */
+    int skipped_emitters; /* emitting polygons the core could not mesh */
+    int solve_kind;       /* 0: none yet, 1: shooting to tol, 2 / 3: Gauss-Seidel
                                    converged / stopped at its sweep limit */
-    double tol;                 /* the last solve's tolerance */
-    double mem_limit;           /* rows + matrix bytes; 0: half the physical memory */
+    double tol;           /* the last solve's tolerance */
+    double mem_limit;     /* rows + matrix bytes; 0: half the physical memory */
     /* faces below the core's own minimum area (RAD_SMALL_FACES; see join_poly) */
-    unsigned char *tiny;        /* per surface: 1 below TINY_AREA, | 2 in a group */
-    double *area;               /* per surface: its area from its vertices, in core units^2 */
+    unsigned char *tiny; /* per surface: 1 below TINY_AREA, | 2 in a group */
+    double *area;        /* per surface: its area from its vertices, in core units^2 */
     int n_tiny;
-    rad_rgb_t *erho;            /* per element reflectance (rad_use_element_reflectance), or NULL */
+    rad_rgb_t *erho; /* per element reflectance (rad_use_element_reflectance), or NULL */
     unsigned long ambient_terms; /* sc_stats.ambient_terms */
-    rad_light_t *lights;        /* the lights in the core's units (sc_opts.lights), or NULL */
-    sc_light *src;              /* and in the caller's, as now set (sc_set_light) */
-    int nlights, light_res;     /* light_res: the scene's res, for sc__light_to_core */
-    void *cull;                 /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
-    uint32_t cull_surfaces;     /* the scene it was built for: its surfaces and scale */
+    rad_light_t *lights;         /* the lights in the core's units (sc_opts.lights), or NULL */
+    sc_light *src;               /* and in the caller's, as now set (sc_set_light) */
+    int nlights, light_res;      /* light_res: the scene's res, for sc__light_to_core */
+    void *cull;                  /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
+    uint32_t cull_surfaces;      /* the scene it was built for: its surfaces and scale */
     int cull_shift;
 };
 

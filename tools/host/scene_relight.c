@@ -10,23 +10,29 @@
 #include <stdlib.h>
 #include <string.h>
 
-
-int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double *rho, const double *emit,
-                     char *err, size_t errlen)
+int sc_set_surfaces(sc_solver *h, sc_tag_match_fn match, void *ctx, const double *rho,
+                    const double *emit, char *err, size_t errlen)
 {
     rad_rgb_t r;
     uint32_t i;
     int n = 0, k, rc;
     for (k = 0; k < 3; k++)
-        if ((rho && !(rho[k] >= 0 && rho[k] <= 1e30)) || (emit && !(emit[k] >= 0 && emit[k] <= 1e30))) {
+        if ((rho && !(rho[k] >= 0 && rho[k] <= 1e30)) ||
+            (emit && !(emit[k] >= 0 && emit[k] <= 1e30))) {
             snprintf(err, errlen, "reflectance and emission must be finite and >= 0");
             return -1;
         }
-    if (rho) { r.r = sc__rho_ch(h, rho[0]); r.g = sc__rho_ch(h, rho[1]); r.b = sc__rho_ch(h, rho[2]); }
+    if (rho) {
+        r.r = sc__rho_ch(h, rho[0]);
+        r.g = sc__rho_ch(h, rho[1]);
+        r.b = sc__rho_ch(h, rho[2]);
+    }
     for (i = 0; emit && (emit[0] > 0 || emit[1] > 0 || emit[2] > 0) && i < h->s.n_surfaces; i++)
         if ((h->tiny[i] & 2) && match(ctx, h->tags[i])) {
-            snprintf(err, errlen, "surface %u (tag %d) is one of a group of faces below the core's precision, "
-                     "shot together, which cannot emit", i, h->tags[i]);
+            snprintf(err, errlen,
+                     "surface %u (tag %d) is one of a group of faces below the core's precision, "
+                     "shot together, which cannot emit",
+                     i, h->tags[i]);
             return -1;
         }
     for (i = 0; i < h->s.n_surfaces; i++) {
@@ -59,7 +65,9 @@ void sc_restart(sc_solver *h)
     }
     for (i = 0; i < h->s.n_surfaces; i++) {
         rad_rgb_t e;
-        e.r = sc__emit_ch(h, h->emit[3 * i]); e.g = sc__emit_ch(h, h->emit[3 * i + 1]); e.b = sc__emit_ch(h, h->emit[3 * i + 2]);
+        e.r = sc__emit_ch(h, h->emit[3 * i]);
+        e.g = sc__emit_ch(h, h->emit[3 * i + 1]);
+        e.b = sc__emit_ch(h, h->emit[3 * i + 2]);
         rad_set_surface(&h->s, i, NULL, &e); /* in range by construction */
     }
     rad_restart(&h->s);
@@ -71,7 +79,8 @@ void sc_restart(sc_solver *h)
     h->mixed = 0;
 }
 
-int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, char *err, size_t errlen)
+int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, char *err,
+                 size_t errlen)
 {
     int k;
     if (i < 0 || i >= h->nlights) {
@@ -79,7 +88,8 @@ int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, 
         return -1;
     }
     for (k = 0; k < 3; k++)
-        if ((rgb && !(rgb[k] >= 0 && rgb[k] <= 1e30)) || (horizon && !(horizon[k] >= 0 && horizon[k] <= 1e30))) {
+        if ((rgb && !(rgb[k] >= 0 && rgb[k] <= 1e30)) ||
+            (horizon && !(horizon[k] >= 0 && horizon[k] <= 1e30))) {
             snprintf(err, errlen, "light %d: intensities must be finite and >= 0", i + 1);
             return -1;
         }
@@ -91,8 +101,8 @@ int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, 
 
 struct sc_solution {
     uint32_t n;
-    double escale;              /* the scale its radiosities are in */
-    rad_rgb_t rgb[1];           /* n entries, core units */
+    double escale;    /* the scale its radiosities are in */
+    rad_rgb_t rgb[1]; /* n entries, core units */
 };
 
 sc_solution *sc_keep(sc_solver *h, int ambient)
@@ -106,15 +116,21 @@ sc_solution *sc_keep(sc_solver *h, int ambient)
     return k;
 }
 
-void sc_solution_free(sc_solution *k) { free(k); }
+void sc_solution_free(sc_solution *k)
+{
+    free(k);
+}
 
 int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3], int n, char *err,
-            size_t errlen)
+           size_t errlen)
 {
     uint32_t ne = h->s.n_elements, e;
     double *out = malloc((ne ? ne : 1u) * 3u * sizeof *out), top = 0, scale, shift;
     int i, c;
-    if (!out) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!out) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
     for (i = 0; i < n; i++) {
         for (c = 0; c < 3; c++)
             if (!(intensity[i][c] >= 0 && intensity[i][c] <= 1e30)) {
@@ -150,7 +166,8 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
      * irradiance on the surfaces, rad.h: Scale, is the core's peak). */
     shift = ldexp(1.0, h->s.power_shift);
     scale = h->escale0;
-    if (!isfinite(scale) || top * scale * shift > 16384.0) scale = top > 0 ? 16384.0 / (top * shift) : 1.0;
+    if (!isfinite(scale) || top * scale * shift > 16384.0)
+        scale = top > 0 ? 16384.0 / (top * shift) : 1.0;
     h->escale = scale;
     for (e = 0; e < ne; e++) {
         rad_rgb_t *b = &h->pools.elements[e].radiosity;
@@ -164,4 +181,3 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
     free(out);
     return 0;
 }
-

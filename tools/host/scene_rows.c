@@ -12,7 +12,6 @@
 #include "formats/ff_file.h"
 #include "formats/file_io.h"
 
-
 #if RAD_FLOAT
 #define FF_KIND FF_FILE_KIND_FLOAT
 #else
@@ -21,7 +20,9 @@
 
 static void rows_free(struct sc_solver *h)
 {
-    free(h->rows.start); free(h->rows.ids); free(h->rows.ffs);
+    free(h->rows.start);
+    free(h->rows.ids);
+    free(h->rows.ffs);
     memset(&h->rows, 0, sizeof h->rows);
     h->has_rows = 0;
     h->rows_raster = 0;
@@ -48,7 +49,10 @@ static uint32_t bits32(rad_real_t r)
     return b;
 }
 
-static uint32_t idx32(rad_index_t i) { return i == RAD_INDEX_NONE ? 0xFFFFFFFFu : (uint32_t)i; }
+static uint32_t idx32(rad_index_t i)
+{
+    return i == RAD_INDEX_NONE ? 0xFFFFFFFFu : (uint32_t)i;
+}
 
 /* The meshed geometry as the core holds it (see ff_file.h). */
 static uint64_t fingerprint(const struct sc_solver *h)
@@ -108,13 +112,16 @@ static double memory_limit(const struct sc_solver *h)
 }
 
 /* Refuses (-1 with err) WHAT needing BYTES over the memory limit; the fix is named. */
-static int within_memory(const struct sc_solver *h, double bytes, const char *what, const char *fix, char *err,
-                         size_t errlen)
+static int within_memory(const struct sc_solver *h, double bytes, const char *what, const char *fix,
+                         char *err, size_t errlen)
 {
     double lim = memory_limit(h);
     if (bytes <= lim) return 0;
-    snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what, bytes / 1e6, lim / 1e6,
-             h->mem_limit > 0 ? "" : getenv("RAD_MEMORY_BUDGET") ? " (RAD_MEMORY_BUDGET)" : " (half the physical memory)",
+    snprintf(err, errlen, "%s may need up to %.3g MB, over the limit of %.3g MB%s: %s", what,
+             bytes / 1e6, lim / 1e6,
+             h->mem_limit > 0              ? ""
+             : getenv("RAD_MEMORY_BUDGET") ? " (RAD_MEMORY_BUDGET)"
+                                           : " (half the physical memory)",
              fix);
     return -1;
 }
@@ -124,21 +131,27 @@ static int within_memory(const struct sc_solver *h, double bytes, const char *wh
 static int rows_fit(const struct sc_solver *h, char *err, size_t errlen)
 {
     const rad_scene_t *s = &h->s;
-    double pixels = 3.0 * s->cfg.res * s->cfg.res, per_row = s->n_elements < pixels ? s->n_elements : pixels;
+    double pixels = 3.0 * s->cfg.res * s->cfg.res,
+           per_row = s->n_elements < pixels ? s->n_elements : pixels;
     double bytes = ((double)s->n_patches + 1.0) * sizeof *h->rows.start +
                    (double)s->n_patches * per_row * (sizeof *h->rows.ids + sizeof *h->rows.ffs);
     char what[96];
-    snprintf(what, sizeof what, "the form factor rows (%u patches x up to %.0f entries)", s->n_patches, per_row);
-    return within_memory(h, bytes, what,
-                         "lower the hemi-cube resolution (--res) or coarsen the mesh (--max-element, --max-patch)",
-                         err, errlen);
+    snprintf(what, sizeof what, "the form factor rows (%u patches x up to %.0f entries)",
+             s->n_patches, per_row);
+    return within_memory(
+        h, bytes, what,
+        "lower the hemi-cube resolution (--res) or coarsen the mesh (--max-element, --max-patch)",
+        err, errlen);
 }
 
 int sc_gauss_seidel_check(sc_solver *h, char *err, size_t errlen)
 {
     uint32_t np = h->s.n_patches;
     if (np > 16384u) {
-        snprintf(err, errlen, "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch size or shoot)", np);
+        snprintf(err, errlen,
+                 "Gauss-Seidel takes at most 16384 patches, this scene has %u (raise the patch "
+                 "size or shoot)",
+                 np);
         return -1;
     }
     return within_memory(h, (double)RAD_GS_ENTRIES(np) * sizeof *h->gs, "the Gauss-Seidel matrix",
@@ -169,15 +182,19 @@ int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char 
         if (rc == 0) break;
         if (rc == RAD_ERR_FULL) {
             uint64_t more = 2u * (uint64_t)h->rows.max_entries;
-            if (more < (uint64_t)h->rows.max_entries + ne) more = (uint64_t)h->rows.max_entries + ne;
+            if (more < (uint64_t)h->rows.max_entries + ne)
+                more = (uint64_t)h->rows.max_entries + ne;
             if (h->rows.max_entries == 0xFFFFFFFFu) {
-                snprintf(err, errlen, "the form factor rows need more than 2^32 entries: raise the element size");
+                snprintf(
+                    err, errlen,
+                    "the form factor rows need more than 2^32 entries: raise the element size");
                 rows_free(h);
                 return -1;
             }
             if (more > 0xFFFFFFFFu) more = 0xFFFFFFFFu;
             if (rows_reserve(h, (uint32_t)more) < 0) {
-                snprintf(err, errlen, "out of memory for %llu form factor entries", (unsigned long long)more);
+                snprintf(err, errlen, "out of memory for %llu form factor entries",
+                         (unsigned long long)more);
                 rows_free(h);
                 return -1;
             }
@@ -203,9 +220,13 @@ int sc_rows_compute(sc_solver *h, sc_rows_progress_fn progress, void *ctx, char 
 int sc_rows_save(sc_solver *h, const char *path, char *err, size_t errlen)
 {
     ff_file_info in;
-    if (!h->has_rows) { snprintf(err, errlen, "%s: no form factor rows to save", path); return -1; }
+    if (!h->has_rows) {
+        snprintf(err, errlen, "%s: no form factor rows to save", path);
+        return -1;
+    }
     ff_info(h, &in);
-    return ff_file_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t), h->rows.ffs, err, errlen);
+    return ff_file_save(path, &in, h->rows.start, h->rows.ids, (unsigned)sizeof(rad_index_t),
+                        h->rows.ffs, err, errlen);
 }
 
 int sc_rows_load(sc_solver *h, const char *path, char *err, size_t errlen)
@@ -216,7 +237,10 @@ int sc_rows_load(sc_solver *h, const char *path, char *err, size_t errlen)
     if (ff_file_load(path, &f, err, errlen) < 0) return -1;
     rows_free(h);
     ff_info(h, &want);
-    if (ff_file_match(&f, &want, path, err, errlen) < 0) { ff_file_free(&f); return -1; }
+    if (ff_file_match(&f, &want, path, err, errlen) < 0) {
+        ff_file_free(&f);
+        return -1;
+    }
     h->rows.start = malloc(((size_t)np + 1u) * sizeof *h->rows.start);
     if (!h->rows.start || rows_reserve(h, f.info.entries) < 0) {
         snprintf(err, errlen, "%s: out of memory for %u form factor entries", path, f.info.entries);
@@ -266,7 +290,10 @@ int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size
     uint32_t np = h->s.n_patches;
     size_t need = RAD_GS_ENTRIES(np);
     int rc;
-    if (!h->has_rows) { snprintf(err, errlen, "Gauss-Seidel needs the form factor rows"); return -1; }
+    if (!h->has_rows) {
+        snprintf(err, errlen, "Gauss-Seidel needs the form factor rows");
+        return -1;
+    }
     if (sc_gauss_seidel_check(h, err, errlen) < 0) return -1;
     if (h->gs_entries < need) {
         free(h->gs);
@@ -278,11 +305,13 @@ int sc_rows_gauss_seidel(sc_solver *h, int max_iter, double tol, char *err, size
         }
     }
     sc__unmix(h); /* Gauss-Seidel starts from the emission */
-    rc = rad_rows_gauss_seidel(&h->s, &h->rows, h->gs, h->gs_entries, (uint32_t)(max_iter > 0 ? max_iter : 1),
-                               RAD_REAL(tol));
-    if (rc < 0) { snprintf(err, errlen, "Gauss-Seidel: %s", rad_strerror(rc)); return -1; }
+    rc = rad_rows_gauss_seidel(&h->s, &h->rows, h->gs, h->gs_entries,
+                               (uint32_t)(max_iter > 0 ? max_iter : 1), RAD_REAL(tol));
+    if (rc < 0) {
+        snprintf(err, errlen, "Gauss-Seidel: %s", rad_strerror(rc));
+        return -1;
+    }
     h->solve_kind = rc < (max_iter > 0 ? max_iter : 1) ? 2 : 3;
     h->tol = tol;
     return rc;
 }
-

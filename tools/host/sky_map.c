@@ -22,8 +22,8 @@ int sky_map_bands(int dirs)
  * integrals of sin^2 t (t / 2 - sin 2t / 4) and of sin t cos t (sin^2 t / 2) over the
  * row's part times those of cos a, 1 and sin a over the column's part. COLUMN holds
  * sin and cos of a at the W + 1 column edges. */
-static void cell_light(const float *rgb, int w, int h, const double (*column)[2], double t0, double t1, double u0,
-                       double u1, double v[3][3])
+static void cell_light(const float *rgb, int w, int h, const double (*column)[2], double t0,
+                       double t1, double u0, double u1, double v[3][3])
 {
     int y, c;
     const int y0 = (int)floor(t0 / PI * h), y1 = (int)ceil(t1 / PI * h);
@@ -35,13 +35,15 @@ static void cell_light(const float *rgb, int w, int h, const double (*column)[2]
         const double ta = fmax(t0, PI * y / h), tb = fmin(t1, PI * (y + 1) / h);
         const double s2 = (tb - ta) / 2 - (sin(2 * tb) - sin(2 * ta)) / 4;
         const double sc = (sin(tb) * sin(tb) - sin(ta) * sin(ta)) / 2;
-        double row[3][3] = {{0}}; /* per channel: the sums over columns of L d(sin a), L da, L -d(cos a) */
+        double row[3][3] = {
+            {0}}; /* per channel: the sums over columns of L d(sin a), L da, L -d(cos a) */
         long xu;
         if (!(tb > ta)) continue;
         for (xu = x0; xu < x1; xu++) {
             const long x = ((xu % w) + w) % w;
             const float *p = rgb + 3 * ((size_t)y * (size_t)w + (size_t)x);
-            const int first = xu == x0 && u0 > (double)xu / w, last = xu == x1 - 1 && u1 < (double)(xu + 1) / w;
+            const int first = xu == x0 && u0 > (double)xu / w,
+                      last = xu == x1 - 1 && u1 < (double)(xu + 1) / w;
             const double *sa = first ? e0 : column[x], *sb = last ? e1 : column[x + 1];
             const double da = 2 * PI * (fmin(u1, (double)(xu + 1) / w) - fmax(u0, (double)xu / w));
             if (p[0] == 0 && p[1] == 0 && p[2] == 0) continue;
@@ -67,7 +69,7 @@ int sky_map_suns(const float *rgb, int w, int h, double scale, int dirs, sky_sun
      * a from pi + psi0 - psi_j+1, turning the other way. */
     const double psi0 = atan2(0.6, 0.8);
     const int m = sky_map_bands(dirs);
-    double (*column)[2] = malloc(((size_t)w + 1) * sizeof *column);
+    double(*column)[2] = malloc(((size_t)w + 1) * sizeof *column);
     int i, j, c, n = 0;
     if (!column) return -1;
     for (i = 0; i <= w; i++) {
@@ -81,7 +83,7 @@ int sky_map_suns(const float *rgb, int w, int h, double scale, int dirs, sky_sun
             const double a0 = PI + psi0 - 2 * PI * (j + 1) / cells;
             const double u0 = a0 / (2 * PI) + 0.5;
             double v[3][3], g[3], len, cosine;
-            cell_light(rgb, w, h, (const double (*)[2])column, t0, t1, u0, u0 + 1.0 / cells, v);
+            cell_light(rgb, w, h, (const double(*)[2])column, t0, t1, u0, u0 + 1.0 / cells, v);
             for (c = 0; c < 3; c++) g[c] = v[0][c] + v[1][c] + v[2][c];
             len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
             if (!(len > 0) || !(g[1] > 0)) continue;

@@ -32,9 +32,9 @@ static void uv_at(const obj_scene *sc, const obj_face *f, const double p[3], dou
     uv[1] = sc->uvs[ti[0]].v;
     for (t = 1; t + 1 < f->count; t++) {
         const obj_vec3 *a = &sc->verts[ix[0]], *b = &sc->verts[ix[t]], *c = &sc->verts[ix[t + 1]];
-        double e1[3] = { b->x - a->x, b->y - a->y, b->z - a->z };
-        double e2[3] = { c->x - a->x, c->y - a->y, c->z - a->z };
-        double d[3] = { p[0] - a->x, p[1] - a->y, p[2] - a->z };
+        double e1[3] = {b->x - a->x, b->y - a->y, b->z - a->z};
+        double e2[3] = {c->x - a->x, c->y - a->y, c->z - a->z};
+        double d[3] = {p[0] - a->x, p[1] - a->y, p[2] - a->z};
         double d11 = 0, d12 = 0, d22 = 0, d1 = 0, d2 = 0, det, wb, wc, lo;
         for (k = 0; k < 3; k++) {
             d11 += e1[k] * e1[k];
@@ -44,8 +44,7 @@ static void uv_at(const obj_scene *sc, const obj_face *f, const double p[3], dou
             d2 += d[k] * e2[k];
         }
         det = d11 * d22 - d12 * d12;
-        if (!(fabs(det) > 0))
-            continue;
+        if (!(fabs(det) > 0)) continue;
         wb = (d1 * d22 - d2 * d12) / det;
         wc = (d2 * d11 - d1 * d12) / det;
         lo = fmin(1 - wb - wc, fmin(wb, wc));
@@ -68,10 +67,8 @@ static const tex_image *surface_map(sc_solver *s, const obj_scene *sc, const tex
 {
     int f = face_of_surface(s, sf);
     *face = f;
-    if (f < 0 || sf->emission.r > 0 || sf->emission.g > 0 || sf->emission.b > 0)
-        return NULL;
-    if (sc->uv_indices[sc->faces[f].first] < 0 || !maps[sc->faces[f].material].rgb)
-        return NULL;
+    if (f < 0 || sf->emission.r > 0 || sf->emission.g > 0 || sf->emission.b > 0) return NULL;
+    if (sc->uv_indices[sc->faces[f].first] < 0 || !maps[sc->faces[f].material].rgb) return NULL;
     return &maps[sc->faces[f].material];
 }
 
@@ -85,8 +82,7 @@ static void id_values(sc_solver *s, double *ids)
         for (v = sf->first_vertex; v < sf->first_vertex + sf->n_vertices; v++) {
             double id = si + 1.0;
             int k;
-            for (k = 0; k < 3; k++, id = floor(id / ID_BASE))
-                ids[3 * v + k] = fmod(id, ID_BASE);
+            for (k = 0; k < 3; k++, id = floor(id / ID_BASE)) ids[3 * v + k] = fmod(id, ID_BASE);
         }
     }
 }
@@ -126,7 +122,7 @@ static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *ma
         const rad_surface_t *sf = &core->pools.surfaces[si];
         int f, k;
         const tex_image *t = surface_map(s, sc, maps, sf, &f);
-        double shift[2] = { 0, 0 };
+        double shift[2] = {0, 0};
         if (t && !t->clamp)
             for (k = 0; k < sc->faces[f].count; k++) {
                 const obj_vec2 *c = &sc->uvs[sc->uv_indices[sc->faces[f].first + k]];
@@ -135,7 +131,7 @@ static void vertex_values(sc_solver *s, const obj_scene *sc, const tex_image *ma
                 shift[1] = k ? fmin(shift[1], floor(b)) : floor(b);
             }
         for (v = sf->first_vertex; v < sf->first_vertex + sf->n_vertices; v++) {
-            double p[3], q[2] = { 0, 0 };
+            double p[3], q[2] = {0, 0};
             if (t) {
                 sc_vertex_pos(s, (int)v, p);
                 uv_at(sc, &sc->faces[f], p, q);
@@ -156,16 +152,14 @@ int sc_texture_elements(sc_solver *s, const obj_scene *sc, const tex_image *maps
     uint32_t si, e;
     int n = 0;
     tex_memo *memo = malloc(sizeof *memo); /* NULL: each element on its own */
-    if (memo)
-        memo->image = NULL;
+    if (memo) memo->image = NULL;
     for (si = 0; si < core->n_surfaces; si++) {
         const rad_surface_t *sf = &core->pools.surfaces[si];
         int f, k;
         const tex_image *t = surface_map(s, sc, maps, sf, &f);
         /* one element: the face's own mean already (polys_from_obj_tex); joined to a
            group: it reflects as the group's receiver */
-        if (!t || sf->n_elements < 2 || sf->n_patches == 0)
-            continue;
+        if (!t || sf->n_elements < 2 || sf->n_patches == 0) continue;
         for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++) {
             int v[4], nv = sc_element_vertices(s, (int)e, v);
             double p[4][3], mean[3], rho[3];
@@ -197,20 +191,17 @@ static void vertex_rho(sc_solver *s, const obj_scene *sc, const tex_image *maps,
 {
     const rad_scene_t *core = sc_core(s);
     uint32_t si, e, v;
-    for (v = 0; v < 4u * core->n_vertices; v++)
-        vr[v] = 0; /* 3 a vertex, then the weights */
+    for (v = 0; v < 4u * core->n_vertices; v++) vr[v] = 0; /* 3 a vertex, then the weights */
     for (si = 0; si < core->n_surfaces; si++) {
         const rad_surface_t *sf = &core->pools.surfaces[si];
         int f;
-        if (!surface_map(s, sc, maps, sf, &f))
-            continue;
+        if (!surface_map(s, sc, maps, sf, &f)) continue;
         for (e = sf->first_element; e < (uint32_t)sf->first_element + sf->n_elements; e++) {
             int vs[4], nv = sc_element_vertices(s, (int)e, vs), k, c;
             double rho[3], a = sc_element_area(s, (int)e);
             sc_element_rho(s, (int)e, rho);
             for (k = 0; k < nv; k++) {
-                for (c = 0; c < 3; c++)
-                    vr[3 * vs[k] + c] += a * rho[c];
+                for (c = 0; c < 3; c++) vr[3 * vs[k] + c] += a * rho[c];
                 vr[3 * core->n_vertices + vs[k]] += a;
             }
         }
@@ -218,8 +209,7 @@ static void vertex_rho(sc_solver *s, const obj_scene *sc, const tex_image *maps,
     for (v = 0; v < core->n_vertices; v++) {
         double w = vr[3 * core->n_vertices + v];
         int c;
-        for (c = 0; c < 3; c++)
-            vr[3 * v + c] = w > 0 ? vr[3 * v + c] / w : 0;
+        for (c = 0; c < 3; c++) vr[3 * v + c] = w > 0 ? vr[3 * v + c] / w : 0;
     }
 }
 
@@ -234,11 +224,9 @@ static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, con
     tex_image plain;
     double texel[3], rho[3], sr[3];
     int f, k;
-    if (id < 0)
-        return;
+    if (id < 0) return;
     sf = &core->pools.surfaces[id];
-    if (!(t = surface_map(s, sc, maps, sf, &f)))
-        return;
+    if (!(t = surface_map(s, sc, maps, sf, &f))) return;
     plain = *t; /* the values carry the map's scale and offset already */
     plain.scale[0] = plain.scale[1] = 1;
     plain.offset[0] = plain.offset[1] = 0;
@@ -248,8 +236,7 @@ static void detail(sc_solver *s, const obj_scene *sc, const tex_image *maps, con
     sr[1] = rho_at ? rho_at[3 * i + 1] : RAD_TO_DOUBLE(sf->reflectance.g);
     sr[2] = rho_at ? rho_at[3 * i + 2] : RAD_TO_DOUBLE(sf->reflectance.b);
     for (k = 0; k < 3; k++)
-        if (sr[k] > 0)
-            rgb[3 * i + k] = (float)(rgb[3 * i + k] * rho[k] / sr[k]);
+        if (sr[k] > 0) rgb[3 * i + k] = (float)(rgb[3 * i + k] * rho[k] / sr[k]);
 }
 
 int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
@@ -277,8 +264,7 @@ int sc_texture_detail(sc_solver *s, const obj_scene *sc, const tex_image *maps,
                  ? -1
                  : 0;
         for (i = 0; rc == 0 && i < np; i++)
-            if (solid[i])
-                detail(s, sc, maps, puv, prho, id[i], i, rgb);
+            if (solid[i]) detail(s, sc, maps, puv, prho, id[i], i, rgb);
     }
     free(vuv);
     free(puv);
@@ -292,7 +278,6 @@ int sc_render_textured(sc_solver *s, const obj_scene *sc, const tex_image *maps,
                        const sc_camera *cam, int ambient, int w, int h, float *rgb, char *err,
                        size_t errlen)
 {
-    if (sc_render(s, cam, ambient, w, h, rgb, err, errlen))
-        return -1;
+    if (sc_render(s, cam, ambient, w, h, rgb, err, errlen)) return -1;
     return sc_texture_detail(s, sc, maps, cam, w, h, rgb, err, errlen);
 }

@@ -10,8 +10,8 @@
 #define REF_RECEIVERS 7
 
 /* A quad from its four corners (reflectance and emission zero, tag 0). */
-sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx, double cy,
-                 double cz, double dx, double dy, double dz);
+sc_poly ref_quad(double ax, double ay, double az, double bx, double by, double bz, double cx,
+                 double cy, double cz, double dx, double dy, double dz);
 /* X against REF, N elements of 3 channels (rgb rgb ...), over the channels above 1% of
  * REF's brightest: the largest relative difference into *WORST, the rms into *RMS;
  * returns the channels compared. */
