@@ -20,4 +20,9 @@
  * LIGHTS. NULL out of memory. */
 sc_poly *level_atrium(int *n, sc_light lights[LEVEL_LIGHTS]);
 
+/* The atrium as files for rad_cli (make readme-image): DIR/level.obj and level.mtl (a
+ * material per reflectance) and DIR/level.json (its lights, for --lights). DIR must
+ * exist. 0, or -1 with the reason in ERR. */
+int level_write(const char *dir, char *err, size_t errlen);
+
 #endif

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "bench/bench.h"
+#include "bench/level.h"
 #include "bench/plot.h"
 #include "host/clock.h"
 #include "host/polys.h"
@@ -982,6 +983,12 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc > 1 && strcmp(argv[1], "--level") == 0) return bench_level(argc, argv);
+    if (argc > 2 && strcmp(argv[1], "--write-level") == 0) { /* make readme-image's scene */
+        char err[512];
+        if (level_write(argv[2], err, sizeof err) == 0) return 0;
+        fprintf(stderr, "rad_bench: %s\n", err);
+        return 1;
+    }
     if (argc > 1 && strcmp(argv[1], "--gather-res") == 0) return bench_gather_res(argc, argv);
 
     /* First, while this process is small: a child's peak memory starts at its parent's
