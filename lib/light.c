@@ -131,18 +131,22 @@ static uint64_t ortho_small(const rad_scene_t *s)
     return (uint64_t)1 << (b + 14u); /* bin b: areas of Q15 2^(b-1) .. 2^b, times 2^15 */
 }
 
-/* A sun's or sky's raster side R for the window of half width HW (the core's units)
- * of a shot of L: its res, or the rule above for SMALL (ortho_small), its light's
- * SHOTS shots, at least FLOOR. */
-static uint32_t ortho_res(const rad_light_t *l, rad_real_t hw, uint64_t small, uint32_t shots,
-                          uint32_t floor)
+/* The rule's divisor for light L of SHOTS shots: sqrt(SMALL N), SMALL = ortho_small (so
+ * SMALL N < 2^46 2^10); 0 for a light whose res is set, or no elements (then every
+ * raster is wanted_res). */
+static uint32_t ortho_den(const rad_scene_t *s, const rad_light_t *l, uint32_t shots)
 {
-    uint64_t den, r;
-    if (l->res || !small) return floor;
+    return l->res ? 0u : (uint32_t)rad__isqrt64(ortho_small(s) * shots);
+}
+
+/* A sun's or sky's raster side R for the window of half width HW (the core's units):
+ * the rule above with DEN (ortho_den), at least FLOOR. */
+static uint32_t ortho_res(rad_real_t hw, uint32_t den, uint32_t floor)
+{
+    uint64_t r;
+    if (!den) return floor;
     /* R = 2 hw / p, p = a sqrt(N) / PPS: with hw = H / 2^15 (H = rad__attr(hw)) and
-     * a sqrt(N) = sqrt(SMALL N) / 2^15, R = 2 PPS H / sqrt(SMALL N), rounded up;
-     * SMALL N < 2^46 2^10 */
-    den = rad__isqrt64(small * shots);
+     * a sqrt(N) = sqrt(SMALL N) / 2^15, R = 2 PPS H / DEN, rounded up */
     r = (2u * (uint64_t)ORTHO_PIXELS_PER_SIDE * rad__attr(hw) + den - 1u) / den;
     r += r & 1u;
     return r < floor ? floor : r > ORTHO_MAX_RES ? ORTHO_MAX_RES : (uint32_t)r;
@@ -283,8 +287,7 @@ typedef struct {
     rad_real_t uc, vc, hw; /* sun: the whole window's centre and half width */
     rad_ff_t wz, wh;       /* sky: this direction's E over the zenith's and horizon's L */
     uint32_t tiles;        /* sun: the window in TILES x TILES squares of res pixels */
-    uint32_t want, shots;  /* sun: the least raster side (wanted_res), the light's shots */
-    uint64_t small;        /* sun: ortho_small's area (0: the raster's side is WANT) */
+    uint32_t want, den;    /* sun: the least raster side (wanted_res), ortho_den's */
     unsigned face;
     uint64_t sum;     /* point: a quadrant's sum of c^3 (pixel_weight) */
     uint32_t deficit; /* and the units its entries' rounding down lost */
@@ -516,8 +519,7 @@ static void sun_view(const rad_scene_t *s, view_t *v)
     v->vc = lo.y + (hi.y - lo.y) / 2;
     du = hi.x - v->uc;
     dv = hi.y - v->vc;
-    v->tiles =
-        (ortho_res(v->l, du > dv ? du : dv, v->small, v->shots, v->want) + v->res - 1u) / v->res;
+    v->tiles = (ortho_res(du > dv ? du : dv, v->den, v->want) + v->res - 1u) / v->res;
     /* a tile's half width, rounded up (the centre's rounding, the division's) */
     ht = rad__div(du > dv ? du : dv, rad__from_int((int32_t)v->tiles), 0) + 4 * RAD__EPS;
     v->h = ht < RAD__NEAR ? RAD__NEAR : ht;
@@ -790,11 +792,11 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
     if (v.ortho) {
         v.want = wanted_res(s, l);
         if (v.want < v.res) v.res = v.want;
-        v.small = l->res ? 0 : ortho_small(s);
-        if (l->type == RAD_LIGHT_SKY)
-            v.shots = 3u * sky_bands(l) * sky_bands(l);
-        else /* a disc's samples, times a dome's suns */
-            v.shots = (l->radius > 0 ? SUN_SAMPLES : 1u) * (l->dirs > 1u ? l->dirs : 1u);
+        v.den = ortho_den(s, l,
+                          l->type == RAD_LIGHT_SKY
+                              ? 3u * sky_bands(l) * sky_bands(l)
+                              /* a disc's samples, times a dome's suns */
+                              : (l->radius > 0 ? SUN_SAMPLES : 1u) * (l->dirs > 1u ? l->dirs : 1u));
     }
     head = head_words(s, v.res);
     b.steps = head ? s->zbuf : s->steps;

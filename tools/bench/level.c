@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* level — the generated atrium. See level.h. */
 #include "bench/level.h"
+#include "formats/file_io.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -323,86 +324,72 @@ sc_poly *level_atrium(int *n, sc_light lights[LEVEL_LIGHTS])
     return l.p;
 }
 
-/* DIR/NAME opened for writing, or NULL with the reason in ERR. */
-static FILE *open_in(const char *dir, const char *name, char *err, size_t errlen)
-{
-    char path[4096];
-    FILE *f = NULL;
-    if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, name) >= sizeof path)
-        snprintf(err, errlen, "%s/%s: path too long", dir, name);
-    else if (!(f = fopen(path, "w")))
-        snprintf(err, errlen, "%s: cannot write", path);
-    return f;
-}
-
-/* Closes F, which wrote NAME: -1 with the reason in ERR when a write failed. */
-static int close_ok(FILE *f, const char *name, char *err, size_t errlen)
-{
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) {
-        snprintf(err, errlen, "%s: write failed", name);
-        return -1;
-    }
-    return 0;
-}
-
 int level_write(const char *dir, char *err, size_t errlen)
 {
+    static const char *const names[3] = {"level.obj", "level.mtl", "level.json"};
+    fio_out *out[3] = {NULL, NULL, NULL};
+    FILE *obj, *mtl, *js;
     sc_light l[LEVEL_LIGHTS];
-    int n, i, k, j, nm = 0, cur = -1, v = 1, rc;
+    int n, i, k, j, nm = 0, cur = -1, v = 1, rc = -1;
     sc_poly *p = level_atrium(&n, l);
     double(*mats)[3] = p ? malloc((size_t)n * sizeof *mats) : NULL;
-    FILE *obj = NULL, *mtl = NULL, *js = NULL;
     if (!mats) {
-        free(p);
         snprintf(err, errlen, "out of memory");
-        return -1;
+        goto done;
     }
-    rc = (obj = open_in(dir, "level.obj", err, errlen)) &&
-                 (mtl = open_in(dir, "level.mtl", err, errlen)) &&
-                 (js = open_in(dir, "level.json", err, errlen))
-             ? 0
-             : -1;
-    if (rc == 0) {
-        fprintf(obj, "# rad_bench --write-level: the benchmark's atrium "
-                     "(tools/bench/level.c)\nmtllib level.mtl\n");
-        for (i = 0; i < n; i++)
-            for (k = 0; k < p[i].n; k++)
-                fprintf(obj, "v %.6f %.6f %.6f\n", p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
-        for (i = 0; i < n; i++) { /* a material per reflectance, in order of first use */
-            for (j = 0; j < nm && memcmp(mats[j], p[i].rho, sizeof mats[j]) != 0; j++) continue;
-            if (j == nm) {
-                memcpy(mats[nm++], p[i].rho, sizeof mats[j]);
-                fprintf(mtl, "newmtl m%d\nKd %.6f %.6f %.6f\n", j, p[i].rho[0], p[i].rho[1],
-                        p[i].rho[2]);
-            }
-            if (j != cur) fprintf(obj, "usemtl m%d\n", cur = j);
-            fprintf(obj, "f");
-            for (k = 0; k < p[i].n; k++) fprintf(obj, " %d", v++);
-            fprintf(obj, "\n");
+    for (k = 0; k < 3; k++) { /* each written in full or not at all (fio_out) */
+        char path[4096];
+        if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, names[k]) >= sizeof path) {
+            snprintf(err, errlen, "%s: path too long", dir);
+            goto done;
         }
-        fprintf(js, "{\"lights\": [\n");
-        for (i = 0; i < LEVEL_LIGHTS; i++) {
-            const sc_light *a = &l[i];
-            if (a->type == 1)
-                fprintf(js,
-                        "  {\"type\": \"sun\", \"direction\": [%.9g, %.9g, %.9g], \"irradiance\": "
-                        "[%.9g, %.9g, %.9g]}",
-                        a->dir[0], a->dir[1], a->dir[2], a->rgb[0], a->rgb[1], a->rgb[2]);
-            else
-                fprintf(js,
-                        "  {\"type\": \"sky\", \"radiance\": [%.9g, %.9g, %.9g], \"horizon\": "
-                        "[%.9g, %.9g, %.9g], "
-                        "\"directions\": %d}",
-                        a->rgb[0], a->rgb[1], a->rgb[2], a->horizon[0], a->horizon[1],
-                        a->horizon[2], a->dirs);
-            fprintf(js, i + 1 < LEVEL_LIGHTS ? ",\n" : "\n");
-        }
-        fprintf(js, "]}\n");
+        if (!(out[k] = fio_out_open(path, err, errlen))) goto done;
     }
-    if (obj && close_ok(obj, "level.obj", err, errlen) < 0) rc = -1;
-    if (mtl && close_ok(mtl, "level.mtl", err, errlen) < 0) rc = -1;
-    if (js && close_ok(js, "level.json", err, errlen) < 0) rc = -1;
+    obj = fio_out_stream(out[0]);
+    mtl = fio_out_stream(out[1]);
+    js = fio_out_stream(out[2]);
+    fprintf(obj, "# rad_bench --write-level: the benchmark's atrium "
+                 "(tools/bench/level.c)\nmtllib level.mtl\n");
+    for (i = 0; i < n; i++)
+        for (k = 0; k < p[i].n; k++)
+            fprintf(obj, "v %.6f %.6f %.6f\n", p[i].v[k][0], p[i].v[k][1], p[i].v[k][2]);
+    for (i = 0; i < n; i++) { /* a material per reflectance, in order of first use */
+        for (j = 0; j < nm && memcmp(mats[j], p[i].rho, sizeof mats[j]) != 0; j++) continue;
+        if (j == nm) {
+            memcpy(mats[nm++], p[i].rho, sizeof mats[j]);
+            fprintf(mtl, "newmtl m%d\nKd %.6f %.6f %.6f\n", j, p[i].rho[0], p[i].rho[1],
+                    p[i].rho[2]);
+        }
+        if (j != cur) fprintf(obj, "usemtl m%d\n", cur = j);
+        fprintf(obj, "f");
+        for (k = 0; k < p[i].n; k++) fprintf(obj, " %d", v++);
+        fprintf(obj, "\n");
+    }
+    fprintf(js, "{\"lights\": [\n");
+    for (i = 0; i < LEVEL_LIGHTS; i++) {
+        const sc_light *a = &l[i];
+        if (a->type == 1)
+            fprintf(js,
+                    "  {\"type\": \"sun\", \"direction\": [%.9g, %.9g, %.9g], \"irradiance\": "
+                    "[%.9g, %.9g, %.9g]}",
+                    a->dir[0], a->dir[1], a->dir[2], a->rgb[0], a->rgb[1], a->rgb[2]);
+        else
+            fprintf(js,
+                    "  {\"type\": \"sky\", \"radiance\": [%.9g, %.9g, %.9g], \"horizon\": "
+                    "[%.9g, %.9g, %.9g], "
+                    "\"directions\": %d}",
+                    a->rgb[0], a->rgb[1], a->rgb[2], a->horizon[0], a->horizon[1], a->horizon[2],
+                    a->dirs);
+        fprintf(js, i + 1 < LEVEL_LIGHTS ? ",\n" : "\n");
+    }
+    fprintf(js, "]}\n");
+    for (rc = 0, k = 0; k < 3 && rc == 0; k++) {
+        rc = fio_out_commit(out[k], err, errlen) < 0 ? -1 : 0;
+        out[k] = NULL; /* freed either way */
+    }
+done:
+    for (k = 0; k < 3; k++)
+        if (out[k]) fio_out_abort(out[k]);
     free(mats);
     free(p);
     return rc;
