@@ -323,56 +323,78 @@ void bench_report_batch_k(report_t *rp, const bscene *sc)
     sc_destroy(ref);
 }
 
+/* Rounds of the batch speed table, each one solve on one thread then one on two; the
+ * medians of the times and of the rounds' ratios are reported: one run's time swings
+ * by 1.5x on these machines even when idle (measured: the same solve 3.5 s and 5.2 s),
+ * and a slow spell slows both runs of a round alike. */
+#define BATCH_RUNS 5
+
 /* The batch solve's speed on one and two threads: each scene at its settings (res 128)
  * and at rad_cli's (res 192, coarse shots), serial against batches of DEF_BATCH_BENCH. */
 void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns)
 {
-    int i, j, m;
-    bench_out(rp, "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to "
-                  "0.001, one run each, "
-                  "with the load average (1 minute) when the row was measured (the workers spin: "
-                  "other processes on the "
-                  "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread "
-                  "is the same solve through "
-                  "the batch calls. The bound is what two free cores could give whatever the load: "
-                  "the batch solve's "
-                  "processor time on one thread over its critical path on two (rad_batch_begin and "
-                  "_end on one, the "
-                  "cubes of each batch shared between two), timed on one thread's processor "
-                  "clock.\n\n| scene | settings | "
-                  "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 "
-                  "threads | load average "
-                  "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-                  "| ---: |\n");
+    int i, j, m, r;
+    bench_out(rp,
+              "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to "
+              "0.001, medians of 5 rounds (a run on one thread, then one on two; 2 threads / 1 is "
+              "the median of the rounds' ratios), "
+              "with the load average (1 minute) when the row was measured (the workers spin: "
+              "other processes on the "
+              "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread "
+              "is the same solve through "
+              "the batch calls. The bound is what two free cores could give whatever the load: "
+              "the batch solve's "
+              "processor time on one thread over its critical path on two (rad_batch_begin and "
+              "_end on one, the "
+              "cubes of each batch shared between two), timed on one thread's processor "
+              "clock.\n\n| scene | settings | "
+              "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 "
+              "threads | load average "
+              "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+              "| ---: |\n");
     for (i = 0; i < ns; i++) {
+        int fine = strcmp(scenes[i].name, "generated hall, fine") == 0;
         if (strncmp(scenes[i].name, "CornellBox-Original", 19) &&
             strncmp(scenes[i].name, "generated hall", 14))
             continue;
-        for (m = 0; m < 2; m++) {
+        /* the 110k hall at rad_cli's settings alone, serial against K = 1, DEF_BATCH and
+         * 8: at res 128 its runs alone would take longer than the rest of the bench */
+        for (m = fine; m < 2; m++) {
             sc_opts o = m ? bench_row_opts(bench_scene_opts(&scenes[i]), &bench_peer_rows[1])
                           : bench_scene_opts(&scenes[i]);
             sc_solver *h;
             sc_stats st;
-            double serial = batch_solve(&scenes[i], &o, 0, 1, &h);
-            sc_get_stats(h, &st);
-            sc_destroy(h);
+            double serial, v[BATCH_RUNS];
+            for (r = 0; r < BATCH_RUNS; r++) {
+                v[r] = batch_solve(&scenes[i], &o, 0, 1, &h);
+                sc_get_stats(h, &st);
+                sc_destroy(h);
+            }
+            serial = bench_median(v, BATCH_RUNS);
             for (j = 0; j < BATCH_KS; j++) {
                 int k = batch_ks[j];
-                double t1, t2, s, w, c, load = load_now();
+                double t1, t2, u[BATCH_RUNS], q[BATCH_RUNS], s, w, c, load = load_now();
                 if (k != 1 && k != 4 && k != 8 && k != 16) continue;
+                if (fine && k != 1 && k != DEF_BATCH && k != 8) continue;
                 fprintf(stderr, "rad_bench: batch speed: %s, K %d ...\n", scenes[i].name, k);
-                t1 = batch_solve(&scenes[i], &o, k, 1, &h);
-                sc_destroy(h);
-                t2 = batch_solve(&scenes[i], &o, k, 2, &h);
-                sc_destroy(h);
+                for (r = 0; r < BATCH_RUNS; r++) { /* in turn: a slow spell slows both */
+                    v[r] = batch_solve(&scenes[i], &o, k, 1, &h);
+                    sc_destroy(h);
+                    u[r] = batch_solve(&scenes[i], &o, k, 2, &h);
+                    sc_destroy(h);
+                    q[r] = v[r] / u[r];
+                }
+                t1 = bench_median(v, BATCH_RUNS);
+                t2 = bench_median(u, BATCH_RUNS);
                 batch_split(&scenes[i], &o, k, &s, &w, &c);
                 bench_out(
                     rp, "| %s | %s | %d | %d | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f | %.2f |\n",
-                    m || j ? "" : scenes[i].name,
+                    m != fine || j ? "" : scenes[i].name,
                     j   ? ""
                     : m ? "rad_cli's (192, coarse)"
                         : "res 128",
-                    st.elements, k, serial, t1, t2, t1 / t2, serial / t2, load, (s + w) / (s + c));
+                    st.elements, k, serial, t1, t2, bench_median(q, BATCH_RUNS), serial / t2, load,
+                    (s + w) / (s + c));
             }
         }
     }

@@ -790,19 +790,26 @@ static void report_relight(report_t *rp, const bscene *sc)
               rl.t_fresh / rl.t_relight);
 }
 
-/* The generated hall meshed to over 100,000 elements, solved once (fixed build). */
-static void report_large(report_t *rp)
+/* The generated hall meshed to over 100,000 elements into *SC (its polygons the
+ * caller's to free). */
+static void fine_hall(bscene *sc)
 {
-    bscene sc;
+    memset(sc, 0, sizeof *sc);
+    sc->name = "generated hall, fine";
+    sc->polys = gen_hall(&sc->n);
+    if (!sc->polys) exit(1);
+    /* Element edge 0.078: 110,646 elements (the hall's 0.175 gives 23,384). */
+    sc->max_element = 0.078;
+    sc->res = 128;
+    sc->big = 1;
+}
+
+/* The fine hall solved once (fixed build). */
+static void report_large(report_t *rp, const bscene *fine)
+{
+    bscene sc = *fine;
     brun r;
     char sh[64];
-    memset(&sc, 0, sizeof sc);
-    sc.name = "generated hall, fine";
-    sc.polys = gen_hall(&sc.n);
-    if (!sc.polys) exit(1);
-    /* Element edge 0.078: 110,646 elements (the hall's 0.175 gives 23,384). */
-    sc.max_element = 0.078;
-    sc.res = 128;
     fprintf(stderr, "rad_bench: %s ...\n", sc.name);
     solo(&sc, &r);
     if (r.elements < 100000)
@@ -820,7 +827,6 @@ static void report_large(report_t *rp)
               r.patches, r.mesh, sh, r.t[1], r.total,
               1000 * r.total / (r.all_shots ? r.all_shots : 1), r.bytes / 1048576.0);
     run_free(&r);
-    free(sc.polys);
 }
 
 /* Coarse shots on the generated hall: every shot at res 128 (the scene's settings, the
@@ -975,7 +981,8 @@ int main(int argc, char **argv)
     double amax[8], arms[8];
     int ns, i, orig;
 
-    const char *shared = argc > 1 ? argv[1] : "../shared/scenes/CornellBox-Original.obj";
+    static const char shared_default[] = "../shared/scenes/CornellBox-Original.obj";
+    const char *shared = argc > 1 ? argv[1] : shared_default;
 
     if (argc > 1 && strcmp(argv[1], "--cull") == 0) { /* this report alone, printed */
         bench_report_cull(&rp);
@@ -990,6 +997,15 @@ int main(int argc, char **argv)
         return 1;
     }
     if (argc > 1 && strcmp(argv[1], "--gather-res") == 0) return bench_gather_res(argc, argv);
+    if (argc > 1 && strcmp(argv[1], "--batch") == 0) { /* the batch tables alone, printed */
+        if (!(ns = load_scenes(argc > 2 ? argv[2] : shared_default, scenes))) return 1;
+        fine_hall(&scenes[ns]);
+        orig = scene_named(scenes, ns, "CornellBox-Original (shared)");
+        if (orig >= 0) bench_report_batch_k(&rp, &scenes[orig]);
+        bench_report_batch_speed(&rp, scenes, ns + 1);
+        fputs(rp.md, stdout);
+        return 0;
+    }
 
     /* First, while this process is small: a child's peak memory starts at its parent's
      * at fork (Linux keeps the high-water mark across exec). */
@@ -1017,8 +1033,9 @@ int main(int argc, char **argv)
     report_relight(&rp, &scenes[1]);
     bench_report_parallel(&rp, scenes, ns, fx);
     if (orig >= 0) bench_report_batch_k(&rp, &scenes[orig]);
-    bench_report_batch_speed(&rp, scenes, ns);
-    report_large(&rp);
+    fine_hall(&scenes[ns]);
+    bench_report_batch_speed(&rp, scenes, ns + 1);
+    report_large(&rp, &scenes[ns]);
     bench_report_textures(&rp, argv[0]);
     bench_report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
     report_hall_coarse(&rp, &scenes[ns - 1]);
