@@ -1329,9 +1329,17 @@ static long want(lm_atlas *a, const lm_chart *c, int x, int y)
     return 1;
 }
 
+/* Whether polygons P and Q lie in one plane (as coplanar charts join them). */
+static int one_plane(const lm_atlas *a, int p, int q)
+{
+    const double *u = &a->planes[4 * (size_t)p], *v = &a->planes[4 * (size_t)q];
+    return p == q || (geom_dot(u, v) >= COS_PLANE && fabs(u[3] - v[3]) <= PLANE_TOL * a->extent);
+}
+
 /* The block of B texels at (X, Y) of chart C: every one of its (B + 1)^2 texels inside
- * the rectangle, free and of one polygon, its corners gathered and their channel sums
- * within the tolerance of the largest. */
+ * the rectangle, free and on polygons of one plane (an occluder standing on an edge
+ * between them leaves the texels there not free), its corners gathered and their
+ * channel sums within the tolerance of the largest. */
 static int smooth(const lm_atlas *a, const lm_chart *c, int x, int y, int b)
 {
     double lo = HUGE_VAL, hi = 0.0;
@@ -1340,7 +1348,7 @@ static int smooth(const lm_atlas *a, const lm_chart *c, int x, int y, int b)
     for (j = y; j <= y + b; j++)
         for (i = x; i <= x + b; i++) {
             size_t at = (size_t)(c->y + j) * a->size + (size_t)(c->x + i);
-            if (!(a->state[at] & LM_FREE) || a->poly[at] != poly) return 0;
+            if (!(a->state[at] & LM_FREE) || !one_plane(a, poly, a->poly[at])) return 0;
         }
     for (j = y; j <= y + b; j += b)
         for (i = x; i <= x + b; i += b) {

@@ -56,9 +56,10 @@
  * geometry) and the four rays meet no face within their 3/4 texel. Each chart's
  * rectangle is cut into blocks of LM_STEP texels from its corner; a block's corners are
  * gathered first (pass 1). A block whose (b + 1)^2 texels are all free and on one
- * polygon and whose corners' channel sums lie within TOL of the largest is filled by
- * bilinear interpolation of its corners; any other block gathers its edges' midpoints
- * and centre and splits in four, down to blocks of one texel (every texel gathered).
+ * plane (coplanar polygons: a floor of tiles) and whose corners' channel sums lie
+ * within TOL of the largest is filled by bilinear interpolation of its corners; any
+ * other block gathers its edges' midpoints and centre and splits in four, down to
+ * blocks of one texel (every texel gathered).
  * So texels near boundaries, geometry and the ring are gathered; where the bake
  * interpolates, the block's gathered corners (4 or 2 texels apart) agree within TOL,
  * and a feature narrower than a block that no corner sees (a thin shadow) is missed,
