@@ -458,18 +458,6 @@ static void test_lightmap_no_leaks(void **state)
 
 static int cube(sc_poly *q, double lo, double hi, int inward, double emit);
 
-/* Adaptive gathering against gathering every texel, over one solution: a floor of
- * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
- * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,
- * its contact with the floor and the light's fall-off towards the floor's edges. Every
- * texel the adaptive bake gathers has the every-texel bake's bits (the same sample,
- * the same gather); the others, interpolated, are compared per texel (the largest
- * channel difference over the exact texel's largest channel). Measured: 85.4% of the
- * texels gathered (a small atlas: most blocks touch a boundary, the box or the ring),
- * the interpolated within 3.20%, rms 0.56%; the bounds leave a margin over that. Part
- * of what is measured is the every-texel bake's own noise: the cube's pixels that the
- * emitter's outline covers change from texel to texel, and interpolation keeps only the
- * corners' share of it. */
 /* The scene of test_lightmap_adaptive with its floor cut into TILES x TILES coplanar
  * quads, baked both ways: the adaptive bake's gathers into *NA, the every-texel
  * bake's into *NE, the interpolated texels' worst and rms errors into *WORST, *RMS. */
@@ -530,6 +518,18 @@ static void adaptive_case(int tiles, int *na, int *ne, double *worst, double *rm
     sc_destroy(s);
 }
 
+/* Adaptive gathering against gathering every texel, over one solution: a floor of
+ * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
+ * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,
+ * its contact with the floor and the light's fall-off towards the floor's edges. Every
+ * texel the adaptive bake gathers has the every-texel bake's bits (the same sample,
+ * the same gather); the others, interpolated, are compared per texel (the largest
+ * channel difference over the exact texel's largest channel). Measured: 85.4% of the
+ * texels gathered (a small atlas: most blocks touch a boundary, the box or the ring),
+ * the interpolated within 3.20%, rms 0.56%; the bounds leave a margin over that. Part
+ * of what is measured is the every-texel bake's own noise: the cube's pixels that the
+ * emitter's outline covers change from texel to texel, and interpolation keeps only the
+ * corners' share of it. */
 /* Adaptive gathering against gathering every texel, over one solution: a floor of
  * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
  * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,
