@@ -236,6 +236,9 @@ static double lm_rows(sc_solver *s, lm_atlas *a, int res, int step, const int *f
     t0 = host_now() - t0;
     *n = 0;
     for (k = 0; k < nt; k++) {
+        if (nt > 1)
+            fprintf(stderr, "rad_bench: thread %d: %ld gathers, %.2f processor s\n", k,
+                    w[k].gathers, w[k].cpu);
         *n += w[k].gathers;
         sc_gatherer_free(w[k].g);
     }
@@ -483,6 +486,11 @@ int bench_gather_res(int argc, char **argv)
 /* ---- rad_bench --level: a level of Sponza's class ---------------------------------- */
 
 #define LEVEL_SIZE 1024 /* the lightmap's texels a side */
+/* The texels-per-second sample: every LEVEL_ROWS-th row of a LEVEL_BIG atlas gathered
+ * at every texel, on one thread and on two, alternate rows each (16 rows, about 12,000
+ * gathers of 10 to 20 ms; with 4 rows two threads' shares differed too much). */
+#define LEVEL_BIG  2048
+#define LEVEL_ROWS 128
 
 /* A run's progress on stderr every 10 s: the solve's shots and unshot fraction. */
 typedef struct {
@@ -539,9 +547,9 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     char err[512];
     struct rusage ru;
     sc_solver *s;
-    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1;
-    long covered;
-    int done, x, y;
+    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1, tps[2];
+    long covered, tn[2];
+    int done, x, y, charts;
     o.res = DEF_RES;
     o.coarse = DEF_COARSE;
     o.coarse_res = DEF_COARSE_FLOOR(DEF_RES);
@@ -578,19 +586,37 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     done = lm_bake(&a, level_gather, &b) == 0;
     bake_cpu = bench_thread_cpu() - c0;
     bake_wall = host_now() - b.t0;
+    charts = a.ncharts;
+    lm_free(&a);
+    lo.size = LEVEL_BIG;
+    lo.tol = 0.0;
+    fprintf(stderr, "rad_bench: level: texels per second at %d x %d, 1 and 2 threads ...\n",
+            LEVEL_BIG, LEVEL_BIG);
+    for (x = 0; x < 2; x++) {
+        int sets[2] = {0, LEVEL_ROWS};
+        double cpu;
+        if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
+            fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+            exit(1);
+        }
+        lm_plan(&a);
+        tps[x] = lm_rows(s, &a, DEF_GATHER_RES, LEVEL_ROWS << x, sets, x + 1, 0, &tn[x], &cpu);
+        tps[x] = tn[x] / tps[x];
+        lm_free(&a);
+    }
     getrusage(RUSAGE_SELF, &ru);
     if (getloadavg(&load, 1) != 1) load = -1;
     bench_out(rp,
               "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | "
               "%s%.1f (%.1f) | %.0f "
-              "| %.1f | %.2f |\n",
+              "| %.1f | %ld | %.1f | %.1f | %.2f | %.2f |\n",
               name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall,
-              (st.pool_bytes + st.work_bytes) / 1048576.0, ru.ru_maxrss / 1024.0, a.ncharts,
-              lay_cpu, covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
+              (st.pool_bytes + st.work_bytes) / 1048576.0, ru.ru_maxrss / 1024.0, charts, lay_cpu,
+              covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
               1e6 * bake_cpu / (b.gathers ? b.gathers : 1),
-              1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, load);
+              1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, tn[0], tps[0], tps[1],
+              tps[1] / tps[0], load);
     sc_gatherer_free(b.g);
-    lm_free(&a);
     sc_destroy(s);
 }
 
@@ -627,15 +653,19 @@ int bench_level(int argc, char **argv)
               "work buffer, and the "
               "process's peak resident size; the every-texel estimate is the covered texels times "
               "the time per gather "
-              "(an upper bound of the adaptive bake).\n\n"
+              "(an upper bound of the adaptive bake). Texels per second: every %d-th row of a "
+              "%d x %d atlas gathered at every texel, on one thread and on two (the same rows "
+              "in two sets), wall time.\n\n"
               "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | "
               "charts | layout s | "
-              "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | load "
+              "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | "
+              "sample texels | texels/s, 1 thread | texels/s, 2 threads | speed-up | load "
               "average |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-              "| ---: | ---: | ---: "
+              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: "
               "| ---: |\n",
-              lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES);
+              lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES, LEVEL_ROWS,
+              LEVEL_BIG, LEVEL_BIG);
     level_row(&rp, "generated atrium", p, n, lights, LEVEL_LIGHTS, stop);
     free(p);
     if ((p = bench_load_obj(scene, &n, &keep)) != NULL) {
