@@ -330,14 +330,15 @@ void bench_report_batch_k(report_t *rp, const bscene *sc)
 #define BATCH_RUNS 5
 
 /* The batch solve's speed on one and two threads: each scene at its settings (res 128)
- * and at rad_cli's (res 192, coarse shots), serial against batches of DEF_BATCH_BENCH. */
+ * and at rad_cli's (res 192, coarse shots), serial against batches of K = 1, 4, 8 and
+ * 16 (the 110k hall: rad_cli's settings, K = 1, DEF_BATCH and 8). */
 void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns)
 {
     int i, j, m, r;
     bench_out(rp,
               "\nBatch solve on threads (sc_solve_batch, pthreads in tools/), fixed build, to "
-              "0.001, medians of 5 rounds (a run on one thread, then one on two; 2 threads / 1 is "
-              "the median of the rounds' ratios), "
+              "0.001, medians of %d rounds (a run on one thread, then one on two; 2 threads / 1 "
+              "is the median of the rounds' ratios), "
               "with the load average (1 minute) when the row was measured (the workers spin: "
               "other processes on the "
               "cores slow them more than one thread). Serial is sc_solve; K = 1 on one thread "
@@ -351,7 +352,8 @@ void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns)
               "elements | K | serial s | 1 thread s | 2 threads s | 2 threads / 1 | serial / 2 "
               "threads | load average "
               "| bound |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-              "| ---: |\n");
+              "| ---: |\n",
+              BATCH_RUNS);
     for (i = 0; i < ns; i++) {
         int fine = strcmp(scenes[i].name, "generated hall, fine") == 0;
         if (strncmp(scenes[i].name, "CornellBox-Original", 19) &&
