@@ -972,6 +972,16 @@ static int scene_named(const bscene *scenes, int ns, const char *name)
     return -1;
 }
 
+/* The batch tables: K against K = 1 on CornellBox-Original (when loaded), and the
+ * speed on threads over SCENES[0..NS) and the fine hall, put at SCENES[NS]. */
+static void report_batch(report_t *rp, bscene *scenes, int ns)
+{
+    int orig = scene_named(scenes, ns, "CornellBox-Original (shared)");
+    fine_hall(&scenes[ns]);
+    if (orig >= 0) bench_report_batch_k(rp, &scenes[orig]);
+    bench_report_batch_speed(rp, scenes, ns + 1);
+}
+
 int main(int argc, char **argv)
 {
     static bscene scenes[8];
@@ -999,10 +1009,7 @@ int main(int argc, char **argv)
     if (argc > 1 && strcmp(argv[1], "--gather-res") == 0) return bench_gather_res(argc, argv);
     if (argc > 1 && strcmp(argv[1], "--batch") == 0) { /* the batch tables alone, printed */
         if (!(ns = load_scenes(argc > 2 ? argv[2] : shared_default, scenes))) return 1;
-        fine_hall(&scenes[ns]);
-        orig = scene_named(scenes, ns, "CornellBox-Original (shared)");
-        if (orig >= 0) bench_report_batch_k(&rp, &scenes[orig]);
-        bench_report_batch_speed(&rp, scenes, ns + 1);
+        report_batch(&rp, scenes, ns);
         fputs(rp.md, stdout);
         return 0;
     }
@@ -1032,9 +1039,7 @@ int main(int argc, char **argv)
     report_overshoot(&rp, scenes, ns);
     report_relight(&rp, &scenes[1]);
     bench_report_parallel(&rp, scenes, ns, fx);
-    if (orig >= 0) bench_report_batch_k(&rp, &scenes[orig]);
-    fine_hall(&scenes[ns]);
-    bench_report_batch_speed(&rp, scenes, ns + 1);
+    report_batch(&rp, scenes, ns);
     report_large(&rp, &scenes[ns]);
     bench_report_textures(&rp, argv[0]);
     bench_report_lightmap(&rp, orig >= 0 ? &scenes[orig] : NULL, shared);
