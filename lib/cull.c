@@ -228,6 +228,20 @@ int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes)
     return (int)b.next;
 }
 
+/* The lattice positions of pixel column X's centre, (2 X + 1 - RES) / RES, less and
+ * plus a quarter pixel (1 / (2 RES)), into EDGES[X] and EDGES[RES + X]. A row Y's are
+ * the column Y's negated: b / d = 1 - 2 y / res. */
+static void pixel_edges(uint32_t res, rad_real_t *edges)
+{
+    const rad_real_t twice = rad__from_int(2 * (int32_t)res);
+    uint32_t sat = 0, x; /* quotients within +-1 */
+    for (x = 0; x < res; x++) {
+        int32_t u = 4 * (int32_t)x + 2 - 2 * (int32_t)res;
+        edges[x] = rad__div(rad__from_int(u - 1), twice, &sat);
+        edges[res + x] = rad__div(rad__from_int(u + 1), twice, &sat);
+    }
+}
+
 int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
 {
     const head_t *h = (const head_t *)cull;
@@ -243,6 +257,7 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
         return RAD_ERR_WORK;
     g->cull = cull;
     g->cull_work = (uint32_t *)start;
+    pixel_edges(g->res, (rad_real_t *)(void *)g->cull_work);
     return RAD_OK;
 }
 
@@ -267,6 +282,7 @@ typedef struct {
     rad_vec3_t absf[3];
     uint32_t res, rows, tile, tw, th; /* TILE pixels a side, TW x TH of them */
     int half;
+    const rad_real_t *edge; /* pixel columns' edges, a quarter pixel out (pixel_edges) */
     rad_real_t *far;
     uint32_t *marks;
     unsigned char *stale;
@@ -398,14 +414,15 @@ static rad_real_t tile_far(const face_t *f, uint32_t tx, uint32_t ty)
     return d > FAR_LIMIT ? -1 : d + d / 64 + MARGIN;
 }
 
-/* Whether box C +- H is hidden in tile T (TX, TY) of distance D >= 0: no point of the
- * box within D lies inside the tile's edges. Of the points with d in [d0, D], the
- * greatest u d over the tile is u1 D (u1 > 0) or u1 d0, the least u0 d0 (u0 >= 0) or
- * u0 D: a box wholly beyond one of them, or past D, misses the tile. */
-static int tile_hides(const face_t *f, const rad_real_t *c, const rad_real_t *h, uint32_t tx,
-                      uint32_t ty, rad_real_t d)
+/* Whether box C +- H misses the pyramid of lattice positions U0..U1 across and V0..V1
+ * up within distance D >= 0: no point of the box within D lies inside those edges. Of
+ * the points with d in [d0, D], the greatest u d over the pyramid is u1 D (u1 > 0) or
+ * u1 d0, the least u0 d0 (u0 >= 0) or u0 D: a box wholly beyond one of them, or past
+ * D, misses it. */
+static int box_misses(const rad_real_t *c, const rad_real_t *h, rad_real_t u0, rad_real_t u1,
+                      rad_real_t v0, rad_real_t v1, rad_real_t d)
 {
-    rad_real_t d0 = c[2] - h[2], u0 = f->ulo[tx], u1 = f->uhi[tx], v0 = f->vlo[ty], v1 = f->vhi[ty];
+    rad_real_t d0 = c[2] - h[2];
     uint32_t sat = 0; /* |u| < 2, d < FAR_LIMIT: none */
     return d0 > d || c[0] - h[0] > rad__mul(u1, u1 > 0 ? d : d0, &sat) ||
            c[0] + h[0] < rad__mul(u0, u0 < 0 ? d : d0, &sat) ||
@@ -413,12 +430,46 @@ static int tile_hides(const face_t *f, const rad_real_t *c, const rad_real_t *h,
            c[1] + h[1] < rad__mul(v0, v0 < 0 ? d : d0, &sat);
 }
 
-/* Whether box C +- H (reach R) is hidden in every tile R reaches: wherever it could
- * draw, a nearer depth is drawn already. */
+/* Reaches of at most this many pixels are tested pixel by pixel (a box under a pixel
+ * reaches 3 x 3: span widens by one). */
+#define SMALL_REACH 25
+
+/* Whether box C +- H is hidden at pixel (X, Y): within a quarter pixel of the pixel's
+ * centre, no point of the box lies nearer than the depth drawn there (nor, where
+ * nothing is drawn, at all). A polygon covers the pixel only if its projected, rounded
+ * outline covers the centre, and the outline's corners are the box's points (within
+ * its widening) rounded to 1/16 pixel: a polygon that covers it has a point of the box
+ * within 1/16 pixel of the centre. The pixel's distance is widened as a tile's. */
+static int pixel_hides(const face_t *f, const rad_real_t *c, const rad_real_t *h, int32_t x,
+                       int32_t y)
+{
+    uint32_t z = f->e->z[(size_t)y * f->res + (uint32_t)x];
+    rad_real_t d = c[2] + h[2];
+    if (z != 0) {
+        rad_real_t dz = rad__depth_d(z);
+        if (dz <= FAR_LIMIT) {
+            dz += dz / 64 + MARGIN;
+            d = dz < d ? dz : d;
+        }
+    }
+    return box_misses(c, h, f->edge[x], f->edge[f->res + (uint32_t)x],
+                      -f->edge[f->res + (uint32_t)y], -f->edge[y], d);
+}
+
+/* Whether box C +- H (reach R) is hidden in every pixel it can reach when R is small,
+ * else in every tile R reaches: wherever it could draw, a nearer depth is drawn
+ * already. */
 static int hidden(const face_t *f, const rad_real_t *c, const rad_real_t *h, const reach_t *r)
 {
     uint32_t tx, ty;
+    int32_t x, y;
     if (!r->hidable) return 0;
+    if ((r->x1 - r->x0 + 1) * (r->y1 - r->y0 + 1) <= SMALL_REACH) {
+        for (y = r->y0; y <= r->y1; y++)
+            for (x = r->x0; x <= r->x1; x++)
+                if (!pixel_hides(f, c, h, x, y)) return 0;
+        return 1;
+    }
     for (ty = (uint32_t)r->y0 / f->tile; ty <= (uint32_t)r->y1 / f->tile; ty++)
         for (tx = (uint32_t)r->x0 / f->tile; tx <= (uint32_t)r->x1 / f->tile; tx++) {
             uint32_t t = ty * f->tw + tx;
@@ -426,7 +477,9 @@ static int hidden(const face_t *f, const rad_real_t *c, const rad_real_t *h, con
                 f->far[t] = tile_far(f, tx, ty);
                 f->stale[t] = 0;
             }
-            if (f->far[t] < 0 || !tile_hides(f, c, h, tx, ty, f->far[t])) return 0;
+            if (f->far[t] < 0 ||
+                !box_misses(c, h, f->ulo[tx], f->uhi[tx], f->vlo[ty], f->vhi[ty], f->far[t]))
+                return 0;
         }
     return 1;
 }
@@ -454,7 +507,8 @@ static rad_real_t box_distance(const face_t *f, const node_t *nd)
     return m;
 }
 
-/* Pass 1: the tree from the root, nearest child first; marks the surfaces drawn. */
+/* Pass 1: the tree from the root, nearest child first, drawing the leaves' surfaces by
+ * their indices. */
 static void pass_near(const face_t *f, const node_t *nodes)
 {
     uint32_t stack[STACK], top = 0, at = 0;
@@ -469,7 +523,6 @@ static void pass_near(const face_t *f, const node_t *nodes)
                 if (nd->link & LEAF) {
                     uint32_t k = nd->link & ~LEAF;
                     rad__eye_surface(f->s, f->e, f->face, k, 1);
-                    f->marks[k / 32u] |= 1u << (k % 32u);
                     touch(f, &r);
                 } else {
                     uint32_t near = at + 1u, far = nd->link, t;
@@ -521,7 +574,8 @@ void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
         f.vhi[k] = -f.ulo[k]; /* b / d = 1 - 2 y / res */
         f.vlo[k] = -f.uhi[k];
     }
-    f.marks = e->cwork;
+    f.edge = (const rad_real_t *)(const void *)e->cwork;
+    f.marks = e->cwork + 2u * f.res;
     f.far = (rad_real_t *)(void *)(f.marks + words);
     f.stale = (unsigned char *)(f.far + tiles);
     for (k = 0; k < words; k++) f.marks[k] = 0;
@@ -531,6 +585,10 @@ void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     }
     rad__eye_clear(e, face);
     if (h->nodes) pass_near(&f, cull_nodes(h));
+    for (k = 0; k < f.rows * f.res; k++) { /* the surfaces left in the pixels */
+        uint32_t id = e->ids[k];
+        if (id != RAD_INDEX_NONE) f.marks[id / 32u] |= 1u << (id % 32u);
+    }
     rad__eye_clear(e, face);
     for (w = 0; w < words; w++) {
         uint32_t m = f.marks[w], b;

@@ -298,7 +298,7 @@ typedef struct {
     const region_t *reg;
     unsigned nreg;
     uint32_t skip, group;
-    int backs, zonly; /* ZONLY: every surface drawn as an occluder showing nothing */
+    int backs, by_index; /* BY_INDEX: every surface drawn by its index (rad__eye_surface) */
 } pass_t;
 
 /* The frustum of region R's face and the target of its rows. */
@@ -317,6 +317,7 @@ static void region_view(const canvas_t *cv, const region_t *r, rad__frustum_t *f
     t->width = (int)cv->res;
     t->row0 = r->row0;
     t->row1 = r->row1;
+    t->least = 0;
 }
 
 /* Surface SF into the pass's regions: its outline drawn once a face, each pixel given
@@ -337,10 +338,11 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
      * under a panel lit from above is in its shadow as the lamp's shots left it. */
     for (i = 0; i < n; i++)
         front |= rad__dot_unit(rad__sub(ps->c, s->pools.vertices[k[i]]), sf->normal) > 0;
-    if (ps->zonly) front = 0;
+    if (ps->by_index) front = 0;
     if (!front && !ps->backs) return;
     grid = front && sf->n_elements > 1;
     id = front ? (rad_index_t)rad__group_element(s, sf, sf->first_element) : RAD_INDEX_NONE;
+    if (ps->by_index) id = (rad_index_t)(sf - s->pools.surfaces); /* < max_surfaces < NONE */
     for (i = 0; i < n; i++) {
         rad_vec3_t d = rad__sub(s->pools.vertices[k[i]], ps->c);
         uint32_t code;
@@ -357,6 +359,7 @@ static void render_surface(const rad_scene_t *s, const canvas_t *cv, const pass_
         rad__target_t t;
         if ((all >> (5 * f)) & 0x1F) continue; /* wholly outside this face */
         region_view(cv, &ps->reg[r], &fr, &t);
+        t.least = ps->by_index;
         if (grid) {
             /* set up on the first face that draws it */
             if (grid == 1) rad__lattice_init(&lat, sf, loc, n, (int32_t)cv->res);
@@ -499,7 +502,7 @@ static void render_scene(const rad_scene_t *s, const canvas_t *cv, const region_
     ps.skip = pt->surface;
     ps.group = p;
     ps.backs = 0;
-    ps.zonly = 0;
+    ps.by_index = 0;
     render_view(s, cv, &ps);
 }
 
@@ -517,8 +520,8 @@ static canvas_t scene_canvas(const rad_scene_t *s, uint32_t *z, rad_index_t *ids
     return cv;
 }
 
-/* Face FACE of E's cube as a canvas, its one region and a pass (ZONLY as pass_t's). */
-static void eye_pass(const rad__eye_t *e, unsigned face, int zonly, canvas_t *cv, region_t *reg,
+/* Face FACE of E's cube as a canvas, its one region and a pass (BY_INDEX as pass_t's). */
+static void eye_pass(const rad__eye_t *e, unsigned face, int by_index, canvas_t *cv, region_t *reg,
                      pass_t *ps)
 {
     cv->z = e->z;
@@ -538,7 +541,7 @@ static void eye_pass(const rad__eye_t *e, unsigned face, int zonly, canvas_t *cv
     ps->skip = e->skip;
     ps->group = UINT32_MAX;
     ps->backs = 1;
-    ps->zonly = zonly;
+    ps->by_index = by_index;
 }
 
 void rad__eye_clear(const rad__eye_t *e, unsigned face)
@@ -551,12 +554,12 @@ void rad__eye_clear(const rad__eye_t *e, unsigned face)
 }
 
 void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, uint32_t k,
-                      int zonly)
+                      int by_index)
 {
     canvas_t cv;
     region_t reg;
     pass_t ps;
-    eye_pass(e, face, zonly, &cv, &reg, &ps);
+    eye_pass(e, face, by_index, &cv, &reg, &ps);
     render_one(s, &cv, &ps, k);
 }
 

@@ -111,14 +111,16 @@ void rad__lattice_span(rad__lattice_t *lt, int32_t y, int32_t xs, int32_t xe, ui
 /* Where the rasterizer writes: rows row0..row1-1 of a WIDTH-wide raster; buffers hold
  * just those rows. One of ids and rgb is set: with rgb, colours are interpolated; with
  * ids, every pixel gets the polygon's id, or with LAT the id of its lattice element
- * (STEPS: WIDTH entries of zero for rad__lattice_span). */
+ * (STEPS: WIDTH entries of zero for rad__lattice_span). LEAST (ids without LAT): of
+ * equal depths a pixel keeps the least id, not the earlier drawn, so that what a
+ * pixel ends with does not depend on the order of drawing (cull.c). */
 typedef struct {
     uint32_t *z;
     rad_index_t *ids;
     rad_rgb_t *rgb;
     rad__lattice_t *lat;
     uint32_t *steps;
-    int width, row0, row1;
+    int width, row0, row1, least;
 } rad__target_t;
 
 /* Outcodes of polygon IN against frustum F: returns the OR of the vertices' outside
@@ -184,11 +186,11 @@ typedef struct {
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 /* Face FACE of E's buffers cleared; surface K drawn into them, as rad__eye_face draws it
- * (nothing when it is E's skipped one), or with ZONLY as an occluder showing nothing:
- * the same depths, ids RAD_INDEX_NONE. */
+ * (nothing when it is E's skipped one), or with BY_INDEX by its index K at every pixel,
+ * front or back, ties kept by the least id (rad__target_t.least): the same depths. */
 void rad__eye_clear(const rad__eye_t *e, unsigned face);
 void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, uint32_t k,
-                      int zonly);
+                      int by_index);
 /* rad__eye_face through E's hierarchy (cull.c): the same pixels, bit for bit. */
 void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 /* Whether hierarchy CULL was built for S as it stands (its surfaces and scale). */

@@ -488,6 +488,7 @@ static void band(rad_scene_t *s, const view_t *v, const bufs_t *b, const rad_vec
     t.width = (int)r;
     t.row0 = (int)y0;
     t.row1 = (int)y1;
+    t.least = 0;
     for (i = 0; i < s->n_surfaces; i++) draw_surface(s, v, &t, &fr, &s->pools.surfaces[i]);
     for (y = y0, i = 0; y < y1; y++)
         for (x = 0; x < r; x++, i++)

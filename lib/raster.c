@@ -169,13 +169,24 @@ static uint32_t attr_value(uint64_t v)
     return v > 0xFFFFFFFFu ? 0xFFFFFFFFu : (uint32_t)v;
 }
 
-/* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW, id ID.
- * Inside, depth is within rounding of the vertices' (>= 2^22 / 554). */
+/* Pixels XS..XE-1 of a row of an item buffer: depth W (* 2^16) stepping by DW, id ID;
+ * with LEAST, of equal depths the least id is kept (rad__target_t.least). Inside,
+ * depth is within rounding of the vertices' (>= 2^22 / 554). */
 static void fill_ids(uint32_t *z, rad_index_t *ids, int32_t xs, int32_t xe, uint64_t w, uint64_t dw,
-                     rad_index_t id)
+                     rad_index_t id, int least)
 {
     int32_t x;
-    for (x = xs; x < xe; x++, w += dw) rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+    if (!least) {
+        for (x = xs; x < xe; x++, w += dw) rad__depth_put(z, ids, x, (uint32_t)(w >> 16), id);
+        return;
+    }
+    for (x = xs; x < xe; x++, w += dw) {
+        uint32_t d = (uint32_t)(w >> 16);
+        if (d > z[x] || (d == z[x] && id < ids[x])) {
+            z[x] = d;
+            ids[x] = id;
+        }
+    }
 }
 
 /* fill_ids for a colour raster; VAL are the attributes at the row's first pixel of
@@ -259,7 +270,7 @@ static void raster_piece(rad_stats_t *st, const rad__target_t *t, const pvert_t 
             else if (t->lat)
                 rad__lattice_span(t->lat, y, xs, xe, t->z + row, t->ids + row, w, sx[0], t->steps);
             else
-                fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id);
+                fill_ids(t->z + row, t->ids + row, xs, xe, w, sx[0], id, t->least);
         }
         for (k = 0; k < 4; k++) ed[k].e += ed[k].dy;
         for (k = 0; k < nat; k++) val[k] += sy[k];

@@ -187,6 +187,7 @@ int rad_render(rad_scene_t *s, const rad_rgb_t *vrgb, const rad_camera_t *cam, r
     t.width = (int)w;
     t.row0 = 0;
     t.row1 = (int)h;
+    t.least = 0;
     for (i = 0; i < w * h; i++) {
         zbuf[i] = 0;
         fb[i].r = fb[i].g = fb[i].b = 0;

@@ -741,8 +741,8 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
  * raster_pixels differ. RAD_CULL_BYTES(surfaces): the hierarchy's buffer, 4-aligned;
  * RAD_GATHER_CULL_BYTES(res, surfaces): a gatherer's work for it, any alignment. */
 #define RAD_CULL_BYTES(surfaces)             (16u + (size_t)(surfaces)*60u)
-#define RAD_GATHER_CULL_BYTES(res, surfaces) /* the same for every res (16 x 16 tiles) */ \
-    (((size_t)(surfaces) + 31u) / 32u * 4u + 5u * 256u + 3u)
+#define RAD_GATHER_CULL_BYTES(res, surfaces) /* 16 x 16 tiles, a pixel column's edges */ \
+    (((size_t)(surfaces) + 31u) / 32u * 4u + 5u * 256u + 8u * (size_t)(res) + 3u)
 
 /* Builds the hierarchy over S's surfaces into BUF (BYTES long, 4-aligned): the same
  * for the same scene every time. Needs frozen geometry (as rad_gather); a scene whose
