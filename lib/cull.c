@@ -11,20 +11,25 @@
  * A face of a gather's cube (rad__cull_face) is drawn in two passes.
  * 1. From the root, the child nearer the eye first, a node is skipped when its box
  *    lies wholly outside one of the face's clip planes (then each corner of each of
- *    its surfaces does: the face would not draw them), or when it is hidden in each
- *    of the face's tiles (16 x 16 of them) its box can reach: no point of the box
- *    inside the tile lies nearer than the farthest depth drawn there. The surfaces of
- *    the leaves left are drawn for their depth alone, and marked.
- * 2. The face is cleared and the marked surfaces drawn again in the order of their
- *    indices, as rad__eye_face draws every surface.
+ *    its surfaces does: the face would not draw them), or when it is hidden: in each
+ *    of the face's tiles (16 x 16 of them) its box can reach, or, when it can reach
+ *    at most SMALL_REACH pixels, at each of those pixels, no point of the box inside
+ *    the tile or near the pixel's centre lies nearer than the farthest depth drawn
+ *    there (near a centre where nothing is drawn, none at all). The surfaces of the
+ *    leaves left are drawn with their indices as ids, ties between equal depths kept
+ *    by the least (rad__target_t.least).
+ * 2. The face is cleared and the surfaces left in its pixels drawn again in the order
+ *    of their indices, as rad__eye_face draws every surface.
  * Why the pixels are those of drawing every surface: depth only grows, so a surface S
- * of a hidden node draws, at every pixel it can reach, a depth below one a marked
+ * of a hidden node draws, at every pixel it can reach, a depth below one a drawn
  * surface drew there in pass 1, and draws the same depth in pass 2 (a surface's depths
  * do not depend on the pass or on its ids). S is then never the nearest at any pixel,
  * nor tied for it, and a surface outside the face draws nothing: at each pixel the
- * surfaces of greatest depth are all marked, and pass 2 meets them in index order,
- * keeping the first (rad__depth_put keeps the earlier of equal depths) as drawing all
- * does.
+ * surfaces of greatest depth were all drawn in pass 1, which keeps the greatest depth
+ * and of its surfaces the least index whatever the order, the one drawing all in index
+ * order keeps (rad__depth_put keeps the earlier of equal depths). Pass 2 draws that
+ * surface again at each pixel, and no other there draws a greater depth, nor an equal
+ * one before it in index order.
  *
  * Bounds, all conservative: a box is turned into the cube's frame as its centre and
  * its half extents along |frame|, widened by MARGIN and 1/1024 (the rounding of the
@@ -34,7 +39,9 @@
  * and MARGIN (depth is rounded in projection and interpolation, and a quad is planar
  * only within rounding). Tiles keep their farthest distance as last computed (an upper
  * bound, since depth only grows) and compute it again once a surface drawn may have
- * covered them. A box within 2 NEAR of the eye is never hidden.
+ * covered them. A pixel's test takes its centre's lattice positions a quarter pixel
+ * out (a polygon's rounded corners are within 1/16 pixel of the box's points) and its
+ * own depth, widened as a tile's. A box within 2 NEAR of the eye is never hidden.
  */
 #include "internal.h"
 
@@ -414,6 +421,16 @@ static rad_real_t tile_far(const face_t *f, uint32_t tx, uint32_t ty)
     return d > FAR_LIMIT ? -1 : d + d / 64 + MARGIN;
 }
 
+/* Whether the box's extent C +- H along one axis misses U0 d..U1 d for every d in
+ * [D0, D] (see box_misses). */
+static int axis_misses(rad_real_t c, rad_real_t h, rad_real_t u0, rad_real_t u1, rad_real_t d0,
+                       rad_real_t d)
+{
+    uint32_t sat = 0; /* |u| < 2, d < FAR_LIMIT: none */
+    return c - h > rad__mul(u1, u1 > 0 ? d : d0, &sat) ||
+           c + h < rad__mul(u0, u0 < 0 ? d : d0, &sat);
+}
+
 /* Whether box C +- H misses the pyramid of lattice positions U0..U1 across and V0..V1
  * up within distance D >= 0: no point of the box within D lies inside those edges. Of
  * the points with d in [d0, D], the greatest u d over the pyramid is u1 D (u1 > 0) or
@@ -423,11 +440,8 @@ static int box_misses(const rad_real_t *c, const rad_real_t *h, rad_real_t u0, r
                       rad_real_t v0, rad_real_t v1, rad_real_t d)
 {
     rad_real_t d0 = c[2] - h[2];
-    uint32_t sat = 0; /* |u| < 2, d < FAR_LIMIT: none */
-    return d0 > d || c[0] - h[0] > rad__mul(u1, u1 > 0 ? d : d0, &sat) ||
-           c[0] + h[0] < rad__mul(u0, u0 < 0 ? d : d0, &sat) ||
-           c[1] - h[1] > rad__mul(v1, v1 > 0 ? d : d0, &sat) ||
-           c[1] + h[1] < rad__mul(v0, v0 < 0 ? d : d0, &sat);
+    return d0 > d || axis_misses(c[0], h[0], u0, u1, d0, d) ||
+           axis_misses(c[1], h[1], v0, v1, d0, d);
 }
 
 /* Reaches of at most this many pixels are tested pixel by pixel (a box under a pixel
@@ -465,9 +479,21 @@ static int hidden(const face_t *f, const rad_real_t *c, const rad_real_t *h, con
     int32_t x, y;
     if (!r->hidable) return 0;
     if ((r->x1 - r->x0 + 1) * (r->y1 - r->y0 + 1) <= SMALL_REACH) {
+        /* first the columns and rows the box can meet at all (bits from x0, y0: at most
+         * SMALL_REACH of them), then their pixels with the depth drawn */
+        rad_real_t d0 = c[2] - h[2], d1 = c[2] + h[2];
+        uint32_t cols = 0, rows = 0;
+        for (x = r->x0; x <= r->x1; x++)
+            if (!axis_misses(c[0], h[0], f->edge[x], f->edge[f->res + (uint32_t)x], d0, d1))
+                cols |= 1u << (x - r->x0);
+        for (y = r->y0; y <= r->y1 && cols; y++)
+            if (!axis_misses(c[1], h[1], -f->edge[f->res + (uint32_t)y], -f->edge[y], d0, d1))
+                rows |= 1u << (y - r->y0);
         for (y = r->y0; y <= r->y1; y++)
             for (x = r->x0; x <= r->x1; x++)
-                if (!pixel_hides(f, c, h, x, y)) return 0;
+                if ((rows >> (y - r->y0)) & (cols >> (x - r->x0)) & 1u &&
+                    !pixel_hides(f, c, h, x, y))
+                    return 0;
         return 1;
     }
     for (ty = (uint32_t)r->y0 / f->tile; ty <= (uint32_t)r->y1 / f->tile; ty++)
