@@ -448,24 +448,24 @@ static int box_misses(const rad_real_t *c, const rad_real_t *h, rad_real_t u0, r
  * reaches 3 x 3: span widens by one). */
 #define SMALL_REACH 25
 
-/* Whether box C +- H is hidden at pixel (X, Y): within a quarter pixel of the pixel's
- * centre, no point of the box lies nearer than the depth drawn there (nor, where
- * nothing is drawn, at all). A polygon covers the pixel only if its projected, rounded
- * outline covers the centre, and the outline's corners are the box's points (within
- * its widening) rounded to 1/16 pixel: a polygon that covers it has a point of the box
- * within 1/16 pixel of the centre. The pixel's distance is widened as a tile's. */
+/* Whether box C +- H is hidden at pixel (X, Y), whose column and row it meets (the
+ * first step of `hidden`): no point of it within a quarter pixel of the centre lies
+ * nearer than the depth drawn there, widened as a tile's. A polygon covers the pixel
+ * only if its projected, rounded outline covers the centre, and the outline's corners
+ * are the box's points (within its widening) rounded to 1/16 pixel: a polygon that
+ * covers it has a point of the box within 1/16 pixel of the centre. Where nothing is
+ * drawn, or the depth drawn lies beyond the box, that is the column's and row's test
+ * again: not hidden. */
 static int pixel_hides(const face_t *f, const rad_real_t *c, const rad_real_t *h, int32_t x,
                        int32_t y)
 {
     uint32_t z = f->e->z[(size_t)y * f->res + (uint32_t)x];
-    rad_real_t d = c[2] + h[2];
-    if (z != 0) {
-        rad_real_t dz = rad__depth_d(z);
-        if (dz <= FAR_LIMIT) {
-            dz += dz / 64 + MARGIN;
-            d = dz < d ? dz : d;
-        }
-    }
+    rad_real_t d;
+    if (z == 0) return 0;
+    d = rad__depth_d(z);
+    if (d > FAR_LIMIT) return 0;
+    d += d / 64 + MARGIN;
+    if (d >= c[2] + h[2]) return 0;
     return box_misses(c, h, f->edge[x], f->edge[f->res + (uint32_t)x],
                       -f->edge[f->res + (uint32_t)y], -f->edge[y], d);
 }
