@@ -735,9 +735,10 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
 /* A gather draws every surface on each face of its cube. Through a bounding volume
  * hierarchy over the surfaces (integer boxes in the core's coordinates: Q16.16 in the
  * fixed build), a face draws only the surfaces in its frustum whose boxes the depth
- * already drawn (nearest first) does not hide, then draws those again in the order of
- * their indices: the same pixels, bit for bit, as drawing them all (ties between equal
- * depths go to the lower surface index either way). Only stats.raster_calls and
+ * already drawn (nearest first) does not hide, tiles or, for small boxes, pixels at a
+ * time, then draws again, in the order of their indices, those left nearest at a
+ * pixel: the same pixels, bit for bit, as drawing them all (ties between equal depths
+ * go to the lower surface index either way). Only stats.raster_calls and
  * raster_pixels differ. RAD_CULL_BYTES(surfaces): the hierarchy's buffer, 4-aligned;
  * RAD_GATHER_CULL_BYTES(res, surfaces): a gatherer's work for it, any alignment. */
 #define RAD_CULL_BYTES(surfaces)             (16u + (size_t)(surfaces)*60u)

@@ -17,9 +17,9 @@ struct sc_gatherer {
 };
 
 /* Surfaces from which a new gatherer draws through the hierarchy: in rad_bench's cull
- * report (gathers at res 32 in grids of rooms; two runs) the culled gather took 1.23
- * to 1.27 times as long as drawing all at 27 surfaces, 0.76 to 1.09 at 116, 0.63 to
- * 0.67 at 480 and 0.22 at 1,952. */
+ * report (gathers at res 32 in grids of rooms; two runs) the culled gather took 1.49
+ * to 1.56 times as long as drawing all at 27 surfaces, 1.04 to 1.09 at 116, 0.51 to
+ * 0.52 at 480 and 0.19 to 0.20 at 1,952. */
 #define CULL_SURFACES 200
 
 /* Gatherers may be made in threads of their own: the hierarchy is built once, under
