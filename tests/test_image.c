@@ -783,6 +783,49 @@ static void test_plot_degenerate(void **state)
     free(rgb);
 }
 
+/* The row of the middle of the red pixels in column X, -1 when none. */
+static int red_row(const unsigned char *rgb, int x)
+{
+    int top, bot;
+    col_span(rgb, x, RED, &top, &bot);
+    return top < 0 ? -1 : (top + bot) / 2;
+}
+
+/* y = x^2 from 10 to 1000 on log-log axes is a straight line: at the middle of its
+ * columns the row lies within 2 pixels of its ends' mean. With a linear x axis the
+ * same points bend (the middle column is x = 505, whose log y is 85% of the way up,
+ * not 50%): the test tells the two apart. */
+static void test_plot_log_x(void **state)
+{
+    double x[5] = {10, 31.6227766, 100, 316.227766, 1000}, y[5];
+    plot_series s = {NULL, x, y, 5, {255, 0, 0}};
+    plot_opts o = {.log_x = 1, .log_y = 1};
+    unsigned char *rgb = malloc(PW * PH * 3);
+    int k, xl = -1, xr = -1, xx, mid, ends;
+    (void)state;
+    assert_non_null(rgb);
+    for (k = 0; k < 5; k++) y[k] = x[k] * x[k];
+    for (k = 0; k < 2; k++) {
+        assert_int_equal(plot_render(rgb, PW, PH, &s, 1, &o), 0);
+        for (xx = 0, xl = xr = -1; xx < PW; xx++)
+            if (red_row(rgb, xx) >= 0) {
+                xl = xl < 0 ? xx : xl;
+                xr = xx;
+            }
+        CHECK_INT_GT(xr - xl, PW / 3, "the red line's width in columns");
+        mid = red_row(rgb, (xl + xr) / 2);
+        ends = (red_row(rgb, xl + 2) + red_row(rgb, xr - 2)) / 2;
+        if (k == 0)
+            CHECK_INT_LE(abs(mid - ends), 2,
+                         "log-log: the middle row's distance from the ends' mean");
+        else
+            CHECK_INT_GT(abs(mid - ends), 20,
+                         "linear x: the middle row's distance from the ends' mean");
+        o.log_x = 0;
+    }
+    free(rgb);
+}
+
 static void test_plot_text(void **state)
 {
     unsigned char c[12 * 10 * 3];
@@ -845,6 +888,7 @@ int main(void)
         T(test_plot_lines),
         T(test_plot_legend_and_flat),
         T(test_plot_degenerate),
+        T(test_plot_log_x),
         T(test_plot_text),
         T(test_plot_write),
     };

@@ -214,22 +214,29 @@ static void line(const canvas *c, int x0, int y0, int x1, int y1, int lw,
 
 /* ---- data and axes ---- */
 
-/* Point i of s in axis space; 0 when it must be skipped. Linear values are limited to
- * 1e300 so that ranges and tick arithmetic cannot overflow. */
-static int point(const plot_series *s, int i, int log_y, double *x, double *y)
+/* V on an axis, log10 of it on a log axis (LOG); 0 when it must be skipped: not
+ * finite, beyond 1e300 (so that ranges and tick arithmetic cannot overflow), or not
+ * above 0 on a log axis. */
+static int axis_value(double v, int log, double *out)
 {
-    *x = s->x ? s->x[i] : (double)i;
-    *y = s->y[i];
-    if (!isfinite(*x) || fabs(*x) > 1e300 || !isfinite(*y)) return 0;
-    if (log_y) {
-        if (!(*y > 0.0)) return 0;
-        *y = log10(*y);
+    if (!isfinite(v) || fabs(v) > 1e300) return 0;
+    if (log) {
+        if (!(v > 0.0)) return 0;
+        v = log10(v);
     }
-    return fabs(*y) <= 1e300;
+    *out = v;
+    return 1;
+}
+
+/* Point i of s in axis space (LOG_X, LOG_Y: log axes); 0 when it must be skipped. */
+static int point(const plot_series *s, int i, int log_x, int log_y, double *x, double *y)
+{
+    return axis_value(s->x ? s->x[i] : (double)i, log_x, x) && axis_value(s->y[i], log_y, y);
 }
 
 /* Data bounds over all drawable points; lo > hi is left when there are none. */
-static void data_range(const plot_series *s, int ns, int log_y, double bx[2], double by[2])
+static void data_range(const plot_series *s, int ns, int log_x, int log_y, double bx[2],
+                       double by[2])
 {
     int k, i;
     double x, y;
@@ -237,7 +244,7 @@ static void data_range(const plot_series *s, int ns, int log_y, double bx[2], do
     bx[1] = by[1] = -HUGE_VAL;
     for (k = 0; k < ns; k++)
         for (i = 0; i < s[k].n; i++)
-            if (point(&s[k], i, log_y, &x, &y)) {
+            if (point(&s[k], i, log_x, log_y, &x, &y)) {
                 bx[0] = fmin(bx[0], x), bx[1] = fmax(bx[1], x);
                 by[0] = fmin(by[0], y), by[1] = fmax(by[1], y);
             }
@@ -362,7 +369,7 @@ static void draw_series(canvas *c, rect r, int s, const plot_series *sr, int ns,
     c->cx1 = r.x1 < c->w - 1 ? r.x1 : c->w - 1, c->cy1 = r.y1 < c->h - 1 ? r.y1 : c->h - 1;
     for (k = 0; k < ns; k++)
         for (i = 0, run = 0; i < sr[k].n; i++) {
-            if (!point(&sr[k], i, ay->log, &x, &y)) {
+            if (!point(&sr[k], i, ax->log, ay->log, &x, &y)) {
                 run = 0;
                 continue;
             }
@@ -380,7 +387,7 @@ static int points_in(rect b, const plot_series *sr, int ns, rect r, const axis *
     double x, y;
     for (k = 0; k < ns; k++)
         for (i = 0; i < sr[k].n; i++)
-            if (point(&sr[k], i, ay->log, &x, &y)) {
+            if (point(&sr[k], i, ax->log, ay->log, &x, &y)) {
                 qx = to_px(ax, x, r.x0, r.x1);
                 qy = to_px(ay, y, r.y1, r.y0);
                 n += qx >= b.x0 && qx <= b.x1 && qy >= b.y0 && qy <= b.y1;
@@ -464,8 +471,8 @@ int plot_render(unsigned char *rgb, int w, int h, const plot_series *series, int
     s = s < 1 ? 1 : s;
     c.p = rgb, c.w = w, c.h = h, c.cx0 = c.cy0 = 0, c.cx1 = w - 1, c.cy1 = h - 1;
     memset(rgb, 255, (size_t)w * (size_t)h * 3);
-    data_range(series, nseries, opts->log_y != 0, bx, by);
-    axis_fit(&ax, bx[0], bx[1], 0);
+    data_range(series, nseries, opts->log_x != 0, opts->log_y != 0, bx, by);
+    axis_fit(&ax, bx[0], bx[1], opts->log_x != 0);
     axis_fit(&ay, by[0], by[1], opts->log_y != 0);
     r = layout(w, h, s, opts, &ax, &ay);
     draw_ticks(&c, r, s, &ax, &ay);

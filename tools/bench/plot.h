@@ -27,7 +27,7 @@ typedef struct {
  * opts itself may be NULL (no texts, linear axes, default size). */
 typedef struct {
     const char *title, *xlabel, *ylabel;
-    int log_y; /* log10 y axis */
+    int log_x, log_y; /* log10 x axis, y axis */
     int width, height;
 } plot_opts;
 
