@@ -71,7 +71,7 @@ LIBTOOLS   := $(BUILDDIR)/libradtools.a
 RAD_BUILD_H := $(BUILDDIR)/include/rad/rad_build.h
 TESTS      := $(TEST_SRCS:tests/%.c=$(BUILDDIR)/tests/%)
 
-.PHONY: all lib test check ports port-test port-bench port-size bench bench-level install install-lib uninstall clean nm-check example readme-image
+.PHONY: all lib test check ports port-test port-bench port-size bench bench-level bench-curve install install-lib uninstall clean nm-check example readme-image
 all: lib $(BUILDDIR)/rad_cli $(BUILDDIR)/rad_cli_float
 # The library alone: no libpng, no CMocka, no host tools.
 lib: $(LIBRAD) $(LIBRADF) $(RAD_BUILD_H)
@@ -118,6 +118,10 @@ bench: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
 # The level of Sponza's class alone (long: tools/bench/level.h, docs/new-level.md).
 bench-level: $(BUILDDIR)/rad_bench
 	$(BUILDDIR)/rad_bench --level
+
+# The cost curve against rpkCpp (long; the peer built beside the project: docs/bench.md).
+bench-curve: $(BUILDDIR)/rad_bench $(BUILDDIR)/rad_cli
+	$(BUILDDIR)/rad_bench --curve
 
 # Every test links both builds of the core (through the host glue) and the host tools,
 # and the objects under $(BUILDDIR)/tests/ that a line below adds to its prerequisites.

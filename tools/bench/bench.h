@@ -106,9 +106,9 @@ typedef struct {
     size_t bytes[PEER_CMDS]; /* pools and work buffer */
 } peer_t;
 
-/* Runs ARGV (output to /dev/null) and waits for it: wall and processor seconds, peak
- * resident KB; 0 when it exited with status 0. */
-int bench_run_child(char *const argv[], double *secs, double *cpu, long *kb);
+/* Runs ARGV (output to the file OUT, or /dev/null: NULL) and waits for it: wall and
+ * processor seconds, peak resident KB; 0 when it exited with status 0. */
+int bench_run_child(char *const argv[], const char *out, double *secs, double *cpu, long *kb);
 /* Whether PATH is a regular file. */
 int bench_is_file(const char *path);
 /* PATH's folder (up to its last '/', or "." ) into OUT. */
@@ -126,6 +126,24 @@ void bench_peer(const char *self, const char *scene, peer_t *pr);
 /* The accuracy column of PR: each rad_cli row solved in this process. */
 void bench_peer_accuracy(const char *scene, peer_t *pr);
 void bench_report_peers(report_t *rp, const peer_t *p, const brun *fx);
+
+/* The cost curve (rad_bench --curve): rad_cli against rpkCpp on CornellBox-Original at
+ * CURVE_SIZES refinements, to 0.01 and 0.001 (rpkCpp: 7 and 10 iterations), whole
+ * processes in turn, ROUNDS <= CURVE_ROUNDS rounds. */
+#define CURVE_SIZES  4
+#define CURVE_CMDS   4 /* rad 0.01, rpkCpp 7, rad 0.001, rpkCpp 10 */
+#define CURVE_ROUNDS 9
+typedef struct {
+    char why[3072]; /* empty when measured; else why not */
+    int rounds;
+    long elements[CURVE_SIZES][2];       /* rad's, rpkCpp's */
+    double cpu[CURVE_SIZES][CURVE_CMDS]; /* medians of processor seconds */
+    double ratio[CURVE_SIZES][2];        /* medians of rad/rpkCpp per round: 0.01, 0.001 */
+    long kb[CURVE_SIZES][2];             /* peak resident KB, rad's and rpkCpp's */
+} curve_t;
+void bench_curve(const char *self, const char *scene, int rounds, curve_t *cv);
+/* The curve's table and slopes into RP, its plot into PNG. */
+void bench_report_curve(report_t *rp, const curve_t *cv, const char *png);
 
 /* ---- threads (bench_threads.c) --------------------------------------------------- */
 

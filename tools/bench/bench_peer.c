@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "bench/bench.h"
+#include "bench/plot.h"
 #include "host/clock.h"
 #include "host/defaults.h"
 
@@ -24,10 +25,11 @@
 
 #define PEER_RUNS 9
 
-/* Runs ARGV (stdout and stderr to /dev/null) and waits for it: its wall time in SECS,
- * and from wait4's rusage its processor time (user + system) in CPU and its own peak
- * resident memory in KB. Returns 0 when it ran and exited with status 0. */
-int bench_run_child(char *const argv[], double *secs, double *cpu, long *kb)
+/* Runs ARGV (stdout and stderr to the file OUT, or /dev/null when OUT is NULL) and
+ * waits for it: its wall time in SECS, and from wait4's rusage its processor time (user
+ * + system) in CPU and its own peak resident memory in KB. Returns 0 when it ran and
+ * exited with status 0. */
+int bench_run_child(char *const argv[], const char *out, double *secs, double *cpu, long *kb)
 {
     struct rusage ru;
     double t0 = host_now();
@@ -35,7 +37,7 @@ int bench_run_child(char *const argv[], double *secs, double *cpu, long *kb)
     pid_t pid = fork();
     if (pid < 0) return -1;
     if (pid == 0) {
-        int fd = open("/dev/null", O_WRONLY);
+        int fd = out ? open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644) : open("/dev/null", O_WRONLY);
         if (fd >= 0) {
             dup2(fd, 1);
             dup2(fd, 2);
@@ -97,7 +99,8 @@ static int peer_scene(const char *scene, const char *mgf, peer_t *pr)
     bench_dir_of(scene, dir, sizeof dir);
     snprintf(conv, sizeof conv, "%s/../peers/obj2mgf.py", dir);
     fprintf(stderr, "rad_bench: converting %s to %s ...\n", scene, mgf);
-    if (!bench_is_file(conv) || bench_run_child(argv, &t, &cpu, &kb) < 0 || !bench_is_file(mgf)) {
+    if (!bench_is_file(conv) || bench_run_child(argv, NULL, &t, &cpu, &kb) < 0 ||
+        !bench_is_file(mgf)) {
         snprintf(pr->why, sizeof pr->why, "the scene could not be converted to %s (with %s)", mgf,
                  conv);
         return -1;
@@ -166,7 +169,7 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
     for (i = 0; i < PEER_RUNS; i++)
         for (k = 0; k < PEER_CMDS; k++) {
             long kb;
-            if (bench_run_child(cmd[k], &t[k][i], &c[k][i], &kb) < 0) {
+            if (bench_run_child(cmd[k], NULL, &t[k][i], &c[k][i], &kb) < 0) {
                 snprintf(pr->why, sizeof pr->why, "%s failed on %s", cmd[k][0],
                          k != PEER_RPK ? scene : mgf);
                 return;
@@ -344,4 +347,198 @@ void bench_report_peers(report_t *rp, const peer_t *p, const brun *fx)
               "fraction of 0.01 "
               "and %.3f s to 0.001, in %.2f MB of pools and work buffer.\n",
               fx->elements, fx->t[1], fx->total, fx->bytes / 1048576.0);
+}
+
+/* ---- the cost curve against the peer (rad_bench --curve) ------------------------- */
+
+/* Per size, rad_cli's element edge (NULL: its default) and rpkCpp's link error
+ * threshold and least element area, for about 4k, 16k, 64k and 250k elements each on
+ * CornellBox-Original (measured: 3,998 / 4,358, 15,651 / 15,798, 65,605 / 62,526 and
+ * 250,609 / 255,178). */
+static const struct {
+    const char *edge, *err, *area;
+} curve_size[CURVE_SIZES] = {{NULL, "1e-5", "1e-6"},
+                             {"0.0435", "8e-7", "8e-8"},
+                             {"0.021", "6e-8", "6e-9"},
+                             {"0.0105", "4e-9", "4e-10"}};
+
+/* Per program: rad_cli's tolerance, or rpkCpp's iterations. rpkCpp has no convergence
+ * test: 7 and 10 Jacobi iterations stand for rad's unshot fractions 0.01 and 0.001
+ * (rho^k with rho = 0.467, the scene's reflected share in rad's solution). */
+static const char *const curve_arg[CURVE_CMDS] = {"0.01", "7", "0.001", "10"};
+
+/* The whole number after the last KEY in the first 1 MiB of file PATH, or -1 (rpkCpp
+ * prints its element count after each iteration, the last one final). */
+static long number_after(const char *path, const char *key)
+{
+    static char buf[1 << 20];
+    FILE *f = fopen(path, "r");
+    size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+    const char *at, *last = NULL;
+    if (f) fclose(f);
+    buf[n] = '\0';
+    for (at = strstr(buf, key); at; at = strstr(at + 1, key)) last = at;
+    return last ? strtol(last + strlen(key), NULL, 10) : -1;
+}
+
+void bench_curve(const char *self, const char *scene, int rounds, curve_t *cv)
+{
+    const char *root = getenv("RAD_PEER_RPK");
+    char rpk[1024], mgf[1024], cli[1024], dir[512], img[1024], log[1024];
+    double t[CURVE_SIZES][CURVE_CMDS][CURVE_ROUNDS], r[CURVE_SIZES][2][CURVE_ROUNDS];
+    peer_t pr;
+    int z, k, i;
+    memset(cv, 0, sizeof *cv);
+    cv->rounds = rounds;
+    if (!root || !*root) root = "../peer-rpk";
+    snprintf(rpk, sizeof rpk, "%s/build/rpk", root);
+    snprintf(mgf, sizeof mgf, "%s/cbo.mgf", root);
+    bench_dir_of(self, dir, sizeof dir);
+    snprintf(cli, sizeof cli, "%s/rad_cli", dir);
+    snprintf(img, sizeof img, "%s/bench_curve.ppm", dir);
+    snprintf(log, sizeof log, "%s/bench_curve.log", dir);
+    if (!bench_is_file(rpk) || access(rpk, X_OK) != 0)
+        snprintf(cv->why, sizeof cv->why,
+                 "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
+    else if (!bench_is_file(cli))
+        snprintf(cv->why, sizeof cv->why, "no %s", cli);
+    else if (!bench_is_file(scene))
+        snprintf(cv->why, sizeof cv->why, "no %s", scene);
+    else if (peer_scene(scene, mgf, &pr) < 0)
+        snprintf(cv->why, sizeof cv->why, "%s", pr.why);
+    if (cv->why[0]) return;
+    for (i = 0; i < rounds; i++)
+        for (z = 0; z < CURVE_SIZES; z++) {
+            fprintf(stderr, "rad_bench: cost curve, round %d of %d, size %d of %d ...\n", i + 1,
+                    rounds, z + 1, CURVE_SIZES);
+            for (k = 0; k < CURVE_CMDS; k++) {
+                char *rad_cmd[] = {cli,
+                                   (char *)scene,
+                                   "--tol",
+                                   (char *)curve_arg[k],
+                                   "--threads",
+                                   "1",
+                                   "--width",
+                                   "64",
+                                   "--height",
+                                   "64",
+                                   "--stats",
+                                   "-o",
+                                   img,
+                                   curve_size[z].edge ? "--max-element" : NULL,
+                                   (char *)curve_size[z].edge,
+                                   NULL};
+                char *rpk_cmd[] = {rpk,
+                                   "-force-onesided",
+                                   "-radiance-method",
+                                   "Galerkin",
+                                   "-raytracing-method",
+                                   "none",
+                                   "-iterations",
+                                   (char *)curve_arg[k],
+                                   "-gr-link-error-threshold",
+                                   (char *)curve_size[z].err,
+                                   "-gr-min-elem-area",
+                                   (char *)curve_size[z].area,
+                                   mgf,
+                                   NULL};
+                double wall;
+                long kb, n;
+                if (bench_run_child(k % 2 ? rpk_cmd : rad_cmd, log, &wall, &t[z][k][i], &kb) < 0) {
+                    snprintf(cv->why, sizeof cv->why, "%s failed (its output: %s)",
+                             k % 2 ? rpk : cli, log);
+                    return;
+                }
+                n = number_after(log, k % 2 ? "Nr. elements: " : "elements ");
+                if (n > 0) cv->elements[z][k % 2] = n;
+                if (kb > cv->kb[z][k % 2]) cv->kb[z][k % 2] = kb;
+            }
+            r[z][0][i] = t[z][0][i] / t[z][1][i];
+            r[z][1][i] = t[z][2][i] / t[z][3][i];
+        }
+    remove(img);
+    remove(log);
+    for (z = 0; z < CURVE_SIZES; z++) {
+        for (k = 0; k < CURVE_CMDS; k++) cv->cpu[z][k] = bench_median(t[z][k], rounds);
+        for (k = 0; k < 2; k++) cv->ratio[z][k] = bench_median(r[z][k], rounds);
+    }
+}
+
+/* The least-squares slope of log Y on log X over N points. */
+static double log_slope(const double *x, const double *y, int n)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int i;
+    for (i = 0; i < n; i++) {
+        double a = log(x[i]), b = log(y[i]);
+        sx += a;
+        sy += b;
+        sxx += a * a;
+        sxy += a * b;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+void bench_report_curve(report_t *rp, const curve_t *cv, const char *png)
+{
+    static const unsigned char col[CURVE_CMDS][3] = {
+        {200, 30, 30}, {30, 120, 200}, {240, 120, 100}, {120, 180, 240}};
+    static const char *const label[CURVE_CMDS] = {"rad to 0.01", "rpkCpp 7 iterations",
+                                                  "rad to 0.001", "rpkCpp 10 iterations"};
+    double x[CURVE_CMDS][CURVE_SIZES], y[CURVE_CMDS][CURVE_SIZES], slope[CURVE_CMDS];
+    plot_series ser[CURVE_CMDS];
+    plot_opts po;
+    char err[256];
+    int z, k;
+    bench_out(rp,
+              "CornellBox-Original refined to about 4k, 16k, 64k and 250k elements: rad_cli by "
+              "`--max-element` (its default, 0.0435, 0.021, 0.0105; `--threads 1 --width 64 "
+              "--height 64`), rpkCpp (`-force-onesided -radiance-method Galerkin "
+              "-raytracing-method none`) by `-gr-link-error-threshold E -gr-min-elem-area E/10` "
+              "with E = 1e-5, 8e-7, 6e-8, 4e-9. rpkCpp has no convergence test, so 7 and 10 "
+              "Jacobi iterations stand for rad's unshot fractions 0.01 and 0.001 (rho^k with rho "
+              "= 0.467, the scene's reflected share in rad's solution). Whole processes, one "
+              "core, rad and rpkCpp in turn, %d rounds: medians of processor time (user + "
+              "system), the median of each round's ratio, and each program's peak resident "
+              "memory over the rounds (wait4). ",
+              cv->rounds);
+    if (cv->why[0]) {
+        bench_out(rp, "Not measured: %s.\n", cv->why);
+        return;
+    }
+    bench_out(rp, "Produced by `rad_bench --curve`.\n\n"
+                  "| elements rad / rpk | rad 0.01 s | rpk 7 it s | rad/rpk | rad 0.001 s | "
+                  "rpk 10 it s | rad/rpk | peak MB rad / rpk |\n"
+                  "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    for (z = 0; z < CURVE_SIZES; z++) {
+        bench_out(rp, "| %ld / %ld | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.1f / %.1f |\n",
+                  cv->elements[z][0], cv->elements[z][1], cv->cpu[z][0], cv->cpu[z][1],
+                  cv->ratio[z][0], cv->cpu[z][2], cv->cpu[z][3], cv->ratio[z][1],
+                  cv->kb[z][0] / 1024.0, cv->kb[z][1] / 1024.0);
+        for (k = 0; k < CURVE_CMDS; k++) {
+            x[k][z] = (double)cv->elements[z][k % 2];
+            y[k][z] = cv->cpu[z][k];
+        }
+    }
+    for (k = 0; k < CURVE_CMDS; k++) {
+        slope[k] = log_slope(x[k], y[k], CURVE_SIZES);
+        ser[k].label = label[k];
+        ser[k].x = x[k];
+        ser[k].y = y[k];
+        ser[k].n = CURVE_SIZES;
+        memcpy(ser[k].rgb, col[k], 3);
+    }
+    bench_out(rp,
+              "\nGrowth of processor time with elements (the least-squares slope of log time on "
+              "log elements): rad %.2f (0.01) and %.2f (0.001), rpkCpp %.2f (7 iterations) and "
+              "%.2f (10).\n\n![Cost curve](cost_curve.png)\n",
+              slope[0], slope[2], slope[1], slope[3]);
+    memset(&po, 0, sizeof po);
+    po.title = "CornellBox-Original refined: processor seconds, one core";
+    po.xlabel = "elements";
+    po.ylabel = "seconds";
+    po.log_x = po.log_y = 1;
+    po.width = 800;
+    po.height = 500;
+    if (plot_write(png, ser, CURVE_CMDS, &po, err, sizeof err) < 0) fprintf(stderr, "%s\n", err);
 }

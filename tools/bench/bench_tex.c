@@ -210,7 +210,7 @@ static void tex_bench(const char *self, texbench_t *tb)
                                  png,
                                  v == 1 ? "--no-textures" : NULL,
                                  NULL};
-                if (bench_run_child(cmd, &t[k][v][i], &c[k][v][i], &kb) < 0)
+                if (bench_run_child(cmd, NULL, &t[k][v][i], &c[k][v][i], &kb) < 0)
                     snprintf(tb->why, sizeof tb->why, "rad_cli failed");
             }
     for (m = 0; m < TEX_MAPS; m++) {

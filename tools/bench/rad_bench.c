@@ -887,18 +887,21 @@ static void report_hall_coarse(report_t *rp, const bscene *sc)
     for (k = 0; k < 4; k++) run_free(&run[k / 2][k % 2]);
 }
 
-/* docs/bench.md's part between the bench markers, regenerated: the page's own text
- * around them stays, and the file is replaced whole (a temporary beside it, renamed)
- * or, on any error, left as it was with a line on stderr saying why. */
-static void write_docs(const report_t *rp)
+/* docs/bench.md's part between the markers of SECTION ("<!-- SECTION:begin -->" and
+ * ":end"), regenerated: the page's own text around them stays, and the file is replaced
+ * whole (a temporary beside it, renamed) or, on any error, left as it was with a line
+ * on stderr saying why. */
+static void write_docs(const report_t *rp, const char *section)
 {
     static const char path[] = "docs/bench.md", tmp[] = "docs/bench.md.tmp";
-    static const char begin[] = "<!-- bench:begin -->\n", end[] = "<!-- bench:end -->";
     static char buf[1 << 20];
+    char begin[64], end[64];
     FILE *r = fopen(path, "r"), *w;
     size_t n = r ? fread(buf, 1, sizeof buf - 1, r) : 0;
     char *a, *b;
     int ok;
+    snprintf(begin, sizeof begin, "<!-- %s:begin -->\n", section);
+    snprintf(end, sizeof end, "<!-- %s:end -->", section);
     if (!r || ferror(r) || n == sizeof buf - 1) {
         fprintf(stderr, "rad_bench: %s: %s; the report is on standard output only\n", path,
                 !r                    ? strerror(errno)
@@ -1000,6 +1003,19 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc > 1 && strcmp(argv[1], "--level") == 0) return bench_level(argc, argv);
+    if (argc > 1 && strcmp(argv[1], "--curve") == 0) { /* the cost curve, into docs/bench.md */
+        static curve_t cv;
+        int rounds = argc > 2 ? atoi(argv[2]) : 3;
+        if (rounds < 1 || rounds > CURVE_ROUNDS) {
+            fprintf(stderr, "rad_bench: --curve ROUNDS: 1 to %d\n", CURVE_ROUNDS);
+            return 2;
+        }
+        bench_curve(argv[0], argc > 3 ? argv[3] : shared_default, rounds, &cv);
+        bench_report_curve(&rp, &cv, "docs/cost_curve.png");
+        fputs(rp.md, stdout);
+        if (!cv.why[0]) write_docs(&rp, "curve");
+        return cv.why[0] ? 1 : 0;
+    }
     if (argc > 2 && strcmp(argv[1], "--write-level") == 0) { /* make readme-image's scene */
         char err[512];
         if (level_write(argv[2], err, sizeof err) == 0) return 0;
@@ -1046,7 +1062,7 @@ int main(int argc, char **argv)
     report_hall_coarse(&rp, &scenes[ns - 1]);
     bench_report_cull(&rp);
     fputs(rp.md, stdout);
-    write_docs(&rp);
+    write_docs(&rp, "bench");
     draw_plots(scenes, ns, fx);
     return 0;
 }
