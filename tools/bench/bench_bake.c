@@ -485,13 +485,14 @@ int bench_gather_res(int argc, char **argv)
 
 /* ---- rad_bench --level: a level of Sponza's class ---------------------------------- */
 
-#define LEVEL_SIZE 1024 /* the lightmap's texels a side */
+#define LEVEL_SIZE   1024 /* the lightmap's texels a side */
 /* The texels-per-second sample: the rows 0 and 1 mod LEVEL_ROWS of a LEVEL_BIG atlas
  * gathered at every texel, on one thread and on two (a thread each: neighbouring rows
  * cost alike, where a gather costs 10.8 ms on some rows of the level and 18.2 ms on
  * others), about 12,000 gathers. */
-#define LEVEL_BIG  2048
-#define LEVEL_ROWS 256
+#define LEVEL_BIG    2048
+#define LEVEL_ROWS   256
+#define LEVEL_ROUNDS 3 /* of the sample, one thread then two: a run swings by 1.5x */
 
 /* A run's progress on stderr every 10 s: the solve's shots and unshot fraction. */
 typedef struct {
@@ -549,8 +550,9 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     struct rusage ru;
     sc_solver *s;
     double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1, tps[2];
+    double rate[2][LEVEL_ROUNDS], ratio[LEVEL_ROUNDS];
     long covered, tn[2];
-    int done, x, y, charts;
+    int done, x, y, charts, i;
     o.res = DEF_RES;
     o.coarse = DEF_COARSE;
     o.coarse_res = DEF_COARSE_FLOOR(DEF_RES);
@@ -593,10 +595,12 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     lo.tol = 0.0;
     fprintf(stderr, "rad_bench: level: texels per second at %d x %d, 1 and 2 threads ...\n",
             LEVEL_BIG, LEVEL_BIG);
-    for (x = 0; x < 2; x++) { /* rows 0 and 1 mod LEVEL_ROWS: one after the other, then at once */
+    for (i = 0; i < LEVEL_ROUNDS * 2; i++) { /* rows 0 and 1 mod LEVEL_ROWS: one after the
+                                                 other, then at once */
         int sets[2] = {0, 1}, k;
         double cpu, wall = 0.0;
         long got;
+        x = i % 2;
         if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
             fprintf(stderr, "rad_bench: %s: %s\n", name, err);
             exit(1);
@@ -607,9 +611,11 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
             wall += lm_rows(s, &a, DEF_GATHER_RES, LEVEL_ROWS, sets + k, x + 1, 0, &got, &cpu);
             tn[x] += got;
         }
-        tps[x] = tn[x] / wall;
+        rate[x][i / 2] = tn[x] / wall;
+        if (x) ratio[i / 2] = rate[1][i / 2] / rate[0][i / 2];
         lm_free(&a);
     }
+    for (x = 0; x < 2; x++) tps[x] = bench_median(rate[x], LEVEL_ROUNDS);
     getrusage(RUSAGE_SELF, &ru);
     if (getloadavg(&load, 1) != 1) load = -1;
     bench_out(rp,
@@ -621,7 +627,7 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
               covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
               1e6 * bake_cpu / (b.gathers ? b.gathers : 1),
               1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, tn[0], tps[0], tps[1],
-              tps[1] / tps[0], load);
+              bench_median(ratio, LEVEL_ROUNDS), load);
     sc_gatherer_free(b.g);
     sc_destroy(s);
 }
@@ -661,7 +667,8 @@ int bench_level(int argc, char **argv)
               "the time per gather "
               "(an upper bound of the adaptive bake). Texels per second: the rows 0 and 1 mod %d "
               "of a %d x %d atlas gathered at every texel, on one thread and on two (a thread "
-              "each), wall time.\n\n"
+              "each), wall time, medians of %d rounds (one thread, then two), the speed-up the "
+              "median of the rounds' ratios.\n\n"
               "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | "
               "charts | layout s | "
               "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | "
@@ -671,7 +678,7 @@ int bench_level(int argc, char **argv)
               "| ---: | ---: | ---: | ---: | ---: | ---: | ---: "
               "| ---: |\n",
               lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES, LEVEL_ROWS,
-              LEVEL_BIG, LEVEL_BIG);
+              LEVEL_BIG, LEVEL_BIG, LEVEL_ROUNDS);
     level_row(&rp, "generated atrium", p, n, lights, LEVEL_LIGHTS, stop);
     free(p);
     if ((p = bench_load_obj(scene, &n, &keep)) != NULL) {
