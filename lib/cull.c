@@ -354,23 +354,27 @@ static int outside(const face_t *f, const rad_real_t *c, const rad_real_t *h)
     return f->half ? b + h[1] < 0 : d + b + bb < 0;
 }
 
-/* The pixel column of the lattice position R = a / d (clamped to the face, -1..1):
- * floor((1 + R) res / 2). */
-static int32_t column(const face_t *f, rad_real_t r)
+/* The pixel column of the lattice position V / d, clamped to the face (-1..1):
+ * floor((1 + V / d) res / 2) or one more or less, with the projection's arithmetic
+ * (INV = rad__recip(D), D > 0): its position rounded to 1/16 pixel, then the whole
+ * pixels of that. */
+static int32_t column(const face_t *f, rad_real_t v, rad_real_t d, rad__recip_t inv)
 {
-    if (r < -RAD__ONE) r = -RAD__ONE;
-    if (r > RAD__ONE) r = RAD__ONE;
-    return rad__floor_times(r + RAD__ONE, f->res / 2u);
+    if (v < -d) v = -d;
+    if (v > d) v = d;
+    return rad__proj(v + d, inv, f->res * 8u) / 16;
 }
 
-/* The least and greatest of V / d over d in [D0, D1] (0 < D0 <= D1) and V in
- * [V0, V1], clamped to -1..1, as columns. */
+/* The least and greatest of V / d over d in [D0, D1] (0 < D0 <= D1, their reciprocals
+ * I0, I1) and V in [V0, V1], clamped to -1..1, as columns, widened by one. Wide enough:
+ * a column k holds a polygon's pixel only if its centre k + 1/2 lies within 1/16 pixel
+ * of the box's projection [x, ...], k + 1/2 >= x - 1/16, and the lower column is at
+ * most floor(x + 1/32) - 1, which is below that for every x (likewise the upper). */
 static void span(const face_t *f, rad_real_t v0, rad_real_t v1, rad_real_t d0, rad_real_t d1,
-                 int32_t *lo, int32_t *hi)
+                 rad__recip_t i0, rad__recip_t i1, int32_t *lo, int32_t *hi)
 {
-    uint32_t sat = 0; /* quotients past the range are clamped anyway */
-    *lo = column(f, rad__div(v0, v0 < 0 ? d0 : d1, &sat)) - 1;
-    *hi = column(f, rad__div(v1, v1 > 0 ? d0 : d1, &sat)) + 1;
+    *lo = column(f, v0, v0 < 0 ? d0 : d1, v0 < 0 ? i0 : i1) - 1;
+    *hi = column(f, v1, v1 > 0 ? d0 : d1, v1 > 0 ? i0 : i1) + 1;
 }
 
 static int32_t clampi(int32_t v, int32_t lo, int32_t hi)
@@ -388,9 +392,10 @@ static void box_reach(const face_t *f, const rad_real_t *c, const rad_real_t *h,
     r->y1 = (int32_t)f->rows - 1;
     r->hidable = d0 >= 2 * RAD__NEAR;
     if (r->hidable) {
+        rad__recip_t i0 = rad__recip(d0), i1 = rad__recip(d1);
         int32_t x0, x1, y0, y1;
-        span(f, c[0] - h[0], c[0] + h[0], d0, d1, &x0, &x1);
-        span(f, -c[1] - h[1], -c[1] + h[1], d0, d1, &y0, &y1);
+        span(f, c[0] - h[0], c[0] + h[0], d0, d1, i0, i1, &x0, &x1);
+        span(f, -c[1] - h[1], -c[1] + h[1], d0, d1, i0, i1, &y0, &y1);
         r->x0 = clampi(x0, 0, r->x1);
         r->x1 = clampi(x1, 0, r->x1);
         r->y0 = clampi(y0, 0, r->y1);
