@@ -596,7 +596,7 @@ void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     f.tw = (f.res + f.tile - 1u) / f.tile;
     f.th = (f.rows + f.tile - 1u) / f.tile;
     tiles = f.tw * f.th;
-    for (k = 0; k < f.tw || k < f.th; k++) {
+    for (k = 0; k < TILES; k++) { /* all TILES: tw, th <= TILES, and no entry unset */
         uint32_t sat = 0;
         rad_real_t res = rad__from_int((int32_t)f.res);
         int32_t lo = (int32_t)(k * f.tile) - 1, hi = (int32_t)((k + 1u) * f.tile) + 1;
