@@ -238,8 +238,9 @@ int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes)
 /* The lattice positions of pixel column X's centre, (2 X + 1 - RES) / RES, less and
  * plus a quarter pixel (1 / (2 RES)), into EDGES[X] and EDGES[RES + X]. A row Y's are
  * the column Y's negated: b / d = 1 - 2 y / res. */
-static void pixel_edges(uint32_t res, rad_real_t *edges)
+void rad__cull_edges(uint32_t res, uint32_t *cwork)
 {
+    rad_real_t *edges = (rad_real_t *)(void *)cwork;
     const rad_real_t twice = rad__from_int(2 * (int32_t)res);
     uint32_t sat = 0, x; /* quotients within +-1 */
     for (x = 0; x < res; x++) {
@@ -264,7 +265,22 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
         return RAD_ERR_WORK;
     g->cull = cull;
     g->cull_work = (uint32_t *)start;
-    pixel_edges(g->res, (rad_real_t *)(void *)g->cull_work);
+    rad__cull_edges(g->res, g->cull_work);
+    return RAD_OK;
+}
+
+size_t rad__cull_work(const void *cull, uint32_t res)
+{
+    return RAD_GATHER_CULL_BYTES(res, ((const head_t *)cull)->surfaces) - 3u;
+}
+
+int rad_shoot_cull(rad_scene_t *s, const void *cull)
+{
+    const head_t *h = (const head_t *)cull;
+    RAD__CHECK_SCENE(s);
+    if (cull && (((uintptr_t)cull & 3u) || h->magic != CULL_MAGIC)) return RAD_ERR_ARG;
+    s->cull = cull;
+    s->cull_wait = 0;
     return RAD_OK;
 }
 
@@ -289,10 +305,11 @@ typedef struct {
     rad_vec3_t absf[3];
     uint32_t res, rows, tile, tw, th; /* TILE pixels a side, TW x TH of them */
     int half;
-    const rad_real_t *edge; /* pixel columns' edges, a quarter pixel out (pixel_edges) */
+    const rad_real_t *edge; /* pixel columns' edges, a quarter pixel out (rad__cull_edges) */
     rad_real_t *far;
     uint32_t *marks;
     unsigned char *stale;
+    uint32_t tests; /* nodes tested */
     rad_real_t ulo[TILES], uhi[TILES], vlo[TILES], vhi[TILES];
 } face_t;
 
@@ -539,8 +556,8 @@ static rad_real_t box_distance(const face_t *f, const node_t *nd)
 }
 
 /* Pass 1: the tree from the root, nearest child first, drawing the leaves' surfaces by
- * their indices. */
-static void pass_near(const face_t *f, const node_t *nodes)
+ * their indices; F's tests counted. */
+static void pass_near(face_t *f, const node_t *nodes)
 {
     uint32_t stack[STACK], top = 0, at = 0;
     for (;;) {
@@ -548,6 +565,7 @@ static void pass_near(const face_t *f, const node_t *nodes)
         rad_real_t c[3], h[3];
         reach_t r;
         face_box(f, nd, c, h);
+        f->tests++;
         if (!outside(f, c, h)) {
             box_reach(f, c, h, &r);
             if (!hidden(f, c, h, &r)) {
@@ -573,7 +591,7 @@ static void pass_near(const face_t *f, const node_t *nodes)
     }
 }
 
-void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
+uint32_t rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
 {
     const head_t *h = (const head_t *)e->cull;
     face_t f;
@@ -590,6 +608,7 @@ void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
         f.absf[k].z = absr(u->z);
     }
     f.res = e->res;
+    f.tests = 0;
     f.half = face != 0 && !e->full;
     f.rows = f.half ? e->res / 2u : e->res;
     f.tile = (f.res + TILES - 1u) / TILES;
@@ -626,4 +645,5 @@ void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
         for (b = 0; m; b++, m >>= 1)
             if (m & 1u) rad__eye_surface(s, e, face, w * 32u + b, 0);
     }
+    return f.tests;
 }

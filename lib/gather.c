@@ -135,7 +135,9 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     if (sat || !in_range(&e->c)) return RAD_ERR_RANGE;
     e->res = g->res;
     e->skip = skip;
+    e->group = UINT32_MAX;
     e->full = sh;
+    e->backs = 1;
     e->z = g->zbuf;
     e->steps = g->steps;
     e->ids = g->ibuf;

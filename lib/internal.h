@@ -26,6 +26,9 @@
 #define rad__eye_surface     radf__eye_surface
 #define rad__cull_face       radf__cull_face
 #define rad__cull_fits       radf__cull_fits
+#define rad__cull_edges      radf__cull_edges
+#define rad__cull_work       radf__cull_work
+#define rad__cull_after      radf__cull_after
 #define rad__face_axis       radf__face_axis
 #define rad__face_sign       radf__face_sign
 #define rad__emission        radf__emission
@@ -169,13 +172,16 @@ extern const signed char rad__face_sign[6][3];
 
 /* A cube at any point (gather.c): centre C, FRAME, resolution RES, a hemi-cube (five
  * faces, half sides) or, FULL, a whole cube (six whole faces); surface SKIP not drawn
- * (past the last: none). Buffers of one face: Z and IDS of RES^2 pixels, STEPS of RES
- * entries, zero. CULL: a hierarchy (rad_cull_build) to draw through, with its work
- * CWORK (rad_gather_cull), or null: every surface drawn. */
+ * (past the last: none), nor those joined to patch GROUP (a shot's, pass_t's); BACKS:
+ * surfaces seen from behind drawn as occluders showing nothing (a gather's), else left
+ * out (a shot's). Buffers of one face: Z and IDS of RES^2 pixels, STEPS of RES entries,
+ * zero. CULL: a hierarchy (rad_cull_build) to draw through, with its work CWORK
+ * (rad__cull_work bytes, its pixel edges by rad__cull_edges), or null: every surface
+ * drawn. */
 typedef struct {
     rad_vec3_t c, frame[3];
-    uint32_t res, skip;
-    int full;
+    uint32_t res, skip, group;
+    int full, backs;
     uint32_t *z, *steps;
     rad_index_t *ids;
     rad_stats_t *st;
@@ -191,10 +197,21 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 void rad__eye_clear(const rad__eye_t *e, unsigned face);
 void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, uint32_t k,
                       int by_index);
-/* rad__eye_face through E's hierarchy (cull.c): the same pixels, bit for bit. */
-void rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
+/* rad__eye_face through E's hierarchy (cull.c): the same pixels, bit for bit. Returns
+ * the hierarchy's nodes it tested. */
+uint32_t rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
+/* A shot's cube drawn without its hierarchy (hemicube.c); and after a shot, or a batch
+ * of CUBES, its first cube's TESTS (RAD__DRAWN_ALL or the nodes tested) and the sum of
+ * its cubes' SUM: whether the next shots are to draw every surface (s->cull_wait). */
+#define RAD__DRAWN_ALL 0xFFFFFFFFu
+void rad__cull_after(rad_scene_t *s, uint32_t tests, uint64_t sum, uint32_t cubes);
 /* Whether hierarchy CULL was built for S as it stands (its surfaces and scale). */
 int rad__cull_fits(const rad_scene_t *s, const void *cull);
+/* The bytes of a cube's culling work at resolution RES through hierarchy CULL (4-aligned
+ * work: RAD_GATHER_CULL_BYTES less its 3 of alignment), and its first part, the pixel
+ * edges, written into CWORK. */
+size_t rad__cull_work(const void *cull, uint32_t res);
+void rad__cull_edges(uint32_t res, uint32_t *cwork);
 /* Form factors from patch P's centre to every element, into s->acc, at res. */
 void rad__hemicube(rad_scene_t *s, uint32_t p);
 /* The shot's cube at coarse level LEVEL (0: res; rad_config_t.coarse) or the deepest
@@ -259,6 +276,7 @@ typedef struct {
     uint32_t part, nparts; /* rad_shot_part's; a batch's cube: its shooter K of N */
     uint32_t patch;        /* a batch's cube: the patch it was rendered for, */
     uint32_t seen;         /* how many elements it sees (rad__cube_list), */
+    uint32_t tests;        /* the hierarchy's nodes its culling tested, or RAD__DRAWN_ALL */
     uint32_t rparts;       /* the parts of the receipts when this is one (rad_batch_receive_part) */
     rad_energy_t left[3];  /* and what its patch is left owing when it shoots */
 } rad__part_head_t;

@@ -775,6 +775,7 @@ static void batch_receipts(rad_scene_t *s, void *const *bufs, unsigned j, uint32
 static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
 {
     rad_real_t amb[3];
+    uint64_t tests = 0;
     unsigned k, j;
     shot_ambient(s, amb, 0);
     for (k = 0; k < n; k++) {
@@ -796,7 +797,9 @@ static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
         if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
         h->saturations = 0;
         h->state = RAD__CUBE_AIMED;
+        tests += h->tests; /* each culled or none (cull_wait is the batch's) */
     }
+    if (n) rad__cull_after(s, head(bufs, 0)->tests, tests, n);
 }
 
 /* Part PART of NPARTS of the receipts (receive_range's run of whole patches), shot

@@ -299,11 +299,13 @@ typedef struct {
     /* lights (rad_use_lights): the caller's array of max_lights, n_lights added; the
      * first lights_shot of them have shot since the solution last started */
     uint16_t n_lights, max_lights, lights_shot;
+    uint16_t cull_wait; /* shots left before the hierarchy is tried again (rad_shoot_cull) */
     rad_light_t *lights;
     /* The scene's own address, set by a successful rad_init (cleared first). Every call
      * refuses (RAD_ERR_STATE) a scene without it: never initialised, its rad_init
      * failed, or a copy at another address. */
     const void *self;
+    const void *cull; /* the hierarchy shots draw through (rad_shoot_cull), or NULL */
     rad_stats_t stats;
     /* work buffer layout */
     rad_ff_t *dff_top, *dff_side; /* (res/2)^2 each: one quadrant, by symmetry */
@@ -760,6 +762,22 @@ int rad_cull_build(const rad_scene_t *s, void *buf, size_t bytes);
  * (another surface count or scale) returns RAD_ERR_STATE. Returns RAD_OK, RAD_ERR_ARG
  * (NULL G or WORK, CULL not a hierarchy) or RAD_ERR_WORK. */
 int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes);
+
+/* Makes S's shots (rad_shoot, rad_batch_render, rad_form_factors) draw their cubes
+ * through hierarchy CULL (rad_cull_build, read only; NULL: every surface drawn), as
+ * gathers do: the same pixels and solution, bit for bit; stats.raster_calls and
+ * raster_pixels differ. Where the hierarchy hides little (an open courtyard under the
+ * sky) a culled cube costs more than drawing every surface: after one that tested more
+ * of its nodes than a third of the surfaces' count, the next 16 shots draw every
+ * surface (cull_wait), then one tries again. A shot needs no memory for it: the
+ * culling works in the shot's form factor sums before they are summed, so it is used
+ * only when those hold RAD_GATHER_CULL_BYTES(cube res, surfaces) - 3 bytes
+ * (n_elements * sizeof(rad_ff_t): 704 elements and one per 32 surfaces at res 192,
+ * 384 and one per 32 at res 32), when the whole cube is drawn at once (band_rows 0;
+ * rad_batch_render always) and while CULL fits S (its surface count and scale:
+ * rebuild it after re-meshing); other shots, and those in parts (rad_shot_part), draw
+ * every surface. Returns RAD_OK or RAD_ERR_ARG (CULL not a hierarchy). */
+int rad_shoot_cull(rad_scene_t *s, const void *cull);
 
 /* ---- lights: sun, sky, point and spot (lib/light.c) ----------------------------- */
 /* Lights that are not surfaces: each shoots once, at the start of a solve (the first

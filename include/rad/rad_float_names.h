@@ -25,6 +25,7 @@
 #define rad_form_factors            radf_form_factors
 #define rad_cull_build              radf_cull_build
 #define rad_gather_cull             radf_gather_cull
+#define rad_shoot_cull              radf_shoot_cull
 #define rad_strerror                radf_strerror
 #define rad_real_from_q16           radf_real_from_q16
 #define rad_rows_compute            radf_rows_compute

@@ -156,6 +156,8 @@ void bench_report_batch_speed(report_t *rp, const bscene *scenes, int ns);
 /* ---- gathers and baking (bench_bake.c) ------------------------------------------- */
 
 void bench_report_cull(report_t *rp);
+/* Shots through the hierarchy against drawing every surface (bench_report_cull's). */
+void bench_report_cull_shots(report_t *rp);
 void bench_report_lightmap(report_t *rp, const bscene *sc, const char *shared);
 /* rad_bench --gather-res and --level: their tables to stdout; main's exit status. */
 int bench_gather_res(int argc, char **argv);

@@ -19,6 +19,7 @@
 #include "bench/level.h"
 #include "host/clock.h"
 #include "host/defaults.h"
+#include "rad/rad.h"
 
 /* ---- culled gathers (rad_cull_build, rad_gather_cull) ------------------------------ */
 
@@ -177,6 +178,99 @@ void bench_report_cull(report_t *rp)
               "culled one %.1f times.\n",
               surf0, surf, (double)surf / surf0, us[0][ns - 1] / first[0],
               us[1][ns - 1] / first[1]);
+    bench_report_cull_shots(rp);
+}
+
+/* A hash of S's solution: every element's radiosity and patch's unshot power as the
+ * core holds them (the same bits or not). */
+static unsigned long long solution_hash(sc_solver *s)
+{
+    const rad_scene_t *c = sc_core(s);
+    unsigned long long h = 14695981039346656037ull;
+    uint32_t k;
+    size_t i;
+    for (k = 0; k < c->n_elements; k++)
+        for (i = 0; i < sizeof(rad_rgb_t); i++)
+            h = (h ^ ((const unsigned char *)&c->pools.elements[k].radiosity)[i]) *
+                1099511628211ull;
+    for (k = 0; k < c->n_patches; k++)
+        for (i = 0; i < sizeof c->pools.patches[k].unshot; i++)
+            h = (h ^ ((const unsigned char *)c->pools.patches[k].unshot)[i]) * 1099511628211ull;
+    return h;
+}
+
+#define CULL_SHOTS 2000 /* timed, after the lights' shots (or one patch's) */
+
+/* One scene's shots drawing every surface (ON 0) or through the hierarchy: the
+ * processor seconds of CULL_SHOTS shots at rad_cli's hemi-cube defaults, one thread,
+ * after the lights' shots; the solution's hash into *HASH. */
+static double shots_secs(const sc_poly *p, int n, const sc_light *lights, int nl, int on,
+                         unsigned long long *hash, sc_stats *st)
+{
+    sc_opts o = {0};
+    char err[256];
+    sc_solver *s;
+    double t0, t;
+    o.max_element = lights ? 0.0 : 2.5;
+    o.max_patch = lights ? 0.0 : 5;
+    o.res = DEF_RES;
+    o.coarse = DEF_COARSE;
+    o.coarse_res = DEF_COARSE_FLOOR(DEF_RES);
+    o.lights = lights;
+    o.nlights = nl;
+    if (!(s = sc_create(p, n, &o, NULL, NULL, err, sizeof err)) ||
+        sc_solve(s, nl ? nl : 1, 0, NULL, NULL) < 0) {
+        fprintf(stderr, "rad_bench: culled shots: %s\n", err);
+        exit(1);
+    }
+    sc_shoot_cull(s, on);
+    t0 = bench_thread_cpu();
+    sc_solve(s, CULL_SHOTS, 0, NULL, NULL);
+    t = bench_thread_cpu() - t0;
+    *hash = solution_hash(s);
+    sc_get_stats(s, st);
+    sc_destroy(s);
+    return t;
+}
+
+/* Shots drawing every surface against shots through the hierarchy (rad_shoot_cull,
+ * which draws all for a while after a cube that tested more nodes than a third of the
+ * surfaces), on grids of rooms and the generated level, one core. */
+void bench_report_cull_shots(report_t *rp)
+{
+    static const int sides[] = {4, 16, 44};
+    int k;
+    bench_out(rp,
+              "\nCulled shots (rad_shoot_cull): %d shots from the same start (after the "
+              "lights' shots, or one patch's), drawing every surface against through the "
+              "hierarchy, rad_cli's hemi-cube defaults (res %d, coarse shots), fixed build, "
+              "one core, processor seconds; the same solution when the hashes of every "
+              "element's radiosity and patch's unshot power agree:\n\n"
+              "| scene | surfaces | elements | ms per shot, all drawn | ms per shot, "
+              "culled | culled speed-up | same bits |\n"
+              "| --- | ---: | ---: | ---: | ---: | ---: | --- |\n",
+              CULL_SHOTS, DEF_RES);
+    for (k = 0; k <= (int)(sizeof sides / sizeof *sides); k++) {
+        sc_light lights[LEVEL_LIGHTS];
+        unsigned long long h[2];
+        sc_stats st;
+        double t[2];
+        char name[64];
+        int n, c, level = k == (int)(sizeof sides / sizeof *sides);
+        sc_poly *p = level ? level_atrium(&n, lights) : gen_rooms(sides[k], &n);
+        if (!p) exit(1);
+        if (level)
+            snprintf(name, sizeof name, "generated level (rad_bench --level)");
+        else
+            snprintf(name, sizeof name, "%d rooms", sides[k] * sides[k]);
+        fprintf(stderr, "rad_bench: culled shots, %s ...\n", name);
+        for (c = 0; c < 2; c++)
+            t[c] = shots_secs(p, n, level ? lights : NULL, level ? LEVEL_LIGHTS : 0, c, &h[c], &st);
+        bench_out(rp, "| %s | %d | %d | %.3f | %.3f | %.2f | %s |\n", name, st.surfaces,
+                  st.elements, 1e3 * t[0] / CULL_SHOTS, 1e3 * t[1] / CULL_SHOTS, t[0] / t[1],
+                  h[0] == h[1] ? "yes" : "NO");
+        free(p);
+    }
 }
 
 /* ---- lightmap baking ---------------------------------------------------------- */

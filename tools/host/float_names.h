@@ -80,10 +80,12 @@
 #define sc_set_surfaces scf_set_surfaces
 #define sc_shade scf_shade
 #define sc_shade_elements scf_shade_elements
+#define sc_shoot_cull scf_shoot_cull
 #define sc_solution scf_solution
 #define sc_solution_free scf_solution_free
 #define sc_solve scf_solve
 #define sc_solve_batch scf_solve_batch
+#define sc_solve_cull scf_solve_cull
 #define sc_solve_parallel scf_solve_parallel
 #define sc_solve_started scf_solve_started
 #define sc_solver scf_solver

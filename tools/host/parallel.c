@@ -195,6 +195,7 @@ int sc_solve_batch(sc_solver *h, int threads, int batch, int max_shots, double t
         /* the last batch is cut to end at MAX_SHOTS */
         unsigned k = (unsigned)(max_shots - shots < batch ? max_shots - shots : batch);
         if ((n = rad_batch_begin(s, t, k, c.patches)) <= 0) break;
+        sc_solve_cull(h); /* the geometry is frozen now */
         c.n = c.nparts = (unsigned)n;
         stage_all(&c, ++stage);
         if ((n = rad_batch_aim(s, c.bufs, c.n)) < 0) break;

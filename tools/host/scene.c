@@ -786,7 +786,8 @@ int sc_solve(sc_solver *h, int max_shots, double tol, sc_progress_fn progress, v
     sc__unmix(h);
     sc_solve_started(h, tol);
     while (done < max_shots) {
-        int k = rad_shoot(&h->s, progress ? 1u : (uint32_t)(max_shots - done), t);
+        int settled = sc_solve_cull(h); /* else one shot freezes the geometry first */
+        int k = rad_shoot(&h->s, progress || !settled ? 1u : (uint32_t)(max_shots - done), t);
         if (k <= 0) break;
         done += k;
         if (progress && progress(ctx, done, RAD_TO_DOUBLE(rad_unshot_fraction(&h->s)))) break;

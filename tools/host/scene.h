@@ -109,6 +109,11 @@ int sc_solve(sc_solver *s, int max_shots, double tol, sc_progress_fn progress, v
 /* Records that a shooting solve to TOL starts (sc_solve and sc_rows_solve do it; other
  * solvers over sc_core, such as sc_solve_parallel, call it), for sc_stats.converged. */
 void sc_solve_started(sc_solver *s, double tol);
+/* For the same solvers, once the geometry is frozen (the first shot or batch begun):
+ * makes S's shots draw through the surfaces' hierarchy from CULL_SURFACES surfaces
+ * (rad_shoot_cull; unless sc_shoot_cull turned it off). 1 once that is settled, 0
+ * while the geometry is not frozen (shoot once, then call again). */
+int sc_solve_cull(sc_solver *s);
 void sc_get_stats(sc_solver *s, sc_stats *st);
 /* Element radiosity in caller units (with the ambient term if ambient != 0). */
 void sc_element_rgb(sc_solver *s, int e, int ambient, double rgb[3]);
@@ -219,6 +224,11 @@ void sc_gatherer_free(sc_gatherer *g);
  * gatherer does from CULL_SURFACES surfaces (host/scene.c). 0, or -1 (ON and the
  * hierarchy could not be had: G then draws every surface). */
 int sc_gatherer_cull(sc_gatherer *g, int on);
+/* Whether S's shots draw through the same hierarchy (ON 1, the default from
+ * CULL_SURFACES surfaces: rad_shoot_cull, which draws every surface for a while after
+ * a cube the hierarchy did not help) or every surface (0): the same bits either way
+ * (rad_bench compares the times). */
+void sc_shoot_cull(sc_solver *s, int on);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
  * with the ambient term if AMBIENT, in caller units: what an element of reflectance
  * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the

@@ -24,6 +24,7 @@ scf_solver *scf_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn
 void scf_destroy(scf_solver *s);
 int scf_solve(scf_solver *s, int max_shots, double tol, sc_progress_fn progress, void *ctx);
 void scf_solve_started(scf_solver *s, double tol);
+int scf_solve_cull(scf_solver *s);
 void scf_get_stats(scf_solver *s, sc_stats *st);
 void scf_element_rgb(scf_solver *s, int e, int ambient, double rgb[3]);
 double scf_element_area(scf_solver *s, int e);
@@ -66,6 +67,7 @@ typedef struct scf_gatherer scf_gatherer;
 scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
 void scf_gatherer_free(scf_gatherer *g);
 int scf_gatherer_cull(scf_gatherer *g, int on);
+void scf_shoot_cull(scf_solver *s, int on);
 int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
 int scf_gather_on(scf_gatherer *g, const double p[3], const double n[3], int surface, int ambient,
                   double rgb[3]);

@@ -68,6 +68,20 @@ int sc_gatherer_cull(sc_gatherer *q, int on)
     return 0;
 }
 
+int sc_solve_cull(struct sc_solver *h)
+{
+    if (h->shots_drawn_all || h->s.n_surfaces < CULL_SURFACES) return 1;
+    if (!h->s.solving) return 0;
+    if (!h->s.cull) rad_shoot_cull(&h->s, solver_cull(h));
+    return 1;
+}
+
+void sc_shoot_cull(sc_solver *h, int on)
+{
+    h->shots_drawn_all = !on;
+    rad_shoot_cull(&h->s, NULL); /* ON: again at the next solve's first shot */
+}
+
 sc_gatherer *sc_gatherer_new(sc_solver *h, int res, int sphere)
 {
     struct sc_gatherer *q = calloc(1, sizeof *q);

@@ -43,9 +43,10 @@ struct sc_solver {
     rad_light_t *lights;         /* the lights in the core's units (sc_opts.lights), or NULL */
     sc_light *src;               /* and in the caller's, as now set (sc_set_light) */
     int nlights, light_res;      /* light_res: the scene's res, for sc__light_to_core */
-    void *cull;                  /* the surfaces' hierarchy for gathers (rad_cull_build), or NULL */
+    void *cull;                  /* the surfaces' hierarchy (rad_cull_build), or NULL */
     uint32_t cull_surfaces;      /* the scene it was built for: its surfaces and scale */
     int cull_shift;
+    int shots_drawn_all; /* sc_shoot_cull(h, 0): shots draw every surface */
 };
 
 /* Emission E (caller units) as a core channel at the current escale, at most 4096. */
