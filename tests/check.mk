@@ -47,14 +47,17 @@ CHECK_STATUS := $(CHECKDIR)/status
 CHECK_JOBS   ?= 2
 CHECK_GCC    ?= gcc
 CHECK_CLANG  ?= clang
-FUZZ_SECONDS ?= 60
+FUZZ_SECONDS ?= 40
 SOAK_SEED    ?= 19
 SOAK_SCENES  ?= 1000
 CHECK_STAGE  := sh tests/fuzz/check_stage.sh $(CHECK_STATUS)
 
 # Test programs by name (tests/test_NAME.c).
 CHECK_TESTS     = $(TEST_SRCS:tests/test_%.c=%)
-VALGRIND_TESTS ?= $(CHECK_TESTS)
+# All but test_fgather: its setup solves a reference 4 times finer, 216 of the stage's
+# 1,028 s here (2026-12-06); its code runs under ASan and UBSan in the asan stage, and
+# the gathers it calls under valgrind in test_gather, test_cull and test_sides.
+VALGRIND_TESTS ?= $(filter-out fgather,$(CHECK_TESTS))
 SMALL_TESTS    ?= api fixmath render obj image hostile
 check_progs = $(addprefix build/tests/test_,$(1))
 
