@@ -768,7 +768,7 @@ uint32_t rad__cube_list(const rad_scene_t *s, uint32_t p, void *buf, rad_ff_t *a
     canvas_t cv = part_canvas(s, buf);
     rad__part_head_t *h = (rad__part_head_t *)buf;
     unsigned r, nreg = part_regions(s, 0, 1, reg);
-    uint32_t e, n = 0;
+    uint32_t e, n = 0, cap = RAD_PIXELS_ALL(s->cube_res);
     rad_index_t *ids;
     rad_ff_t *ffs;
 
@@ -784,11 +784,14 @@ uint32_t rad__cube_list(const rad_scene_t *s, uint32_t p, void *buf, rad_ff_t *a
     /* The pixels are done with. Each element listed covers a pixel at least, so the
      * list fits in the item buffer (ids) and the depth buffer (sums, a word each). */
     rad__cube_lists(s, buf, &ids, &ffs);
-    for (e = 0; e < s->n_elements; e++)
-        if (acc[e] > 0) {
-            ids[n] = (rad_index_t)e;
-            ffs[n++] = acc[e];
-        }
+    /* Without a branch (which elements a cube sees is a coin's toss to the predictor):
+     * each element is written at N and kept by counting it. N < CAP while an element is
+     * written; at CAP every pixel's element is listed, none is left. */
+    for (e = 0; e < s->n_elements && n < cap; e++) {
+        ids[n] = (rad_index_t)e;
+        ffs[n] = acc[e];
+        n += acc[e] > 0;
+    }
     h->calls = st.raster_calls;
     h->pixels = st.raster_pixels;
     h->shot = s->shot_serial;

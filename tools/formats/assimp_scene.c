@@ -38,10 +38,14 @@ int assimp_scene_available(void)
 int assimp_scene_load(const char *path, const obj_opts *opts, obj_scene *sc, obj_warn_fn warn,
                       void *ctx, char *err, size_t errlen)
 {
+    FILE *f;
     (void)opts;
     (void)warn;
     (void)ctx;
     memset(sc, 0, sizeof *sc);
+    /* what is wrong with the file itself first (missing, a FIFO, a folder) */
+    if (!(f = fio_open_read(path, err, errlen))) return -1;
+    fclose(f);
     fio_err(err, errlen, path,
             "this rad_cli reads only .obj: it was built without assimp, which reads glTF, "
             "FBX, COLLADA and 3DS (apt-get install libassimp-dev, then make again)");
