@@ -108,13 +108,38 @@ static int peer_scene(const char *scene, const char *mgf, peer_t *pr)
     return 0;
 }
 
-/* rad_cli (beside this program) to 0.01 and 0.001 against rpkCpp's Galerkin solve,
- * whole processes in turn, PEER_RUNS rounds. The peer is in $RAD_PEER_RPK, or
- * ../peer-rpk: its build/rpk and cbo.mgf. */
-void bench_peer(const char *self, const char *scene, peer_t *pr)
+#define PEER_PATH 1024 /* bytes of a path peer_setup writes; the folder's half that */
+
+/* What a run against the peer on SCENE needs: rpkCpp in $RAD_PEER_RPK, or ../peer-rpk
+ * (its build/rpk, and SCENE converted into its cbo.mgf), and rad_cli beside SELF, their
+ * paths into RPK, MGF and CLI and rad_cli's folder into DIR. 0, or -1 with the reason in
+ * PR->why. */
+static int peer_setup(const char *self, const char *scene, char *rpk, char *mgf, char *cli,
+                      char *dir, peer_t *pr)
 {
     const char *root = getenv("RAD_PEER_RPK");
-    char rpk[1024], mgf[1024], cli[1024], dir[512], png[1024];
+    if (!root || !*root) root = "../peer-rpk";
+    snprintf(rpk, PEER_PATH, "%s/build/rpk", root);
+    snprintf(mgf, PEER_PATH, "%s/cbo.mgf", root);
+    bench_dir_of(self, dir, PEER_PATH / 2);
+    snprintf(cli, PEER_PATH, "%s/rad_cli", dir);
+    if (!bench_is_file(rpk) || access(rpk, X_OK) != 0)
+        snprintf(pr->why, sizeof pr->why,
+                 "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
+    else if (!bench_is_file(cli))
+        snprintf(pr->why, sizeof pr->why, "no %s", cli);
+    else if (!bench_is_file(scene))
+        snprintf(pr->why, sizeof pr->why, "no %s", scene);
+    else
+        return peer_scene(scene, mgf, pr);
+    return -1;
+}
+
+/* rad_cli (beside this program) to 0.01 and 0.001 against rpkCpp's Galerkin solve,
+ * whole processes in turn, PEER_RUNS rounds (peer_setup says where the peer is). */
+void bench_peer(const char *self, const char *scene, peer_t *pr)
+{
+    char rpk[PEER_PATH], mgf[PEER_PATH], cli[PEER_PATH], dir[PEER_PATH / 2], png[PEER_PATH];
     char *cmd[PEER_CMDS][24], words[PEER_CMDS][128];
     char *rpk_cmd[] = {rpk,
                        "-force-onesided",
@@ -130,26 +155,8 @@ void bench_peer(const char *self, const char *scene, peer_t *pr)
         rc[PEER_CMDS][PEER_RUNS];
     int i, k;
     memset(pr, 0, sizeof *pr);
-    if (!root || !*root) root = "../peer-rpk";
-    snprintf(rpk, sizeof rpk, "%s/build/rpk", root);
-    snprintf(mgf, sizeof mgf, "%s/cbo.mgf", root);
-    bench_dir_of(self, dir, sizeof dir);
-    snprintf(cli, sizeof cli, "%s/rad_cli", dir);
+    if (peer_setup(self, scene, rpk, mgf, cli, dir, pr) < 0) return;
     snprintf(png, sizeof png, "%s/bench_peer.ppm", dir);
-    if (!bench_is_file(rpk) || access(rpk, X_OK) != 0) {
-        snprintf(pr->why, sizeof pr->why,
-                 "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
-        return;
-    }
-    if (!bench_is_file(cli)) {
-        snprintf(pr->why, sizeof pr->why, "no %s", cli);
-        return;
-    }
-    if (!bench_is_file(scene)) {
-        snprintf(pr->why, sizeof pr->why, "no %s", scene);
-        return;
-    }
-    if (peer_scene(scene, mgf, pr) < 0) return;
     for (k = 0; k < PEER_CMDS; k++) {
         char *w, *save = NULL;
         int j = 2;
@@ -383,30 +390,20 @@ static long number_after(const char *path, const char *key)
 
 void bench_curve(const char *self, const char *scene, int rounds, curve_t *cv)
 {
-    const char *root = getenv("RAD_PEER_RPK");
-    char rpk[1024], mgf[1024], cli[1024], dir[512], img[1024], log[1024];
+    char rpk[PEER_PATH], mgf[PEER_PATH], cli[PEER_PATH], dir[PEER_PATH / 2], img[PEER_PATH],
+        log[PEER_PATH];
     double t[CURVE_SIZES][CURVE_CMDS][CURVE_ROUNDS], r[CURVE_SIZES][2][CURVE_ROUNDS];
     peer_t pr;
     int z, k, i;
     memset(cv, 0, sizeof *cv);
+    memset(&pr, 0, sizeof pr);
     cv->rounds = rounds;
-    if (!root || !*root) root = "../peer-rpk";
-    snprintf(rpk, sizeof rpk, "%s/build/rpk", root);
-    snprintf(mgf, sizeof mgf, "%s/cbo.mgf", root);
-    bench_dir_of(self, dir, sizeof dir);
-    snprintf(cli, sizeof cli, "%s/rad_cli", dir);
+    if (peer_setup(self, scene, rpk, mgf, cli, dir, &pr) < 0) {
+        snprintf(cv->why, sizeof cv->why, "%s", pr.why);
+        return;
+    }
     snprintf(img, sizeof img, "%s/bench_curve.ppm", dir);
     snprintf(log, sizeof log, "%s/bench_curve.log", dir);
-    if (!bench_is_file(rpk) || access(rpk, X_OK) != 0)
-        snprintf(cv->why, sizeof cv->why,
-                 "rpkCpp is not built (no %s; set RAD_PEER_RPK to its folder)", rpk);
-    else if (!bench_is_file(cli))
-        snprintf(cv->why, sizeof cv->why, "no %s", cli);
-    else if (!bench_is_file(scene))
-        snprintf(cv->why, sizeof cv->why, "no %s", scene);
-    else if (peer_scene(scene, mgf, &pr) < 0)
-        snprintf(cv->why, sizeof cv->why, "%s", pr.why);
-    if (cv->why[0]) return;
     for (i = 0; i < rounds; i++)
         for (z = 0; z < CURVE_SIZES; z++) {
             fprintf(stderr, "rad_bench: cost curve, round %d of %d, size %d of %d ...\n", i + 1,
