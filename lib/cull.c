@@ -250,6 +250,11 @@ void rad__cull_edges(uint32_t res, uint32_t *cwork)
     }
 }
 
+size_t rad__cull_work(const void *cull, uint32_t res)
+{
+    return RAD_GATHER_CULL_BYTES(res, ((const head_t *)cull)->surfaces) - 3u;
+}
+
 int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
 {
     const head_t *h = (const head_t *)cull;
@@ -261,17 +266,11 @@ int rad_gather_cull(rad_gather_t *g, const void *cull, void *work, size_t bytes)
         return RAD_OK;
     }
     if (!work || ((uintptr_t)cull & 3u) || h->magic != CULL_MAGIC) return RAD_ERR_ARG;
-    if (bytes < RAD_GATHER_CULL_BYTES(g->res, h->surfaces) - 3u + (size_t)(start - base))
-        return RAD_ERR_WORK;
+    if (bytes < rad__cull_work(cull, g->res) + (size_t)(start - base)) return RAD_ERR_WORK;
     g->cull = cull;
     g->cull_work = (uint32_t *)start;
     rad__cull_edges(g->res, g->cull_work);
     return RAD_OK;
-}
-
-size_t rad__cull_work(const void *cull, uint32_t res)
-{
-    return RAD_GATHER_CULL_BYTES(res, ((const head_t *)cull)->surfaces) - 3u;
 }
 
 int rad_shoot_cull(rad_scene_t *s, const void *cull)

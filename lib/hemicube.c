@@ -622,11 +622,11 @@ static uint32_t cull_scene(const rad_scene_t *s, const canvas_t *cv, uint32_t p,
 #define CULL_SHARE 3u
 #define CULL_WAIT  16u
 
-void rad__cull_after(rad_scene_t *s, uint32_t tests, uint64_t sum, uint32_t cubes)
+void rad__cull_after(rad_scene_t *s, int culled, uint64_t tests, uint32_t cubes)
 {
-    if (tests == RAD__DRAWN_ALL)
+    if (!culled)
         s->cull_wait = (uint16_t)(s->cull_wait > cubes ? s->cull_wait - cubes : 0u);
-    else if (sum * CULL_SHARE > (uint64_t)cubes * s->n_surfaces)
+    else if (tests * CULL_SHARE > (uint64_t)cubes * s->n_surfaces)
         s->cull_wait = CULL_WAIT;
 }
 
@@ -643,7 +643,7 @@ void rad__shot_cube(rad_scene_t *s, uint32_t p)
     if (s->band_rows == 0)
         tests = cull_scene(s, &cv, p, (uint32_t *)(void *)s->acc,
                            (size_t)s->n_elements * sizeof *s->acc);
-    rad__cull_after(s, tests, tests, 1);
+    rad__cull_after(s, tests != RAD__DRAWN_ALL, tests, 1);
     for (e = 0; e < s->n_elements; e++) s->acc[e] = 0;
     for (k = 0; (nreg = pass_regions(s, k, reg)) != 0; k++) {
         if (tests == RAD__DRAWN_ALL) {

@@ -201,10 +201,10 @@ void rad__eye_surface(const rad_scene_t *s, const rad__eye_t *e, unsigned face, 
  * the hierarchy's nodes it tested. */
 uint32_t rad__cull_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 /* A shot's cube drawn without its hierarchy (hemicube.c); and after a shot, or a batch
- * of CUBES, its first cube's TESTS (RAD__DRAWN_ALL or the nodes tested) and the sum of
- * its cubes' SUM: whether the next shots are to draw every surface (s->cull_wait). */
+ * of CUBES, whether they were CULLED (all or none: cull_wait is the batch's) and the
+ * nodes they TESTED in all: whether the next shots draw every surface (s->cull_wait). */
 #define RAD__DRAWN_ALL 0xFFFFFFFFu
-void rad__cull_after(rad_scene_t *s, uint32_t tests, uint64_t sum, uint32_t cubes);
+void rad__cull_after(rad_scene_t *s, int culled, uint64_t tests, uint32_t cubes);
 /* Whether hierarchy CULL was built for S as it stands (its surfaces and scale). */
 int rad__cull_fits(const rad_scene_t *s, const void *cull);
 /* The bytes of a cube's culling work at resolution RES through hierarchy CULL (4-aligned

@@ -797,9 +797,9 @@ static void batch_aim(rad_scene_t *s, void *const *bufs, unsigned n)
         if (s->cube_res != s->cfg.res) s->stats.coarse_shots++;
         h->saturations = 0;
         h->state = RAD__CUBE_AIMED;
-        tests += h->tests; /* each culled or none (cull_wait is the batch's) */
+        tests += h->tests;
     }
-    if (n) rad__cull_after(s, head(bufs, 0)->tests, tests, n);
+    if (n) rad__cull_after(s, head(bufs, 0)->tests != RAD__DRAWN_ALL, tests, n);
 }
 
 /* Part PART of NPARTS of the receipts (receive_range's run of whole patches), shot

@@ -72,7 +72,11 @@ int sc_solve_cull(struct sc_solver *h)
 {
     if (h->shots_drawn_all || h->s.n_surfaces < CULL_SURFACES) return 1;
     if (!h->s.solving) return 0;
-    if (!h->s.cull) rad_shoot_cull(&h->s, solver_cull(h));
+    if (!h->s.cull) {
+        const void *c = solver_cull(h);
+        if (!c) h->shots_drawn_all = 1; /* no hierarchy to be had: not asked again */
+        rad_shoot_cull(&h->s, c);
+    }
     return 1;
 }
 
