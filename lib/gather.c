@@ -177,6 +177,98 @@ static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, ra
     return rad__scale2_rgb(v, -s->power_shift, &g->stats.saturations);
 }
 
+/* ---- the lights' direct light ---------------------------------------------------- */
+
+/* Moments of the whole sphere: M0, then x, y, z, then xx, yy, zz, xy, yz, xz; per
+ * channel; on the cube's axes, then on the scene's. */
+typedef struct {
+    rad__msum_t m[10][3];
+} sphere_t;
+/* The second moments' places in sphere_t by axis pair. */
+static const unsigned char second[3][3] = {{4, 7, 9}, {7, 5, 8}, {9, 8, 6}};
+
+/* A gather's view of the lights on the face just drawn (rad__lights_at): a direction
+ * on it reaches the point when its pixel shows nothing (a sun's or sky's) or nothing
+ * nearer than the light (a point's), seen as the cube sees the scene: a pixel's centre
+ * decides, and a face seen from behind occludes. The hemisphere sums E cos t per
+ * channel (its normal the cube's third axis); the sphere adds each direction's
+ * moments (MOM, on the cube's axes, Q20 as add_face's). The first face keeps the
+ * directions (working a sky's out is most of their cost) for the others when they
+ * fit in LIT_KEEP (2.3 KB of stack: a sun's disc and a sky of 48 directions fit),
+ * else every face works them out again. */
+#define LIT_KEEP 64
+typedef struct {
+    rad_vec3_t w, u;
+    rad_rgb_t e;
+    int point;
+} lit_dir_t;
+typedef struct {
+    const rad__eye_t *e;
+    unsigned face;
+    rad_real_t sum[3];
+    rad__msum_t (*mom)[3];
+    uint32_t *sat;
+    lit_dir_t kept[LIT_KEEP];
+    uint32_t n_kept;
+    int keep, more; /* KEEP: the first face's pass; MORE: some did not fit */
+} lit_t;
+
+static void lit_one(lit_t *t, const lit_dir_t *d)
+{
+    const rad__eye_t *ey = t->e;
+    uint32_t px, depth, z;
+    rad_real_t l[3];
+    unsigned c, k, m;
+    if (!rad__eye_pixel(ey, t->face, d->w, &px, &depth)) return;
+    z = ey->z[px];
+    if (d->point ? z > depth : z != 0) return;
+    for (k = 0; k < 3; k++) l[k] = rad__dot_unit(d->u, ey->frame[k]);
+    for (c = 0; c < 3; c++) {
+        rad_real_t v = rad__channel(&d->e, c);
+        if (!t->mom) {
+            if (l[2] > 0) t->sum[c] = rad__add_sat(t->sum[c], rad__mul(v, l[2], t->sat), t->sat);
+            continue;
+        }
+        t->mom[0][c] += rad__msum_light(v, RAD__ONE, RAD__ONE);
+        for (k = 0; k < 3; k++) {
+            t->mom[1 + k][c] += rad__msum_light(v, l[k], RAD__ONE);
+            for (m = k; m < 3; m++) t->mom[second[k][m]][c] += rad__msum_light(v, l[k], l[m]);
+        }
+    }
+}
+
+static void lit_dir(void *ctx, const rad_vec3_t *w, const rad_vec3_t *u, int point,
+                    const rad_rgb_t *e)
+{
+    lit_t *t = ctx;
+    lit_dir_t d;
+    d.w = *w;
+    d.u = *u;
+    d.e = *e;
+    d.point = point;
+    if (t->keep && t->n_kept < LIT_KEEP)
+        t->kept[t->n_kept++] = d;
+    else if (t->keep)
+        t->more = 1;
+    lit_one(t, &d);
+}
+
+/* The lights seen on face F of E's cube, just drawn, into T (F 0 first). */
+static void lit_face(const rad_scene_t *s, const rad__eye_t *e, unsigned f, lit_t *t)
+{
+    uint32_t k;
+    if (!s->n_lights) return;
+    t->e = e;
+    t->face = f;
+    t->keep = f == 0;
+    if (f == 0) t->n_kept = 0, t->more = 0;
+    if (f == 0 || t->more) {
+        rad__lights_at(s, e->c, lit_dir, t, t->sat);
+        return;
+    }
+    for (k = 0; k < t->n_kept; k++) lit_one(t, &t->kept[k]);
+}
+
 /* ---- a hemisphere --------------------------------------------------------------- */
 
 /* Element ID's shown radiosity into B; 0 when ID is past the last (none seen). */
@@ -295,6 +387,7 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     rad_rgb_t amb, v;
     const rad_rgb_t *ap;
     rad__wsum_t sum[3] = {0, 0, 0};
+    lit_t lit;
     unsigned f;
     int rc = normal && out ? eye_setup(s, g, point, skip, 0, flags, &e) : RAD_ERR_ARG;
     if (rc < 0) return rc;
@@ -302,26 +395,22 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     if (!rad__normalize(*normal, &n)) return RAD_ERR_ARG;
     rad__cube_frame(n, g->turn, e.frame);
     ap = gather_ambient(s, g, flags, &amb);
+    lit.mom = 0;
+    lit.sat = &g->stats.saturations;
+    lit.sum[0] = lit.sum[1] = lit.sum[2] = 0;
     for (f = 0; f < 5; f++) {
         eye_face(s, &e, f);
         face_sum(s, g, ap, f, sum);
+        lit_face(s, &e, f, &lit);
     }
-    v.r = rad__wvalue(sum[0], &g->stats.saturations);
-    v.g = rad__wvalue(sum[1], &g->stats.saturations);
-    v.b = rad__wvalue(sum[2], &g->stats.saturations);
+    v.r = rad__add_sat(rad__wvalue(sum[0], lit.sat), lit.sum[0], lit.sat);
+    v.g = rad__add_sat(rad__wvalue(sum[1], lit.sat), lit.sum[1], lit.sat);
+    v.b = rad__add_sat(rad__wvalue(sum[2], lit.sat), lit.sum[2], lit.sat);
     *out = gather_out(s, g, flags, v);
     return RAD_OK;
 }
 
 /* ---- a sphere, in spherical harmonics ------------------------------------------- */
-
-/* Moments of the whole sphere: M0, then x, y, z, then xx, yy, zz, xy, yz, xz; per
- * channel; on the cube's axes, then on the scene's. */
-typedef struct {
-    rad__msum_t m[10][3];
-} sphere_t;
-/* The second moments' places in sphere_t by axis pair. */
-static const unsigned char second[3][3] = {{4, 7, 9}, {7, 5, 8}, {9, 8, 6}};
 
 /* Row R's moments (per channel) into face sums FS: the pixels left of the centre have
  * a < 0, those of the rows below it b < 0; a run ends at the centre too. */
@@ -438,6 +527,7 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
 {
     rad__eye_t e;
     sphere_t cube = {{{0, 0, 0}}}, sp;
+    lit_t lit;
     rad_rgb_t amb;
     const rad_rgb_t *ap;
     uint32_t *sat;
@@ -447,11 +537,14 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
     sat = &g->stats.saturations;
     probe_frame(e.frame);
     ap = gather_ambient(s, g, flags, &amb);
+    lit.mom = cube.m;
+    lit.sat = sat;
     for (f = 0; f < 6; f++) {
         rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
         eye_face(s, &e, f);
         for (r = 0; r < g->res; r++) row_moments(s, g, ap, r, fs);
         add_face(f, fs, &cube);
+        lit_face(s, &e, f, &lit);
     }
     to_scene(&cube, &sp);
     for (c = 0; c < 3; c++) {

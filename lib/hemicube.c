@@ -573,6 +573,40 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     render_view(s, &cv, &ps);
 }
 
+int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *px, uint32_t *depth)
+{
+    rad_vec3_t l;
+    rad_real_t m[3];
+    rad__cvert_t c;
+    rad__frustum_t f;
+    uint32_t x, y;
+    unsigned k = 0, f0;
+    l.x = rad__dot_unit(w, e->frame[0]);
+    l.y = rad__dot_unit(w, e->frame[1]);
+    l.z = rad__dot_unit(w, e->frame[2]);
+    m[0] = l.x < 0 ? -l.x : l.x;
+    m[1] = l.y < 0 ? -l.y : l.y;
+    m[2] = l.z < 0 ? -l.z : l.z;
+    /* the face whose axis is the largest component's (ties: the lower axis) */
+    if (m[1] > m[k]) k = 1;
+    if (m[2] > m[k]) k = 2;
+    for (f0 = 0; f0 < 6; f0++)
+        if (rad__face_axis[f0][2] == k && (rad__face_sign[f0][2] < 0) == ((k == 0   ? l.x
+                                                                           : k == 1 ? l.y
+                                                                                    : l.z) < 0))
+            break;
+    if (f0 != face || (f0 == 5 && !e->full)) return 0;
+    face_vertex(face, l, &c);
+    f.half = face != 0 && !e->full;
+    f.ortho = 0;
+    f.recede = 0;
+    f.width = (int)e->res;
+    f.height = (int)rows_of(e->res, e->full, face);
+    if (!rad__pixel(&f, &c, &x, &y, depth)) return 0;
+    *px = y * e->res + x;
+    return 1;
+}
+
 /* Patch P's cube into the five faces of canvas CV (laid out as all five: face_offset)
  * through the scene's hierarchy (rad_shoot_cull), WORK (BYTES long, 4-aligned) the
  * culling's: the nodes it tested, or RAD__DRAWN_ALL without drawing when there is no

@@ -7,6 +7,9 @@
 
 #if RAD_FLOAT
 #define rad__outcodes        radf__outcodes
+#define rad__pixel           radf__pixel
+#define rad__eye_pixel       radf__eye_pixel
+#define rad__lights_at       radf__lights_at
 #define rad__receive         radf__receive
 #define rad__shoot           radf__shoot
 #define rad__cube_part       radf__cube_part
@@ -130,6 +133,11 @@ typedef struct {
  * bits (bit p: outside plane p), or RAD__CULLED when all are outside one plane. */
 #define RAD__CULLED 0x100u
 unsigned rad__outcodes(const rad__frustum_t *f, const rad__cvert_t *in, unsigned n);
+/* The pixel (column *X, row *Y) of frustum F's raster that point C projects into, and
+ * its depth value *W, as the rasterizer projects a vertex: 1, or 0 when C lies
+ * outside F. */
+int rad__pixel(const rad__frustum_t *f, const rad__cvert_t *c, uint32_t *x, uint32_t *y,
+               uint32_t *w);
 
 /* Pixel X of a row of an item buffer gets depth D and ID if D is nearer than Z's (depth
  * is 1/distance: larger is nearer), without a branch (an element's run in a row is
@@ -191,6 +199,11 @@ typedef struct {
 /* Face FACE of E's cube into its buffers: cleared, then every surface drawn (rows 0 at
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
+/* Where direction W (the scene's axes, from E's centre; any length above RAD__NEAR)
+ * meets E's cube: 1 when on face FACE, with *PX its pixel's index in the face's
+ * buffers and *W its depth value there for a point at W (as the rasterizer's); else 0
+ * (another face, or below a hemi-cube's horizon). Each direction lies on one face. */
+int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *px, uint32_t *depth);
 /* Face FACE of E's buffers cleared; surface K drawn into them, as rad__eye_face draws it
  * (nothing when it is E's skipped one), or with BY_INDEX by its index K at every pixel,
  * front or back, ties kept by the least id (rad__target_t.least): the same depths. */
@@ -237,6 +250,16 @@ int rad__lights_shoot(rad_scene_t *s, uint32_t max);
  * range (rad__lights_shoot would refuse), else RAD_OK. */
 int rad__lights_check(const rad_scene_t *s, uint32_t first);
 rad_real_t rad__lights_peak(const rad_scene_t *s);
+/* The direct light of S's lights that have shot, at point C (the core's scale), a
+ * direction at a time: FN gets the vector W from C toward the light (a sun's or sky's
+ * direction: unit; a point's or spot's: to its position), its unit U, whether the
+ * light is a point (at W's end) or at infinity, and the irradiance E it gives a plane
+ * facing U there (per channel, the core's scale and power shift, >= 0; a spot's
+ * falloff applied), in a fixed order. Counts saturations in SAT. */
+typedef void rad__light_fn(void *ctx, const rad_vec3_t *w, const rad_vec3_t *u, int point,
+                           const rad_rgb_t *e);
+void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, rad__light_fn *fn, void *ctx,
+                    uint32_t *sat);
 /* rad_shoot (ROWS null) or rad_rows_shoot while lights are pending: they shoot (each
  * a shot of MAX_SHOTS), then patches as rad__shoot (returns the shots, or the error). */
 int rad__lights_solve(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);
@@ -422,6 +445,12 @@ static inline rad__msum_t rad__msum_div(rad__msum_t v, int d)
 {
     return v / (float)d;
 }
+/* The moment of a light of irradiance E arriving along unit u, times the components
+ * A and B of u (1: none): E pi / (4 pi / 1.5) A B, the sphere's 4 pi standing for 1.5. */
+static inline rad__msum_t rad__msum_light(rad_real_t e, rad_real_t a, rad_real_t b)
+{
+    return 0.375f * e * a * b;
+}
 /* M times the constant K (the float value of the fixed build's Q28 integer). */
 static inline rad_real_t rad__mscale(rad__msum_t m, float k, uint32_t *sat)
 {
@@ -447,6 +476,13 @@ static inline rad__msum_t rad__msum_q20(rad__msum_t v)
 static inline rad__msum_t rad__msum_div(rad__msum_t v, int d)
 {
     return rad__div_round(v, d);
+}
+/* As the twin's, in Q20: E (Q16.16) times 2^4 3 / 8 = 6, then A and B (Q16.16,
+ * |A|, |B| <= 1) each rounded in: below 6 2^31 2^16 < 2^50. */
+static inline rad__msum_t rad__msum_light(rad_real_t e, rad_real_t a, rad_real_t b)
+{
+    int64_t v = rad__shr_round((int64_t)6 * e * a, 16);
+    return rad__shr_round(v * b, 16);
 }
 /* round(M K / 2^32) for a moment |M| < 2^38 (Q20) and a constant K (Q28, < 2^32): a
  * Q16.16 value. M = hi 2^16 + lo keeps both partial products below 2^54. */

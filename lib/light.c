@@ -716,8 +716,18 @@ static uint64_t grey_q16(const rad_rgb_t *c)
 #endif
 }
 
-/* The sky's 3 m^2 shots (the top of the file), all in integers, as both builds' must
- * agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc (c^2 = 1 - r^2,
+/* One of a sun's or sky's directions: the way its light travels (unit) and the
+ * irradiance it gives a plane facing it: a sun's E over PARTS, a sky's WZ times its
+ * zenith's radiance Z plus WH times its horizon's H. */
+typedef struct {
+    rad_vec3_t dir;
+    rad_ff_t wz, wh;
+    uint32_t parts;
+} dir_t;
+typedef void dir_fn(void *ctx, const dir_t *d);
+
+/* The sky's 3 m^2 directions (the top of the file) to FN, all in integers, as both
+ * builds' must agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc (c^2 = 1 - r^2,
  * dw = r dr dphi / c) has, per unit of angle, the integrals
  *   Au = int c dw = (r2^2 - r1^2) / 2,        Ac = int c^2 dw = (c1^3 - c2^3) / 3,
  *   Bu = int s dw = (asin r - r c) / 2 |r1..r2, Bc = int c s dw = (r2^3 - r1^3) / 3
@@ -732,15 +742,17 @@ static uint64_t grey_q16(const rad_rgb_t *c)
  * (c, sn), the weights WZ = 2 pi Ac / (n c), WH = 2 pi (Au - Ac) / (n c) (at most 2 pi
  * / 3); 2 pi in Q28; A and B (Q16 radiance times Q30) shifted below 2^31 for their
  * length. */
-static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
+static void sky_dirs(const rad_light_t *l, dir_fn *fn, void *ctx)
 {
     const uint64_t two_pi = HALF_PI_Q30; /* 2 pi in Q28 */
-    const uint32_t m = sky_bands(v->l);
+    const uint32_t m = sky_bands(l);
     const uint64_t mm = (uint64_t)m * m;
-    uint64_t zs = grey_q16(&v->l->intensity), hs = grey_q16(&v->l->horizon), asin1 = 0;
+    uint64_t zs = grey_q16(&l->intensity), hs = grey_q16(&l->horizon), asin1 = 0;
     rad_vec3_t up, f[3];
+    dir_t d;
     uint32_t i, j;
-    rad__normalize(sky_up(v->l), &up);
+    d.parts = 1;
+    rad__normalize(sky_up(l), &up);
     rad__cube_frame(up, 0, f);
     if (zs + hs == 0) zs = hs = 1; /* a black sky: any directions */
     for (i = 0; i < m; i++) {
@@ -763,21 +775,69 @@ static void shoot_sky(rad_scene_t *s, view_t *v, const bufs_t *b)
         c = (va << 30) / len;
         sn = (vb << 30) / len;
         asin1 = asin2;
-        v->wz = rad__ff_from_q30((uint32_t)(((((ac * two_pi) >> 28) / n) << 30) / c));
-        v->wh = rad__ff_from_q30(
+        d.wz = rad__ff_from_q30((uint32_t)(((((ac * two_pi) >> 28) / n) << 30) / c));
+        d.wh = rad__ff_from_q30(
             (uint32_t)((((((au > ac ? au - ac : 0) * two_pi) >> 28) / n) << 30) / c));
         for (j = 0; j < n; j++) { /* the light travels down: -(c up + sn (cos f0 + sin f1)) */
             const rad_real_t a0 = real_q30(((int64_t)sn * sin_q30(4u * j + 2u + n, 4u * n)) >> 30);
             const rad_real_t a1 = real_q30(((int64_t)sn * sin_q30(2u * j + 1u, 2u * n)) >> 30);
             const rad_real_t cr = real_q30((int64_t)c);
-            rad_vec3_t d;
-            d.x = -(rad__mul(cr, up.x, 0) + rad__mul(a0, f[0].x, 0) + rad__mul(a1, f[1].x, 0));
-            d.y = -(rad__mul(cr, up.y, 0) + rad__mul(a0, f[0].y, 0) + rad__mul(a1, f[1].y, 0));
-            d.z = -(rad__mul(cr, up.z, 0) + rad__mul(a0, f[0].z, 0) + rad__mul(a1, f[1].z, 0));
-            rad__normalize(d, &v->dir);
-            shoot_view(s, v, b, 1);
+            rad_vec3_t t;
+            t.x = -(rad__mul(cr, up.x, 0) + rad__mul(a0, f[0].x, 0) + rad__mul(a1, f[1].x, 0));
+            t.y = -(rad__mul(cr, up.y, 0) + rad__mul(a0, f[0].y, 0) + rad__mul(a1, f[1].y, 0));
+            t.z = -(rad__mul(cr, up.z, 0) + rad__mul(a0, f[0].z, 0) + rad__mul(a1, f[1].z, 0));
+            rad__normalize(t, &d.dir);
+            fn(ctx, &d);
         }
     }
+}
+
+/* Sun or sky L's directions, in a fixed order, to FN: a sky's (sky_dirs), a sun's one,
+ * or the 16 of its disc when it has a radius. */
+static void light_dirs(const rad_light_t *l, dir_fn *fn, void *ctx)
+{
+    dir_t d;
+    d.wz = d.wh = 0;
+    if (l->type == RAD_LIGHT_SKY) {
+        sky_dirs(l, fn, ctx);
+    } else if (l->radius == 0) {
+        rad__normalize(l->direction, &d.dir);
+        d.parts = 1;
+        fn(ctx, &d);
+    } else {
+        rad_vec3_t d0, f[3];
+        uint32_t k;
+        rad__normalize(l->direction, &d0);
+        rad__cube_frame(d0, 0, f);
+        d.parts = SUN_SAMPLES;
+        for (k = 0; k < SUN_SAMPLES; k++) { /* d0 + radius (x f0 + y f1) */
+            const int32_t sg = k < SUN_SAMPLES / 2u ? 1 : -1;
+            rad_real_t x = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][0], 65536), 0);
+            rad_real_t y = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][1], 65536), 0);
+            rad_vec3_t t;
+            t.x = d0.x + rad__mul(x, f[0].x, 0) + rad__mul(y, f[1].x, 0);
+            t.y = d0.y + rad__mul(x, f[0].y, 0) + rad__mul(y, f[1].y, 0);
+            t.z = d0.z + rad__mul(x, f[0].z, 0) + rad__mul(y, f[1].z, 0);
+            rad__normalize(t, &d.dir);
+            fn(ctx, &d);
+        }
+    }
+}
+
+/* A sun's or sky's shot along one of its directions. */
+typedef struct {
+    rad_scene_t *s;
+    view_t *v;
+    const bufs_t *b;
+} shot_t;
+
+static void shoot_dir(void *ctx, const dir_t *d)
+{
+    shot_t *sh = ctx;
+    sh->v->dir = d->dir;
+    sh->v->wz = d->wz;
+    sh->v->wh = d->wh;
+    shoot_view(sh->s, sh->v, sh->b, d->parts);
 }
 
 /* Light L's shot (a sun of some radius: one a direction of its disc). */
@@ -817,27 +877,12 @@ static void shoot_light(rad_scene_t *s, const rad_light_t *l)
         weight_sums(&v);
         for (v.recede = 1; (1u << v.recede) < 2u * v.res; v.recede++) {} /* 2^recede >= 2 res */
         shoot_view(s, &v, &b, 1);
-    } else if (l->type == RAD_LIGHT_SKY) {
-        shoot_sky(s, &v, &b);
-    } else if (l->radius == 0) {
-        rad__normalize(l->direction, &v.dir);
-        shoot_view(s, &v, &b, 1);
     } else {
-        rad_vec3_t d0, f[3];
-        uint32_t k;
-        rad__normalize(l->direction, &d0);
-        rad__cube_frame(d0, 0, f);
-        for (k = 0; k < SUN_SAMPLES; k++) { /* d0 + radius (x f0 + y f1) */
-            const int32_t sg = k < SUN_SAMPLES / 2u ? 1 : -1;
-            rad_real_t x = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][0], 65536), 0);
-            rad_real_t y = rad__mul(l->radius, RAD_REAL_RATIO(sg * disc[k % 8u][1], 65536), 0);
-            rad_vec3_t d;
-            d.x = d0.x + rad__mul(x, f[0].x, 0) + rad__mul(y, f[1].x, 0);
-            d.y = d0.y + rad__mul(x, f[0].y, 0) + rad__mul(y, f[1].y, 0);
-            d.z = d0.z + rad__mul(x, f[0].z, 0) + rad__mul(y, f[1].z, 0);
-            rad__normalize(d, &v.dir);
-            shoot_view(s, &v, &b, SUN_SAMPLES);
-        }
+        shot_t sh;
+        sh.s = s;
+        sh.v = &v;
+        sh.b = &b;
+        light_dirs(l, shoot_dir, &sh);
     }
     s->cube_built = 0; /* a coarse cube's tables lay in the depth buffer */
 }
@@ -920,4 +965,93 @@ rad_real_t rad__lights_peak(const rad_scene_t *s)
         if (p > m) m = p;
     }
     return m;
+}
+
+/* ---- the direct light at a point (gathers) ------------------------------------------- */
+
+/* What rad__lights_at passes on for one light. */
+typedef struct {
+    const rad_scene_t *s;
+    const rad_light_t *l;
+    rad__light_fn *fn;
+    void *ctx;
+    uint32_t *sat;
+} arrive_t;
+
+/* Channel C of a direction's irradiance in the core's scale: a sun's E / parts, a sky's
+ * Z wz + H wh (rad__wterm, rounded once), then the power shift. */
+static rad_real_t dir_channel(const arrive_t *a, const dir_t *d, unsigned c)
+{
+    rad_real_t i = rad__channel(&a->l->intensity, c), e;
+    if (a->l->type == RAD_LIGHT_SKY)
+        e = rad__wvalue(rad__wterm(d->wz, i) + rad__wterm(d->wh, rad__channel(&a->l->horizon, c)),
+                        a->sat);
+    else
+        e = i / (rad_real_t)d->parts;
+    return rad__scale2(e, a->s->power_shift, a->sat);
+}
+
+static void arrive_dir(void *ctx, const dir_t *d)
+{
+    const arrive_t *a = ctx;
+    rad_vec3_t u;
+    rad_rgb_t e;
+    u.x = -d->dir.x;
+    u.y = -d->dir.y;
+    u.z = -d->dir.z;
+    e.r = dir_channel(a, d, 0);
+    e.g = dir_channel(a, d, 1);
+    e.b = dir_channel(a, d, 2);
+    a->fn(a->ctx, &u, &u, 0, &e);
+}
+
+/* Point or spot A->l seen from C: I / r^2 per channel, with I in the core's scale
+ * (2^(2 length_shift + power_shift) of the caller's, as light_power's) over r^2 in the
+ * core's lengths, as a ratio of energies (no Q16.16 square to overflow), times the
+ * spot's falloff. */
+static void arrive_point(const arrive_t *a, rad_vec3_t c)
+{
+    const rad_light_t *l = a->l;
+    rad_vec3_t p, w, u, axis;
+    rad_real_t r, k = RAD__ONE, v[3];
+    rad_energy_t r2;
+    rad_rgb_t e;
+    unsigned ch;
+    if (!light_position(a->s, l, &p)) return;
+    w = rad__sub(p, c);
+    r = rad__length(w);
+    if (!(r > RAD__NEAR) || !rad__normalize(w, &u)) return; /* at the point: no direction */
+    if (l->type == RAD_LIGHT_SPOT) {
+        rad__normalize(l->direction, &axis);
+        k = falloff(l, -rad__dot(u, axis));
+        if (!(k > 0)) return;
+    }
+    r2 = rad__energy(r, r);
+    for (ch = 0; ch < 3; ch++) {
+        rad_energy_t i = energy_shift(rad__energy(rad__channel(&l->intensity, ch), RAD__ONE),
+                                      2 * a->s->length_shift + a->s->power_shift, a->sat);
+        v[ch] = rad__mul(rad__energy_ratio(i, r2), k, a->sat);
+    }
+    e.r = v[0];
+    e.g = v[1];
+    e.b = v[2];
+    a->fn(a->ctx, &w, &u, 1, &e);
+}
+
+void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, rad__light_fn *fn, void *ctx, uint32_t *sat)
+{
+    arrive_t a;
+    uint32_t k;
+    a.s = s;
+    a.fn = fn;
+    a.ctx = ctx;
+    a.sat = sat;
+    for (k = 0; k < s->lights_shot && k < s->n_lights; k++) {
+        a.l = &s->lights[k];
+        if (dark(a.l)) continue;
+        if (is_point(a.l))
+            arrive_point(&a, c);
+        else
+            light_dirs(a.l, arrive_dir, &a);
+    }
 }

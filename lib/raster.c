@@ -295,6 +295,19 @@ static void project(const rad__frustum_t *f, const rad__cvert_t *c, pvert_t *r)
     r->at[3] = rad__attr(c->c[2]);
 }
 
+int rad__pixel(const rad__frustum_t *f, const rad__cvert_t *c, uint32_t *x, uint32_t *y,
+               uint32_t *w)
+{
+    pvert_t p;
+    if (rad__outcodes(f, c, 1u)) return 0;
+    project(f, c, &p);
+    /* a point on the raster's far edge (x = width) belongs to its last pixel */
+    *x = (uint32_t)(p.x / SUB < f->width ? p.x / SUB : f->width - 1);
+    *y = (uint32_t)(p.y / SUB < f->height ? p.y / SUB : f->height - 1);
+    *w = p.at[0];
+    return 1;
+}
+
 /* Rasterizes the convex polygon PV of N projected vertices (either winding; PV is
  * rewritten) into T with item id ID. */
 static void fill(rad_stats_t *st, const rad__target_t *t, pvert_t *pv, unsigned n, rad_index_t id)

@@ -710,7 +710,12 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
  * the element it sees (rad_element_radiosity's value with FLAGS: RAD_SHADE_AMBIENT
  * adds reflectance times the ambient term, worked out on each call, a pass over the
  * patches; at least 0), with no element seen counting as black and a surface seen
- * from behind drawn as an opaque black occluder (radiosity is one-sided). An element of
+ * from behind drawn as an opaque black occluder (radiosity is one-sided), plus the
+ * direct light of the scene's lights that have shot (rad_add_light): E cos t from each
+ * of a sun's or sky's directions (those it shoots along) whose pixel in the cube shows
+ * nothing, and I cos t / r^2 (a spot's falloff applied) from a point or spot light
+ * whose pixel shows nothing nearer than it: the light's visibility is the cube's, a
+ * pixel's centre deciding, as the solve's shots decide it by their pixels. An element of
  * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
  * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
  * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the
@@ -722,7 +727,8 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
                const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out);
 
 /* A light probe: the radiosity seen from POINT in every direction w, B(w) (as
- * rad_gather's B, with FLAGS), projected onto the nine real spherical harmonics of
+ * rad_gather's B, with FLAGS; a light's direction that rad_gather counts gives
+ * B = pi E there alone), projected onto the nine real spherical harmonics of
  * bands 0..2, SH[k] = integral of B(w) Y_k(w) dw over the sphere (w on the scene's own
  * axes), in the order Y00; Y1-1 (y), Y10 (z), Y11 (x); Y2-2 (xy), Y2-1 (yz),
  * Y20 (3z^2 - 1), Y21 (xz), Y22 (x^2 - y^2). A uniform environment B gives

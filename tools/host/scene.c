@@ -452,9 +452,8 @@ double sc__light_peak(const struct sc_solver *h, const sc_light *l)
     return peak;
 }
 
-void sc__light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c)
+void sc__light_to_core(const struct sc_solver *h, const sc_light *l, int res, rad_light_t *c)
 {
-    const sc_light *l = &h->src[i];
     double k = light_k(h, l) * h->escale;
     double d = sqrt(l->dir[0] * l->dir[0] + l->dir[1] * l->dir[1] + l->dir[2] * l->dir[2]);
     memset(c, 0, sizeof *c);
@@ -539,7 +538,7 @@ static int frame_lights(struct sc_solver *h, const sc_opts *o, char *err, size_t
     memcpy(h->src, o->lights, (size_t)o->nlights * sizeof *h->src);
     h->nlights = o->nlights;
     h->light_res = o->res ? o->res : RAD_DEFAULT_RES;
-    for (i = 0; i < o->nlights; i++) sc__light_to_core(h, i, h->light_res, &h->lights[i]);
+    for (i = 0; i < o->nlights; i++) sc__light_to_core(h, &h->src[i], h->light_res, &h->lights[i]);
     return 0;
 }
 

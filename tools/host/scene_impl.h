@@ -61,7 +61,7 @@ int sc__fits_core(double x);
  * irradiance: at most pi times its brightest radiance). */
 double sc__light_peak(const struct sc_solver *h, const sc_light *l);
 /* Light I (h->src) into the core's units at the current escale, into C. */
-void sc__light_to_core(const struct sc_solver *h, int i, int res, rad_light_t *c);
+void sc__light_to_core(const struct sc_solver *h, const sc_light *l, int res, rad_light_t *c);
 /* A mixed scene (sc_mix) restarted before it is solved again. */
 void sc__unmix(struct sc_solver *h);
 /* Core radiosity C in caller units, into O[3]. */

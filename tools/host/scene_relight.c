@@ -73,7 +73,7 @@ void sc_restart(sc_solver *h)
     rad_restart(&h->s);
     for (k = 0; k < h->nlights; k++) { /* after the restart: always taken */
         rad_light_t c;
-        sc__light_to_core(h, k, h->light_res, &c);
+        sc__light_to_core(h, &h->src[k], h->light_res, &c);
         rad_set_light(&h->s, (uint32_t)k, &c); /* in range by construction */
     }
     h->mixed = 0;
@@ -102,6 +102,7 @@ int sc_set_light(sc_solver *h, int i, const double *rgb, const double *horizon, 
 struct sc_solution {
     uint32_t n;
     double escale;    /* the scale its radiosities are in */
+    sc_light *lights; /* the lights it was solved with (caller units), h->nlights */
     rad_rgb_t rgb[1]; /* n entries, core units */
 };
 
@@ -110,6 +111,12 @@ sc_solution *sc_keep(sc_solver *h, int ambient)
     uint32_t n = h->s.n_elements;
     struct sc_solution *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
     if (!k) return NULL;
+    k->lights = malloc((h->nlights ? (size_t)h->nlights : 1u) * sizeof *k->lights);
+    if (!k->lights) {
+        free(k);
+        return NULL;
+    }
+    if (h->nlights) memcpy(k->lights, h->src, (size_t)h->nlights * sizeof *k->lights);
     k->n = n;
     k->escale = h->escale;
     rad_shade_elements(&h->s, sc__shade_flags(h, ambient), k->rgb, n);
@@ -118,7 +125,28 @@ sc_solution *sc_keep(sc_solver *h, int ambient)
 
 void sc_solution_free(sc_solution *k)
 {
+    if (k) free(k->lights);
     free(k);
+}
+
+/* The lights as the mix has them, for gathers (which add their direct light): light
+ * I's intensities the groups' sum of INTENSITY[g] times theirs, in the core at the
+ * mix's scale. The core's copy alone: the next solve restarts from h->src. */
+static void mix_lights(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3],
+                       int n)
+{
+    int i, g, c;
+    for (i = 0; i < h->nlights; i++) {
+        sc_light l = h->src[i];
+        for (c = 0; c < 3; c++) {
+            l.rgb[c] = l.horizon[c] = 0;
+            for (g = 0; g < n; g++) {
+                l.rgb[c] += intensity[g][c] * groups[g]->lights[i].rgb[c];
+                l.horizon[c] += intensity[g][c] * groups[g]->lights[i].horizon[c];
+            }
+        }
+        sc__light_to_core(h, &l, h->light_res, &h->lights[i]);
+    }
 }
 
 int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3], int n, char *err,
@@ -177,6 +205,7 @@ int sc_mix(sc_solver *h, sc_solution *const *groups, const double (*intensity)[3
     }
     /* rad_element_t.radiosity is the caller's pools' memory, which the glue owns; the
      * core's emissions still stand at the last solve's scale: solving again restarts. */
+    mix_lights(h, groups, intensity, n);
     h->mixed = 1;
     free(out);
     return 0;

@@ -1,0 +1,336 @@
+/* SPDX-License-Identifier: MIT */
+/* The lights' direct light in what is gathered (lib/gather.c, lib/light.c
+ * rad__lights_at): a lightmap texel, a final gather's vertex or pixel and a probe see
+ * a sun, a sky, a point or a spot as the solve does, through their own cube: a
+ * direction reaches the point when its pixel shows nothing (a sun's, a sky's) or
+ * nothing nearer than the light (a point's), and a face seen from behind occludes.
+ * Before, a gather summed only the elements it saw: a sunlit floor's texels held 0.
+ *
+ * The scene: a floor 4 x 4 at y = 0 facing up, a one-sided panel 1 x 1 at y = 1 facing
+ * up (reflectance 0.5 both). The floor sees nothing's front but the void and the
+ * panel's back (black), so a gather on the floor receives the lights' direct light
+ * alone: closed forms. Points are lifted 10^-3 off the floor (a gather on its plane
+ * sees it edge-on).
+ *
+ * Bounds: the core holds intensities, the cosines and the result in Q16.16 at the
+ * glue's scale (the brightest light at the core's emission peak): each rounding is
+ * below 10^-4 of the values here, so 10^-3 relative. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "check.h"
+#include "host/scene.h"
+
+#define PI               3.14159265358979323846
+#define GATHER_RES       64
+#define REL              1e-3 /* the Q16.16 roundings above */
+/* An element's direct light is its sun raster's coverage of its outline, pixels at
+ * most 1/16 of its side (light.c): each row of pixels it crosses off by under one,
+ * |n - A| < W + H + 2 = 34 pixels of its 256: 0.133 in the worst case (measured here:
+ * 0.017). Over the compared elements the errors of neighbours cancel (they share each
+ * pixel) but for the set's outline: measured 0.0007; bound 0.003. */
+#define ELEMENT_COVERAGE 0.14
+#define MEAN_COVERAGE    3e-3
+
+static sc_poly quad(double y, double h, double rho)
+{
+    sc_poly p;
+    memset(&p, 0, sizeof p);
+    p.n = 4;
+    /* facing up (+y): counter-clockwise seen from above */
+    p.v[0][0] = -h, p.v[0][1] = y, p.v[0][2] = -h;
+    p.v[1][0] = -h, p.v[1][1] = y, p.v[1][2] = h;
+    p.v[2][0] = h, p.v[2][1] = y, p.v[2][2] = h;
+    p.v[3][0] = h, p.v[3][1] = y, p.v[3][2] = -h;
+    p.rho[0] = p.rho[1] = p.rho[2] = rho;
+    return p;
+}
+
+/* The floor, and the panel when PANEL, under lights L (N of them), solved. */
+static sc_solver *solve(int panel, const sc_light *l, int n, double rho)
+{
+    sc_poly p[2];
+    sc_opts o;
+    char err[256] = "";
+    sc_solver *s;
+    p[0] = quad(0, 2, rho);
+    p[1] = quad(1, 0.5, rho);
+    memset(&o, 0, sizeof o);
+    o.res = 64;
+    o.lights = l;
+    o.nlights = n;
+    s = sc_create(p, panel ? 2 : 1, &o, NULL, NULL, err, sizeof err);
+    if (!s) fail_msg("sc_create: %s", err);
+    CHECK_INT_GT(sc_solve(s, 10000, 1e-4, NULL, NULL), 0, "shots");
+    return s;
+}
+
+static sc_light sun(double t, double e)
+{
+    sc_light l;
+    memset(&l, 0, sizeof l);
+    l.type = 1;
+    l.dir[0] = sin(t);
+    l.dir[1] = -cos(t);
+    l.rgb[0] = l.rgb[1] = l.rgb[2] = e;
+    return l;
+}
+
+static double gather_at(sc_gatherer *g, double x, double z)
+{
+    const double p[3] = {x, 1e-3, z}, up[3] = {0, 1, 0};
+    double rgb[3];
+    CHECK_INT_EQ(sc_gather(g, p, up, 0, rgb), 0, "sc_gather at (%g, %g)", x, z);
+    return rgb[1];
+}
+
+/* A sun at 0 and 30 degrees: open floor points receive E cos t; points in the
+ * panel's shadow (its outline moved tan t along x, points 0.15 inside it: 8 pixels of
+ * the cube at distance 1) receive 0, as the solve's floor elements there hold; the
+ * solve's open floor elements (farther than 0.3 from the shadow, and from the floor's
+ * outline, where the sun's raster covers an element's pixels only to within a row:
+ * tests/test_light.c) agree with a gather at their centres. The float twin gathers the same values within REL. */
+static void test_sun(void **state)
+{
+    static const double open[4][2] = {{1.7, 1.7}, {-1.6, 1.2}, {1.8, -1.5}, {-1.5, -1.8}};
+    static const double shade[3][2] = {{0, 0}, {0.3, 0.3}, {-0.3, -0.3}};
+    const double e0 = 2.0;
+    int a;
+    (void)state;
+    for (a = 0; a < 2; a++) {
+        double t = a * PI / 6, want = e0 * cos(t), sh = tan(t), worst = 0, sum_e = 0, sum_g = 0;
+        sc_light l = sun(t, e0);
+        sc_solver *s = solve(1, &l, 1, 0.5);
+        scf_solver *f;
+        sc_gatherer *g = sc_gatherer_new(s, GATHER_RES, 0);
+        scf_gatherer *gf;
+        sc_opts o;
+        sc_poly p[2];
+        sc_stats st;
+        char err[256] = "";
+        int k, e, n = 0;
+        assert_non_null(g);
+        for (k = 0; k < 4; k++) {
+            double v = gather_at(g, open[k][0], open[k][1]);
+            CHECK_NEAR(v, want, want * REL, "open floor point %d under a sun at %d degrees", k,
+                       30 * a);
+        }
+        for (k = 0; k < 3; k++) {
+            double v = gather_at(g, shade[k][0] + sh, shade[k][1]);
+            CHECK_EQ(v, 0.0, "shadowed floor point %d under a sun at %d degrees", k, 30 * a);
+        }
+        sc_get_stats(s, &st);
+        for (e = 0; e < st.elements; e++) {
+            double c[3], rgb[3], v;
+            sc_element_centroid(s, e, c);
+            if (c[1] > 0.5 || (fabs(c[0] - sh) < 0.8 && fabs(c[2]) < 0.8) ||
+                fmax(fabs(c[0]), fabs(c[2])) > 1.75)
+                continue;
+            sc_element_rgb(s, e, 0, rgb);
+            v = gather_at(g, c[0], c[2]);
+            worst = fmax(worst, fabs(v - rgb[1] / 0.5) / want);
+            CHECK_NEAR(rgb[1] / 0.5, v, want * ELEMENT_COVERAGE, "floor element %d at (%.3f, %.3f)",
+                       e, c[0], c[2]);
+            sum_e += rgb[1] / 0.5;
+            sum_g += v;
+            n++;
+        }
+        CHECK_INT_GE(n, 100, "open floor elements compared");
+        CHECK_NEAR(sum_e / n, sum_g / n, want * MEAN_COVERAGE,
+                   "the open elements' mean E against their centres' gathers, sun at %d degrees",
+                   30 * a);
+        /* the float twin */
+        p[0] = quad(0, 2, 0.5);
+        p[1] = quad(1, 0.5, 0.5);
+        memset(&o, 0, sizeof o);
+        o.res = 64;
+        o.lights = &l;
+        o.nlights = 1;
+        f = scf_create(p, 2, &o, NULL, NULL, err, sizeof err);
+        if (!f) fail_msg("scf_create: %s", err);
+        CHECK_INT_GT(scf_solve(f, 10000, 1e-4, NULL, NULL), 0, "the float twin's shots");
+        gf = scf_gatherer_new(f, GATHER_RES, 0);
+        assert_non_null(gf);
+        for (k = 0; k < 4; k++) {
+            const double q[3] = {open[k][0], 1e-3, open[k][1]}, up[3] = {0, 1, 0};
+            double rgb[3];
+            CHECK_INT_EQ(scf_gather(gf, q, up, 0, rgb), 0, "scf_gather");
+            CHECK_NEAR(rgb[1], gather_at(g, open[k][0], open[k][1]), want * REL,
+                       "the float twin at open point %d, sun at %d degrees", k, 30 * a);
+        }
+        printf("sun at %d degrees: open floor E %.6f (E cos t %.6f); %d open elements: their "
+               "mean E %.6f, their centres' gathers' %.6f, largest difference %.2e of E cos t\n",
+               30 * a, gather_at(g, open[0][0], open[0][1]), want, n, sum_e / n, sum_g / n, worst);
+        scf_gatherer_free(gf);
+        scf_destroy(f);
+        sc_gatherer_free(g);
+        sc_destroy(s);
+    }
+}
+
+/* A uniform sky of radiance 1 (48 directions): the open floor receives pi H +
+ * 2 pi (Z - H) / 3 = pi exactly (light.c: the cells sum to it), and under the panel's
+ * middle the directions within 26 degrees of the zenith (the top band's 3) and more
+ * are hidden: less than 0.9 pi, more than 0 (the low bands reach it). */
+static void test_sky(void **state)
+{
+    sc_light l;
+    sc_solver *s;
+    sc_gatherer *g;
+    double open, under;
+    (void)state;
+    memset(&l, 0, sizeof l);
+    l.type = 4;
+    l.rgb[0] = l.rgb[1] = l.rgb[2] = 1;
+    l.horizon[0] = l.horizon[1] = l.horizon[2] = 1;
+    l.dirs = 48;
+    s = solve(0, &l, 1, 0.5);
+    g = sc_gatherer_new(s, GATHER_RES, 0);
+    assert_non_null(g);
+    open = gather_at(g, 0.3, -0.2);
+    CHECK_NEAR(open, PI, PI * REL, "the open floor under a uniform sky");
+    sc_gatherer_free(g);
+    sc_destroy(s);
+    s = solve(1, &l, 1, 0.5);
+    g = sc_gatherer_new(s, GATHER_RES, 0);
+    assert_non_null(g);
+    under = gather_at(g, 0, 0);
+    CHECK_LT(under, 0.9 * PI, "the floor under the panel, sky");
+    CHECK_GT(under, 0.0, "the floor under the panel, sky");
+    printf("uniform sky: open floor E %.6f (pi), under the panel %.6f\n", open, under);
+    sc_gatherer_free(g);
+    sc_destroy(s);
+}
+
+/* A point light of I = 4 at (0, 2, 0) over the floor: E = I cos t / r^2 = 2 I / r^3;
+ * a spot there pointing down with cones of 20 and 30 degrees: that inside 20, 0
+ * beyond 30, that times s^2 between (rad.h). Under the panel, with the point light
+ * above it: 0 (its back hides the light). */
+static void test_point_spot(void **state)
+{
+    static const double pts[5][2] = {{0.1, 0.2}, {0.5, -0.4}, {0.9, 0.3}, {1.5, 1.5}, {-1.9, 0.2}};
+    const double i0 = 4.0, ci = cos(20 * PI / 180), co = cos(30 * PI / 180);
+    sc_light l;
+    int type, k;
+    (void)state;
+    for (type = 2; type <= 3; type++) {
+        sc_solver *s;
+        sc_gatherer *g;
+        memset(&l, 0, sizeof l);
+        l.type = type;
+        l.pos[1] = 2;
+        l.dir[1] = -1;
+        l.rgb[0] = l.rgb[1] = l.rgb[2] = i0;
+        l.cos_outer = co;
+        l.cos_inner = ci;
+        s = solve(0, &l, 1, 0.5);
+        g = sc_gatherer_new(s, GATHER_RES, 0);
+        assert_non_null(g);
+        for (k = 0; k < 5; k++) {
+            double x = pts[k][0], z = pts[k][1], h = 2 - 1e-3, r = sqrt(x * x + h * h + z * z);
+            double c = h / r, want = i0 * c / (r * r), v = gather_at(g, x, z);
+            if (type == 3) {
+                double u = (c - co) / (ci - co);
+                want *= c >= ci ? 1 : c <= co ? 0 : u * u;
+            }
+            CHECK_NEAR(v, want, want * REL + 1e-6, "%s at floor point (%g, %g)",
+                       type == 2 ? "point light" : "spot", x, z);
+        }
+        sc_gatherer_free(g);
+        sc_destroy(s);
+    }
+    l.type = 2;
+    {
+        sc_solver *s = solve(1, &l, 1, 0.5);
+        sc_gatherer *g = sc_gatherer_new(s, GATHER_RES, 0);
+        assert_non_null(g);
+        CHECK_EQ(gather_at(g, 0.1, -0.2), 0.0, "the floor under the panel, point light above");
+        CHECK_GT(gather_at(g, 1.8, 1.8), 0.0, "the open floor, point light");
+        sc_gatherer_free(g);
+        sc_destroy(s);
+    }
+}
+
+/* A probe in the open under a sun of E, over a black floor (nothing else seen): the
+ * radiosity seen is pi E in the sun's direction w alone, so SH[k] = pi E Y_k(w). */
+static void test_probe(void **state)
+{
+    const double e0 = 2.0, t = 0.5, p[3] = {1.2, 0.5, -1.0};
+    sc_light l = sun(t, e0);
+    sc_solver *s = solve(0, &l, 1, 0.0);
+    sc_gatherer *g = sc_gatherer_new(s, GATHER_RES, 1);
+    double sh[9][3], w[3] = {-sin(t), cos(t), 0}, y[9];
+    int k;
+    (void)state;
+    assert_non_null(g);
+    CHECK_INT_EQ(sc_gather_sh(g, p, 0, sh), 0, "sc_gather_sh");
+    y[0] = 0.282094792;
+    y[1] = 0.488602512 * w[1];
+    y[2] = 0.488602512 * w[2];
+    y[3] = 0.488602512 * w[0];
+    y[4] = 1.092548431 * w[0] * w[1];
+    y[5] = 1.092548431 * w[1] * w[2];
+    y[6] = 0.315391565 * (3 * w[2] * w[2] - 1);
+    y[7] = 1.092548431 * w[0] * w[2];
+    y[8] = 0.546274215 * (w[0] * w[0] - w[1] * w[1]);
+    for (k = 0; k < 9; k++)
+        CHECK_NEAR(sh[k][1], PI * e0 * y[k], PI * e0 * REL, "the probe's SH coefficient %d", k);
+    printf("probe under a sun: SH0 %.6f (pi E Y00 %.6f), SH y %.6f (%.6f)\n", sh[0][1],
+           PI * e0 * y[0], sh[1][1], PI * e0 * y[1]);
+    sc_gatherer_free(g);
+    sc_destroy(s);
+}
+
+/* Light groups: sun A (straight down) solved alone, then sun B (30 degrees) alone, and
+ * mixed 1 A + 2 B: a gather then receives E_A + 2 E_B cos 30, as the mixed elements
+ * hold, not the last group's lights. */
+static void test_mix(void **state)
+{
+    const double ea = 1.0, eb = 1.5, dark[3] = {0, 0, 0};
+    sc_light l[2];
+    sc_solver *s;
+    sc_solution *sol[2];
+    sc_gatherer *g;
+    double k[2][3] = {{1, 1, 1}, {2, 2, 2}}, want = ea + 2 * eb * cos(PI / 6), v;
+    char err[256] = "";
+    (void)state;
+    l[0] = sun(0, ea);
+    l[1] = sun(PI / 6, eb);
+    s = solve(0, l, 2, 0.5);
+    CHECK_INT_EQ(sc_set_light(s, 1, dark, dark, err, sizeof err), 0, "sc_set_light: %s", err);
+    CHECK_INT_GT(sc_solve(s, 10000, 1e-4, NULL, NULL), 0, "group A's shots");
+    sol[0] = sc_keep(s, 0);
+    CHECK_INT_EQ(sc_set_light(s, 1, l[1].rgb, dark, err, sizeof err), 0, "sc_set_light: %s", err);
+    CHECK_INT_EQ(sc_set_light(s, 0, dark, dark, err, sizeof err), 0, "sc_set_light: %s", err);
+    CHECK_INT_GT(sc_solve(s, 10000, 1e-4, NULL, NULL), 0, "group B's shots");
+    sol[1] = sc_keep(s, 0);
+    assert_non_null(sol[0]);
+    assert_non_null(sol[1]);
+    CHECK_INT_EQ(sc_mix(s, sol, (const double(*)[3])k, 2, err, sizeof err), 0, "sc_mix: %s", err);
+    g = sc_gatherer_new(s, GATHER_RES, 0);
+    assert_non_null(g);
+    v = gather_at(g, 0.7, 0.4);
+    CHECK_NEAR(v, want, want * REL, "the mixed gather on the open floor");
+    printf("light groups: mixed gather %.6f, E_A + 2 E_B cos 30 %.6f\n", v, want);
+    sc_gatherer_free(g);
+    sc_solution_free(sol[0]);
+    sc_solution_free(sol[1]);
+    sc_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sun),   cmocka_unit_test(test_sky), cmocka_unit_test(test_point_spot),
+        cmocka_unit_test(test_probe), cmocka_unit_test(test_mix),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
