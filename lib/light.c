@@ -39,6 +39,9 @@
  * pi H + 2 pi (Z - H) / 3 on a plane facing up (pi L for a uniform sky), and any plane
  * that sees a whole cell receives that cell's light exactly (grey skies).
  *
+ * Gathers (gather.c) receive each light's direct light along the same directions
+ * (light_dirs, rad__lights_at), its visibility read from their own cube's pixels.
+ *
  * A surface turned away from a light receives nothing from it but occludes it (drawn
  * with no element, a quarter of a pixel's footprint behind: view_t), as a gather's
  * cube draws it: a one-sided roof keeps the sun out.
@@ -727,8 +730,8 @@ typedef struct {
 typedef void dir_fn(void *ctx, const dir_t *d);
 
 /* The sky's 3 m^2 directions (the top of the file) to FN, all in integers, as both
- * builds' must agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc (c^2 = 1 - r^2,
- * dw = r dr dphi / c) has, per unit of angle, the integrals
+ * builds' must agree. Band i between r1 = i / m and r2 = (i + 1) / m on the disc
+ * (c^2 = 1 - r^2, dw = r dr dphi / c) has, per unit of angle, the integrals
  *   Au = int c dw = (r2^2 - r1^2) / 2,        Ac = int c^2 dw = (c1^3 - c2^3) / 3,
  *   Bu = int s dw = (asin r - r c) / 2 |r1..r2, Bc = int c s dw = (r2^3 - r1^3) / 3
  * (s = r the sine of the zenith angle). A cell's light of L = H (1 - c) + Z c has the

@@ -97,7 +97,8 @@ static double gather_at(sc_gatherer *g, double x, double z)
  * the cube at distance 1) receive 0, as the solve's floor elements there hold; the
  * solve's open floor elements (farther than 0.3 from the shadow, and from the floor's
  * outline, where the sun's raster covers an element's pixels only to within a row:
- * tests/test_light.c) agree with a gather at their centres. The float twin gathers the same values within REL. */
+ * tests/test_light.c) agree with a gather at their centres. The float twin gathers the
+ * same values within REL. */
 static void test_sun(void **state)
 {
     static const double open[4][2] = {{1.7, 1.7}, {-1.6, 1.2}, {1.8, -1.5}, {-1.5, -1.8}};
