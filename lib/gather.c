@@ -261,7 +261,10 @@ static void lit_face(const rad_scene_t *s, const rad__eye_t *e, unsigned f, lit_
     t->e = e;
     t->face = f;
     t->keep = f == 0;
-    if (f == 0) t->n_kept = 0, t->more = 0;
+    if (f == 0) {
+        t->n_kept = 0;
+        t->more = 0;
+    }
     if (f == 0 || t->more) {
         rad__lights_at(s, e->c, lit_dir, t, t->sat);
         return;

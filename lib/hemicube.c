@@ -576,7 +576,7 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
 int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *px, uint32_t *depth)
 {
     rad_vec3_t l;
-    rad_real_t m[3];
+    rad_real_t m[3], lk;
     rad__cvert_t c;
     rad__frustum_t f;
     uint32_t x, y;
@@ -590,11 +590,9 @@ int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *p
     /* the face whose axis is the largest component's (ties: the lower axis) */
     if (m[1] > m[k]) k = 1;
     if (m[2] > m[k]) k = 2;
+    lk = k == 0 ? l.x : k == 1 ? l.y : l.z;
     for (f0 = 0; f0 < 6; f0++)
-        if (rad__face_axis[f0][2] == k && (rad__face_sign[f0][2] < 0) == ((k == 0   ? l.x
-                                                                           : k == 1 ? l.y
-                                                                                    : l.z) < 0))
-            break;
+        if (rad__face_axis[f0][2] == k && (rad__face_sign[f0][2] < 0) == (lk < 0)) break;
     if (f0 != face || (f0 == 5 && !e->full)) return 0;
     face_vertex(face, l, &c);
     f.half = face != 0 && !e->full;
