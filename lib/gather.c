@@ -193,14 +193,16 @@ static const unsigned char second[3][3] = {{4, 7, 9}, {7, 5, 8}, {9, 8, 6}};
  * decides, and a face seen from behind occludes. The hemisphere sums E cos t per
  * channel (its normal the cube's third axis); the sphere adds each direction's
  * moments (MOM, on the cube's axes, Q20 as add_face's). The first face keeps the
- * directions (working a sky's out is most of their cost) for the others when they
- * fit in LIT_KEEP (2.3 KB of stack: a sun's disc and a sky of 48 directions fit),
+ * directions, each with the face and pixel it meets (working a sky's out is most of
+ * their cost), for the others when they
+ * fit in LIT_KEEP (2.5 KB of stack: a sun's disc and a sky of 48 directions fit),
  * else every face works them out again. */
 #define LIT_KEEP 64
 typedef struct {
-    rad_vec3_t w, u;
-    rad_rgb_t e;
+    uint32_t face, px, depth; /* where the direction meets the cube (rad__eye_pixel) */
     int point;
+    rad_real_t l[3]; /* its unit on the cube's axes */
+    rad_rgb_t e;
 } lit_dir_t;
 typedef struct {
     const rad__eye_t *e;
@@ -213,37 +215,37 @@ typedef struct {
     int keep, more; /* KEEP: the first face's pass; MORE: some did not fit */
 } lit_t;
 
+/* Direction D when it lies on the face just drawn and reaches the point. */
 static void lit_one(lit_t *t, const lit_dir_t *d)
 {
-    const rad__eye_t *ey = t->e;
-    uint32_t px, depth, z;
-    rad_real_t l[3];
+    uint32_t z = t->e->z[d->px];
     unsigned c, k, m;
-    if (!rad__eye_pixel(ey, t->face, d->w, &px, &depth)) return;
-    z = ey->z[px];
-    if (d->point ? z > depth : z != 0) return;
-    for (k = 0; k < 3; k++) l[k] = rad__dot_unit(d->u, ey->frame[k]);
+    if (d->face != t->face || (d->point ? z > d->depth : z != 0)) return;
     for (c = 0; c < 3; c++) {
         rad_real_t v = rad__channel(&d->e, c);
         if (!t->mom) {
-            if (l[2] > 0) t->sum[c] = rad__add_sat(t->sum[c], rad__mul(v, l[2], t->sat), t->sat);
+            if (d->l[2] > 0)
+                t->sum[c] = rad__add_sat(t->sum[c], rad__mul(v, d->l[2], t->sat), t->sat);
             continue;
         }
         t->mom[0][c] += rad__msum_light(v, RAD__ONE, RAD__ONE);
         for (k = 0; k < 3; k++) {
-            t->mom[1 + k][c] += rad__msum_light(v, l[k], RAD__ONE);
-            for (m = k; m < 3; m++) t->mom[second[k][m]][c] += rad__msum_light(v, l[k], l[m]);
+            t->mom[1 + k][c] += rad__msum_light(v, d->l[k], RAD__ONE);
+            for (m = k; m < 3; m++) t->mom[second[k][m]][c] += rad__msum_light(v, d->l[k], d->l[m]);
         }
     }
 }
 
+/* A direction from rad__lights_at: its face and pixel found once, kept on the first
+ * face's pass. */
 static void lit_dir(void *ctx, const rad_vec3_t *w, const rad_vec3_t *u, int point,
                     const rad_rgb_t *e)
 {
     lit_t *t = ctx;
     lit_dir_t d;
-    d.w = *w;
-    d.u = *u;
+    unsigned k;
+    if (!rad__eye_pixel(t->e, *w, &d.face, &d.px, &d.depth)) return;
+    for (k = 0; k < 3; k++) d.l[k] = rad__dot_unit(*u, t->e->frame[k]);
     d.e = *e;
     d.point = point;
     if (t->keep && t->n_kept < LIT_KEEP)

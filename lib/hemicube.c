@@ -573,7 +573,7 @@ void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face)
     render_view(s, &cv, &ps);
 }
 
-int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *px, uint32_t *depth)
+int rad__eye_pixel(const rad__eye_t *e, rad_vec3_t w, uint32_t *face, uint32_t *px, uint32_t *depth)
 {
     rad_vec3_t l;
     rad_real_t m[3], lk;
@@ -593,14 +593,15 @@ int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *p
     lk = k == 0 ? l.x : k == 1 ? l.y : l.z;
     for (f0 = 0; f0 < 6; f0++)
         if (rad__face_axis[f0][2] == k && (rad__face_sign[f0][2] < 0) == (lk < 0)) break;
-    if (f0 != face || (f0 == 5 && !e->full)) return 0;
-    face_vertex(face, l, &c);
-    f.half = face != 0 && !e->full;
+    if (f0 == 5 && !e->full) return 0;
+    face_vertex(f0, l, &c);
+    f.half = f0 != 0 && !e->full;
     f.ortho = 0;
     f.recede = 0;
     f.width = (int)e->res;
-    f.height = (int)rows_of(e->res, e->full, face);
+    f.height = (int)rows_of(e->res, e->full, f0);
     if (!rad__pixel(&f, &c, &x, &y, depth)) return 0;
+    *face = f0;
     *px = y * e->res + x;
     return 1;
 }

@@ -200,10 +200,11 @@ typedef struct {
  * the face's top, b = +1, as the hemi-cube's). */
 void rad__eye_face(const rad_scene_t *s, const rad__eye_t *e, unsigned face);
 /* Where direction W (the scene's axes, from E's centre; any length above RAD__NEAR)
- * meets E's cube: 1 when on face FACE, with *PX its pixel's index in the face's
- * buffers and *W its depth value there for a point at W (as the rasterizer's); else 0
- * (another face, or below a hemi-cube's horizon). Each direction lies on one face. */
-int rad__eye_pixel(const rad__eye_t *e, unsigned face, rad_vec3_t w, uint32_t *px, uint32_t *depth);
+ * meets E's cube: 1, with *FACE the face it lies on (each direction on one), *PX its
+ * pixel's index in that face's buffers and *DEPTH its depth value there for a point at
+ * W (as the rasterizer's); 0 below a hemi-cube's horizon. */
+int rad__eye_pixel(const rad__eye_t *e, rad_vec3_t w, uint32_t *face, uint32_t *px,
+                   uint32_t *depth);
 /* Face FACE of E's buffers cleared; surface K drawn into them, as rad__eye_face draws it
  * (nothing when it is E's skipped one), or with BY_INDEX by its index K at every pixel,
  * front or back, ties kept by the least id (rad__target_t.least): the same depths. */

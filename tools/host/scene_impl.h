@@ -60,7 +60,8 @@ int sc__fits_core(double x);
 /* The brightest of light L as an emission in the core's units before escale (a sky's
  * irradiance: at most pi times its brightest radiance). */
 double sc__light_peak(const struct sc_solver *h, const sc_light *l);
-/* Light I (h->src) into the core's units at the current escale, into C. */
+/* Light L (one of h->src, or a mix of them) into the core's units at the current
+ * escale, into C. */
 void sc__light_to_core(const struct sc_solver *h, const sc_light *l, int res, rad_light_t *c);
 /* A mixed scene (sc_mix) restarted before it is solved again. */
 void sc__unmix(struct sc_solver *h);

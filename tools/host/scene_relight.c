@@ -111,12 +111,14 @@ sc_solution *sc_keep(sc_solver *h, int ambient)
     uint32_t n = h->s.n_elements;
     struct sc_solution *k = malloc(sizeof *k + (n ? n - 1u : 0u) * sizeof k->rgb[0]);
     if (!k) return NULL;
-    k->lights = malloc((h->nlights ? (size_t)h->nlights : 1u) * sizeof *k->lights);
-    if (!k->lights) {
-        free(k);
-        return NULL;
+    k->lights = NULL;
+    if (h->nlights) {
+        if (!(k->lights = malloc((size_t)h->nlights * sizeof *k->lights))) {
+            free(k);
+            return NULL;
+        }
+        memcpy(k->lights, h->src, (size_t)h->nlights * sizeof *k->lights);
     }
-    if (h->nlights) memcpy(k->lights, h->src, (size_t)h->nlights * sizeof *k->lights);
     k->n = n;
     k->escale = h->escale;
     rad_shade_elements(&h->s, sc__shade_flags(h, ambient), k->rgb, n);
