@@ -128,7 +128,8 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
 {
     uint32_t sat = 0;
     RAD__CHECK_SCENE(s);
-    if (!g || !point || (int)g->sh != sh || (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED)))
+    if (!g || !point || (int)g->sh != sh ||
+        (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED | (sh ? 0 : RAD_SHADE_SOFT))))
         return RAD_ERR_ARG;
     if (!s->solving || (g->cull && !rad__cull_fits(s, g->cull))) return RAD_ERR_STATE;
     e->c = rad__scale2_vec(*point, s->length_shift, &sat);
@@ -213,6 +214,7 @@ typedef struct {
     lit_dir_t kept[LIT_KEEP];
     uint32_t n_kept;
     int keep, more; /* KEEP: the first face's pass; MORE: some did not fit */
+    unsigned types; /* the lights' types counted (rad__lights_at) */
 } lit_t;
 
 /* Direction D when it lies on the face just drawn and reaches the point. */
@@ -238,12 +240,13 @@ static void lit_one(lit_t *t, const lit_dir_t *d)
 
 /* A direction from rad__lights_at: its face and pixel found once, kept on the first
  * face's pass. */
-static void lit_dir(void *ctx, const rad_vec3_t *w, const rad_vec3_t *u, int point,
+static void lit_dir(void *ctx, uint32_t light, const rad_vec3_t *w, const rad_vec3_t *u, int point,
                     const rad_rgb_t *e)
 {
     lit_t *t = ctx;
     lit_dir_t d;
     unsigned k;
+    (void)light;
     if (!rad__eye_pixel(t->e, *w, &d.face, &d.px, &d.depth)) return;
     for (k = 0; k < 3; k++) d.l[k] = rad__dot_unit(*u, t->e->frame[k]);
     d.e = *e;
@@ -268,7 +271,7 @@ static void lit_face(const rad_scene_t *s, const rad__eye_t *e, unsigned f, lit_
         t->more = 0;
     }
     if (f == 0 || t->more) {
-        rad__lights_at(s, e->c, lit_dir, t, t->sat);
+        rad__lights_at(s, e->c, t->types, lit_dir, t, t->sat);
         return;
     }
     for (k = 0; k < t->n_kept; k++) lit_one(t, &t->kept[k]);
@@ -402,6 +405,7 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     ap = gather_ambient(s, g, flags, &amb);
     lit.mom = 0;
     lit.sat = &g->stats.saturations;
+    lit.types = (flags & RAD_SHADE_SOFT) ? RAD__LIGHTS_SKIES : RAD__LIGHTS_ALL;
     lit.sum[0] = lit.sum[1] = lit.sum[2] = 0;
     for (f = 0; f < 5; f++) {
         eye_face(s, &e, f);
@@ -412,6 +416,53 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     v.g = rad__add_sat(rad__wvalue(sum[1], lit.sat), lit.sum[1], lit.sat);
     v.b = rad__add_sat(rad__wvalue(sum[2], lit.sat), lit.sum[2], lit.sat);
     *out = gather_out(s, g, flags, v);
+    return RAD_OK;
+}
+
+/* ---- the sharp lights at a point, visibility the caller's ------------------------ */
+
+typedef struct {
+    rad_vec3_t n; /* the surface's unit normal */
+    rad_visible_fn *vis;
+    void *ctx;
+    rad_real_t sum[3];
+    uint32_t *sat;
+} direct_t;
+
+static void direct_one(void *ctx, uint32_t light, const rad_vec3_t *w, const rad_vec3_t *u,
+                       int point, const rad_rgb_t *e)
+{
+    direct_t *d = ctx;
+    rad_real_t cosine = rad__dot_unit(*u, d->n);
+    unsigned c;
+    (void)w;
+    (void)point;
+    if (!(cosine > 0) || !d->vis(d->ctx, light, u)) return;
+    for (c = 0; c < 3; c++)
+        d->sum[c] = rad__add_sat(d->sum[c], rad__mul(rad__channel(e, c), cosine, d->sat), d->sat);
+}
+
+int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *normal, int flags,
+               rad_visible_fn *vis, void *ctx, rad_rgb_t *out)
+{
+    direct_t d;
+    rad_vec3_t c;
+    rad_rgb_t v;
+    uint32_t sat = 0;
+    RAD__CHECK_SCENE(s);
+    if (!point || !normal || !vis || !out || (flags & ~RAD_SHADE_SCALED)) return RAD_ERR_ARG;
+    c = rad__scale2_vec(*point, s->length_shift, &sat);
+    if (sat || !in_range(&c) || !in_range(normal)) return RAD_ERR_RANGE;
+    if (!rad__normalize(*normal, &d.n)) return RAD_ERR_ARG;
+    d.vis = vis;
+    d.ctx = ctx;
+    d.sat = &sat;
+    d.sum[0] = d.sum[1] = d.sum[2] = 0;
+    rad__lights_at(s, c, RAD__LIGHTS_ALL & ~RAD__LIGHTS_SKIES, direct_one, &d, &sat);
+    v.r = d.sum[0];
+    v.g = d.sum[1];
+    v.b = d.sum[2];
+    *out = (flags & RAD_SHADE_SCALED) ? v : rad__scale2_rgb(v, -s->power_shift, &sat);
     return RAD_OK;
 }
 
@@ -544,6 +595,7 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
     ap = gather_ambient(s, g, flags, &amb);
     lit.mom = cube.m;
     lit.sat = sat;
+    lit.types = RAD__LIGHTS_ALL;
     for (f = 0; f < 6; f++) {
         rad__msum_t fs[NMOM][3] = {{0, 0, 0}};
         eye_face(s, &e, f);

@@ -251,16 +251,19 @@ int rad__lights_shoot(rad_scene_t *s, uint32_t max);
  * range (rad__lights_shoot would refuse), else RAD_OK. */
 int rad__lights_check(const rad_scene_t *s, uint32_t first);
 rad_real_t rad__lights_peak(const rad_scene_t *s);
-/* The direct light of S's lights that have shot, at point C (the core's scale), a
- * direction at a time: FN gets the vector W from C toward the light (a sun's or sky's
+/* The direct light of S's lights that have shot whose types (RAD_LIGHT_*) are in the
+ * mask TYPES (bit 1 << type), at point C (the core's scale), a direction at a time: FN
+ * gets the light's index K, the vector W from C toward the light (a sun's or sky's
  * direction: unit; a point's or spot's: to its position), its unit U, whether the
  * light is a point (at W's end) or at infinity, and the irradiance E it gives a plane
  * facing U there (per channel, the core's scale and power shift, >= 0; a spot's
  * falloff applied), in a fixed order. Counts saturations in SAT. */
-typedef void rad__light_fn(void *ctx, const rad_vec3_t *w, const rad_vec3_t *u, int point,
-                           const rad_rgb_t *e);
-void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, rad__light_fn *fn, void *ctx,
-                    uint32_t *sat);
+typedef void rad__light_fn(void *ctx, uint32_t k, const rad_vec3_t *w, const rad_vec3_t *u,
+                           int point, const rad_rgb_t *e);
+#define RAD__LIGHTS_ALL   0xffffu
+#define RAD__LIGHTS_SKIES (1u << RAD_LIGHT_SKY)
+void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, unsigned types, rad__light_fn *fn,
+                    void *ctx, uint32_t *sat);
 /* rad_shoot (ROWS null) or rad_rows_shoot while lights are pending: they shoot (each
  * a shot of MAX_SHOTS), then patches as rad__shoot (returns the shots, or the error). */
 int rad__lights_solve(rad_scene_t *s, const rad_rows_t *rows, uint32_t max_shots, rad_real_t tol);

@@ -976,6 +976,7 @@ rad_real_t rad__lights_peak(const rad_scene_t *s)
 typedef struct {
     const rad_scene_t *s;
     const rad_light_t *l;
+    uint32_t k; /* its index */
     rad__light_fn *fn;
     void *ctx;
     uint32_t *sat;
@@ -1005,7 +1006,7 @@ static void arrive_dir(void *ctx, const dir_t *d)
     e.r = dir_channel(a, d, 0);
     e.g = dir_channel(a, d, 1);
     e.b = dir_channel(a, d, 2);
-    a->fn(a->ctx, &u, &u, 0, &e);
+    a->fn(a->ctx, a->k, &u, &u, 0, &e);
 }
 
 /* Point or spot A->l seen from C: I / r^2 per channel, with I in the core's scale
@@ -1038,10 +1039,11 @@ static void arrive_point(const arrive_t *a, rad_vec3_t c)
     e.r = v[0];
     e.g = v[1];
     e.b = v[2];
-    a->fn(a->ctx, &w, &u, 1, &e);
+    a->fn(a->ctx, a->k, &w, &u, 1, &e);
 }
 
-void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, rad__light_fn *fn, void *ctx, uint32_t *sat)
+void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, unsigned types, rad__light_fn *fn,
+                    void *ctx, uint32_t *sat)
 {
     arrive_t a;
     uint32_t k;
@@ -1051,7 +1053,8 @@ void rad__lights_at(const rad_scene_t *s, rad_vec3_t c, rad__light_fn *fn, void 
     a.sat = sat;
     for (k = 0; k < s->lights_shot && k < s->n_lights; k++) {
         a.l = &s->lights[k];
-        if (dark(a.l)) continue;
+        a.k = k;
+        if (dark(a.l) || !(types & (1u << a.l->type))) continue;
         if (is_point(a.l))
             arrive_point(&a, c);
         else

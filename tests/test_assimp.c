@@ -1000,7 +1000,7 @@ static void test_lightmap_file_uv(void **state)
     CHECK_INT_EQ(a.file_charts, 3,
                  "the file's charts: one per quad (its two triangles share a UV edge)");
     CHECK_INT_EQ(rep.outside + rep.overlap + rep.zero_area + rep.missing, 0, "faults in clean UVs");
-    assert_int_equal(lm_bake(&a, gather_point, NULL), 0);
+    assert_int_equal(lm_bake(&a, gather_point, NULL, NULL), 0);
     /* the centre of each quad's rectangle: the sample is the texel's centre mapped by
      * the quad's UVs (an affine map here), lifted 2^-12 of the extent (3) off it, and
      * the float32 UVs of the file move it by about 2^-24 / 0.2 */
@@ -1090,8 +1090,8 @@ static void test_lightmap_file_uv(void **state)
         lo.size = 128;
         if (lm_build_file(&a, polys, n, uv, &lo, &rep, err, sizeof err) < 0) fail_msg("%s", err);
         if (lm_build(&b, polys, n, &lo, err, sizeof err) < 0) fail_msg("%s", err);
-        assert_int_equal(lm_bake(&a, gather_light, &g), 0);
-        assert_int_equal(lm_bake(&b, gather_light, &g), 0);
+        assert_int_equal(lm_bake(&a, gather_light, NULL, &g), 0);
+        assert_int_equal(lm_bake(&b, gather_light, NULL, &g), 0);
         poly_means(&a, n, ma);
         poly_means(&b, n, mb);
         for (i = 0; i < n; i++) {

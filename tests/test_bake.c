@@ -231,7 +231,7 @@ static int bake_atlas(sc_solver *s, const sc_poly *polys, int n, int size, int r
     b.g = sc_gatherer_new(s, res, 0);
     assert_non_null(b.g);
     CHECK_INT_EQ(lm_build(a, polys, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
-    CHECK_INT_EQ(lm_bake(a, gather_cb, &b), 0, "lm_bake");
+    CHECK_INT_EQ(lm_bake(a, gather_cb, NULL, &b), 0, "lm_bake");
     CHECK_INT_EQ(sc_gatherer_saturations(b.g), 0, "values saturated in the gathers");
     sc_gatherer_free(b.g);
     return b.calls;
@@ -713,7 +713,7 @@ static void test_lightmap_merged_light(void **state)
         b.s = s;
         b.g = sc_gatherer_new(s, 64, 0);
         CHECK_INT_EQ(lm_build(&a[m], polys[m], n[m], &o, err, sizeof err), 0, "lm_build (%s)", err);
-        CHECK_INT_EQ(lm_bake(&a[m], gather_cb, &b), 0, "lm_bake");
+        CHECK_INT_EQ(lm_bake(&a[m], gather_cb, NULL, &b), 0, "lm_bake");
         charts[m] = a[m].ncharts;
         sc_gatherer_free(b.g);
         sc_destroy(s);
@@ -1031,7 +1031,7 @@ static void test_lightmap_gutter(void **state)
     CHECK_INT_EQ(lm_build(&a, polys, 2, &o, err, sizeof err), 0, "lm_build (%s)", err);
     CHECK_INT_EQ(a.ncharts, 2, "coplanar disjoint squares: charts");
     CHECK_INT_EQ(a.padding, LM_PADDING, "the default padding at 512 texels");
-    CHECK_INT_EQ(lm_bake(&a, two_colour_cb, NULL), 0, "lm_bake");
+    CHECK_INT_EQ(lm_bake(&a, two_colour_cb, NULL, NULL), 0, "lm_bake");
     for (y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
             size_t at = (size_t)y * a.size + (size_t)x;

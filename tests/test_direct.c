@@ -30,7 +30,9 @@
 
 #include "check.h"
 #include "tmpdir.h"
+#include "bake/lightmap.h"
 #include "formats/hdr.h"
+#include "host/geom.h"
 #include "host/scene.h"
 
 TMPDIR_GROUP("direct")
@@ -384,12 +386,190 @@ static void test_cli_lightmap(void **state)
     hdr_free(&im);
 }
 
+/* The ray from P along DIR within LEN against the panel (y = 1, |x|, |z| <= 1/2): 1
+ * when it misses. *EDGE (unless NULL) gets how near the panel's outline it passes. */
+static int panel_missed(const double p[3], const double dir[3], double len, double *edge)
+{
+    double t, x, z;
+    if (edge) *edge = HUGE_VAL;
+    if (!(dir[1] > 0)) return 1;
+    t = (1 - p[1]) / dir[1];
+    if (t < 0 || t > len) return 1;
+    x = p[0] + t * dir[0];
+    z = p[2] + t * dir[2];
+    if (edge) *edge = fmin(fabs(fabs(x) - 0.5), fabs(fabs(z) - 0.5));
+    return fabs(x) > 0.5 || fabs(z) > 0.5;
+}
+
+static int panel_vis(void *ctx, const double p[3], const double dir[3], double len)
+{
+    (void)ctx;
+    return panel_missed(p, dir, len, NULL);
+}
+
+static int never_vis(void *ctx, const double p[3], const double dir[3], double len)
+{
+    (void)ctx, (void)p, (void)dir, (void)len;
+    return 0;
+}
+
+/* A gather's light split in two (rad_direct): the sharp lights' (a sun at 30 degrees,
+ * a point light) direct light per point with the caller's visibility (here the
+ * panel's outline, exactly), and the gather with RAD_SHADE_SOFT (the sky's direct
+ * light and what the elements send). At floor points off the shadows' outlines (the
+ * cube's visibility and the ray's agree there) the two sum to the whole gather within
+ * REL; with no light visible the direct part is 0, and a sky alone has none. The float
+ * twin's direct part agrees within REL. */
+static void test_split(void **state)
+{
+    /* open; in the sun's shadow (x in [0.077, 1.077], |z| < 1/2); in the point's
+     * (x in [-2, 0], z in [-1.4, 0.6]) */
+    static const double pts[6][2] = {{1.7, 1.7},  {-1.6, 1.2}, {0.5, 0.0},
+                                     {0.6, -0.3}, {-0.2, 0.3}, {-0.5, -0.3}};
+    const double up[3] = {0, 1, 0};
+    sc_light l[3];
+    sc_solver *s;
+    scf_solver *f;
+    sc_gatherer *g;
+    sc_opts o;
+    sc_poly p[2];
+    char err[256] = "";
+    int k, shade[2] = {0, 0};
+    (void)state;
+    l[0] = sun(PI / 6, 2.0);
+    memset(&l[1], 0, sizeof l[1]);
+    l[1].type = 2;
+    l[1].pos[0] = 1.0, l[1].pos[1] = 2.0, l[1].pos[2] = 0.4;
+    l[1].rgb[0] = l[1].rgb[1] = l[1].rgb[2] = 3.0;
+    memset(&l[2], 0, sizeof l[2]);
+    l[2].type = 4;
+    l[2].rgb[0] = l[2].rgb[1] = l[2].rgb[2] = 0.3;
+    l[2].horizon[0] = l[2].horizon[1] = l[2].horizon[2] = 0.3;
+    l[2].dirs = 48;
+    s = solve(1, l, 3, 0.5);
+    g = sc_gatherer_new(s, GATHER_RES, 0);
+    assert_non_null(g);
+    p[0] = quad(0, 2, 0.5);
+    p[1] = quad(1, 0.5, 0.5);
+    memset(&o, 0, sizeof o);
+    o.res = 64;
+    o.lights = l;
+    o.nlights = 3;
+    f = scf_create(p, 2, &o, NULL, NULL, err, sizeof err);
+    if (!f) fail_msg("scf_create: %s", err);
+    CHECK_INT_GT(scf_solve(f, 10000, 1e-4, NULL, NULL), 0, "the float twin's shots");
+    for (k = 0; k < 6; k++) {
+        const double q[3] = {pts[k][0], 1e-3, pts[k][1]};
+        double all[3], soft[3], direct[3], twin[3], none[3];
+        CHECK_INT_EQ(sc_gather(g, q, up, 0, all), 0, "sc_gather");
+        CHECK_INT_EQ(sc_gather(g, q, up, SC_SOFT, soft), 0, "sc_gather, soft");
+        CHECK_INT_EQ(sc_direct(s, q, up, panel_vis, NULL, direct), 0, "sc_direct");
+        CHECK_INT_EQ(scf_direct(f, q, up, panel_vis, NULL, twin), 0, "scf_direct");
+        CHECK_INT_EQ(sc_direct(s, q, up, never_vis, NULL, none), 0, "sc_direct, nothing visible");
+        CHECK_NEAR(soft[1] + direct[1], all[1], all[1] * REL + 1e-6,
+                   "soft %.6f + direct %.6f against the whole gather at (%g, %g)", soft[1],
+                   direct[1], q[0], q[2]);
+        CHECK_NEAR(twin[1], direct[1], direct[1] * REL + 1e-6, "the float twin's direct light");
+        CHECK_EQ(none[1], 0.0, "the direct light with nothing visible");
+        {
+            double ws[3] = {-sin(PI / 6), cos(PI / 6), 0}, wp[3], len;
+            geom_sub(l[1].pos, q, wp);
+            len = sqrt(geom_dot(wp, wp));
+            for (int a = 0; a < 3; a++) wp[a] /= len;
+            shade[0] += !panel_missed(q, ws, HUGE_VAL, NULL);
+            shade[1] += !panel_missed(q, wp, len, NULL);
+        }
+        printf("split at (%g, %g): whole %.6f, soft %.6f, direct %.6f\n", q[0], q[2], all[1],
+               soft[1], direct[1]);
+    }
+    CHECK_INT_GE(shade[0], 2, "points in the sun's shadow");
+    CHECK_INT_GE(shade[1], 2, "points in the point light's shadow");
+    sc_gatherer_free(g);
+    sc_destroy(s);
+    scf_destroy(f);
+    s = solve(1, &l[2], 1, 0.5);
+    {
+        const double q[3] = {1.5, 1e-3, 1.5};
+        double direct[3];
+        CHECK_INT_EQ(sc_direct(s, q, up, panel_vis, NULL, direct), 0, "sc_direct under a sky");
+        CHECK_EQ(direct[1], 0.0, "a sky's direct light is the soft part's");
+    }
+    sc_destroy(s);
+}
+
+/* A lightmap's sun shadow with the sharp lights per texel: the floor and panel
+ * (reflectance 0: nothing bounces, so a texel holds the sun's light alone) under a sun
+ * 0.5 rad off the zenith, baked at 128 x 128 by blocks (lm_bake: the soft light
+ * gathered and interpolated, the sun's added at every texel's own sample through the
+ * atlas's grid). Every texel whose sample's ray to the sun passes farther than 10^-6
+ * from the panel's outline holds E cos t within REL when it misses the panel and 0
+ * when it meets it: no block interpolates across the shadow's edge. */
+typedef struct {
+    sc_solver *s;
+    sc_gatherer *g;
+    lm_atlas *a;
+} split_ctx;
+
+static int split_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    split_ctx *c = ctx;
+    return sc_gather(c->g, p, n, SC_SOFT, rgb);
+}
+
+static int split_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    split_ctx *c = ctx;
+    return sc_direct(c->s, p, n, lm_visible, c->a, rgb);
+}
+
+static void test_lightmap_sharp(void **state)
+{
+    const double t = 0.5, e0 = 2.0, want = e0 * cos(t), w[3] = {-sin(t), cos(t), 0};
+    sc_light l = sun(t, e0);
+    sc_poly p[2];
+    lm_opts lo = {128, 0.0, 0, LM_TOL, 0.0};
+    lm_atlas a;
+    split_ctx c;
+    char err[256] = "";
+    int x, y, checked = 0, lit = 0;
+    (void)state;
+    p[0] = quad(0, 2, 0.0);
+    p[1] = quad(1, 0.5, 0.0);
+    c.s = solve(1, &l, 1, 0.0);
+    c.g = sc_gatherer_new(c.s, GATHER_RES, 0);
+    c.a = &a;
+    assert_non_null(c.g);
+    if (lm_build(&a, p, 2, &lo, err, sizeof err) != 0) fail_msg("lm_build: %s", err);
+    CHECK_INT_EQ(lm_bake(&a, split_gather, split_direct, &c), 0, "lm_bake");
+    for (y = 0; y < 128; y++)
+        for (x = 0; x < 128; x++) {
+            double q[3], edge, v = a.rgb[3 * ((size_t)y * 128 + x) + 1];
+            int open;
+            if (!lm_texel_point(&a, x, y, q) || q[1] > 0.5) continue; /* the floor's */
+            open = panel_missed(q, w, HUGE_VAL, &edge);
+            if (edge < 1e-6) continue;
+            checked++;
+            lit += open;
+            CHECK_NEAR(v, open ? want : 0.0, want * REL, "texel (%d, %d), %s", x, y,
+                       open ? "in the sun" : "in the panel's shadow");
+        }
+    printf("lightmap texels on the floor: %d checked, %d in the sun, each E cos t or 0 within "
+           "%g\n",
+           checked, lit, REL);
+    CHECK_INT_GE(checked, 5000, "floor texels checked");
+    CHECK_INT_GE(checked - lit, 500, "floor texels in the shadow");
+    lm_free(&a);
+    sc_gatherer_free(c.g);
+    sc_destroy(c.s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sun),        cmocka_unit_test(test_sky),
         cmocka_unit_test(test_point_spot), cmocka_unit_test(test_probe),
         cmocka_unit_test(test_mix),        cmocka_unit_test(test_cli_lightmap),
+        cmocka_unit_test(test_split),      cmocka_unit_test(test_lightmap_sharp),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

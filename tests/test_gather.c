@@ -673,6 +673,12 @@ static void test_saturation(void **st)
     free(w);
 }
 
+static int all_visible(void *ctx, uint32_t light, const rad_vec3_t *dir)
+{
+    (void)ctx, (void)light, (void)dir;
+    return 1;
+}
+
 /* Bad input: a clear error, nothing written, no byte past the work buffer touched. */
 static void test_errors(void **st)
 {
@@ -707,7 +713,19 @@ static void test_errors(void **st)
     CHECK_INT_EQ(rad_gather(&w->s, &g, NULL, &n, none, 0, &out), RAD_ERR_ARG, "no point");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, NULL, none, 0, &out), RAD_ERR_ARG, "no normal");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 0, NULL), RAD_ERR_ARG, "no output");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 4, &out), RAD_ERR_ARG, "unknown flag");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 8, &out), RAD_ERR_ARG, "unknown flag");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, none, RAD_SHADE_SOFT, sh), RAD_ERR_ARG,
+                 "a probe's soft light (not offered)");
+    CHECK_INT_EQ(rad_direct(NULL, &o, &n, 0, all_visible, NULL, &out), RAD_ERR_ARG,
+                 "direct: no scene");
+    CHECK_INT_EQ(rad_direct(&w->s, &o, &n, 0, NULL, NULL, &out), RAD_ERR_ARG,
+                 "direct: no visibility");
+    CHECK_INT_EQ(rad_direct(&w->s, &o, &n, RAD_SHADE_SOFT, all_visible, NULL, &out), RAD_ERR_ARG,
+                 "direct: unknown flag");
+    CHECK_INT_EQ(rad_direct(&w->s, &o, &zero, 0, all_visible, NULL, &out), RAD_ERR_ARG,
+                 "direct: zero normal");
+    CHECK_INT_EQ(rad_direct(&w->s, &far, &n, 0, all_visible, NULL, &out), RAD_ERR_RANGE,
+                 "direct: point at 64.5");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &zero, none, 0, &out), RAD_ERR_ARG, "zero normal");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &far, &n, none, 0, &out), RAD_ERR_RANGE, "point at 64.5");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &out_core, &n, none, 0, &out), RAD_ERR_RANGE,
@@ -720,6 +738,11 @@ static void test_errors(void **st)
     n = vec(0, 63, 0);
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, 77, 0, &out), RAD_OK, "gather");
     CHECK_INT_EQ(out.r, RAD_REAL(1), "gather in the box glowing 1, nothing skipped");
+    /* without lights the soft gather is the whole one, and the direct light 0 */
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, 77, RAD_SHADE_SOFT, &out), RAD_OK, "soft gather");
+    CHECK_INT_EQ(out.r, RAD_REAL(1), "soft gather in the box glowing 1");
+    CHECK_INT_EQ(rad_direct(&w->s, &o, &n, 0, all_visible, NULL, &out), RAD_OK, "direct");
+    CHECK_INT_EQ(out.r, 0, "direct light without lights");
     for (k = 0; k < 64; k++) CHECK_INT_EQ(buf[need + k], 0xA5, "guard byte %d", (int)k);
     free(buf);
     free(w);

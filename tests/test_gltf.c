@@ -829,7 +829,7 @@ static void test_lightmap(void **state)
     gt = sc_gatherer_new(s, 16, 0);
     assert_non_null(gt);
     assert_int_equal(lm_build(&a, polys, n, &lo, err, sizeof err), 0);
-    assert_int_equal(lm_bake(&a, lm_gather_cb, gt), 0);
+    assert_int_equal(lm_bake(&a, lm_gather_cb, NULL, gt), 0);
     assert_int_equal(sc_export_gltf_lightmap(s, &sc, polys, n, NULL, NULL, &a, NULL,
                                              tmp_path("lm.glb"), NULL, NULL, NULL, NULL, err,
                                              sizeof err),

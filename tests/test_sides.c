@@ -143,7 +143,7 @@ static void test_lightmap_backs(void **state)
     g = sc_gatherer_new(t.s, GATHER_RES, 0);
     assert_non_null(g);
     CHECK_INT_EQ(lm_build(&a, t.p, t.n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
-    CHECK_INT_EQ(lm_bake(&a, gather_cb, g), 0, "lm_bake");
+    CHECK_INT_EQ(lm_bake(&a, gather_cb, NULL, g), 0, "lm_bake");
     for (y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
             double p[3];
@@ -456,7 +456,7 @@ static void test_two_sided(void **state)
     g = sc_gatherer_new(s, GATHER_RES, 0);
     assert_non_null(g);
     CHECK_INT_EQ(lm_build(&a, p, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
-    CHECK_INT_EQ(lm_bake(&a, gather_cb, g), 0, "lm_bake");
+    CHECK_INT_EQ(lm_bake(&a, gather_cb, NULL, g), 0, "lm_bake");
     for (y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
             size_t at = (size_t)y * a.size + x;

@@ -543,6 +543,7 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
 #define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
+#define RAD_SHADE_SOFT    4 /* rad_gather: the direct light of skies alone (rad_direct) */
 
 /* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
  * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
@@ -715,7 +716,8 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
  * of a sun's or sky's directions (those it shoots along) whose pixel in the cube shows
  * nothing, and I cos t / r^2 (a spot's falloff applied) from a point or spot light
  * whose pixel shows nothing nearer than it: the light's visibility is the cube's, a
- * pixel's centre deciding, as the solve's shots decide it by their pixels. An element of
+ * pixel's centre deciding, as the solve's shots decide it by their pixels (with
+ * RAD_SHADE_SOFT, a sky's alone: rad_direct gives the others). An element of
  * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
  * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
  * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the
@@ -725,6 +727,24 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
  * core's scale, NORMAL beyond it), RAD_ERR_STATE (geometry not frozen). */
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
                const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out);
+
+/* Whether the light with index LIGHT (rad_add_light's) reaches the point along unit
+ * DIR (on the scene's axes, toward the light): nonzero when nothing occludes it, up
+ * to the light's position for a point or spot. */
+typedef int rad_visible_fn(void *ctx, uint32_t light, const rad_vec3_t *dir);
+
+/* The direct light at POINT (the caller's units) on a surface of normal NORMAL (any
+ * length) of the suns, point lights and spots that have shot, with visibility the
+ * caller's: for each of their directions that faces the surface (a sun's disc has
+ * 16), VIS decides, and a visible one adds what rad_gather adds for it, E cos t or
+ * I cos t / r^2 with a spot's falloff (skies are left out). With RAD_SHADE_SOFT,
+ * rad_gather leaves out exactly these: the sum of the two is rad_gather's value but
+ * for visibility, decided by the caller's ray per point rather than by a cube's pixel
+ * (a lightmap's texels then keep sharp shadows however their soft light is
+ * interpolated). FLAGS: 0 or RAD_SHADE_SCALED. Writes OUT; returns RAD_OK, RAD_ERR_ARG
+ * (NULL, a zero normal, unknown flags) or RAD_ERR_RANGE (as rad_gather). */
+int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *normal, int flags,
+               rad_visible_fn *vis, void *ctx, rad_rgb_t *out);
 
 /* A light probe: the radiosity seen from POINT in every direction w, B(w) (as
  * rad_gather's B, with FLAGS; a light's direction that rad_gather counts gives

@@ -39,6 +39,7 @@
 #define rad_gather_init             radf_gather_init
 #define rad_gather                  radf_gather
 #define rad_gather_sh               radf_gather_sh
+#define rad_direct                  radf_direct
 #define rad_shot_aim                radf_shot_aim
 #define rad_shot_receive_part       radf_shot_receive_part
 #define rad_batch_begin             radf_batch_begin

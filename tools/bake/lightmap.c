@@ -1300,19 +1300,32 @@ static int dilate(lm_atlas *a, unsigned char *filled)
     return 0;
 }
 
-int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
+/* FN at the covered texels of the rows Y % STEP == FIRST: the marked ones, their light
+ * set (gathered), or (ADD) every one, its light added. */
+static int texel_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx, int add)
 {
     int x, y, k;
     for (y = first; y < a->size; y += step)
         for (x = 0; x < a->size; x++) {
             size_t i = (size_t)y * a->size + (size_t)x;
             double p[3], rgb[3];
-            if (!(a->state[i] & LM_WANT) || !lm_texel_point(a, x, y, p)) continue;
+            if ((!add && !(a->state[i] & LM_WANT)) || !lm_texel_point(a, x, y, p)) continue;
             if (fn(ctx, p, &a->planes[4 * (size_t)a->poly[i]], rgb) != 0) return -1;
-            for (k = 0; k < 3; k++) a->rgb[3 * i + k] = (float)rgb[k];
-            a->state[i] = (unsigned char)((a->state[i] & LM_FREE) | LM_GATHERED);
+            for (k = 0; k < 3; k++)
+                a->rgb[3 * i + k] = (float)rgb[k] + (add ? a->rgb[3 * i + k] : 0);
+            if (!add) a->state[i] = (unsigned char)((a->state[i] & LM_FREE) | LM_GATHERED);
         }
     return 0;
+}
+
+int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
+{
+    return texel_rows(a, first, step, fn, ctx, 0);
+}
+
+int lm_direct_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx)
+{
+    return texel_rows(a, first, step, fn, ctx, 1);
 }
 
 /* ---- adaptive gathering: blocks ---- */
@@ -1443,10 +1456,17 @@ int lm_dilate(lm_atlas *a)
     return rc;
 }
 
-int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx)
+int lm_visible(void *atlas, const double p[3], const double dir[3], double len)
+{
+    const lm_atlas *a = atlas;
+    return !(geom_grid_march(a->grid, a->polys, p, dir, len, 1, NULL) < HUGE_VAL);
+}
+
+int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx)
 {
     while (lm_plan(a) > 0)
         if (lm_gather_rows(a, 0, 1, fn, ctx) != 0) return -1;
+    if (direct && lm_direct_rows(a, 0, 1, direct, ctx) != 0) return -1;
     return lm_dilate(a);
 }
 

@@ -50,6 +50,12 @@
  * neighbours of the same chart, ring by ring.
  * A texel holds E, the radiosity arriving (sc_gather's units): a surface of
  * reflectance rho there shows rho E plus its own emission.
+ * Sharp lights per texel: a bake that gathers the soft light alone (rad_cli's:
+ * sc_gather's SC_SOFT, the elements' light and skies') adds the suns', points' and
+ * spots' direct light at every covered texel's own sample afterwards (lm_direct_rows:
+ * sc_direct, each light's visibility a ray through the grid of polygons, lm_visible).
+ * The adaptive passes below then decide on the soft light, which a sun's shadow edge
+ * does not split, and no texel's sun is interpolated across a shadow's edge.
  *
  * Adaptive gathering (a tolerance above 0): not every texel is gathered. A texel is
  * free when its sample is its centre (not moved in from a boundary nor out of
@@ -171,20 +177,29 @@ double *lm_poly_file_uvs(const obj_scene *sc, const sc_poly *polys, int n);
 /* Texel states: LM_FREE a flag (see above), and at most one of the others. */
 enum { LM_FREE = 1, LM_WANT = 2, LM_GATHERED = 4, LM_LERPED = 8 };
 
-/* Gathers the covered texels through FN (every one, or adaptively: see above), then
- * dilates. Returns 0, or -1 when FN stopped it (the atlas then holds what was
+/* Gathers the covered texels through FN (every one, or adaptively: see above), adds
+ * DIRECT's light at every covered texel (unless NULL: lm_direct_rows), then dilates.
+ * Returns 0, or -1 when FN or DIRECT stopped it (the atlas then holds what was
  * gathered, undilated) or there was no memory for the dilation. */
-int lm_bake(lm_atlas *a, lm_gather_fn fn, void *ctx);
+int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx);
 /* lm_bake in parts: while lm_plan gives a count of texels above 0 (it decides, from
  * the texels gathered so far, which blocks are interpolated and which split, and marks
  * the texels the next pass gathers), gather them: lm_gather_rows gathers the marked
  * texels of the rows Y with Y % STEP == FIRST (threads may gather such sets at once,
  * each through a context of its own: a texel's value does not depend on which thread
- * gathers it); once lm_plan gives 0, the dilation. lm_gather_rows and lm_dilate return
- * 0, or -1 (FN stopped it; no memory for the dilation). */
+ * gathers it); once lm_plan gives 0, lm_direct_rows (by rows, as lm_gather_rows), then
+ * the dilation. lm_gather_rows and lm_dilate return 0, or -1 (FN stopped it; no memory
+ * for the dilation). */
 long lm_plan(lm_atlas *a);
 int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
 int lm_dilate(lm_atlas *a);
+/* Adds FN's light (the sharp lights' direct light: sc_direct) at every covered texel's
+ * sample of the rows Y with Y % STEP == FIRST, after the gathers (FN's value at the
+ * texel's own point, never interpolated). 0, or -1 when FN stopped it. */
+int lm_direct_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
+/* Whether the ray from P along unit DIR reaches LEN (HUGE_VAL: unbounded) without
+ * meeting a polygon of ATLAS (an lm_atlas), from either side: sc_visible_fn's. */
+int lm_visible(void *atlas, const double p[3], const double dir[3], double len);
 
 /* Covered texel (X, Y)'s sample point into P; 1 if covered, 0 if not. */
 int lm_texel_point(const lm_atlas *a, int x, int y, double p[3]);

@@ -289,7 +289,7 @@ static int lm_count(void *ctx, const double p[3], const double n[3], double rgb[
 {
     lm_work *w = ctx;
     w->gathers++;
-    return sc_gather(w->g, p, n, 1, rgb);
+    return sc_gather(w->g, p, n, SC_AMBIENT | SC_SOFT, rgb);
 }
 
 static void *lm_worker(void *arg)
@@ -615,7 +615,9 @@ static int level_shot(void *ctx, int shots, double unshot)
 /* The bake's gathers on this thread, stopping once STOP seconds of them have passed
  * (0: never): their count and progress every 10 s. */
 typedef struct {
+    sc_solver *s;
     sc_gatherer *g;
+    lm_atlas *a;
     long gathers;
     double t0, last, stop;
 } level_bake;
@@ -629,7 +631,50 @@ static int level_gather(void *ctx, const double p[3], const double n[3], double 
         b->last = t;
         if (b->stop > 0 && t - b->t0 >= b->stop) return 1;
     }
-    return sc_gather(b->g, p, n, 1, rgb);
+    return sc_gather(b->g, p, n, SC_AMBIENT | SC_SOFT, rgb);
+}
+
+/* The sharp lights at a texel, as rad_cli adds them (tools/cli/bake.c). */
+static int level_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    level_bake *b = ctx;
+    return sc_direct(b->s, p, n, lm_visible, b->a, rgb);
+}
+
+/* The rows checked against every texel's gather: one in LEVEL_CHECK, about 7,000
+ * texels of the 1024 x 1024 atlas. */
+#define LEVEL_CHECK 64
+
+/* The baked texels of A's rows 0 mod LEVEL_CHECK against each gathered (with its sharp
+ * lights) as the bake would at every texel: rms and largest difference of a texel's
+ * channel sum over the mean channel sum of the checked texels, into ERR[0], ERR[1];
+ * B's gatherer. */
+static void level_check(level_bake *b, lm_atlas *a, double err[2])
+{
+    double sum = 0.0, sq = 0.0, worst = 0.0;
+    long n = 0;
+    int x, y, k;
+    for (y = 0; y < a->size; y += LEVEL_CHECK)
+        for (x = 0; x < a->size; x++) {
+            size_t i = (size_t)y * a->size + (size_t)x;
+            const double *nrm = &a->planes[4 * (size_t)(a->poly[i] < 0 ? 0 : a->poly[i])];
+            double p[3], g[3], d[3], want = 0.0, got = 0.0;
+            if (!lm_texel_point(a, x, y, p)) continue;
+            if (sc_gather(b->g, p, nrm, SC_AMBIENT | SC_SOFT, g) < 0 ||
+                level_direct(b, p, nrm, d) < 0)
+                exit(1);
+            for (k = 0; k < 3; k++) {
+                want += g[k] + d[k];
+                got += a->rgb[3 * i + k];
+            }
+            sum += want;
+            sq += (got - want) * (got - want);
+            worst = fmax(worst, fabs(got - want));
+            n++;
+        }
+    sum = n && sum > 0.0 ? sum / n : 1.0;
+    err[0] = n ? sqrt(sq / n) / sum : 0.0;
+    err[1] = worst / sum;
 }
 
 /* One level (POLYS, N of them, lit by LIGHTS) measured and reported as a table row:
@@ -650,10 +695,12 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
     char err[512];
     struct rusage ru;
     sc_solver *s;
-    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1, tps[2];
+    double c0, w0, solve_cpu, solve_wall, lay_cpu, bake_cpu, bake_wall, load = -1, tps[2],
+                                                                        bake_err[2];
     double rate[2][LEVEL_ROUNDS], ratio[LEVEL_ROUNDS];
     long covered, tn[2];
     int done, x, y, charts, i;
+    char errs[64];
     o.res = DEF_RES;
     o.coarse = DEF_COARSE;
     o.coarse_res = DEF_COARSE_FLOOR(DEF_RES);
@@ -684,13 +731,21 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
         }
     memset(&b, 0, sizeof b);
     if (!(b.g = sc_gatherer_new(s, DEF_GATHER_RES, 0))) exit(1);
+    b.s = s;
+    b.a = &a;
     c0 = bench_thread_cpu();
     b.t0 = b.last = host_now();
     b.stop = stop;
-    done = lm_bake(&a, level_gather, &b) == 0;
+    done = lm_bake(&a, level_gather, level_direct, &b) == 0;
     bake_cpu = bench_thread_cpu() - c0;
     bake_wall = host_now() - b.t0;
     charts = a.ncharts;
+    bake_err[0] = bake_err[1] = -1.0;
+    if (done) {
+        fprintf(stderr, "rad_bench: level: the bake against every texel of 1 row in %d ...\n",
+                LEVEL_CHECK);
+        level_check(&b, &a, bake_err);
+    }
     lm_free(&a);
     lo.size = LEVEL_BIG;
     lo.tol = 0.0;
@@ -717,15 +772,19 @@ static void level_row(report_t *rp, const char *name, const sc_poly *polys, int 
         lm_free(&a);
     }
     for (x = 0; x < 2; x++) tps[x] = bench_median(rate[x], LEVEL_ROUNDS);
+    if (bake_err[0] >= 0.0)
+        snprintf(errs, sizeof errs, "%.2f%% / %.1f%%", 100 * bake_err[0], 100 * bake_err[1]);
+    else
+        snprintf(errs, sizeof errs, "-");
     getrusage(RUSAGE_SELF, &ru);
     if (getloadavg(&load, 1) != 1) load = -1;
     bench_out(rp,
               "| %s | %d | %d | %d | %d | %.2f (%.2f) | %.1f | %.1f | %d | %.2f | %ld | %ld | "
-              "%s%.1f (%.1f) | %.0f "
+              "%s%.1f (%.1f) | %s | %.0f "
               "| %.1f | %ld | %.1f | %.1f | %.2f | %.2f |\n",
               name, n, st.elements, st.patches, st.shots, solve_cpu, solve_wall,
               (st.pool_bytes + st.work_bytes) / 1048576.0, ru.ru_maxrss / 1024.0, charts, lay_cpu,
-              covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall,
+              covered, b.gathers, done ? "" : "stopped: ", bake_cpu, bake_wall, errs,
               1e6 * bake_cpu / (b.gathers ? b.gathers : 1),
               1e6 * bake_cpu / (b.gathers ? b.gathers : 1) * covered / 1e6, tn[0], tps[0], tps[1],
               bench_median(ratio, LEVEL_ROUNDS), load);
@@ -772,11 +831,12 @@ int bench_level(int argc, char **argv)
               "median of the rounds' ratios.\n\n"
               "| scene | polygons | elements | patches | shots | solve s | core MB | peak MB | "
               "charts | layout s | "
-              "texels covered | gathers | bake s | us per gather | every-texel s (estimate) | "
+              "texels covered | gathers | bake s | rms / max vs every texel | us per gather | "
+              "every-texel s (estimate) | "
               "sample texels | texels/s, 1 thread | texels/s, 2 threads | speed-up | load "
               "average |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
-              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
               "| ---: |\n",
               lights[1].dirs, DEF_RES, LEVEL_SIZE, LEVEL_SIZE, LM_TOL, DEF_GATHER_RES, LEVEL_ROWS,
               LEVEL_BIG, LEVEL_BIG, LEVEL_ROUNDS);

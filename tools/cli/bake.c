@@ -36,11 +36,23 @@ static void gathered(gather_ctx *c)
     progress_update(c->pg, c->gathers / c->total, detail);
 }
 
+/* A texel's soft light: its sharp lights' direct light is lm_direct's, per texel. */
 static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
     gather_ctx *c = ctx;
     gathered(c);
-    return sc_gather(c->g, p, n, c->ambient, rgb);
+    return sc_gather(c->g, p, n, (c->ambient ? SC_AMBIENT : 0) | SC_SOFT, rgb);
+}
+
+typedef struct {
+    sc_solver *s;
+    lm_atlas *a;
+} direct_ctx;
+
+static int lm_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
+{
+    direct_ctx *d = ctx;
+    return sc_direct(d->s, p, n, lm_visible, d->a, rgb);
 }
 
 static int pr_gather(void *ctx, const double p[3], double sh[9][3])
@@ -78,6 +90,13 @@ typedef struct {
     double share; /* a thread's share of the pass's texels */
 } texel_job;
 
+static int direct_rows(void *ctx, sc_gatherer *g, int first, int step)
+{
+    direct_ctx *d = ctx;
+    (void)g;
+    return lm_direct_rows(d->a, first, step, lm_direct, d);
+}
+
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
@@ -102,6 +121,7 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
     texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), &pg, 0.0};
     char what[64];
     long count;
+    direct_ctx d = {r->s, a};
     int i, rc = j.gathers ? 0 : -1;
     while (rc == 0 && (count = lm_plan(a)) > 0) {
         snprintf(what, sizeof what, "lightmap pass %d", a->pass);
@@ -112,6 +132,8 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
         progress_end(&pg);
     }
     free(j.gathers);
+    if (rc == 0 && count < 0) rc = -1;
+    if (rc == 0) rc = sc_gather_split(r->s, 8, n, direct_rows, &d); /* the sharp lights */
     return rc;
 }
 

@@ -31,6 +31,7 @@
 #define sc_corner_light_fg scf_corner_light_fg
 #define sc_create scf_create
 #define sc_destroy scf_destroy
+#define sc_direct scf_direct
 #define sc_element_area scf_element_area
 #define sc_element_centroid scf_element_centroid
 #define sc_element_limit scf_element_limit

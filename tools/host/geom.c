@@ -324,6 +324,54 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
     return best;
 }
 
+double geom_grid_march(const void *grid, const sc_poly *p, const double *o, const double *dir,
+                       double len, int any, int *back)
+{
+    const grid_t *gr = grid;
+    double t0 = 0.0, t1 = len, best = HUGE_VAL, next[3], delta[3];
+    int a, c[3], step[3], b = 0;
+    if (!back) back = &b;
+    *back = 0;
+    for (a = 0; a < 3; a++) { /* the part of the ray inside the grid's box */
+        double lo = gr->lo[a], hi = gr->lo[a] + gr->cell[a] * gr->g;
+        if (fabs(dir[a]) < 1e-300) {
+            if (o[a] < lo || o[a] > hi) return HUGE_VAL;
+            continue;
+        }
+        {
+            double ta = (lo - o[a]) / dir[a], tb = (hi - o[a]) / dir[a];
+            t0 = fmax(t0, fmin(ta, tb));
+            t1 = fmin(t1, fmax(ta, tb));
+        }
+    }
+    if (!(t0 <= t1)) return HUGE_VAL;
+    for (a = 0; a < 3; a++) {
+        double x = o[a] + t0 * dir[a], edge;
+        c[a] = cell_of(gr, a, x);
+        step[a] = dir[a] > 0.0 ? 1 : -1;
+        if (fabs(dir[a]) < 1e-300) {
+            next[a] = delta[a] = HUGE_VAL;
+            continue;
+        }
+        edge = gr->lo[a] + (c[a] + (dir[a] > 0.0)) * gr->cell[a];
+        next[a] = (edge - o[a]) / dir[a];
+        delta[a] = gr->cell[a] / fabs(dir[a]);
+    }
+    for (;;) {
+        int k = (c[2] * gr->g + c[1]) * gr->g + c[0], j;
+        double exit = fmin(next[0], fmin(next[1], next[2]));
+        for (j = gr->start[k]; j < gr->start[k + 1]; j++) {
+            nearest(gr, p, gr->ids[j], o, dir, len, &best, back);
+            if (any && best < HUGE_VAL) return best;
+        }
+        if (best <= exit || exit > t1) return best; /* later cells lie farther */
+        a = next[0] == exit ? 0 : next[1] == exit ? 1 : 2;
+        c[a] += step[a];
+        if (c[a] < 0 || c[a] >= gr->g) return best;
+        next[a] += delta[a];
+    }
+}
+
 double geom_back_ray(const void *grid, const sc_poly *p, const double *o, const double *u,
                      const double *v, double len, double dir[3], double *met)
 {

@@ -230,17 +230,29 @@ int sc_gatherer_cull(sc_gatherer *g, int on);
  * (rad_bench compares the times). */
 void sc_shoot_cull(sc_solver *s, int on);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
- * with the ambient term if AMBIENT, in caller units: what an element of reflectance
- * rho there would show as rho RGB + its emission. Nothing is skipped: put P off the
- * surface. 0, or -1 (P outside the scene's frame, N zero, a sphere gatherer). */
-int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
+ * in caller units: what an element of reflectance rho there would show as rho RGB +
+ * its emission. FLAGS: SC_AMBIENT adds the ambient term; SC_SOFT leaves out the
+ * sharp lights' direct light (suns, points and spots: sc_direct's). Nothing is
+ * skipped: put P off the surface. 0, or -1 (P outside the scene's frame, N zero, a
+ * sphere gatherer). */
+#define SC_AMBIENT 1
+#define SC_SOFT    2
+int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int flags, double rgb[3]);
 /* sc_gather from a point on core surface SURFACE (-1: none), which is not drawn: a
  * quad planar only within the core's tolerance is not seen edge-on from just above. */
-int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int ambient,
+int sc_gather_on(sc_gatherer *g, const double p[3], const double n[3], int surface, int flags,
                  double rgb[3]);
 /* The radiosity seen from P in every direction, projected on the nine real SH of bands
  * 0..2 (rad_gather_sh's order and scale), caller units. 0 or -1 as sc_gather. */
 int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]);
+/* Whether the ray from P along unit DIR reaches LEN (HUGE_VAL: a sun's, unbounded)
+ * unoccluded: nonzero when it does. */
+typedef int sc_visible_fn(void *ctx, const double p[3], const double dir[3], double len);
+/* The sharp lights' direct light at P on a surface of normal N (rad_direct), each
+ * light's visibility VIS's: with sc_gather's SC_SOFT value, the whole gather's but for
+ * visibility. 0 (RGB 0 without lights), or -1 (P outside the frame, N zero). */
+int sc_direct(sc_solver *s, const double p[3], const double n[3], sc_visible_fn *vis, void *ctx,
+              double rgb[3]);
 /* Values past the core's range met by this gatherer (saturated, counted). */
 unsigned long sc_gatherer_saturations(sc_gatherer *g);
 

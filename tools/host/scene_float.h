@@ -68,10 +68,12 @@ scf_gatherer *scf_gatherer_new(scf_solver *s, int res, int sphere);
 void scf_gatherer_free(scf_gatherer *g);
 int scf_gatherer_cull(scf_gatherer *g, int on);
 void scf_shoot_cull(scf_solver *s, int on);
-int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int ambient, double rgb[3]);
-int scf_gather_on(scf_gatherer *g, const double p[3], const double n[3], int surface, int ambient,
+int scf_gather(scf_gatherer *g, const double p[3], const double n[3], int flags, double rgb[3]);
+int scf_gather_on(scf_gatherer *g, const double p[3], const double n[3], int surface, int flags,
                   double rgb[3]);
 int scf_gather_sh(scf_gatherer *g, const double p[3], int ambient, double sh[9][3]);
+int scf_direct(scf_solver *s, const double p[3], const double n[3], sc_visible_fn *vis, void *ctx,
+               double rgb[3]);
 unsigned long scf_gatherer_saturations(scf_gatherer *g);
 #endif
 

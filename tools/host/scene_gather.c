@@ -4,6 +4,7 @@
 #include "host/float_names.h"
 #endif
 #include "host/scene_impl.h"
+#include "host/geom.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -117,20 +118,26 @@ void sc_gatherer_free(sc_gatherer *q)
 }
 
 /* P in the core's frame; -1 outside it, else the flags: the ambient term unless mixed
- * (then it is baked in). */
-static int gather_frame(sc_gatherer *q, const double p[3], int ambient, rad_vec3_t *c)
+ * (then it is baked in), the soft light alone when asked. */
+static int core_point(const struct sc_solver *h, const double p[3], rad_vec3_t *c)
 {
-    struct sc_solver *h = q->h;
     int a;
     for (a = 0; a < 3; a++)
         if (!sc__fits_core((p[a] - h->off[a]) * h->scale)) return -1;
     sc__to_core(h, p, c);
-    return ambient && !h->mixed ? RAD_SHADE_AMBIENT : 0;
+    return 0;
 }
 
-int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int ambient, double rgb[3])
+static int gather_frame(sc_gatherer *q, const double p[3], int flags, rad_vec3_t *c)
 {
-    return sc_gather_on(q, p, n, -1, ambient, rgb);
+    if (core_point(q->h, p, c) < 0) return -1;
+    return ((flags & SC_AMBIENT) && !q->h->mixed ? RAD_SHADE_AMBIENT : 0) |
+           ((flags & SC_SOFT) ? RAD_SHADE_SOFT : 0);
+}
+
+int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int flags, double rgb[3])
+{
+    return sc_gather_on(q, p, n, -1, flags, rgb);
 }
 
 int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient,
@@ -158,6 +165,48 @@ int sc_gather_sh(sc_gatherer *q, const double p[3], int ambient, double sh[9][3]
     int k, flags = gather_frame(q, p, ambient, &c);
     if (flags < 0 || rad_gather_sh(&q->h->s, &q->g, &c, RAD_INDEX_NONE, flags, out) < 0) return -1;
     for (k = 0; k < 9; k++) sc__rgb_out(q->h, &out[k], sh[k]);
+    return 0;
+}
+
+typedef struct {
+    const struct sc_solver *h;
+    const double *p;
+    sc_visible_fn *vis;
+    void *ctx;
+} direct_ctx;
+
+/* Light K's direction DIR from the point: the ray up to a point light's position. */
+static int direct_vis(void *ctx, uint32_t k, const rad_vec3_t *dir)
+{
+    const direct_ctx *d = ctx;
+    const sc_light *l = &d->h->src[k];
+    double u[3] = {RAD_TO_DOUBLE(dir->x), RAD_TO_DOUBLE(dir->y), RAD_TO_DOUBLE(dir->z)}, len;
+    if (!geom_normalize(u)) return 0;
+    if (l->type == 2 || l->type == 3) {
+        double w[3];
+        geom_sub(l->pos, d->p, w);
+        len = sqrt(geom_dot(w, w));
+    } else {
+        len = HUGE_VAL;
+    }
+    return d->vis(d->ctx, d->p, u, len);
+}
+
+int sc_direct(sc_solver *h, const double p[3], const double n[3], sc_visible_fn *vis, void *ctx,
+              double rgb[3])
+{
+    direct_ctx d = {h, p, vis, ctx};
+    rad_vec3_t c, nc;
+    rad_rgb_t out;
+    double len = sqrt(geom_dot(n, n));
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    if (!h->nlights) return 0;
+    if (core_point(h, p, &c) < 0 || !(len > 0.0) || !isfinite(len)) return -1;
+    nc.x = RAD_REAL(n[0] / len);
+    nc.y = RAD_REAL(n[1] / len);
+    nc.z = RAD_REAL(n[2] / len);
+    if (rad_direct(&h->s, &c, &nc, 0, direct_vis, &d, &out) < 0) return -1;
+    sc__rgb_out(h, &out, rgb);
     return 0;
 }
 
