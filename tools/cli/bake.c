@@ -16,7 +16,8 @@
 #include "progress.h"
 
 /* A thread's gathers; PG (the calling thread's, else NULL) shows its count against
- * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. */
+ * TOTAL, its own share of the stage, every PROGRESS_EVERY gathers. S and A: the solve
+ * and the atlas, for the texels' sharp lights (lm_direct). */
 typedef struct {
     sc_gatherer *g;
     int ambient;
@@ -24,6 +25,8 @@ typedef struct {
     progress_t *pg;
     double total;
     const char *unit;
+    sc_solver *s;
+    lm_atlas *a;
 } gather_ctx;
 
 #define PROGRESS_EVERY 64
@@ -44,15 +47,11 @@ static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb
     return sc_gather(c->g, p, n, (c->ambient ? SC_AMBIENT : 0) | SC_SOFT, rgb);
 }
 
-typedef struct {
-    sc_solver *s;
-    lm_atlas *a;
-} direct_ctx;
-
 static int lm_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
-    direct_ctx *d = ctx;
-    return sc_direct(d->s, p, n, lm_visible, d->a, rgb);
+    gather_ctx *c = ctx;
+    gathered(c);
+    return sc_direct(c->s, p, n, lm_visible, c->a, rgb);
 }
 
 static int pr_gather(void *ctx, const double p[3], double sh[9][3])
@@ -83,57 +82,27 @@ char *cli_probes_output(const char *scene)
 }
 
 typedef struct {
+    sc_solver *s;
     lm_atlas *a;
     int ambient;
     long *gathers; /* per thread */
     progress_t *pg;
     double share; /* a thread's share of the pass's texels */
+    int direct;   /* the sharp lights' pass (lm_direct_rows), not a gathering one */
 } texel_job;
-
-static int direct_rows(void *ctx, sc_gatherer *g, int first, int step)
-{
-    direct_ctx *d = ctx;
-    (void)g;
-    return lm_direct_rows(d->a, first, step, lm_direct, d);
-}
 
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
-    gather_ctx c = {g, j->ambient, 0, NULL, 0.0, "texels"};
+    gather_ctx c = {g, j->ambient, 0, NULL, 0.0, "texels", j->s, j->a};
     int rc;
     if (first == 0) {
         c.pg = j->pg;
         c.total = j->share;
     }
-    rc = lm_gather_rows(j->a, first, step, lm_gather, &c);
+    rc = j->direct ? lm_direct_rows(j->a, first, step, lm_direct, &c)
+                   : lm_gather_rows(j->a, first, step, lm_gather, &c);
     j->gathers[first] = c.gathers;
-    return rc;
-}
-
-/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
- * gatherer of its own, by rows: the same bits as one; each pass a stage of progress
- * (how many passes there will be depends on what they gather). 0, or -1 (a gather
- * failed, no memory, no thread). */
-static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers)
-{
-    progress_t pg;
-    texel_job j = {a, r->ambient, calloc((size_t)n, sizeof(long)), &pg, 0.0};
-    char what[64];
-    long count;
-    direct_ctx d = {r->s, a};
-    int i, rc = j.gathers ? 0 : -1;
-    while (rc == 0 && (count = lm_plan(a)) > 0) {
-        snprintf(what, sizeof what, "lightmap pass %d", a->pass);
-        progress_begin(&pg, what, r->o->quiet);
-        j.share = (double)count / n;
-        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
-        for (i = 0; i < n; i++) *gathers += j.gathers[i];
-        progress_end(&pg);
-    }
-    free(j.gathers);
-    if (rc == 0 && count < 0) rc = -1;
-    if (rc == 0) rc = sc_gather_split(r->s, 8, n, direct_rows, &d); /* the sharp lights */
     return rc;
 }
 
@@ -146,11 +115,44 @@ static long covered_texels(const lm_atlas *a)
     return n;
 }
 
+/* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
+ * gatherer of its own, by rows: the same bits as one; each pass a stage of progress
+ * (how many passes there will be depends on what they gather). 0, or -1 (a gather
+ * failed, no memory, no thread). */
+static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, double *t_direct)
+{
+    progress_t pg;
+    texel_job j = {r->s, a, r->ambient, calloc((size_t)n, sizeof(long)), &pg, 0.0, 0};
+    char what[64];
+    long count;
+    double t;
+    int i, rc = j.gathers ? 0 : -1;
+    while (rc == 0 && (count = lm_plan(a)) > 0) {
+        snprintf(what, sizeof what, "lightmap pass %d", a->pass);
+        progress_begin(&pg, what, r->o->quiet);
+        j.share = (double)count / n;
+        rc = sc_gather_split(r->s, res, n, texel_rows, &j);
+        for (i = 0; i < n; i++) *gathers += j.gathers[i];
+        progress_end(&pg);
+    }
+    t = host_now();
+    if (rc == 0) { /* the sharp lights at every covered texel */
+        progress_begin(&pg, "lightmap: suns, points and spots", r->o->quiet);
+        j.direct = 1;
+        j.share = (double)covered_texels(a) / n;
+        rc = sc_gather_split(r->s, 8, n, texel_rows, &j);
+        progress_end(&pg);
+    }
+    *t_direct = host_now() - t;
+    free(j.gathers);
+    return rc;
+}
+
 static int bake_lightmap(run_t *r, lm_atlas *a, int res)
 {
     const opts_t *o = r->o;
     char err[1024];
-    double t0 = host_now();
+    double t0 = host_now(), t_direct = 0.0;
     long gathers = 0, total = covered_texels(a);
     int rc;
     if (!o->quiet)
@@ -158,7 +160,7 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
                 PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
                 a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "",
                 total, total, res);
-    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers);
+    rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers, &t_direct);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0)
         snprintf(err, sizeof err, "%s: a texel cannot be gathered (or no memory for the bake)",
@@ -170,9 +172,9 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
     else if (o->stats)
         printf("lightmap: %dx%d texels, %d charts, texel %.6g, %ld gathers at res %d (%d passes, "
                "tolerance %g) on %d "
-               "threads, %.2f s\n",
+               "threads, %.2f s (the sharp lights at every texel %.2f s)\n",
                a->size, a->size, a->file_uv ? a->file_charts : a->ncharts, a->texel, gathers, res,
-               a->pass - 1, a->tol, o->threads > 1 ? o->threads : 1, host_now() - t0);
+               a->pass - 1, a->tol, o->threads > 1 ? o->threads : 1, host_now() - t0, t_direct);
     return rc;
 }
 
@@ -385,7 +387,7 @@ int cli_bake_step(run_t *r)
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
     int rc = 0, res = o->gather_res ? o->gather_res : DEF_GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL};
+    gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL, NULL, NULL};
     double t = host_now();
     if (!b) return 0;
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);

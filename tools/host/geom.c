@@ -334,6 +334,7 @@ double geom_grid_march(const void *grid, const sc_poly *p, const double *o, cons
     *back = 0;
     for (a = 0; a < 3; a++) { /* the part of the ray inside the grid's box */
         double lo = gr->lo[a], hi = gr->lo[a] + gr->cell[a] * gr->g;
+        if (!isfinite(o[a]) || !isfinite(dir[a])) return HUGE_VAL; /* no cell to start in */
         if (fabs(dir[a]) < 1e-300) {
             if (o[a] < lo || o[a] > hi) return HUGE_VAL;
             continue;
