@@ -172,10 +172,18 @@ static const rad_rgb_t *gather_ambient(const rad_scene_t *s, rad_gather_t *g, in
 }
 
 /* V from the core's scale to the caller's, unless FLAGS keep the core's. */
-static rad_rgb_t gather_out(const rad_scene_t *s, rad_gather_t *g, int flags, rad_rgb_t v)
+static rad_rgb_t gather_out(const rad_scene_t *s, int flags, rad_rgb_t v, uint32_t *sat)
 {
     if (flags & RAD_SHADE_SCALED) return v;
-    return rad__scale2_rgb(v, -s->power_shift, &g->stats.saturations);
+    return rad__scale2_rgb(v, -s->power_shift, sat);
+}
+
+/* SUM (per channel) plus E times COSINE, saturating. */
+static void add_cos(rad_real_t sum[3], const rad_rgb_t *e, rad_real_t cosine, uint32_t *sat)
+{
+    unsigned c;
+    for (c = 0; c < 3; c++)
+        sum[c] = rad__add_sat(sum[c], rad__mul(rad__channel(e, c), cosine, sat), sat);
 }
 
 /* ---- the lights' direct light ---------------------------------------------------- */
@@ -223,13 +231,12 @@ static void lit_one(lit_t *t, const lit_dir_t *d)
     uint32_t z = t->e->z[d->px];
     unsigned c, k, m;
     if (d->face != t->face || (d->point ? z > d->depth : z != 0)) return;
+    if (!t->mom) {
+        if (d->l[2] > 0) add_cos(t->sum, &d->e, d->l[2], t->sat);
+        return;
+    }
     for (c = 0; c < 3; c++) {
         rad_real_t v = rad__channel(&d->e, c);
-        if (!t->mom) {
-            if (d->l[2] > 0)
-                t->sum[c] = rad__add_sat(t->sum[c], rad__mul(v, d->l[2], t->sat), t->sat);
-            continue;
-        }
         t->mom[0][c] += rad__msum_light(v, RAD__ONE, RAD__ONE);
         for (k = 0; k < 3; k++) {
             t->mom[1 + k][c] += rad__msum_light(v, d->l[k], RAD__ONE);
@@ -415,7 +422,7 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     v.r = rad__add_sat(rad__wvalue(sum[0], lit.sat), lit.sum[0], lit.sat);
     v.g = rad__add_sat(rad__wvalue(sum[1], lit.sat), lit.sum[1], lit.sat);
     v.b = rad__add_sat(rad__wvalue(sum[2], lit.sat), lit.sum[2], lit.sat);
-    *out = gather_out(s, g, flags, v);
+    *out = gather_out(s, flags, v, &g->stats.saturations);
     return RAD_OK;
 }
 
@@ -434,12 +441,9 @@ static void direct_one(void *ctx, uint32_t light, const rad_vec3_t *w, const rad
 {
     direct_t *d = ctx;
     rad_real_t cosine = rad__dot_unit(*u, d->n);
-    unsigned c;
     (void)w;
     (void)point;
-    if (!(cosine > 0) || !d->vis(d->ctx, light, u)) return;
-    for (c = 0; c < 3; c++)
-        d->sum[c] = rad__add_sat(d->sum[c], rad__mul(rad__channel(e, c), cosine, d->sat), d->sat);
+    if (cosine > 0 && d->vis(d->ctx, light, u)) add_cos(d->sum, e, cosine, d->sat);
 }
 
 int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *normal, int flags,
@@ -462,7 +466,7 @@ int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *
     v.r = d.sum[0];
     v.g = d.sum[1];
     v.b = d.sum[2];
-    *out = (flags & RAD_SHADE_SCALED) ? v : rad__scale2_rgb(v, -s->power_shift, &sat);
+    *out = gather_out(s, flags, v, &sat);
     return RAD_OK;
 }
 
@@ -621,6 +625,6 @@ int rad_gather_sh(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point
             if (c == 2) sh[k].b = v[k];
         }
     }
-    for (k = 0; k < 9; k++) sh[k] = gather_out(s, g, flags, sh[k]);
+    for (k = 0; k < 9; k++) sh[k] = gather_out(s, flags, sh[k], sat);
     return RAD_OK;
 }

@@ -1459,7 +1459,7 @@ int lm_dilate(lm_atlas *a)
 int lm_visible(void *atlas, const double p[3], const double dir[3], double len)
 {
     const lm_atlas *a = atlas;
-    return !(geom_grid_march(a->grid, a->polys, p, dir, len, 1, NULL) < HUGE_VAL);
+    return !(geom_grid_march(a->grid, a->polys, p, dir, len, 1) < HUGE_VAL);
 }
 
 int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx)

@@ -641,8 +641,8 @@ static int level_direct(void *ctx, const double p[3], const double n[3], double 
     return sc_direct(b->s, p, n, lm_visible, b->a, rgb);
 }
 
-/* The rows checked against every texel's gather: one in LEVEL_CHECK, about 7,000
- * texels of the 1024 x 1024 atlas. */
+/* The rows checked against every texel's gather: one in LEVEL_CHECK, 16 rows of the
+ * 1024 x 1024 atlas. */
 #define LEVEL_CHECK 64
 
 /* The baked texels of A's rows 0 mod LEVEL_CHECK against each gathered (with its sharp
@@ -657,9 +657,10 @@ static void level_check(level_bake *b, lm_atlas *a, double err[2])
     for (y = 0; y < a->size; y += LEVEL_CHECK)
         for (x = 0; x < a->size; x++) {
             size_t i = (size_t)y * a->size + (size_t)x;
-            const double *nrm = &a->planes[4 * (size_t)(a->poly[i] < 0 ? 0 : a->poly[i])];
+            const double *nrm;
             double p[3], g[3], d[3], want = 0.0, got = 0.0;
             if (!lm_texel_point(a, x, y, p)) continue;
+            nrm = &a->planes[4 * (size_t)a->poly[i]];
             if (sc_gather(b->g, p, nrm, SC_AMBIENT | SC_SOFT, g) < 0 ||
                 level_direct(b, p, nrm, d) < 0)
                 exit(1);

@@ -325,13 +325,11 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
 }
 
 double geom_grid_march(const void *grid, const sc_poly *p, const double *o, const double *dir,
-                       double len, int any, int *back)
+                       double len, int any)
 {
     const grid_t *gr = grid;
     double t0 = 0.0, t1 = len, best = HUGE_VAL, next[3], delta[3];
-    int a, c[3], step[3], b = 0;
-    if (!back) back = &b;
-    *back = 0;
+    int a, c[3], step[3], back;
     for (a = 0; a < 3; a++) { /* the part of the ray inside the grid's box */
         double lo = gr->lo[a], hi = gr->lo[a] + gr->cell[a] * gr->g;
         if (!isfinite(o[a]) || !isfinite(dir[a])) return HUGE_VAL; /* no cell to start in */
@@ -362,7 +360,7 @@ double geom_grid_march(const void *grid, const sc_poly *p, const double *o, cons
         int k = (c[2] * gr->g + c[1]) * gr->g + c[0], j;
         double exit = fmin(next[0], fmin(next[1], next[2]));
         for (j = gr->start[k]; j < gr->start[k + 1]; j++) {
-            nearest(gr, p, gr->ids[j], o, dir, len, &best, back);
+            nearest(gr, p, gr->ids[j], o, dir, len, &best, &back);
             if (any && best < HUGE_VAL) return best;
         }
         if (best <= exit || exit > t1) return best; /* later cells lie farther */

@@ -63,11 +63,10 @@ double geom_grid_ray(const void *grid, const sc_poly *p, const double *o, const 
                      double len, int *back);
 /* The nearest polygon that the ray from O along unit DIR meets within LEN (HUGE_VAL:
  * any distance), cell by cell through the grid (Amanatides & Woo): its distance,
- * HUGE_VAL if none, and *BACK (unless NULL) 1 when it is met from behind; with ANY,
- * the first met, not the nearest (an occlusion test). For long rays, where
- * geom_grid_ray's box of cells would hold the whole grid. */
+ * HUGE_VAL if none; with ANY, the first met, not the nearest (an occlusion test). For
+ * long rays, where geom_grid_ray's box of cells would hold the whole grid. */
 double geom_grid_march(const void *grid, const sc_poly *p, const double *o, const double *dir,
-                       double len, int any, int *back);
+                       double len, int any);
 /* Of the four rays from P along +-U and +-V (unit, in a plane P lies just above) within
  * LEN, the one that meets a back face nearest: its distance, its direction into DIR;
  * HUGE_VAL if none does. A sample whose ray meets a back face first lies inside

@@ -117,8 +117,7 @@ void sc_gatherer_free(sc_gatherer *q)
     free(q);
 }
 
-/* P in the core's frame; -1 outside it, else the flags: the ambient term unless mixed
- * (then it is baked in), the soft light alone when asked. */
+/* P into the core's frame, C; -1 outside it. */
 static int core_point(const struct sc_solver *h, const double p[3], rad_vec3_t *c)
 {
     int a;
@@ -128,6 +127,8 @@ static int core_point(const struct sc_solver *h, const double p[3], rad_vec3_t *
     return 0;
 }
 
+/* P in the core's frame; -1 outside it, else the core's flags for FLAGS (SC_*): the
+ * ambient term unless mixed (then it is baked in), the soft light alone. */
 static int gather_frame(sc_gatherer *q, const double p[3], int flags, rad_vec3_t *c)
 {
     if (core_point(q->h, p, c) < 0) return -1;
@@ -140,19 +141,26 @@ int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int flags, d
     return sc_gather_on(q, p, n, -1, flags, rgb);
 }
 
-int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int ambient,
+/* N scaled to unit length into NC; -1 when it has none (zero, not finite). */
+static int core_normal(const double n[3], rad_vec3_t *nc)
+{
+    double len = sqrt(geom_dot(n, n));
+    if (!(len > 0.0) || !isfinite(len)) return -1;
+    nc->x = RAD_REAL(n[0] / len);
+    nc->y = RAD_REAL(n[1] / len);
+    nc->z = RAD_REAL(n[2] / len);
+    return 0;
+}
+
+int sc_gather_on(sc_gatherer *q, const double p[3], const double n[3], int surface, int flags,
                  double rgb[3])
 {
     rad_vec3_t c, nc;
     rad_rgb_t out;
-    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    int flags = gather_frame(q, p, ambient, &c);
-    if (flags < 0 || !(len > 0.0) || !isfinite(len)) return -1;
-    nc.x = RAD_REAL(n[0] / len);
-    nc.y = RAD_REAL(n[1] / len);
-    nc.z = RAD_REAL(n[2] / len);
-    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface,
-                   flags, &out) < 0)
+    int f = gather_frame(q, p, flags, &c);
+    if (f < 0 || core_normal(n, &nc) < 0) return -1;
+    if (rad_gather(&q->h->s, &q->g, &c, &nc, surface < 0 ? RAD_INDEX_NONE : (uint32_t)surface, f,
+                   &out) < 0)
         return -1;
     sc__rgb_out(q->h, &out, rgb);
     return 0;
@@ -182,7 +190,7 @@ static int direct_vis(void *ctx, uint32_t k, const rad_vec3_t *dir)
     const sc_light *l = &d->h->src[k];
     double u[3] = {RAD_TO_DOUBLE(dir->x), RAD_TO_DOUBLE(dir->y), RAD_TO_DOUBLE(dir->z)}, len;
     if (!geom_normalize(u)) return 0;
-    if (l->type == 2 || l->type == 3) {
+    if (l->type == RAD_LIGHT_POINT || l->type == RAD_LIGHT_SPOT) {
         double w[3];
         geom_sub(l->pos, d->p, w);
         len = sqrt(geom_dot(w, w));
@@ -198,13 +206,9 @@ int sc_direct(sc_solver *h, const double p[3], const double n[3], sc_visible_fn 
     direct_ctx d = {h, p, vis, ctx};
     rad_vec3_t c, nc;
     rad_rgb_t out;
-    double len = sqrt(geom_dot(n, n));
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!h->nlights) return 0;
-    if (core_point(h, p, &c) < 0 || !(len > 0.0) || !isfinite(len)) return -1;
-    nc.x = RAD_REAL(n[0] / len);
-    nc.y = RAD_REAL(n[1] / len);
-    nc.z = RAD_REAL(n[2] / len);
+    if (core_point(h, p, &c) < 0 || core_normal(n, &nc) < 0) return -1;
     if (rad_direct(&h->s, &c, &nc, 0, direct_vis, &d, &out) < 0) return -1;
     sc__rgb_out(h, &out, rgb);
     return 0;
