@@ -129,7 +129,9 @@ static int eye_setup(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *po
     uint32_t sat = 0;
     RAD__CHECK_SCENE(s);
     if (!g || !point || (int)g->sh != sh ||
-        (flags & ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED | (sh ? 0 : RAD_SHADE_SOFT))))
+        (flags &
+         ~(RAD_SHADE_AMBIENT | RAD_SHADE_SCALED | (sh ? 0 : RAD_SHADE_SOFT | RAD_SHADE_SKIES))) ||
+        (flags & (RAD_SHADE_SOFT | RAD_SHADE_SKIES)) == RAD_SHADE_SKIES)
         return RAD_ERR_ARG;
     if (!s->solving || (g->cull && !rad__cull_fits(s, g->cull))) return RAD_ERR_STATE;
     e->c = rad__scale2_vec(*point, s->length_shift, &sat);
@@ -412,7 +414,9 @@ int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
     ap = gather_ambient(s, g, flags, &amb);
     lit.mom = 0;
     lit.sat = &g->stats.saturations;
-    lit.types = (flags & RAD_SHADE_SOFT) ? RAD__LIGHTS_SKIES : RAD__LIGHTS_ALL;
+    lit.types = !(flags & RAD_SHADE_SOFT)   ? RAD__LIGHTS_ALL
+                : (flags & RAD_SHADE_SKIES) ? 0u
+                                            : RAD__LIGHTS_SKIES;
     lit.sum[0] = lit.sum[1] = lit.sum[2] = 0;
     for (f = 0; f < 5; f++) {
         eye_face(s, &e, f);
@@ -454,7 +458,8 @@ int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *
     rad_rgb_t v;
     uint32_t sat = 0;
     RAD__CHECK_SCENE(s);
-    if (!point || !normal || !vis || !out || (flags & ~RAD_SHADE_SCALED)) return RAD_ERR_ARG;
+    if (!point || !normal || !vis || !out || (flags & ~(RAD_SHADE_SCALED | RAD_SHADE_SKIES)))
+        return RAD_ERR_ARG;
     c = rad__scale2_vec(*point, s->length_shift, &sat);
     if (sat || !in_range(&c) || !in_range(normal)) return RAD_ERR_RANGE;
     if (!rad__normalize(*normal, &d.n)) return RAD_ERR_ARG;
@@ -462,7 +467,8 @@ int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *
     d.ctx = ctx;
     d.sat = &sat;
     d.sum[0] = d.sum[1] = d.sum[2] = 0;
-    rad__lights_at(s, c, RAD__LIGHTS_ALL & ~RAD__LIGHTS_SKIES, direct_one, &d, &sat);
+    rad__lights_at(s, c, RAD__LIGHTS_ALL & ((flags & RAD_SHADE_SKIES) ? ~0u : ~RAD__LIGHTS_SKIES),
+                   direct_one, &d, &sat);
     v.r = d.sum[0];
     v.g = d.sum[1];
     v.b = d.sum[2];

@@ -418,8 +418,9 @@ static int never_vis(void *ctx, const double p[3], const double dir[3], double l
  * panel's outline, exactly), and the gather with RAD_SHADE_SOFT (the sky's direct
  * light and what the elements send). At floor points off the shadows' outlines (the
  * cube's visibility and the ray's agree there) the two sum to the whole gather within
- * REL; with no light visible the direct part is 0, and a sky alone has none. The float
- * twin's direct part agrees within REL. */
+ * REL; with no light visible the direct part is 0, and a sky alone has none, unless
+ * asked for (SC_SKIES: then the gather leaves it out, and again the two sum to the
+ * whole). The float twin's direct part agrees within REL. */
 static void test_split(void **state)
 {
     /* open; in the sun's shadow (x in [0.077, 1.077], |z| < 1/2); in the point's
@@ -463,9 +464,10 @@ static void test_split(void **state)
         double all[3], soft[3], direct[3], twin[3], none[3];
         CHECK_INT_EQ(sc_gather(g, q, up, 0, all), 0, "sc_gather");
         CHECK_INT_EQ(sc_gather(g, q, up, SC_SOFT, soft), 0, "sc_gather, soft");
-        CHECK_INT_EQ(sc_direct(s, q, up, panel_vis, NULL, direct), 0, "sc_direct");
-        CHECK_INT_EQ(scf_direct(f, q, up, panel_vis, NULL, twin), 0, "scf_direct");
-        CHECK_INT_EQ(sc_direct(s, q, up, never_vis, NULL, none), 0, "sc_direct, nothing visible");
+        CHECK_INT_EQ(sc_direct(s, q, up, 0, panel_vis, NULL, direct), 0, "sc_direct");
+        CHECK_INT_EQ(scf_direct(f, q, up, 0, panel_vis, NULL, twin), 0, "scf_direct");
+        CHECK_INT_EQ(sc_direct(s, q, up, 0, never_vis, NULL, none), 0,
+                     "sc_direct, nothing visible");
         CHECK_NEAR(soft[1] + direct[1], all[1], all[1] * REL + 1e-6,
                    "soft %.6f + direct %.6f against the whole gather at (%g, %g)", soft[1],
                    direct[1], q[0], q[2]);
@@ -491,8 +493,23 @@ static void test_split(void **state)
     {
         const double q[3] = {1.5, 1e-3, 1.5};
         double direct[3];
-        CHECK_INT_EQ(sc_direct(s, q, up, panel_vis, NULL, direct), 0, "sc_direct under a sky");
+        double all[3], rest[3], sky[3];
+        sc_gatherer *gs = sc_gatherer_new(s, GATHER_RES, 0);
+        assert_non_null(gs);
+        CHECK_INT_EQ(sc_direct(s, q, up, 0, panel_vis, NULL, direct), 0, "sc_direct under a sky");
         CHECK_EQ(direct[1], 0.0, "a sky's direct light is the soft part's");
+        /* SC_SKIES: the sky's directions a ray each, the gather without them */
+        CHECK_INT_EQ(sc_gather(gs, q, up, 0, all), 0, "sc_gather under a sky");
+        CHECK_INT_EQ(sc_gather(gs, q, up, SC_SOFT | SC_SKIES, rest), 0, "sc_gather, no light's");
+        CHECK_INT_EQ(sc_direct(s, q, up, SC_SKIES, panel_vis, NULL, sky), 0, "sc_direct, skies");
+        CHECK_NEAR(rest[1] + sky[1], all[1], all[1] * REL,
+                   "the rest %.6f + the sky's direct light %.6f against the whole gather", rest[1],
+                   sky[1]);
+        CHECK_INT_GT((long)(sky[1] * 1e6), (long)(rest[1] * 1e6),
+                     "the sky's direct part dominates");
+        printf("under a sky: whole %.6f, rest %.6f, the sky's directions %.6f\n", all[1], rest[1],
+               sky[1]);
+        sc_gatherer_free(gs);
     }
     sc_destroy(s);
 }
@@ -519,7 +536,7 @@ static int split_gather(void *ctx, const double p[3], const double n[3], double 
 static int split_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
     split_ctx *c = ctx;
-    return sc_direct(c->s, p, n, lm_visible, c->a, rgb);
+    return sc_direct(c->s, p, n, 0, lm_visible, c->a, rgb);
 }
 
 static void test_lightmap_sharp(void **state)

@@ -713,7 +713,11 @@ static void test_errors(void **st)
     CHECK_INT_EQ(rad_gather(&w->s, &g, NULL, &n, none, 0, &out), RAD_ERR_ARG, "no point");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, NULL, none, 0, &out), RAD_ERR_ARG, "no normal");
     CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 0, NULL), RAD_ERR_ARG, "no output");
-    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 8, &out), RAD_ERR_ARG, "unknown flag");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, 16, &out), RAD_ERR_ARG, "unknown flag");
+    CHECK_INT_EQ(rad_gather(&w->s, &g, &o, &n, none, RAD_SHADE_SKIES, &out), RAD_ERR_ARG,
+                 "skies left out without the soft light's flag");
+    CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, none, RAD_SHADE_SKIES, sh), RAD_ERR_ARG,
+                 "a probe without the skies (not offered)");
     CHECK_INT_EQ(rad_gather_sh(&w->s, &g, &o, none, RAD_SHADE_SOFT, sh), RAD_ERR_ARG,
                  "a probe's soft light (not offered)");
     CHECK_INT_EQ(rad_direct(NULL, &o, &n, 0, all_visible, NULL, &out), RAD_ERR_ARG,

@@ -544,6 +544,7 @@ int rad_ambient(rad_scene_t *s, rad_rgb_t *out);
 #define RAD_SHADE_AMBIENT 1 /* add reflectance times the ambient term */
 #define RAD_SHADE_SCALED  2 /* in the core's scale: the caller's times 2^power_shift */
 #define RAD_SHADE_SOFT    4 /* rad_gather: the direct light of skies alone (rad_direct) */
+#define RAD_SHADE_SKIES   8 /* rad_direct: skies' too; rad_gather (with SOFT only): no light's */
 
 /* Radiosity of element E (with FLAGS as above) into OUT, in the caller's units unless
  * RAD_SHADE_SCALED. Returns RAD_OK or RAD_ERR_ARG. */
@@ -717,13 +718,14 @@ int rad_gather_init(rad_gather_t *g, unsigned res, unsigned flags, void *work, s
  * nothing, and I cos t / r^2 (a spot's falloff applied) from a point or spot light
  * whose pixel shows nothing nearer than it: the light's visibility is the cube's, a
  * pixel's centre deciding, as the solve's shots decide it by their pixels (with
- * RAD_SHADE_SOFT, a sky's alone: rad_direct gives the others). An element of
+ * RAD_SHADE_SOFT, a sky's alone: rad_direct gives the others; with RAD_SHADE_SOFT |
+ * RAD_SHADE_SKIES, no light's: rad_direct with RAD_SHADE_SKIES gives them all). An element of
  * reflectance rho at POINT would have radiosity rho E + its emission: E is irradiance
  * over pi, in radiosity units (Q16.16 in the fixed build, rounded once from an exact
  * sum in the core's scale), the caller's unless RAD_SHADE_SCALED. POINT is in the
  * caller's units. Surface SKIP is not drawn (the one POINT lies on; RAD_INDEX_NONE:
  * none). Writes OUT; returns RAD_OK, RAD_ERR_ARG (NULL, a zero normal, a sphere
- * gatherer, unknown flags), RAD_ERR_RANGE (POINT beyond +-RAD_COORD_LIMIT in the
+ * gatherer, unknown flags, RAD_SHADE_SKIES without RAD_SHADE_SOFT), RAD_ERR_RANGE (POINT beyond +-RAD_COORD_LIMIT in the
  * core's scale, NORMAL beyond it), RAD_ERR_STATE (geometry not frozen). */
 int rad_gather(const rad_scene_t *s, rad_gather_t *g, const rad_vec3_t *point,
                const rad_vec3_t *normal, uint32_t skip, int flags, rad_rgb_t *out);
@@ -741,7 +743,10 @@ typedef int rad_visible_fn(void *ctx, uint32_t light, const rad_vec3_t *dir);
  * rad_gather leaves out exactly these: the sum of the two is rad_gather's value but
  * for visibility, decided by the caller's ray per point rather than by a cube's pixel
  * (a lightmap's texels then keep sharp shadows however their soft light is
- * interpolated). FLAGS: 0 or RAD_SHADE_SCALED. Writes OUT; returns RAD_OK, RAD_ERR_ARG
+ * interpolated). With RAD_SHADE_SKIES, the skies' directions too (each cell's, a ray
+ * each), and rad_gather with RAD_SHADE_SOFT | RAD_SHADE_SKIES leaves out every light's
+ * direct light: again the two sum to rad_gather's. FLAGS: RAD_SHADE_SCALED,
+ * RAD_SHADE_SKIES. Writes OUT; returns RAD_OK, RAD_ERR_ARG
  * (NULL, a zero normal, unknown flags) or RAD_ERR_RANGE (as rad_gather). */
 int rad_direct(const rad_scene_t *s, const rad_vec3_t *point, const rad_vec3_t *normal, int flags,
                rad_visible_fn *vis, void *ctx, rad_rgb_t *out);

@@ -1427,7 +1427,13 @@ long lm_plan(lm_atlas *a)
 {
     long n = 0;
     int ci, x, y;
-    if (a->pass++ == 0) {
+    if (a->pass++ == 0 && a->painted) {
+        size_t t = (size_t)a->size * a->size, i;
+        for (i = 0; i < t; i++) n += (a->state[i] & LM_WANT) != 0;
+        a->waiting = 0;
+        return n;
+    }
+    if (a->pass == 1) {
         for (ci = 0; ci < a->ncharts; ci++) {
             const lm_chart *c = &a->charts[ci];
             int step = a->tol > 0.0 ? LM_STEP : 1;
@@ -1460,6 +1466,236 @@ int lm_visible(void *atlas, const double p[3], const double dir[3], double len)
 {
     const lm_atlas *a = atlas;
     return !(geom_grid_march(a->grid, a->polys, p, dir, len, 1) < HUGE_VAL);
+}
+
+/* ---- painting from a solve's elements ---- */
+
+/* Element corners by place on a chart (lm_paint): an open-addressed table of keys
+ * (chart and the place on a grid 2^-20 of the extent), each summing the light of the
+ * known elements there times their areas, and the areas. */
+typedef struct {
+    long long k[4];
+    double rgb[3], w;
+} place_t;
+
+static size_t place_slot(place_t *t, size_t mask, const long long k[4])
+{
+    size_t h =
+        (size_t)((unsigned long long)(k[0] * 0x9E3779B97F4A7C15ULL ^ k[1] * 0xC2B2AE3D27D4EB4FULL ^
+                                      k[2] * 0x165667B19E3779F9ULL ^
+                                      k[3] * 0x27D4EB2F165667C5ULL) >>
+                 17);
+    for (;; h++) {
+        place_t *c = &t[h & mask];
+        if (c->w < 0.0) { /* empty */
+            memcpy(c->k, k, sizeof c->k);
+            c->rgb[0] = c->rgb[1] = c->rgb[2] = c->w = 0.0;
+            return h & mask;
+        }
+        if (!memcmp(c->k, k, sizeof c->k)) return h & mask;
+    }
+}
+
+static void place_key(const lm_atlas *a, int poly, const double p[3], long long k[4])
+{
+    double q = a->extent * 0x1p-20;
+    int j;
+    k[0] = a->poly_chart[poly];
+    for (j = 0; j < 3; j++) k[1 + j] = llround(p[j] / q);
+}
+
+/* Weights of triangle T's corners (2D) at point Q on it; 0 for a triangle of no area. */
+static int tri2_weights(const double t[3][2], const double q[2], double w[3])
+{
+    double d =
+        (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]);
+    if (!(fabs(d) > 1e-12)) return 0;
+    w[1] = ((q[0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (q[1] - t[0][1])) / d;
+    w[2] = ((t[1][0] - t[0][0]) * (q[1] - t[0][1]) - (q[0] - t[0][0]) * (t[1][1] - t[0][1])) / d;
+    w[0] = 1.0 - w[1] - w[2];
+    return 1;
+}
+
+/* Texel AT's sample's place in the atlas (texels). */
+static void sample_xy(const lm_atlas *a, size_t at, double xy[2])
+{
+    xy[0] = a->sample[2 * at];
+    xy[1] = a->sample[2 * at + 1];
+    if (!a->file_uv) {
+        xy[0] += a->charts[a->owner[at]].x;
+        xy[1] += a->charts[a->owner[at]].y;
+    }
+}
+
+/* 2D cross product of A and B. */
+static double cross2(const double *a, const double *b)
+{
+    return a[0] * b[1] - a[1] * b[0];
+}
+
+/* Quad Q's (corners in order) bilinear coordinates (u along 0-1, v along 0-3) of point
+ * C on it, from the quadratic of the inverse map (exact for any convex quad); 0 when
+ * it has no root in [0, 1] (a quad folded in the projection). */
+static int quad_uv(const double q[4][2], const double c[2], double *u, double *v)
+{
+    double e[2], f[2], g[2], h[2], k0, k1, k2, d, r, x;
+    int i;
+    for (i = 0; i < 2; i++) {
+        e[i] = q[1][i] - q[0][i];
+        f[i] = q[3][i] - q[0][i];
+        g[i] = q[0][i] - q[1][i] + q[2][i] - q[3][i];
+        h[i] = c[i] - q[0][i];
+    }
+    k2 = cross2(g, f);
+    k1 = cross2(e, f) + cross2(h, g);
+    k0 = cross2(h, e);
+    if (fabs(k2) <= 1e-9 * fabs(k1)) {
+        r = -k0 / k1;
+    } else {
+        d = k1 * k1 - 4.0 * k0 * k2;
+        if (d < 0.0) return 0;
+        d = sqrt(d);
+        r = (-k1 - d) / (2.0 * k2);
+        if (r < -1e-6 || r > 1.0 + 1e-6) r = (-k1 + d) / (2.0 * k2);
+    }
+    if (!(r >= -1e-6 && r <= 1.0 + 1e-6)) return 0;
+    x = fabs(e[0] + g[0] * r) >= fabs(e[1] + g[1] * r) ? (h[0] - f[0] * r) / (e[0] + g[0] * r)
+                                                       : (h[1] - f[1] * r) / (e[1] + g[1] * r);
+    if (!(x >= -1e-6 && x <= 1.0 + 1e-6)) return 0;
+    *u = fmin(fmax(x, 0.0), 1.0);
+    *v = fmin(fmax(r, 0.0), 1.0);
+    return 1;
+}
+
+/* The light at point C of element corners XY (N = 3 or 4, atlas places) whose corners
+ * hold V: linear over a triangle, bilinear over a quad (so a quad's light has no crease
+ * along a diagonal), into RGB; T is the triangle of the element holding C (corners 0,
+ * J + 1, J + 2), its fallback for a quad that has no inverse. */
+static void element_light(int n, const double xy[4][2], const double v[4][3], const double c[2],
+                          int j, double rgb[3])
+{
+    double t[3][2], w[3], u, s;
+    int k, i;
+    if (n == 4 && quad_uv(xy, c, &u, &s)) {
+        for (k = 0; k < 3; k++)
+            rgb[k] = (1 - u) * (1 - s) * v[0][k] + u * (1 - s) * v[1][k] + u * s * v[2][k] +
+                     (1 - u) * s * v[3][k];
+        return;
+    }
+    for (i = 0; i < 2; i++) {
+        t[0][i] = xy[0][i];
+        t[1][i] = xy[j + 1][i];
+        t[2][i] = xy[j + 2][i];
+    }
+    if (!tri2_weights((const double(*)[2])t, c, w)) w[0] = 1, w[1] = w[2] = 0;
+    for (k = 0; k < 3; k++) rgb[k] = w[0] * v[0][k] + w[1] * v[j + 1][k] + w[2] * v[j + 2][k];
+}
+
+/* Element M (its corners' atlas places XY, their light V when known) offered to the
+ * texels of its polygon near it: each keeps the nearest element in BEST (squared
+ * texels), its light or, when not known, a mark to gather. */
+static void paint_element(lm_atlas *a, const sc_soft_element *m, const double xy[4][2],
+                          const double v[4][3], float *best)
+{
+    const double r = LM_PAINT_REACH;
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    int x, y, j, k;
+    for (j = 0; j < m->n; j++)
+        for (k = 0; k < 2; k++) {
+            lo[k] = fmin(lo[k], xy[j][k]);
+            hi[k] = fmax(hi[k], xy[j][k]);
+        }
+    for (y = (int)fmax(floor(lo[1] - r), 0.0); y <= hi[1] + r && y < a->size; y++)
+        for (x = (int)fmax(floor(lo[0] - r), 0.0); x <= hi[0] + r && x < a->size; x++) {
+            size_t at = (size_t)y * a->size + (size_t)x;
+            double q[2], c[2], near[2], d2 = HUGE_VAL, rgb[3];
+            int tri = 0;
+            if (isnan(a->sample[2 * at]) || a->poly[at] != m->poly) continue;
+            sample_xy(a, at, q);
+            for (j = 0; j + 2 < m->n; j++) { /* the nearest point of its triangles */
+                double t[3][2], e;
+                for (k = 0; k < 2; k++) {
+                    t[0][k] = xy[0][k];
+                    t[1][k] = xy[j + 1][k];
+                    t[2][k] = xy[j + 2][k];
+                }
+                geom_tri2_closest((const double(*)[2])t, q, c);
+                e = (c[0] - q[0]) * (c[0] - q[0]) + (c[1] - q[1]) * (c[1] - q[1]);
+                if (e < d2) {
+                    d2 = e;
+                    near[0] = c[0], near[1] = c[1];
+                    tri = j;
+                }
+            }
+            if (!(d2 < best[at])) continue;
+            best[at] = (float)d2;
+            a->state[at] =
+                (unsigned char)((a->state[at] & LM_FREE) | (m->known ? LM_LERPED : LM_WANT));
+            if (!m->known) continue;
+            element_light(m->n, xy, v, near, tri, rgb);
+            for (k = 0; k < 3; k++) a->rgb[3 * at + k] = (float)rgb[k];
+        }
+}
+
+long lm_paint(lm_atlas *a, const sc_soft_element *el, long n)
+{
+    size_t t = (size_t)a->size * a->size, i, cap = 16, mask;
+    long e, left = 0;
+    place_t *tab;
+    float *best;
+    int j, k;
+    for (e = 0; e < n; e++) cap += (size_t)el[e].n;
+    while (mask = cap - 1, cap & mask) cap &= mask; /* down to a power of 2 */
+    cap *= 4;
+    mask = cap - 1;
+    tab = malloc(cap * sizeof *tab);
+    best = malloc(t * sizeof *best);
+    if (!tab || !best) {
+        free(tab);
+        free(best);
+        return -1;
+    }
+    for (i = 0; i < cap; i++) tab[i].w = -1.0;
+    for (e = 0; e < n; e++) { /* the corners' sums */
+        const sc_soft_element *m = &el[e];
+        if (!m->known || m->poly < 0 || m->poly >= a->npolys || a->poly_chart[m->poly] < 0)
+            continue;
+        for (j = 0; j < m->n; j++) {
+            long long key[4];
+            place_t *c;
+            place_key(a, m->poly, m->p[j], key);
+            c = &tab[place_slot(tab, mask, key)];
+            for (k = 0; k < 3; k++) c->rgb[k] += m->area * m->rgb[k];
+            c->w += m->area;
+        }
+    }
+    for (i = 0; i < t; i++) {
+        best[i] = (float)(LM_PAINT_REACH * LM_PAINT_REACH);
+        a->state[i] =
+            (unsigned char)((a->state[i] & LM_FREE) | (isnan(a->sample[2 * i]) ? 0 : LM_WANT));
+    }
+    for (e = 0; e < n; e++) {
+        const sc_soft_element *m = &el[e];
+        double xy[4][2], v[4][3];
+        if (m->poly < 0 || m->poly >= a->npolys || a->poly_chart[m->poly] < 0 || m->n < 3) continue;
+        for (j = 0; j < m->n; j++) {
+            lm_uv(a, m->poly, m->p[j], xy[j]);
+            if (m->known) {
+                long long key[4];
+                const place_t *c;
+                place_key(a, m->poly, m->p[j], key);
+                c = &tab[place_slot(tab, mask, key)];
+                for (k = 0; k < 3; k++) v[j][k] = c->w > 0.0 ? c->rgb[k] / c->w : m->rgb[k];
+            }
+        }
+        paint_element(a, m, (const double(*)[2])xy, (const double(*)[3])v, best);
+    }
+    for (i = 0; i < t; i++) left += (a->state[i] & LM_WANT) != 0;
+    free(tab);
+    free(best);
+    a->painted = 1;
+    a->pass = 0;
+    return left;
 }
 
 int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx)

@@ -141,6 +141,7 @@ typedef struct {
                        * o + x T u + y T v at atlas texel position (x, y); count 1 when
                        * the triangle has UV area, else 0 */
     int file_charts;  /* the file's charts: polygons joined across shared UV edges */
+    int painted;      /* lm_paint filled the texels: lm_plan's one pass gathers the rest */
 } lm_atlas;
 
 /* Charts, packing and texel samples for POLYS (kept by pointer until lm_free). Returns
@@ -193,6 +194,18 @@ int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx);
 long lm_plan(lm_atlas *a);
 int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
 int lm_dilate(lm_atlas *a);
+/* The soft light painted from a solve's elements (N of EL: sc_soft_elements) instead of gathered: each
+ * element corner takes the area-weighted mean of the known elements with a corner at
+ * that place (within 2^-20 of the extent) on that chart, linear over each element's
+ * triangles (corners 0 1 2, 0 2 3) as a Gouraud shading draws it; a covered texel takes
+ * the value at the nearest point of its own polygon's elements, when that lies within
+ * LM_PAINT_REACH texels of its sample and on a known element. The other covered texels
+ * (on elements not known, or polygons the solve did not mesh) are what lm_plan then
+ * gives, in one pass, to gather. The bake's sharp lights stay per texel
+ * (lm_direct_rows). Returns the texels left to gather, or -1 out of memory. */
+#define LM_PAINT_REACH 2.0
+long lm_paint(lm_atlas *a, const sc_soft_element *el, long n);
+
 /* Adds FN's light (the sharp lights' direct light: sc_direct) at every covered texel's
  * sample of the rows Y with Y % STEP == FIRST, after the gathers (FN's value at the
  * texel's own point, never interpolated). 0, or -1 when FN stopped it. */

@@ -20,7 +20,7 @@
  * and the atlas, for the texels' sharp lights (lm_direct). */
 typedef struct {
     sc_gatherer *g;
-    int ambient;
+    int flags; /* SC_AMBIENT; SC_SKIES: a painted lightmap's skies per texel */
     long gathers;
     progress_t *pg;
     double total;
@@ -44,21 +44,21 @@ static int lm_gather(void *ctx, const double p[3], const double n[3], double rgb
 {
     gather_ctx *c = ctx;
     gathered(c);
-    return sc_gather(c->g, p, n, (c->ambient ? SC_AMBIENT : 0) | SC_SOFT, rgb);
+    return sc_gather(c->g, p, n, c->flags | SC_SOFT, rgb);
 }
 
 static int lm_direct(void *ctx, const double p[3], const double n[3], double rgb[3])
 {
     gather_ctx *c = ctx;
     gathered(c);
-    return sc_direct(c->s, p, n, lm_visible, c->a, rgb);
+    return sc_direct(c->s, p, n, c->flags & SC_SKIES, lm_visible, c->a, rgb);
 }
 
 static int pr_gather(void *ctx, const double p[3], double sh[9][3])
 {
     gather_ctx *c = ctx;
     gathered(c);
-    return sc_gather_sh(c->g, p, c->ambient, sh);
+    return sc_gather_sh(c->g, p, c->flags & SC_AMBIENT, sh);
 }
 
 struct bake_state {
@@ -84,7 +84,7 @@ char *cli_probes_output(const char *scene)
 typedef struct {
     sc_solver *s;
     lm_atlas *a;
-    int ambient;
+    int flags;     /* gather_ctx's */
     long *gathers; /* per thread */
     progress_t *pg;
     double share; /* a thread's share of the pass's texels */
@@ -94,7 +94,7 @@ typedef struct {
 static int texel_rows(void *ctx, sc_gatherer *g, int first, int step)
 {
     texel_job *j = ctx;
-    gather_ctx c = {g, j->ambient, 0, NULL, 0.0, "texels", j->s, j->a};
+    gather_ctx c = {g, j->flags, 0, NULL, 0.0, "texels", j->s, j->a};
     int rc;
     if (first == 0) {
         c.pg = j->pg;
@@ -122,7 +122,13 @@ static long covered_texels(const lm_atlas *a)
 static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, double *t_direct)
 {
     progress_t pg;
-    texel_job j = {r->s, a, r->ambient, calloc((size_t)n, sizeof(long)), &pg, 0.0, 0};
+    texel_job j = {r->s,
+                   a,
+                   (r->ambient ? SC_AMBIENT : 0) | (a->painted ? SC_SKIES : 0),
+                   calloc((size_t)n, sizeof(long)),
+                   &pg,
+                   0.0,
+                   0};
     char what[64];
     long count;
     double t;
@@ -137,7 +143,10 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, d
     }
     t = host_now();
     if (rc == 0) { /* the sharp lights at every covered texel */
-        progress_begin(&pg, "lightmap: suns, points and spots", r->o->quiet);
+        progress_begin(&pg,
+                       a->painted ? "lightmap: suns, skies, points and spots"
+                                  : "lightmap: suns, points and spots",
+                       r->o->quiet);
         j.direct = 1;
         j.share = (double)covered_texels(a) / n;
         rc = sc_gather_split(r->s, 8, n, texel_rows, &j);
@@ -146,6 +155,22 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, d
     *t_direct = host_now() - t;
     free(j.gathers);
     return rc;
+}
+
+/* The soft light from the solve's elements (lm_paint); the texels on elements whose
+ * light is not known are left to gather_texels. 0, or -1 out of memory. */
+static int paint_texels(run_t *r, lm_atlas *a)
+{
+    long n, left;
+    sc_soft_element *el = sc_soft_elements(r->s, r->ambient, &n);
+    if (!el) return -1;
+    left = lm_paint(a, el, n);
+    free(el);
+    if (left < 0) return -1;
+    if (!r->o->quiet)
+        fprintf(stderr, PROG ": lightmap: soft light from %ld elements; %ld texels to gather\n", n,
+                left);
+    return 0;
 }
 
 static int bake_lightmap(run_t *r, lm_atlas *a, int res)
@@ -160,6 +185,10 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
                 PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
                 a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "",
                 total, total, res);
+    if (r->soft_kept && (rc = paint_texels(r, a)) < 0) {
+        fprintf(stderr, PROG ": %s: out of memory for the lightmap's elements\n", o->lightmap);
+        return -1;
+    }
     rc = gather_texels(r, a, o->threads > 1 ? o->threads : 1, res, &gathers, &t_direct);
     if (rc == 0) rc = lm_dilate(a);
     if (rc < 0)
@@ -387,7 +416,7 @@ int cli_bake_step(run_t *r)
     const opts_t *o = r->o;
     struct bake_state *b = r->bake;
     int rc = 0, res = o->gather_res ? o->gather_res : DEF_GATHER_RES;
-    gather_ctx c = {NULL, r->ambient, 0, NULL, 0.0, NULL, NULL, NULL};
+    gather_ctx c = {NULL, r->ambient ? SC_AMBIENT : 0, 0, NULL, 0.0, NULL, NULL, NULL};
     double t = host_now();
     if (!b) return 0;
     if (b->has_atlas) rc = bake_lightmap(r, &b->atlas, res);

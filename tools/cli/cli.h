@@ -113,11 +113,13 @@ typedef struct {
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
     int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
     int lightmap_uv;     /* --lightmap-uv: LIGHTMAP_UV_AUTO, _FILE or _RAD */
+    int lightmap_soft;   /* --lightmap-soft: LIGHTMAP_SOFT_ELEMENTS or _GATHER */
     const char *
         lightmap_opt; /* the last --lightmap-size, -pad, -tol or -uv given (they need --lightmap) */
 } opts_t;
 
 enum { LIGHTMAP_UV_AUTO, LIGHTMAP_UV_FILE, LIGHTMAP_UV_RAD };
+enum { LIGHTMAP_SOFT_GATHER, LIGHTMAP_SOFT_ELEMENTS };
 
 void cli_shot_settings(const opts_t *o, int rows, sc_opts *so);
 
@@ -153,6 +155,7 @@ typedef struct {
     int rows_mode, groups_mode, ambient;
     int work;        /* shots (or Gauss-Seidel sweeps) of the solve */
     int unconverged; /* solves that stopped at the limit above --tol */
+    int soft_kept;   /* the solve kept its elements' soft light (sc_solve_lights) */
     unsigned long raster_before_solve;
     double t0, t_load, t_mesh, t_rows, t_solve;
     double t_vertices, t_ply, t_lightmap,

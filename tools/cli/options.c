@@ -493,6 +493,17 @@ static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
         cli_die_usage("--lightmap-uv wants auto, file or rad", val);
 }
 
+static void opt_lightmap_soft(opts_t *o, const char *opt, const char *val)
+{
+    o->lightmap_opt = opt;
+    if (!strcmp(val, "elements"))
+        o->lightmap_soft = LIGHTMAP_SOFT_ELEMENTS;
+    else if (!strcmp(val, "gather"))
+        o->lightmap_soft = LIGHTMAP_SOFT_GATHER;
+    else
+        cli_die_usage("--lightmap-soft wants elements or gather", val);
+}
+
 static void opt_gather(opts_t *o, const char *opt, const char *val)
 {
     o->gather_res = parse_res(opt, val);
@@ -684,6 +695,10 @@ static const option_t options[] = {
      "the lightmap's UVs, MODE auto, file or rad: the file's second UV\nset (glTF TEXCOORD_1; "
      "file: required) or rad's own charts\n(auto: the file's if it has one)",
      opt_lightmap_uv},
+    {"--lightmap-soft", NULL, "MODE",
+     "the lightmap's soft light (all but suns, points and spots), MODE\ngather: a hemi-cube at "
+     "texels (--lightmap-tol; default) or\nelements: the solve's elements' light, interpolated",
+     opt_lightmap_soft},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene",
      opt_probes},
     {"--probe-file", NULL, "FILE", "light probes at the points of FILE, one 'X Y Z' a line",

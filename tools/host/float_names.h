@@ -35,6 +35,7 @@
 #define sc_element_area scf_element_area
 #define sc_element_centroid scf_element_centroid
 #define sc_element_limit scf_element_limit
+#define sc_element_poly scf_element_poly
 #define sc_element_rgb scf_element_rgb
 #define sc_element_rho scf_element_rho
 #define sc_element_tag scf_element_tag
@@ -82,11 +83,13 @@
 #define sc_shade scf_shade
 #define sc_shade_elements scf_shade_elements
 #define sc_shoot_cull scf_shoot_cull
+#define sc_soft_elements scf_soft_elements
 #define sc_solution scf_solution
 #define sc_solution_free scf_solution_free
 #define sc_solve scf_solve
 #define sc_solve_batch scf_solve_batch
 #define sc_solve_cull scf_solve_cull
+#define sc_solve_lights scf_solve_lights
 #define sc_solve_parallel scf_solve_parallel
 #define sc_solve_started scf_solve_started
 #define sc_solver scf_solver

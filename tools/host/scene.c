@@ -55,6 +55,10 @@ static void free_pools(struct sc_solver *h)
     free(h->pools.vertices);
     free(h->pools.work);
     free(h->tags);
+    free(h->poly_of);
+    free(h->soft_base);
+    h->poly_of = NULL;
+    h->soft_base = NULL;
     free(h->emit);
     free(h->tiny);
     free(h->area);
@@ -86,11 +90,12 @@ static int alloc_pools(struct sc_solver *h, long elements, int npolys, const rad
     p->vertices = calloc(p->max_vertices, sizeof *p->vertices);
     p->work = malloc(p->work_bytes);
     h->tags = calloc(p->max_surfaces, sizeof *h->tags);
+    h->poly_of = calloc(p->max_surfaces, sizeof *h->poly_of);
     h->emit = calloc(3u * (size_t)p->max_surfaces, sizeof *h->emit);
     h->tiny = calloc(p->max_surfaces, sizeof *h->tiny);
     h->area = calloc(p->max_surfaces, sizeof *h->area);
     return p->surfaces && p->patches && p->elements && p->vertices && p->work && h->tags &&
-           h->emit && h->tiny && h->area;
+           h->poly_of && h->emit && h->tiny && h->area;
 }
 
 rad_real_t sc__emit_ch(struct sc_solver *h, double e)
@@ -172,6 +177,7 @@ static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const 
                          int n)
 {
     h->tags[surf] = q->tag;
+    h->poly_of[surf] = (int)(q - h->polys);
     memcpy(&h->emit[3 * surf], q->emit, sizeof q->emit);
     h->area[surf] = poly_area(v, n, NULL);
     h->tiny[surf] = h->area[surf] < TINY_AREA;
@@ -696,6 +702,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     w.warn = warn;
     w.ctx = ctx;
     w.emitted = 0;
+    h->polys = polys;
     for (;;) {
         int i, added, rc = RAD_OK;
         if (cap > limit) cap = limit;
@@ -725,6 +732,7 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             }
             free(order);
             free(same);
+            h->polys = NULL;
             return h;
         }
         if (rc != RAD_ERR_FULL) {

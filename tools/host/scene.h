@@ -232,11 +232,12 @@ void sc_shoot_cull(sc_solver *s, int on);
 /* The radiosity arriving at P (caller units) on a surface of normal N (any length),
  * in caller units: what an element of reflectance rho there would show as rho RGB +
  * its emission. FLAGS: SC_AMBIENT adds the ambient term; SC_SOFT leaves out the
- * sharp lights' direct light (suns, points and spots: sc_direct's). Nothing is
- * skipped: put P off the surface. 0, or -1 (P outside the scene's frame, N zero, a
- * sphere gatherer). */
+ * sharp lights' direct light (suns, points and spots: sc_direct's), and with SC_SKIES
+ * the skies' too (every light's: sc_direct with SC_SKIES). Nothing is skipped: put P
+ * off the surface. 0, or -1 (P outside the scene's frame, N zero, a sphere gatherer). */
 #define SC_AMBIENT 1
 #define SC_SOFT    2
+#define SC_SKIES   4
 int sc_gather(sc_gatherer *g, const double p[3], const double n[3], int flags, double rgb[3]);
 /* sc_gather from a point on core surface SURFACE (-1: none), which is not drawn: a
  * quad planar only within the core's tolerance is not seen edge-on from just above. */
@@ -250,10 +251,37 @@ int sc_gather_sh(sc_gatherer *g, const double p[3], int ambient, double sh[9][3]
 typedef int sc_visible_fn(void *ctx, const double p[3], const double dir[3], double len);
 /* The sharp lights' direct light at P on a surface of normal N (rad_direct), each
  * light's visibility VIS's: with sc_gather's SC_SOFT value, the whole gather's but for
- * visibility. 0 (RGB 0 without lights), or -1 (P outside the frame, N zero). */
-int sc_direct(sc_solver *s, const double p[3], const double n[3], sc_visible_fn *vis, void *ctx,
-              double rgb[3]);
+ * visibility. FLAGS: SC_SKIES adds the skies' (a ray a sky's direction: with
+ * SC_SOFT | SC_SKIES's gather, the whole). 0 (RGB 0 without lights), or -1 (P outside
+ * the frame, N zero). */
+int sc_direct(sc_solver *s, const double p[3], const double n[3], int flags, sc_visible_fn *vis,
+              void *ctx, double rgb[3]);
 /* Values past the core's range met by this gatherer (saturated, counted). */
+/* The soft light the solve's elements received, for a lightmap painted from them
+ * (lm_paint) rather than gathered. sc_solve_lights shoots S's lights (a shooting
+ * solve's first shots) one at a time and keeps each element's radiosity without the
+ * suns', points' and spots' part (its emission and the skies' light; with FLAGS
+ * SC_SKIES, the skies' part too, as sc_gather's); call it before
+ * sc_solve, sc_solve_batch or sc_solve_parallel, before any shot. 0, or -1 (out of
+ * memory, a shot already taken). sc_element_poly: the index of element E's polygon in
+ * sc_create's array. */
+int sc_solve_lights(sc_solver *s, int flags);
+int sc_element_poly(sc_solver *s, int e);
+/* Every element of S as one of these (its polygon POLY, N = 3 or 4 corners P in order
+ * round it, its AREA, and, when KNOWN, RGB: the light it received but the suns',
+ * points' and spots' direct light, as sc_gather's SC_SOFT, with the ambient term when
+ * AMBIENT), into a malloc'd array of *N; NULL when out of memory. RGB is the
+ * radiosity's rise over the reflectance; not known without sc_solve_lights since the
+ * solution started, after sc_mix, or where a channel's reflectance is below
+ * SOFT_RHO_MIN (the radiosity's rounding, 2^-16 of the core's scale, over the
+ * reflectance would pass a gather's error). */
+#define SOFT_RHO_MIN (1.0 / 64.0)
+typedef struct {
+    int poly, n, known;
+    double p[4][3], rgb[3], area;
+} sc_soft_element;
+sc_soft_element *sc_soft_elements(sc_solver *s, int ambient, long *n);
+
 unsigned long sc_gatherer_saturations(sc_gatherer *g);
 
 #define RAD_TWIN_SCENE /* the float twin's names of the above (generated): */

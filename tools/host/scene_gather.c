@@ -133,7 +133,7 @@ static int gather_frame(sc_gatherer *q, const double p[3], int flags, rad_vec3_t
 {
     if (core_point(q->h, p, c) < 0) return -1;
     return ((flags & SC_AMBIENT) && !q->h->mixed ? RAD_SHADE_AMBIENT : 0) |
-           ((flags & SC_SOFT) ? RAD_SHADE_SOFT : 0);
+           ((flags & SC_SOFT) ? RAD_SHADE_SOFT : 0) | ((flags & SC_SKIES) ? RAD_SHADE_SKIES : 0);
 }
 
 int sc_gather(sc_gatherer *q, const double p[3], const double n[3], int flags, double rgb[3])
@@ -200,8 +200,8 @@ static int direct_vis(void *ctx, uint32_t k, const rad_vec3_t *dir)
     return d->vis(d->ctx, d->p, u, len);
 }
 
-int sc_direct(sc_solver *h, const double p[3], const double n[3], sc_visible_fn *vis, void *ctx,
-              double rgb[3])
+int sc_direct(sc_solver *h, const double p[3], const double n[3], int flags, sc_visible_fn *vis,
+              void *ctx, double rgb[3])
 {
     direct_ctx d = {h, p, vis, ctx};
     rad_vec3_t c, nc;
@@ -209,7 +209,9 @@ int sc_direct(sc_solver *h, const double p[3], const double n[3], sc_visible_fn 
     rgb[0] = rgb[1] = rgb[2] = 0.0;
     if (!h->nlights) return 0;
     if (core_point(h, p, &c) < 0 || core_normal(n, &nc) < 0) return -1;
-    if (rad_direct(&h->s, &c, &nc, 0, direct_vis, &d, &out) < 0) return -1;
+    if (rad_direct(&h->s, &c, &nc, (flags & SC_SKIES) ? RAD_SHADE_SKIES : 0, direct_vis, &d, &out) <
+        0)
+        return -1;
     sc__rgb_out(h, &out, rgb);
     return 0;
 }
@@ -217,4 +219,80 @@ int sc_direct(sc_solver *h, const double p[3], const double n[3], sc_visible_fn 
 unsigned long sc_gatherer_saturations(sc_gatherer *q)
 {
     return q->g.stats.saturations;
+}
+
+/* ---- the soft light the solve's elements received ---- */
+
+int sc_solve_lights(sc_solver *h, int flags)
+{
+    size_t n = 3u * (size_t)h->s.n_elements, i;
+    double *base, *before = malloc(n * sizeof *before), *after = malloc(n * sizeof *after);
+    int rc = 0;
+    sc__unmix(h);
+    free(h->soft_base);
+    h->soft_base = NULL;
+    base = malloc(n * sizeof *base);
+    if (!base || !before || !after || h->s.stats.shots > 0) rc = -1;
+    /* no shot: the scene frozen, its power at the core's scale, so that radiosities
+     * read in the caller's units hold the emission from here on */
+    sc_solve_cull(h);
+    if (rc == 0 && (rad_shoot(&h->s, 0, 0) != 0 || sc_shade_elements(h, 0, base) < 0)) rc = -1;
+    while (rc == 0 && h->s.lights_shot < h->s.n_lights) {
+        int sharp = (flags & SC_SKIES) || h->s.lights[h->s.lights_shot].type != RAD_LIGHT_SKY;
+        sc_solve_cull(h);
+        if (sharp && sc_shade_elements(h, 0, before) < 0) rc = -1;
+        if (rc == 0 && rad_shoot(&h->s, 1, 0) != 1) rc = -1;
+        if (rc == 0 && sharp && sc_shade_elements(h, 0, after) < 0) rc = -1;
+        for (i = 0; rc == 0 && sharp && i < n; i++) base[i] += after[i] - before[i];
+    }
+    free(before);
+    free(after);
+    if (rc == 0)
+        h->soft_base = base;
+    else
+        free(base);
+    return rc;
+}
+
+/* Element E's soft light into RGB from its radiosity B (caller units): 1, or 0 when
+ * not known (sc_soft_elements). */
+static int element_soft(sc_solver *h, int e, const double *b, double rgb[3])
+{
+    double rho[3];
+    int c;
+    sc_element_rho(h, e, rho);
+    for (c = 0; c < 3; c++) {
+        if (!(rho[c] >= SOFT_RHO_MIN)) return 0;
+        rgb[c] = fmax(0.0, (b[c] - h->soft_base[3 * (size_t)e + c]) / rho[c]);
+    }
+    return 1;
+}
+
+int sc_element_poly(sc_solver *h, int e)
+{
+    return h->poly_of[h->pools.elements[e].surface];
+}
+
+sc_soft_element *sc_soft_elements(sc_solver *h, int ambient, long *n)
+{
+    long ne = (long)h->s.n_elements, e;
+    sc_soft_element *el = malloc((size_t)(ne ? ne : 1) * sizeof *el);
+    double *b = malloc((size_t)(ne ? ne : 1) * 3 * sizeof *b);
+    int v[4], j, known = h->soft_base && !h->mixed;
+    if (!el || !b || sc_shade_elements(h, ambient, b) < 0) {
+        free(el);
+        free(b);
+        return NULL;
+    }
+    *n = ne;
+    for (e = 0; e < ne; e++) {
+        sc_soft_element *m = &el[e];
+        m->poly = sc_element_poly(h, (int)e);
+        m->n = sc_element_vertices(h, (int)e, v);
+        for (j = 0; j < m->n; j++) sc_vertex_pos(h, v[j], m->p[j]);
+        m->area = sc_element_area(h, (int)e);
+        m->known = known && element_soft(h, (int)e, &b[3 * e], m->rgb);
+    }
+    free(b);
+    return el;
 }

@@ -56,6 +56,8 @@ void sc_restart(sc_solver *h)
     double peak = 0;
     uint32_t i;
     int k;
+    free(h->soft_base); /* sc_solve_lights's, of the solution before */
+    h->soft_base = NULL;
     for (i = 0; i < 3u * h->s.n_surfaces; i++)
         if (h->emit[i] > peak) peak = h->emit[i];
     for (k = 0; k < h->nlights; k++) peak = fmax(peak, sc__light_peak(h, &h->src[k]));
