@@ -16,7 +16,12 @@
  * grid (four elements about it, placed symmetrically), the area-weighted mean of
  * their values is f at the corner, exactly, so every texel whose sample lies within
  * the grid's inner corners holds f at its sample, to float rounding (the atlas stores
- * floats: 2^-24 relative, 1e-5 of these values as bound). */
+ * floats: 2^-24 relative, 1e-5 of these values as bound).
+ *
+ * Through rad_cli: the open floor under a sun and a uniform sky, baked with
+ * --lightmap-soft elements, holds E + pi L at every covered texel (nothing bounces to
+ * it; both lights a ray per texel, the sky's 48 directions summing to exactly pi L):
+ * within REL and the .hdr file's rounding (RGBE: 2^-8 of a pixel's largest channel). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -26,11 +31,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sys/wait.h>
+
 #include <cmocka.h>
 
 #include "check.h"
+#include "tmpdir.h"
 #include "bake/lightmap.h"
+#include "formats/hdr.h"
 #include "host/scene.h"
+
+TMPDIR_GROUP("paint")
 
 #define PI               3.14159265358979323846
 #define REL              1e-3 /* Q16.16 roundings, as above */
@@ -230,11 +241,64 @@ static void test_paint_linear(void **state)
     lm_free(&a);
 }
 
+/* The exit status of shell command CMD. */
+static int run(const char *cmd)
+{
+    int st = system(cmd);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static void test_cli(void **state)
+{
+    static const char obj[] = "v -2 0 -2\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nf 1 2 3 4\n";
+    const double want = 2.0 + PI * 0.3, bound = want * (REL + 1.0 / 256);
+    char cmd[2048], err[256] = "", line[512];
+    hdr_image im;
+    FILE *f = fopen(tmp_path("open.obj"), "w");
+    int i, lit = 0, warned = 0;
+    double worst = 0;
+    (void)state;
+    assert_non_null(f);
+    fputs(obj, f);
+    fclose(f);
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli %s --quiet --sun 0,-1,0,2,2,2 --sky 0.3,0.3,0.3 --lightmap %s "
+             "--lightmap-size 64 --lightmap-soft elements -o %s",
+             tmp_path("open.obj"), tmp_path("open.hdr"), tmp_path("open.png"));
+    CHECK_INT_EQ(run(cmd), 0, "rad_cli's exit status");
+    if (hdr_read(tmp_path("open.hdr"), &im, err, sizeof err) != 0) fail_msg("%s", err);
+    for (i = 0; i < im.w * im.h; i++) {
+        double v = im.rgb[3 * i + 1];
+        if (v <= 0) continue; /* no chart's */
+        lit++;
+        worst = fmax(worst, fabs(v - want));
+        CHECK_NEAR(v, want, bound, "texel %d: the sun's E and the sky's pi L", i);
+    }
+    printf("rad_cli --lightmap-soft elements: %d texels, each within %.2g of E + pi L = %.6f "
+           "(bound %.2g)\n",
+           lit, worst, want, bound);
+    CHECK_INT_GE(lit, 2000, "covered texels");
+    hdr_free(&im);
+    /* stored form factors: gathered instead, with a warning */
+    snprintf(cmd, sizeof cmd,
+             "build/rad_cli %s --sun 0,-1,0,2,2,2 --save-ff %s --lightmap %s --lightmap-size 16 "
+             "--lightmap-soft elements -o %s 2> %s",
+             tmp_path("open.obj"), tmp_path("open.ff"), tmp_path("ff.hdr"), tmp_path("ff.png"),
+             tmp_path("ff.err"));
+    CHECK_INT_EQ(run(cmd), 0, "rad_cli's exit status with --save-ff");
+    f = fopen(tmp_path("ff.err"), "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) warned += strstr(line, "needs a shooting solve") != NULL;
+    fclose(f);
+    CHECK_INT_EQ(warned, 1, "the warning that the texels are gathered");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_split),
         cmocka_unit_test(test_paint_linear),
+        cmocka_unit_test(test_cli),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    return cmocka_run_group_tests(tests, group_setup, group_teardown);
 }

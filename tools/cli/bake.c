@@ -185,6 +185,12 @@ static int bake_lightmap(run_t *r, lm_atlas *a, int res)
                 PROG ": lightmap: %d charts%s, %ld texels covered: at most %ld gathers at res %d\n",
                 a->file_uv ? a->file_charts : a->ncharts, a->file_uv ? " (the file's UVs)" : "",
                 total, total, res);
+    if (o->lightmap_soft == LIGHTMAP_SOFT_ELEMENTS && !r->soft_kept && !o->quiet)
+        fprintf(stderr,
+                PROG ": warning: %s: --lightmap-soft elements needs a shooting solve (not stored "
+                     "form factors nor relighting) with memory for its split: the texels are "
+                     "gathered\n",
+                o->lightmap);
     if (r->soft_kept && (rc = paint_texels(r, a)) < 0) {
         fprintf(stderr, PROG ": %s: out of memory for the lightmap's elements\n", o->lightmap);
         return -1;

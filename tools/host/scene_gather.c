@@ -232,18 +232,18 @@ int sc_solve_lights(sc_solver *h, int flags)
     free(h->soft_base);
     h->soft_base = NULL;
     base = malloc(n * sizeof *base);
-    if (!base || !before || !after || h->s.stats.shots > 0) rc = -1;
+    if (!base || !before || !after || h->s.stats.shots > 0 || h->s.lights_shot > 0) rc = -1;
     /* no shot: the scene frozen, its power at the core's scale, so that radiosities
      * read in the caller's units hold the emission from here on */
     sc_solve_cull(h);
     if (rc == 0 && (rad_shoot(&h->s, 0, 0) != 0 || sc_shade_elements(h, 0, base) < 0)) rc = -1;
     while (rc == 0 && h->s.lights_shot < h->s.n_lights) {
-        int sharp = (flags & SC_SKIES) || h->s.lights[h->s.lights_shot].type != RAD_LIGHT_SKY;
+        int split = (flags & SC_SKIES) || h->s.lights[h->s.lights_shot].type != RAD_LIGHT_SKY;
         sc_solve_cull(h);
-        if (sharp && sc_shade_elements(h, 0, before) < 0) rc = -1;
-        if (rc == 0 && rad_shoot(&h->s, 1, 0) != 1) rc = -1;
-        if (rc == 0 && sharp && sc_shade_elements(h, 0, after) < 0) rc = -1;
-        for (i = 0; rc == 0 && sharp && i < n; i++) base[i] += after[i] - before[i];
+        if (split && sc_shade_elements(h, 0, before) < 0) rc = -1;
+        if (rc == 0 && rad_shoot(&h->s, 1, 0) != 1) rc = -1; /* this light alone */
+        if (rc == 0 && split && sc_shade_elements(h, 0, after) < 0) rc = -1;
+        for (i = 0; rc == 0 && split && i < n; i++) base[i] += after[i] - before[i];
     }
     free(before);
     free(after);
@@ -255,11 +255,12 @@ int sc_solve_lights(sc_solver *h, int flags)
 }
 
 /* Element E's soft light into RGB from its radiosity B (caller units): 1, or 0 when
- * not known (sc_soft_elements). */
+ * not known (sc_soft_elements; a face of a group of tiny faces shows the group's). */
 static int element_soft(sc_solver *h, int e, const double *b, double rgb[3])
 {
     double rho[3];
     int c;
+    if (h->tiny[h->pools.elements[e].surface] & 2) return 0;
     sc_element_rho(h, e, rho);
     for (c = 0; c < 3; c++) {
         if (!(rho[c] >= SOFT_RHO_MIN)) return 0;
