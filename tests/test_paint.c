@@ -241,6 +241,65 @@ static void test_paint_linear(void **state)
     lm_free(&a);
 }
 
+/* A floor and a wall meeting along an edge, each one element of constant light (1 and
+ * 3), painted on rad's charts and on the file's UVs (islands side by side, one
+ * rectangle for the whole atlas): every texel holds its own polygon's light exactly,
+ * the corners on the shared edge averaged within each plane only. */
+static void test_paint_planes(void **state)
+{
+    sc_poly p[2];
+    sc_soft_element el[2];
+    lm_opts lo = {64, 0.0, 0, LM_TOL, 0.0};
+    lm_file_report rep;
+    double uv[16];
+    char err[256] = "";
+    int f, k, x, y;
+    (void)state;
+    p[0] = floor_quad(1, 0.5);
+    p[1] = p[0]; /* the wall x = -1, facing +x */
+    for (k = 0; k < 4; k++) {
+        p[1].v[k][1] = p[0].v[k][0] + 1.0;
+        p[1].v[k][0] = -1.0;
+    }
+    for (k = 0; k < 2; k++) {
+        memset(&el[k], 0, sizeof el[k]);
+        el[k].poly = k;
+        el[k].n = 4;
+        el[k].known = 1;
+        el[k].area = 4.0;
+        memcpy(el[k].p, p[k].v, sizeof el[k].p);
+        el[k].rgb[0] = el[k].rgb[1] = el[k].rgb[2] = k ? 3.0 : 1.0;
+    }
+    for (k = 0; k < 4; k++) { /* corner k at u = 0.05 + 0.4 (k == 2 || k == 3), v likewise */
+        double u = 0.05 + 0.4 * (k >= 2), v = 0.05 + 0.4 * (k == 1 || k == 2);
+        uv[2 * k] = u, uv[2 * k + 1] = v;
+        uv[8 + 2 * k] = u + 0.5, uv[8 + 2 * k + 1] = v;
+    }
+    for (f = 0; f < 2; f++) {
+        lm_atlas a;
+        long seen[2] = {0, 0};
+        if ((f ? lm_build_file(&a, p, 2, uv, &lo, &rep, err, sizeof err)
+               : lm_build(&a, p, 2, &lo, err, sizeof err)) != 0)
+            fail_msg("lm_build%s: %s", f ? "_file" : "", err);
+        CHECK_INT_EQ(lm_paint(&a, el, 2), 0, "texels left to gather (%s)", f ? "file" : "rad");
+        for (y = 0; y < a.size; y++)
+            for (x = 0; x < a.size; x++) {
+                size_t at = (size_t)y * a.size + (size_t)x;
+                double q[3];
+                if (!lm_texel_point(&a, x, y, q)) continue;
+                seen[a.poly[at]]++;
+                CHECK_NEAR(a.rgb[3 * at], a.poly[at] ? 3.0 : 1.0, 3.0 * FLOAT_REL,
+                           "texel (%d, %d) of polygon %d (%s UVs)", x, y, a.poly[at],
+                           f ? "the file's" : "rad's");
+            }
+        printf("%s UVs: %ld floor and %ld wall texels, each its own plane's light\n",
+               f ? "the file's" : "rad's", seen[0], seen[1]);
+        CHECK_INT_GE(seen[0], 200, "floor texels");
+        CHECK_INT_GE(seen[1], 200, "wall texels");
+        lm_free(&a);
+    }
+}
+
 /* The exit status of shell command CMD. */
 static int run(const char *cmd)
 {
@@ -298,6 +357,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_split),
         cmocka_unit_test(test_paint_linear),
+        cmocka_unit_test(test_paint_planes),
         cmocka_unit_test(test_cli),
     };
     return cmocka_run_group_tests(tests, group_setup, group_teardown);

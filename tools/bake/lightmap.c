@@ -1471,7 +1471,7 @@ int lm_visible(void *atlas, const double p[3], const double dir[3], double len)
 /* ---- painting from a solve's elements ---- */
 
 /* Element corners by place on a chart (lm_paint): an open-addressed table of keys
- * (chart and the place on a grid 2^-20 of the extent), each summing the light of the
+ * (place_key: chart and the place on a grid 2^-20 of the extent), each summing the light of the
  * known elements there times their areas, and the areas. */
 typedef struct {
     long long k[4];
@@ -1496,11 +1496,17 @@ static size_t place_slot(place_t *t, size_t mask, const long long k[4])
     }
 }
 
+/* The key of corner P of an element on polygon POLY: its chart (a file's UVs make one
+ * rectangle of every polygon: there its polygon's normal, in bins of 2^-10 a
+ * component, so that a floor's corners do not mix with a wall's) and its place. */
 static void place_key(const lm_atlas *a, int poly, const double p[3], long long k[4])
 {
+    const double *n = &a->planes[4 * (size_t)poly];
     double q = a->extent * 0x1p-20;
     int j;
-    k[0] = a->poly_chart[poly];
+    k[0] = a->file_uv ? (llround(n[0] * 1024.0) + 1024) << 22 |
+                            (llround(n[1] * 1024.0) + 1024) << 11 | (llround(n[2] * 1024.0) + 1024)
+                      : a->poly_chart[poly];
     for (j = 0; j < 3; j++) k[1 + j] = llround(p[j] / q);
 }
 
