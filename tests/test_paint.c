@@ -16,7 +16,9 @@
  * grid (four elements about it, placed symmetrically), the area-weighted mean of
  * their values is f at the corner, exactly, so every texel whose sample lies within
  * the grid's inner corners holds f at its sample, to float rounding (the atlas stores
- * floats: 2^-24 relative, 1e-5 of these values as bound).
+ * floats: 2^-24 relative, 1e-5 of these values as bound). A floor and a wall meeting
+ * at an edge keep their own light (corners average within a plane only), on rad's
+ * charts and on a file's UVs.
  *
  * Through rad_cli: the open floor under a sun and a uniform sky, baked with
  * --lightmap-soft elements, holds E + pi L at every covered texel (nothing bounces to
