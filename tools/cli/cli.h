@@ -113,9 +113,9 @@ typedef struct {
     double lightmap_tol; /* --lightmap-tol: lm_opts' tol */
     int lightmap_pad;    /* --lightmap-pad; -1: lm_opts' default, 0: none */
     int lightmap_uv;     /* --lightmap-uv: LIGHTMAP_UV_AUTO, _FILE or _RAD */
-    int lightmap_soft;   /* --lightmap-soft: LIGHTMAP_SOFT_ELEMENTS or _GATHER */
+    int lightmap_soft;   /* --lightmap-soft: LIGHTMAP_SOFT_GATHER or _ELEMENTS */
     const char *
-        lightmap_opt; /* the last --lightmap-size, -pad, -tol or -uv given (they need --lightmap) */
+        lightmap_opt; /* the last --lightmap-size, -pad, -tol, -uv or -soft given (they need --lightmap) */
 } opts_t;
 
 enum { LIGHTMAP_UV_AUTO, LIGHTMAP_UV_FILE, LIGHTMAP_UV_RAD };

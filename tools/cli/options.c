@@ -696,8 +696,9 @@ static const option_t options[] = {
      "file: required) or rad's own charts\n(auto: the file's if it has one)",
      opt_lightmap_uv},
     {"--lightmap-soft", NULL, "MODE",
-     "the lightmap's soft light (all but suns, points and spots), MODE\ngather: a hemi-cube at "
-     "texels (--lightmap-tol; default) or\nelements: the solve's elements' light, interpolated",
+     "how the lightmap's soft light is found, MODE gather: a hemi-cube\nat texels "
+     "(--lightmap-tol; the default) or elements: painted\nfrom the solve's elements (a preview "
+     "in seconds; then every\nlight's direct light is a ray per texel)",
      opt_lightmap_soft},
     {"--probes", NULL, "NX,NY,NZ", "light probes (L2 spherical harmonics) on a grid over the scene",
      opt_probes},

@@ -69,10 +69,10 @@ static void solve_shoot(run_t *r, solve_progress *pg)
 {
     const opts_t *o = r->o;
     int shots = -1;
-    /* a lightmap painted from the elements: their soft light kept apart (bake.c) */
+    /* a lightmap painted from the elements keeps their light apart from the lights'
+     * direct light (bake.c; without memory for it, the texels are gathered) */
     if (o->lightmap && o->lightmap_soft == LIGHTMAP_SOFT_ELEMENTS)
-        r->soft_kept =
-            sc_solve_lights(r->s, SC_SKIES) == 0; /* else (no memory) the texels gather */
+        r->soft_kept = sc_solve_lights(r->s, SC_SKIES) == 0;
     if (o->batch >= 2)
         shots = sc_solve_batch(r->s, o->threads, o->batch, o->max_shots, o->tol, progress, pg);
     else if (o->threads >= 2)
