@@ -853,7 +853,7 @@ static void level_row(report_t *rp, report_t *pp, const char *name, const sc_pol
 
 /* rad_bench --level [STOP] [SCENE]: the generated atrium (tools/bench/level.h) and, when
  * SCENE (default ../shared/scenes/sponza.obj) is there, that scene under the same sun
- * and sky; each bake cut short after STOP seconds when STOP > 0. The table to stdout. */
+ * and sky; each bake cut short after STOP seconds when STOP > 0. The two tables to stdout. */
 int bench_level(int argc, char **argv)
 {
     static report_t rp;
