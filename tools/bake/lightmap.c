@@ -1470,30 +1470,21 @@ int lm_visible(void *atlas, const double p[3], const double dir[3], double len)
 
 /* ---- painting from a solve's elements ---- */
 
-/* Element corners by place on a chart (lm_paint): an open-addressed table of keys
- * (place_key: chart and the place on a grid 2^-20 of the extent), each summing the light of the
- * known elements there times their areas, and the areas. */
+/* An element corner (lm_paint): its key (place_key) and which corner it is. */
 typedef struct {
     long long k[4];
-    double rgb[3], w;
+    long e;
+    int j;
 } place_t;
 
-static size_t place_slot(place_t *t, size_t mask, const long long k[4])
+/* Corners by key (qsort): equal keys, one place. */
+static int place_cmp(const void *x, const void *y)
 {
-    size_t h =
-        (size_t)((unsigned long long)(k[0] * 0x9E3779B97F4A7C15ULL ^ k[1] * 0xC2B2AE3D27D4EB4FULL ^
-                                      k[2] * 0x165667B19E3779F9ULL ^
-                                      k[3] * 0x27D4EB2F165667C5ULL) >>
-                 17);
-    for (;; h++) {
-        place_t *c = &t[h & mask];
-        if (c->w < 0.0) { /* empty */
-            memcpy(c->k, k, sizeof c->k);
-            c->rgb[0] = c->rgb[1] = c->rgb[2] = c->w = 0.0;
-            return h & mask;
-        }
-        if (!memcmp(c->k, k, sizeof c->k)) return h & mask;
-    }
+    const place_t *p = x, *q = y;
+    int i;
+    for (i = 0; i < 4; i++)
+        if (p->k[i] != q->k[i]) return p->k[i] < q->k[i] ? -1 : 1;
+    return 0;
 }
 
 /* The key of corner P of an element on polygon POLY: its chart (a file's UVs make one
@@ -1513,11 +1504,10 @@ static void place_key(const lm_atlas *a, int poly, const double p[3], long long 
 /* Weights of triangle T's corners (2D) at point Q on it; 0 for a triangle of no area. */
 static int tri2_weights(const double t[3][2], const double q[2], double w[3])
 {
-    double d =
-        (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]);
+    double d = cross2d(t[0], t[1], t[2]);
     if (!(fabs(d) > 1e-12)) return 0;
-    w[1] = ((q[0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (q[1] - t[0][1])) / d;
-    w[2] = ((t[1][0] - t[0][0]) * (q[1] - t[0][1]) - (q[0] - t[0][0]) * (t[1][1] - t[0][1])) / d;
+    w[1] = cross2d(t[0], q, t[2]) / d;
+    w[2] = cross2d(t[0], t[1], q) / d;
     w[0] = 1.0 - w[1] - w[2];
     return 1;
 }
@@ -1533,17 +1523,12 @@ static void sample_xy(const lm_atlas *a, size_t at, double xy[2])
     }
 }
 
-/* 2D cross product of A and B. */
-static double cross2(const double *a, const double *b)
-{
-    return a[0] * b[1] - a[1] * b[0];
-}
-
 /* Quad Q's (corners in order) bilinear coordinates (u along 0-1, v along 0-3) of point
  * C on it, from the quadratic of the inverse map (exact for any convex quad); 0 when
  * it has no root in [0, 1] (a quad folded in the projection). */
 static int quad_uv(const double q[4][2], const double c[2], double *u, double *v)
 {
+    static const double o[2] = {0.0, 0.0};
     double e[2], f[2], g[2], h[2], k0, k1, k2, d, r, x;
     int i;
     for (i = 0; i < 2; i++) {
@@ -1552,9 +1537,9 @@ static int quad_uv(const double q[4][2], const double c[2], double *u, double *v
         g[i] = q[0][i] - q[1][i] + q[2][i] - q[3][i];
         h[i] = c[i] - q[0][i];
     }
-    k2 = cross2(g, f);
-    k1 = cross2(e, f) + cross2(h, g);
-    k0 = cross2(h, e);
+    k2 = cross2d(o, g, f);
+    k1 = cross2d(o, e, f) + cross2d(o, h, g);
+    k0 = cross2d(o, h, e);
     if (fabs(k2) <= 1e-9 * fabs(k1)) {
         r = -k0 / k1;
     } else {
@@ -1643,37 +1628,43 @@ static void paint_element(lm_atlas *a, const sc_soft_element *m, const double xy
         }
 }
 
+/* Whether element M can be painted on A: its polygon laid out. */
+static int paintable(const lm_atlas *a, const sc_soft_element *m)
+{
+    return m->poly >= 0 && m->poly < a->npolys && a->poly_chart[m->poly] >= 0 && m->n >= 3;
+}
+
 long lm_paint(lm_atlas *a, const sc_soft_element *el, long n)
 {
-    size_t t = (size_t)a->size * a->size, i, cap = 16, mask;
+    size_t t = (size_t)a->size * a->size, i, np = 0, r, s;
     long e, left = 0;
-    place_t *tab;
-    float *best;
+    place_t *pl = malloc((size_t)(n ? n : 1) * 4 * sizeof *pl);
+    double(*v)[4][3] = malloc((size_t)(n ? n : 1) * sizeof *v);
+    float *best = malloc(t * sizeof *best);
     int j, k;
-    for (e = 0; e < n; e++) cap += (size_t)el[e].n;
-    while (mask = cap - 1, cap & mask) cap &= mask; /* down to a power of 2 */
-    cap *= 4;
-    mask = cap - 1;
-    tab = malloc(cap * sizeof *tab);
-    best = malloc(t * sizeof *best);
-    if (!tab || !best) {
-        free(tab);
+    if (!pl || !v || !best) {
+        free(pl);
+        free(v);
         free(best);
         return -1;
     }
-    for (i = 0; i < cap; i++) tab[i].w = -1.0;
-    for (e = 0; e < n; e++) { /* the corners' sums */
-        const sc_soft_element *m = &el[e];
-        if (!m->known || m->poly < 0 || m->poly >= a->npolys || a->poly_chart[m->poly] < 0)
-            continue;
-        for (j = 0; j < m->n; j++) {
-            long long key[4];
-            place_t *c;
-            place_key(a, m->poly, m->p[j], key);
-            c = &tab[place_slot(tab, mask, key)];
-            for (k = 0; k < 3; k++) c->rgb[k] += m->area * m->rgb[k];
-            c->w += m->area;
+    for (e = 0; e < n; e++)
+        for (j = 0; el[e].known && paintable(a, &el[e]) && j < el[e].n; j++, np++) {
+            place_key(a, el[e].poly, el[e].p[j], pl[np].k);
+            pl[np].e = e;
+            pl[np].j = j;
         }
+    qsort(pl, np, sizeof *pl, place_cmp);
+    for (r = 0; r < np; r = s) { /* each place: the area-weighted mean of its corners */
+        double sum[3] = {0.0, 0.0, 0.0}, w = 0.0;
+        for (s = r; s < np && !place_cmp(&pl[r], &pl[s]); s++) {
+            const sc_soft_element *m = &el[pl[s].e];
+            for (k = 0; k < 3; k++) sum[k] += m->area * m->rgb[k];
+            w += m->area;
+        }
+        for (i = r; i < s; i++)
+            for (k = 0; k < 3; k++)
+                v[pl[i].e][pl[i].j][k] = w > 0.0 ? sum[k] / w : el[pl[i].e].rgb[k];
     }
     for (i = 0; i < t; i++) {
         best[i] = (float)(LM_PAINT_REACH * LM_PAINT_REACH);
@@ -1681,23 +1672,14 @@ long lm_paint(lm_atlas *a, const sc_soft_element *el, long n)
             (unsigned char)((a->state[i] & LM_FREE) | (isnan(a->sample[2 * i]) ? 0 : LM_WANT));
     }
     for (e = 0; e < n; e++) {
-        const sc_soft_element *m = &el[e];
-        double xy[4][2], v[4][3];
-        if (m->poly < 0 || m->poly >= a->npolys || a->poly_chart[m->poly] < 0 || m->n < 3) continue;
-        for (j = 0; j < m->n; j++) {
-            lm_uv(a, m->poly, m->p[j], xy[j]);
-            if (m->known) {
-                long long key[4];
-                const place_t *c;
-                place_key(a, m->poly, m->p[j], key);
-                c = &tab[place_slot(tab, mask, key)];
-                for (k = 0; k < 3; k++) v[j][k] = c->w > 0.0 ? c->rgb[k] / c->w : m->rgb[k];
-            }
-        }
-        paint_element(a, m, (const double(*)[2])xy, (const double(*)[3])v, best);
+        double xy[4][2];
+        if (!paintable(a, &el[e])) continue;
+        for (j = 0; j < el[e].n; j++) lm_uv(a, el[e].poly, el[e].p[j], xy[j]);
+        paint_element(a, &el[e], (const double(*)[2])xy, (const double(*)[3])v[e], best);
     }
     for (i = 0; i < t; i++) left += (a->state[i] & LM_WANT) != 0;
-    free(tab);
+    free(pl);
+    free(v);
     free(best);
     a->painted = 1;
     a->pass = 0;

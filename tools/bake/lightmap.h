@@ -202,7 +202,7 @@ int lm_dilate(lm_atlas *a);
  * LM_PAINT_REACH texels of its sample and on a known element. The other covered texels
  * (on elements not known, or polygons the solve did not mesh) are what lm_plan then
  * gives, in one pass, to gather. The bake's sharp lights stay per texel
- * (lm_direct_rows). Memory while it runs: 4 bytes a texel, at most 256 a corner. Returns
+ * (lm_direct_rows). Memory while it runs: 4 bytes a texel, 72 an element corner. Returns
  * the texels left to gather, or -1 out of memory. */
 #define LM_PAINT_REACH 2.0
 long lm_paint(lm_atlas *a, const sc_soft_element *el, long n);

@@ -699,6 +699,17 @@ static void err_cell(char *s, size_t n, const double err[3])
         snprintf(s, n, "-");
 }
 
+/* POLYS (N) laid out into A at O, or the bench ends naming scene NAME. */
+static void level_layout(lm_atlas *a, const sc_poly *polys, int n, const lm_opts *o,
+                         const char *name)
+{
+    char err[512];
+    if (lm_build(a, polys, n, o, err, sizeof err) != 0) {
+        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
+        exit(1);
+    }
+}
+
 /* The lightmap painted from S's elements (lm_paint; the texels on elements not known
  * gathered, every light's direct light per texel) into a fresh layout of POLYS at O,
  * checked as the gathered bake is: a row of PP's table. */
@@ -708,14 +719,11 @@ static void level_paint(report_t *pp, const char *name, sc_solver *s, const sc_p
     level_bake b;
     lm_atlas a;
     sc_soft_element *el;
-    char err[512], errs[64];
+    char errs[64];
     double c0, cpu, e[3];
     long ne, left;
     memset(&b, 0, sizeof b);
-    if (lm_build(&a, polys, n, o, err, sizeof err) != 0) {
-        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
-        exit(1);
-    }
+    level_layout(&a, polys, n, o, name);
     if (!(b.g = sc_gatherer_new(s, DEF_GATHER_RES, 0))) exit(1);
     b.s = s;
     b.a = &a;
@@ -780,10 +788,7 @@ static void level_row(report_t *rp, report_t *pp, const char *name, const sc_pol
     sc_get_stats(s, &st);
     fprintf(stderr, "rad_bench: level: solved in %.1f s; the lightmap's layout ...\n", solve_wall);
     c0 = bench_thread_cpu();
-    if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
-        fprintf(stderr, "rad_bench: %s: %s\n", name, err);
-        exit(1);
-    }
+    level_layout(&a, polys, n, &lo, name);
     lay_cpu = bench_thread_cpu() - c0;
     for (covered = 0, y = 0; y < a.size; y++)
         for (x = 0; x < a.size; x++) {
@@ -819,10 +824,7 @@ static void level_row(report_t *rp, report_t *pp, const char *name, const sc_pol
         double cpu, wall = 0.0;
         long got;
         x = i % 2;
-        if (lm_build(&a, polys, n, &lo, err, sizeof err) != 0) {
-            fprintf(stderr, "rad_bench: %s: %s\n", name, err);
-            exit(1);
-        }
+        level_layout(&a, polys, n, &lo, name);
         lm_plan(&a);
         tn[x] = 0;
         for (k = 0; k < (x ? 1 : 2); k++) {

@@ -35,7 +35,6 @@
 #define sc_element_area scf_element_area
 #define sc_element_centroid scf_element_centroid
 #define sc_element_limit scf_element_limit
-#define sc_element_poly scf_element_poly
 #define sc_element_rgb scf_element_rgb
 #define sc_element_rho scf_element_rho
 #define sc_element_tag scf_element_tag

@@ -177,7 +177,6 @@ static void keep_surface(struct sc_solver *h, int surf, const sc_poly *q, const 
                          int n)
 {
     h->tags[surf] = q->tag;
-    h->poly_of[surf] = (int)(q - h->polys);
     memcpy(&h->emit[3 * surf], q->emit, sizeof q->emit);
     h->area[surf] = poly_area(v, n, NULL);
     h->tiny[surf] = h->area[surf] < TINY_AREA;
@@ -702,7 +701,6 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
     w.warn = warn;
     w.ctx = ctx;
     w.emitted = 0;
-    h->polys = polys;
     for (;;) {
         int i, added, rc = RAD_OK;
         if (cap > limit) cap = limit;
@@ -719,10 +717,11 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
         h->skipped = h->split = h->clamped = h->skipped_emitters = h->n_tiny = 0;
         w.seen = 0;
         for (i = 0, added = 0; i < n && rc == RAD_OK; i++) {
-            uint32_t before = h->s.n_surfaces;
+            uint32_t before = h->s.n_surfaces, k;
             rc = same[i] && added ? join_poly(h, &polys[order[i]], &w)
                                   : add_poly(h, &polys[order[i]], &w);
             added = h->s.n_surfaces > before;
+            for (k = before; k < h->s.n_surfaces; k++) h->poly_of[k] = order[i];
         }
         if (rc == RAD_OK) {
             if (h->s.n_elements == 0) {
@@ -732,7 +731,6 @@ sc_solver *sc_create(const sc_poly *polys, int n, const sc_opts *o, sc_warn_fn w
             }
             free(order);
             free(same);
-            h->polys = NULL;
             return h;
         }
         if (rc != RAD_ERR_FULL) {

@@ -263,19 +263,17 @@ int sc_direct(sc_solver *s, const double p[3], const double n[3], int flags, sc_
  * suns', points' and spots' part (its emission and the skies' light; with FLAGS
  * SC_SKIES, the skies' part too, as sc_gather's); call it before
  * sc_solve, sc_solve_batch or sc_solve_parallel, before any shot. 0, or -1 (out of
- * memory, a shot already taken). sc_element_poly: the index of element E's polygon in
- * sc_create's array. */
+ * memory, a shot already taken). */
 int sc_solve_lights(sc_solver *s, int flags);
-int sc_element_poly(sc_solver *s, int e);
-/* Every element of S as one of these (its polygon POLY, N = 3 or 4 corners P in order
- * round it, its AREA, and, when KNOWN, RGB: the light it received but the direct
- * light of the lights sc_solve_lights split off, as sc_gather's SC_SOFT with its FLAGS,
- * with the ambient term when AMBIENT), into a malloc'd array of *N; NULL when out of memory. RGB is the
- * radiosity's rise over the reflectance; not known without sc_solve_lights since the
- * solution started, after sc_mix, on a face of a group of tiny faces (which shows
- * the group's radiosity), or where a channel's reflectance is below
- * SOFT_RHO_MIN (the radiosity's rounding, 2^-16 of the core's scale, over the
- * reflectance would pass a gather's error). */
+/* Every element of S as one of these (its polygon POLY, the index in sc_create's
+ * array; N = 3 or 4 corners P in order round it; its AREA; and, when KNOWN, RGB: the
+ * light it received but the direct light of the lights sc_solve_lights split off, as
+ * sc_gather's SC_SOFT with its FLAGS, with the ambient term when AMBIENT), into a
+ * malloc'd array of *N; NULL when out of memory. RGB is the radiosity's rise over the
+ * reflectance; not known without sc_solve_lights since the solution started, after
+ * sc_mix, on a face of a group of tiny faces (which shows the group's radiosity), or
+ * where a channel's reflectance is below SOFT_RHO_MIN (the radiosity's rounding,
+ * 2^-16 of the core's scale, over the reflectance would pass a gather's error). */
 #define SOFT_RHO_MIN (1.0 / 64.0)
 typedef struct {
     int poly, n, known;

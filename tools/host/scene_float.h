@@ -75,7 +75,6 @@ int scf_gather_sh(scf_gatherer *g, const double p[3], int ambient, double sh[9][
 int scf_direct(scf_solver *s, const double p[3], const double n[3], int flags, sc_visible_fn *vis,
                void *ctx, double rgb[3]);
 int scf_solve_lights(scf_solver *s, int flags);
-int scf_element_poly(scf_solver *s, int e);
 sc_soft_element *scf_soft_elements(scf_solver *s, int ambient, long *n);
 unsigned long scf_gatherer_saturations(scf_gatherer *g);
 #endif

@@ -231,20 +231,23 @@ int sc_solve_lights(sc_solver *h, int flags)
     sc__unmix(h);
     free(h->soft_base);
     h->soft_base = NULL;
-    base = malloc(n * sizeof *base);
+    base = calloc(n, sizeof *base); /* first the gains of the lights not split off */
     if (!base || !before || !after || h->s.stats.shots > 0 || h->s.lights_shot > 0) rc = -1;
     /* no shot: the scene frozen, its power at the core's scale, so that radiosities
-     * read in the caller's units hold the emission from here on */
+     * read in the caller's units compare from here on */
     sc_solve_cull(h);
-    if (rc == 0 && (rad_shoot(&h->s, 0, 0) != 0 || sc_shade_elements(h, 0, base) < 0)) rc = -1;
+    if (rc == 0 && rad_shoot(&h->s, 0, 0) != 0) rc = -1;
     while (rc == 0 && h->s.lights_shot < h->s.n_lights) {
-        int split = (flags & SC_SKIES) || h->s.lights[h->s.lights_shot].type != RAD_LIGHT_SKY;
+        int kept = !(flags & SC_SKIES) && h->s.lights[h->s.lights_shot].type == RAD_LIGHT_SKY;
         sc_solve_cull(h);
-        if (split && sc_shade_elements(h, 0, before) < 0) rc = -1;
+        if (kept && sc_shade_elements(h, 0, before) < 0) rc = -1;
         if (rc == 0 && rad_shoot(&h->s, 1, 0) != 1) rc = -1; /* this light alone */
-        if (rc == 0 && split && sc_shade_elements(h, 0, after) < 0) rc = -1;
-        for (i = 0; rc == 0 && split && i < n; i++) base[i] += after[i] - before[i];
+        if (rc == 0 && kept && sc_shade_elements(h, 0, after) < 0) rc = -1;
+        for (i = 0; rc == 0 && kept && i < n; i++) base[i] += after[i] - before[i];
     }
+    /* every light shot: the radiosity but the gains split off */
+    if (rc == 0 && sc_shade_elements(h, 0, after) < 0) rc = -1;
+    for (i = 0; rc == 0 && i < n; i++) base[i] = after[i] - base[i];
     free(before);
     free(after);
     if (rc == 0)
@@ -269,11 +272,6 @@ static int element_soft(sc_solver *h, int e, const double *b, double rgb[3])
     return 1;
 }
 
-int sc_element_poly(sc_solver *h, int e)
-{
-    return h->poly_of[h->pools.elements[e].surface];
-}
-
 sc_soft_element *sc_soft_elements(sc_solver *h, int ambient, long *n)
 {
     long ne = (long)h->s.n_elements, e;
@@ -288,7 +286,7 @@ sc_soft_element *sc_soft_elements(sc_solver *h, int ambient, long *n)
     *n = ne;
     for (e = 0; e < ne; e++) {
         sc_soft_element *m = &el[e];
-        m->poly = sc_element_poly(h, (int)e);
+        m->poly = h->poly_of[h->pools.elements[e].surface];
         m->n = sc_element_vertices(h, (int)e, v);
         for (j = 0; j < m->n; j++) sc_vertex_pos(h, v[j], m->p[j]);
         m->area = sc_element_area(h, (int)e);

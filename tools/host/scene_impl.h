@@ -16,12 +16,11 @@
 struct sc_solver {
     rad_scene_t s;
     rad_pools_t pools;
-    int *tags;            /* per surface */
-    int *poly_of;         /* per surface: its polygon's index in sc_create's array */
-    const sc_poly *polys; /* sc_create's array, while it builds */
-    double *soft_base;    /* per element (3 each): its radiosity but the sharp lights' part
-                        * (sc_solve_lights), or NULL */
-    double *emit;         /* per surface: emission in caller units (3 each) */
+    int *tags;         /* per surface */
+    int *poly_of;      /* per surface: its polygon's index in sc_create's array */
+    double *soft_base; /* per element (3 each): its radiosity but the part of the lights
+                        * sc_solve_lights split off, or NULL */
+    double *emit;      /* per surface: emission in caller units (3 each) */
     double scale, off[3], escale;
     double escale0; /* escale of the scene as built */
     double epeak;   /* the brightest emission escale maps to the core's peak */
