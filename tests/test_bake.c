@@ -513,23 +513,30 @@ static void adaptive_case(int tiles, int *na, int *ne, double *worst, double *rm
     CHECK_INT_EQ(*ne, covered, "the every-texel bake's gathers: the covered texels");
     CHECK_INT_EQ(*na + lerped, covered, "texels gathered or interpolated");
     CHECK_THAT(same, "the texels both bakes gather: the same bits");
+    CHECK_INT_EQ(lm_undecided(&ad), 0, "texels neither gathered nor interpolated after the bake");
+    { /* lm_undecided (rad_cli's note on long bakes): every covered texel before the
+       * first pass, all but its gathers after it */
+        lm_opts lo = {128, 0.0, 0, LM_TOL, 0.0};
+        lm_atlas f;
+        baker b = {NULL, NULL, 0};
+        long first;
+        b.s = s;
+        b.g = sc_gatherer_new(s, 32, 0);
+        assert_non_null(b.g);
+        CHECK_INT_EQ(lm_build(&f, polys, n, &lo, err, sizeof err), 0, "lm_build (%s)", err);
+        first = lm_plan(&f);
+        CHECK_INT_EQ(lm_undecided(&f), covered, "texels undecided before the first pass");
+        CHECK_INT_EQ(lm_gather_rows(&f, 0, 1, gather_cb, &b), 0, "the first pass");
+        CHECK_INT_EQ(lm_undecided(&f), covered - first,
+                     "texels undecided after the first pass's %ld gathers", first);
+        lm_free(&f);
+        sc_gatherer_free(b.g);
+    }
     lm_free(&ex);
     lm_free(&ad);
     sc_destroy(s);
 }
 
-/* Adaptive gathering against gathering every texel, over one solution: a floor of
- * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
- * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,
- * its contact with the floor and the light's fall-off towards the floor's edges. Every
- * texel the adaptive bake gathers has the every-texel bake's bits (the same sample,
- * the same gather); the others, interpolated, are compared per texel (the largest
- * channel difference over the exact texel's largest channel). Measured: 85.4% of the
- * texels gathered (a small atlas: most blocks touch a boundary, the box or the ring),
- * the interpolated within 3.20%, rms 0.56%; the bounds leave a margin over that. Part
- * of what is measured is the every-texel bake's own noise: the cube's pixels that the
- * emitter's outline covers change from texel to texel, and interpolation keeps only the
- * corners' share of it. */
 /* Adaptive gathering against gathering every texel, over one solution: a floor of
  * reflectance 0.5 under a 2 x 2 emitter at height 2, a box (a cube of 0.6, reflectance
  * 0.5) standing on it, at 128 x 128 texels, gather resolution 32: the box's shadow,

@@ -1423,6 +1423,15 @@ static long split_blocks(lm_atlas *a, int b)
     return n;
 }
 
+long lm_undecided(const lm_atlas *a)
+{
+    size_t i, t = (size_t)a->size * a->size;
+    long n = 0;
+    for (i = 0; i < t; i++)
+        n += !isnan(a->sample[2 * i]) && !(a->state[i] & (LM_GATHERED | LM_LERPED));
+    return n;
+}
+
 long lm_plan(lm_atlas *a)
 {
     long n = 0;

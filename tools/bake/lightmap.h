@@ -192,6 +192,9 @@ int lm_bake(lm_atlas *a, lm_gather_fn fn, lm_gather_fn direct, void *ctx);
  * the dilation. lm_gather_rows and lm_dilate return 0, or -1 (FN stopped it; no memory
  * for the dilation). */
 long lm_plan(lm_atlas *a);
+/* The covered texels neither gathered nor interpolated yet: the most that the passes
+ * left may gather. */
+long lm_undecided(const lm_atlas *a);
 int lm_gather_rows(lm_atlas *a, int first, int step, lm_gather_fn fn, void *ctx);
 int lm_dilate(lm_atlas *a);
 /* The soft light painted from a solve's elements (N of EL: sc_soft_elements) instead of gathered: each

@@ -115,6 +115,20 @@ static long covered_texels(const lm_atlas *a)
     return n;
 }
 
+/* After the first pass, whose gathers took SECONDS each (wall, on --threads): a note
+ * when the passes left may take long, naming the painted bake. */
+static void long_bake_note(run_t *r, const lm_atlas *a, double seconds)
+{
+    double left = seconds * (double)lm_undecided(a);
+    if (left > LIGHTMAP_NOTE_SECONDS && !r->o->quiet)
+        fprintf(stderr,
+                PROG ": note: %s: the passes left may take up to %.0f minutes (%ld texels at %.1f "
+                     "ms each, the first pass's rate); --lightmap-soft elements paints the soft "
+                     "light from the "
+                     "solve in seconds, as a preview (docs/cli.md)\n",
+                r->o->lightmap, left / 60.0, lm_undecided(a), 1e3 * seconds);
+}
+
 /* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a
  * gatherer of its own, by rows: the same bits as one; each pass a stage of progress
  * (how many passes there will be depends on what they gather). 0, or -1 (a gather
@@ -137,9 +151,11 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, d
         snprintf(what, sizeof what, "lightmap pass %d", a->pass);
         progress_begin(&pg, what, r->o->quiet);
         j.share = (double)count / n;
+        t = host_now();
         rc = sc_gather_split(r->s, res, n, texel_rows, &j);
         for (i = 0; i < n; i++) *gathers += j.gathers[i];
         progress_end(&pg);
+        if (rc == 0 && a->pass == 1 && !a->painted) long_bake_note(r, a, (host_now() - t) / count);
     }
     t = host_now();
     if (rc == 0) { /* the sharp lights at every covered texel */

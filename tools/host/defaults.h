@@ -21,10 +21,14 @@
  * the lowest of 16, 32, 48, 64 within 2% rms on a room with cornices and on
  * CornellBox-Original (32: 1.9% and 4.4%, its worst texels 9% and 24% off: the
  * streaks under cornices), at about twice the time of a gather at 32. */
-#define DEF_GATHER_RES    64
+#define DEF_GATHER_RES        64
+/* rad_cli notes --lightmap-soft elements when a gathered lightmap's first pass says
+ * that the passes left may take longer than this (seconds): a level's gathers take tens
+ * of minutes where its painted light takes seconds (docs/cli.md). */
+#define LIGHTMAP_NOTE_SECONDS 300.0
 /* The lightmap atlas' side in texels, and the image's width and height. */
-#define DEF_LIGHTMAP_SIZE 512
-#define DEF_IMAGE_SIZE    512
+#define DEF_LIGHTMAP_SIZE     512
+#define DEF_IMAGE_SIZE        512
 
 /* Shots a batch (rad_batch_begin; rad_cli --batch): chosen by measurement, rad_bench's
  * batch table and docs/new-batch.md. */
