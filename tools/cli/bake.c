@@ -119,14 +119,14 @@ static long covered_texels(const lm_atlas *a)
  * when the passes left may take long, naming the painted bake. */
 static void long_bake_note(run_t *r, const lm_atlas *a, double seconds)
 {
-    double left = seconds * (double)lm_undecided(a);
+    long texels = lm_undecided(a);
+    double left = seconds * (double)texels;
     if (left > LIGHTMAP_NOTE_SECONDS && !r->o->quiet)
         fprintf(stderr,
-                PROG ": note: %s: the passes left may take up to %.0f minutes (%ld texels at %.1f "
-                     "ms each, the first pass's rate); --lightmap-soft elements paints the soft "
-                     "light from the "
-                     "solve in seconds, as a preview (docs/cli.md)\n",
-                r->o->lightmap, left / 60.0, lm_undecided(a), 1e3 * seconds);
+                PROG ": note: %s: the passes left may take up to %.0f minutes (%ld texels at "
+                     "%.1f ms each, the first pass's rate); --lightmap-soft elements paints "
+                     "the soft light from the solve in seconds, as a preview (docs/cli.md)\n",
+                r->o->lightmap, left / 60.0, texels, 1e3 * seconds);
 }
 
 /* The texels pass by pass (lm_plan), each pass's on N threads (--threads), each with a

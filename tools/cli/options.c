@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 typedef void (*opt_fn)(opts_t *o, const char *opt, const char *val);
 
@@ -598,7 +599,8 @@ static const option_t options[] = {
     {"--max-shots", NULL, "N", "stop after N shots (1000000)", opt_max_shots},
     {"--threads", NULL, "N",
      "render the hemi-cubes on N threads: a batch's whole cubes (--batch),\nor with --batch 1 each "
-     "shot's by rows; same result (1);\n--lightmap's texels, --gather's gathers and textures too",
+     "shot's by rows; the same result for any N\n(the processors online); --lightmap's texels, "
+     "--gather's\ngathers and textures too",
      opt_threads},
     {"--batch", NULL, "K",
      "shoot in batches of the K patches that move the most, their\n"
@@ -827,13 +829,20 @@ void cli_shot_settings(const opts_t *o, int rows, sc_opts *so)
     so->coarse_res = o->coarse_res ? o->coarse_res : DEF_COARSE_FLOOR(so->res);
 }
 
+/* --threads without it: the processors online, 1..64 (any count gives the same bits). */
+static int default_threads(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 64 ? 64 : (int)n;
+}
+
 static void set_defaults(opts_t *o, int argc)
 {
     memset(o, 0, sizeof *o);
     o->width = o->height = DEF_IMAGE_SIZE;
     o->tol = 0.001;
     o->max_shots = 1000000;
-    o->threads = 1;
+    o->threads = default_threads();
     o->batch = DEF_BATCH;
     o->coarse = -1; /* not given: cli_shot_settings */
     o->lightmap_tol = LM_TOL;
