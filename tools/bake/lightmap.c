@@ -1567,6 +1567,17 @@ static int quad_uv(const double q[4][2], const double c[2], double *u, double *v
     return 1;
 }
 
+/* Fan triangle J of corners XY (corners 0, J + 1, J + 2) into T. */
+static void fan_tri(const double xy[4][2], int j, double t[3][2])
+{
+    int i;
+    for (i = 0; i < 2; i++) {
+        t[0][i] = xy[0][i];
+        t[1][i] = xy[j + 1][i];
+        t[2][i] = xy[j + 2][i];
+    }
+}
+
 /* The light at point C of element corners XY (N = 3 or 4, atlas places) whose corners
  * hold V: linear over a triangle, bilinear over a quad (so a quad's light has no crease
  * along a diagonal), into RGB; T is the triangle of the element holding C (corners 0,
@@ -1575,18 +1586,14 @@ static void element_light(int n, const double xy[4][2], const double v[4][3], co
                           int j, double rgb[3])
 {
     double t[3][2], w[3], u, s;
-    int k, i;
+    int k;
     if (n == 4 && quad_uv(xy, c, &u, &s)) {
         for (k = 0; k < 3; k++)
             rgb[k] = (1 - u) * (1 - s) * v[0][k] + u * (1 - s) * v[1][k] + u * s * v[2][k] +
                      (1 - u) * s * v[3][k];
         return;
     }
-    for (i = 0; i < 2; i++) {
-        t[0][i] = xy[0][i];
-        t[1][i] = xy[j + 1][i];
-        t[2][i] = xy[j + 2][i];
-    }
+    fan_tri(xy, j, t);
     if (!tri2_weights((const double(*)[2])t, c, w)) w[0] = 1, w[1] = w[2] = 0;
     for (k = 0; k < 3; k++) rgb[k] = w[0] * v[0][k] + w[1] * v[j + 1][k] + w[2] * v[j + 2][k];
 }
@@ -1614,11 +1621,7 @@ static void paint_element(lm_atlas *a, const sc_soft_element *m, const double xy
             sample_xy(a, at, q);
             for (j = 0; j + 2 < m->n; j++) { /* the nearest point of its triangles */
                 double t[3][2], e;
-                for (k = 0; k < 2; k++) {
-                    t[0][k] = xy[0][k];
-                    t[1][k] = xy[j + 1][k];
-                    t[2][k] = xy[j + 2][k];
-                }
+                fan_tri(xy, j, t);
                 geom_tri2_closest((const double(*)[2])t, q, c);
                 e = (c[0] - q[0]) * (c[0] - q[0]) + (c[1] - q[1]) * (c[1] - q[1]);
                 if (e < d2) {

@@ -44,6 +44,8 @@ typedef struct {
     double *xs, *xt, *y; /* convergence: shots, seconds, unshot */
 } brun;
 
+/* V[0..N-1] sorted ascending. */
+void bench_sort(double *v, long n);
 /* The median of V[0..N-1], which it sorts. */
 double bench_median(double *v, int n);
 /* The scene's mesh and resolution as solver options. */

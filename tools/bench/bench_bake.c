@@ -646,12 +646,6 @@ static int level_direct(void *ctx, const double p[3], const double n[3], double 
  * 1024 x 1024 atlas. */
 #define LEVEL_CHECK 64
 
-static int cmp_double(const void *x, const void *y)
-{
-    double a = *(const double *)x, b = *(const double *)y;
-    return (a > b) - (a < b);
-}
-
 /* The baked texels of A's rows 0 mod LEVEL_CHECK against each gathered (with its
  * lights' direct light per texel, as B's bake adds it) as the bake would at every
  * texel: the rms, 90th percentile and largest difference of a texel's channel sum over
@@ -683,7 +677,7 @@ static void level_check(level_bake *b, lm_atlas *a, double err[3])
             d[n++] = fabs(got - want);
         }
     sum = n && sum > 0.0 ? sum / n : 1.0;
-    qsort(d, (size_t)n, sizeof *d, cmp_double);
+    bench_sort(d, n);
     err[0] = n ? sqrt(sq / n) / sum : 0.0;
     err[1] = n ? d[n * 9 / 10] / sum : 0.0;
     err[2] = n ? d[n - 1] / sum : 0.0;

@@ -129,9 +129,14 @@ static int cmp_d(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
-double bench_median(double *v, int n)
+void bench_sort(double *v, long n)
 {
     qsort(v, (size_t)n, sizeof *v, cmp_d);
+}
+
+double bench_median(double *v, int n)
+{
+    bench_sort(v, n);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 

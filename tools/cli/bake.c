@@ -160,8 +160,8 @@ static int gather_texels(run_t *r, lm_atlas *a, int n, int res, long *gathers, d
     t = host_now();
     if (rc == 0) { /* the sharp lights at every covered texel */
         progress_begin(&pg,
-                       a->painted ? "lightmap: suns, skies, points and spots"
-                                  : "lightmap: suns, points and spots",
+                       j.flags & SC_SKIES ? "lightmap: suns, skies, points and spots"
+                                          : "lightmap: suns, points and spots",
                        r->o->quiet);
         j.direct = 1;
         j.share = (double)covered_texels(a) / n;

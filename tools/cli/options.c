@@ -39,6 +39,25 @@ void cli_die_usage(const char *msg, const char *arg)
     exit(CLI_EXIT_USAGE);
 }
 
+/* VAL's index among the N NAMES, or a usage error naming them all. */
+static int parse_choice(const char *opt, const char *val, const char *const *names, int n)
+{
+    char want[128];
+    size_t len;
+    int k;
+    for (k = 0; k < n; k++)
+        if (!strcmp(val, names[k])) return k;
+    len = (size_t)snprintf(want, sizeof want, "%s wants", opt);
+    for (k = 0; k < n && len < sizeof want; k++)
+        len += (size_t)snprintf(want + len, sizeof want - len, "%s%s",
+                                k == 0       ? " "
+                                : k == n - 1 ? " or "
+                                             : ", ",
+                                names[k]);
+    cli_die_usage(want, val);
+    return 0;
+}
+
 static long parse_int(const char *opt, const char *s, long lo, long hi)
 {
     char *end;
@@ -380,13 +399,8 @@ static void opt_load_ff(opts_t *o, const char *opt, const char *val)
 
 static void opt_solver(opts_t *o, const char *opt, const char *val)
 {
-    (void)opt;
-    if (strcmp(val, "shoot") == 0)
-        o->gauss_seidel = 0;
-    else if (strcmp(val, "gauss-seidel") == 0)
-        o->gauss_seidel = 1;
-    else
-        cli_die_usage("--solver wants shoot or gauss-seidel", val);
+    static const char *const names[] = {"shoot", "gauss-seidel"};
+    o->gauss_seidel = parse_choice(opt, val, names, 2);
 }
 
 /* --light-group NAME=MAT1,MAT2,...: checked here, materials resolved with the scene. */
@@ -483,26 +497,16 @@ static void opt_lightmap_tol(opts_t *o, const char *opt, const char *val)
 
 static void opt_lightmap_uv(opts_t *o, const char *opt, const char *val)
 {
+    static const char *const names[] = {"auto", "file", "rad"}; /* LIGHTMAP_UV_* */
     o->lightmap_opt = opt;
-    if (!strcmp(val, "auto"))
-        o->lightmap_uv = LIGHTMAP_UV_AUTO;
-    else if (!strcmp(val, "file"))
-        o->lightmap_uv = LIGHTMAP_UV_FILE;
-    else if (!strcmp(val, "rad"))
-        o->lightmap_uv = LIGHTMAP_UV_RAD;
-    else
-        cli_die_usage("--lightmap-uv wants auto, file or rad", val);
+    o->lightmap_uv = parse_choice(opt, val, names, 3);
 }
 
 static void opt_lightmap_soft(opts_t *o, const char *opt, const char *val)
 {
+    static const char *const names[] = {"gather", "elements"}; /* LIGHTMAP_SOFT_* */
     o->lightmap_opt = opt;
-    if (!strcmp(val, "elements"))
-        o->lightmap_soft = LIGHTMAP_SOFT_ELEMENTS;
-    else if (!strcmp(val, "gather"))
-        o->lightmap_soft = LIGHTMAP_SOFT_GATHER;
-    else
-        cli_die_usage("--lightmap-soft wants elements or gather", val);
+    o->lightmap_soft = parse_choice(opt, val, names, 2);
 }
 
 static void opt_gather(opts_t *o, const char *opt, const char *val)

@@ -256,7 +256,6 @@ typedef int sc_visible_fn(void *ctx, const double p[3], const double dir[3], dou
  * the frame, N zero). */
 int sc_direct(sc_solver *s, const double p[3], const double n[3], int flags, sc_visible_fn *vis,
               void *ctx, double rgb[3]);
-/* Values past the core's range met by this gatherer (saturated, counted). */
 /* The soft light the solve's elements received, for a lightmap painted from them
  * (lm_paint) rather than gathered. sc_solve_lights shoots S's lights (a shooting
  * solve's first shots) one at a time and keeps each element's radiosity without the
@@ -281,6 +280,7 @@ typedef struct {
 } sc_soft_element;
 sc_soft_element *sc_soft_elements(sc_solver *s, int ambient, long *n);
 
+/* Values past the core's range met by this gatherer (saturated, counted). */
 unsigned long sc_gatherer_saturations(sc_gatherer *g);
 
 #define RAD_TWIN_SCENE /* the float twin's names of the above (generated): */
